@@ -1,0 +1,12 @@
+# cmake -DDIR=presets -DOUT=presets_embedded.inc -P EmbedPresets.cmake
+file(GLOB _files ${DIR}/*.json)
+list(SORT _files)
+set(_body "struct ShippedPreset { const char* name; const char* text; };\nconstexpr ShippedPreset kShippedPresets[] = {\n")
+foreach(f ${_files})
+  get_filename_component(_name ${f} NAME_WE)
+  file(READ ${f} _text)
+  string(APPEND _body "  {\"${_name}\", R\"mf_preset(${_text})mf_preset\"},\n")
+endforeach()
+string(APPEND _body "};\n")
+file(WRITE ${OUT}.new "${_body}")
+configure_file(${OUT}.new ${OUT} COPYONLY)

@@ -1,0 +1,60 @@
+// Findings: the coded, stable results every stage reports (see shared/spec/interface.md).
+// A code never changes meaning; new checks get new codes.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mf {
+
+enum class Severity { info = 0, warning = 1, error = 2 };
+
+std::string_view severity_name(Severity s);
+std::optional<Severity> severity_from_name(std::string_view name);
+
+// Stable finding codes. Keep in sync with docs/findings.md.
+namespace code {
+inline constexpr std::string_view unreadable_file = "UNREADABLE_FILE";
+inline constexpr std::string_view missing_map = "MISSING_MAP";
+inline constexpr std::string_view ambiguous_map = "AMBIGUOUS_MAP";
+inline constexpr std::string_view unrecognized_file = "UNRECOGNIZED_FILE";
+inline constexpr std::string_view resolution_mismatch = "RESOLUTION_MISMATCH";
+inline constexpr std::string_view nonfinite_values = "NONFINITE_VALUES";
+inline constexpr std::string_view out_of_range_values = "OUT_OF_RANGE_VALUES";
+inline constexpr std::string_view not_grayscale = "NOT_GRAYSCALE";
+inline constexpr std::string_view constant_map = "CONSTANT_MAP";
+inline constexpr std::string_view metalness_not_binary = "METALNESS_NOT_BINARY";
+inline constexpr std::string_view albedo_too_dark = "ALBEDO_TOO_DARK";
+inline constexpr std::string_view albedo_too_bright = "ALBEDO_TOO_BRIGHT";
+inline constexpr std::string_view metal_albedo_too_dark = "METAL_ALBEDO_TOO_DARK";
+inline constexpr std::string_view normal_invalid = "NORMAL_INVALID";
+inline constexpr std::string_view normal_convention_mismatch = "NORMAL_CONVENTION_MISMATCH";
+inline constexpr std::string_view color_space_mismatch = "COLOR_SPACE_MISMATCH";
+inline constexpr std::string_view gloss_inverted = "GLOSS_INVERTED";
+inline constexpr std::string_view packed_input_unpacked = "PACKED_INPUT_UNPACKED";
+inline constexpr std::string_view normal_convention_converted = "NORMAL_CONVENTION_CONVERTED";
+inline constexpr std::string_view normal_convention_unknown = "NORMAL_CONVENTION_UNKNOWN";
+// matforge extensions (never reused for another meaning)
+inline constexpr std::string_view output_write_failed = "OUTPUT_WRITE_FAILED";
+inline constexpr std::string_view resized = "RESIZED";
+inline constexpr std::string_view input_not_found = "INPUT_NOT_FOUND";
+}  // namespace code
+
+struct Finding {
+    std::string code;
+    Severity severity = Severity::info;
+    std::string role;     // empty when no role applies
+    std::string file;     // input file (relative to the set's source) when one applies
+    std::string message;  // a sentence a person can act on
+    nlohmann::json figures = nlohmann::json::object();  // measured values behind the finding
+};
+
+nlohmann::json to_json(const Finding& f);
+Finding finding_from_json(const nlohmann::json& j);
+
+// Highest severity in a list, or nullopt when empty.
+std::optional<Severity> worst(const std::vector<Finding>& findings);
+
+}  // namespace mf

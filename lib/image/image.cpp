@@ -1,0 +1,271 @@
+#include "image/image.hpp"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <mutex>
+
+#include <unistd.h>
+
+namespace mf {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Formats whose OpenImageIO reader or writer lacks IOProxy support go through a private
+// temporary file; this holds its life time.
+struct TempFile {
+    fs::path path;
+    explicit TempFile(const std::string& ext) {
+        static std::atomic<unsigned> counter{0};
+        path = fs::temp_directory_path() /
+               ("matforge-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "." + ext);
+    }
+    ~TempFile() {
+        std::error_code ec;
+        fs::remove(path, ec);
+    }
+    TempFile(const TempFile&) = delete;
+    TempFile& operator=(const TempFile&) = delete;
+};
+
+// An open reader plus whatever keeps its bytes alive.
+struct Reader {
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
+    std::unique_ptr<TempFile> temp;
+    std::unique_ptr<OIIO::ImageInput> in;
+};
+
+std::string oiio_error_text(std::string text) {
+    // OpenImageIO errors often end with a newline; messages are one line.
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    return text.empty() ? "not a readable image" : text;
+}
+
+bool open_reader(const InputFile& in, Reader& r, std::string& error) {
+    OIIO::ImageSpec config;
+    // Texture data: a 4th channel is not necessarily transparency; never premultiply.
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    const std::string name = in.bytes ? in.display : in.path.string();
+    if (!in.bytes) {
+        std::error_code ec;
+        if (!fs::is_regular_file(in.path, ec)) {
+            error = in.display + ": not a regular file";
+            return false;
+        }
+        if (fs::file_size(in.path, ec) == 0) {
+            error = in.display + ": empty file (0 bytes)";
+            return false;
+        }
+        r.in = OIIO::ImageInput::open(name, &config);
+    } else {
+        if (in.bytes->empty()) {
+            error = in.display + ": empty file (0 bytes)";
+            return false;
+        }
+        auto probe = OIIO::ImageInput::create(name, false);
+        if (probe && probe->supports("ioproxy")) {
+            r.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(in.bytes->data(), in.bytes->size());
+            r.in = OIIO::ImageInput::open(name, &config, r.proxy.get());
+        } else {
+            r.temp = std::make_unique<TempFile>(in.extension());
+            std::ofstream(r.temp->path, std::ios::binary)
+                .write(reinterpret_cast<const char*>(in.bytes->data()),
+                       static_cast<std::streamsize>(in.bytes->size()));
+            r.in = OIIO::ImageInput::open(r.temp->path.string(), &config);
+        }
+    }
+    if (!r.in) {
+        error = in.display + ": " + oiio_error_text(OIIO::geterror());
+        return false;
+    }
+    return true;
+}
+
+ImageInfo info_of(const OIIO::ImageInput& in) {
+    const OIIO::ImageSpec& s = in.spec();
+    ImageInfo info;
+    info.width = s.width;
+    info.height = s.height;
+    info.channels = s.nchannels;
+    info.format = in.format_name();
+    switch (s.format.basetype) {
+        case OIIO::TypeDesc::UINT8: case OIIO::TypeDesc::INT8: info.bit_depth = 8; break;
+        case OIIO::TypeDesc::UINT16: case OIIO::TypeDesc::INT16: info.bit_depth = 16; break;
+        case OIIO::TypeDesc::HALF: info.bit_depth = 16; info.is_float = true; break;
+        case OIIO::TypeDesc::FLOAT: info.bit_depth = 32; info.is_float = true; break;
+        case OIIO::TypeDesc::DOUBLE: info.bit_depth = 64; info.is_float = true; break;
+        default: info.bit_depth = static_cast<int>(s.format.size() * 8); break;
+    }
+    return info;
+}
+
+bool check_dimensions(const InputFile& in, const ImageInfo& info, std::string& error) {
+    if (info.width <= 0 || info.height <= 0 || info.channels <= 0) {
+        error = in.display + ": image has no pixels (" + std::to_string(info.width) + "x" +
+                std::to_string(info.height) + ", " + std::to_string(info.channels) + " channels)";
+        return false;
+    }
+    if (int64_t{info.width} * info.height > kMaxPixels || info.channels > kMaxChannels) {
+        error = in.display + ": declared size " + std::to_string(info.width) + "x" +
+                std::to_string(info.height) + "x" + std::to_string(info.channels) +
+                " exceeds the limit of 16384x16384 pixels and 8 channels";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::string InputFile::extension() const {
+    const std::string name = display.empty() ? path.string() : display;
+    const auto dot = name.rfind('.');
+    if (dot == std::string::npos || name.find('/', dot) != std::string::npos) return {};
+    std::string ext = name.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error) {
+    Reader r;
+    if (!open_reader(in, r, error)) return std::nullopt;
+    ImageInfo info = info_of(*r.in);
+    if (!check_dimensions(in, info, error)) return std::nullopt;
+    return info;
+}
+
+bool read_image_impl(const InputFile& in, Image& out, ImageInfo& info, std::string& error) {
+    out = Image{};
+    Reader r;
+    if (!open_reader(in, r, error)) return false;
+    info = info_of(*r.in);
+    if (!check_dimensions(in, info, error)) return false;
+    Image img(info.width, info.height, info.channels);
+    if (!r.in->read_image(0, 0, 0, info.channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
+        error = in.display + ": " + oiio_error_text(r.in->geterror());
+        return false;
+    }
+    out = std::move(img);
+    return true;
+}
+
+bool read_bands_impl(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
+                     const std::function<void(int, int, const float*)>& fn) {
+    Reader r;
+    if (!open_reader(in, r, error)) return false;
+    info = info_of(*r.in);
+    if (!check_dimensions(in, info, error)) return false;
+    band_rows = std::max(1, band_rows);
+    std::vector<float> band(static_cast<size_t>(info.width) * info.channels * band_rows);
+    for (int y0 = 0; y0 < info.height; y0 += band_rows) {
+        const int rows = std::min(band_rows, info.height - y0);
+        if (!r.in->read_scanlines(0, 0, y0, y0 + rows, 0, 0, info.channels, OIIO::TypeDesc::FLOAT,
+                                  band.data())) {
+            error = in.display + ": " + oiio_error_text(r.in->geterror());
+            return false;
+        }
+        fn(y0, rows, band.data());
+    }
+    return true;
+}
+
+// Some OpenImageIO plugins throw on hostile bytes (the GIF reader's vector resize, bad_alloc on
+// absurd headers): every decode is guarded here, at the module boundary, and becomes an error.
+template <class F>
+auto guarded(const InputFile& in, std::string& error, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const std::exception& e) {
+        error = in.display + ": the decoder failed on malformed data (" + e.what() + ")";
+    } catch (...) {
+        error = in.display + ": the decoder failed on malformed data";
+    }
+    return {};
+}
+
+std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
+    return guarded(in, error, [&] { return read_info_impl(in, error); });
+}
+
+bool read_image(const InputFile& in, Image& out, ImageInfo& info, std::string& error) {
+    const bool ok = guarded(in, error, [&] { return read_image_impl(in, out, info, error); });
+    if (!ok) out = Image{};
+    return ok;
+}
+
+bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
+                const std::function<void(int, int, const float*)>& fn) {
+    return guarded(in, error, [&] { return read_bands_impl(in, band_rows, info, error, fn); });
+}
+
+uint16_t quantize(float v, int bit_depth) {
+    const float maxv = bit_depth == 16 ? 65535.f : 255.f;
+    if (!(v > 0.f)) return 0;  // also NaN
+    if (v >= 1.f) return static_cast<uint16_t>(maxv);
+    return static_cast<uint16_t>(std::floor(v * maxv + 0.5f));
+}
+
+bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
+                  std::string& error) {
+    bytes.clear();
+    const std::string name = "output." + opt.format;
+    const bool is_float = opt.format == "exr";
+    OIIO::TypeDesc type = is_float ? (opt.bit_depth == 32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF)
+                                   : (opt.bit_depth == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec spec(img.width, img.height, img.channels, type);
+    if (img.channels == 4 || img.channels == 2) spec.alpha_channel = img.channels - 1;
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    // Reproducible bytes: no timestamps, no software version stamps.
+    spec.attribute("DateTime", "2000:01:01 00:00:00");
+    spec.attribute("Software", "matforge");
+    if (opt.format == "exr") spec.attribute("compression", "zip");
+    if (opt.format == "png") spec.attribute("png:compressionLevel", 6);
+
+    // Quantize ourselves (round to nearest, clamp) so results never depend on a plugin's rounding.
+    std::vector<unsigned char> raw;
+    const void* data = nullptr;
+    std::vector<uint16_t> q16;
+    std::vector<uint8_t> q8;
+    if (is_float) {
+        data = img.pixels.data();
+    } else if (opt.bit_depth == 16) {
+        q16.resize(img.pixels.size());
+        for (size_t i = 0; i < q16.size(); ++i) q16[i] = quantize(img.pixels[i], 16);
+        data = q16.data();
+    } else {
+        q8.resize(img.pixels.size());
+        for (size_t i = 0; i < q8.size(); ++i) q8[i] = static_cast<uint8_t>(quantize(img.pixels[i], 8));
+        data = q8.data();
+    }
+    const OIIO::TypeDesc memtype = is_float ? OIIO::TypeDesc::FLOAT : type;
+
+    auto out = OIIO::ImageOutput::create(name);
+    if (!out) {
+        error = "cannot create a writer for format '" + opt.format + "': " + oiio_error_text(OIIO::geterror());
+        return false;
+    }
+    if (out->supports("ioproxy")) {
+        OIIO::Filesystem::IOVecOutput vec(bytes);
+        out->set_ioproxy(&vec);
+        if (!out->open(name, spec) || !out->write_image(memtype, data) || !out->close()) {
+            error = "encoding " + opt.format + ": " + oiio_error_text(out->geterror());
+            return false;
+        }
+        return true;
+    }
+    TempFile temp(opt.format);
+    if (!out->open(temp.path.string(), spec) || !out->write_image(memtype, data) || !out->close()) {
+        error = "encoding " + opt.format + ": " + oiio_error_text(out->geterror());
+        return false;
+    }
+    std::ifstream f(temp.path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(f), {});
+    return true;
+}
+
+}  // namespace mf

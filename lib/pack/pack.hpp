@@ -1,0 +1,66 @@
+// Decoding inputs into canonical role planes, and packing planes into a preset's outputs.
+//
+// Canonical planes (the one internal convention, decided here):
+//  - albedo, emissive: 3 channels, linear Rec.709 light, or still sRGB-encoded while no step
+//    needs linear values (`encoding`), so an 8-bit sRGB map copied at its size stays exact;
+//  - normal: 3 channels, unit vectors in the OpenGL (+Y) tangent convention, components in [-1,1];
+//  - every other role: 1 channel of data in [0,1] (values outside are kept and clamped on output).
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+
+#include "color/color.hpp"
+#include "image/image.hpp"
+#include "material/roles.hpp"
+#include "pack/preset.hpp"
+
+namespace mf {
+
+struct RolePlane {
+    Image image;
+    ColorEncoding encoding = ColorEncoding::linear;  // only albedo/emissive may be srgb
+};
+using Planes = std::map<Role, RolePlane>;
+
+// One channel of `src` as a 1-channel image.
+Image extract_channel(const Image& src, int channel);
+// 3-channel color from grey (replicated), grey+alpha, RGB or RGBA (alpha dropped).
+Image to_rgb(const Image& src);
+// v -> 1 - v in place (gloss/smoothness <-> roughness).
+void invert(Image& img);
+
+// Decodes an encoded normal map (c in [0,1], 2 to 4 channels; with 2 channels Z is rebuilt) to
+// unit GL vectors. Zero-length or non-finite texels become (0,0,1). `from` unknown is treated as
+// gl. Returns the share of texels whose stored length was far from 1 (|len-1| > 0.2) or Z < 0.
+double decode_normal(const Image& encoded, NormalConvention from, Image& out);
+// Rescales 3-channel vectors to unit length; zero or non-finite ones become (0,0,1).
+void renormalize(Image& vectors);
+// Unit GL vectors -> encoded colors in `to` (renormalizing first: resampling shortens vectors).
+Image encode_normal(const Image& unit_gl, NormalConvention to);
+
+// Resamples to w x h with a Lanczos-3 filter (OpenImageIO). Callers resample color in linear
+// light and renormalize normals afterwards.
+Image resample(const Image& src, int w, int h);
+
+// Brings a plane to w x h: color goes to linear first; normals are renormalized.
+void fit_plane(Role role, RolePlane& plane, int w, int h, const ColorContext& color);
+
+// The size of an output: the largest of its map-backed roles, scaled so neither side exceeds
+// max_size (0 = no limit); constant_size² when no role has a map.
+struct Size { int width = 0, height = 0; };
+Size output_size(const OutputSpec& o, const Planes& planes, const Preset& preset);
+
+// Whether the output is written at all (always, or a role of it has a map).
+bool output_needed(const OutputSpec& o, const Planes& planes);
+
+// The channels actually written (optional channels dropped when their role has no map).
+std::vector<ChannelSpec> effective_channels(const OutputSpec& o, const Planes& planes);
+
+// Packs `planes` into one output image in its file encoding ([0,1], sRGB where the output's
+// color roles are sRGB). Planes must already be at `size` (fit_plane). Missing roles take the
+// preset's default value.
+Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
+                  const ColorContext& color);
+
+}  // namespace mf

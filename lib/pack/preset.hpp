@@ -1,0 +1,64 @@
+// Presets: what a target engine wants (presets/*.json; fields documented in presets/README.md).
+#pragma once
+#include <array>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/findings.hpp"
+#include "material/roles.hpp"
+
+namespace mf {
+
+// What one channel (or the RGB triple) of an output holds.
+struct ChannelSpec {
+    enum class Kind { role, smoothness, constant, unused };
+    std::string key;   // "RGB", "R", "G", "B", "A"
+    Kind kind = Kind::unused;
+    Role role = Role::albedo;  // kind == role
+    float value = 0.f;         // kind == constant
+    bool optional = false;     // dropped when its role has no map (key must be the last one)
+};
+
+struct OutputSpec {
+    std::string suffix;
+    bool srgb = false;   // color channels sRGB-encoded
+    int bit_depth = 8;   // 8 | 16 (png, tif); 16 = half, 32 = float (exr)
+    bool always = true;  // false: written only when one of its roles has a map
+    std::vector<ChannelSpec> channels;  // in file channel order (RGB counts as three)
+    int channel_count() const;
+    std::vector<Role> roles() const;    // the roles it reads (roughness for smoothness)
+};
+
+struct Preset {
+    std::string name, description, engine_convention;
+    std::vector<std::string> sources;
+    NormalConvention normal_convention = NormalConvention::gl;
+    std::string format = "png";
+    int max_size = 0;       // 0 = no limit; larger maps are downsampled
+    int constant_size = 2;  // size of an output made only of constants
+    std::string file_pattern = "{material}/{material}_{suffix}.{ext}";
+    std::array<float, 3> default_albedo{0.5f, 0.5f, 0.5f};
+    std::map<Role, float> defaults;             // scalar roles
+    std::map<Role, Severity> missing_severity;  // roles whose absence is reported
+    std::vector<OutputSpec> outputs;
+    nlohmann::json validate = nlohmann::json::object();  // rule overrides for validate
+    nlohmann::json source_json;                          // as loaded
+
+    float default_value(Role r) const;
+    std::string output_path(const std::string& material, const OutputSpec& o) const;
+};
+
+// Parses a preset document; false + `error` naming the field on any problem.
+bool parse_preset(const nlohmann::json& j, Preset& out, std::string& error);
+
+// `name_or_path`: a shipped preset's name (embedded in the binary) or a JSON file path.
+std::optional<Preset> load_preset(const std::string& name_or_path, std::string& error);
+
+// Names of the shipped presets, sorted.
+std::vector<std::string> shipped_presets();
+std::optional<std::string> shipped_preset_text(const std::string& name);
+
+}  // namespace mf

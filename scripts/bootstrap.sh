@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs matforge's Debian packages when missing, then configures and builds.
+# Usage: scripts/bootstrap.sh [BUILD_DIR] [extra cmake args...]
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${1:-$root/build}
+shift || true
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libopenimageio-dev openimageio-tools libopencolorio-dev libopenexr-dev
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libzip-dev libssl-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
+  libglvnd0 libglx0 libgl1 libegl1 libopengl0
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "bootstrap: installing ${missing[*]}" >&2
+  sudo=""
+  ((EUID == 0)) || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  # --no-install-recommends keeps OpenCV, GDAL, ffmpeg and Qt out (OpenImageIO recommends them).
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+cmake --build "$build" -j"$(nproc)"

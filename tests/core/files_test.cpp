@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/files.hpp"
+#include "core/findings.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+fs::path fresh_dir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("matforge-test-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+std::vector<unsigned char> bytes_of(std::string_view s) { return {s.begin(), s.end()}; }
+}  // namespace
+
+TEST(Sha256, KnownVectors) {
+    // FIPS 180-2 test vectors.
+    EXPECT_EQ(mf::sha256_hex({}), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+    const auto abc = bytes_of("abc");
+    EXPECT_EQ(mf::sha256_hex(abc), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+}
+
+TEST(AtomicWrite, WritesCreatesFoldersAndLeavesNoTemp) {
+    const fs::path d = fresh_dir("atomic");
+    const auto data = bytes_of("hello");
+    std::string err;
+    ASSERT_TRUE(mf::write_file_atomic(d / "a/b/out.bin", data, err)) << err;
+    std::vector<unsigned char> back;
+    ASSERT_TRUE(mf::read_file(d / "a/b/out.bin", back, err));
+    EXPECT_EQ(back, data);
+    for (auto& e : fs::directory_iterator(d / "a/b")) EXPECT_EQ(e.path().filename(), "out.bin");
+    fs::remove_all(d);
+}
+
+TEST(AtomicWrite, SameBytesLeaveFileUntouched) {
+    const fs::path d = fresh_dir("same");
+    std::string err;
+    ASSERT_TRUE(mf::write_file_atomic(d / "f", bytes_of("x"), err));
+    const auto t0 = fs::last_write_time(d / "f");
+    fs::last_write_time(d / "f", t0 - std::chrono::hours(1));
+    ASSERT_TRUE(mf::write_file_atomic(d / "f", bytes_of("x"), err));
+    EXPECT_EQ(fs::last_write_time(d / "f"), t0 - std::chrono::hours(1));
+    ASSERT_TRUE(mf::write_file_atomic(d / "f", bytes_of("y"), err));
+    EXPECT_NE(fs::last_write_time(d / "f"), t0 - std::chrono::hours(1));
+    fs::remove_all(d);
+}
+
+TEST(AtomicWrite, UnwritableDestinationGivesErrorNamingIt) {
+    // A regular file where the output folder should be: works as root too (unlike chmod).
+    const fs::path d = fresh_dir("blocked");
+    std::ofstream(d / "folder") << "a file, not a folder";
+    std::string err;
+    EXPECT_FALSE(mf::write_file_atomic(d / "folder/out.png", bytes_of("x"), err));
+    EXPECT_NE(err.find("folder"), std::string::npos) << err;
+    fs::remove_all(d);
+}
+
+TEST(AtomicWrite, StaleTempsAreRemoved) {
+    const fs::path d = fresh_dir("stale");
+    std::ofstream(d / (std::string(".x.png") + mf::kTempMarker + "1-2")) << "partial";
+    std::ofstream(d / "keep.png") << "k";
+    EXPECT_EQ(mf::remove_stale_temps(d), 1);
+    EXPECT_TRUE(fs::exists(d / "keep.png"));
+    fs::remove_all(d);
+}
+
+TEST(Findings, JsonRoundTrip) {
+    mf::Finding f{"MISSING_MAP", mf::Severity::info, "metalness", "", "no metalness map", {{"generated", 0.0}}};
+    const auto j = mf::to_json(f);
+    EXPECT_EQ(j["severity"], "info");
+    EXPECT_FALSE(j.contains("file"));
+    const auto g = mf::finding_from_json(j);
+    EXPECT_EQ(g.code, f.code);
+    EXPECT_EQ(g.role, "metalness");
+    EXPECT_EQ(g.figures["generated"], 0.0);
+    EXPECT_EQ(mf::worst({f, {"X", mf::Severity::error, "", "", "", {}}}), mf::Severity::error);
+}

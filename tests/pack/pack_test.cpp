@@ -1,0 +1,239 @@
+// Pixel-exact packing for every shipped preset, on tiny planes built here.
+#include <gtest/gtest.h>
+
+#include "color/srgb.hpp"
+#include "pack/pack.hpp"
+
+namespace {
+
+std::shared_ptr<const mf::ColorContext> ctx() {
+    std::string err;
+    auto c = mf::ColorContext::create(err);
+    if (!c) ADD_FAILURE() << err;
+    return c;
+}
+
+// A 2x1 set with distinct, known values per role and texel.
+mf::Planes make_planes(bool with_metal = true) {
+    mf::Planes p;
+    auto scalar = [](float a, float b) {
+        mf::Image img(2, 1, 1);
+        img.pixels = {a, b};
+        return img;
+    };
+    mf::RolePlane albedo;
+    albedo.image = mf::Image(2, 1, 3);
+    albedo.image.pixels = {100 / 255.f, 150 / 255.f, 200 / 255.f, 10 / 255.f, 20 / 255.f, 30 / 255.f};
+    albedo.encoding = mf::ColorEncoding::srgb;
+    p[mf::Role::albedo] = albedo;
+    p[mf::Role::roughness].image = scalar(64 / 255.f, 191 / 255.f);
+    if (with_metal) p[mf::Role::metalness].image = scalar(0.f, 1.f);
+    p[mf::Role::occlusion].image = scalar(1.f, 128 / 255.f);
+    mf::RolePlane normal;  // GL unit vectors: tilted toward +Y and toward -X
+    normal.image = mf::Image(2, 1, 3);
+    const float s = std::sqrt(0.5f);
+    normal.image.pixels = {0.f, s, s, -s, 0.f, s};
+    p[mf::Role::normal] = normal;
+    return p;
+}
+
+struct Packed {
+    mf::Image img;
+    std::vector<mf::ChannelSpec> channels;
+};
+
+Packed pack(const std::string& preset_name, const std::string& suffix, const mf::Planes& planes) {
+    std::string err;
+    auto preset = mf::load_preset(preset_name, err);
+    EXPECT_TRUE(preset) << err;
+    for (const auto& o : preset->outputs)
+        if (o.suffix == suffix) {
+            const auto size = mf::output_size(o, planes, *preset);
+            return {mf::pack_output(o, planes, *preset, size, *ctx()), mf::effective_channels(o, planes)};
+        }
+    ADD_FAILURE() << "no output " << suffix << " in " << preset_name;
+    return {};
+}
+
+int code(const mf::Image& img, int x, int c) { return mf::quantize(img.at(x, 0, c), 8); }
+
+}  // namespace
+
+TEST(Presets, AllShippedParse) {
+    const auto names = mf::shipped_presets();
+    EXPECT_EQ(names, (std::vector<std::string>{"gltf", "godot", "separate", "unity-hdrp", "unity-urp", "unreal"}));
+    for (const auto& n : names) {
+        std::string err;
+        auto p = mf::load_preset(n, err);
+        ASSERT_TRUE(p) << n << ": " << err;
+        EXPECT_FALSE(p->sources.empty()) << n << " must cite where its convention comes from";
+    }
+}
+
+TEST(Presets, RejectsBrokenDocuments) {
+    std::string err;
+    mf::Preset p;
+    auto bad = [&](const char* text) {
+        err.clear();
+        return !mf::parse_preset(nlohmann::json::parse(text), p, err) && !err.empty();
+    };
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":"albedo"}}]})"));  // color in one channel
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"RGB":"roughness"}}]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":"wetness"}}]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":"roughness","B":"metalness"}}]})"));  // gap
+    EXPECT_TRUE(bad(R"({"name":"x","file_pattern":"../{suffix}.{ext}","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","normal_convention":"up","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    auto missing = mf::load_preset("no-such-preset", err);
+    EXPECT_FALSE(missing);
+    EXPECT_NE(err.find("no-such-preset"), std::string::npos);
+    EXPECT_NE(err.find("gltf"), std::string::npos) << "the error lists the shipped presets";
+}
+
+TEST(PackGltf, OrmChannels) {
+    const auto p = pack("gltf", "orm", make_planes());
+    ASSERT_EQ(p.img.channels, 3);
+    EXPECT_EQ(code(p.img, 0, 0), 255);  // R occlusion
+    EXPECT_EQ(code(p.img, 1, 0), 128);
+    EXPECT_EQ(code(p.img, 0, 1), 64);  // G roughness
+    EXPECT_EQ(code(p.img, 1, 1), 191);
+    EXPECT_EQ(code(p.img, 0, 2), 0);  // B metalness
+    EXPECT_EQ(code(p.img, 1, 2), 255);
+}
+
+TEST(PackGltf, MissingMetalnessIsExplicitZero) {
+    // glTF's metallicFactor defaults to 1: an omitted metalness would make everything metal.
+    const auto p = pack("gltf", "orm", make_planes(false));
+    EXPECT_EQ(code(p.img, 0, 2), 0);
+    EXPECT_EQ(code(p.img, 1, 2), 0);
+}
+
+TEST(PackGltf, BaseColorSrgbIsBitExactCopy) {
+    const auto p = pack("gltf", "basecolor", make_planes());
+    ASSERT_EQ(p.img.channels, 3) << "no opacity map: the alpha channel is dropped";
+    const int expect[2][3] = {{100, 150, 200}, {10, 20, 30}};
+    for (int x = 0; x < 2; ++x)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(code(p.img, x, c), expect[x][c]);
+}
+
+TEST(PackGltf, BaseColorFromLinearIsEncoded) {
+    auto planes = make_planes();
+    planes[mf::Role::albedo].encoding = mf::ColorEncoding::linear;
+    planes[mf::Role::albedo].image.pixels = {0.214041140f, 0.f, 1.f, 0.0031308f, 0.5f, 0.01f};
+    const auto p = pack("gltf", "basecolor", planes);
+    EXPECT_EQ(code(p.img, 0, 0), 128);  // linear 0.2140 -> sRGB 0.5 -> 127.5 rounds up
+    EXPECT_EQ(code(p.img, 0, 1), 0);
+    EXPECT_EQ(code(p.img, 0, 2), 255);
+    EXPECT_EQ(code(p.img, 1, 1), mf::quantize(static_cast<float>(mf::linear_to_srgb(0.5)), 8));
+    EXPECT_EQ(code(p.img, 1, 2), mf::quantize(static_cast<float>(mf::linear_to_srgb(0.01)), 8));
+}
+
+TEST(PackGltf, OpacityGoesToAlpha) {
+    auto planes = make_planes();
+    planes[mf::Role::opacity].image = mf::Image(2, 1, 1);
+    planes[mf::Role::opacity].image.pixels = {0.f, 1.f};
+    const auto p = pack("gltf", "basecolor", planes);
+    ASSERT_EQ(p.img.channels, 4);
+    EXPECT_EQ(code(p.img, 0, 3), 0);
+    EXPECT_EQ(code(p.img, 1, 3), 255);
+    EXPECT_EQ(code(p.img, 1, 0), 10) << "color untouched by alpha (unassociated)";
+}
+
+TEST(PackNormals, GlAndDxEncodings) {
+    const auto gl = pack("gltf", "normal", make_planes());
+    const auto dx = pack("unreal", "N", make_planes());
+    // texel 0: (0, .707, .707): GL green above 128, DX green below.
+    EXPECT_EQ(code(gl.img, 0, 0), 128);
+    EXPECT_EQ(code(gl.img, 0, 1), mf::quantize(0.70710678f * 0.5f + 0.5f, 8));  // 218
+    EXPECT_EQ(code(dx.img, 0, 1), mf::quantize(-0.70710678f * 0.5f + 0.5f, 8));  // 37
+    EXPECT_EQ(code(gl.img, 0, 2), code(dx.img, 0, 2));
+    // texel 1: (-.707, 0, .707): red identical in both conventions.
+    EXPECT_EQ(code(gl.img, 1, 0), code(dx.img, 1, 0));
+    EXPECT_EQ(code(gl.img, 1, 1), 128);
+}
+
+TEST(PackUnreal, OrmMatchesGltfLayout) {
+    const auto u = pack("unreal", "ORM", make_planes());
+    const auto g = pack("gltf", "orm", make_planes());
+    EXPECT_EQ(u.img.pixels, g.img.pixels);
+}
+
+TEST(PackUnityHdrp, MaskMap) {
+    const auto p = pack("unity-hdrp", "MaskMap", make_planes());
+    ASSERT_EQ(p.img.channels, 4);
+    EXPECT_EQ(code(p.img, 1, 0), 255);  // R metallic
+    EXPECT_EQ(code(p.img, 1, 1), 128);  // G occlusion
+    EXPECT_EQ(code(p.img, 0, 2), 255);  // B detail mask = 1
+    EXPECT_EQ(code(p.img, 0, 3), 255 - 64);  // A smoothness = 1 - roughness
+    EXPECT_EQ(code(p.img, 1, 3), 255 - 191);
+}
+
+TEST(PackUnityUrp, MetallicGlossAndOcclusion) {
+    const auto p = pack("unity-urp", "MetallicGlossMap", make_planes());
+    ASSERT_EQ(p.img.channels, 4);
+    EXPECT_EQ(code(p.img, 1, 0), 255);
+    EXPECT_EQ(code(p.img, 1, 1), 0);  // unused
+    EXPECT_EQ(code(p.img, 0, 3), 191);
+    const auto o = pack("unity-urp", "OcclusionMap", make_planes());
+    ASSERT_EQ(o.img.channels, 1);
+    EXPECT_EQ(code(o.img, 1, 0), 128);
+}
+
+TEST(PackGodot, Orm) {
+    const auto p = pack("godot", "orm", make_planes());
+    EXPECT_EQ(p.img.pixels, pack("gltf", "orm", make_planes()).img.pixels);
+}
+
+TEST(PackSeparate, ConstantMetalnessIsTwoByTwo) {
+    std::string err;
+    auto preset = mf::load_preset("separate", err);
+    ASSERT_TRUE(preset);
+    const auto planes = make_planes(false);
+    for (const auto& o : preset->outputs) {
+        if (o.suffix != "metalness") continue;
+        const auto size = mf::output_size(o, planes, *preset);
+        EXPECT_EQ(size.width, 2);
+        EXPECT_EQ(size.height, 2);
+        const auto img = mf::pack_output(o, planes, *preset, size, *ctx());
+        for (float v : img.pixels) EXPECT_EQ(v, 0.f);
+    }
+    const auto r = pack("separate", "roughness", planes);
+    EXPECT_EQ(code(r.img, 0, 0), 64);
+    EXPECT_EQ(code(r.img, 1, 0), 191);
+}
+
+TEST(Normals, DecodeFlipsDxAndRenormalizes) {
+    mf::Image enc(3, 1, 3);
+    // DX texel with green low = tilted toward +Y in GL; a zero vector; an unnormalized vector.
+    enc.pixels = {0.5f, 0.2f, 0.9f, 0.5f, 0.5f, 0.5f, 1.f, 0.5f, 1.f};
+    mf::Image n;
+    const double bad = mf::decode_normal(enc, mf::NormalConvention::dx, n);
+    EXPECT_GT(n.at(0, 0, 1), 0.f);
+    EXPECT_NEAR(n.at(0, 0, 0) * n.at(0, 0, 0) + n.at(0, 0, 1) * n.at(0, 0, 1) + n.at(0, 0, 2) * n.at(0, 0, 2), 1.f, 1e-6f);
+    EXPECT_EQ(n.at(1, 0, 2), 1.f) << "zero-length -> flat";
+    EXPECT_NEAR(n.at(2, 0, 0), std::sqrt(0.5f), 1e-6f);
+    EXPECT_NEAR(bad, 2.0 / 3.0, 1e-9) << "zero vector and length 1.41 are both off";
+    // Round trip GL -> encode -> decode within one 8-bit code.
+    const auto back = mf::encode_normal(n, mf::NormalConvention::dx);
+    EXPECT_NEAR(back.at(0, 0, 1), 0.2f, 0.006f);
+}
+
+TEST(Normals, TwoChannelRebuildsZ) {
+    mf::Image enc(1, 1, 2);
+    enc.pixels = {0.5f, 0.5f};
+    mf::Image n;
+    mf::decode_normal(enc, mf::NormalConvention::gl, n);
+    EXPECT_FLOAT_EQ(n.pixels[2], 1.f);
+}
+
+TEST(Resample, LinearLightForColor) {
+    // A black/white checker averaged in linear light is 0.5 linear = sRGB 188, not 128.
+    auto c = ctx();
+    mf::RolePlane plane;
+    plane.image = mf::Image(2, 2, 3);
+    plane.image.pixels = {0, 0, 0, 1, 1, 1, 1, 1, 1, 0, 0, 0};
+    plane.encoding = mf::ColorEncoding::srgb;
+    mf::fit_plane(mf::Role::albedo, plane, 1, 1, *c);
+    EXPECT_EQ(plane.encoding, mf::ColorEncoding::linear);
+    EXPECT_NEAR(plane.image.pixels[0], 0.5f, 0.02f);
+}

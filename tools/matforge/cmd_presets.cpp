@@ -1,0 +1,49 @@
+// matforge presets [list | show NAME|FILE]
+#include <iostream>
+#include <memory>
+
+#include "command.hpp"
+#include "pack/preset.hpp"
+
+namespace mf::cli {
+namespace {
+
+struct PresetsArgs {
+    std::string action = "list", name;
+};
+
+int run_presets(const PresetsArgs& a) {
+    std::string error;
+    if (a.action == "list") {
+        for (const auto& n : shipped_presets()) {
+            auto p = load_preset(n, error);
+            std::cout << n << "\t" << (p ? p->engine_convention : error) << "\n";
+        }
+        return kExitOk;
+    }
+    if (a.name.empty()) {
+        std::cerr << "matforge presets show: name a preset\n";
+        return kExitUsage;
+    }
+    auto p = load_preset(a.name, error);
+    if (!p) {
+        std::cerr << "matforge presets: " << error << "\n";
+        return kExitUsage;
+    }
+    std::cout << p->source_json.dump(2) << "\n";
+    return kExitOk;
+}
+
+const Register reg{{"presets", 40,
+                    [](CLI::App& sub) -> std::function<int()> {
+                        auto a = std::make_shared<PresetsArgs>();
+                        sub.add_option("action", a->action, "list | show")
+                            ->check(CLI::IsMember({"list", "show"}))
+                            ->capture_default_str();
+                        sub.add_option("name", a->name, "preset name or JSON file (for show)");
+                        return [a] { return run_presets(*a); };
+                    },
+                    "list the shipped presets or print one"}};
+
+}  // namespace
+}  // namespace mf::cli
