@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include <unistd.h>
+
 #include "core/files.hpp"
 #include "image/image.hpp"
 
@@ -40,7 +42,8 @@ inline fs::path samples() { return fs::path(MATFORGE_SOURCE_DIR) / "sample_mater
 inline fs::path temp_dir(const std::string& name) {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     fs::path d = fs::temp_directory_path() /
-                 ("matforge-cli-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" + name);
+                 ("matforge-cli-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" + name + "-" +
+                  std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     return d;

@@ -10,7 +10,9 @@ const nlohmann::json& ingested(const std::string& preset) {
     static std::map<std::string, nlohmann::json> cache;
     auto it = cache.find(preset);
     if (it != cache.end()) return it->second;
-    const fs::path out = fs::temp_directory_path() / ("matforge-cli-samples-" + preset);
+    // Per process: ctest runs each test in its own process, several at once.
+    const fs::path out = fs::temp_directory_path() /
+                         ("matforge-cli-samples-" + preset + "-" + std::to_string(::getpid()));
     fs::remove_all(out);
     const auto r = run("ingest " + q(samples()) + " -o " + q(out) + " --preset " + preset + " --fail-on error");
     EXPECT_EQ(r.code, 0) << r.output;
@@ -18,6 +20,15 @@ const nlohmann::json& ingested(const std::string& preset) {
     m["__out"] = out.string();
     return cache[preset] = m;
 }
+
+// Removes the shared per-process outputs when the program ends.
+struct CleanupOutputs : ::testing::Environment {
+    void TearDown() override {
+        for (const char* p : {"gltf", "unreal", "unity-hdrp", "unity-urp", "godot", "separate"})
+            fs::remove_all(fs::temp_directory_path() / ("matforge-cli-samples-" + std::string(p) + "-" + std::to_string(::getpid())));
+    }
+};
+[[maybe_unused]] auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new CleanupOutputs);
 
 fs::path out_of(const nlohmann::json& m) { return m["__out"].get<std::string>(); }
 
