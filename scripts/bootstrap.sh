@@ -9,7 +9,7 @@ shift || true
 packages=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libopencolorio-dev libopenexr-dev
-  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libzip-dev libssl-dev
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libzip-dev libssl-dev libxml2-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
   libglvnd0 libglx0 libgl1 libegl1 libopengl0
 )

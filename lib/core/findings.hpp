@@ -14,7 +14,7 @@ enum class Severity { info = 0, warning = 1, error = 2 };
 std::string_view severity_name(Severity s);
 std::optional<Severity> severity_from_name(std::string_view name);
 
-// Stable finding codes. Keep in sync with docs/findings.md.
+// Stable finding codes. Documented with their thresholds and sources in docs/rules.md.
 namespace code {
 inline constexpr std::string_view unreadable_file = "UNREADABLE_FILE";
 inline constexpr std::string_view missing_map = "MISSING_MAP";

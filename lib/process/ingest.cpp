@@ -1,15 +1,16 @@
 #include "process/ingest.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <map>
 #include <mutex>
 #include <set>
-#include <thread>
 
 #include "core/files.hpp"
+#include "core/parallel.hpp"
 #include "material/discovery.hpp"
 #include "pack/pack.hpp"
+#include "process/missing.hpp"
+#include "validate/validate.hpp"
 
 namespace mf {
 namespace fs = std::filesystem;
@@ -20,15 +21,30 @@ struct Loaded {
     ImageInfo info;
 };
 
+// The decoded state of one set, shared by the steps of Ingestor::process.
+struct SetState {
+    const MaterialSource& src;
+    std::map<std::string, InputFile> opened;  // each file opened once (zip entries read once)
+    std::map<std::string, Loaded> loaded;     // decoded maps by file
+    std::map<Role, const Candidate*> used;    // input role -> the candidate that decoded
+    std::vector<Finding> findings;
+    bool partial = false;
+
+    const InputFile& open(const std::string& f) {
+        auto it = opened.find(f);
+        if (it == opened.end()) it = opened.emplace(f, src.open(f)).first;
+        return it->second;
+    }
+    void add(std::string_view code, Severity s, Role role, std::string file, std::string msg,
+             nlohmann::json figures = nlohmann::json::object()) {
+        findings.push_back({std::string(code), s, std::string(role_name(role)), std::move(file), std::move(msg),
+                            std::move(figures)});
+    }
+};
+
 std::string input_color_space(Role r, const ImageInfo& info) {
     if (!is_color_role(r)) return "data";
     return info.is_float ? "linear" : "sRGB";
-}
-
-std::string format_number(float v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", static_cast<double>(v));
-    return buf;
 }
 
 bool has_real_alpha(const Image& img) {
@@ -47,6 +63,10 @@ std::string relative_to(const fs::path& p, const fs::path& base) {
     return r.generic_string();
 }
 
+std::string source_of(const MaterialSource& s, const fs::path& out_dir) {
+    return relative_to(s.root, out_dir) + (s.is_zip && !s.zip_folder.empty() ? "/" + s.zip_folder : "");
+}
+
 nlohmann::json channels_json(const std::vector<ChannelSpec>& channels) {
     nlohmann::json j = nlohmann::json::object();
     for (const auto& c : channels) {
@@ -60,6 +80,79 @@ nlohmann::json channels_json(const std::vector<ChannelSpec>& channels) {
     return j;
 }
 
+// Decodes the chosen map of every input role, falling back to the next candidate.
+void load_maps(SetState& st, const SetDiscovery& d) {
+    for (const auto& choice : d.choices) {
+        std::vector<const Candidate*> order{&choice.chosen};
+        for (const auto& r : choice.rejected) order.push_back(&r);
+        for (const Candidate* c : order) {
+            Loaded l;
+            std::string err;
+            if (read_image(st.open(c->file), l.img, l.info, err)) {
+                st.loaded.emplace(c->file, std::move(l));
+                st.used[choice.role] = c;
+                break;
+            }
+            st.partial = true;
+            st.add(code::unreadable_file, Severity::error, choice.role, c->file, err + "; the file is skipped");
+        }
+    }
+}
+
+// Runs every validation rule over the decoded maps (served from memory, not read again).
+validate::SetValidation validate_loaded(SetState& st, const validate::RuleConfig& rules) {
+    std::vector<validate::MapInput> maps;
+    std::map<std::string, const Loaded*> by_display;
+    for (const auto& [role, c] : st.used) {
+        validate::MapInput m;
+        m.role = role;
+        m.file = st.open(c->file);
+        m.name = c->file;
+        m.info = st.loaded.at(c->file).info;
+        m.color_tag = validate::read_color_tag(m.file);
+        m.name_convention = c->match.normal;
+        by_display[m.file.display] = &st.loaded.at(c->file);
+        maps.push_back(std::move(m));
+    }
+    validate::ValidateOptions vo;
+    vo.material = st.src.name;
+    vo.reader = [&by_display](const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
+                              const std::function<void(int, int, const float*)>& fn) {
+        const auto it = by_display.find(in.display);
+        if (it == by_display.end()) {
+            error = in.display + ": not decoded";
+            return false;
+        }
+        const Image& img = it->second->img;
+        info = it->second->info;
+        for (int y0 = 0; y0 < img.height; y0 += band_rows)
+            fn(y0, std::min(band_rows, img.height - y0), &img.pixels[img.index(0, y0)]);
+        return true;
+    };
+    return validate::validate_set(maps, rules, vo);
+}
+
+// The normal map's convention: the name's, else the content's (validation's verdict).
+struct NormalFacts {
+    NormalConvention convention = NormalConvention::unknown;
+    nlohmann::json manifest = nlohmann::json::object();
+};
+NormalFacts normal_facts(const Candidate& c, const std::optional<validate::NormalCheck>& check) {
+    NormalFacts f;
+    f.convention = c.match.normal;
+    std::string source = f.convention == NormalConvention::unknown ? "none" : "name";
+    double confidence = 1.0;
+    if (check && check->file == c.file) {
+        f.convention = check->resolved;
+        source = check->source;
+        confidence = check->content.confidence;
+    }
+    f.manifest["normal_convention"] = convention_name(f.convention);
+    if (source != "none") f.manifest["normal_convention_source"] = source;
+    if (source == "content") f.manifest["normal_convention_confidence"] = confidence;
+    return f;
+}
+
 }  // namespace
 
 Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt)
@@ -67,144 +160,96 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
 
 MaterialResult Ingestor::process(const MaterialSource& src) const {
     MaterialResult res;
-    auto& findings = res.findings;
+    SetState st{src, {}, {}, {}, {}, false};
     const NormalConvention target = opt_.normal_override.value_or(preset_.normal_convention);
 
-    // Each file is opened once per set (zip entries are read into memory once).
-    std::map<std::string, InputFile> opened;
-    auto open = [&](const std::string& f) -> const InputFile& {
-        auto it = opened.find(f);
-        if (it == opened.end()) it = opened.emplace(f, src.open(f)).first;
-        return it->second;
-    };
     auto header = [&](const std::string& f) -> std::optional<HeaderInfo> {
         std::string err;
-        auto info = read_info(open(f), err);
+        auto info = read_info(st.open(f), err);
         if (!info) return std::nullopt;
         return HeaderInfo{info->width, info->height, info->channels, info->bit_depth, info->is_float};
     };
-    SetDiscovery d = discover_set(src.files, header, ChoicePolicy{target, preset_.max_size});
-    findings.insert(findings.end(), d.findings.begin(), d.findings.end());
-
-    // Decode the chosen map of every input role, falling back to the next candidate.
-    std::map<std::string, Loaded> loaded;
-    std::map<Role, const Candidate*> used;  // input role -> the candidate that decoded
-    bool partial = false;
-    for (const auto& choice : d.choices) {
-        std::vector<const Candidate*> order{&choice.chosen};
-        for (const auto& r : choice.rejected) order.push_back(&r);
-        for (const Candidate* c : order) {
-            Loaded l;
-            std::string err;
-            if (read_image(open(c->file), l.img, l.info, err)) {
-                loaded.emplace(c->file, std::move(l));
-                used[choice.role] = c;
-                break;
-            }
-            partial = true;
-            findings.push_back({std::string(code::unreadable_file), Severity::error, std::string(role_name(choice.role)),
-                                c->file, err + "; the file is skipped", {}});
-        }
+    const SetDiscovery d = discover_set(src.files, header, ChoicePolicy{target, preset_.max_size});
+    st.findings.insert(st.findings.end(), d.findings.begin(), d.findings.end());
+    load_maps(st, d);
+    if (st.loaded.empty()) {
+        res.failed = true;
+        res.failure_message = src.display + ": no map of the set could be read";
+        for (const auto& f : st.findings)
+            if (f.code == code::unreadable_file) res.failure_message += "; " + f.message;
+        return res;
     }
-    for (auto& [f, in] : opened) in.bytes.reset();  // decoded; free zip bytes early
+    const validate::SetValidation checked = validate_loaded(st, opt_.rules);
+    st.findings.insert(st.findings.end(), checked.findings.begin(), checked.findings.end());
+    for (auto& [f, in] : st.opened) in.bytes.reset();  // decoded; free zip bytes early
 
-    // Canonical planes per output role.
+    // Canonical planes per output role, from the best provider that decoded.
     Planes planes;
     std::map<Role, Provider> route_of;
     for (int ri = 0; ri < kOutputRoleCount; ++ri) {
         const Role out = static_cast<Role>(ri);
-        for (const Provider& r : providers_of(out)) {
-            if (!used.count(r.from)) continue;
-            route_of[out] = r;
-            break;
-        }
+        for (const Provider& r : providers_of(out))
+            if (st.used.count(r.from)) {
+                route_of[out] = r;
+                break;
+            }
     }
     std::set<Role> unpacked;
-    nlohmann::json normal_facts = nlohmann::json::object();  // convention, its source, confidence
+    nlohmann::json normal_manifest = nlohmann::json::object();
     for (const auto& [out, route] : route_of) {
-        const Candidate& c = *used.at(route.from);
-        const Loaded& l = loaded.at(c.file);
-        const std::string rname(role_name(out));
+        const Candidate& c = *st.used.at(route.from);
+        const Loaded& l = st.loaded.at(c.file);
         RolePlane plane;
         if (out == Role::albedo || out == Role::emissive) {
             plane.image = to_rgb(l.img);
             plane.encoding = l.info.is_float ? ColorEncoding::linear : ColorEncoding::srgb;
         } else if (out == Role::normal) {
-            NormalConvention conv = c.match.normal;
-            std::string conv_source = "name";
-            double confidence = 1.0;
-            if (conv == NormalConvention::unknown && detector_) {
-                auto [verdict, conf] = detector_(l.img, nullptr);
-                if (verdict != NormalConvention::unknown) {
-                    conv = verdict;
-                    conv_source = "content";
-                    confidence = conf;
-                }
-            }
-            if (conv == NormalConvention::unknown) {
-                findings.push_back({std::string(code::normal_convention_unknown), Severity::warning, rname, c.file,
-                                    "neither the file name nor the content decides OpenGL (+Y) vs DirectX (-Y); "
-                                    "assumed OpenGL — check the preview and rename the file with _gl/_dx if wrong",
-                                    {}});
-            }
-            const double bad = decode_normal(l.img, conv, plane.image);
-            if (bad > 0.5) {
-                findings.push_back({std::string(code::normal_invalid), Severity::warning, rname, c.file,
-                                    "most texels are not unit tangent-space normals (length far from 1 or Z < 0): "
-                                    "is this really a normal map?",
-                                    {{"invalid_share", bad}}});
-            }
-            const NormalConvention effective = conv == NormalConvention::unknown ? NormalConvention::gl : conv;
-            if (effective != target) {
-                findings.push_back({std::string(code::normal_convention_converted), Severity::info, rname, c.file,
-                                    "green channel flipped from " + std::string(convention_name(effective)) + " to " +
-                                        std::string(convention_name(target)) + " for the preset",
-                                    {{"from", convention_name(effective)}, {"to", convention_name(target)}}});
-            }
-            normal_facts = {{"normal_convention", convention_name(conv)}};
-            if (conv != NormalConvention::unknown) normal_facts["normal_convention_source"] = conv_source;
-            if (conv_source == "content") normal_facts["normal_convention_confidence"] = confidence;
+            const NormalFacts nf = normal_facts(c, checked.normal);
+            normal_manifest = nf.manifest;
+            if (nf.convention == NormalConvention::unknown)
+                st.add(code::normal_convention_unknown, Severity::warning, out, c.file,
+                       "neither the file name nor the content decides OpenGL (+Y) vs DirectX (-Y); assumed OpenGL: "
+                       "check the preview, or rename the file with _gl/_dx");
+            decode_normal(l.img, nf.convention, plane.image);
+            const NormalConvention effective =
+                nf.convention == NormalConvention::unknown ? NormalConvention::gl : nf.convention;
+            if (effective != target)
+                st.add(code::normal_convention_converted, Severity::info, out, c.file,
+                       "green channel flipped from " + std::string(convention_name(effective)) + " to " +
+                           std::string(convention_name(target)) + " for the preset",
+                       {{"from", convention_name(effective)}, {"to", convention_name(target)}});
         } else {
             plane.image = extract_channel(l.img, route.channel < 0 ? 0 : route.channel);
             if (route.invert) {
                 invert(plane.image);
-                findings.push_back({std::string(code::gloss_inverted), Severity::info, rname, c.file,
-                                    "gloss map converted to roughness (roughness = 1 - gloss)", {}});
+                st.add(code::gloss_inverted, Severity::info, out, c.file,
+                       "gloss map converted to roughness (roughness = 1 - gloss)");
             }
         }
         if (traits(route.from).packed) unpacked.insert(route.from);
         planes.emplace(out, std::move(plane));
     }
     for (Role p : unpacked) {
-        const Candidate& c = *used.at(p);
         std::string parts;
         const auto layout = packed_layout(p);
         static constexpr const char* kCh[] = {"R", "G", "B"};
         for (size_t i = 0; i < 3; ++i)
             if (layout[i]) parts += (parts.empty() ? "" : ", ") + std::string(kCh[i]) + " = " + std::string(role_name(*layout[i]));
-        std::string msg = "packed " + std::string(role_name(p)) + " map split into " + parts;
-        if (p == Role::ort) msg += " (translucency is not metalness)";
-        findings.push_back({std::string(code::packed_input_unpacked), Severity::info, std::string(role_name(p)), c.file, msg, {}});
+        st.add(code::packed_input_unpacked, Severity::info, p, st.used.at(p)->file,
+               "packed " + std::string(role_name(p)) + " map split into " + parts +
+                   (p == Role::ort ? " (translucency is not metalness)" : ""));
     }
     // Opacity carried in the albedo's alpha, when no opacity map exists.
-    if (!planes.count(Role::opacity) && route_of.count(Role::albedo)) {
-        const Candidate& c = *used.at(route_of[Role::albedo].from);
-        const Loaded& l = loaded.at(c.file);
-        if (route_of[Role::albedo].channel < 0 && has_real_alpha(l.img)) {
+    if (!planes.count(Role::opacity) && route_of.count(Role::albedo) && route_of[Role::albedo].channel < 0) {
+        const Candidate& c = *st.used.at(route_of[Role::albedo].from);
+        const Loaded& l = st.loaded.at(c.file);
+        if (has_real_alpha(l.img)) {
             planes[Role::opacity].image = extract_channel(l.img, l.img.channels - 1);
-            route_of[Role::opacity] = {Role::albedo, l.img.channels - 1, false};
-            findings.push_back({std::string(code::packed_input_unpacked), Severity::info, "opacity", c.file,
-                                "opacity taken from the albedo map's alpha channel", {}});
+            st.add(code::packed_input_unpacked, Severity::info, Role::opacity, c.file,
+                   "opacity taken from the albedo map's alpha channel");
         }
     }
-
-    if (loaded.empty()) {
-        res.failed = true;
-        res.failure_message = src.display + ": no map of the set could be read";
-        for (const auto& f : findings)
-            if (f.code == code::unreadable_file) res.failure_message += "; " + f.message;
-        return res;
-    }
+    st.loaded.clear();  // planes hold what is needed from here on
 
     // One size for the set: the largest map, within the preset's limit.
     int w = 0, h = 0;
@@ -214,140 +259,96 @@ MaterialResult Ingestor::process(const MaterialSource& src) const {
         w = std::max(w, p.image.width);
         h = std::max(h, p.image.height);
     }
-    if (sizes.size() > 1) {
-        nlohmann::json fig = nlohmann::json::object();
-        std::string list;
-        for (const auto& [r, p] : planes) {
-            fig[std::string(role_name(r))] = {p.image.width, p.image.height};
-            list += (list.empty() ? "" : ", ") + std::string(role_name(r)) + " " + std::to_string(p.image.width) + "x" +
-                    std::to_string(p.image.height);
-        }
-        findings.push_back({std::string(code::resolution_mismatch), Severity::warning, "", "",
-                            "maps differ in size (" + list + "); all resampled to " + std::to_string(w) + "x" +
-                                std::to_string(h),
-                            fig});
-    }
     if (preset_.max_size > 0 && std::max(w, h) > preset_.max_size) {
         const int ow = w, oh = h;
         const double k = static_cast<double>(preset_.max_size) / std::max(w, h);
         w = std::max(1, static_cast<int>(std::lround(w * k)));
         h = std::max(1, static_cast<int>(std::lround(h * k)));
-        findings.push_back({std::string(code::resized), Severity::info, "", "",
-                            "downsampled from " + std::to_string(ow) + "x" + std::to_string(oh) + " to " +
-                                std::to_string(w) + "x" + std::to_string(h) + " (preset max_size " +
-                                std::to_string(preset_.max_size) + ")",
-                            {{"from", {ow, oh}}, {"to", {w, h}}}});
+        st.findings.push_back({std::string(code::resized), Severity::info, "", "",
+                               "downsampled from " + std::to_string(ow) + "x" + std::to_string(oh) + " to " +
+                                   std::to_string(w) + "x" + std::to_string(h) + " (preset max_size " +
+                                   std::to_string(preset_.max_size) + ")",
+                               {{"from", {ow, oh}}, {"to", {w, h}}}});
     }
     for (auto& [r, p] : planes) fit_plane(r, p, w, h, *color_);
 
     // Missing roles: constants where an output needs them, reported per the preset.
-    std::set<Role> needed_roles;
-    std::vector<const OutputSpec*> written;
-    for (const auto& o : preset_.outputs) {
-        if (!output_needed(o, planes)) continue;
-        written.push_back(&o);
-        for (const auto& c : effective_channels(o, planes))
-            if (c.kind == ChannelSpec::Kind::role || c.kind == ChannelSpec::Kind::smoothness) needed_roles.insert(c.role);
-    }
+    std::set<Role> available;
+    for (const auto& [r, p] : planes) available.insert(r);
     nlohmann::json constants = nlohmann::json::object();
-    for (int ri = 0; ri < kOutputRoleCount; ++ri) {
-        const Role r = static_cast<Role>(ri);
-        if (planes.count(r)) continue;
-        const std::string rname(role_name(r));
-        std::string what;
-        if (needed_roles.count(r)) {
-            if (r == Role::albedo) {
-                constants[rname] = preset_.default_albedo;
-                what = "generated constant albedo (linear " + format_number(preset_.default_albedo[0]) + ", " +
-                       format_number(preset_.default_albedo[1]) + ", " + format_number(preset_.default_albedo[2]) + ")";
-            } else if (r == Role::normal || r == Role::emissive) {
-                constants[rname] = r == Role::normal ? nlohmann::json{0, 0, 1} : nlohmann::json{0, 0, 0};
-                what = r == Role::normal ? "generated a flat normal" : "generated black emission";
-            } else {
-                const float v = preset_.default_value(r);
-                constants[rname] = v;
-                what = "generated constant " + format_number(v);
-                if (r == Role::metalness) what += v == 0.f ? " (dielectric)" : " (metal)";
-            }
-        } else {
-            what = "nothing written for it";
-        }
-        auto sev = preset_.missing_severity.find(r);
-        if (sev == preset_.missing_severity.end()) continue;
-        findings.push_back({std::string(code::missing_map), sev->second, rname, "", "no " + rname + " map; " + what,
-                            constants.contains(rname) ? nlohmann::json{{"generated", constants[rname]}}
-                                                      : nlohmann::json::object()});
-    }
+    auto missing = missing_map_findings(preset_, available, written_roles(preset_, available), constants);
+    st.findings.insert(st.findings.end(), missing.begin(), missing.end());
 
     // Pack, encode, write.
     const fs::path mat_dir = opt_.out_dir / src.name;
     remove_stale_temps(mat_dir);
     nlohmann::json outputs = nlohmann::json::array();
-    for (const OutputSpec* o : written) {
-        const std::string rel = preset_.output_path(src.name, *o);
+    for (const auto& o : preset_.outputs) {
+        if (!output_needed(o, planes)) continue;
+        const std::string rel = preset_.output_path(src.name, o);
         const fs::path rel_path = fs::path(rel).lexically_normal();
         if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..") {
-            findings.push_back({std::string(code::output_write_failed), Severity::error, "", "",
-                                "output path '" + rel + "' leaves the output folder; skipped", {}});
-            partial = true;
+            st.findings.push_back({std::string(code::output_write_failed), Severity::error, "", "",
+                                   "output path '" + rel + "' leaves the output folder; skipped", {}});
+            st.partial = true;
             continue;
         }
-        bool any_map = false;
-        for (Role r : o->roles()) any_map = any_map || planes.count(r);
+        const auto roles = o.roles();
+        const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
         const Size size = any_map ? Size{w, h} : Size{preset_.constant_size, preset_.constant_size};
-        const Image packed = pack_output(*o, planes, preset_, size, *color_);
+        const Image packed = pack_output(o, planes, preset_, size, *color_);
         std::vector<unsigned char> bytes;
         std::string err;
-        if (!encode_image(packed, {preset_.format, o->bit_depth}, bytes, err) ||
+        if (!encode_image(packed, {preset_.format, o.bit_depth}, bytes, err) ||
             !write_file_atomic(opt_.out_dir / rel_path, bytes, err)) {
-            findings.push_back({std::string(code::output_write_failed), Severity::error, "", "", rel + ": " + err, {}});
-            partial = true;
+            st.findings.push_back({std::string(code::output_write_failed), Severity::error, "", "", rel + ": " + err, {}});
+            st.partial = true;
             continue;
         }
         nlohmann::json e;
         e["file"] = rel_path.generic_string();
-        e["color_space"] = o->srgb ? "sRGB" : "linear";
-        e["channels"] = channels_json(effective_channels(*o, planes));
-        if (std::any_of(o->channels.begin(), o->channels.end(),
-                        [](const ChannelSpec& c) { return c.kind == ChannelSpec::Kind::role && c.role == Role::normal; }))
+        e["color_space"] = o.srgb ? "sRGB" : "linear";
+        e["channels"] = channels_json(effective_channels(o, planes));
+        if (std::find(roles.begin(), roles.end(), Role::normal) != roles.end())
             e["normal_convention"] = convention_name(target);
         e["width"] = size.width;
         e["height"] = size.height;
-        e["bit_depth"] = o->bit_depth;
+        e["bit_depth"] = o.bit_depth;
         e["format"] = preset_.format;
         e["sha256"] = sha256_hex(bytes);
         outputs.push_back(std::move(e));
     }
 
+    validate::apply_config(st.findings, src.name, opt_.rules);  // suppressions reach every finding
+
     // Manifest entry.
     nlohmann::json inputs = nlohmann::json::object();
-    for (const auto& [role, c] : used) {
-        const Loaded& l = loaded.at(c->file);
-        nlohmann::json in = {{"file", c->file},
-                             {"width", l.info.width},
-                             {"height", l.info.height},
-                             {"channels", l.info.channels},
-                             {"bit_depth", l.info.bit_depth},
-                             {"color_space", input_color_space(role, l.info)},
-                             {"family", c->match.family},
-                             {"rule", c->match.rule}};
-        if (l.info.is_float) in["float"] = true;
-        if (role == Role::normal) in.update(normal_facts);
+    for (const auto& [role, c] : st.used) {
+        nlohmann::json in = {{"file", c->file}, {"family", c->match.family}, {"rule", c->match.rule}};
+        const HeaderInfo& hd = c->header;
+        in["width"] = hd.width;
+        in["height"] = hd.height;
+        in["channels"] = hd.channels;
+        in["bit_depth"] = hd.bit_depth;
+        in["color_space"] = input_color_space(role, ImageInfo{hd.width, hd.height, hd.channels, hd.bit_depth, hd.is_float, ""});
+        if (hd.is_float) in["float"] = true;
+        if (role == Role::normal) in.update(normal_manifest);
         inputs[std::string(role_name(role))] = std::move(in);
     }
     nlohmann::json m;
     m["name"] = src.name;
-    m["source"] = relative_to(src.root, opt_.out_dir) + (src.is_zip && !src.zip_folder.empty() ? "/" + src.zip_folder : "");
+    m["source"] = source_of(src, opt_.out_dir);
     if (src.is_zip) m["archive"] = relative_to(src.root, opt_.out_dir);
     m["convention"] = d.convention;
-    m["status"] = partial ? "partial" : "ok";
+    m["status"] = st.partial ? "partial" : "ok";
     m["inputs"] = std::move(inputs);
     m["constants"] = std::move(constants);
     m["outputs"] = std::move(outputs);
     nlohmann::json fj = nlohmann::json::array();
-    for (const auto& f : findings) fj.push_back(to_json(f));
+    for (const auto& f : st.findings) fj.push_back(to_json(f));
     m["findings"] = std::move(fj);
     res.manifest_entry = std::move(m);
+    res.findings = std::move(st.findings);
     return res;
 }
 
@@ -363,38 +364,28 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     const auto sets = find_material_sets(inputs, opt_.out_dir, source_failures);
 
     std::vector<MaterialResult> results(sets.size());
-    std::atomic<size_t> next{0}, done{0};
     std::mutex progress_mutex;
-    const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-    const size_t jobs = std::min<size_t>(opt_.jobs > 0 ? static_cast<size_t>(opt_.jobs) : hw, std::max<size_t>(1, sets.size()));
-    auto worker = [&] {
-        for (size_t i = next++; i < sets.size(); i = next++) {
-            try {
-                results[i] = process(sets[i]);
-            } catch (const std::exception& e) {  // a bug or resource exhaustion in one set must not stop the others
-                results[i] = MaterialResult{};
-                results[i].failed = true;
-                results[i].failure_message = sets[i].display + ": internal error: " + e.what();
-            }
-            const size_t n = ++done;
-            if (opt_.progress) {
-                std::lock_guard lock(progress_mutex);
-                opt_.progress(n, sets.size(), sets[i].name,
-                              results[i].failed ? "failed" : results[i].manifest_entry.value("status", "ok"));
-            }
+    size_t done = 0;
+    parallel_for(sets.size(), opt_.jobs, [&](size_t i) {
+        try {
+            results[i] = process(sets[i]);
+        } catch (const std::exception& e) {  // a bug or exhaustion in one set must not stop the others
+            results[i] = MaterialResult{};
+            results[i].failed = true;
+            results[i].failure_message = sets[i].display + ": internal error: " + e.what();
         }
-    };
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < jobs; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
+        std::lock_guard lock(progress_mutex);
+        ++done;
+        if (opt_.progress)
+            opt_.progress(done, sets.size(), sets[i].name,
+                          results[i].failed ? "failed" : results[i].manifest_entry.value("status", "ok"));
+    });
 
     nlohmann::json materials = nlohmann::json::array(), failures = nlohmann::json::array();
     for (size_t i = 0; i < sets.size(); ++i) {
         auto& r = results[i];
         if (r.failed) {
-            failures.push_back({{"source", relative_to(sets[i].root, opt_.out_dir) +
-                                               (sets[i].is_zip && !sets[i].zip_folder.empty() ? "/" + sets[i].zip_folder : "")},
+            failures.push_back({{"source", source_of(sets[i], opt_.out_dir)},
                                 {"code", std::string(code::unreadable_file)},
                                 {"message", r.failure_message}});
             result.worst = Severity::error;

@@ -12,6 +12,7 @@
 #include "core/findings.hpp"
 #include "pack/preset.hpp"
 #include "process/sets.hpp"
+#include "validate/rules.hpp"
 
 namespace mf {
 
@@ -19,14 +20,10 @@ struct IngestOptions {
     std::filesystem::path out_dir;
     int jobs = 0;  // 0 = all cores
     std::optional<NormalConvention> normal_override;  // --normal-convention
+    validate::RuleConfig rules;  // validation thresholds, severities, suppressions
     // Called after each set (from worker threads, serialized): done count, total, name, status.
     std::function<void(size_t done, size_t total, const std::string& name, const std::string& status)> progress;
 };
-
-// Decides the green convention of a normal map whose name is silent (validate's content
-// detector). Returns {convention, confidence}; unknown when undecided.
-using NormalDetector = std::function<std::pair<NormalConvention, double>(const Image& encoded,
-                                                                          const Image* height)>;
 
 struct MaterialResult {
     nlohmann::json manifest_entry;  // one element of manifest "materials"
@@ -45,9 +42,9 @@ struct IngestResult {
 class Ingestor {
 public:
     Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt);
-    void set_normal_detector(NormalDetector d) { detector_ = std::move(d); }
 
-    // One set; thread-safe. Writes its outputs under out_dir.
+    // One set; thread-safe. Validates it (every rule, from the decoded pixels: each file is
+    // decoded once), converts and packs it, writes its outputs under out_dir.
     MaterialResult process(const MaterialSource& src) const;
     // Finds the sets, processes them in parallel, writes manifest.json atomically.
     IngestResult run(const std::vector<std::filesystem::path>& inputs) const;
@@ -56,7 +53,6 @@ private:
     Preset preset_;
     std::shared_ptr<const ColorContext> color_;
     IngestOptions opt_;
-    NormalDetector detector_;
 };
 
 }  // namespace mf

@@ -7,13 +7,14 @@
 #include "command.hpp"
 #include "options.hpp"
 #include "process/ingest.hpp"
+#include "process/validate_batch.hpp"
 
 namespace mf::cli {
 namespace {
 
 struct IngestArgs {
     std::vector<std::string> inputs;
-    std::string out_dir, preset = "gltf", fail_on = "error", normal;
+    std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file;
     int jobs = 0;
     bool quiet = false;
 };
@@ -25,6 +26,11 @@ int run_ingest(const IngestArgs& a) {
         std::cerr << "matforge ingest: " << error << "\n";
         return kExitUsage;
     }
+    auto rules = load_rule_config(*preset, a.rules_file, error);
+    if (!rules) {
+        std::cerr << "matforge ingest: " << error << "\n";
+        return kExitUsage;
+    }
     auto color = ColorContext::create(error);
     if (!color) {
         std::cerr << "matforge ingest: " << error << "\n";
@@ -33,6 +39,7 @@ int run_ingest(const IngestArgs& a) {
     IngestOptions opt;
     opt.out_dir = a.out_dir;
     opt.jobs = a.jobs;
+    opt.rules = std::move(*rules);
     if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
     const bool tty = ::isatty(STDERR_FILENO) && !a.quiet;
     if (tty) {
@@ -76,6 +83,8 @@ const Register reg{{"ingest", 10,
                         sub.add_option("--normal-convention", a->normal,
                                        "override the preset's normal-map convention (gl = +Y, dx = -Y)")
                             ->check(CLI::IsMember({"gl", "dx"}));
+                        sub.add_option("--rules", a->rules_file,
+                                       "JSON rule configuration for the checks ingest runs (docs/rules.md)");
                         add_fail_on(sub, a->fail_on);
                         sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
                         return [a] { return run_ingest(*a); };

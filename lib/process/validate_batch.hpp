@@ -1,0 +1,28 @@
+// `matforge validate`: discovery and every rule over each set, writing nothing but the report.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pack/preset.hpp"
+#include "validate/report.hpp"
+#include "validate/rules.hpp"
+
+namespace mf {
+
+struct ValidateBatchOptions {
+    int jobs = 0;  // 0 = all cores
+    validate::RuleConfig rules;
+};
+
+// The preset's "validate" block, then the JSON file `rules_file` (if not empty) layered over it.
+// nullopt + `error` naming the file on any problem (a configuration error: exit 2).
+std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const std::string& rules_file,
+                                                     std::string& error);
+
+// Sets under `inputs` validated in parallel; materials in path order, failures after.
+validate::Report validate_inputs(const std::vector<std::filesystem::path>& inputs, const Preset& preset,
+                                 const ValidateBatchOptions& opt);
+
+}  // namespace mf

@@ -1,0 +1,133 @@
+#include "validate/albedo_stats.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+
+#include "validate/map_stats.hpp"
+
+namespace mf::validate::detail {
+namespace {
+
+// sRGB decode of every 16-bit code (8-bit codes k/255 are 16-bit codes k·257): exact for
+// integer files, and a table lookup instead of a pow per channel per pixel.
+const std::vector<float>& decode_table() {
+    static const std::vector<float> lut = [] {
+        std::vector<float> v(65536);
+        for (int i = 0; i < 65536; ++i) v[i] = srgb_to_linear(static_cast<float>(i) / 65535.f);
+        return v;
+    }();
+    return lut;
+}
+
+std::string fmt0(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return buf;
+}
+std::string pct(double share) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * share);
+    return buf;
+}
+
+}  // namespace
+
+AlbedoStats::AlbedoStats(const Thresholds& t, bool linear_input) : t_(t), linear_input_(linear_input) {
+    auto lin = [](double srgb255) { return srgb_to_linear(static_cast<float>(srgb255 / 255.0)); };
+    dark_lin_ = lin(t.albedo_min_srgb);
+    bright_lin_ = lin(t.albedo_max_srgb);
+    metal_dark_lin_ = lin(t.metal_albedo_min_srgb);
+    for (int k = 0; k < 256; ++k) edges_[k] = lin(k + 0.5);
+}
+
+float AlbedoStats::linear(float v) const {
+    if (linear_input_) return std::max(v, 0.f);
+    if (!(v > 0.f)) return 0.f;
+    if (v >= 1.f) return 1.f;
+    return decode_table()[static_cast<size_t>(v * 65535.f + 0.5f)];
+}
+
+void AlbedoStats::add(const float* rgb, float m) {
+    const float y = 0.2126f * linear(rgb[0]) + 0.7152f * linear(rgb[1]) + 0.0722f * linear(rgb[2]);
+    if (!std::isfinite(y) || !std::isfinite(m)) return;
+    Class* c = nullptr;
+    if (m <= t_.dielectric_max) c = &dielectric_;
+    else if (m >= t_.metal_min) c = &metal_;
+    else return;  // blends (rust, dirt on metal): no bound applies
+    ++c->n;
+    const size_t code = static_cast<size_t>(std::lower_bound(edges_.begin(), edges_.end(), y) - edges_.begin());
+    ++c->hist[std::min<size_t>(code, 255)];
+    if (c == &dielectric_) {
+        if (y < dark_lin_) ++c->below;
+        if (y > bright_lin_) ++c->above;
+    } else if (y < metal_dark_lin_) {
+        ++c->below;
+    }
+}
+
+double AlbedoStats::Class::percentile(double p) const {
+    if (n == 0) return 0.0;
+    const long long target = static_cast<long long>(std::ceil(p * static_cast<double>(n)));
+    long long acc = 0;
+    for (size_t k = 0; k < hist.size(); ++k) {
+        acc += hist[k];
+        if (acc >= std::max<long long>(target, 1)) return static_cast<double>(k);
+    }
+    return 255.0;
+}
+
+void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask,
+                           std::vector<Finding>& out) const {
+    auto figures = [&](const Class& c, long long count, double threshold) {
+        return nlohmann::json{{"share", ratio(count, c.n)},
+                              {"pixels", c.n},
+                              {"threshold_srgb", threshold},
+                              {"p1_srgb", c.percentile(0.01)},
+                              {"median_srgb", c.percentile(0.5)},
+                              {"p99_srgb", c.percentile(0.99)},
+                              {"metalness_mask", has_metal_mask},
+                              {"opacity_mask", has_opacity_mask},
+                              {"measure", "luminance, sRGB-encoded, 0-255"}};
+    };
+    auto add = [&](std::string_view code, std::string msg, nlohmann::json fig) {
+        Finding f;
+        f.code = std::string(code);
+        f.role = "albedo";
+        f.file = file;
+        f.message = std::move(msg);
+        f.figures = std::move(fig);
+        out.push_back(std::move(f));
+    };
+    const std::string which = has_metal_mask ? "dielectric" : "(no metalness map: all taken as dielectric)";
+    const Class& d = dielectric_;
+    if (d.n > 0) {
+        const double dark = ratio(d.below, d.n), bright = ratio(d.above, d.n);
+        if (dark > t_.albedo_max_share)
+            add(code::albedo_too_dark,
+                file + ": " + pct(dark) + " of " + which + " albedo is darker than " +
+                    fmt0(t_.albedo_min_srgb) + " sRGB (median " + fmt0(d.percentile(0.5)) +
+                    "); no real dielectric is that dark — keep shadows and cavities out of the "
+                    "albedo (they belong in occlusion)",
+                figures(d, d.below, t_.albedo_min_srgb));
+        if (bright > t_.albedo_max_share)
+            add(code::albedo_too_bright,
+                file + ": " + pct(bright) + " of " + which + " albedo is brighter than " +
+                    fmt0(t_.albedo_max_srgb) + " sRGB (median " + fmt0(d.percentile(0.5)) +
+                    "); even fresh snow reflects less — remove baked lighting or highlights",
+                figures(d, d.above, t_.albedo_max_srgb));
+    }
+    const Class& m = metal_;
+    if (m.n > 0) {
+        const double dark = ratio(m.below, m.n);
+        if (dark > t_.metal_albedo_max_share)
+            add(code::metal_albedo_too_dark,
+                file + ": " + pct(dark) + " of metallic albedo is darker than " +
+                    fmt0(t_.metal_albedo_min_srgb) + " sRGB (median " + fmt0(m.percentile(0.5)) +
+                    "); raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
+                    "or its metalness is wrong",
+                figures(m, m.below, t_.metal_albedo_min_srgb));
+    }
+}
+
+}  // namespace mf::validate::detail

@@ -1,0 +1,296 @@
+#include "validate/map_stats.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+
+namespace mf::validate::detail {
+namespace {
+
+std::string fmt(double v, int digits = 3) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+std::string pct(double share) { return fmt(100.0 * share, 1) + " %"; }
+
+// Roles whose values must lie in [0, 1] (normals: [−1, 1] when stored signed). Height and
+// emissive are unbounded (displacement in scene units, HDR emission).
+bool has_unit_range(Role r) { return r != Role::height && r != Role::emissive; }
+
+const char* channel_letter(int c) {
+    static const char* names[] = {"R", "G", "B", "A"};
+    return c >= 0 && c < 4 ? names[c] : "?";
+}
+
+}  // namespace
+
+float srgb_to_linear(float v) {
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+float linear_to_srgb(float v) {
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
+}
+
+std::optional<Role> channel_role(Role input_role, int channel) {
+    if (traits(input_role).packed) {
+        if (channel < 0 || channel > 2) return std::nullopt;
+        return packed_layout(input_role)[static_cast<size_t>(channel)];
+    }
+    return input_role;
+}
+
+MapStats::MapStats(const MapInput& in, const ImageInfo& info, const Thresholds& th)
+    : input(in), t(th), width(info.width), height(info.height), channels(info.channels) {
+    const std::string ext = input.file.extension();
+    is_jpeg = ext == "jpg" || ext == "jpeg" || info.format == "jpeg";
+    min.fill(std::numeric_limits<double>::infinity());
+    max.fill(-std::numeric_limits<double>::infinity());
+    if (input.role == Role::metalness) metal_channel = 0;
+    else if (input.role == Role::orm || input.role == Role::metallic_roughness) metal_channel = 2;
+    if (metal_channel >= channels) metal_channel = -1;
+    if (!input.info.is_float) normal_signed = 0;
+}
+
+bool MapStats::scalar_role() const {
+    return traits(input.role).channels == 1;
+}
+
+void MapStats::add_band(int /*y0*/, int rows, const float* px) {
+    const int nc = std::min(channels, 4);
+    const long long n = static_cast<long long>(rows) * width;
+    const bool check_range = input.info.is_float && has_unit_range(input.role);
+    const double lo = is_normal() ? -1.0 : 0.0;
+    const double eps = t.range_epsilon;
+    const bool gray = scalar_role() && channels >= 3;
+    const double gtol = is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance;
+    if (is_normal() && normal_signed < 0) {
+        // Float normal maps come both ways; negative values mean "already signed".
+        bool neg = false;
+        for (long long i = 0; i < n * channels && !neg; ++i) neg = px[i] < -1e-3f;
+        normal_signed = neg ? 1 : 0;
+    }
+    for (long long i = 0; i < n; ++i) {
+        const float* p = px + i * channels;
+        bool bad_range = false;
+        for (int c = 0; c < channels; ++c) {
+            const float v = p[c];
+            if (std::isnan(v)) { ++nan; continue; }
+            if (std::isinf(v)) { ++inf; continue; }
+            if (c < 4) {
+                min[c] = std::min(min[c], double{v});
+                max[c] = std::max(max[c], double{v});
+                sum[c] += v;
+                ++finite[c];
+            }
+            if (check_range && (v < lo - eps || v > 1.0 + eps)) bad_range = true;
+        }
+        samples += channels;
+        if (bad_range) ++out_of_range_pixels;
+        if (gray) {
+            const double rg = std::abs(double{p[0]} - p[1]), rb = std::abs(double{p[0]} - p[2]),
+                         gb = std::abs(double{p[1]} - p[2]);
+            const double d = std::max({rg, rb, gb});
+            if (std::isfinite(d)) {
+                if (d > gtol) ++gray_differing;
+                gray_max_diff = std::max(gray_max_diff, d);
+                gray_sum_rg += rg;
+                gray_sum_rb += rb;
+            }
+        }
+        if (metal_channel >= 0) {
+            const float m = p[metal_channel];
+            if (m <= t.dielectric_max) ++metal_dielectric;
+            else if (m >= t.metal_min) ++metal_metal;
+            else if (std::isfinite(m)) ++metal_between;
+        }
+        if (is_normal() && channels >= 2) {
+            auto dec = [&](float c) { return normal_signed == 1 ? c : 2.f * c - 1.f; };
+            const double x = dec(p[0]), y = dec(p[1]);
+            double len, z;
+            if (channels >= 3) {
+                z = dec(p[2]);
+                len = std::sqrt(x * x + y * y + z * z);
+            } else {
+                const double xy = x * x + y * y;
+                z = std::sqrt(std::max(0.0, 1.0 - xy));
+                len = std::max(1.0, std::sqrt(xy));
+            }
+            if (std::isfinite(len)) {
+                if (std::abs(len - 1.0) > t.normal_length_tolerance) ++normal_bad_length;
+                if (z < -t.normal_z_epsilon) ++normal_negative_z;
+                normal_sum_length += len;
+                normal_sum_z += z;
+            }
+        }
+    }
+    pixels += n;
+    (void)nc;
+}
+
+void MapStats::findings(std::vector<Finding>& out) const {
+    const std::string file = input.name.empty() ? input.file.display : input.name;
+    const std::string role = std::string(role_name(input.role));
+    auto add = [&](std::string_view code, std::string r, std::string msg, nlohmann::json fig) {
+        Finding f;
+        f.code = std::string(code);
+        f.role = std::move(r);
+        f.file = file;
+        f.message = std::move(msg);
+        f.figures = std::move(fig);
+        out.push_back(std::move(f));
+    };
+    if (pixels == 0) return;
+    const int nc = std::min(channels, 4);
+    auto channel_array = [&](const std::array<double, 4>& a) {
+        nlohmann::json j = nlohmann::json::array();
+        for (int c = 0; c < nc; ++c) j.push_back(std::isfinite(a[c]) ? nlohmann::json(a[c]) : nlohmann::json());
+        return j;
+    };
+
+    // NONFINITE_VALUES
+    if (nan + inf > 0 && ratio(nan + inf, samples) > t.nonfinite_max_share) {
+        add(code::nonfinite_values, role,
+            file + ": " + std::to_string(nan) + " NaN and " + std::to_string(inf) +
+                " Inf values; re-export the map with finite values (they propagate through "
+                "filtering and mipmapping)",
+            {{"nan", nan}, {"inf", inf}, {"samples", samples},
+             {"share", ratio(nan + inf, samples)}});
+    }
+    // OUT_OF_RANGE_VALUES (float inputs only: integer files cannot leave [0, 1])
+    const double oor = ratio(out_of_range_pixels, pixels);
+    if (out_of_range_pixels > 0 && oor > t.out_of_range_max_share) {
+        add(code::out_of_range_values, role,
+            file + ": " + pct(oor) + " of pixels hold " + role + " values outside [" +
+                (is_normal() ? "-1" : "0") + ", 1] (min " + fmt(*std::min_element(min.begin(), min.begin() + nc)) +
+                ", max " + fmt(*std::max_element(max.begin(), max.begin() + nc)) +
+                "); they will be clamped",
+            {{"pixels", out_of_range_pixels}, {"share", oor}, {"min", channel_array(min)},
+             {"max", channel_array(max)}, {"epsilon", t.range_epsilon}});
+    }
+    // NOT_GRAYSCALE
+    if (scalar_role() && channels >= 3) {
+        const double share = ratio(gray_differing, pixels);
+        const double tol = is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance;
+        if (share > t.grayscale_max_share) {
+            add(code::not_grayscale, role,
+                file + ": " + role + " is a scalar map but its R, G and B differ by more than " +
+                    fmt(tol * 255, 0) + "/255 in " + pct(share) +
+                    " of pixels (largest difference " + fmt(gray_max_diff * 255, 0) +
+                    "/255); matforge uses R — check that the file is not a packed or color map",
+                {{"share", share}, {"max_difference", gray_max_diff},
+                 {"mean_abs_rg", gray_sum_rg / static_cast<double>(pixels)}, {"mean_abs_rb", gray_sum_rb / static_cast<double>(pixels)},
+                 {"tolerance", tol}, {"jpeg", is_jpeg}});
+        }
+    }
+    // CONSTANT_MAP: per channel group (packed inputs: per channel role)
+    {
+        const double tol = is_jpeg ? t.constant_tolerance_jpeg : t.constant_tolerance;
+        std::vector<std::pair<std::vector<int>, Role>> groups;
+        if (traits(input.role).packed) {
+            for (int c = 0; c < std::min(channels, 3); ++c)
+                if (auto r = channel_role(input.role, c)) groups.push_back({{c}, *r});
+        } else if (scalar_role()) {
+            groups.push_back({{0}, input.role});
+        } else {
+            std::vector<int> g;
+            for (int c = 0; c < std::min(channels, 3); ++c) g.push_back(c);
+            groups.push_back({g, input.role});
+        }
+        for (const auto& [chs, r] : groups) {
+            bool constant = true;
+            nlohmann::json value = nlohmann::json::array(), range = nlohmann::json::array();
+            for (int c : chs) {
+                if (finite[c] == 0 || max[c] - min[c] > tol) constant = false;
+                value.push_back(finite[c] ? sum[c] / static_cast<double>(finite[c]) : 0.0);
+                range.push_back(finite[c] ? max[c] - min[c] : 0.0);
+            }
+            if (!constant) continue;
+            std::string where = file;
+            if (traits(input.role).packed) where = "channel " + std::string(channel_letter(chs[0])) + " of " + file;
+            std::string vtext;
+            for (size_t i = 0; i < value.size(); ++i)
+                vtext += (i ? ", " : "") + fmt(value[i].get<double>());
+            add(code::constant_map, std::string(role_name(r)),
+                where + " holds one value (" + vtext + "); a constant or a 2x2 map does the same",
+                {{"value", value}, {"range", range}, {"tolerance", tol},
+                 {"channels", [&] {
+                      nlohmann::json a = nlohmann::json::array();
+                      for (int c : chs) a.push_back(channel_letter(c));
+                      return a;
+                  }()}});
+        }
+    }
+    // METALNESS_NOT_BINARY
+    if (metal_channel >= 0) {
+        const long long total = metal_dielectric + metal_metal + metal_between;
+        const double share = ratio(metal_between, total);
+        if (share > t.metalness_max_intermediate_share) {
+            add(code::metalness_not_binary, "metalness",
+                (traits(input.role).packed ? "channel " + std::string(channel_letter(metal_channel)) + " of " : std::string()) +
+                    file + ": " + pct(share) + " of pixels have metalness between " +
+                    fmt(t.dielectric_max, 2) + " and " + fmt(t.metal_min, 2) +
+                    "; real surfaces are metal or not — use grey only for transitions (rust, dirt)",
+                {{"share_between", share}, {"share_dielectric", ratio(metal_dielectric, total)},
+                 {"share_metal", ratio(metal_metal, total)},
+                 {"dielectric_max", t.dielectric_max}, {"metal_min", t.metal_min},
+                 {"max_share", t.metalness_max_intermediate_share}});
+        }
+    }
+    // NORMAL_INVALID
+    if (is_normal()) {
+        if (channels < 2) {
+            add(code::normal_invalid, role,
+                file + ": a one-channel image cannot be a tangent-space normal map (is it a "
+                       "height or bump map?)",
+                {{"channels", channels}});
+        } else {
+            const double bad = ratio(normal_bad_length, pixels);
+            const double negz = ratio(normal_negative_z, pixels);
+            if (bad > t.normal_max_bad_length_share || negz > t.normal_max_negative_z_share) {
+                std::string why;
+                if (bad > t.normal_max_bad_length_share)
+                    why = pct(bad) + " of pixels decode to vectors whose length is more than " +
+                          fmt(t.normal_length_tolerance, 2) + " from 1";
+                if (negz > t.normal_max_negative_z_share)
+                    why += std::string(why.empty() ? "" : " and ") + pct(negz) +
+                           " point into the surface (Z < 0)";
+                add(code::normal_invalid, role,
+                    file + ": not a tangent-space normal map: " + why +
+                        " (an object-space, height or color map named as normal?)",
+                    {{"bad_length_share", bad}, {"negative_z_share", negz},
+                     {"mean_length", normal_sum_length / static_cast<double>(pixels)}, {"mean_z", normal_sum_z / static_cast<double>(pixels)},
+                     {"length_tolerance", t.normal_length_tolerance},
+                     {"decoding", normal_signed == 1 ? "signed" : "2c-1"}});
+            }
+        }
+    }
+    // COLOR_SPACE_MISMATCH (tags)
+    const ColorTag tag = input.color_tag.tag;
+    const bool color = is_color_role(input.role);
+    nlohmann::json tagfig{{"tag", color_tag_name(tag)}, {"tag_source", input.color_tag.source},
+                          {"tag_value", input.color_tag.value}};
+    if (!color && tag == ColorTag::srgb) {
+        tagfig["expected"] = "linear";
+        add(code::color_space_mismatch, role,
+            file + ": tagged sRGB (" + input.color_tag.source + ") but holds " + role +
+                " data; tools that honour the tag will decode it as color — re-export it "
+                "untagged or as linear/raw",
+            tagfig);
+    } else if (color && !input.info.is_float && tag == ColorTag::linear) {
+        tagfig["expected"] = "srgb";
+        add(code::color_space_mismatch, role,
+            file + ": an 8/16-bit " + role + " map is sRGB-encoded by convention but the file is "
+                   "tagged linear (" + input.color_tag.source + "); check how it was exported",
+            tagfig);
+    } else if (color && input.info.is_float && tag == ColorTag::srgb) {
+        tagfig["expected"] = "linear";
+        add(code::color_space_mismatch, role,
+            file + ": a float " + role + " map is read as linear but the file is tagged sRGB (" +
+                input.color_tag.source + ")",
+            tagfig);
+    }
+}
+
+}  // namespace mf::validate::detail

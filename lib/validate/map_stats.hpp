@@ -1,0 +1,54 @@
+// Internal: statistics of one map gathered band by band on its reader thread, and the rules
+// that need nothing but that one map (values, channels, constants, metalness, normals, tags).
+#pragma once
+#include <array>
+#include <vector>
+
+#include "validate/validate.hpp"
+
+namespace mf::validate::detail {
+
+// a / b as a fraction (0 when b is 0).
+inline double ratio(long long a, long long b) {
+    return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
+}
+
+// IEC 61966-2-1 sRGB transfer functions (exact piecewise curve).
+float srgb_to_linear(float v);
+float linear_to_srgb(float v);
+
+struct MapStats {
+    MapInput input;  // copy: the stats outlive no one, and this keeps the thread self-contained
+    Thresholds t;
+    int width = 0, height = 0, channels = 0;
+    bool is_jpeg = false;
+
+    // Values.
+    long long samples = 0, pixels = 0, nan = 0, inf = 0, out_of_range_pixels = 0;
+    std::array<double, 4> min{}, max{}, sum{};
+    std::array<long long, 4> finite{};
+    // NOT_GRAYSCALE (scalar roles with ≥ 3 channels).
+    long long gray_differing = 0;
+    double gray_max_diff = 0, gray_sum_rg = 0, gray_sum_rb = 0;
+    // METALNESS_NOT_BINARY (the channel holding metalness, if any).
+    int metal_channel = -1;
+    long long metal_dielectric = 0, metal_metal = 0, metal_between = 0;
+    // NORMAL_INVALID.
+    int normal_signed = -1;  // -1 undecided, 0 n = 2c − 1, 1 stored signed (float files)
+    long long normal_bad_length = 0, normal_negative_z = 0;
+    double normal_sum_length = 0, normal_sum_z = 0;
+
+    MapStats(const MapInput& in, const ImageInfo& info, const Thresholds& th);
+    void add_band(int y0, int rows, const float* px);
+
+    // Findings that depend on this map alone (severity/enable applied later).
+    void findings(std::vector<Finding>& out) const;
+
+    bool is_normal() const { return input.role == Role::normal; }
+    bool scalar_role() const;
+};
+
+// Which output role channel c of a map holds (packed inputs split; RGB roles whole).
+std::optional<Role> channel_role(Role input_role, int channel);
+
+}  // namespace mf::validate::detail

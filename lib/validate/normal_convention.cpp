@@ -1,0 +1,253 @@
+#include "validate/normal_convention.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace mf::validate {
+namespace {
+
+// Uncentered correlation: the tests are about proportionality through the origin (q = ±s·g).
+struct Corr {
+    double xy = 0, xx = 0, yy = 0;
+    long n = 0;
+    void add(double a, double b) {
+        xy += a * b;
+        xx += a * a;
+        yy += b * b;
+        ++n;
+    }
+    double r() const {
+        const double d = std::sqrt(xx * yy);
+        return d > 1e-30 ? xy / d : 0.0;
+    }
+};
+
+struct Level {
+    int width = 0;
+    bool with_height = false;
+    // The last three rows of slopes p, q and height h (ring, oldest first after rotation).
+    std::array<std::vector<float>, 3> p, q, h;
+    int rows = 0;
+    Corr cx, cy, curl;
+    // Rows accumulated for the next level (2×2 block mean).
+    std::vector<float> ap, aq, ah;
+    int acc_rows = 0;
+};
+
+double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+
+// Maps of |r| to confidence (docs/rules.md): the height test is direct evidence, so a weaker
+// correlation already counts; the curl test compares second derivatives and needs more.
+double height_confidence(double r) { return clamp01((std::abs(r) - 0.05) / 0.25); }
+double curl_confidence(double r) { return clamp01((std::abs(r) - 0.1) / 0.4); }
+
+NormalConvention sign_convention(double r) {
+    return r > 0 ? NormalConvention::gl : (r < 0 ? NormalConvention::dx : NormalConvention::unknown);
+}
+
+}  // namespace
+
+void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz) {
+    for (int x = 0; x < width; ++x) {
+        const float* s = src + static_cast<size_t>(x) * channels;
+        auto dec = [&](float c) { return signed_values ? c : 2.f * c - 1.f; };
+        float nx = dec(s[0]);
+        float ny = channels > 1 ? dec(s[1]) : 0.f;
+        float nz = channels > 2 ? dec(s[2]) : std::sqrt(std::max(0.f, 1.f - nx * nx - ny * ny));
+        xyz[3 * x] = nx;
+        xyz[3 * x + 1] = ny;
+        xyz[3 * x + 2] = nz;
+    }
+}
+
+struct NormalConventionDetector::Impl {
+    DetectorOptions opt;
+    bool with_height = false;
+    std::vector<Level> levels;
+
+    Impl(int width, bool wh, const DetectorOptions& o) : opt(o), with_height(wh) {
+        int w = width;
+        for (int l = 0; l < std::max(1, opt.levels) && w >= 3; ++l, w /= 2) {
+            Level lv;
+            lv.width = w;
+            lv.with_height = wh;
+            for (int i = 0; i < 3; ++i) {
+                lv.p[i].assign(w, 0.f);
+                lv.q[i].assign(w, 0.f);
+                if (wh) lv.h[i].assign(w, 0.f);
+            }
+            lv.ap.assign(w / 2, 0.f);
+            lv.aq.assign(w / 2, 0.f);
+            if (wh) lv.ah.assign(w / 2, 0.f);
+            levels.push_back(std::move(lv));
+        }
+    }
+
+    void push(size_t li, const float* p, const float* q, const float* h) {
+        Level& L = levels[li];
+        // Rotate the ring: slot 2 is the newest row.
+        std::rotate(L.p.begin(), L.p.begin() + 1, L.p.end());
+        std::rotate(L.q.begin(), L.q.begin() + 1, L.q.end());
+        std::copy(p, p + L.width, L.p[2].begin());
+        std::copy(q, q + L.width, L.q[2].begin());
+        if (L.with_height) {
+            std::rotate(L.h.begin(), L.h.begin() + 1, L.h.end());
+            std::copy(h, h + L.width, L.h[2].begin());
+        }
+        ++L.rows;
+        if (L.rows >= 3) {
+            // Central differences at the middle row (slot 1).
+            const auto &p0 = L.p[0], &p1 = L.p[1], &p2 = L.p[2];
+            const auto& q1 = L.q[1];
+            for (int x = 1; x + 1 < L.width; ++x) {
+                const double a = 0.5 * (double{p2[x]} - p0[x]);
+                const double b = 0.5 * (double{q1[x + 1]} - q1[x - 1]);
+                L.curl.add(a, b);
+                if (L.with_height) {
+                    const auto &h0 = L.h[0], &h1 = L.h[1], &h2 = L.h[2];
+                    const double gx = 0.5 * (double{h1[x + 1]} - h1[x - 1]);
+                    const double gr = 0.5 * (double{h2[x]} - h0[x]);
+                    L.cx.add(p1[x], gx);
+                    L.cy.add(q1[x], gr);
+                }
+            }
+        }
+        // Build the next level's row from 2×2 blocks.
+        if (li + 1 >= levels.size()) return;
+        const int w2 = L.width / 2;
+        for (int x = 0; x < w2; ++x) {
+            L.ap[x] += 0.25f * (p[2 * x] + p[2 * x + 1]);
+            L.aq[x] += 0.25f * (q[2 * x] + q[2 * x + 1]);
+            if (L.with_height) L.ah[x] += 0.25f * (h[2 * x] + h[2 * x + 1]);
+        }
+        if (++L.acc_rows == 2) {
+            // Copy out first: push() of the next level does not touch this level's buffers,
+            // but keep the order obvious.
+            std::vector<float> np = L.ap, nq = L.aq, nh = L.ah;
+            std::fill(L.ap.begin(), L.ap.end(), 0.f);
+            std::fill(L.aq.begin(), L.aq.end(), 0.f);
+            std::fill(L.ah.begin(), L.ah.end(), 0.f);
+            L.acc_rows = 0;
+            push(li + 1, np.data(), nq.data(), with_height ? nh.data() : nullptr);
+        }
+    }
+};
+
+NormalConventionDetector::NormalConventionDetector(int width, bool with_height,
+                                                   const DetectorOptions& opt)
+    : impl_(std::make_unique<Impl>(width, with_height, opt)) {}
+NormalConventionDetector::~NormalConventionDetector() = default;
+NormalConventionDetector::NormalConventionDetector(NormalConventionDetector&&) noexcept = default;
+NormalConventionDetector& NormalConventionDetector::operator=(NormalConventionDetector&&) noexcept = default;
+
+void NormalConventionDetector::add_row(const float* xyz, const float* height) {
+    if (impl_->levels.empty()) return;
+    const int w = impl_->levels[0].width;
+    std::vector<float> p(w), q(w);
+    const float min_nz = static_cast<float>(impl_->opt.min_nz);
+    for (int x = 0; x < w; ++x) {
+        const float nz = std::max(xyz[3 * x + 2], min_nz);
+        p[x] = -xyz[3 * x] / nz;
+        q[x] = xyz[3 * x + 1] / nz;
+    }
+    // A missing height row (the height map ended early) reads as flat: no evidence, no crash.
+    std::vector<float> flat;
+    if (impl_->with_height && !height) {
+        flat.assign(w, 0.f);
+        height = flat.data();
+    }
+    impl_->push(0, p.data(), q.data(), impl_->with_height ? height : nullptr);
+}
+
+NormalVerdict NormalConventionDetector::verdict() const {
+    NormalVerdict v;
+    const Impl& I = *impl_;
+    double best_curl = 0, best_hy = 0, best_hx = 0;
+    int curl_scale = 0, height_scale = 0;
+    nlohmann::json levels = nlohmann::json::array();
+    int scale = 1;
+    for (const Level& L : I.levels) {
+        nlohmann::json lj{{"scale", scale}, {"samples", L.curl.n}, {"r_curl", L.curl.r()}};
+        if (I.with_height) {
+            lj["r_x"] = L.cx.r();
+            lj["r_y"] = L.cy.r();
+        }
+        levels.push_back(lj);
+        if (L.curl.n >= I.opt.min_samples) {
+            // Only levels whose terms carry energy vote (a flat map has no evidence).
+            if (L.curl.xx > 0 && L.curl.yy > 0 && std::abs(L.curl.r()) > std::abs(best_curl)) {
+                best_curl = L.curl.r();
+                curl_scale = scale;
+            }
+            if (I.with_height && std::abs(L.cy.r()) > std::abs(best_hy)) {
+                best_hy = L.cy.r();
+                best_hx = L.cx.r();
+                height_scale = scale;
+            }
+        }
+        scale *= 2;
+    }
+    v.figures["levels"] = levels;
+    const double cc = curl_confidence(best_curl);
+    v.figures["r_curl"] = best_curl;
+    v.figures["curl_scale"] = curl_scale;
+    v.figures["confidence_curl"] = cc;
+    NormalConvention dir = sign_convention(best_curl);
+    double conf = cc;
+    v.method = "curl";
+    if (I.with_height) {
+        // The red channel has no convention ambiguity: without a positive corr(p, ∂h/∂x) the
+        // height map may not match this normal map, so its evidence counts half.
+        double ch = height_confidence(best_hy);
+        if (!(best_hx > 0.05)) ch *= 0.5;
+        v.figures["r_height_y"] = best_hy;
+        v.figures["r_height_x"] = best_hx;
+        v.figures["height_scale"] = height_scale;
+        v.figures["confidence_height"] = ch;
+        const NormalConvention hdir = sign_convention(best_hy);
+        v.method = "height+curl";
+        if (hdir == dir || dir == NormalConvention::unknown || cc == 0.0) {
+            dir = hdir != NormalConvention::unknown ? hdir : dir;
+            conf = 1.0 - (1.0 - ch) * (1.0 - cc);
+        } else if (ch >= cc) {
+            dir = hdir;
+            conf = ch - cc;
+        } else {
+            conf = cc - ch;
+        }
+    }
+    if (dir == NormalConvention::unknown) conf = 0.0;
+    v.leaning = dir;
+    v.confidence = conf;
+    v.convention = conf >= I.opt.min_confidence ? dir : NormalConvention::unknown;
+    if (I.levels.empty() || I.levels[0].curl.n < I.opt.min_samples) v.method = "none";
+    return v;
+}
+
+NormalVerdict detect_normal_convention(const Image& normal, const Image* height,
+                                       const DetectorOptions& opt, bool signed_values) {
+    const bool wh = height && !height->empty();
+    NormalConventionDetector det(normal.width, wh, opt);
+    std::vector<float> xyz(static_cast<size_t>(normal.width) * 3);
+    std::vector<float> hrow(wh ? normal.width : 0);
+    std::vector<int> xmap(wh ? normal.width : 0);
+    if (wh)
+        for (int x = 0; x < normal.width; ++x)
+            xmap[x] = std::min(height->width - 1,
+                               static_cast<int>((x + 0.5) * height->width / normal.width));
+    for (int y = 0; y < normal.height; ++y) {
+        decode_normal_row(&normal.pixels[normal.index(0, y)], normal.channels, normal.width,
+                          signed_values, xyz.data());
+        if (wh) {
+            const int hy = std::min(height->height - 1,
+                                    static_cast<int>((y + 0.5) * height->height / normal.height));
+            for (int x = 0; x < normal.width; ++x) hrow[x] = height->at(xmap[x], hy, 0);
+        }
+        det.add_row(xyz.data(), wh ? hrow.data() : nullptr);
+    }
+    return det.verdict();
+}
+
+}  // namespace mf::validate

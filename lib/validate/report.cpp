@@ -1,0 +1,303 @@
+#include "validate/report.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <set>
+
+#include "validate/rules.hpp"
+
+namespace mf::validate {
+namespace {
+
+// The codes validate_set() evaluates: a JUnit test case each, per material.
+std::vector<std::string> default_rules() {
+    std::vector<std::string> v;
+    for (const auto& r : rule_catalog()) {
+        if (r.code == code::missing_map) break;  // the rest are other stages' codes
+        v.emplace_back(r.code);
+    }
+    return v;
+}
+
+std::string join_path(const std::string& source, const std::string& file) {
+    if (file.empty()) return source;
+    if (source.empty() || source == ".") return file;
+    return source.back() == '/' ? source + file : source + "/" + file;
+}
+
+std::string finding_line(const Finding& f) {
+    std::string s = std::string(severity_name(f.severity)) + " " + f.code;
+    if (!f.role.empty()) s += " [" + f.role + "]";
+    return s + ": " + f.message;
+}
+
+}  // namespace
+
+std::optional<FailOn> fail_on_from_name(std::string_view n) {
+    if (n == "error") return FailOn::error;
+    if (n == "warning") return FailOn::warning;
+    if (n == "info") return FailOn::info;
+    if (n == "never") return FailOn::never;
+    return std::nullopt;
+}
+
+std::string_view fail_on_name(FailOn f) {
+    switch (f) {
+        case FailOn::info: return "info";
+        case FailOn::warning: return "warning";
+        case FailOn::error: return "error";
+        case FailOn::never: break;
+    }
+    return "never";
+}
+
+bool fails(Severity s, FailOn f) {
+    switch (f) {
+        case FailOn::never: return false;
+        case FailOn::info: return true;
+        case FailOn::warning: return s >= Severity::warning;
+        case FailOn::error: return s >= Severity::error;
+    }
+    return false;
+}
+
+Summary summarize(const Report& r) {
+    Summary s;
+    for (const auto& m : r.materials)
+        for (const auto& f : m.findings) {
+            if (f.severity == Severity::error) ++s.error;
+            else if (f.severity == Severity::warning) ++s.warning;
+            else ++s.info;
+        }
+    s.failures = static_cast<int>(r.failures.size());
+    return s;
+}
+
+int exit_code(const Summary& s, FailOn f) {
+    if (s.failures > 0) return 1;
+    if ((s.error > 0 && fails(Severity::error, f)) || (s.warning > 0 && fails(Severity::warning, f)) ||
+        (s.info > 0 && fails(Severity::info, f)))
+        return 1;
+    return 0;
+}
+
+nlohmann::json report_json(const Report& r) {
+    nlohmann::json j;
+    j["report_version"] = 1;
+    j["generator"] = "matforge " + r.tool_version;
+    nlohmann::json mats = nlohmann::json::array();
+    for (const auto& m : r.materials) {
+        nlohmann::json fs = nlohmann::json::array();
+        for (const auto& f : m.findings) fs.push_back(to_json(f));
+        mats.push_back({{"name", m.name}, {"source", m.source}, {"findings", fs}});
+    }
+    j["materials"] = mats;
+    nlohmann::json fl = nlohmann::json::array();
+    for (const auto& f : r.failures) fl.push_back({{"source", f.source}, {"code", f.code}, {"message", f.message}});
+    j["failures"] = fl;
+    const Summary s = summarize(r);
+    j["summary"] = {{"error", s.error}, {"warning", s.warning}, {"info", s.info}, {"failures", s.failures}};
+    return j;
+}
+
+std::string write_json(const Report& r) { return report_json(r).dump(2) + "\n"; }
+
+std::string write_text(const Report& r, FailOn fail_on) {
+    std::string out;
+    size_t code_w = 0;
+    for (const auto& m : r.materials)
+        for (const auto& f : m.findings) code_w = std::max(code_w, f.code.size());
+    for (const auto& m : r.materials) {
+        out += m.name + "  (" + m.source + ")\n";
+        if (m.findings.empty()) out += "  ok: no findings\n";
+        for (const auto& f : m.findings) {
+            std::string sev(severity_name(f.severity));
+            sev.resize(8, ' ');
+            std::string c = f.code;
+            c.resize(code_w + 2, ' ');
+            std::string role = f.role.empty() ? "-" : f.role;
+            role.resize(std::max<size_t>(role.size() + 1, 10), ' ');
+            out += "  " + sev + c + role + f.message + (f.file.empty() ? "" : "  [" + f.file + "]") + "\n";
+        }
+        out += "\n";
+    }
+    if (!r.failures.empty()) {
+        out += "Inputs that could not be processed\n";
+        for (const auto& f : r.failures) out += "  " + f.source + "  " + f.code + "  " + f.message + "\n";
+        out += "\n";
+    }
+    const Summary s = summarize(r);
+    const int rc = exit_code(s, fail_on);
+    out += std::to_string(r.materials.size()) + " material(s): " + std::to_string(s.error) + " error(s), " +
+           std::to_string(s.warning) + " warning(s), " + std::to_string(s.info) + " info";
+    if (s.failures) out += "; " + std::to_string(s.failures) + " input(s) failed";
+    out += rc ? " — FAIL" : " — PASS";
+    out += " (--fail-on " + std::string(fail_on_name(fail_on)) + ")\n";
+    return out;
+}
+
+std::string xml_escape(std::string_view s) {
+    std::string o;
+    o.reserve(s.size());
+    for (unsigned char c : s) {
+        switch (c) {
+            case '&': o += "&amp;"; break;
+            case '<': o += "&lt;"; break;
+            case '>': o += "&gt;"; break;
+            case '"': o += "&quot;"; break;
+            case '\'': o += "&apos;"; break;
+            default:
+                // XML 1.0 §2.2 forbids C0 controls other than tab, LF, CR, even escaped.
+                if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') o += "\xEF\xBF\xBD";  // U+FFFD
+                else o += static_cast<char>(c);
+        }
+    }
+    return o;
+}
+
+std::string write_junit(const Report& r, FailOn fail_on) {
+    // One <testsuite> per material, one <testcase> per rule evaluated on it: a dashboard shows
+    // which rule failed for which material, and a passing rule as a passing test.
+    struct Case {
+        std::string name;
+        std::vector<const Finding*> failing, passing;
+    };
+    std::string body;
+    int total = 0, total_fail = 0, total_err = 0;
+    for (const auto& m : r.materials) {
+        std::vector<std::string> rules = m.rules.empty() ? default_rules() : m.rules;
+        for (const auto& f : m.findings)
+            if (std::find(rules.begin(), rules.end(), f.code) == rules.end()) rules.push_back(f.code);
+        std::vector<Case> cases;
+        for (const auto& c : rules) {
+            Case k{c, {}, {}};
+            for (const auto& f : m.findings)
+                if (f.code == c) (fails(f.severity, fail_on) ? k.failing : k.passing).push_back(&f);
+            cases.push_back(std::move(k));
+        }
+        int fail = 0;
+        for (const auto& k : cases) fail += k.failing.empty() ? 0 : 1;
+        total += static_cast<int>(cases.size());
+        total_fail += fail;
+        body += "  <testsuite name=\"" + xml_escape(m.name) + "\" tests=\"" + std::to_string(cases.size()) +
+                "\" failures=\"" + std::to_string(fail) + "\" errors=\"0\" skipped=\"0\">\n";
+        body += "    <properties>\n      <property name=\"source\" value=\"" + xml_escape(m.source) + "\"/>\n    </properties>\n";
+        const std::string classname = "matforge.validate." + m.name;
+        for (const auto& k : cases) {
+            body += "    <testcase name=\"" + xml_escape(k.name) + "\" classname=\"" + xml_escape(classname) + "\"";
+            if (k.failing.empty() && k.passing.empty()) {
+                body += "/>\n";
+                continue;
+            }
+            body += ">\n";
+            if (!k.failing.empty()) {
+                std::string text;
+                for (const Finding* f : k.failing)
+                    text += finding_line(*f) + (f->file.empty() ? "" : " (" + join_path(m.source, f->file) + ")") + "\n";
+                body += "      <failure type=\"" + xml_escape(k.name) + "\" message=\"" +
+                        xml_escape(k.failing.front()->message) + "\">" + xml_escape(text) + "</failure>\n";
+            }
+            if (!k.passing.empty()) {
+                std::string text;
+                for (const Finding* f : k.passing) text += finding_line(*f) + "\n";
+                body += "      <system-out>" + xml_escape(text) + "</system-out>\n";
+            }
+            body += "    </testcase>\n";
+        }
+        body += "  </testsuite>\n";
+    }
+    if (!r.failures.empty()) {
+        body += "  <testsuite name=\"inputs\" tests=\"" + std::to_string(r.failures.size()) +
+                "\" failures=\"0\" errors=\"" + std::to_string(r.failures.size()) + "\" skipped=\"0\">\n";
+        for (const auto& f : r.failures)
+            body += "    <testcase name=\"" + xml_escape(f.source) + "\" classname=\"matforge.validate.inputs\">\n" +
+                    "      <error type=\"" + xml_escape(f.code) + "\" message=\"" + xml_escape(f.message) + "\"/>\n" +
+                    "    </testcase>\n";
+        body += "  </testsuite>\n";
+        total += static_cast<int>(r.failures.size());
+        total_err += static_cast<int>(r.failures.size());
+    }
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"matforge validate\" tests=\"" +
+           std::to_string(total) + "\" failures=\"" + std::to_string(total_fail) + "\" errors=\"" +
+           std::to_string(total_err) + "\">\n" + body + "</testsuites>\n";
+}
+
+std::string uri_encode_path(std::string_view p) {
+    // RFC 3986 path: unreserved characters and '/' stay, everything else is percent-encoded.
+    static const char* hex = "0123456789ABCDEF";
+    std::string o;
+    for (unsigned char c : p) {
+        if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') o += static_cast<char>(c);
+        else {
+            o += '%';
+            o += hex[c >> 4];
+            o += hex[c & 15];
+        }
+    }
+    return o;
+}
+
+std::string write_sarif(const Report& r) {
+    // SARIF 2.1.0 (OASIS, 2020): §3.13 sarifLog, §3.19 tool, §3.49 reportingDescriptor,
+    // §3.27 result, §3.28 location, §3.4 artifactLocation. Levels: error, warning, note.
+    auto level = [](Severity s) { return s == Severity::error ? "error" : s == Severity::warning ? "warning" : "note"; };
+    std::vector<std::string> ids;
+    for (const auto& rule : rule_catalog()) ids.emplace_back(rule.code);
+    std::set<std::string> extra;
+    for (const auto& m : r.materials)
+        for (const auto& f : m.findings)
+            if (!find_rule(f.code)) extra.insert(f.code);
+    for (const auto& f : r.failures)
+        if (!find_rule(f.code)) extra.insert(f.code);
+    ids.insert(ids.end(), extra.begin(), extra.end());
+
+    nlohmann::json rules = nlohmann::json::array();
+    for (const auto& id : ids) {
+        const RuleInfo* info = find_rule(id);
+        nlohmann::json d{{"id", id},
+                         {"shortDescription", {{"text", info ? std::string(info->title) : id}}},
+                         {"defaultConfiguration", {{"level", level(info ? info->severity : Severity::warning)}}}};
+        if (info) d["help"] = {{"text", "See docs/rules.md#" + std::string(info->anchor)}};
+        rules.push_back(d);
+    }
+    auto index_of = [&](const std::string& id) {
+        return static_cast<int>(std::find(ids.begin(), ids.end(), id) - ids.begin());
+    };
+    auto location = [](const std::string& path) {
+        std::string uri = uri_encode_path(path);
+        if (!path.empty() && path.front() == '/') uri = "file://" + uri;
+        return nlohmann::json::array({{{"physicalLocation", {{"artifactLocation", {{"uri", uri}}}}}}});
+    };
+    nlohmann::json results = nlohmann::json::array();
+    for (const auto& m : r.materials)
+        for (const auto& f : m.findings) {
+            nlohmann::json res{{"ruleId", f.code},
+                               {"ruleIndex", index_of(f.code)},
+                               {"level", level(f.severity)},
+                               {"message", {{"text", f.message}}},
+                               {"locations", location(join_path(m.source, f.file))}};
+            nlohmann::json props{{"material", m.name}};
+            if (!f.role.empty()) props["role"] = f.role;
+            if (!f.figures.empty()) props["figures"] = f.figures;
+            res["properties"] = props;
+            results.push_back(res);
+        }
+    for (const auto& f : r.failures)
+        results.push_back({{"ruleId", f.code},
+                           {"ruleIndex", index_of(f.code)},
+                           {"level", "error"},
+                           {"message", {{"text", f.message}}},
+                           {"locations", location(f.source)}});
+    nlohmann::json run{{"tool", {{"driver", {{"name", "matforge"},
+                                             {"semanticVersion", r.tool_version},
+                                             {"version", r.tool_version},
+                                             {"rules", rules}}}}},
+                       {"results", results}};
+    nlohmann::json log{{"$schema", "https://json.schemastore.org/sarif-2.1.0.json"},
+                       {"version", "2.1.0"},
+                       {"runs", nlohmann::json::array({run})}};
+    return log.dump(2) + "\n";
+}
+
+}  // namespace mf::validate

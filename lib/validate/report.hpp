@@ -1,0 +1,64 @@
+// Reports of `matforge validate`: text for people, JSON (docs/validate-report.md), JUnit XML
+// for CI dashboards, SARIF 2.1.0 for code-scanning tools; plus the exit code.
+//
+// Conventions: every writer is a pure function of the Report (byte-identical output for the
+// same input: no timestamps, materials and findings in the order given, rules in catalog
+// order); JSON and SARIF end with a newline.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/findings.hpp"
+
+namespace mf::validate {
+
+// `--fail-on`: the lowest severity that fails the run ("never": findings never fail it).
+enum class FailOn { info, warning, error, never };
+std::optional<FailOn> fail_on_from_name(std::string_view name);  // "error"|"warning"|"info"|"never"
+std::string_view fail_on_name(FailOn f);
+bool fails(Severity s, FailOn f);
+
+struct MaterialReport {
+    std::string name;
+    std::string source;                 // as given / relative to the report's folder
+    std::vector<Finding> findings;      // Finding::file is relative to `source`
+    std::vector<std::string> rules;     // codes evaluated (JUnit passes); empty: the validate rules
+};
+
+struct InputFailure {                   // an input that could not be processed at all
+    std::string source;
+    std::string code;
+    std::string message;
+};
+
+struct Report {
+    std::string tool_version = "0.1.0";
+    std::vector<MaterialReport> materials;
+    std::vector<InputFailure> failures;
+};
+
+struct Summary {
+    int error = 0, warning = 0, info = 0;
+    int failures = 0;  // inputs that could not be processed
+};
+
+Summary summarize(const Report& r);
+
+// Spec: 0 no finding at/above fail-on; 1 findings at/above fail-on, or some inputs could not be
+// processed. (2, usage/configuration errors, is the CLI's.)
+int exit_code(const Summary& s, FailOn fail_on);
+
+nlohmann::json report_json(const Report& r);   // {"report_version": 1, ...}
+std::string write_json(const Report& r);
+std::string write_text(const Report& r, FailOn fail_on);
+std::string write_junit(const Report& r, FailOn fail_on);
+std::string write_sarif(const Report& r);
+
+// Helpers exposed for tests.
+std::string xml_escape(std::string_view s);
+std::string uri_encode_path(std::string_view path);
+
+}  // namespace mf::validate

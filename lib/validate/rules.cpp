@@ -1,0 +1,329 @@
+#include "validate/rules.hpp"
+
+#include <algorithm>
+
+namespace mf::validate {
+namespace {
+
+using Member = double Thresholds::*;
+struct Param {
+    std::string_view code;
+    std::string_view name;  // key inside "rules": {CODE: {...}}
+    Member member;
+};
+
+// Threshold names per code. A member shared by two codes (the share of ALBEDO_TOO_DARK and
+// ALBEDO_TOO_BRIGHT) is one number: both rules look at the same dielectric pixels.
+const std::vector<Param>& params() {
+    static const std::vector<Param> p{
+        {code::albedo_too_dark, "min_srgb", &Thresholds::albedo_min_srgb},
+        {code::albedo_too_dark, "max_share", &Thresholds::albedo_max_share},
+        {code::albedo_too_dark, "dielectric_max", &Thresholds::dielectric_max},
+        {code::albedo_too_dark, "opacity_visible", &Thresholds::opacity_visible},
+        {code::albedo_too_bright, "max_srgb", &Thresholds::albedo_max_srgb},
+        {code::albedo_too_bright, "max_share", &Thresholds::albedo_max_share},
+        {code::albedo_too_bright, "dielectric_max", &Thresholds::dielectric_max},
+        {code::albedo_too_bright, "opacity_visible", &Thresholds::opacity_visible},
+        {code::metal_albedo_too_dark, "min_srgb", &Thresholds::metal_albedo_min_srgb},
+        {code::metal_albedo_too_dark, "max_share", &Thresholds::metal_albedo_max_share},
+        {code::metal_albedo_too_dark, "metal_min", &Thresholds::metal_min},
+        {code::metal_albedo_too_dark, "opacity_visible", &Thresholds::opacity_visible},
+        {code::metalness_not_binary, "max_share", &Thresholds::metalness_max_intermediate_share},
+        {code::metalness_not_binary, "dielectric_max", &Thresholds::dielectric_max},
+        {code::metalness_not_binary, "metal_min", &Thresholds::metal_min},
+        {code::not_grayscale, "tolerance", &Thresholds::grayscale_tolerance},
+        {code::not_grayscale, "tolerance_jpeg", &Thresholds::grayscale_tolerance_jpeg},
+        {code::not_grayscale, "max_share", &Thresholds::grayscale_max_share},
+        {code::constant_map, "tolerance", &Thresholds::constant_tolerance},
+        {code::constant_map, "tolerance_jpeg", &Thresholds::constant_tolerance_jpeg},
+        {code::out_of_range_values, "epsilon", &Thresholds::range_epsilon},
+        {code::out_of_range_values, "max_share", &Thresholds::out_of_range_max_share},
+        {code::nonfinite_values, "max_share", &Thresholds::nonfinite_max_share},
+        {code::normal_invalid, "length_tolerance", &Thresholds::normal_length_tolerance},
+        {code::normal_invalid, "max_bad_length_share", &Thresholds::normal_max_bad_length_share},
+        {code::normal_invalid, "z_epsilon", &Thresholds::normal_z_epsilon},
+        {code::normal_invalid, "max_negative_z_share", &Thresholds::normal_max_negative_z_share},
+        {code::normal_convention_mismatch, "min_confidence",
+         &Thresholds::normal_convention_min_confidence},
+        {code::normal_convention_unknown, "min_confidence",
+         &Thresholds::normal_convention_min_confidence},
+    };
+    return p;
+}
+
+std::optional<Severity> parse_severity(const nlohmann::json& v) {
+    if (v.is_string()) return severity_from_name(v.get<std::string>());
+    if (v.is_number_integer()) {
+        // glTF Validator severities: 0 error, 1 warning, 2 information, 3 hint.
+        switch (v.get<int>()) {
+            case 0: return Severity::error;
+            case 1: return Severity::warning;
+            case 2: case 3: return Severity::info;
+            default: break;
+        }
+    }
+    return std::nullopt;
+}
+
+bool known_code(std::string_view c) { return find_rule(c) != nullptr; }
+
+}  // namespace
+
+const std::vector<RuleInfo>& rule_catalog() {
+    // Order: set-level, per-file value checks, PBR plausibility, normal maps, tags, then the
+    // codes other stages emit (listed so reports can describe them).
+    static const std::vector<RuleInfo> c{
+        {code::unreadable_file, Severity::error, "File is corrupt, truncated, empty or not an image", "unreadable_file"},
+        {code::resolution_mismatch, Severity::warning, "Maps of one set differ in size", "resolution_mismatch"},
+        {code::nonfinite_values, Severity::error, "NaN or Inf values in a map", "nonfinite_values"},
+        {code::out_of_range_values, Severity::warning, "Float data outside [0, 1] where the role allows none", "out_of_range_values"},
+        {code::not_grayscale, Severity::warning, "Scalar map stored with differing channels", "not_grayscale"},
+        {code::constant_map, Severity::info, "Map holds one value (replaceable by a constant)", "constant_map"},
+        {code::metalness_not_binary, Severity::warning, "Too much metalness strictly between 0 and 1", "metalness_not_binary"},
+        {code::albedo_too_dark, Severity::warning, "Dielectric albedo darker than any real material", "albedo_too_dark"},
+        {code::albedo_too_bright, Severity::warning, "Dielectric albedo brighter than any real material", "albedo_too_bright"},
+        {code::metal_albedo_too_dark, Severity::warning, "Metallic areas darker than any real metal", "metal_albedo_too_dark"},
+        {code::normal_invalid, Severity::error, "Not a tangent-space normal map (lengths far from 1, Z < 0)", "normal_invalid"},
+        {code::normal_convention_mismatch, Severity::warning, "Normal map content contradicts the GL/DX convention its name states", "normal_convention_mismatch"},
+        {code::normal_convention_unknown, Severity::warning, "Neither name nor content decides GL vs DX", "normal_convention_unknown"},
+        {code::color_space_mismatch, Severity::warning, "Data map tagged as color, or color map tagged as data", "color_space_mismatch"},
+        // Emitted by discovery / ingest, not by validate_set().
+        {code::missing_map, Severity::info, "A role the preset needs has no map", "missing_map"},
+        {code::ambiguous_map, Severity::info, "Several files could be one role", "ambiguous_map"},
+        {code::unrecognized_file, Severity::info, "An image in the set matches no role", "unrecognized_file"},
+        {code::gloss_inverted, Severity::info, "A gloss map became roughness", "gloss_inverted"},
+        {code::packed_input_unpacked, Severity::info, "A packed input was split into roles", "packed_input_unpacked"},
+        {code::normal_convention_converted, Severity::info, "Green channel flipped to the preset's convention", "normal_convention_converted"},
+    };
+    return c;
+}
+
+const RuleInfo* find_rule(std::string_view c) {
+    for (const auto& r : rule_catalog())
+        if (r.code == c) return &r;
+    return nullptr;
+}
+
+Thresholds strict_thresholds() {
+    Thresholds t;
+    t.albedo_min_srgb = 50.0;   // PBR Guide part 2: strict lower bound
+    t.albedo_max_srgb = 243.0;  // PBR Guide part 2: strict upper bound
+    return t;
+}
+
+Severity RuleConfig::severity_of(std::string_view c) const {
+    if (auto it = severity.find(c); it != severity.end()) return it->second;
+    if (const RuleInfo* r = find_rule(c)) return r->severity;
+    return Severity::warning;
+}
+
+bool RuleConfig::enabled(std::string_view c) const {
+    return std::find(disabled.begin(), disabled.end(), c) == disabled.end();
+}
+
+bool RuleConfig::suppressed(std::string_view material, std::string_view c) const {
+    for (const auto& s : suppressions)
+        if ((s.code == "*" || s.code == c) && glob_match(s.material, material)) return true;
+    return false;
+}
+
+bool glob_match(std::string_view p, std::string_view t) {
+    // Iterative wildcard match with backtracking to the last '*': linear in practice.
+    size_t pi = 0, ti = 0, star = std::string_view::npos, mark = 0;
+    while (ti < t.size()) {
+        if (pi < p.size() && (p[pi] == '?' || p[pi] == t[ti])) {
+            ++pi;
+            ++ti;
+        } else if (pi < p.size() && p[pi] == '*') {
+            star = pi++;
+            mark = ti;
+        } else if (star != std::string_view::npos) {
+            pi = star + 1;
+            ti = ++mark;
+        } else {
+            return false;
+        }
+    }
+    while (pi < p.size() && p[pi] == '*') ++pi;
+    return pi == p.size();
+}
+
+std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::string& error,
+                                                const RuleConfig& base) {
+    RuleConfig cfg = base;
+    if (!j.is_object()) {
+        error = "rules configuration must be a JSON object";
+        return std::nullopt;
+    }
+    auto disable = [&cfg](const std::string& c) {
+        if (cfg.enabled(c)) cfg.disabled.push_back(c);
+    };
+    auto enable = [&cfg](const std::string& c) {
+        std::erase(cfg.disabled, c);
+    };
+    // "preset" first: it resets the thresholds the rest of the object then adjusts.
+    if (j.contains("preset")) {
+        const auto& p = j.at("preset");
+        if (p == "strict") cfg.thresholds = strict_thresholds();
+        else if (p == "tolerant") cfg.thresholds = Thresholds{};
+        else {
+            error = "rules: \"preset\" must be \"tolerant\" or \"strict\"";
+            return std::nullopt;
+        }
+    }
+    for (const auto& [key, val] : j.items()) {
+        if (key == "preset" || key == "$comment" || key == "description") continue;
+        if (key == "rules") {
+            if (!val.is_object()) {
+                error = "rules: \"rules\" must be an object keyed by finding code";
+                return std::nullopt;
+            }
+            for (const auto& [c, rv] : val.items()) {
+                if (!known_code(c)) {
+                    error = "rules: unknown finding code \"" + c + "\"";
+                    return std::nullopt;
+                }
+                if (rv.is_string() || rv.is_boolean()) {
+                    if (rv == "off" || rv == false) disable(c);
+                    else if (rv == true || rv == "on") enable(c);
+                    else if (auto s = parse_severity(rv)) { cfg.severity[c] = *s; enable(c); }
+                    else {
+                        error = "rules: \"" + c + "\": expected \"off\", a severity or an object";
+                        return std::nullopt;
+                    }
+                    continue;
+                }
+                if (!rv.is_object()) {
+                    error = "rules: \"" + c + "\": expected \"off\", a severity or an object";
+                    return std::nullopt;
+                }
+                for (const auto& [name, v] : rv.items()) {
+                    if (name == "severity") {
+                        auto s = parse_severity(v);
+                        if (!s) {
+                            error = "rules: \"" + c + "\".severity must be error, warning or info";
+                            return std::nullopt;
+                        }
+                        cfg.severity[c] = *s;
+                    } else if (name == "enabled") {
+                        if (!v.is_boolean()) {
+                            error = "rules: \"" + c + "\".enabled must be true or false";
+                            return std::nullopt;
+                        }
+                        if (v.get<bool>()) enable(c); else disable(c);
+                    } else {
+                        auto it = std::find_if(params().begin(), params().end(), [&](const Param& p) {
+                            return p.code == c && p.name == name;
+                        });
+                        if (it == params().end()) {
+                            error = "rules: \"" + c + "\" has no threshold \"" + name + "\"";
+                            return std::nullopt;
+                        }
+                        if (!v.is_number()) {
+                            error = "rules: \"" + c + "\"." + name + " must be a number";
+                            return std::nullopt;
+                        }
+                        cfg.thresholds.*(it->member) = v.get<double>();
+                    }
+                }
+            }
+        } else if (key == "severityOverrides") {
+            if (!val.is_object()) {
+                error = "rules: \"severityOverrides\" must be an object";
+                return std::nullopt;
+            }
+            for (const auto& [c, v] : val.items()) {
+                auto s = parse_severity(v);
+                if (!known_code(c) || !s) {
+                    error = "rules: bad severityOverrides entry \"" + c + "\"";
+                    return std::nullopt;
+                }
+                cfg.severity[c] = *s;
+            }
+        } else if (key == "ignore") {
+            if (!val.is_array()) {
+                error = "rules: \"ignore\" must be an array of finding codes";
+                return std::nullopt;
+            }
+            for (const auto& v : val) {
+                if (!v.is_string() || !known_code(v.get<std::string>())) {
+                    error = "rules: \"ignore\" holds an unknown finding code";
+                    return std::nullopt;
+                }
+                disable(v.get<std::string>());
+            }
+        } else if (key == "suppress") {
+            if (!val.is_array()) {
+                error = "rules: \"suppress\" must be an array";
+                return std::nullopt;
+            }
+            for (const auto& v : val) {
+                if (!v.is_object() || !v.contains("code") || !v.at("code").is_string()) {
+                    error = "rules: each \"suppress\" entry needs a \"code\"";
+                    return std::nullopt;
+                }
+                Suppression s;
+                s.code = v.at("code").get<std::string>();
+                if (s.code != "*" && !known_code(s.code)) {
+                    error = "rules: \"suppress\" names unknown finding code \"" + s.code + "\"";
+                    return std::nullopt;
+                }
+                if (v.contains("material")) {
+                    if (!v.at("material").is_string()) {
+                        error = "rules: \"suppress\".material must be a string (glob)";
+                        return std::nullopt;
+                    }
+                    s.material = v.at("material").get<std::string>();
+                }
+                if (v.contains("reason") && v.at("reason").is_string())
+                    s.reason = v.at("reason").get<std::string>();
+                for (const auto& [k, unused] : v.items()) {
+                    (void)unused;
+                    if (k != "code" && k != "material" && k != "reason") {
+                        error = "rules: unknown key \"" + k + "\" in a \"suppress\" entry";
+                        return std::nullopt;
+                    }
+                }
+                cfg.suppressions.push_back(std::move(s));
+            }
+        } else {
+            error = "rules: unknown key \"" + key + "\"";
+            return std::nullopt;
+        }
+    }
+    return cfg;
+}
+
+nlohmann::json describe(const RuleConfig& cfg) {
+    nlohmann::json rules = nlohmann::json::object();
+    for (const auto& r : rule_catalog()) {
+        nlohmann::json e;
+        e["severity"] = severity_name(cfg.severity_of(r.code));
+        e["enabled"] = cfg.enabled(r.code);
+        for (const auto& p : params())
+            if (p.code == r.code) e[std::string(p.name)] = cfg.thresholds.*(p.member);
+        rules[std::string(r.code)] = e;
+    }
+    nlohmann::json sup = nlohmann::json::array();
+    for (const auto& s : cfg.suppressions)
+        sup.push_back({{"material", s.material}, {"code", s.code}, {"reason", s.reason}});
+    return {{"rules", rules}, {"suppress", sup}};
+}
+
+int apply_config(std::vector<Finding>& findings, std::string_view material, const RuleConfig& cfg) {
+    int removed = 0;
+    std::vector<Finding> kept;
+    kept.reserve(findings.size());
+    for (auto& f : findings) {
+        if (!cfg.enabled(f.code) || cfg.suppressed(material, f.code)) {
+            ++removed;
+            continue;
+        }
+        if (auto it = cfg.severity.find(f.code); it != cfg.severity.end()) f.severity = it->second;
+        kept.push_back(std::move(f));
+    }
+    findings = std::move(kept);
+    return removed;
+}
+
+}  // namespace mf::validate

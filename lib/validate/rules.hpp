@@ -1,0 +1,126 @@
+// Validation rules: their catalog (code, default severity, description), their thresholds, and
+// the configuration a preset's "validate" block or `--rules FILE` gives them.
+//
+// Conventions of this module (decided once here):
+//  - a rule is named by its finding code (core/findings.hpp); a code never changes meaning;
+//  - every threshold has a documented default and source (docs/rules.md; citations also at the
+//    member below); `preset: "strict"` swaps in the stricter published numbers;
+//  - suppressions remove findings of one code for materials whose name matches a glob
+//    (`*`, `?`), as the Khronos glTF Validator's "ignore" list does for a whole run;
+//  - configuration errors are returned as text (the CLI maps them to exit code 2), never thrown.
+#pragma once
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/findings.hpp"
+
+namespace mf::validate {
+
+// One entry of the rule catalog.
+struct RuleInfo {
+    std::string_view code;
+    Severity severity;            // default severity
+    std::string_view title;       // one line, used as SARIF shortDescription and JUnit text
+    std::string_view anchor;      // section of docs/rules.md
+};
+
+// Every code validate_set() can emit, in a fixed order (the order findings are sorted by).
+const std::vector<RuleInfo>& rule_catalog();
+const RuleInfo* find_rule(std::string_view code);
+
+// Numbers the rules compare against. Values are in the units named; "share" is a fraction of
+// the pixels the rule looks at (0.05 = 5 %). Sources: docs/rules.md.
+struct Thresholds {
+    // ALBEDO_TOO_DARK / ALBEDO_TOO_BRIGHT: luminance of dielectric albedo, sRGB-encoded 0–255.
+    // Substance (Allegorithmic) "The PBR Guide, Part 2" (2018), "Base color (dielectrics)":
+    // no darker than 30 sRGB (tolerant) / 50 sRGB (strict), no brighter than 240 sRGB (tolerant)
+    // / 243 sRGB (strict) — the bounds of Substance's "PBR Validate" node.
+    double albedo_min_srgb = 30.0;
+    double albedo_max_srgb = 240.0;
+    double albedo_max_share = 0.05;  // matforge: tolerate 5 % (crevices, small decals)
+    // METAL_ALBEDO_TOO_DARK: raw metals reflect 70–100 % → 180–255 sRGB (same guide,
+    // "Metal reflectance values"). Measured F0 agrees: Real-Time Rendering 4th ed., Table 9.2
+    // (after Hoffman 2015): the darkest common metal, titanium, has luminance ~188 sRGB.
+    double metal_albedo_min_srgb = 180.0;
+    double metal_albedo_max_share = 0.05;
+    // Pixel classes for masked statistics. A metalness ≤ dielectric_max counts as dielectric,
+    // ≥ metal_min as metal; values between are blends (rust, dirt) and are left out.
+    double dielectric_max = 0.1;
+    double metal_min = 0.9;
+    double opacity_visible = 0.5;  // glTF 2.0 alphaCutoff default (§3.9.4)
+    // METALNESS_NOT_BINARY: share of metalness strictly between the classes above.
+    // The PBR Guide: metalness is "binary", grey only for transitions (oxidation, dirt).
+    double metalness_max_intermediate_share = 0.10;
+    // NOT_GRAYSCALE: largest |R−G|,|R−B|,|G−B| still "equal" (lossless / JPEG). JPEG's 4:2:0
+    // chroma subsampling and YCbCr rounding move grey by a few codes (ITU-T T.81, JFIF 1.02).
+    double grayscale_tolerance = 2.0 / 255.0;
+    double grayscale_tolerance_jpeg = 6.0 / 255.0;
+    double grayscale_max_share = 0.01;
+    // CONSTANT_MAP: max − min at or below this (per channel) means "one value".
+    double constant_tolerance = 1.0 / 255.0;
+    double constant_tolerance_jpeg = 4.0 / 255.0;
+    // OUT_OF_RANGE_VALUES: float inputs only; slack for half-float rounding (2^-10 at 1.0).
+    double range_epsilon = 1e-3;
+    double out_of_range_max_share = 0.0;
+    // NONFINITE_VALUES: any NaN/Inf is reported (max share 0).
+    double nonfinite_max_share = 0.0;
+    // NORMAL_INVALID: decoded n = 2c − 1. 8-bit quantization alone keeps |n| within ~0.01 of 1;
+    // resized or lossy maps drift further (matforge: 0.2). Z < −z_epsilon counts as negative.
+    double normal_length_tolerance = 0.2;
+    double normal_max_bad_length_share = 0.05;
+    double normal_z_epsilon = 0.02;
+    double normal_max_negative_z_share = 0.01;
+    // NORMAL_CONVENTION_MISMATCH / _UNKNOWN: confidence (0–1) a content verdict needs.
+    double normal_convention_min_confidence = 0.6;
+};
+
+// The strict variant of the numbers above (PBR Guide strict bounds: 50–243 sRGB).
+Thresholds strict_thresholds();
+
+struct Suppression {
+    std::string material = "*";  // glob over the material name
+    std::string code;            // finding code, or "*"
+    std::string reason;          // kept for the docs/audit; not printed in reports
+};
+
+struct RuleConfig {
+    Thresholds thresholds;
+    std::map<std::string, Severity, std::less<>> severity;  // overrides of the default severity
+    std::vector<std::string> disabled;                      // codes never reported
+    std::vector<Suppression> suppressions;
+
+    // Effective severity of a code (override, else catalog default, else warning).
+    Severity severity_of(std::string_view code) const;
+    bool enabled(std::string_view code) const;
+    bool suppressed(std::string_view material, std::string_view code) const;
+
+    // Reads a config object over `base` (so a preset's block and then --rules FILE can be
+    // layered). Accepted keys (docs/rules.md "Configuration"):
+    //   "preset": "tolerant" | "strict"
+    //   "rules": { CODE: "off" | "error"|"warning"|"info" | {"severity": ..., "enabled": bool,
+    //              <threshold name>: number, ...} }
+    //   "severityOverrides": { CODE: "error"|"warning"|"info" | 0..3 }   (glTF Validator style:
+    //              0 error, 1 warning, 2 information, 3 hint → info)
+    //   "ignore": [CODE, ...]                                            (glTF Validator style)
+    //   "suppress": [ {"material": glob, "code": CODE|"*", "reason": text}, ... ]
+    // Unknown keys, codes, threshold names or wrong types are errors (a typo must not silently
+    // disable a check). Returns nullopt and sets `error` on failure.
+    static std::optional<RuleConfig> from_json(const nlohmann::json& j, std::string& error,
+                                               const RuleConfig& base = RuleConfig{});
+};
+
+// The defaults and threshold names per code, as JSON (for `matforge presets show` and docs).
+nlohmann::json describe(const RuleConfig& cfg);
+
+// Applies disabled codes, severity overrides and suppressions to findings made elsewhere (the
+// lead's MISSING_MAP, UNREADABLE_FILE, …). Returns how many findings were suppressed.
+int apply_config(std::vector<Finding>& findings, std::string_view material, const RuleConfig& cfg);
+
+// Glob match with '*' and '?', case-sensitive.
+bool glob_match(std::string_view pattern, std::string_view text);
+
+}  // namespace mf::validate

@@ -1,0 +1,300 @@
+#include "validate/validate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "validate/albedo_stats.hpp"
+#include "validate/band_stream.hpp"
+#include "validate/map_stats.hpp"
+
+namespace mf::validate {
+namespace {
+
+using detail::BandStream;
+using detail::MapStats;
+
+std::string display_name(const MapInput& m) { return m.name.empty() ? m.file.display : m.name; }
+
+// Nearest-neighbour index of destination coordinate i (of n) in a source of size m.
+int nearest(int i, int n, int m) {
+    return std::min(m - 1, static_cast<int>((static_cast<int64_t>(2 * i + 1) * m) / (2 * int64_t{n})));
+}
+
+struct Source {
+    int map = -1;     // index into maps
+    int channel = 0;  // channel holding the value
+};
+
+// RESOLUTION_MISMATCH: every map whose size differs from the most common size (ties: the
+// largest), so the message names the odd ones out.
+void resolution_findings(const std::vector<MapInput>& maps, const std::vector<bool>& readable,
+                         std::vector<Finding>& out) {
+    std::map<std::pair<int, int>, int> counts;
+    for (size_t i = 0; i < maps.size(); ++i)
+        if (readable[i]) ++counts[{maps[i].info.width, maps[i].info.height}];
+    if (counts.size() < 2) return;
+    std::pair<int, int> ref{0, 0};
+    int best = -1;
+    for (const auto& [size, n] : counts)
+        if (n > best || (n == best && int64_t{size.first} * size.second > int64_t{ref.first} * ref.second)) {
+            best = n;
+            ref = size;
+        }
+    nlohmann::json sizes = nlohmann::json::object();
+    for (size_t i = 0; i < maps.size(); ++i)
+        if (readable[i]) sizes[display_name(maps[i])] = {maps[i].info.width, maps[i].info.height};
+    for (size_t i = 0; i < maps.size(); ++i) {
+        if (!readable[i]) continue;
+        const auto& m = maps[i];
+        if (m.info.width == ref.first && m.info.height == ref.second) continue;
+        Finding f;
+        f.code = std::string(code::resolution_mismatch);
+        f.role = std::string(role_name(m.role));
+        f.file = display_name(m);
+        f.message = f.file + " is " + std::to_string(m.info.width) + "x" + std::to_string(m.info.height) +
+                    " but the other maps of the set are " + std::to_string(ref.first) + "x" +
+                    std::to_string(ref.second) + "; it will be resampled";
+        f.figures = {{"width", m.info.width}, {"height", m.info.height},
+                     {"reference_width", ref.first}, {"reference_height", ref.second},
+                     {"sizes", sizes}};
+        out.push_back(std::move(f));
+    }
+}
+
+}  // namespace
+
+std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name,
+                                       NormalConvention name_convention, std::string& error) {
+    MapInput m;
+    m.role = role;
+    m.name = std::move(name);
+    m.name_convention = name_convention;
+    auto info = read_info(file, error);
+    if (!info) return std::nullopt;
+    m.info = *info;
+    m.color_tag = read_color_tag(file);
+    m.file = std::move(file);
+    return m;
+}
+
+SetValidation validate_set(const std::vector<MapInput>& input_maps, const RuleConfig& cfg,
+                           const ValidateOptions& opt) {
+    SetValidation result;
+    std::vector<Finding> found;
+    std::vector<MapInput> maps = input_maps;
+    const BandReader reader = opt.reader ? opt.reader : BandReader(&mf::read_bands);
+    const int band_rows = std::max(1, opt.band_rows);
+    const Thresholds& t = cfg.thresholds;
+
+    // Header facts first (cheap); a map whose header fails is reported and left out.
+    std::vector<bool> readable(maps.size(), true);
+    std::vector<std::string> read_errors(maps.size());
+    for (size_t i = 0; i < maps.size(); ++i) {
+        if (maps[i].info.width > 0) continue;
+        std::string err;
+        if (auto info = read_info(maps[i].file, err)) maps[i].info = *info;
+        else {
+            readable[i] = false;
+            read_errors[i] = err;
+        }
+    }
+
+    // Which maps feed the joint statistics. A dedicated map beats a packed one.
+    auto first_of = [&](std::initializer_list<std::pair<Role, int>> prefs) {
+        for (const auto& [r, ch] : prefs)
+            for (size_t i = 0; i < maps.size(); ++i)
+                if (readable[i] && maps[i].role == r && maps[i].info.channels > ch)
+                    return Source{static_cast<int>(i), ch};
+        return Source{};
+    };
+    const Source albedo = first_of({{Role::albedo, 0}});
+    const Source metal = first_of({{Role::metalness, 0}, {Role::orm, 2}, {Role::metallic_roughness, 2}});
+    Source opacity = first_of({{Role::opacity, 0}});
+    // glTF 2.0 §3.9.2: baseColor's alpha is the opacity when there is no separate map.
+    if (opacity.map < 0 && albedo.map >= 0 && maps[albedo.map].info.channels >= 4) opacity = {albedo.map, 3};
+    const Source normal = first_of({{Role::normal, 0}});
+    const Source height = first_of({{Role::height, 0}});
+    const bool albedo_pass = albedo.map >= 0 && maps[albedo.map].info.channels >= 3;
+    const bool normal_pass = normal.map >= 0 && maps[normal.map].info.channels >= 2;
+
+    std::vector<bool> lockstep(maps.size(), false);
+    if (albedo_pass)
+        for (const Source& s : {albedo, metal, opacity})
+            if (s.map >= 0) lockstep[s.map] = true;
+    if (normal_pass)
+        for (const Source& s : {normal, height})
+            if (s.map >= 0) lockstep[s.map] = true;
+
+    // Start every reader; per-map statistics run on the reader threads.
+    std::vector<std::unique_ptr<MapStats>> stats(maps.size());
+    std::vector<std::unique_ptr<BandStream>> streams(maps.size());
+    for (size_t i = 0; i < maps.size(); ++i) {
+        if (!readable[i]) continue;
+        stats[i] = std::make_unique<MapStats>(maps[i], maps[i].info, t);
+        MapStats* s = stats[i].get();
+        const ImageInfo expected = maps[i].info;
+        streams[i] = std::make_unique<BandStream>(
+            reader, maps[i].file, band_rows, expected.width * expected.channels,
+            [s](int y0, int rows, const float* px) { s->add_band(y0, rows, px); }, lockstep[i]);
+    }
+    auto row_of = [&](const Source& s, int r) -> const float* {
+        return s.map >= 0 && streams[s.map] ? streams[s.map]->row(r) : nullptr;
+    };
+
+    // Pass 1: albedo on its own grid with metalness and opacity resampled onto it.
+    if (albedo_pass) {
+        const ImageInfo& ai = maps[albedo.map].info;
+        detail::AlbedoStats acc(t, maps[albedo.map].info.is_float);
+        std::vector<int> mx, ox;
+        auto xmap = [&](const Source& s, std::vector<int>& v) {
+            if (s.map < 0) return;
+            v.resize(ai.width);
+            for (int x = 0; x < ai.width; ++x) v[x] = nearest(x, ai.width, maps[s.map].info.width);
+        };
+        xmap(metal, mx);
+        xmap(opacity, ox);
+        const int mc = metal.map >= 0 ? maps[metal.map].info.channels : 0;
+        const int oc = opacity.map >= 0 ? maps[opacity.map].info.channels : 0;
+        for (int y = 0; y < ai.height; ++y) {
+            const float* a = row_of(albedo, y);
+            if (!a) break;
+            const float* m = metal.map >= 0 ? row_of(metal, nearest(y, ai.height, maps[metal.map].info.height)) : nullptr;
+            const float* o = opacity.map == albedo.map ? a
+                             : opacity.map >= 0 ? row_of(opacity, nearest(y, ai.height, maps[opacity.map].info.height))
+                                                : nullptr;
+            for (int x = 0; x < ai.width; ++x) {
+                if (o) {
+                    const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3]
+                                                               : o[ox[x] * oc + opacity.channel];
+                    if (!(ov >= t.opacity_visible)) continue;
+                }
+                const float mv = m ? m[mx[x] * mc + metal.channel] : 0.f;
+                acc.add(a + x * ai.channels, mv);
+            }
+        }
+        acc.findings(display_name(maps[albedo.map]), metal.map >= 0, opacity.map >= 0, found);
+    }
+
+    // Pass 2: normal with height resampled onto the normal's grid.
+    if (normal_pass) {
+        const ImageInfo& ni = maps[normal.map].info;
+        const bool wh = height.map >= 0;
+        NormalConventionDetector det(ni.width, wh, opt.detector);
+        std::vector<float> xyz(static_cast<size_t>(ni.width) * 3), hrow(wh ? ni.width : 0);
+        std::vector<int> hx;
+        if (wh) {
+            hx.resize(ni.width);
+            for (int x = 0; x < ni.width; ++x) hx[x] = nearest(x, ni.width, maps[height.map].info.width);
+        }
+        const int hc = wh ? maps[height.map].info.channels : 0;
+        for (int y = 0; y < ni.height; ++y) {
+            const float* n = row_of(normal, y);
+            if (!n) break;
+            // The reader thread decided the decoding on the first band, before this row.
+            const bool is_signed = stats[normal.map]->normal_signed == 1;
+            decode_normal_row(n, ni.channels, ni.width, is_signed, xyz.data());
+            const float* h = wh ? row_of(height, nearest(y, ni.height, maps[height.map].info.height)) : nullptr;
+            if (h)
+                for (int x = 0; x < ni.width; ++x) hrow[x] = h[hx[x] * hc + height.channel];
+            det.add_row(xyz.data(), h ? hrow.data() : nullptr);
+        }
+        NormalCheck nc;
+        nc.file = display_name(maps[normal.map]);
+        nc.name = maps[normal.map].name_convention;
+        nc.content = det.verdict();
+        const double need = t.normal_convention_min_confidence;
+        const bool decided = nc.content.convention != NormalConvention::unknown && nc.content.confidence >= need;
+        if (nc.name != NormalConvention::unknown) {
+            nc.resolved = nc.name;
+            nc.source = "name";
+        } else if (decided) {
+            nc.resolved = nc.content.convention;
+            nc.source = "content";
+        }
+        nlohmann::json fig = nc.content.figures;
+        fig["name_convention"] = convention_name(nc.name);
+        fig["content_convention"] = convention_name(nc.content.convention);
+        fig["leaning"] = convention_name(nc.content.leaning);
+        fig["confidence"] = nc.content.confidence;
+        fig["method"] = nc.content.method;
+        fig["min_confidence"] = need;
+        if (nc.name != NormalConvention::unknown && decided && nc.content.convention != nc.name) {
+            Finding f;
+            f.code = std::string(code::normal_convention_mismatch);
+            f.role = "normal";
+            f.file = nc.file;
+            f.message = nc.file + ": the name says " + std::string(convention_name(nc.name)) +
+                        " but the content says " + std::string(convention_name(nc.content.convention)) +
+                        " (confidence " + std::to_string(static_cast<int>(std::lround(nc.content.confidence * 100))) +
+                        " %, " + nc.content.method + " test); check the green channel before trusting the name";
+            f.figures = fig;
+            found.push_back(std::move(f));
+        } else if (nc.name == NormalConvention::unknown && !decided) {
+            Finding f;
+            f.code = std::string(code::normal_convention_unknown);
+            f.role = "normal";
+            f.file = nc.file;
+            f.message = nc.file + ": neither the name nor the content decides GL or DX (content confidence " +
+                        std::to_string(static_cast<int>(std::lround(nc.content.confidence * 100))) +
+                        " %); rename it with a _gl/_dx suffix or state the convention in the preset";
+            f.figures = fig;
+            found.push_back(std::move(f));
+        }
+        result.normal = std::move(nc);
+    }
+
+    // Let every reader finish (maps outside the joint passes have been running freely).
+    for (size_t i = 0; i < maps.size(); ++i) {
+        if (!streams[i]) continue;
+        streams[i]->finish();
+        if (!streams[i]->ok()) {
+            readable[i] = false;
+            read_errors[i] = streams[i]->error();
+        }
+    }
+
+    for (size_t i = 0; i < maps.size(); ++i) {
+        if (!readable[i]) {
+            Finding f;
+            f.code = std::string(code::unreadable_file);
+            f.role = std::string(role_name(maps[i].role));
+            f.file = display_name(maps[i]);
+            f.message = read_errors[i].empty() ? f.file + ": could not be read" : read_errors[i];
+            found.push_back(std::move(f));
+            continue;
+        }
+        stats[i]->findings(found);
+    }
+    resolution_findings(maps, readable, found);
+    // A map that is not a normal map has no green convention: NORMAL_INVALID says it all.
+    if (result.normal) {
+        const std::string nf = result.normal->file;
+        const bool invalid = std::any_of(found.begin(), found.end(), [&](const Finding& f) {
+            return f.code == code::normal_invalid && f.file == nf;
+        });
+        if (invalid)
+            std::erase_if(found, [&](const Finding& f) {
+                return f.file == nf && (f.code == code::normal_convention_mismatch ||
+                                        f.code == code::normal_convention_unknown);
+            });
+    }
+
+    // Severities, disabled codes and suppressions; then the stable order.
+    for (auto& f : found) f.severity = cfg.severity_of(f.code);
+    result.suppressed = apply_config(found, opt.material, cfg);
+    const auto& cat = rule_catalog();
+    auto rank = [&](const Finding& f) {
+        for (size_t i = 0; i < cat.size(); ++i)
+            if (cat[i].code == f.code) return i;
+        return cat.size();
+    };
+    std::stable_sort(found.begin(), found.end(), [&](const Finding& a, const Finding& b) {
+        return rank(a) < rank(b);
+    });
+    result.findings = std::move(found);
+    return result;
+}
+
+}  // namespace mf::validate

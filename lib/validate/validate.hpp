@@ -1,0 +1,77 @@
+// `matforge validate`'s engine: every rule over one material set, each map read once.
+//
+// Conventions (decided once here):
+//  - the caller (discovery/ingest) names the maps: one MapInput per chosen input file, with its
+//    input role (packed orm / metallic_roughness / ort give their channels' roles, see
+//    mf::packed_layout), header facts and the file's own color tag;
+//  - values: 8/16-bit albedo and emissive are sRGB-encoded, float (EXR/HDR) albedo is linear;
+//    every other role is data; normals decode as n = 2c − 1 (float files that hold negative
+//    values in their first band are taken as already signed);
+//  - memory: each map is streamed in bands of `band_rows` rows on its own reader thread; the
+//    maps a joint statistic needs are read in lockstep (albedo with metalness and opacity on the
+//    albedo's grid; normal with height on the normal's grid), resampled by nearest neighbour
+//    when sizes differ. Peak memory ≈ one band per map plus a few rows: an 8K set validates in
+//    tens of MB;
+//  - output: findings sorted by catalog order (rules.hpp), then map order; severities come from
+//    the RuleConfig; suppressed/disabled codes are dropped (and counted).
+#pragma once
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/findings.hpp"
+#include "image/image.hpp"
+#include "material/roles.hpp"
+#include "validate/color_tag.hpp"
+#include "validate/normal_convention.hpp"
+#include "validate/rules.hpp"
+
+namespace mf::validate {
+
+struct MapInput {
+    Role role = Role::albedo;  // input role (orm, gloss, … allowed)
+    InputFile file;
+    std::string name;          // file as findings name it (relative to the set); empty: file.display
+    ImageInfo info;            // header facts; width 0: read with mf::read_info
+    ColorTagInfo color_tag;    // from read_color_tag(file); none: no tag check
+    NormalConvention name_convention = NormalConvention::unknown;  // what the file name says
+};
+
+// Builds a MapInput reading the header and the color tag (the usual way to make one).
+// Returns nullopt and sets `error` when the header cannot be read.
+std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name,
+                                       NormalConvention name_convention, std::string& error);
+
+// mf::read_bands's signature: tests substitute in-memory images.
+using BandReader = std::function<bool(const InputFile&, int band_rows, ImageInfo&, std::string&,
+                                      const std::function<void(int, int, const float*)>&)>;
+
+struct ValidateOptions {
+    std::string material;      // name the suppressions match
+    int band_rows = 64;
+    BandReader reader;         // empty: mf::read_bands
+    DetectorOptions detector;  // GL/DX detector settings
+};
+
+// The content verdict on the set's normal map (for the manifest's normal_convention_source).
+struct NormalCheck {
+    std::string file;
+    NormalConvention name = NormalConvention::unknown;  // from the name
+    NormalVerdict content;                              // from the pixels
+    // The convention to use: the name's when it has one, else the content's when its confidence
+    // reaches the rule threshold, else unknown.
+    NormalConvention resolved = NormalConvention::unknown;
+    std::string source = "none";  // "name" | "content" | "none"
+};
+
+struct SetValidation {
+    std::vector<Finding> findings;
+    std::optional<NormalCheck> normal;
+    int suppressed = 0;  // findings removed by "ignore"/"suppress"/"off"
+};
+
+SetValidation validate_set(const std::vector<MapInput>& maps, const RuleConfig& cfg,
+                           const ValidateOptions& opt = {});
+
+}  // namespace mf::validate

@@ -1,0 +1,189 @@
+// Report writers: JSON shape (docs/validate-report.md), JUnit parsed as XML (libxml2), SARIF
+// 2.1.0 required fields, text grouping, exit codes.
+#include <gtest/gtest.h>
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+
+#include <memory>
+
+#include "validate/report.hpp"
+
+namespace mv = mf::validate;
+using nlohmann::json;
+
+namespace {
+
+mf::Finding finding(std::string code, mf::Severity s, std::string role, std::string file, std::string msg) {
+    mf::Finding f;
+    f.code = std::move(code);
+    f.severity = s;
+    f.role = std::move(role);
+    f.file = std::move(file);
+    f.message = std::move(msg);
+    f.figures = {{"share", 0.25}};
+    return f;
+}
+
+mv::Report sample() {
+    mv::Report r;
+    r.materials.push_back({"Bricks059", "in/Bricks059 1K",
+                           {finding("ALBEDO_TOO_DARK", mf::Severity::warning, "albedo", "Bricks059_Color.png",
+                                    "25.0 % of dielectric albedo is darker than 30 sRGB <&> \"quoted\""),
+                            finding("NORMAL_INVALID", mf::Severity::error, "normal", "Bricks059_Normal.png",
+                                    std::string("control \x01 char")),
+                            finding("CONSTANT_MAP", mf::Severity::info, "metalness", "Bricks059_Metal.png",
+                                    "holds one value (0)")},
+                           {}});
+    r.materials.push_back({"Clean", "in/Clean", {}, {}});
+    r.failures.push_back({"in/Broken.zip", "UNREADABLE_FILE", "in/Broken.zip: not a zip archive"});
+    return r;
+}
+
+struct XmlDoc {
+    xmlDocPtr doc = nullptr;
+    ~XmlDoc() { if (doc) xmlFreeDoc(doc); }
+};
+
+std::vector<xmlNodePtr> children(xmlNodePtr n, const char* name) {
+    std::vector<xmlNodePtr> v;
+    for (xmlNodePtr c = n->children; c; c = c->next)
+        if (c->type == XML_ELEMENT_NODE && xmlStrcmp(c->name, reinterpret_cast<const xmlChar*>(name)) == 0) v.push_back(c);
+    return v;
+}
+
+std::string attr(xmlNodePtr n, const char* name) {
+    xmlChar* v = xmlGetProp(n, reinterpret_cast<const xmlChar*>(name));
+    std::string s = v ? reinterpret_cast<const char*>(v) : "";
+    xmlFree(v);
+    return s;
+}
+
+}  // namespace
+
+TEST(Report, JsonShape) {
+    const json j = json::parse(mv::write_json(sample()));
+    EXPECT_EQ(j.at("report_version"), 1);
+    ASSERT_EQ(j.at("materials").size(), 2u);
+    const json& m = j.at("materials")[0];
+    EXPECT_EQ(m.at("name"), "Bricks059");
+    EXPECT_EQ(m.at("source"), "in/Bricks059 1K");
+    ASSERT_EQ(m.at("findings").size(), 3u);
+    const json& f = m.at("findings")[0];
+    for (const char* k : {"code", "severity", "role", "file", "message", "figures"}) EXPECT_TRUE(f.contains(k)) << k;
+    EXPECT_EQ(j.at("failures")[0].at("code"), "UNREADABLE_FILE");
+    EXPECT_EQ(j.at("summary"), (json{{"error", 1}, {"warning", 1}, {"info", 1}, {"failures", 1}}));
+    EXPECT_EQ(mv::write_json(sample()), mv::write_json(sample())) << "deterministic";
+}
+
+TEST(Report, ExitCodes) {
+    mv::Summary s;
+    EXPECT_EQ(mv::exit_code(s, mv::FailOn::error), 0);
+    s.warning = 1;
+    EXPECT_EQ(mv::exit_code(s, mv::FailOn::error), 0);
+    EXPECT_EQ(mv::exit_code(s, mv::FailOn::warning), 1);
+    EXPECT_EQ(mv::exit_code(s, mv::FailOn::never), 0);
+    s.error = 1;
+    EXPECT_EQ(mv::exit_code(s, mv::FailOn::error), 1);
+    EXPECT_EQ(mv::exit_code(s, mv::FailOn::never), 0);
+    mv::Summary f;
+    f.failures = 1;
+    EXPECT_EQ(mv::exit_code(f, mv::FailOn::never), 1) << "inputs that could not be processed";
+    EXPECT_EQ(mv::fail_on_from_name("warning"), mv::FailOn::warning);
+    EXPECT_FALSE(mv::fail_on_from_name("fatal"));
+}
+
+TEST(Report, TextGroupedByMaterial) {
+    const std::string t = mv::write_text(sample(), mv::FailOn::error);
+    const auto b = t.find("Bricks059  (in/Bricks059 1K)");
+    const auto c = t.find("Clean  (in/Clean)");
+    ASSERT_NE(b, std::string::npos) << t;
+    ASSERT_NE(c, std::string::npos) << t;
+    EXPECT_LT(b, t.find("ALBEDO_TOO_DARK"));
+    EXPECT_LT(t.find("ALBEDO_TOO_DARK"), c);
+    EXPECT_NE(t.find("ok: no findings"), std::string::npos);
+    EXPECT_NE(t.find("1 error(s), 1 warning(s), 1 info; 1 input(s) failed"), std::string::npos) << t;
+    EXPECT_NE(t.find("FAIL"), std::string::npos);
+}
+
+TEST(Report, JUnitParsesAsXmlWithOneCasePerMaterialAndRule) {
+    const std::string x = mv::write_junit(sample(), mv::FailOn::warning);
+    XmlDoc d;
+    d.doc = xmlReadMemory(x.data(), static_cast<int>(x.size()), "junit.xml", nullptr, XML_PARSE_NONET);
+    ASSERT_NE(d.doc, nullptr) << x;
+    xmlNodePtr root = xmlDocGetRootElement(d.doc);
+    ASSERT_STREQ(reinterpret_cast<const char*>(root->name), "testsuites");
+    const auto suites = children(root, "testsuite");
+    ASSERT_EQ(suites.size(), 3u);  // two materials + the inputs that failed
+    EXPECT_EQ(attr(suites[0], "name"), "Bricks059");
+    const auto cases = children(suites[0], "testcase");
+    // Every validate rule is a test case, whether it fired or not.
+    const auto clean_cases = children(suites[1], "testcase");
+    EXPECT_EQ(cases.size(), clean_cases.size());
+    EXPECT_GE(cases.size(), 14u);
+    EXPECT_EQ(attr(suites[0], "tests"), std::to_string(cases.size()));
+    int failures = 0, with_out = 0;
+    for (xmlNodePtr c : cases) {
+        EXPECT_EQ(attr(c, "classname"), "matforge.validate.Bricks059");
+        const auto fl = children(c, "failure");
+        failures += static_cast<int>(fl.size());
+        with_out += static_cast<int>(children(c, "system-out").size());
+        if (attr(c, "name") == "ALBEDO_TOO_DARK") {
+            ASSERT_EQ(fl.size(), 1u);
+            // Escaping round-trips.
+            EXPECT_EQ(attr(fl[0], "message"), "25.0 % of dielectric albedo is darker than 30 sRGB <&> \"quoted\"");
+        }
+    }
+    EXPECT_EQ(failures, 2);  // warning + error at --fail-on warning
+    EXPECT_EQ(with_out, 1);  // the info finding is reported but passes
+    EXPECT_EQ(attr(suites[0], "failures"), "2");
+    EXPECT_EQ(attr(root, "failures"), "2");
+    EXPECT_EQ(attr(root, "errors"), "1");
+    const auto input_cases = children(suites[2], "testcase");
+    ASSERT_EQ(input_cases.size(), 1u);
+    EXPECT_EQ(children(input_cases[0], "error").size(), 1u);
+    // At --fail-on error only the error fails.
+    const std::string x2 = mv::write_junit(sample(), mv::FailOn::error);
+    XmlDoc d2;
+    d2.doc = xmlReadMemory(x2.data(), static_cast<int>(x2.size()), "junit.xml", nullptr, XML_PARSE_NONET);
+    ASSERT_NE(d2.doc, nullptr);
+    EXPECT_EQ(attr(children(xmlDocGetRootElement(d2.doc), "testsuite")[0], "failures"), "1");
+}
+
+TEST(Report, SarifRequiredFields) {
+    const json s = json::parse(mv::write_sarif(sample()));
+    EXPECT_EQ(s.at("version"), "2.1.0");
+    EXPECT_TRUE(s.at("$schema").get<std::string>().find("sarif-2.1.0") != std::string::npos);
+    ASSERT_EQ(s.at("runs").size(), 1u);
+    const json& run = s.at("runs")[0];
+    const json& driver = run.at("tool").at("driver");
+    EXPECT_EQ(driver.at("name"), "matforge");
+    std::vector<std::string> ids;
+    for (const auto& r : driver.at("rules")) {
+        ids.push_back(r.at("id"));
+        EXPECT_TRUE(r.at("shortDescription").at("text").is_string());
+        const std::string lvl = r.at("defaultConfiguration").at("level");
+        EXPECT_TRUE(lvl == "error" || lvl == "warning" || lvl == "note");
+    }
+    const json& results = run.at("results");
+    ASSERT_EQ(results.size(), 4u);
+    for (const auto& r : results) {
+        const std::string id = r.at("ruleId");
+        const int idx = r.at("ruleIndex");
+        ASSERT_LT(static_cast<size_t>(idx), ids.size());
+        EXPECT_EQ(ids[static_cast<size_t>(idx)], id);
+        const std::string lvl = r.at("level");
+        EXPECT_TRUE(lvl == "error" || lvl == "warning" || lvl == "note");
+        EXPECT_TRUE(r.at("message").at("text").is_string());
+        EXPECT_TRUE(r.at("locations")[0].at("physicalLocation").at("artifactLocation").at("uri").is_string());
+    }
+    EXPECT_EQ(results[0].at("locations")[0]["physicalLocation"]["artifactLocation"]["uri"],
+              "in/Bricks059%201K/Bricks059_Color.png");
+    EXPECT_EQ(results[2].at("level"), "note");
+    EXPECT_EQ(results[0].at("properties").at("material"), "Bricks059");
+}
+
+TEST(Report, Escaping) {
+    EXPECT_EQ(mv::xml_escape("a<b>&\"'"), "a&lt;b&gt;&amp;&quot;&apos;");
+    EXPECT_EQ(mv::xml_escape(std::string("\x01")), "\xEF\xBF\xBD");
+    EXPECT_EQ(mv::uri_encode_path("a b/c#d.png"), "a%20b/c%23d.png");
+}

@@ -1,0 +1,77 @@
+// matforge validate <input>... [--preset NAME|FILE] [--report text|json|junit|sarif]
+//                   [--report-file F] [--rules FILE] [--fail-on ...] [--jobs N]
+#include <iostream>
+#include <memory>
+
+#include "command.hpp"
+#include "core/files.hpp"
+#include "options.hpp"
+#include "process/validate_batch.hpp"
+
+namespace mf::cli {
+namespace {
+
+struct ValidateArgs {
+    std::vector<std::string> inputs;
+    std::string preset = "gltf", report = "text", report_file, rules_file, fail_on = "error";
+    int jobs = 0;
+};
+
+int run_validate(const ValidateArgs& a) {
+    std::string error;
+    auto preset = load_preset(a.preset, error);
+    if (!preset) {
+        std::cerr << "matforge validate: " << error << "\n";
+        return kExitUsage;
+    }
+    auto rules = load_rule_config(*preset, a.rules_file, error);
+    if (!rules) {
+        std::cerr << "matforge validate: " << error << "\n";
+        return kExitUsage;
+    }
+    ValidateBatchOptions opt;
+    opt.jobs = a.jobs;
+    opt.rules = std::move(*rules);
+    const validate::Report report =
+        validate_inputs(std::vector<std::filesystem::path>(a.inputs.begin(), a.inputs.end()), *preset, opt);
+    const auto fail_on = validate::fail_on_from_name(a.fail_on).value_or(validate::FailOn::error);
+    std::string text;
+    if (a.report == "json") text = validate::write_json(report);
+    else if (a.report == "junit") text = validate::write_junit(report, fail_on);
+    else if (a.report == "sarif") text = validate::write_sarif(report);
+    else text = validate::write_text(report, fail_on);
+    if (a.report_file.empty()) {
+        std::cout << text;
+        if (!text.empty() && text.back() != '\n') std::cout << "\n";
+    } else if (!write_file_atomic(a.report_file, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()),
+                                  error)) {
+        std::cerr << "matforge validate: " << error << "\n";
+        return kExitUsage;
+    }
+    return validate::exit_code(validate::summarize(report), fail_on);
+}
+
+const Register reg{{"validate", 20,
+                    [](CLI::App& sub) -> std::function<int()> {
+                        auto a = std::make_shared<ValidateArgs>();
+                        sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
+                            ->required();
+                        sub.add_option("--preset", a->preset,
+                                       "preset whose needs (MISSING_MAP) and validate block apply")
+                            ->capture_default_str();
+                        sub.add_option("--report", a->report, "report format")
+                            ->check(CLI::IsMember({"text", "json", "junit", "sarif"}))
+                            ->capture_default_str();
+                        sub.add_option("--report-file", a->report_file, "write the report here instead of stdout");
+                        sub.add_option("--rules", a->rules_file,
+                                       "JSON rule configuration: thresholds, severities, suppressions (docs/rules.md)");
+                        sub.add_option("-j,--jobs", a->jobs, "sets validated in parallel (0 = all cores)")
+                            ->check(CLI::Range(0, 1024))
+                            ->capture_default_str();
+                        add_fail_on(sub, a->fail_on);
+                        return [a] { return run_validate(*a); };
+                    },
+                    "check material sets (PBR plausibility, channels, normal convention) for CI"}};
+
+}  // namespace
+}  // namespace mf::cli
