@@ -80,22 +80,51 @@ nlohmann::json channels_json(const std::vector<ChannelSpec>& channels) {
     return j;
 }
 
-// Decodes the chosen map of every input role, falling back to the next candidate.
-void load_maps(SetState& st, const SetDiscovery& d) {
+// Estimated peak bytes of a set: its decoded maps (float) plus the planes made from them.
+uint64_t estimated_bytes(const SetDiscovery& d) {
+    uint64_t total = 0;
+    for (const auto& c : d.choices)
+        total += uint64_t{4} * static_cast<uint64_t>(std::max(0, c.chosen.header.width)) *
+                 static_cast<uint64_t>(std::max(0, c.chosen.header.height)) *
+                 static_cast<uint64_t>(std::clamp(c.chosen.header.channels, 1, 4));
+    return total * 2;
+}
+
+// Decodes the chosen map of every input role (in parallel for large sets: one decoder runs on
+// one core), falling back to the next candidate.
+void load_maps(SetState& st, const SetDiscovery& d, int threads) {
+    std::vector<std::vector<const Candidate*>> orders;
     for (const auto& choice : d.choices) {
         std::vector<const Candidate*> order{&choice.chosen};
         for (const auto& r : choice.rejected) order.push_back(&r);
-        for (const Candidate* c : order) {
-            Loaded l;
+        for (const Candidate* c : order) st.open(c->file);  // the map is not thread-safe
+        orders.push_back(std::move(order));
+    }
+    struct Outcome {
+        const Candidate* used = nullptr;
+        Loaded loaded;
+        std::vector<std::pair<const Candidate*, std::string>> errors;
+    };
+    std::vector<Outcome> outcomes(orders.size());
+    parallel_for(orders.size(), threads, [&](size_t i) {
+        for (const Candidate* c : orders[i]) {
             std::string err;
-            if (read_image(st.open(c->file), l.img, l.info, err)) {
-                st.loaded.emplace(c->file, std::move(l));
-                st.used[choice.role] = c;
-                break;
+            if (read_image(st.opened.at(c->file), outcomes[i].loaded.img, outcomes[i].loaded.info, err)) {
+                outcomes[i].used = c;
+                return;
             }
-            st.partial = true;
-            st.add(code::unreadable_file, Severity::error, choice.role, c->file, err + "; the file is skipped");
+            outcomes[i].errors.emplace_back(c, err);
         }
+    });
+    for (size_t i = 0; i < orders.size(); ++i) {
+        const Role role = d.choices[i].role;
+        for (const auto& [c, err] : outcomes[i].errors) {
+            st.partial = true;
+            st.add(code::unreadable_file, Severity::error, role, c->file, err + "; the file is skipped");
+        }
+        if (!outcomes[i].used) continue;
+        st.used[role] = outcomes[i].used;
+        st.loaded.emplace(outcomes[i].used->file, std::move(outcomes[i].loaded));
     }
 }
 
@@ -158,7 +187,7 @@ NormalFacts normal_facts(const Candidate& c, const std::optional<validate::Norma
 Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt)
     : preset_(std::move(preset)), color_(std::move(color)), opt_(std::move(opt)) {}
 
-MaterialResult Ingestor::process(const MaterialSource& src) const {
+MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget) const {
     MaterialResult res;
     SetState st{src, {}, {}, {}, {}, false};
     const NormalConvention target = opt_.normal_override.value_or(preset_.normal_convention);
@@ -171,7 +200,11 @@ MaterialResult Ingestor::process(const MaterialSource& src) const {
     };
     const SetDiscovery d = discover_set(src.files, header, ChoicePolicy{target, preset_.max_size});
     st.findings.insert(st.findings.end(), d.findings.begin(), d.findings.end());
-    load_maps(st, d);
+    const uint64_t footprint = estimated_bytes(d);
+    const BudgetLease lease(budget, footprint);
+    // Sets of 4 Mpixel maps and up decode their maps on two threads; small ones stay on one
+    // (the batch is already parallel across sets).
+    load_maps(st, d, footprint > (uint64_t{64} << 20) ? 2 : 1);
     if (st.loaded.empty()) {
         res.failed = true;
         res.failure_message = src.display + ": no map of the set could be read";
@@ -194,14 +227,29 @@ MaterialResult Ingestor::process(const MaterialSource& src) const {
                 break;
             }
     }
+    // Opacity carried in the albedo's alpha, when no opacity map exists.
+    if (!route_of.count(Role::opacity) && route_of.count(Role::albedo) && route_of[Role::albedo].channel < 0) {
+        const Candidate& c = *st.used.at(route_of[Role::albedo].from);
+        const Image& img = st.loaded.at(c.file).img;
+        if (has_real_alpha(img)) {
+            route_of[Role::opacity] = Provider{route_of[Role::albedo].from, img.channels - 1, false};
+            st.add(code::packed_input_unpacked, Severity::info, Role::opacity, c.file,
+                   "opacity taken from the albedo map's alpha channel");
+        }
+    }
+    // A decoded map is freed after its last plane is made: peak memory is one set's maps.
+    std::map<std::string, int> uses;
+    for (const auto& [out, route] : route_of) ++uses[st.used.at(route.from)->file];
+
     std::set<Role> unpacked;
     nlohmann::json normal_manifest = nlohmann::json::object();
     for (const auto& [out, route] : route_of) {
         const Candidate& c = *st.used.at(route.from);
-        const Loaded& l = st.loaded.at(c.file);
+        Loaded& l = st.loaded.at(c.file);
+        const bool last_use = --uses[c.file] == 0;
         RolePlane plane;
         if (out == Role::albedo || out == Role::emissive) {
-            plane.image = to_rgb(l.img);
+            plane.image = last_use && l.img.channels == 3 ? std::move(l.img) : to_rgb(l.img);
             plane.encoding = l.info.is_float ? ColorEncoding::linear : ColorEncoding::srgb;
         } else if (out == Role::normal) {
             const NormalFacts nf = normal_facts(c, checked.normal);
@@ -219,13 +267,15 @@ MaterialResult Ingestor::process(const MaterialSource& src) const {
                            std::string(convention_name(target)) + " for the preset",
                        {{"from", convention_name(effective)}, {"to", convention_name(target)}});
         } else {
-            plane.image = extract_channel(l.img, route.channel < 0 ? 0 : route.channel);
+            plane.image = last_use && l.img.channels == 1 ? std::move(l.img)
+                                                           : extract_channel(l.img, route.channel < 0 ? 0 : route.channel);
             if (route.invert) {
                 invert(plane.image);
                 st.add(code::gloss_inverted, Severity::info, out, c.file,
                        "gloss map converted to roughness (roughness = 1 - gloss)");
             }
         }
+        if (last_use) st.loaded.erase(c.file);
         if (traits(route.from).packed) unpacked.insert(route.from);
         planes.emplace(out, std::move(plane));
     }
@@ -238,16 +288,6 @@ MaterialResult Ingestor::process(const MaterialSource& src) const {
         st.add(code::packed_input_unpacked, Severity::info, p, st.used.at(p)->file,
                "packed " + std::string(role_name(p)) + " map split into " + parts +
                    (p == Role::ort ? " (translucency is not metalness)" : ""));
-    }
-    // Opacity carried in the albedo's alpha, when no opacity map exists.
-    if (!planes.count(Role::opacity) && route_of.count(Role::albedo) && route_of[Role::albedo].channel < 0) {
-        const Candidate& c = *st.used.at(route_of[Role::albedo].from);
-        const Loaded& l = st.loaded.at(c.file);
-        if (has_real_alpha(l.img)) {
-            planes[Role::opacity].image = extract_channel(l.img, l.img.channels - 1);
-            st.add(code::packed_input_unpacked, Severity::info, Role::opacity, c.file,
-                   "opacity taken from the albedo map's alpha channel");
-        }
     }
     st.loaded.clear();  // planes hold what is needed from here on
 
@@ -364,11 +404,12 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     const auto sets = find_material_sets(inputs, opt_.out_dir, source_failures);
 
     std::vector<MaterialResult> results(sets.size());
+    MemoryBudget budget(opt_.memory_budget);
     std::mutex progress_mutex;
     size_t done = 0;
     parallel_for(sets.size(), opt_.jobs, [&](size_t i) {
         try {
-            results[i] = process(sets[i]);
+            results[i] = process(sets[i], opt_.memory_budget ? &budget : nullptr);
         } catch (const std::exception& e) {  // a bug or exhaustion in one set must not stop the others
             results[i] = MaterialResult{};
             results[i].failed = true;
@@ -411,7 +452,9 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     m["materials"] = std::move(materials);
     m["failures"] = std::move(failures);
     result.manifest = m;
-    const std::string text = m.dump(2) + "\n";
+    // File and folder names are bytes, not necessarily UTF-8: invalid sequences become U+FFFD
+    // rather than an exception that would end the run without a manifest.
+    const std::string text = m.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
     std::string err;
     if (!write_file_atomic(opt_.out_dir / "manifest.json",
                            std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), err))

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "color/color.hpp"
+#include "core/budget.hpp"
 #include "core/findings.hpp"
 #include "pack/preset.hpp"
 #include "process/sets.hpp"
@@ -21,6 +22,9 @@ struct IngestOptions {
     int jobs = 0;  // 0 = all cores
     std::optional<NormalConvention> normal_override;  // --normal-convention
     validate::RuleConfig rules;  // validation thresholds, severities, suppressions
+    // Cap on the estimated decoded bytes of the sets in flight (0 = no cap). A set larger than
+    // the cap runs alone.
+    uint64_t memory_budget = uint64_t{1} << 30;
     // Called after each set (from worker threads, serialized): done count, total, name, status.
     std::function<void(size_t done, size_t total, const std::string& name, const std::string& status)> progress;
 };
@@ -45,7 +49,7 @@ public:
 
     // One set; thread-safe. Validates it (every rule, from the decoded pixels: each file is
     // decoded once), converts and packs it, writes its outputs under out_dir.
-    MaterialResult process(const MaterialSource& src) const;
+    MaterialResult process(const MaterialSource& src, MemoryBudget* budget = nullptr) const;
     // Finds the sets, processes them in parallel, writes manifest.json atomically.
     IngestResult run(const std::vector<std::filesystem::path>& inputs) const;
 

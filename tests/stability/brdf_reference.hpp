@@ -1,0 +1,232 @@
+// A CPU evaluator of the preview's BRDF for the stability suite and the accuracy benchmark:
+// the mission's Cook-Torrance with its errata fixed, written from the papers' formulas and
+// templated on the arithmetic type so one source gives the double-precision reference, an fp32
+// evaluation and an fp16 emulation (every intermediate rounded to IEEE binary16).
+//
+// lib/render has no CPU BRDF in its public headers (tests/render/reference.cpp keeps its terms
+// private to the scene renderer), so this one is self-contained. It follows the renderer's
+// documented conventions (lib/render/shaders/brdf.glsl): perceptual roughness floored at 0.045,
+// N·V floored at 1e-4, half vector = normalize(v + l) with n where v = −l.
+//
+// Terms and sources:
+//  - D: GGX / Trowbridge-Reitz, α = roughness² (Walter et al. 2007, eq. 33), in the
+//    Lagrange form (α / (|n×h|² + (n·h α)²))² / π that keeps precision where n·h → 1;
+//  - F: Schlick 1994 (eq. 15) with a colored F0 = lerp(0.04, albedo, metalness);
+//  - G: Schlick-GGX, G1(x) = x / (x (1 − k) + k), k = (roughness + 1)² / 8 (Karis 2013, p. 3,
+//    the remap for punctual lights), folded into V = G / (4 N·L N·V);
+//  - accurate variant: height-correlated Smith G2 (Heitz 2014, eq. 99) and the multiple-
+//    scattering compensation 1 + F0 (1/E − 1) (Kulla & Conty 2017; Fdez-Agüera 2019);
+//  - diffuse: Lambert albedo / π, scaled by (1 − F)(1 − metalness); the assignment variant
+//    leaves out the 1/π (its erratum 6) so students can compare.
+#pragma once
+#include <Imath/half.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+namespace mf::cpubrdf {
+
+inline constexpr double kMinRoughness = 0.045;  // brdf.glsl: D(r=0.045, n·h=1) ≈ 7.7e4 < fp32 max
+inline constexpr double kMinNoV = 1e-4;         // brdf.glsl: keeps 1/(N·V) finite
+
+enum class Model { standard, accurate, assignment };
+
+template <class T>
+struct V3 {
+    T x{}, y{}, z{};
+};
+template <class T>
+T dot(V3<T> a, V3<T> b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+V3<T> cross(V3<T> a, V3<T> b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Precision policies: `q` is applied to every intermediate the shader would hold in a register.
+struct Exact {
+    template <class T>
+    static T q(T v) { return v; }
+};
+// fp16 emulation: round to the nearest binary16 (Imath rounds to nearest even; overflow gives
+// ±inf, as a mediump GPU register would).
+struct Binary16 {
+    static float q(float v) { return static_cast<float>(Imath::half(v)); }
+};
+
+// Directional albedo E(μ, roughness) with F = 1 of a specular lobe, by deterministic quadrature.
+// The unit square is mapped onto half vectors by Heitz's sampling of the visible normals
+// (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1), whose density in
+// l is pdf(l) = G1(v) D(h) / (4 n·v) with the exact Smith G1 of GGX (Heitz 2014, eq. 72). So
+//   E = ∫ f(v, l) (n·l) dω_l = mean over the square of G2(v, l) / G1(v),
+// a bounded, continuous integrand (G2 → 0 as l reaches the horizon): the midpoint rule
+// converges at grazing angles and at roughness 0.045 alike, where integrating over solid angle
+// or over D's CDF leaves errors of 1e-2 at thousands of points per axis.
+inline double specular_albedo(Model m, double NoV, double roughness, int nu = 256, int nphi = 256) {
+    const double r = std::clamp(roughness, kMinRoughness, 1.0);
+    const double a = r * r, a2 = a * a;
+    NoV = std::clamp(NoV, kMinNoV, 1.0);
+    const double vx = std::sqrt(1.0 - NoV * NoV), vz = NoV;  // v in the xz plane
+    const double k = (r + 1.0) * (r + 1.0) / 8.0;
+    const double g1v = 2.0 * NoV / (NoV + std::sqrt(a2 + (1.0 - a2) * NoV * NoV));
+    // Heitz 2018, listing 1, with v = (vx, 0, vz): the hemisphere configuration.
+    const double hl = std::sqrt(a2 * vx * vx + vz * vz);
+    const double Vhx = a * vx / hl, Vhz = vz / hl;      // Vh (y = 0)
+    const double T1x = 0.0, T1y = Vhx > 0.0 ? 1.0 : 1.0;  // (−Vh.y, Vh.x, 0)/|…| = (0, 1, 0)
+    (void)T1x;
+    const double T2x = -Vhz * T1y, T2z = Vhx * T1y;     // T2 = Vh × T1
+    const double s = 0.5 * (1.0 + Vhz);
+    double sum = 0.0;
+    for (int i = 0; i < nu; ++i) {
+        const double rr = std::sqrt((i + 0.5) / nu);
+        for (int j = 0; j < nphi; ++j) {
+            const double phi = 2.0 * std::numbers::pi * (j + 0.5) / nphi;
+            const double t1 = rr * std::cos(phi);
+            const double t2 = (1.0 - s) * std::sqrt(1.0 - t1 * t1) + s * rr * std::sin(phi);
+            const double t3 = std::sqrt(std::max(0.0, 1.0 - t1 * t1 - t2 * t2));
+            // Nh = t1 T1 + t2 T2 + t3 Vh; T1 = (0, 1, 0).
+            const double nhx = t2 * T2x + t3 * Vhx, nhy = t1, nhz = t2 * T2z + t3 * Vhz;
+            double hx = a * nhx, hy = a * nhy, hz = std::max(0.0, nhz);
+            const double len = std::sqrt(hx * hx + hy * hy + hz * hz);
+            hx /= len, hy /= len, hz /= len;
+            const double VoH = vx * hx + vz * hz;
+            const double NoL = 2.0 * VoH * hz - vz;  // l = 2 (v·h) h − v
+            if (VoH <= 0.0 || NoL <= 0.0) continue;
+            double G2;
+            if (m == Model::accurate) {  // height-correlated Smith (Heitz 2014, eq. 99)
+                const double lv = NoL * std::sqrt(NoV * NoV * (1.0 - a2) + a2);
+                const double ll = NoV * std::sqrt(NoL * NoL * (1.0 - a2) + a2);
+                G2 = 2.0 * NoL * NoV / (lv + ll);
+            } else {  // separable Schlick-GGX, k = (r + 1)² / 8
+                G2 = NoL / (NoL * (1.0 - k) + k) * NoV / (NoV * (1.0 - k) + k);
+            }
+            sum += G2 / g1v;
+        }
+    }
+    return sum / (static_cast<double>(nu) * nphi);
+}
+
+// E(μ, r) of the height-correlated lobe on a 32 × 32 grid of texel centres (as the renderer's
+// BRDF lookup table), bilinear in between: the accurate model's energy compensation.
+class EnergyTable {
+public:
+    static constexpr int kN = 32;
+    static const EnergyTable& get() {
+        static const EnergyTable t;
+        return t;
+    }
+    double lookup(double NoV, double r) const {
+        const double x = std::clamp(NoV * kN - 0.5, 0.0, kN - 1.0);
+        const double y = std::clamp(r * kN - 0.5, 0.0, kN - 1.0);
+        const int x0 = std::min(static_cast<int>(x), kN - 2), y0 = std::min(static_cast<int>(y), kN - 2);
+        const double fx = x - x0, fy = y - y0;
+        auto at = [&](int i, int j) { return e_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)]; };
+        return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+               fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+    }
+
+private:
+    EnergyTable() : e_(static_cast<size_t>(kN) * kN) {
+        for (int j = 0; j < kN; ++j)
+            for (int i = 0; i < kN; ++i)
+                e_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)] =
+                    specular_albedo(Model::accurate, (i + 0.5) / kN, (j + 0.5) / kN, 96, 96);
+    }
+    std::vector<double> e_;
+};
+
+template <class T>
+struct Inputs {
+    V3<T> n, v, l;  // need not be unit length; zero-length and non-finite ones are handled
+    std::array<T, 3> albedo{};
+    T roughness{}, metalness{}, intensity{};  // intensity: irradiance at normal incidence
+};
+
+namespace detail {
+template <class T>
+T clamp_nan(T v, T lo, T hi, T if_nan) {
+    if (std::isnan(v)) return if_nan;
+    return std::min(std::max(v, lo), hi);
+}
+// Unit vector, or false when the input has no direction (zero length, Inf, NaN).
+template <class T>
+bool unit(V3<T>& a) {
+    const T len2 = dot(a, a);
+    if (!(len2 > T(1e-30)) || !std::isfinite(len2)) return false;
+    const T s = T(1) / std::sqrt(len2);
+    a = {a.x * s, a.y * s, a.z * s};
+    return true;
+}
+}  // namespace detail
+
+// Outgoing radiance (f_diffuse + f_specular) · E · N·L for one light, RGB.
+// Defined results for hard inputs (the stability suite asserts them):
+//  - n or l without a direction → 0 (no surface orientation / no light direction);
+//  - v without a direction → the viewer is taken along n;
+//  - N·L ≤ 0 → 0; N·V floored at 1e-4; v = −l → h = n;
+//  - roughness NaN or below the floor → 0.045; metalness, albedo clamped to [0, 1], NaN → 0;
+//  - intensity NaN, negative or infinite → 0 (a light must have a finite power).
+template <class T, class P = Exact>
+std::array<T, 3> shade(Inputs<T> in, Model model) {
+    using detail::clamp_nan;
+    const std::array<T, 3> zero{};
+    T E = in.intensity;
+    if (!(E > T(0)) || !std::isfinite(E)) return zero;
+    V3<T> n = in.n, l = in.l, v = in.v;
+    if (!detail::unit(n) || !detail::unit(l)) return zero;
+    if (!detail::unit(v)) v = n;
+    const T r = clamp_nan(in.roughness, T(kMinRoughness), T(1), T(kMinRoughness));
+    const T metal = clamp_nan(in.metalness, T(0), T(1), T(0));
+    const T alpha = P::q(r * r);
+    T NoL = P::q(dot(n, l));
+    if (!(NoL > T(0))) return zero;
+    NoL = std::min(NoL, T(1));
+    const T NoV = P::q(clamp_nan(dot(n, v), T(kMinNoV), T(1), T(kMinNoV)));
+    V3<T> h{v.x + l.x, v.y + l.y, v.z + l.z};
+    if (!detail::unit(h)) h = n;  // v = −l: no half vector; N·L or N·V ≤ 0 there anyway
+    const T NoH = P::q(clamp_nan(dot(n, h), T(0), T(1), T(0)));
+    const T VoH = P::q(clamp_nan(dot(v, h), T(0), T(1), T(0)));
+    const V3<T> nxh = cross(n, h);
+
+    // D (Walter et al. 2007, eq. 33), Lagrange form.
+    const T an = P::q(NoH * alpha);
+    const T kd = P::q(alpha / P::q(dot(nxh, nxh) + an * an));
+    const T D = P::q(P::q(kd * kd) * T(1.0 / std::numbers::pi));
+    // Visibility V = G / (4 N·L N·V).
+    T Vis;
+    if (model == Model::accurate) {
+        const T a2 = P::q(alpha * alpha);
+        const T lv = P::q(NoL * std::sqrt(P::q(NoV * NoV * (T(1) - a2) + a2)));
+        const T ll = P::q(NoV * std::sqrt(P::q(NoL * NoL * (T(1) - a2) + a2)));
+        Vis = P::q(T(0.5) / P::q(lv + ll));
+    } else {
+        const T k = P::q((r + T(1)) * (r + T(1)) / T(8));
+        Vis = P::q(T(0.25) / P::q(P::q(NoL * (T(1) - k) + k) * P::q(NoV * (T(1) - k) + k)));
+    }
+    const T m = T(1) - VoH;
+    const T m5 = P::q(P::q(m * m) * P::q(m * m) * m);
+    const T comp_e = model == Model::accurate
+                         ? static_cast<T>(EnergyTable::get().lookup(static_cast<double>(NoV), static_cast<double>(r)))
+                         : T(1);
+    const T diffuse_norm = model == Model::assignment ? T(1) : T(1.0 / std::numbers::pi);
+    const T DV = P::q(D * Vis);
+    std::array<T, 3> out{};
+    for (size_t i = 0; i < 3; ++i) {
+        const T albedo = clamp_nan(in.albedo[i], T(0), T(1), T(0));
+        const T f0 = T(0.04) * (T(1) - metal) + albedo * metal;
+        const T F = P::q(f0 + (T(1) - f0) * m5);
+        T spec = P::q(DV * F);
+        if (model == Model::accurate)
+            spec = P::q(spec * (T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1))));
+        const T diffuse = P::q((T(1) - F) * albedo * (T(1) - metal) * diffuse_norm);
+        out[i] = P::q(P::q(P::q(diffuse + spec) * E) * NoL);
+    }
+    return out;
+}
+
+}  // namespace mf::cpubrdf

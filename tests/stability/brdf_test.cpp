@@ -1,0 +1,251 @@
+// The BRDF on a grid of more than 10⁶ hard inputs (CPU side): no NaN or Inf, fp32 within a
+// stated bound of the double-precision evaluation, and the white-furnace check — the specular
+// lobe's directional albedo with F = 1 never exceeds 1.
+//
+// The same grid through the shader itself (a compute harness on lavapipe) belongs with the
+// renderer's tests once lib/render exposes a way to run brdf.glsl on arbitrary inputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <vector>
+
+#include "brdf_reference.hpp"
+
+namespace {
+
+using namespace mf::cpubrdf;
+
+// Directions with cos θ to +Z at the boundaries (0, ±1e-7, ±1, grazing) and four azimuths, plus
+// the zero vector. The set is symmetric, so v = −l occurs for every direction.
+std::vector<V3<float>> hard_directions() {
+    std::vector<V3<float>> d;
+    d.push_back({0.f, 0.f, 1.f});
+    d.push_back({0.f, 0.f, -1.f});
+    for (double c : {0.7, 0.3, 0.01, 1e-4, 1e-7, 0.0, -1e-7, -0.3, -0.7}) {
+        const double s = std::sqrt(1.0 - c * c);
+        for (int k = 0; k < 4; ++k) {
+            const double phi = k * std::numbers::pi / 2.0;
+            d.push_back({static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
+                         static_cast<float>(c)});
+        }
+    }
+    d.push_back({0.f, 0.f, 0.f});
+    return d;
+}
+
+V3<double> to_d(V3<float> a) { return {a.x, a.y, a.z}; }
+
+// 1 / |v̂ + l̂| (capped): how strongly input rounding moves the half vector.
+double condition(V3<double> v, V3<double> l) {
+    const double lv = std::sqrt(dot(v, v)), ll = std::sqrt(dot(l, l));
+    if (lv == 0.0 || ll == 0.0) return 1.0;
+    const V3<double> h{v.x / lv + l.x / ll, v.y / lv + l.y / ll, v.z / lv + l.z / ll};
+    return std::min(1e3, 1.0 / std::max(std::sqrt(dot(h, h)), 1e-3));
+}
+
+struct Material {
+    std::array<float, 3> albedo;
+    float metalness;
+};
+
+TEST(BrdfGrid, MillionHardInputsFiniteAndFp32AgreesWithDouble) {
+    const auto dirs = hard_directions();
+    const std::vector<V3<float>> normals = {{0.f, 0.f, 1.f}, {0.6f, 0.f, 0.8f}, {0.f, 0.f, 0.f},
+                                            {0.f, 0.f, 5.f}};  // unit, tilted, zero, unnormalized
+    const std::vector<float> roughness = {0.f, 1e-4f, 0.045f, 0.1f, 0.3f, 0.6f, 1.f};
+    // F0 = 0 (black metal), F0 = 1 (white metal), dielectrics (F0 = 0.04) white, black, colored.
+    const std::vector<Material> materials = {{{0.f, 0.f, 0.f}, 1.f}, {{1.f, 1.f, 1.f}, 1.f},
+                                             {{1.f, 0.5f, 0.f}, 1.f}, {{1.f, 1.f, 1.f}, 0.f},
+                                             {{0.f, 0.f, 0.f}, 0.f}, {{0.8f, 0.5f, 0.2f}, 0.5f}};
+    const std::vector<float> intensities = {0.f, 1.f, 1e3f, 1e6f};
+    const Model models[] = {Model::standard, Model::accurate, Model::assignment};
+
+    size_t count = 0, nonfinite = 0, disagree = 0, nonzero = 0;
+    double worst_rel = 0.0, worst_ratio = 0.0;
+    for (Model model : models) {
+        for (const auto& n : normals)
+            for (const auto& v : dirs)
+                for (const auto& l : dirs)
+                    for (float r : roughness)
+                        for (const auto& mat : materials)
+                            for (float e : intensities) {
+                                Inputs<float> f{n, v, l, mat.albedo, r, mat.metalness, e};
+                                Inputs<double> d{to_d(n), to_d(v), to_d(l),
+                                                 {mat.albedo[0], mat.albedo[1], mat.albedo[2]},
+                                                 r, mat.metalness, e};
+                                const auto rf = shade(f, model);
+                                const auto rd = shade(d, model);
+                                ++count;
+                                // Conditioning: where v ≈ −l the half vector is a difference of
+                                // nearly equal vectors; rounding the inputs to float moves it by
+                                // ~ε/|v̂ + l̂| (ε = 6e-8), and a narrow lobe amplifies that.
+                                const double cond = condition(to_d(v), to_d(l));
+                                for (size_t c = 0; c < 3; ++c) {
+                                    if (!std::isfinite(rf[c]) || !std::isfinite(rd[c]) || rf[c] < 0.f ||
+                                        rd[c] < 0.0)
+                                        ++nonfinite;
+                                    if (rd[c] > 0.0) ++nonzero;
+                                    // Stated bound: relative 2e-4 + 1e-6·cond², plus an absolute
+                                    // 1e-5 of the intensity where N·L ≈ 0 makes the value tiny.
+                                    const double err = std::abs(double{rf[c]} - rd[c]);
+                                    const double bound = (2e-4 + 1e-6 * cond * cond) * rd[c] + 1e-5 * e;
+                                    if (err > bound) ++disagree;
+                                    worst_ratio = std::max(worst_ratio, err / bound);
+                                    if (cond < 4.0 && rd[c] > 1e-3 * e && e > 0.f)
+                                        worst_rel = std::max(worst_rel, err / rd[c]);
+                                }
+                            }
+    }
+    std::printf("inputs %zu, lit channels %zu, worst error / bound %.3g, worst relative error "
+                "(well-conditioned) %.3g\n", count, nonzero, worst_ratio, worst_rel);
+    EXPECT_GE(count, size_t{1000000}) << "inputs (each evaluated in fp32 and fp64, 3 channels)";
+    EXPECT_EQ(nonfinite, 0u) << "NaN, Inf or negative radiance";
+    EXPECT_EQ(disagree, 0u) << "fp32 outside the stated bound of the double evaluation";
+    EXPECT_GT(nonzero, count / 20) << "the grid must exercise lit configurations";
+    EXPECT_LT(worst_rel, 2e-5);
+}
+
+TEST(BrdfGrid, DefinedValuesAtTheBoundaries) {
+    const V3<double> n{0, 0, 1};
+    const std::array<double, 3> white{1, 1, 1};
+    // Normal incidence on a perfect mirror at the roughness floor: D = 1/(π α²), α = 0.045².
+    {
+        const auto r = shade(Inputs<double>{n, n, n, white, 0.0, 1.0, 1.0}, Model::standard);
+        const double alpha = kMinRoughness * kMinRoughness;
+        const double k = (kMinRoughness + 1) * (kMinRoughness + 1) / 8;
+        const double expected = 1.0 / (std::numbers::pi * alpha * alpha) * 0.25 / (1.0 * 1.0);
+        // V = 0.25 / ((1(1−k)+k)²) = 0.25 at N·L = N·V = 1, independent of k.
+        (void)k;
+        EXPECT_NEAR(r[0], expected, expected * 1e-12);
+        EXPECT_LT(r[0], 65504.0 * 2) << "finite, and the floor keeps it near half-float range";
+    }
+    // v = −l with both on the surface side impossible; v = −l with N·L > 0 gives N·V < 0: finite.
+    {
+        const V3<double> l{0.6, 0, 0.8}, v{-0.6, 0, -0.8};
+        const auto r = shade(Inputs<double>{n, v, l, white, 0.5, 0.0, 1.0}, Model::standard);
+        for (double c : r) EXPECT_TRUE(std::isfinite(c) && c > 0.0);
+    }
+    // Zero-length l or n: no light. Zero-length v: viewer along n.
+    {
+        const V3<double> z{0, 0, 0}, l{0, 0.6, 0.8};
+        EXPECT_EQ(shade(Inputs<double>{n, n, z, white, 0.5, 0.0, 1.0}, Model::standard)[0], 0.0);
+        EXPECT_EQ(shade(Inputs<double>{z, n, l, white, 0.5, 0.0, 1.0}, Model::standard)[0], 0.0);
+        EXPECT_EQ(shade(Inputs<double>{n, z, l, white, 0.5, 0.0, 1.0}, Model::standard)[1],
+                  shade(Inputs<double>{n, n, l, white, 0.5, 0.0, 1.0}, Model::standard)[1]);
+    }
+    // N·L exactly 0 gives 0; N·L = 1e-7 gives a tiny positive value, linear in N·L.
+    {
+        const V3<double> grazing{1, 0, 0}, l7{1, 0, 1e-7};
+        EXPECT_EQ(shade(Inputs<double>{n, n, grazing, white, 0.5, 0.0, 1.0}, Model::standard)[0], 0.0);
+        const double a = shade(Inputs<double>{n, n, l7, white, 0.5, 0.0, 1.0}, Model::standard)[0];
+        EXPECT_GT(a, 0.0);
+        EXPECT_LT(a, 1e-6);
+    }
+    // NaN material inputs take their documented fallbacks, never propagate.
+    {
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        const auto r = shade(Inputs<double>{n, n, n, {nan, 0.5, 0.5}, nan, nan, 1.0}, Model::standard);
+        for (double c : r) EXPECT_TRUE(std::isfinite(c));
+        const auto inf = shade(Inputs<double>{n, n, n, white, 0.5, 0.0, std::numeric_limits<double>::infinity()},
+                               Model::standard);
+        EXPECT_EQ(inf[0], 0.0);
+    }
+    // The assignment's diffuse is π times the Lambert one (its erratum 6), nothing else differs.
+    {
+        const V3<double> l{0, 0.6, 0.8};
+        const auto s = shade(Inputs<double>{n, n, l, {0.5, 0.5, 0.5}, 1.0, 0.0, 1.0}, Model::standard);
+        const auto a = shade(Inputs<double>{n, n, l, {0.5, 0.5, 0.5}, 1.0, 0.0, 1.0}, Model::assignment);
+        const auto spec = shade(Inputs<double>{n, n, l, {0.0, 0.0, 0.0}, 1.0, 0.0, 1.0}, Model::standard);
+        EXPECT_NEAR(a[0] - spec[0], (s[0] - spec[0]) * std::numbers::pi, 1e-12);
+    }
+}
+
+TEST(BrdfGrid, Fp16EmulationOverflowsOnlyWhereDocumented) {
+    // Erratum 7: D at the roughness floor and N·H = 1 is 7.7e4 > 65504, the half maximum. The
+    // emulated fp16 evaluation overflows exactly there; at roughness ≥ 0.1 it stays finite.
+    const V3<float> n{0, 0, 1};
+    const std::array<float, 3> white{1, 1, 1};
+    const auto smooth = shade<float, Binary16>(Inputs<float>{n, n, n, white, 0.f, 1.f, 1.f}, Model::standard);
+    EXPECT_TRUE(std::isinf(smooth[0]));
+    const auto rough = shade<float, Binary16>(Inputs<float>{n, n, n, white, 0.1f, 1.f, 1.f}, Model::standard);
+    EXPECT_TRUE(std::isfinite(rough[0]));
+    const auto ref = shade(Inputs<double>{{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 1, 1}, 0.1, 1.0, 1.0}, Model::standard);
+    EXPECT_NEAR(rough[0], ref[0], ref[0] * 4e-3);  // a few half ulps
+}
+
+// White furnace: ∫ f_s(v, l) N·L dω_l with F = 1 is the share of light the specular lobe
+// reflects; energy conservation demands ≤ 1 at every roughness and angle. The quadrature
+// (brdf_reference.hpp: visible-normal mapping, 256² points) is converged to < 6e-4 everywhere
+// and to < 1e-5 where E approaches 1 (QuadratureConverged).
+TEST(WhiteFurnace, SpecularAlbedoAtMostOne) {
+    const std::vector<double> rough = {0.0, 0.045, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+    const std::vector<double> nov = {0.0, 1e-7, 1e-4, 1e-3, 0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.0};
+    for (Model m : {Model::standard, Model::accurate}) {
+        double max_e = 0.0;
+        for (double r : rough)
+            for (double mu : nov) {
+                const double e = specular_albedo(m, mu, r);
+                EXPECT_LE(e, 1.0 + 2e-4) << "roughness " << r << " N·V " << mu;
+                EXPECT_GT(e, 0.0);
+                max_e = std::max(max_e, e);
+            }
+        // A smooth lobe at normal incidence reflects nearly everything (Smith G → 1).
+        EXPECT_GT(specular_albedo(m, 1.0, 0.045), 0.9999);
+        EXPECT_GT(max_e, 0.9999);
+        // Closed form at α = 1, v = n: D = 1/π, G = 2 N·L / (N·L + 1) in both models, so
+        // E = ∫₀¹ μ / (μ + 1) dμ = 1 − ln 2.
+        EXPECT_NEAR(specular_albedo(m, 1.0, 1.0, 1024, 1024), 1.0 - std::log(2.0), 1e-5);
+    }
+    // The punctual remap k = (r + 1)² / 8 over-shadows at grazing angles: the standard lobe
+    // keeps < 1 % at N·V = 1e-4 for a smooth surface, where height-correlated Smith keeps 99 %.
+    EXPECT_LT(specular_albedo(Model::standard, 1e-4, 0.045), 0.01);
+    EXPECT_GT(specular_albedo(Model::accurate, 1e-4, 0.045), 0.98);
+}
+
+TEST(WhiteFurnace, QuadratureConverged) {
+    for (Model m : {Model::standard, Model::accurate})
+        for (double r : {0.045, 0.3, 1.0})
+            for (double mu : {1e-4, 0.05, 0.5, 1.0})
+                EXPECT_NEAR(specular_albedo(m, mu, r), specular_albedo(m, mu, r, 1024, 1024), 6e-4)
+                    << r << " " << mu;
+}
+
+// The accurate model's compensated lobe, F0 = 1: E · (1 + (1/E_table − 1)) = E / E_table.
+// With the exact E it is 1; with the 32 × 32 table it is 1 within interpolation error.
+TEST(WhiteFurnace, CompensatedLobeConservesEnergy) {
+    const auto& table = EnergyTable::get();
+    for (double r : {0.045, 0.1, 0.25, 0.5, 0.75, 1.0})
+        for (double mu : {0.02, 0.1, 0.3, 0.6, 0.95}) {
+            const double e = specular_albedo(Model::accurate, mu, r, 256, 128);
+            const double albedo = e / table.lookup(mu, r);
+            EXPECT_LE(albedo, 1.0 + 0.02) << r << " " << mu;
+            EXPECT_GE(albedo, 0.95) << r << " " << mu;
+        }
+}
+
+// The furnace through the evaluator itself (not the closed-form integrand): integrate
+// shade() · ... over a hemisphere grid of l for a white metal (F0 = 1, F = 1) at roughness 0.5.
+TEST(WhiteFurnace, EvaluatorIntegratesBelowOne) {
+    const V3<double> n{0, 0, 1};
+    for (double theta_v : {0.0, 0.8, 1.4, 1.55}) {
+        const V3<double> v{std::sin(theta_v), 0, std::cos(theta_v)};
+        double sum = 0.0;
+        const int nt = 400, np = 400;
+        for (int i = 0; i < nt; ++i) {
+            const double ct = (i + 0.5) / nt;  // uniform in cos θ: dω = d(cos θ) dφ
+            const double st = std::sqrt(1 - ct * ct);
+            for (int j = 0; j < np; ++j) {
+                const double phi = (j + 0.5) / np * 2 * std::numbers::pi;
+                const V3<double> l{st * std::cos(phi), st * std::sin(phi), ct};
+                sum += shade(Inputs<double>{n, v, l, {1, 1, 1}, 0.5, 1.0, 1.0}, Model::standard)[0];
+            }
+        }
+        const double e = sum * (2 * std::numbers::pi) / (double(nt) * np);
+        EXPECT_LE(e, 1.0 + 2e-3) << theta_v;
+        EXPECT_NEAR(e, specular_albedo(Model::standard, std::cos(theta_v), 0.5), 5e-3) << theta_v;
+    }
+}
+
+}  // namespace

@@ -1,0 +1,42 @@
+// Shared helpers of the stability suite.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "color/color.hpp"
+#include "image/image.hpp"
+
+namespace mf::stability {
+
+// One OpenColorIO context for the whole program (building processors is the slow part).
+inline std::shared_ptr<const ColorContext> color_context() {
+    static const std::shared_ptr<const ColorContext> ctx = [] {
+        std::string err;
+        auto c = ColorContext::create(err);
+        if (!c) ADD_FAILURE() << err;
+        return c;
+    }();
+    return ctx;
+}
+
+// Encodes `img` to file bytes and decodes them again: what a consumer of the output reads.
+inline Image encode_and_read(const Image& img, const EncodeOptions& opt) {
+    std::vector<unsigned char> bytes;
+    std::string err;
+    if (!encode_image(img, opt, bytes, err)) {
+        ADD_FAILURE() << "encode " << opt.format << "/" << opt.bit_depth << ": " << err;
+        return {};
+    }
+    InputFile in;
+    in.display = "roundtrip." + opt.format;
+    in.bytes = std::make_shared<const std::vector<unsigned char>>(std::move(bytes));
+    Image out;
+    ImageInfo info;
+    if (!read_image(in, out, info, err)) ADD_FAILURE() << "read back " << opt.format << ": " << err;
+    return out;
+}
+
+}  // namespace mf::stability
