@@ -1,0 +1,299 @@
+// render_bench: what each effect of the preview costs on the GPU.
+//
+//   render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]
+//                [--csv FILE] [--only NAME[,NAME…]]
+//
+// For each configuration and size it builds a renderer (load-time passes timed once), uploads
+// the material, renders --warmup frames untimed and --frames frames timed, and prints the median
+// GPU time of each pass from timestamp queries. Textures and the environment are made in memory:
+// no image files, so the program needs nothing but the Vulkan loader and a driver.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "render/render.hpp"
+
+namespace {
+
+using namespace mf::render;
+
+struct Args {
+    DeviceKind device = DeviceKind::Auto;
+    std::vector<uint32_t> sizes{512, 2048};
+    int frames = 0;  // 0: 50 on a GPU, 8 on a CPU device
+    int warmup = 3;
+    std::string csv;
+    std::vector<std::string> only;
+};
+
+[[noreturn]] void usage(const char* why) {
+    std::fprintf(stderr,
+                 "render_bench: %s\n"
+                 "usage: render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]\n"
+                 "                    [--csv FILE] [--only NAME[,NAME...]]\n",
+                 why);
+    std::exit(2);
+}
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    for (std::string p; std::getline(ss, p, ',');) out.push_back(p);
+    return out;
+}
+
+Args parse(int argc, char** argv) {
+    Args a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string k = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage(("missing value after " + k).c_str());
+            return argv[++i];
+        };
+        if (k == "--device") {
+            const auto d = parse_device_kind(value());
+            if (!d) usage("--device must be auto, gpu or cpu");
+            a.device = *d;
+        } else if (k == "--sizes") {
+            a.sizes.clear();
+            for (const std::string& s : split(value())) {
+                const long n = std::strtol(s.c_str(), nullptr, 10);
+                if (n < 1 || n > 16384) usage("sizes must be in 1..16384");
+                a.sizes.push_back(static_cast<uint32_t>(n));
+            }
+        } else if (k == "--frames") {
+            a.frames = std::atoi(value().c_str());
+            if (a.frames < 1) usage("--frames must be positive");
+        } else if (k == "--warmup") {
+            a.warmup = std::max(0, std::atoi(value().c_str()));
+        } else if (k == "--csv") {
+            a.csv = value();
+        } else if (k == "--only") {
+            a.only = split(value());
+        } else if (k == "-h" || k == "--help") {
+            usage("GPU time per pass of the matforge preview");
+        } else {
+            usage(("unknown option " + k).c_str());
+        }
+    }
+    return a;
+}
+
+// ---- in-memory content
+
+Texture make_texture(uint32_t size, uint32_t channels, bool srgb, uint32_t seed) {
+    Texture t;
+    t.width = t.height = size;
+    t.channels = channels;
+    t.srgb = srgb;
+    t.data.resize(size_t{size} * size * channels);
+    uint32_t x = seed * 2654435761u + 1u;
+    for (size_t i = 0; i < t.data.size(); ++i) {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        t.data[i] = static_cast<uint8_t>(96 + (x >> 24) % 64);  // mid-range noise
+    }
+    return t;
+}
+
+Texture make_normal_map(uint32_t size) {
+    Texture t;
+    t.width = t.height = size;
+    t.channels = 3;
+    t.data.resize(size_t{size} * size * 3);
+    const double k = 2 * std::numbers::pi * 16 / size;
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const double nx = 0.4 * std::sin(k * x), ny = 0.4 * std::cos(k * y);
+            const double l = std::sqrt(nx * nx + ny * ny + 1);
+            uint8_t* p = &t.data[(size_t{y} * size + x) * 3];
+            p[0] = static_cast<uint8_t>(std::lround((nx / l * 0.5 + 0.5) * 255));
+            p[1] = static_cast<uint8_t>(std::lround((ny / l * 0.5 + 0.5) * 255));
+            p[2] = static_cast<uint8_t>(std::lround((1 / l * 0.5 + 0.5) * 255));
+        }
+    return t;
+}
+
+std::shared_ptr<Environment> make_environment(uint32_t w, uint32_t h) {
+    auto env = std::make_shared<Environment>();
+    env->width = w;
+    env->height = h;
+    env->rgba.resize(size_t{w} * h * 4);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            float* p = &env->rgba[(size_t{y} * w + x) * 4];
+            const float sky = y < h / 2 ? 1.0f : 0.2f;
+            const bool sun = std::abs(int(x) - int(w / 3)) < 3 && std::abs(int(y) - int(h / 4)) < 3;
+            p[0] = sun ? 500.f : 0.6f * sky;
+            p[1] = sun ? 480.f : 0.7f * sky;
+            p[2] = sun ? 450.f : 1.0f * sky;
+            p[3] = 1.f;
+        }
+    return env;
+}
+
+struct Config {
+    std::string name, what;
+    bool textures = false, normal_map = false, environment = false;
+    int point_lights = 0;
+    Brdf brdf = Brdf::Standard;
+    PixelFormat output = PixelFormat::Rgba8;
+};
+
+std::vector<Config> configs() {
+    return {
+        {"base", "constant material, 1 directional light, standard BRDF", false, false, false, 0, Brdf::Standard, PixelFormat::Rgba8},
+        {"exr", "base, linear float output (copy instead of encode)", false, false, false, 0, Brdf::Standard, PixelFormat::Rgba32F},
+        {"textures", "base + albedo/ORM textures (2048², trilinear)", true, false, false, 0, Brdf::Standard, PixelFormat::Rgba8},
+        {"normal_map", "textures + normal map", true, true, false, 0, Brdf::Standard, PixelFormat::Rgba8},
+        {"lights8", "base + 7 point lights (8 in all)", false, false, false, 7, Brdf::Standard, PixelFormat::Rgba8},
+        {"accurate", "base, accurate BRDF (correlated Smith + energy compensation)", false, false, false, 0, Brdf::Accurate, PixelFormat::Rgba8},
+        {"ibl", "base + environment (split-sum IBL)", false, false, true, 0, Brdf::Standard, PixelFormat::Rgba8},
+        {"full", "textures + normal map + 8 lights + accurate + IBL", true, true, true, 7, Brdf::Accurate, PixelFormat::Rgba8},
+    };
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Row {
+    std::string config;
+    uint32_t size;
+    std::string pass;
+    double median_ms, min_ms;
+    int samples;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Args args = parse(argc, argv);
+    try {
+        ContextOptions co;
+        co.device = args.device;
+        Context context(co);
+        const DeviceInfo& info = context.info();
+        if (!info.timestamps) {
+            std::fprintf(stderr, "render_bench: %s has no timestamp queries on its graphics queue\n", info.name.c_str());
+            return 1;
+        }
+        const int frames = args.frames ? args.frames : (info.cpu ? 8 : 50);
+        std::printf("device: %s (%s), Vulkan %u.%u, %d timed frames after %d warm-up\n", info.name.c_str(),
+                    info.driver.c_str(), (info.api_version >> 22) & 0x7f, (info.api_version >> 12) & 0x3ff, frames,
+                    args.warmup);
+
+        std::shared_ptr<Environment> env = make_environment(1024, 512);
+        Material textured;
+        textured.name = "textured";
+        textured.textures = {make_texture(2048, 4, true, 1), make_texture(2048, 3, false, 2), make_normal_map(2048)};
+        textured.albedo.texture = 0;
+        textured.roughness = {1, Channel::G, false, 0.5f};
+        textured.metalness = {1, Channel::B, false, 0.f};
+        textured.occlusion = {1, Channel::R, false, 1.f};
+        Material constant;
+        constant.name = "constant";
+        constant.albedo.value = {0.8f, 0.5f, 0.3f};
+        constant.roughness.value = 0.4f;
+
+        std::vector<Row> rows;
+        std::printf("\n%-11s %6s  %-28s %10s %10s\n", "config", "size", "pass", "median ms", "min ms");
+        for (const Config& c : configs()) {
+            if (!args.only.empty() && std::find(args.only.begin(), args.only.end(), c.name) == args.only.end()) continue;
+            for (uint32_t size : args.sizes) {
+                Scene scene;
+                scene.width = scene.height = size;
+                scene.brdf = c.brdf;
+                for (int i = 0; i < c.point_lights; ++i) {
+                    Light l;
+                    l.type = LightType::Point;
+                    const double a = 2 * std::numbers::pi * i / std::max(1, c.point_lights);
+                    l.position = {float(3 * std::cos(a)), float(1.5 * std::sin(3 * a)), float(2 + std::sin(a))};
+                    l.intensity = 8.f;
+                    scene.lights.push_back(l);
+                }
+                if (c.environment) scene.environment = env;
+                using Clock = std::chrono::steady_clock;
+                const auto ms_since = [](Clock::time_point t0) {
+                    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+                };
+                auto t0 = Clock::now();
+                Renderer renderer(context, scene);
+                const double scene_wall = ms_since(t0);
+                Material m = c.textures ? textured : constant;
+                if (c.textures && c.normal_map) m.normal.texture = 2;
+                t0 = Clock::now();
+                const GpuMaterial gm = renderer.upload(m);
+                const double upload_wall = ms_since(t0);
+                auto emit = [&](const std::string& pass, const std::vector<double>& ms) {
+                    const Row r{c.name, size, pass, median(ms), *std::min_element(ms.begin(), ms.end()), int(ms.size())};
+                    std::printf("%-11s %6u  %-28s %10.3f %10.3f\n", r.config.c_str(), r.size, r.pass.c_str(), r.median_ms, r.min_ms);
+                    rows.push_back(r);
+                };
+                for (const PassTime& p : renderer.load_times()) emit("load: " + p.name.substr(0, p.name.find(' ')), {p.ms});
+                // Host wall time: what a user waits for, CPU work (mips, pipeline compilation)
+                // included; on lavapipe also the only exact split, see docs/bench/README.md.
+                emit("load wall: scene (host)", {scene_wall});
+                emit("load wall: material (host)", {upload_wall});
+
+                OutputOptions out;
+                out.format = c.output;
+                std::map<std::string, std::vector<double>> times;
+                std::vector<std::string> order;
+                for (int f = 0; f < args.warmup + frames; ++f) {
+                    t0 = Clock::now();
+                    renderer.render(gm, out);
+                    const double wall = ms_since(t0);
+                    if (f < args.warmup) continue;
+                    times["frame wall (host)"].push_back(wall);
+                    double total = 0;
+                    for (const PassTime& p : renderer.frame_times()) {
+                        if (!times.count(p.name)) order.push_back(p.name);
+                        times[p.name].push_back(p.ms);
+                        total += p.ms;
+                    }
+                    times["frame (sum)"].push_back(total);
+                }
+                order.push_back("frame (sum)");
+                order.push_back("frame wall (host)");
+                for (const std::string& p : order) emit(p, times[p]);
+            }
+        }
+        std::printf("\nvariants:\n");
+        for (const Config& c : configs())
+            if (args.only.empty() || std::find(args.only.begin(), args.only.end(), c.name) != args.only.end())
+                std::printf("  %-11s %s\n", c.name.c_str(), c.what.c_str());
+
+        if (!args.csv.empty()) {
+            std::ofstream csv(args.csv);
+            if (!csv) {
+                std::fprintf(stderr, "render_bench: cannot write %s\n", args.csv.c_str());
+                return 1;
+            }
+            csv << "device,config,size,pass,median_ms,min_ms,samples\n";
+            for (const Row& r : rows)
+                csv << '"' << info.name << "\"," << r.config << ',' << r.size << ",\"" << r.pass << "\"," << r.median_ms
+                    << ',' << r.min_ms << ',' << r.samples << '\n';
+        }
+        return 0;
+    } catch (const NoDeviceError& e) {
+        std::fprintf(stderr, "render_bench: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "render_bench: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,188 @@
+// manifest.json (version 1) → renderer materials: textures as the manifest lists them, roles
+// from each output's `channels`, whatever preset produced them.
+#include <algorithm>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "preview/preview.hpp"
+
+namespace mf::preview {
+
+using nlohmann::json;
+
+namespace {
+
+bool is_color_role(const std::string& r) { return r == "albedo" || r == "emissive"; }
+
+render::ScalarRole* scalar_slot(render::Material& m, const std::string& role) {
+    if (role == "roughness" || role == "smoothness") return &m.roughness;
+    if (role == "metalness") return &m.metalness;
+    if (role == "occlusion") return &m.occlusion;
+    if (role == "opacity") return &m.opacity;
+    return nullptr;
+}
+
+std::optional<render::Channel> channel_of(const std::string& key) {
+    if (key == "R") return render::Channel::R;
+    if (key == "G") return render::Channel::G;
+    if (key == "B") return render::Channel::B;
+    if (key == "A") return render::Channel::A;
+    return std::nullopt;
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+}  // namespace
+
+Manifest parse_manifest(const json& j, const std::filesystem::path& dir) {
+    if (!j.is_object()) throw UsageError("manifest: expected a JSON object");
+    const auto version = j.value("manifest_version", 0);
+    if (version < 1) throw UsageError("manifest: missing or invalid manifest_version");
+    Manifest out;
+    out.dir = dir;
+    const auto it = j.find("materials");
+    if (it == j.end() || !it->is_array()) throw UsageError("manifest: no \"materials\" array");
+    for (const json& mj : *it) {
+        ManifestMaterial m;
+        m.name = mj.value("name", std::string());
+        if (m.name.empty()) throw UsageError("manifest: a material has no name");
+        if (const auto o = mj.find("outputs"); o != mj.end() && o->is_array()) {
+            for (const json& oj : *o) {
+                ManifestOutput out_tex;
+                const std::string file = oj.value("file", std::string());
+                if (file.empty()) throw UsageError("manifest: material " + m.name + " has an output without \"file\"");
+                out_tex.file = dir / file;
+                out_tex.color_space = oj.value("color_space", std::string("linear"));
+                out_tex.normal_convention = oj.value("normal_convention", std::string());
+                if (const auto ch = oj.find("channels"); ch != oj.end() && ch->is_object())
+                    for (const auto& [k, v] : ch->items()) out_tex.channels.emplace_back(k, v);
+                m.outputs.push_back(std::move(out_tex));
+            }
+        }
+        if (const auto c = mj.find("constants"); c != mj.end() && c->is_object())
+            for (const auto& [k, v] : c->items()) m.constants.emplace_back(k, v);
+        out.materials.push_back(std::move(m));
+    }
+    return out;
+}
+
+Manifest read_manifest(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw UsageError("cannot read manifest " + file.string());
+    json j;
+    try {
+        in >> j;
+    } catch (const json::exception& e) {
+        throw UsageError(file.string() + ": not valid JSON: " + e.what());
+    }
+    try {
+        return parse_manifest(j, file.parent_path());
+    } catch (const json::exception& e) {
+        throw UsageError(file.string() + ": " + e.what());
+    }
+}
+
+render::Material load_manifest_material(const ManifestMaterial& mm, std::vector<std::string>& notes) {
+    render::Material m;
+    m.name = mm.name;
+    for (const ManifestOutput& o : mm.outputs) {
+        // What this texture feeds; textures that feed nothing the preview shades are not read.
+        const int index = static_cast<int>(m.textures.size());
+        bool used = false, color_in_rgb = false;
+        for (const auto& [key, value] : o.channels) {
+            if (!value.is_string()) continue;  // a number: the channel holds a constant
+            const std::string role = value.get<std::string>();
+            if (role == "unused") continue;
+            if (key == "RGB") {
+                if (is_color_role(role)) {
+                    (role == "albedo" ? m.albedo : m.emissive).texture = index;
+                    color_in_rgb = used = true;
+                } else if (role == "normal") {
+                    m.normal.texture = index;
+                    m.normal.green_down = lower(o.normal_convention) == "dx";
+                    used = true;
+                } else if (render::ScalarRole* s = scalar_slot(m, role)) {
+                    *s = {index, render::Channel::R, role == "smoothness", s->value};
+                    used = true;
+                } else {
+                    notes.push_back(mm.name + ": " + o.file.filename().string() + " holds " + role +
+                                    ", which the preview does not simulate");
+                }
+                continue;
+            }
+            const auto ch = channel_of(key);
+            if (!ch) {
+                notes.push_back(mm.name + ": unknown channel key \"" + key + "\" in " + o.file.filename().string());
+                continue;
+            }
+            if (render::ScalarRole* s = scalar_slot(m, role)) {
+                *s = {index, *ch, role == "smoothness", s->value};
+                used = true;
+            } else {
+                notes.push_back(mm.name + ": " + o.file.filename().string() + " " + key + " holds " + role +
+                                ", which the preview does not simulate");
+            }
+        }
+        if (!used) continue;
+        if (m.textures.size() == render::kMaxTextures)
+            throw std::runtime_error(mm.name + ": more than " + std::to_string(render::kMaxTextures) + " textures");
+        render::Texture t = read_texture(o.file);
+        // Only RGB that hold color are sRGB-decoded; a data texture tagged sRGB is a mistake of
+        // the producer (COLOR_SPACE_MISMATCH), decoding it would change the data.
+        const bool srgb_tag = lower(o.color_space) == "srgb";
+        t.srgb = srgb_tag && color_in_rgb;
+        if (srgb_tag && !color_in_rgb)
+            notes.push_back(mm.name + ": " + o.file.filename().string() + " is tagged sRGB but holds data; read as linear");
+        m.textures.push_back(std::move(t));
+    }
+    for (const auto& [role, value] : mm.constants) {
+        if (role == "albedo" || role == "emissive") {
+            render::Vec3 v{};
+            if (value.is_number()) v = {value.get<float>(), value.get<float>(), value.get<float>()};
+            else if (value.is_array() && value.size() == 3) v = {value[0].get<float>(), value[1].get<float>(), value[2].get<float>()};
+            else continue;
+            (role == "albedo" ? m.albedo : m.emissive).value = v;
+        } else if (render::ScalarRole* s = scalar_slot(m, role); s && value.is_number()) {
+            s->value = role == "smoothness" ? 1.f - value.get<float>() : value.get<float>();
+        }
+    }
+    return m;
+}
+
+void apply_scene_material(const SceneMaterial& s, render::Material& m) {
+    std::map<std::pair<std::string, bool>, int> loaded;  // (file, sRGB) → texture index
+    auto load = [&](const std::filesystem::path& file, bool srgb) {
+        const auto key = std::make_pair(file.string(), srgb);
+        if (const auto it = loaded.find(key); it != loaded.end()) return it->second;
+        if (m.textures.size() == render::kMaxTextures) throw std::runtime_error("too many textures");
+        render::Texture t = read_texture(file);
+        t.srgb = srgb;
+        m.textures.push_back(std::move(t));
+        return loaded[key] = static_cast<int>(m.textures.size() - 1);
+    };
+    if (s.albedo_map) m.albedo.texture = load(s.albedo_map->file, true);
+    if (s.emissive_map) m.emissive.texture = load(s.emissive_map->file, true);
+    if (s.normal_map) {
+        m.normal.texture = load(s.normal_map->file, false);
+        m.normal.green_down = s.normal_dx;
+    }
+    auto scalar = [&](const std::optional<SceneMaterial::Map>& map, render::ScalarRole& role) {
+        if (map) role = {load(map->file, false), map->channel.value_or(render::Channel::R), false, role.value};
+    };
+    scalar(s.roughness_map, m.roughness);
+    scalar(s.metalness_map, m.metalness);
+    scalar(s.occlusion_map, m.occlusion);
+    scalar(s.opacity_map, m.opacity);
+    // Constants apply only where the role has no map (spec).
+    if (s.albedo && m.albedo.texture < 0) m.albedo.value = *s.albedo;
+    if (s.emissive && m.emissive.texture < 0) m.emissive.value = *s.emissive;
+    if (s.roughness && m.roughness.texture < 0) m.roughness.value = *s.roughness;
+    if (s.metalness && m.metalness.texture < 0) m.metalness.value = *s.metalness;
+}
+
+}  // namespace mf::preview

@@ -1,0 +1,270 @@
+// Scene files and --light specs.
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "preview/preview.hpp"
+
+namespace mf::preview {
+
+using nlohmann::json;
+
+float default_shape_size(render::ShapeType t) {
+    switch (t) {
+        case render::ShapeType::Sphere: return 1.f;
+        case render::ShapeType::Cube: return 1.2f;
+        case render::ShapeType::Plane: return 2.f;
+    }
+    return 1.f;
+}
+
+SceneFile default_scene() {
+    SceneFile s;  // render::Scene's defaults are the spec's: one white key light, a sphere
+    return s;
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) {
+    throw UsageError(where + ": " + what);
+}
+
+float number(const json& j, const std::string& where) {
+    if (!j.is_number()) fail(where, "expected a number, got " + j.dump());
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(where, "not a finite number");
+    return static_cast<float>(v);
+}
+
+render::Vec3 vec3(const json& j, const std::string& where) {
+    if (!j.is_array() || j.size() != 3) fail(where, "expected [x, y, z], got " + j.dump());
+    return {number(j[0], where), number(j[1], where), number(j[2], where)};
+}
+
+const json* find(const json& obj, const char* key) {
+    const auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+}
+
+void check_keys(const json& obj, const std::string& where, std::initializer_list<const char*> known) {
+    if (!obj.is_object()) fail(where, "expected an object, got " + obj.dump());
+    for (const auto& [k, v] : obj.items()) {
+        bool ok = false;
+        for (const char* n : known) ok = ok || k == n;
+        if (!ok) fail(where, "unknown key \"" + k + "\"");
+    }
+}
+
+uint32_t dimension(const json& j, const std::string& where) {
+    if (!j.is_number_integer() || j.get<int64_t>() < 1 || j.get<int64_t>() > 16384)
+        fail(where, "expected an integer in 1..16384, got " + j.dump());
+    return static_cast<uint32_t>(j.get<int64_t>());
+}
+
+SceneMaterial::Map map_ref(const json& j, const std::filesystem::path& base, const std::string& where) {
+    if (!j.is_string()) fail(where, "expected \"file.png\" or \"file.png#G\"");
+    std::string s = j.get<std::string>();
+    SceneMaterial::Map m;
+    const auto hash = s.rfind('#');
+    if (hash != std::string::npos) {
+        const std::string ch = s.substr(hash + 1);
+        static const char* const names[] = {"R", "G", "B", "A"};
+        for (int i = 0; i < 4; ++i)
+            if (ch == names[i]) m.channel = static_cast<render::Channel>(i);
+        if (!m.channel) fail(where, "channel must be #R, #G, #B or #A, got #" + ch);
+        s.resize(hash);
+    }
+    m.file = base / s;
+    return m;
+}
+
+}  // namespace
+
+SceneFile parse_scene(const json& j, const std::filesystem::path& base, const std::string& name) {
+    SceneFile out = default_scene();
+    render::Scene& sc = out.scene;
+    check_keys(j, name, {"image", "camera", "shape", "background", "lights", "environment", "material",
+                         "output", "brdf"});
+    if (const json* img = find(j, "image")) {
+        check_keys(*img, name + ": image", {"width", "height"});
+        if (const json* w = find(*img, "width")) sc.width = dimension(*w, name + ": image.width");
+        if (const json* h = find(*img, "height")) sc.height = dimension(*h, name + ": image.height");
+    }
+    if (const json* cam = find(j, "camera")) {
+        const std::string w = name + ": camera";
+        check_keys(*cam, w, {"position", "target", "up", "yfov_deg"});
+        if (const json* v = find(*cam, "position")) sc.camera.position = vec3(*v, w + ".position");
+        if (const json* v = find(*cam, "target")) sc.camera.target = vec3(*v, w + ".target");
+        if (const json* v = find(*cam, "up")) sc.camera.up = vec3(*v, w + ".up");
+        if (const json* v = find(*cam, "yfov_deg")) {
+            sc.camera.yfov_deg = number(*v, w + ".yfov_deg");
+            if (!(sc.camera.yfov_deg > 0.f && sc.camera.yfov_deg < 180.f)) fail(w + ".yfov_deg", "must be in (0, 180)");
+        }
+    }
+    if (const json* sh = find(j, "shape")) {
+        const std::string w = name + ": shape";
+        check_keys(*sh, w, {"type", "radius", "size"});
+        if (const json* t = find(*sh, "type")) {
+            const std::string type = t->is_string() ? t->get<std::string>() : "";
+            if (type == "sphere") sc.shape.type = render::ShapeType::Sphere;
+            else if (type == "cube") sc.shape.type = render::ShapeType::Cube;
+            else if (type == "plane") sc.shape.type = render::ShapeType::Plane;
+            else fail(w + ".type", "expected \"sphere\", \"cube\" or \"plane\", got " + t->dump());
+        }
+        sc.shape.size = default_shape_size(sc.shape.type);
+        const json* size = find(*sh, sc.shape.type == render::ShapeType::Sphere ? "radius" : "size");
+        if (!size) size = find(*sh, "size");
+        if (!size) size = find(*sh, "radius");
+        if (size) {
+            sc.shape.size = number(*size, w + ".radius/size");
+            if (!(sc.shape.size > 0.f)) fail(w, "size must be positive");
+            out.shape_size_given = true;
+        }
+    }
+    if (const json* bg = find(j, "background")) sc.background = vec3(*bg, name + ": background");
+    if (const json* lights = find(j, "lights")) {
+        if (!lights->is_array()) fail(name + ": lights", "expected an array");
+        if (lights->size() > render::kMaxLights)
+            fail(name + ": lights", "at most " + std::to_string(render::kMaxLights) + " lights");
+        sc.lights.clear();
+        for (size_t i = 0; i < lights->size(); ++i) {
+            const json& l = (*lights)[i];
+            const std::string w = name + ": lights[" + std::to_string(i) + "]";
+            check_keys(l, w, {"type", "direction", "position", "color", "intensity"});
+            render::Light light;
+            const std::string type = l.value("type", std::string("directional"));
+            if (type == "directional") {
+                light.type = render::LightType::Directional;
+                if (const json* d = find(l, "direction")) light.direction = vec3(*d, w + ".direction");
+                const auto& d = light.direction;
+                if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-12f) fail(w + ".direction", "zero length");
+            } else if (type == "point") {
+                light.type = render::LightType::Point;
+                const json* p = find(l, "position");
+                if (!p) fail(w, "a point light needs a position");
+                light.position = vec3(*p, w + ".position");
+                light.intensity = 10.f;
+            } else {
+                fail(w + ".type", "expected \"directional\" or \"point\"");
+            }
+            if (const json* c = find(l, "color")) light.color = vec3(*c, w + ".color");
+            if (const json* v = find(l, "intensity")) light.intensity = number(*v, w + ".intensity");
+            if (light.intensity < 0.f) fail(w + ".intensity", "must not be negative");
+            sc.lights.push_back(light);
+        }
+    }
+    if (const json* env = find(j, "environment")) {
+        const std::string w = name + ": environment";
+        check_keys(*env, w, {"file", "intensity"});
+        const json* f = find(*env, "file");
+        if (!f || !f->is_string()) fail(w, "needs \"file\"");
+        out.environment = base / f->get<std::string>();
+        if (const json* v = find(*env, "intensity")) out.environment_intensity = number(*v, w + ".intensity");
+    }
+    if (const json* m = find(j, "material")) {
+        const std::string w = name + ": material";
+        check_keys(*m, w, {"albedo", "roughness", "metalness", "emissive", "maps", "normal_convention"});
+        SceneMaterial sm;
+        if (const json* v = find(*m, "albedo")) sm.albedo = vec3(*v, w + ".albedo");
+        if (const json* v = find(*m, "emissive")) sm.emissive = vec3(*v, w + ".emissive");
+        if (const json* v = find(*m, "roughness")) sm.roughness = number(*v, w + ".roughness");
+        if (const json* v = find(*m, "metalness")) sm.metalness = number(*v, w + ".metalness");
+        if (const json* v = find(*m, "normal_convention")) {
+            if (*v != "gl" && *v != "dx") fail(w + ".normal_convention", "expected \"gl\" or \"dx\"");
+            sm.normal_dx = *v == "dx";
+        }
+        if (const json* maps = find(*m, "maps")) {
+            const std::string wm = w + ".maps";
+            check_keys(*maps, wm, {"albedo", "normal", "roughness", "metalness", "occlusion", "emissive", "opacity"});
+            auto get = [&](const char* role, std::optional<SceneMaterial::Map>& dst) {
+                if (const json* v = find(*maps, role)) dst = map_ref(*v, base, wm + "." + role);
+            };
+            get("albedo", sm.albedo_map);
+            get("normal", sm.normal_map);
+            get("roughness", sm.roughness_map);
+            get("metalness", sm.metalness_map);
+            get("occlusion", sm.occlusion_map);
+            get("emissive", sm.emissive_map);
+            get("opacity", sm.opacity_map);
+        }
+        out.material = sm;
+    }
+    if (const json* o = find(j, "output")) {
+        const std::string w = name + ": output";
+        check_keys(*o, w, {"transfer", "exposure"});
+        if (const json* t = find(*o, "transfer")) {
+            if (*t == "srgb") out.output.transfer = render::Transfer::Srgb;
+            else if (*t == "linear") out.output.transfer = render::Transfer::Linear;
+            else fail(w + ".transfer", "expected \"srgb\" or \"linear\"");
+        }
+        if (const json* e = find(*o, "exposure")) {
+            out.output.exposure = number(*e, w + ".exposure");
+            if (out.output.exposure < 0.f) fail(w + ".exposure", "must not be negative");
+        }
+    }
+    if (const json* b = find(j, "brdf")) {
+        const auto brdf = b->is_string() ? render::parse_brdf(b->get<std::string>()) : std::nullopt;
+        if (!brdf) fail(name + ": brdf", "expected \"standard\", \"accurate\" or \"assignment\"");
+        sc.brdf = *brdf;
+    }
+    return out;
+}
+
+SceneFile read_scene_file(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw UsageError("cannot read scene file " + file.string());
+    json j;
+    try {
+        in >> j;
+    } catch (const json::exception& e) {
+        throw UsageError(file.string() + ": not valid JSON: " + e.what());
+    }
+    return parse_scene(j, file.parent_path(), file.string());
+}
+
+std::optional<render::Light> parse_light_spec(const std::string& spec, std::string& error) {
+    std::vector<std::string> parts;
+    std::stringstream ss(spec);
+    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
+    auto triple = [](const std::string& s, render::Vec3& v) {
+        std::stringstream t(s);
+        char c1 = 0, c2 = 0;
+        if (!(t >> v[0] >> c1 >> v[1] >> c2 >> v[2]) || c1 != ',' || c2 != ',') return false;
+        t >> std::ws;
+        return t.eof() && std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+    };
+    error = "expected dir:X,Y,Z[:INTENSITY[:R,G,B]] or point:X,Y,Z[:INTENSITY[:R,G,B]], got \"" + spec + "\"";
+    if (parts.size() < 2 || parts.size() > 4) return std::nullopt;
+    render::Light l;
+    if (parts[0] == "dir" || parts[0] == "directional") {
+        l.type = render::LightType::Directional;
+        if (!triple(parts[1], l.direction)) return std::nullopt;
+        const auto& d = l.direction;
+        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-12f) {
+            error = "light direction has zero length: \"" + spec + "\"";
+            return std::nullopt;
+        }
+    } else if (parts[0] == "point") {
+        l.type = render::LightType::Point;
+        l.intensity = 10.f;
+        if (!triple(parts[1], l.position)) return std::nullopt;
+    } else {
+        return std::nullopt;
+    }
+    if (parts.size() >= 3) {
+        try {
+            size_t used = 0;
+            l.intensity = std::stof(parts[2], &used);
+            if (used != parts[2].size() || !(l.intensity >= 0.f) || !std::isfinite(l.intensity)) return std::nullopt;
+        } catch (const std::exception&) {
+            return std::nullopt;
+        }
+    }
+    if (parts.size() == 4 && !triple(parts[3], l.color)) return std::nullopt;
+    error.clear();
+    return l;
+}
+
+}  // namespace mf::preview

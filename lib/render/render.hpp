@@ -1,0 +1,273 @@
+// matforge preview renderer core: headless offscreen Vulkan rendering of one material on a
+// sphere, cube or plane, with the Cook-Torrance BRDF of the mission (errata fixed).
+//
+// Conventions of this module (decided once here):
+//  - links Vulkan (loaded at run time) and the standard library only: pixels come in and go out
+//    as plain buffers; image files and JSON are the business of the layer above (lib/preview);
+//  - world space is right-handed, Y up, metres (glTF); colors are linear Rec.709;
+//  - light units: L = Σ f(l,v) · E · max(n·l, 0) with E = color · intensity for a directional
+//    light and color · intensity / d² for a point light; f includes Lambert's albedo/π, so a
+//    white Lambertian surface facing a directional light of intensity π has radiance 1;
+//  - images are rows top to bottom, RGBA interleaved;
+//  - errors throw: NoDeviceError when no usable Vulkan device exists (a configuration problem,
+//    exit code 2 for a CLI), Error for everything else.
+//
+// Does NOT do: shadows, ambient light, parallax/height, anisotropy, clear coat, transmission.
+// Only what the scene and the material call for is simulated (see Renderer).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mf::render {
+
+using Vec3 = std::array<float, 3>;
+
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+// No Vulkan loader, no driver, or no device of the requested kind. The message names the
+// package to install.
+class NoDeviceError : public Error {
+public:
+    using Error::Error;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Device
+
+enum class DeviceKind { Auto, Gpu, Cpu };  // auto: a real GPU if any, else lavapipe (CPU)
+std::optional<DeviceKind> parse_device_kind(std::string_view s);  // "auto" | "gpu" | "cpu"
+
+// Collects validation-layer and loader messages of severity warning or error. Shared so that it
+// outlives the context: objects left undestroyed are reported while the device is destroyed.
+class MessageLog {
+public:
+    void add(std::string message);
+    size_t count() const;
+    std::vector<std::string> messages() const;
+
+private:
+    mutable std::mutex mutex_;
+    std::vector<std::string> messages_;
+};
+
+struct ContextOptions {
+    DeviceKind device = DeviceKind::Auto;
+    // Enables VK_LAYER_KHRONOS_validation with synchronization validation and a debug messenger
+    // that feeds `log` (required when validation is on).
+    bool validation = false;
+    std::shared_ptr<MessageLog> log;
+    // On a CPU device (lavapipe), upload 8-bit textures as 16-bit linear UNORM, sRGB decoded
+    // here with the exact curve: lavapipe filters 8-bit texels in 8-bit fixed point (magnified
+    // gradients band in steps of 1/255) and decodes sRGB with an approximation (about 3e-4
+    // absolute). Off: the same _SRGB / 8-bit formats as on a GPU. GPUs are not affected.
+    bool precise_cpu_textures = true;
+};
+
+struct DeviceInfo {
+    std::string name;         // "NVIDIA H200", "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string driver;       // driver name and version text
+    bool cpu = false;         // a software rasterizer (lavapipe)
+    uint32_t api_version = 0; // VK_MAKE_API_VERSION of the device
+    bool timestamps = false;  // timestamp queries usable on the queue we render with
+    double timestamp_period_ns = 1.0;
+};
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const DeviceInfo& info() const;
+
+    struct Impl;
+    Impl& impl() { return *impl_; }
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Scene
+
+struct Camera {
+    Vec3 position{0.f, 0.f, 4.f};
+    Vec3 target{0.f, 0.f, 0.f};
+    Vec3 up{0.f, 1.f, 0.f};
+    float yfov_deg = 35.f;
+};
+
+enum class ShapeType { Sphere, Cube, Plane };
+struct Shape {
+    ShapeType type = ShapeType::Sphere;
+    // Sphere: radius (the UV sphere of three.js SphereGeometry(r, 128, 64), shaded on the exact
+    // sphere). Cube: edge length (turned to show three faces). Plane: side of a square facing +Z.
+    float size = 1.f;
+};
+
+enum class LightType { Directional, Point };
+struct Light {
+    LightType type = LightType::Directional;
+    Vec3 direction{0.57735027f, -0.57735027f, -0.57735027f};  // the way the light travels
+    Vec3 position{0.f, 0.f, 0.f};
+    Vec3 color{1.f, 1.f, 1.f};
+    float intensity = 3.f;  // directional: irradiance scale; point: intensity (E = I / d²)
+};
+
+// Equirectangular environment, linear radiance. Direction d maps to
+// u = 0.5 + atan2(d.x, -d.z) / 2π, v = acos(d.y) / π (rows top to bottom): the image's centre
+// is seen looking along −Z, its top row is straight up.
+struct Environment {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgba;  // width * height * 4
+    float intensity = 1.f;
+};
+
+enum class Brdf {
+    Standard,    // the mission's BRDF, errata fixed: GGX, Schlick F, Schlick-GGX k=(r+1)²/8, Lambert
+    Accurate,    // height-correlated Smith visibility + multiple-scattering energy compensation
+    Assignment,  // Standard with the assignment's diffuse (albedo · N·L, no 1/π), for comparison
+};
+std::optional<Brdf> parse_brdf(std::string_view s);  // "standard" | "accurate" | "assignment"
+
+inline constexpr size_t kMaxLights = 16;
+
+struct Scene {
+    uint32_t width = 512, height = 512;
+    Camera camera;
+    Shape shape;
+    Vec3 background{0.f, 0.f, 0.f};  // linear
+    std::vector<Light> lights{Light{}};
+    std::shared_ptr<const Environment> environment;  // null: no image-based lighting
+    Brdf brdf = Brdf::Standard;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Material: textures as decoded from their files plus, per role, where its value comes from.
+
+enum class TexelType : uint8_t { U8, U16, F32 };
+struct Texture {
+    uint32_t width = 0, height = 0, channels = 0;  // channels 1..4; 1: gray, 2: gray+alpha
+    TexelType type = TexelType::U8;
+    std::vector<uint8_t> data;  // width*height*channels samples of `type`, native byte order
+    // RGB hold sRGB-encoded color (albedo, emissive): 8-bit ones are uploaded as an _SRGB format
+    // and decoded by the sampler; alpha is always linear.
+    bool srgb = false;
+};
+
+enum class Channel : uint8_t { R = 0, G = 1, B = 2, A = 3 };
+struct ScalarRole {
+    int texture = -1;  // index into Material::textures; < 0: `value` is used, nothing is sampled
+    Channel channel = Channel::R;
+    bool invert = false;  // stored as 1 − value (smoothness for roughness)
+    float value = 0.f;
+};
+struct ColorRole {
+    int texture = -1;  // RGB of that texture, or `value` (linear) when < 0
+    Vec3 value{0.f, 0.f, 0.f};
+};
+struct NormalRole {
+    int texture = -1;         // tangent-space normal in RGB; < 0: no normal mapping
+    bool green_down = false;  // DirectX convention (−Y); OpenGL (+Y) otherwise
+};
+
+inline constexpr size_t kMaxTextures = 8;
+
+struct Material {
+    std::string name;
+    std::vector<Texture> textures;  // at most kMaxTextures
+    ColorRole albedo{-1, {0.8f, 0.8f, 0.8f}};
+    ColorRole emissive{-1, {0.f, 0.f, 0.f}};
+    NormalRole normal;
+    ScalarRole roughness{-1, Channel::R, false, 0.5f};
+    ScalarRole metalness{-1, Channel::R, false, 0.f};
+    ScalarRole occlusion{-1, Channel::R, false, 1.f};  // scales environment light only
+    ScalarRole opacity{-1, Channel::R, false, 1.f};    // blends over the background
+};
+
+// Throws Error when roles point at missing textures or a normal map is also marked sRGB.
+void check_material(const Material& m);
+
+// ---------------------------------------------------------------------------------------------
+// Rendering
+
+enum class Transfer { Srgb, Linear };
+enum class PixelFormat { Rgba8, Rgba32F };
+struct OutputOptions {
+    PixelFormat format = PixelFormat::Rgba8;
+    // Rgba8 only: linear radiance × exposure, encoded once with `transfer` (exact IEC 61966-2-1
+    // curve for sRGB), rounded to nearest. Rgba32F is the linear radiance itself.
+    Transfer transfer = Transfer::Srgb;
+    float exposure = 1.f;
+};
+
+struct Frame {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba8;    // PixelFormat::Rgba8
+    std::vector<float> rgba32f;    // PixelFormat::Rgba32F
+};
+
+struct PassTime {
+    std::string name;
+    double ms = 0.0;  // GPU time from timestamp queries (0 when the device has none)
+};
+
+class Renderer;
+
+// A material's textures on the device and the pipeline variant it needs. Destroy before the
+// Renderer that made it.
+class GpuMaterial {
+public:
+    GpuMaterial();
+    ~GpuMaterial();
+    GpuMaterial(GpuMaterial&&) noexcept;
+    GpuMaterial& operator=(GpuMaterial&&) noexcept;
+    const std::string& name() const;
+    // Which pipeline variant shades it, e.g. "sphere dir1 point0 standard albedo:tex normal:tex".
+    const std::string& variant() const;
+
+    struct Impl;
+    Impl& impl() const { return *impl_; }
+
+private:
+    friend class Renderer;
+    std::unique_ptr<Impl> impl_;
+};
+
+// One scene on one device. Construction runs the load-time passes the scene calls for: the
+// BRDF lookup table (accurate BRDF or environment) and, with an environment, the cube map and
+// its split-sum prefiltering (Karis 2013). Nothing else is computed.
+class Renderer {
+public:
+    Renderer(Context& context, const Scene& scene);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Uploads textures with their mip chains (linear-light averages for color, renormalized
+    // vectors for normals, plain averages for data) and builds the pipeline variant.
+    GpuMaterial upload(const Material& material);
+
+    Frame render(const GpuMaterial& material, const OutputOptions& output = {});
+
+    const Scene& scene() const;
+    const std::vector<PassTime>& load_times() const;  // upload and load-time passes, in order
+    const std::vector<PassTime>& frame_times() const; // passes of the last render()
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mf::render

@@ -1,0 +1,68 @@
+// Split-sum BRDF table (Karis 2013, "Real Shading in Unreal Engine 4", p. 6-7): for
+// x = n·v and y = perceptual roughness (texel centres), the directional albedo of the specular
+// lobe as F0 · A + B. A + B is the lobe's albedo with F = 1, E(μ, α), which the accurate BRDF's
+// energy compensation needs.
+#include "brdf.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const bool CORRELATED = false;  // accurate BRDF: Heitz's height-correlated Smith
+layout(constant_id = 1) const uint SAMPLES = 1024;
+layout(set = 0, binding = 0, LUT_FORMAT) uniform writeonly image2D lut;
+
+// Hammersley point set: low discrepancy, the same every run.
+vec2 hammersley(uint i) {
+    return vec2(float(i) / float(SAMPLES), float(bitfieldReverse(i)) * 2.3283064365386963e-10);
+}
+
+// Half vectors drawn from the distribution of normals visible from v, around n = +Z.
+// Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1:
+// pdf(h) = G1(v) max(v·h, 0) D(h) / (n·v). With pdf(l) = pdf(h) / (4 v·h), the estimator of the
+// lobe's albedo is G2(v, l) / G1(v): bounded by 1, so the table converges at grazing angles
+// too, where sampling D alone leaves errors of several per mille after a thousand samples.
+vec3 sample_vndf(vec3 v, float alpha, vec2 xi) {
+    vec3 vh = normalize(vec3(alpha * v.xy, v.z));
+    float len2 = dot(vh.xy, vh.xy);
+    vec3 t1 = len2 > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(len2) : vec3(1.0, 0.0, 0.0);
+    vec3 t2 = cross(vh, t1);
+    float r = sqrt(xi.x);
+    float phi = 2.0 * PI * xi.y;
+    float p1 = r * cos(phi);
+    float p2 = r * sin(phi);
+    float s = 0.5 * (1.0 + vh.z);
+    p2 = (1.0 - s) * sqrt(1.0 - p1 * p1) + s * p2;
+    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    return normalize(vec3(alpha * nh.xy, max(0.0, nh.z)));
+}
+
+// Smith masking of v for GGX: G1 = 2 (n·v) / ((n·v) + sqrt(α² + (1 − α²)(n·v)²)) (Heitz 2014).
+float G1_Smith(float NoV, float alpha) {
+    float a2 = alpha * alpha;
+    return 2.0 * NoV / (NoV + sqrt(a2 + (1.0 - a2) * NoV * NoV));
+}
+
+void main() {
+    ivec2 size = imageSize(lut);
+    ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
+    if (xy.x >= size.x || xy.y >= size.y) return;
+    float NoV = (float(xy.x) + 0.5) / float(size.x);
+    float roughness = max((float(xy.y) + 0.5) / float(size.y), MIN_ROUGHNESS);
+    float alpha = roughness * roughness;
+    vec3 v = vec3(sqrt(1.0 - NoV * NoV), 0.0, NoV);
+    float g1 = G1_Smith(NoV, alpha);
+    float a = 0.0, b = 0.0;
+    for (uint i = 0u; i < SAMPLES; ++i) {
+        vec3 h = sample_vndf(v, alpha, hammersley(i));
+        float VoH = dot(v, h);
+        vec3 l = 2.0 * VoH * h - v;
+        float NoL = l.z;
+        if (NoL <= 0.0 || VoH <= 0.0) continue;
+        // Image-based lighting takes k = α/2 in Schlick-GGX (Karis 2013, erratum 8).
+        float vis = CORRELATED ? V_SmithGGXCorrelated(NoV, NoL, alpha) : V_SchlickGGX_k(NoV, NoL, alpha * 0.5);
+        // f (n·l) / pdf(l) = G2 / G1(v) × F, with G2 = 4 V (n·l)(n·v).
+        float g = 4.0 * vis * NoL * NoV / g1;
+        float fc = pow(1.0 - VoH, 5.0);
+        a += (1.0 - fc) * g;
+        b += fc * g;
+    }
+    imageStore(lut, xy, vec4(a, b, 0.0, 0.0) / float(SAMPLES));
+}

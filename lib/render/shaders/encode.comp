@@ -1,0 +1,32 @@
+#version 460
+// The one place the output is encoded: linear radiance × exposure → transfer curve → 8 bits,
+// rounded to nearest.
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2D radiance;
+layout(set = 0, binding = 1, std430) writeonly buffer Pixels { uint rgba8[]; } pixels;
+layout(push_constant) uniform Params {
+    uvec2 size;
+    float exposure;
+    uint srgb;  // 1: IEC 61966-2-1 sRGB curve; 0: linear
+} params;
+
+// IEC 61966-2-1 encoding, the exact piecewise curve (not pow(x, 1/2.2)).
+float srgb_encode(float x) {
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+}
+
+uint quantize(float x) {
+    // NaN fails every comparison: map it to 0 rather than to an undefined conversion.
+    x = x > 0.0 ? min(x, 1.0) : 0.0;
+    return uint(x * 255.0 + 0.5);
+}
+
+void main() {
+    uvec2 xy = gl_GlobalInvocationID.xy;
+    if (xy.x >= params.size.x || xy.y >= params.size.y) return;
+    vec3 c = imageLoad(radiance, ivec2(xy)).rgb * params.exposure;
+    if (params.srgb != 0u) c = vec3(srgb_encode(max(c.r, 0.0)), srgb_encode(max(c.g, 0.0)), srgb_encode(max(c.b, 0.0)));
+    pixels.rgba8[xy.y * params.size.x + xy.x] =
+        quantize(c.r) | (quantize(c.g) << 8) | (quantize(c.b) << 16) | (255u << 24);
+}

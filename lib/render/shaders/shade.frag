@@ -1,0 +1,208 @@
+#version 460
+// One material, the scene's lights, optionally image-based lighting. Pipeline variants are
+// made with specialization constants: what a material or scene does not call for is compiled
+// out (no normal mapping without a normal map, no sampling for a constant role, a loop over the
+// given lights only, no environment unless one is given).
+#include "common.glsl"
+#include "brdf.glsl"
+
+layout(constant_id = 0) const int NUM_DIRECTIONAL = 1;
+layout(constant_id = 1) const int NUM_POINT = 0;
+layout(constant_id = 2) const int BRDF_MODEL = 0;  // 0 standard, 1 accurate, 2 assignment
+layout(constant_id = 3) const bool ANALYTIC_SPHERE = true;
+layout(constant_id = 4) const bool HAS_ENV = false;
+layout(constant_id = 5) const int ALBEDO_TEX = -1;  // texture slot, or −1: constant
+layout(constant_id = 6) const int EMISSIVE_TEX = -1;
+layout(constant_id = 7) const int NORMAL_TEX = -1;
+layout(constant_id = 8) const bool NORMAL_GREEN_DOWN = false;  // DirectX normal map
+layout(constant_id = 9) const int ROUGHNESS_TEX = -1;
+layout(constant_id = 10) const int ROUGHNESS_CH = 0;
+layout(constant_id = 11) const bool ROUGHNESS_INVERT = false;  // smoothness
+layout(constant_id = 12) const int METALNESS_TEX = -1;
+layout(constant_id = 13) const int METALNESS_CH = 0;
+layout(constant_id = 14) const bool METALNESS_INVERT = false;
+layout(constant_id = 15) const int OCCLUSION_TEX = -1;
+layout(constant_id = 16) const int OCCLUSION_CH = 0;
+layout(constant_id = 17) const bool OCCLUSION_INVERT = false;
+layout(constant_id = 18) const int OPACITY_TEX = -1;
+layout(constant_id = 19) const int OPACITY_CH = 0;
+layout(constant_id = 20) const bool OPACITY_INVERT = false;
+
+const int BRDF_STANDARD = 0;
+const int BRDF_ACCURATE = 1;
+const int BRDF_ASSIGNMENT = 2;
+const bool NEEDS_LUT = HAS_ENV || BRDF_MODEL == BRDF_ACCURATE;
+
+layout(set = 0, binding = 1) uniform sampler2D brdf_lut;     // (scale, bias) of F0; x: n·v, y: roughness
+layout(set = 0, binding = 2) uniform samplerCube env_specular;  // GGX-prefiltered, mip = roughness
+layout(set = 0, binding = 3) uniform samplerCube env_irradiance;  // E(n)/π
+layout(set = 1, binding = 0) uniform sampler2D textures[8];
+
+layout(location = 0) in vec3 v_position;
+layout(location = 1) in vec3 v_normal;
+layout(location = 2) in vec4 v_tangent;
+layout(location = 3) in vec2 v_uv;
+
+layout(location = 0) out vec4 out_radiance;
+
+// Texture coordinate of the image: the material's (u, v) has v = 0 at the bottom row, Vulkan's
+// t = 0 is the first (top) row.
+vec4 sample_role(int slot, vec2 st, vec2 dx, vec2 dy) {
+    return textureGrad(textures[max(slot, 0)], st, dx, dy);
+}
+
+float pick(vec4 t, int ch, bool invert) {
+    float x = ch == 0 ? t.r : ch == 1 ? t.g : ch == 2 ? t.b : t.a;
+    return invert ? 1.0 - x : x;
+}
+
+float scalar_role(int slot, int ch, bool invert, float constant, vec2 st, vec2 dx, vec2 dy) {
+    if (slot < 0) return constant;
+    return pick(sample_role(slot, st, dx, dy), ch, invert);
+}
+
+// Exact hit on the sphere of the primary ray through this pixel's centre. The mesh (three.js
+// UV sphere) decides coverage; position, normal, (u, v) and tangent frame come from the sphere
+// itself, so shading has no faceting and matches an analytic reference. Returns false when the
+// ray misses (only possible at the silhouette, in the last bits of precision).
+bool sphere_hit(out vec3 p) {
+    vec2 ndc = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;  // y grows downward
+    vec3 d = normalize(frame.ray_forward.xyz + ndc.x * frame.ray_right.xyz - ndc.y * frame.ray_up.xyz);
+    vec3 o = frame.camera_position.xyz;
+    float r = frame.shape.x;
+    // Ray Tracing Gems ch. 7 (Haines et al. 2019): the discriminant from the distance of the
+    // centre to the ray, and the near root from c / q, avoid both cancellations.
+    float b = dot(o, d);
+    vec3 f = o - b * d;
+    float disc = r * r - dot(f, f);
+    if (disc < 0.0) return false;
+    float q = -b + sign(-b) * sqrt(disc);
+    float c = dot(o, o) - r * r;
+    float t = c / q;
+    p = o + t * d;
+    return true;
+}
+
+void main() {
+    // Gradients of the mesh's (u, v): continuous across the seam at u = 0|1, unlike the
+    // analytic u, so the sampler picks the right mip everywhere.
+    vec2 st = vec2(v_uv.x, 1.0 - v_uv.y);
+    vec2 st_dx = dFdx(st), st_dy = dFdy(st);
+
+    vec3 p = v_position;
+    vec3 n = normalize(v_normal);
+    vec3 t = v_tangent.xyz;
+    float bsign = v_tangent.w;
+    if (ANALYTIC_SPHERE) {
+        vec3 hit;
+        if (sphere_hit(hit)) {
+            p = hit;
+            n = normalize(hit);
+            // (u, v) of three.js's sphere: x = −cos 2πu sin πt, y = cos πt, z = sin 2πu sin πt,
+            // v = 1 − t. The tangent ∂p/∂u ∝ (z, 0, −x) is undefined at the poles: keep the
+            // mesh's there.
+            float u = atan(n.z, -n.x) * (0.5 / PI);
+            u = u < 0.0 ? u + 1.0 : u;
+            // atan2 rather than acos(n.y): GPUs' acos is a coarse approximation (1e-4 here
+            // moves a normal-mapped highlight visibly against the reference).
+            float tt = atan(length(n.xz), n.y) / PI;
+            st = vec2(u, tt);
+            vec2 xz = vec2(n.z, -n.x);
+            if (dot(xz, xz) > 1e-12) t = vec3(xz.x, 0.0, xz.y);
+            bsign = 1.0;
+        }
+    }
+    t = normalize(t - n * dot(n, t));  // Gram-Schmidt: interpolation bends it off the normal
+
+    if (NORMAL_TEX >= 0) {
+        vec3 b = cross(n, t) * bsign;  // toward +v
+        vec3 tn = sample_role(NORMAL_TEX, st, st_dx, st_dy).xyz * 2.0 - 1.0;
+        if (NORMAL_GREEN_DOWN) tn.y = -tn.y;
+        vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
+        float len2 = dot(mapped, mapped);
+        if (len2 > 1e-12) n = mapped * inversesqrt(len2);  // a zero texel keeps the surface normal
+    }
+
+    vec3 albedo = ALBEDO_TEX >= 0 ? sample_role(ALBEDO_TEX, st, st_dx, st_dy).rgb : frame.albedo.rgb;
+    vec3 emitted = EMISSIVE_TEX >= 0 ? sample_role(EMISSIVE_TEX, st, st_dx, st_dy).rgb : frame.emissive.rgb;
+    float roughness = scalar_role(ROUGHNESS_TEX, ROUGHNESS_CH, ROUGHNESS_INVERT, frame.scalars.x, st, st_dx, st_dy);
+    float metalness = scalar_role(METALNESS_TEX, METALNESS_CH, METALNESS_INVERT, frame.scalars.y, st, st_dx, st_dy);
+    float opacity = scalar_role(OPACITY_TEX, OPACITY_CH, OPACITY_INVERT, frame.scalars.w, st, st_dx, st_dy);
+
+    roughness = clamp(roughness, MIN_ROUGHNESS, 1.0);
+    metalness = clamp(metalness, 0.0, 1.0);
+    float alpha = roughness * roughness;
+    // Metalness workflow: F0 = lerp(0.04, albedo, metalness) (Karis 2013, p. 9); metals have no
+    // diffuse lobe.
+    vec3 f0 = mix(vec3(0.04), albedo, metalness);
+    vec3 diffuse_color = albedo * (1.0 - metalness);
+    float diffuse_norm = BRDF_MODEL == BRDF_ASSIGNMENT ? 1.0 : Fd_Lambert();
+
+    vec3 v = normalize(frame.camera_position.xyz - p);
+    float NoV = clamp(dot(n, v), MIN_NOV, 1.0);
+
+    vec3 spec_scale = vec3(1.0);
+    vec2 dfg = vec2(1.0, 0.0);
+    if (NEEDS_LUT) {
+        dfg = textureLod(brdf_lut, vec2(NoV, roughness), 0.0).xy;
+        if (BRDF_MODEL == BRDF_ACCURATE) spec_scale = energy_compensation(f0, dfg.x + dfg.y);
+    }
+
+    vec3 color = vec3(0.0);
+    for (int i = 0; i < NUM_DIRECTIONAL + NUM_POINT; ++i) {
+        vec3 l;
+        vec3 E = frame.lights[i].irradiance.rgb;
+        if (i < NUM_DIRECTIONAL) {
+            l = frame.lights[i].position.xyz;
+        } else {
+            vec3 to_light = frame.lights[i].position.xyz - p;
+            float d2 = dot(to_light, to_light);
+            if (d2 < 1e-12) continue;  // a light inside the surface has no direction
+            l = to_light * inversesqrt(d2);
+            E /= d2;
+        }
+        float NoL = dot(n, l);
+        // Also rejects NaN: NaN × max(n·l, 0) = NaN would survive (erratum 5).
+        if (!(NoL > 0.0)) continue;
+        NoL = min(NoL, 1.0);
+        vec3 h = half_vector(v, l, n);
+        float NoH = clamp(dot(n, h), 0.0, 1.0);
+        float VoH = clamp(dot(v, h), 0.0, 1.0);
+        vec3 F = F_Schlick(f0, VoH);
+        float D = D_GGX(NoH, cross(n, h), alpha);
+        float V = BRDF_MODEL == BRDF_ACCURATE ? V_SmithGGXCorrelated(NoV, NoL, alpha)
+                                              : V_SchlickGGX(NoV, NoL, roughness);
+        vec3 specular = (D * V) * F * spec_scale;
+        // Energy left to the diffuse lobe: (1 − F)(1 − metalness).
+        vec3 diffuse = (1.0 - F) * diffuse_color * diffuse_norm;
+        color += (diffuse + specular) * E * NoL;
+    }
+
+    if (HAS_ENV) {
+        float occlusion = scalar_role(OCCLUSION_TEX, OCCLUSION_CH, OCCLUSION_INVERT, frame.scalars.z, st, st_dx, st_dy);
+        vec3 r = reflect(-v, n);
+        vec3 prefiltered = textureLod(env_specular, r, roughness * frame.shape.z).rgb;
+        vec3 irradiance = texture(env_irradiance, n).rgb;
+        // Split sum (Karis 2013): ∫ f L ≈ prefiltered(r, α) × (F0 · A + B).
+        vec3 FssEss = f0 * dfg.x + dfg.y;
+        vec3 ibl;
+        if (BRDF_MODEL == BRDF_ACCURATE) {
+            // Fdez-Agüera 2019, eqs. 11-16: multiple scattering for the split sum.
+            float Ess = dfg.x + dfg.y;
+            float Ems = 1.0 - Ess;
+            vec3 Favg = f0 + (1.0 - f0) / 21.0;
+            vec3 Fms = FssEss * Favg / (1.0 - Ems * Favg);
+            vec3 kd = diffuse_color * (1.0 - FssEss - Fms * Ems);
+            ibl = FssEss * prefiltered + (Fms * Ems + kd) * irradiance;
+        } else {
+            // The diffuse lobe keeps what the specular lobe does not reflect. env_irradiance
+            // holds E(n)/π, the radiance a white Lambertian surface reflects.
+            vec3 kd = diffuse_color * (1.0 - FssEss);
+            ibl = FssEss * prefiltered + kd * irradiance * (diffuse_norm * PI);
+        }
+        color += ibl * occlusion * frame.shape.y;
+    }
+
+    color += emitted;
+    out_radiance = vec4(mix(frame.background.rgb, color, clamp(opacity, 0.0, 1.0)), 1.0);
+}

@@ -1,0 +1,263 @@
+// Material textures: 4-channel upload formats and mip chains averaged per role.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+
+#include "render/internal.hpp"
+
+namespace mf::render::detail {
+
+double srgb_to_linear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+double linear_to_srgb(double l) {
+    return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+}
+
+uint16_t float_to_half(float f) {
+    uint32_t x;
+    std::memcpy(&x, &f, 4);
+    const uint32_t sign = (x >> 16) & 0x8000u;
+    const int32_t exp = static_cast<int32_t>((x >> 23) & 0xff) - 127 + 15;
+    uint32_t mant = x & 0x7fffffu;
+    if (((x >> 23) & 0xff) == 0xff) return static_cast<uint16_t>(sign | 0x7c00u | (mant ? 0x200u : 0u));
+    if (exp >= 31) return static_cast<uint16_t>(sign | 0x7c00u);  // overflow → infinity
+    if (exp <= 0) {
+        if (exp < -10) return static_cast<uint16_t>(sign);
+        mant |= 0x800000u;
+        const uint32_t shift = static_cast<uint32_t>(14 - exp);
+        uint32_t h = mant >> shift;
+        const uint32_t rem = mant & ((1u << shift) - 1u), halfway = 1u << (shift - 1);
+        if (rem > halfway || (rem == halfway && (h & 1u))) ++h;
+        return static_cast<uint16_t>(sign | h);
+    }
+    uint32_t h = (static_cast<uint32_t>(exp) << 10) | (mant >> 13);
+    const uint32_t rem = mant & 0x1fffu;
+    if (rem > 0x1000u || (rem == 0x1000u && (h & 1u))) ++h;  // round to nearest even
+    return static_cast<uint16_t>(sign | h);
+}
+
+
+namespace {
+
+struct FloatLevel {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgba;
+};
+
+// Gray → (g, g, g, 1); gray+alpha → (g, g, g, a); RGB → (r, g, b, 1). Integer samples to [0,1].
+FloatLevel to_rgba(const Texture& t) {
+    FloatLevel out{t.width, t.height, std::vector<float>(size_t{t.width} * t.height * 4)};
+    const size_t n = size_t{t.width} * t.height;
+    auto sample = [&](size_t i) -> float {
+        switch (t.type) {
+            case TexelType::U8: return t.data[i] / 255.f;
+            case TexelType::U16: {
+                uint16_t v;
+                std::memcpy(&v, t.data.data() + 2 * i, 2);
+                return v / 65535.f;
+            }
+            case TexelType::F32: {
+                float v;
+                std::memcpy(&v, t.data.data() + 4 * i, 4);
+                return std::isfinite(v) ? v : 0.f;  // NaN/Inf texels would poison every mip above
+            }
+        }
+        return 0.f;
+    };
+    const uint32_t c = t.channels;
+    for (size_t p = 0; p < n; ++p) {
+        float* o = &out.rgba[4 * p];
+        const size_t s = p * c;
+        if (c <= 2) {
+            o[0] = o[1] = o[2] = sample(s);
+            o[3] = c == 2 ? sample(s + 1) : 1.f;
+        } else {
+            o[0] = sample(s);
+            o[1] = sample(s + 1);
+            o[2] = sample(s + 2);
+            o[3] = c == 4 ? sample(s + 3) : 1.f;
+        }
+    }
+    return out;
+}
+
+// Area weights of source texels under destination texel `i` when `src` texels shrink to
+// `dst` (a box filter exact for odd sizes too).
+struct Tap {
+    uint32_t index;
+    float weight;
+};
+std::vector<std::vector<Tap>> box_taps(uint32_t src, uint32_t dst) {
+    std::vector<std::vector<Tap>> taps(dst);
+    const double scale = static_cast<double>(src) / dst;
+    for (uint32_t i = 0; i < dst; ++i) {
+        const double a = i * scale, b = (i + 1) * scale;
+        for (auto s = static_cast<uint32_t>(std::floor(a)); s < src && s < b; ++s) {
+            const double w = (std::min<double>(s + 1, b) - std::max<double>(s, a)) / scale;
+            if (w > 0) taps[i].push_back({s, static_cast<float>(w)});
+        }
+    }
+    return taps;
+}
+
+FloatLevel downsample(const FloatLevel& src) {
+    FloatLevel dst{std::max(1u, src.width / 2), std::max(1u, src.height / 2), {}};
+    dst.rgba.assign(size_t{dst.width} * dst.height * 4, 0.f);
+    const auto tx = box_taps(src.width, dst.width), ty = box_taps(src.height, dst.height);
+    for (uint32_t y = 0; y < dst.height; ++y)
+        for (uint32_t x = 0; x < dst.width; ++x) {
+            float* o = &dst.rgba[(size_t{y} * dst.width + x) * 4];
+            for (const Tap& ry : ty[y])
+                for (const Tap& rx : tx[x]) {
+                    const float* s = &src.rgba[(size_t{ry.index} * src.width + rx.index) * 4];
+                    const float w = ry.weight * rx.weight;
+                    for (int c = 0; c < 4; ++c) o[c] += w * s[c];
+                }
+        }
+    return dst;
+}
+
+// Level 0 into the averaging domain: linear light for color, vectors in [−1,1] for normals.
+// 8-bit sRGB decodes through a table of the 256 codes (a pow per texel costs ~40 ns).
+void to_domain(FloatLevel& l, MipKind kind, bool srgb, bool eight_bit) {
+    static const std::array<float, 256> decode = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) t[size_t(i)] = static_cast<float>(srgb_to_linear(i / 255.0));
+        return t;
+    }();
+    const size_t n = size_t{l.width} * l.height;
+    for (size_t p = 0; p < n; ++p) {
+        float* c = &l.rgba[4 * p];
+        for (int i = 0; i < 3; ++i) {
+            if (kind == MipKind::Color && srgb)
+                c[i] = eight_bit ? decode[static_cast<size_t>(c[i] * 255.f + 0.5f)]
+                                 : static_cast<float>(srgb_to_linear(c[i]));
+            if (kind == MipKind::Normal) c[i] = c[i] * 2.f - 1.f;
+        }
+    }
+}
+
+// A normal map's mips hold unit vectors: the average of unit vectors is shorter than 1 (the
+// shorter, the more the normals disagree) and is renormalized.
+void renormalize(FloatLevel& l) {
+    const size_t n = size_t{l.width} * l.height;
+    for (size_t p = 0; p < n; ++p) {
+        float* c = &l.rgba[4 * p];
+        const float len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (len > 1e-6f) {
+            for (int i = 0; i < 3; ++i) c[i] /= len;
+        } else {
+            c[0] = c[1] = 0.f;
+            c[2] = 1.f;
+        }
+    }
+}
+
+// Back from the averaging domain to stored values (sRGB-encoded where the format decodes).
+float from_domain(float v, int channel, MipKind kind, bool encode_srgb) {
+    if (channel < 3) {
+        if (kind == MipKind::Normal) return v * 0.5f + 0.5f;
+        if (kind == MipKind::Color && encode_srgb)
+            return static_cast<float>(linear_to_srgb(std::clamp(v, 0.f, 1.f)));
+    }
+    return v;
+}
+
+enum class Storage { U8, U16, F16, F32 };
+
+void store(const FloatLevel& l, Storage s, MipKind kind, bool encode_srgb, TextureLevel& out) {
+    out.width = l.width;
+    out.height = l.height;
+    const size_t n = size_t{l.width} * l.height * 4;
+    const size_t bytes = s == Storage::U8 ? 1 : s == Storage::F32 ? 4 : 2;
+    out.bytes.resize(n * bytes);
+    for (size_t i = 0; i < n; ++i) {
+        const float v = from_domain(l.rgba[i], static_cast<int>(i % 4), kind, encode_srgb);
+        switch (s) {
+            case Storage::U8: {
+                // round half up of a non-negative value: lround's libm call is a third of the time
+                out.bytes[i] = static_cast<uint8_t>(std::clamp(v, 0.f, 1.f) * 255.f + 0.5f);
+                break;
+            }
+            case Storage::U16: {
+                const auto q = static_cast<uint16_t>(std::clamp(v, 0.f, 1.f) * 65535.f + 0.5f);
+                std::memcpy(out.bytes.data() + 2 * i, &q, 2);
+                break;
+            }
+            case Storage::F16: {
+                const uint16_t h = float_to_half(v);
+                std::memcpy(out.bytes.data() + 2 * i, &h, 2);
+                break;
+            }
+            case Storage::F32: std::memcpy(out.bytes.data() + 4 * i, &v, 4); break;
+        }
+    }
+}
+
+}  // namespace
+
+PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind) {
+    const size_t bytes = t.type == TexelType::U8 ? 1 : t.type == TexelType::U16 ? 2 : 4;
+    if (t.width == 0 || t.height == 0 || t.channels < 1 || t.channels > 4 ||
+        t.data.size() != size_t{t.width} * t.height * t.channels * bytes)
+        throw Error("texture data does not match its size, channels and type");
+
+    constexpr VkFormatFeatureFlags kFilter =
+        VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
+        VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+    PreparedTexture out;
+    Storage storage = Storage::F16;
+    // 8-bit color keeps its sRGB encoding and lets the sampler decode it (before filtering, as
+    // the _SRGB formats require). 16-bit and float have no sRGB formats: they are decoded here
+    // and stored linear, as half floats (a relative precision of 2⁻¹¹ at every magnitude).
+    bool encode_srgb = false;
+    // ContextOptions::precise_cpu_textures: on lavapipe 8-bit texels go up as 16-bit linear
+    // UNORM (data × 257 exactly; color decoded here with the exact curve), filtered in float.
+    const bool promote = d.precise_textures && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter);
+    if (t.type == TexelType::U8 && !promote) {
+        storage = Storage::U8;
+        encode_srgb = t.srgb && kind == MipKind::Color;
+        out.format = encode_srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    } else if (t.type == TexelType::U8 && !(t.srgb && kind == MipKind::Color)) {
+        storage = Storage::U16;
+        out.format = VK_FORMAT_R16G16B16A16_UNORM;
+    } else if (t.type == TexelType::U8 && d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, kFilter)) {
+        // decoded color: float keeps the darkest codes exact (16-bit UNORM would round 1/255
+        // of sRGB, 3.0e-4 linear, by half a per cent)
+        storage = Storage::F32;
+        out.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    } else if (t.type == TexelType::U16 && !(t.srgb && kind == MipKind::Color) &&
+               d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter)) {
+        storage = Storage::U16;
+        out.format = VK_FORMAT_R16G16B16A16_UNORM;
+    } else if (t.type == TexelType::F32 && d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, kFilter)) {
+        storage = Storage::F32;
+        out.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    } else {
+        out.format = VK_FORMAT_R16G16B16A16_SFLOAT;  // filterable on every Vulkan device
+    }
+
+    FloatLevel level = to_rgba(t);
+    to_domain(level, kind, t.srgb, t.type == TexelType::U8);  // level 0 itself is stored as read (no renormalization)
+    for (;;) {
+        TextureLevel stored;
+        if (out.levels.empty() && storage == Storage::U8 && t.channels == 4 && kind != MipKind::Normal) {
+            // Level 0 of an 8-bit RGBA texture goes up exactly as read.
+            stored.width = t.width;
+            stored.height = t.height;
+            stored.bytes = t.data;
+        } else {
+            store(level, storage, kind, encode_srgb, stored);
+        }
+        out.levels.push_back(std::move(stored));
+        if (level.width == 1 && level.height == 1) break;
+        level = downsample(level);
+        if (kind == MipKind::Normal) renormalize(level);
+    }
+    return out;
+}
+
+}  // namespace mf::render::detail
+

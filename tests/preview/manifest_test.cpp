@@ -1,0 +1,247 @@
+// Manifests of every shipped preset preview to the same image; the adapter maps channels to
+// roles as the spec says.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "preview/preview.hpp"
+#include "vulkan_fixture.hpp"
+
+namespace mf::preview {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("matforge_preview_test_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+void write_png8(const fs::path& file, int w, int h, int channels, const std::vector<uint8_t>& px) {
+    fs::create_directories(file.parent_path());
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
+    if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
+    ASSERT_TRUE(out->open(file.string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
+    ASSERT_TRUE(out->close());
+}
+
+// ---- the spec's manifest example, verbatim but for sizes
+
+TEST(Manifest, SpecExampleMapsChannelsToRoles) {
+    const fs::path dir = temp_dir("spec");
+    write_png8(dir / "Bricks059/Bricks059_orm.png", 2, 2, 3, std::vector<uint8_t>(12, 100));
+    const json j = json::parse(R"json({
+      "manifest_version": 1,
+      "generator": "matforge 0.1.0",
+      "preset": "gltf",
+      "materials": [
+        {
+          "name": "Bricks059",
+          "source": "in/Bricks059_1K-PNG",
+          "convention": "ambientcg",
+          "inputs": {
+            "albedo":    { "file": "Bricks059_1K-PNG_Color.png", "width": 1024, "height": 1024,
+                           "channels": 3, "bit_depth": 8, "color_space": "sRGB" },
+            "normal":    { "file": "Bricks059_1K-PNG_NormalGL.png", "normal_convention": "gl" },
+            "roughness": { "file": "Bricks059_1K-PNG_Roughness.png" }
+          },
+          "constants": { "metalness": 0.0 },
+          "outputs": [
+            { "file": "Bricks059/Bricks059_orm.png", "color_space": "linear",
+              "channels": { "R": "occlusion", "G": "roughness", "B": "metalness" },
+              "width": 1024, "height": 1024, "bit_depth": 8, "sha256": "..." }
+          ],
+          "findings": [
+            { "code": "MISSING_MAP", "severity": "info", "role": "metalness",
+              "message": "no metalness map; generated constant 0 (dielectric)" }
+          ]
+        }
+      ],
+      "failures": [
+        { "source": "in/Broken", "code": "UNREADABLE_FILE", "message": "..." }
+      ]
+    })json");
+    const Manifest m = parse_manifest(j, dir);
+    ASSERT_EQ(m.materials.size(), 1u);
+    std::vector<std::string> notes;
+    const render::Material mat = load_manifest_material(m.materials[0], notes);
+    EXPECT_EQ(mat.name, "Bricks059");
+    ASSERT_EQ(mat.textures.size(), 1u);
+    EXPECT_FALSE(mat.textures[0].srgb);
+    EXPECT_EQ(mat.occlusion.texture, 0);
+    EXPECT_EQ(mat.occlusion.channel, render::Channel::R);
+    EXPECT_EQ(mat.roughness.channel, render::Channel::G);
+    EXPECT_EQ(mat.metalness.channel, render::Channel::B);
+    EXPECT_EQ(mat.albedo.texture, -1);
+    EXPECT_EQ(mat.normal.texture, -1);
+}
+
+TEST(Manifest, SmoothnessConstantsUnusedAndConventions) {
+    const fs::path dir = temp_dir("layouts");
+    write_png8(dir / "m/base.png", 2, 2, 4, std::vector<uint8_t>(16, 200));
+    write_png8(dir / "m/n.png", 2, 2, 3, std::vector<uint8_t>(12, 128));
+    write_png8(dir / "m/mask.png", 2, 2, 4, std::vector<uint8_t>(16, 50));
+    write_png8(dir / "m/h.png", 2, 2, 1, std::vector<uint8_t>(4, 50));
+    const json j = json::parse(R"({"manifest_version": 1, "materials": [{"name": "m", "outputs": [
+        {"file": "m/base.png", "color_space": "sRGB", "channels": {"RGB": "albedo", "A": "opacity"}},
+        {"file": "m/n.png", "color_space": "linear", "channels": {"RGB": "normal"}, "normal_convention": "dx"},
+        {"file": "m/mask.png", "color_space": "linear", "channels": {"R": "metalness", "G": "occlusion", "B": 1.0, "A": "smoothness"}},
+        {"file": "m/h.png", "color_space": "linear", "channels": {"R": "height"}}
+      ], "constants": {"roughness": 0.7}}]})");
+    std::vector<std::string> notes;
+    const render::Material mat = load_manifest_material(parse_manifest(j, dir).materials[0], notes);
+    ASSERT_EQ(mat.textures.size(), 3u);  // the height map is not read: the preview does not use it
+    EXPECT_TRUE(mat.textures[0].srgb);
+    EXPECT_EQ(mat.textures[0].channels, 4u);
+    EXPECT_EQ(mat.opacity.texture, 0);
+    EXPECT_EQ(mat.opacity.channel, render::Channel::A);
+    EXPECT_TRUE(mat.normal.green_down);
+    EXPECT_EQ(mat.roughness.texture, 2);
+    EXPECT_EQ(mat.roughness.channel, render::Channel::A);
+    EXPECT_TRUE(mat.roughness.invert);
+    EXPECT_EQ(notes.size(), 1u);  // height
+}
+
+TEST(Manifest, BadManifestsAreUsageErrors) {
+    EXPECT_THROW(parse_manifest(json::parse(R"({"materials": []})"), "."), UsageError);
+    EXPECT_THROW(parse_manifest(json::parse(R"({"manifest_version": 1})"), "."), UsageError);
+    EXPECT_THROW(read_manifest("/nonexistent/manifest.json"), UsageError);
+}
+
+// ---- one surface, ingested by every shipped preset, previews the same
+
+constexpr int kW = 32, kH = 16;
+
+struct Source {
+    std::vector<double> albedo, normal, roughness, metalness, occlusion;  // per texel
+};
+
+// Codes chosen so that every preset's layout stores the surface exactly (smoothness = 255 −
+// roughness code, a DirectX green = 255 − the OpenGL code).
+Source make_source() {
+    Source s;
+    const double pi = std::numbers::pi;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const double u = (x + 0.5) / kW, v = (y + 0.5) / kH;
+            s.albedo.insert(s.albedo.end(), {0.3 + 0.5 * std::sin(pi * u) * v, 0.4, 0.2 + 0.3 * u});
+            const double nx = 0.3 * std::sin(4 * pi * u), ny = 0.3 * std::cos(2 * pi * v);
+            const double len = std::sqrt(nx * nx + ny * ny + 1);
+            s.normal.insert(s.normal.end(), {nx / len, ny / len, 1 / len});
+            s.roughness.push_back(0.2 + 0.6 * u * v);
+            s.metalness.push_back(u > 0.5 ? 1.0 : 0.0);
+            s.occlusion.push_back(0.6 + 0.4 * v);
+        }
+    return s;
+}
+
+uint8_t code(double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255)); }
+
+// Writes the outputs `preset` asks for (the roles the source has) and a manifest listing them.
+fs::path ingest_like(const fs::path& preset_file, const Source& src, const fs::path& dir) {
+    std::ifstream in(preset_file);
+    const json preset = json::parse(in);
+    const std::string name = preset["name"];
+    const bool dx = preset.value("normal_convention", "gl") == "dx";
+    json outputs = json::array();
+    for (const json& o : preset["outputs"]) {
+        json channels = o["channels"];
+        for (const json& drop : o.value("drop_if_missing", json::array())) channels.erase(drop.get<std::string>());
+        bool useful = false;
+        int nch = 0;
+        for (const auto& [key, role] : channels.items()) {
+            if (key == "RGB") nch = std::max(nch, 3);
+            else nch = std::max(nch, int(std::string("RGBA").find(key)) + 1);
+            if (role.is_string() && (role == "albedo" || role == "normal" || role == "roughness" ||
+                                     role == "smoothness" || role == "metalness" || role == "occlusion"))
+                useful = true;
+        }
+        if (!useful) continue;
+        std::vector<uint8_t> px(size_t(kW) * kH * size_t(nch), 0);
+        for (size_t p = 0; p < size_t(kW) * kH; ++p) {
+            uint8_t* t = &px[p * size_t(nch)];
+            for (const auto& [key, role] : channels.items()) {
+                if (key == "RGB") {
+                    for (int c = 0; c < 3; ++c) {
+                        if (role == "albedo") {
+                            const double l = src.albedo[3 * p + size_t(c)];
+                            t[c] = code(l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055);
+                        } else {
+                            const uint8_t g = code(src.normal[3 * p + size_t(c)] * 0.5 + 0.5);
+                            t[c] = (c == 1 && dx) ? uint8_t(255 - g) : g;
+                        }
+                    }
+                    continue;
+                }
+                const size_t c = std::string("RGBA").find(key);
+                if (role.is_number()) t[c] = code(role.get<double>());
+                else if (role == "roughness") t[c] = code(src.roughness[p]);
+                else if (role == "smoothness") t[c] = uint8_t(255 - code(src.roughness[p]));
+                else if (role == "metalness") t[c] = code(src.metalness[p]);
+                else if (role == "occlusion") t[c] = code(src.occlusion[p]);
+            }
+        }
+        const std::string file = "Surface/Surface_" + o["suffix"].get<std::string>() + ".png";
+        write_png8(dir / file, kW, kH, nch, px);
+        json out = {{"file", file}, {"color_space", o["color_space"]}, {"channels", channels},
+                    {"width", kW}, {"height", kH}, {"bit_depth", 8}};
+        if (channels.contains("RGB") && channels["RGB"] == "normal") out["normal_convention"] = dx ? "dx" : "gl";
+        outputs.push_back(out);
+    }
+    const json manifest = {{"manifest_version", 1}, {"generator", "test"}, {"preset", name},
+                           {"materials", json::array({{{"name", "Surface"}, {"outputs", outputs}}})}};
+    std::ofstream(dir / "manifest.json") << manifest.dump(2);
+    return dir / "manifest.json";
+}
+
+class PresetInvariance : public test::VulkanTest {};
+
+TEST_F(PresetInvariance, EveryShippedPresetPreviewsTheSameImage) {
+    const Source src = make_source();
+    render::Scene scene;
+    scene.width = scene.height = 96;
+    render::Light point;
+    point.type = render::LightType::Point;
+    point.position = {2.5f, -0.5f, 1.5f};
+    point.color = {0.3f, 0.5f, 1.0f};
+    point.intensity = 10.f;
+    scene.lights.push_back(point);
+    render::Renderer renderer(context(), scene);
+
+    std::vector<std::pair<std::string, render::Frame>> frames;
+    std::vector<fs::path> presets;
+    for (const auto& entry : fs::directory_iterator(fs::path(MATFORGE_SOURCE_DIR) / "presets"))
+        if (entry.path().extension() == ".json") presets.push_back(entry.path());
+    std::sort(presets.begin(), presets.end());
+    for (const fs::path& file : presets) {
+        const std::string preset = file.stem().string();
+        const fs::path manifest = ingest_like(file, src, temp_dir("preset_" + preset));
+        std::vector<std::string> notes;
+        const render::Material m = load_manifest_material(read_manifest(manifest).materials[0], notes);
+        const render::GpuMaterial gm = renderer.upload(m);
+        EXPECT_NE(gm.variant().find("albedo:tex normal:"), std::string::npos) << preset << ": " << gm.variant();
+        frames.emplace_back(preset, renderer.render(gm));
+    }
+    ASSERT_GE(frames.size(), 6u);  // gltf, unreal, unity-hdrp, unity-urp, godot, separate
+    for (size_t i = 1; i < frames.size(); ++i) {
+        int max_code = 0;
+        for (size_t k = 0; k < frames[0].second.rgba8.size(); ++k)
+            max_code = std::max(max_code, std::abs(int(frames[i].second.rgba8[k]) - int(frames[0].second.rgba8[k])));
+        EXPECT_LE(max_code, 1) << frames[i].first << " vs " << frames[0].first;
+        std::printf("  %-12s vs %-12s max |Δcode| %d\n", frames[i].first.c_str(), frames[0].first.c_str(), max_code);
+    }
+}
+
+}  // namespace
+}  // namespace mf::preview

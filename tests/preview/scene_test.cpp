@@ -1,0 +1,101 @@
+// Scene files and --light specs.
+#include <gtest/gtest.h>
+
+#include "preview/preview.hpp"
+
+namespace mf::preview {
+namespace {
+
+using nlohmann::json;
+
+TEST(SceneFile, DefaultsMakeAPlainCallUseful) {
+    const SceneFile s = default_scene();
+    EXPECT_EQ(s.scene.width, 512u);
+    ASSERT_EQ(s.scene.lights.size(), 1u);  // one white directional key light
+    EXPECT_EQ(s.scene.lights[0].type, render::LightType::Directional);
+    EXPECT_EQ(s.scene.shape.type, render::ShapeType::Sphere);
+    EXPECT_EQ(s.scene.background, (render::Vec3{0, 0, 0}));
+    EXPECT_FALSE(s.scene.environment);
+    EXPECT_EQ(s.output.transfer, render::Transfer::Srgb);
+}
+
+TEST(SceneFile, ReadsTheSpecExample) {
+    const json j = json::parse(R"({
+      "image":  { "width": 512, "height": 256 },
+      "camera": { "position": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0], "yfov_deg": 35.0 },
+      "shape":  { "type": "sphere", "radius": 1.5 },
+      "background": [0.1, 0.2, 0.3],
+      "lights": [
+        { "type": "directional", "direction": [0.57735, -0.57735, -0.57735], "color": [1, 1, 1], "intensity": 3.0 },
+        { "type": "point", "position": [2.5, -0.5, 1.5], "color": [0.3, 0.5, 1.0], "intensity": 10.0 }
+      ],
+      "environment": { "file": "studio.hdr", "intensity": 0.5 },
+      "material": { "albedo": [1.0, 0.766, 0.336], "roughness": 0.3, "metalness": 1.0,
+                    "maps": { "roughness": "mr.png#G", "normal": "n.png" }, "normal_convention": "dx" },
+      "output": { "transfer": "linear", "exposure": 2.0 }
+    })");
+    const SceneFile s = parse_scene(j, "/scenes", "test.json");
+    EXPECT_EQ(s.scene.width, 512u);
+    EXPECT_EQ(s.scene.height, 256u);
+    EXPECT_FLOAT_EQ(s.scene.shape.size, 1.5f);
+    ASSERT_EQ(s.scene.lights.size(), 2u);
+    EXPECT_EQ(s.scene.lights[1].type, render::LightType::Point);
+    EXPECT_FLOAT_EQ(s.scene.lights[1].intensity, 10.f);
+    EXPECT_EQ(s.environment, std::filesystem::path("/scenes/studio.hdr"));
+    EXPECT_FLOAT_EQ(s.environment_intensity, 0.5f);
+    ASSERT_TRUE(s.material);
+    EXPECT_FLOAT_EQ(*s.material->metalness, 1.f);
+    ASSERT_TRUE(s.material->roughness_map);
+    EXPECT_EQ(s.material->roughness_map->file, std::filesystem::path("/scenes/mr.png"));
+    EXPECT_EQ(s.material->roughness_map->channel, render::Channel::G);
+    EXPECT_TRUE(s.material->normal_dx);
+    EXPECT_EQ(s.output.transfer, render::Transfer::Linear);
+    EXPECT_FLOAT_EQ(s.output.exposure, 2.f);
+}
+
+TEST(SceneFile, ShapesTakeTheirOwnDefaultSize) {
+    const SceneFile s = parse_scene(json::parse(R"({"shape": {"type": "cube"}})"), ".", "t");
+    EXPECT_EQ(s.scene.shape.type, render::ShapeType::Cube);
+    EXPECT_FLOAT_EQ(s.scene.shape.size, default_shape_size(render::ShapeType::Cube));
+    EXPECT_FALSE(s.shape_size_given);
+}
+
+TEST(SceneFile, MistakesAreUsageErrorsNamingTheKey) {
+    const char* bad[] = {
+        R"({"camera": {"yfov_deg": 0}})",
+        R"({"image": {"width": 0}})",
+        R"({"lights": [{"type": "spot"}]})",
+        R"({"lights": [{"type": "point"}]})",
+        R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}]})",
+        R"({"shape": {"type": "torus"}})",
+        R"({"material": {"maps": {"roughness": "mr.png#X"}}})",
+        R"({"output": {"transfer": "gamma22"}})",
+        R"({"cammera": {}})",
+        R"({"background": [1, 2]})",
+    };
+    for (const char* text : bad) EXPECT_THROW(parse_scene(json::parse(text), ".", "t"), UsageError) << text;
+    try {
+        parse_scene(json::parse(R"({"lights": [{"type": "point"}]})"), ".", "scene.json");
+    } catch (const UsageError& e) {
+        EXPECT_NE(std::string(e.what()).find("scene.json: lights[0]"), std::string::npos) << e.what();
+    }
+}
+
+TEST(LightSpec, DirectionalAndPoint) {
+    std::string err;
+    auto d = parse_light_spec("dir:0,-1,0", err);
+    ASSERT_TRUE(d) << err;
+    EXPECT_EQ(d->type, render::LightType::Directional);
+    EXPECT_FLOAT_EQ(d->intensity, 3.f);
+    auto p = parse_light_spec("point:1,2,3:25:0.5,0.5,1", err);
+    ASSERT_TRUE(p) << err;
+    EXPECT_EQ(p->type, render::LightType::Point);
+    EXPECT_EQ(p->position, (render::Vec3{1, 2, 3}));
+    EXPECT_FLOAT_EQ(p->intensity, 25.f);
+    EXPECT_EQ(p->color, (render::Vec3{0.5f, 0.5f, 1}));
+    for (const char* bad : {"dir", "dir:1,2", "spot:1,2,3", "dir:0,0,0", "point:1,2,3:-1", "point:1,2,3:x", "dir:1,2,3:1:1,1"})
+        EXPECT_FALSE(parse_light_spec(bad, err)) << bad;
+}
+
+}  // namespace
+}  // namespace mf::preview

@@ -1,0 +1,200 @@
+// Mip chains per role, pipeline variants, device selection.
+#include <cmath>
+#include <cstring>
+
+#include "render/internal.hpp"
+#include "vulkan_fixture.hpp"
+
+namespace mf::test {
+namespace {
+
+using render::Material;
+using render::Texture;
+using render::detail::MipKind;
+using render::detail::PreparedTexture;
+
+Texture gray_row(std::vector<uint8_t> values, uint32_t w, uint32_t h, uint32_t channels, bool srgb) {
+    Texture t;
+    t.width = w;
+    t.height = h;
+    t.channels = channels;
+    t.srgb = srgb;
+    t.data = std::move(values);
+    return t;
+}
+
+// Channel c of texel 0 of `level`, as the sampler would read it before any sRGB decode.
+double texel(const PreparedTexture& p, size_t level, int c) {
+    const auto& b = p.levels[level].bytes;
+    switch (p.format) {
+        case VK_FORMAT_R8G8B8A8_UNORM:
+        case VK_FORMAT_R8G8B8A8_SRGB: return b[size_t(c)] / 255.0;
+        case VK_FORMAT_R16G16B16A16_UNORM: {
+            uint16_t v;
+            std::memcpy(&v, b.data() + 2 * size_t(c), 2);
+            return v / 65535.0;
+        }
+        case VK_FORMAT_R32G32B32A32_SFLOAT: {
+            float v;
+            std::memcpy(&v, b.data() + 4 * size_t(c), 4);
+            return v;
+        }
+        default: ADD_FAILURE() << "unexpected format " << p.format; return 0;
+    }
+}
+
+// Both upload paths: the GPU's 8-bit formats and lavapipe's promoted ones.
+class MipTest : public VulkanTest, public ::testing::WithParamInterface<bool> {
+protected:
+    void configure(render::ContextOptions& o) override { o.precise_cpu_textures = GetParam(); }
+    PreparedTexture prepare(const Texture& t, MipKind kind) {
+        return render::detail::prepare_texture(render::detail::device_of(context()), t, kind);
+    }
+};
+
+TEST_P(MipTest, ColorIsAveragedInLinearLight) {
+    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, true), MipKind::Color);
+    ASSERT_EQ(p.levels.size(), 2u);
+    double v = texel(p, 1, 0);
+    if (p.format == VK_FORMAT_R8G8B8A8_SRGB) {
+        // black and white average to linear 0.5, sRGB 0.7354 → code 188, not the naive 128
+        EXPECT_EQ(p.levels[1].bytes[0], 188);
+        v = render::detail::srgb_to_linear(v);
+    }
+    EXPECT_NEAR(v, 0.5, 4e-3);  // 188 decodes to 0.5029
+    EXPECT_NEAR(texel(p, 1, 3), 1.0, 1e-6);  // alpha is plain data
+}
+
+TEST_P(MipTest, NormalsAreRenormalized) {
+    // +X and +Z average to (0.5, 0, 0.5), renormalized to (0.707, 0, 0.707): code 218, not 191.
+    const PreparedTexture p = prepare(gray_row({255, 128, 128, 128, 128, 255}, 2, 1, 3, false), MipKind::Normal);
+    ASSERT_EQ(p.levels.size(), 2u);
+    const double x = texel(p, 1, 0) * 2 - 1, y = texel(p, 1, 1) * 2 - 1, z = texel(p, 1, 2) * 2 - 1;
+    EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 1.0, 1e-2);
+    EXPECT_NEAR(x, std::sqrt(0.5), 1e-2);
+    EXPECT_NEAR(z, std::sqrt(0.5), 1e-2);
+}
+
+TEST_P(MipTest, DataIsAveragedAsStored) {
+    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, false), MipKind::Data);
+    EXPECT_NEAR(texel(p, 1, 0), 0.5, 2.5e-3);
+}
+
+TEST_P(MipTest, OddSizesUseAreaWeights) {
+    std::vector<uint8_t> v;
+    for (uint8_t i = 0; i < 9; ++i) v.push_back(static_cast<uint8_t>(i * 30));
+    const PreparedTexture p = prepare(gray_row(v, 3, 3, 1, false), MipKind::Data);
+    ASSERT_EQ(p.levels.size(), 2u);  // 3×3 → 1×1
+    EXPECT_NEAR(texel(p, 1, 0), 120 / 255.0, 2.5e-3);
+}
+
+TEST_P(MipTest, ChainGoesDownToOneTexel) {
+    const PreparedTexture p = prepare(gray_row(std::vector<uint8_t>(5 * 3, 7), 5, 3, 1, false), MipKind::Data);
+    ASSERT_EQ(p.levels.size(), 3u);  // 5×3, 2×1, 1×1
+    EXPECT_EQ(p.levels[1].width, 2u);
+    EXPECT_EQ(p.levels[1].height, 1u);
+    EXPECT_EQ(p.levels[2].width, 1u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, MipTest, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "Promoted" : "EightBit"; });
+
+using VariantTest = VulkanTest;
+
+TEST_F(VariantTest, OnlyWhatTheMaterialAndSceneCallForIsCompiledIn) {
+    render::Scene s;
+    s.width = s.height = 16;
+    s.lights.resize(3);
+    s.lights[2].type = render::LightType::Point;
+    s.lights[2].position = {2, 2, 2};
+    render::Renderer r(context(), s);
+
+    Material constant;
+    const render::GpuMaterial a = r.upload(constant);
+    EXPECT_EQ(a.variant(),
+              "sphere standard dir2 point1 albedo:const normal:none roughness:const metalness:const");
+
+    Material textured;
+    Texture t = gray_row(std::vector<uint8_t>(4 * 4 * 3, 128), 4, 4, 3, false);
+    textured.textures = {t, t};
+    textured.textures[0].srgb = true;
+    textured.albedo.texture = 0;
+    textured.normal.texture = 1;
+    textured.normal.green_down = true;
+    textured.occlusion.texture = 0;  // occlusion scales environment light only: none here
+    textured.occlusion.channel = render::Channel::A;
+    const render::GpuMaterial b = r.upload(textured);
+    EXPECT_EQ(b.variant(), "sphere standard dir2 point1 albedo:tex normal:dx roughness:const metalness:const");
+    r.render(b);
+}
+
+TEST_F(VariantTest, BadMaterialsAreRejected) {
+    render::Scene s;
+    s.width = s.height = 8;
+    render::Renderer r(context(), s);
+    Material m;
+    m.albedo.texture = 0;  // no such texture
+    EXPECT_THROW(r.upload(m), render::Error);
+    Material n;
+    n.textures = {gray_row({1, 2, 3}, 1, 1, 3, true)};
+    n.roughness.texture = 0;  // an sRGB texture's R channel as data
+    EXPECT_THROW(r.upload(n), render::Error);
+}
+
+TEST(Device, GpuRequestWithoutGpuNamesTheWayOut) {
+    keep_vulkan_modules_loaded();
+    render::ContextOptions o;
+    o.device = render::DeviceKind::Gpu;
+    try {
+        render::Context c(o);
+        EXPECT_FALSE(c.info().cpu);  // a machine with a GPU: it was found
+    } catch (const render::NoDeviceError& e) {
+        EXPECT_NE(std::string(e.what()).find("--device cpu"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Device, ParsesItsOptions) {
+    EXPECT_EQ(render::parse_device_kind("gpu"), render::DeviceKind::Gpu);
+    EXPECT_EQ(render::parse_device_kind("GPU"), std::nullopt);
+    EXPECT_EQ(render::parse_brdf("accurate"), render::Brdf::Accurate);
+}
+
+}  // namespace
+}  // namespace mf::test
+
+namespace mf::test {
+namespace {
+
+using render::detail::Mesh;
+
+TEST(Geometry, SphereIsThreeJsSphereGeometry128x64) {
+    const Mesh m = render::detail::make_sphere(2.f);
+    EXPECT_EQ(m.vertices.size(), 129u * 65u);
+    EXPECT_EQ(m.indices.size(), 128u * (2u * 64u - 2u) * 3u);  // no degenerate pole triangles
+    // The point facing +Z is u = 0.25, v = 0.5; tangent +X there, bitangent (+v) is +Y.
+    const auto& v = m.vertices[32 * 129 + 32];
+    EXPECT_NEAR(v.position[2], 2.f, 1e-6f);
+    EXPECT_NEAR(v.uv[0], 0.25f, 1e-6f);
+    EXPECT_NEAR(v.uv[1], 0.5f, 1e-6f);
+    EXPECT_NEAR(v.tangent[0], 1.f, 1e-6f);
+    // First row is the north pole, v = 1 (top of the image), u offset by half a segment.
+    EXPECT_NEAR(m.vertices[0].position[1], 2.f, 1e-6f);
+    EXPECT_NEAR(m.vertices[0].uv[1], 1.f, 1e-6f);
+    EXPECT_NEAR(m.vertices[0].uv[0], 0.5f / 128, 1e-7f);
+}
+
+TEST(Geometry, PlaneThroughOriginAndCubeFacesOutward) {
+    for (const auto& v : render::detail::make_plane(2.f).vertices) {
+        EXPECT_EQ(v.position[2], 0.f);
+        EXPECT_EQ(std::abs(v.position[0]), 1.f);
+    }
+    const Mesh cube = render::detail::make_cube(1.2f);
+    ASSERT_EQ(cube.vertices.size(), 24u);
+    for (const auto& v : cube.vertices) {
+        const float out = v.position[0] * v.normal[0] + v.position[1] * v.normal[1] + v.position[2] * v.normal[2];
+        EXPECT_NEAR(out, 0.6f, 1e-5f);
+    }
+}
+
+}  // namespace
+}  // namespace mf::test

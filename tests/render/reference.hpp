@@ -1,0 +1,36 @@
+// Independent CPU evaluation of the preview's BRDF, in double precision, over the analytic
+// shapes: the oracle the GPU images are compared with. Written from the papers' formulas, not
+// from the shaders (which rewrite several terms for fp32).
+#pragma once
+#include <vector>
+
+#include "render/render.hpp"
+
+namespace mf::test {
+
+struct ReferencePixel {
+    bool hit = false;  // the primary ray meets the sphere
+    bool minified = false;  // textures are minified here (the GPU would use mips > 0)
+    double rgb[3] = {0, 0, 0};  // linear radiance (before exposure), background where no hit
+};
+
+struct ReferenceImage {
+    uint32_t width = 0, height = 0;
+    std::vector<ReferencePixel> pixels;
+    const ReferencePixel& at(uint32_t x, uint32_t y) const { return pixels[size_t{y} * width + x]; }
+    // A pixel next to the silhouette: it or one of its 8 neighbours is on the other side.
+    bool silhouette(uint32_t x, uint32_t y) const;
+};
+
+// Sphere scenes only (the analytic shape the spec defines the preview by).
+ReferenceImage render_reference(const render::Scene& scene, const render::Material& material);
+
+// Directional albedo with F = 1 of the accurate BRDF's specular lobe (height-correlated Smith
+// GGX), by quadrature.
+double specular_albedo_correlated(double NoV, double roughness);
+
+double srgb_encode(double linear);  // IEC 61966-2-1
+double srgb_decode(double encoded);
+int to_code(double encoded);        // round to nearest 8-bit code, clamped
+
+}  // namespace mf::test

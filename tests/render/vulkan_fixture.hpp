@@ -1,0 +1,69 @@
+// Every renderer test runs on lavapipe with the Khronos validation layer; a validation message
+// of any kind (objects left undestroyed at vkDestroyDevice included) fails the test.
+#pragma once
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "render/render.hpp"
+
+namespace mf::test {
+
+// LeakSanitizer reports what a shared object still held when it was unloaded as leaked from an
+// "unknown module", with no way to suppress it (shared/notes/platform.md). The loader unloads
+// lavapipe and the validation layer when the instance goes; keeping them loaded for the life of
+// the process keeps the report to real leaks.
+//
+// The tests run on lavapipe alone: the loader is pointed at its manifest (unless the caller set
+// VK_ICD_FILENAMES), so other drivers of mesa-vulkan-drivers are neither loaded nor unloaded.
+inline void keep_vulkan_modules_loaded() {
+    static const bool once = [] {
+        for (const char* dir : {"/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d", "/usr/local/share/vulkan/icd.d"}) {
+            std::error_code ec;
+            for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+                if (e.path().filename().string().rfind("lvp_icd", 0) == 0) {
+                    setenv("VK_ICD_FILENAMES", e.path().c_str(), 0);
+                    return true;
+                }
+        }
+        return false;
+    }();
+    static void* lavapipe = dlopen("libvulkan_lvp.so", RTLD_NOW | RTLD_NODELETE);
+    static void* validation = dlopen("libVkLayer_khronos_validation.so", RTLD_NOW | RTLD_NODELETE);
+    (void)once;
+    (void)lavapipe;
+    (void)validation;
+}
+
+class VulkanTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        keep_vulkan_modules_loaded();
+        log_ = std::make_shared<render::MessageLog>();
+        render::ContextOptions opt;
+        opt.device = render::DeviceKind::Cpu;  // CI has no GPU; results must not depend on one
+        opt.validation = true;
+        opt.log = log_;
+        configure(opt);
+        context_ = std::make_unique<render::Context>(opt);
+    }
+
+    void TearDown() override {
+        context_.reset();  // leaks are reported here
+        std::string all;
+        for (const std::string& m : log_->messages()) all += m + "\n";
+        EXPECT_EQ(log_->count(), 0u) << all;
+    }
+
+    render::Context& context() { return *context_; }
+    virtual void configure(render::ContextOptions&) {}
+
+private:
+    std::shared_ptr<render::MessageLog> log_;
+    std::unique_ptr<render::Context> context_;
+};
+
+}  // namespace mf::test
