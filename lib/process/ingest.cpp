@@ -185,12 +185,15 @@ NormalFacts normal_facts(const Candidate& c, const std::optional<validate::Norma
 }  // namespace
 
 Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt)
-    : preset_(std::move(preset)), color_(std::move(color)), opt_(std::move(opt)) {}
+    : preset_(std::move(preset)), color_(std::move(color)), opt_(std::move(opt)) {
+    // --normal-convention overrides the preset everywhere: choice, conversion, encoding, manifest.
+    if (opt_.normal_override) preset_.normal_convention = *opt_.normal_override;
+}
 
 MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget) const {
     MaterialResult res;
     SetState st{src, {}, {}, {}, {}, false};
-    const NormalConvention target = opt_.normal_override.value_or(preset_.normal_convention);
+    const NormalConvention target = preset_.normal_convention;
 
     auto header = [&](const std::string& f) -> std::optional<HeaderInfo> {
         std::string err;
@@ -448,7 +451,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     m["manifest_version"] = 1;
     m["generator"] = "matforge 0.1.0";
     m["preset"] = preset_.name;
-    m["normal_convention"] = convention_name(opt_.normal_override.value_or(preset_.normal_convention));
+    m["normal_convention"] = convention_name(preset_.normal_convention);
     m["materials"] = std::move(materials);
     m["failures"] = std::move(failures);
     result.manifest = m;

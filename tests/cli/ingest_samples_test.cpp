@@ -237,3 +237,26 @@ TEST(IngestSamples, SeparatePresetTwoByTwoConstants) {
     ASSERT_TRUE(h);
     EXPECT_EQ((*h)["bit_depth"], 16);
 }
+
+TEST(IngestSamples, NormalConventionOverrideReachesThePixels) {
+    // --normal-convention dx on the glTF preset: written as DX, and its pixels are the GL
+    // output's with green mirrored.
+    const fs::path out = temp_dir("dx");
+    const auto r = run("ingest " + q(samples() / "Tiles101_1K-PNG.zip") + " -o " + q(out) +
+                       " --preset gltf --normal-convention dx");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto m = read_json(out / "manifest.json");
+    EXPECT_EQ(m["normal_convention"], "dx");
+    const auto& mat = m["materials"][0];
+    const auto* n = output_with(mat, "RGB", "normal");
+    ASSERT_TRUE(n);
+    EXPECT_EQ((*n)["normal_convention"], "dx");
+    EXPECT_FALSE(has_finding(mat, "NORMAL_CONVENTION_CONVERTED")) << "DX in, DX out";
+    const auto dx = read_pixels(out / (*n)["file"].get<std::string>());
+    const auto& gl_manifest = ingested("gltf");
+    const auto gl = read_pixels(out_of(gl_manifest) / output_with(*material(gl_manifest, "Tiles101"), "RGB", "normal")
+                                                          ->at("file").get<std::string>());
+    ASSERT_EQ(dx.pixels.size(), gl.pixels.size());
+    for (int y = 0; y < dx.height; y += 3)
+        for (int x = 0; x < dx.width; x += 3) ASSERT_NEAR(code8(dx.at(x, y, 1)), 255 - code8(gl.at(x, y, 1)), 1);
+}
