@@ -1,11 +1,33 @@
 // The accuracy benchmark's vocabulary: each knob yields variants; a variant carries its error
 // (measured once, against a double-precision reference) and the work that Google Benchmark times.
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace mf::bench {
+
+// Running max / mean of |error| (a non-finite error counts as huge, never as 0).
+struct Acc {
+    double max = 0, sum = 0;
+    size_t n = 0;
+    void add(double e) {
+        e = std::abs(e);
+        if (!std::isfinite(e)) e = 1e30;
+        max = std::max(max, e), sum += e, ++n;
+    }
+    double mean() const { return n ? sum / static_cast<double>(n) : 0.0; }
+};
+
+// Deterministic test data (Marsaglia xorshift32).
+inline uint32_t xorshift(uint32_t& s) {
+    s ^= s << 13, s ^= s >> 17, s ^= s << 5;
+    return s;
+}
 
 struct Config {
     bool quick = false;   // CI smoke: small inputs, short timings

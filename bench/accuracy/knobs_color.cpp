@@ -21,21 +21,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-struct Acc {  // running max / mean of |error|
-    double max = 0, sum = 0;
-    size_t n = 0;
-    void add(double e) {
-        e = std::abs(e);
-        if (!std::isfinite(e)) e = 1e30;
-        max = std::max(max, e), sum += e, ++n;
-    }
-    double mean() const { return n ? sum / static_cast<double>(n) : 0.0; }
-};
-
-uint32_t xorshift(uint32_t& s) {
-    s ^= s << 13, s ^= s >> 17, s ^= s << 5;
-    return s;
-}
 
 // ------------------------------------------------------------------------------------------
 // Transfer curve. Decoding takes 8-bit sRGB codes (what albedo files hold) to linear float;

@@ -20,21 +20,6 @@
 namespace mf::bench {
 namespace {
 
-struct Acc {
-    double max = 0, sum = 0;
-    size_t n = 0;
-    void add(double e) {
-        e = std::abs(e);
-        if (!std::isfinite(e)) e = 1e30;
-        max = std::max(max, e), sum += e, ++n;
-    }
-    double mean() const { return n ? sum / static_cast<double>(n) : 0.0; }
-};
-
-uint32_t xorshift(uint32_t& s) {
-    s ^= s << 13, s ^= s >> 17, s ^= s << 5;
-    return s;
-}
 
 // ------------------------------------------------------------------------------------------
 // Resampling. Source: an 8-bit sRGB albedo (values k/255) with the content that separates the

@@ -203,10 +203,12 @@ Image draw_plot(const PlotSpec& spec, const std::vector<PlotSeries>& series) {
     for (size_t i = 0; i < spec.y_label.size(); ++i)
         draw_text(img, 8, top + 20 + static_cast<int>(i) * 16, std::string(1, spec.y_label[i]), black, 2);
 
-    // Curves, then markers and tags on top.
+    // Curves (each knob's variants joined from fastest to slowest, so a curve reads as "what
+    // more time buys"), then markers and tags on top.
     for (size_t s = 0; s < series.size(); ++s) {
         const auto c = kPalette[s % std::size(kPalette)];
-        const auto& pts = series[s].points;
+        auto pts = series[s].points;
+        std::sort(pts.begin(), pts.end(), [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
         for (size_t i = 1; i < pts.size(); ++i)
             line(img, px(pts[i - 1].x), py(pts[i - 1].y), px(pts[i].x), py(pts[i].y), c, 2);
     }
