@@ -3,8 +3,8 @@
 // 256-sample double-precision render of the accurate model. A sphere under one directional light
 // with bands of roughness (0.045 through the highlight) and a metal/dielectric split.
 //
-// These are CPU timings of brdf_reference.hpp, not of the shader: the GPU timings (lavapipe and
-// the GPU machine) and the shader's own numbers belong to the renderer's harness (TODO there).
+// These are CPU timings of brdf_reference.hpp, not of the shader: the shader's own numbers on the
+// same scene (lavapipe and the GPU machine) come from bench/brdf_bench (docs/bench/brdf_*.txt).
 #include <algorithm>
 #include <array>
 #include <cmath>

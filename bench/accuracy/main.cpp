@@ -96,7 +96,7 @@ const char* knob_intro(const std::string& knob) {
     if (knob.rfind("BRDF", 0) == 0)
         return "A 128² sphere, one directional light (intensity 3), roughness bands (0.045 through the highlight, 0.2, 0.5, 1), metal on the right. "
                "Reference: accurate model, double, 256 samples per pixel. Samples: D3D11 standard MSAA positions. "
-               "CPU evaluation of tests/stability/brdf_reference.hpp; GPU timings pending (see TODO).";
+               "CPU evaluation of tests/stability/brdf_reference.hpp; the shader's own numbers: \"GPU (shader) BRDF\" below.";
     if (knob.rfind("validation", 0) == 0)
         return "A synthetic 8192² 8-bit albedo (noisy bricks, 2-px bright mortar every 16 px, a dark corner). Figures of the luminance "
                "(in sRGB codes): mean, 5th and 95th percentile; shares below code 30 and above 240 (% points). Error: against every pixel. "
@@ -188,9 +188,19 @@ int main(int argc, char** argv) {
            << "Errors are against a double-precision reference named per knob. **codes** = 8-bit code units of the encoded "
            << "(sRGB or data) value, the unit a texture file or a display has; the other column's unit is given per row.\n\n"
            << "![error vs time](error_vs_time.png)\n\n";
+        // The preview's shader on the same scene (bench/brdf_bench, Vulkan): numbers in docs/bench/,
+        // summarized here by hand after a run (this generator has no GPU).
+        auto gpu_brdf = [&md] {
+            md << "\n### GPU (shader) BRDF\n\n"
+               << "The same scene shaded by the preview's own BRDF code (`lib/render/shaders/brdf.glsl` through the compute "
+               << "harness `brdf_grid.comp`, `render/brdf_harness.hpp`): `bench/brdf_bench` at 2048² (GPU time, timestamp "
+               << "queries) and 256² (error, green channel, against the accurate model in double with 16×16 samples per pixel). "
+               << "Lavapipe: [docs/bench/brdf_lavapipe.txt](../bench/brdf_lavapipe.txt) ([csv](../bench/brdf_lavapipe.csv)).\n";
+        };
         std::string knob;
         for (const Variant& v : variants) {
             if (v.knob != knob) {
+                if (knob.rfind("BRDF", 0) == 0 && v.knob.rfind("BRDF", 0) != 0) gpu_brdf();
                 knob = v.knob;
                 md << "\n## " << knob << "\n\n" << knob_intro(knob) << "\n\n"
                    << "| variant | max err (codes) | mean err (codes) | max err (other) | mean err (other) | time | note |\n"
@@ -200,9 +210,7 @@ int main(int argc, char** argv) {
                << v.linear_unit << " | " << fmt(v.mean_linear) << " | " << fmt(time_in_unit(v)) << " " << unit_label(v) << " | "
                << v.note << " |\n";
         }
-        md << "\n## Not measured here (TODO)\n\n"
-           << "- The BRDF knob on the GPU: the same variants evaluated by the preview's shader (fp16 vs fp32 shading, 1/4/8 "
-           << "samples), GPU milliseconds on lavapipe and on a real GPU. Needs a compute harness around `lib/render/shaders/brdf.glsl`.\n";
+        if (knob.rfind("BRDF", 0) == 0) gpu_brdf();
     }
     // Plot: x = ms per megapixel, y = mean error in 8-bit codes, one curve per knob.
     {

@@ -333,7 +333,9 @@ void Context::Impl::pick_device(DeviceKind kind) {
 
 void Context::Impl::create_device() {
     auto& f = dev.fn;
+    auto have12 = detail::vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
     auto have13 = detail::vk_struct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
+    have13.pNext = &have12;
     auto have = detail::vk_struct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
     have.pNext = &have13;
     f.vkGetPhysicalDeviceFeatures2(dev.physical, &have);
@@ -344,6 +346,12 @@ void Context::Impl::create_device() {
     auto want13 = detail::vk_struct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
     want13.dynamicRendering = VK_TRUE;
     want13.synchronization2 = VK_TRUE;
+    // Half-float arithmetic where the device has it: only the BRDF accuracy harness's fp16
+    // variant (render/brdf_harness.hpp) uses it; the preview shades in fp32.
+    auto want12 = detail::vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+    want12.shaderFloat16 = have12.shaderFloat16;
+    want13.pNext = &want12;
+    dev.shader_float16 = have12.shaderFloat16 == VK_TRUE;
     auto want = detail::vk_struct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
     want.pNext = &want13;
     want.features.samplerAnisotropy = have.features.samplerAnisotropy && !dev.info.cpu;

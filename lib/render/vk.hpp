@@ -151,6 +151,7 @@ struct Device {
     DeviceInfo info;
     uint64_t timestamp_mask = 0;  // valid bits of a timestamp (differences wrap there)
     float anisotropy = 0.f;
+    bool shader_float16 = false;  // VkPhysicalDeviceVulkan12Features::shaderFloat16 enabled
     bool precise_textures = false;  // ContextOptions::precise_cpu_textures, on a CPU device  // max sampler anisotropy when the feature is enabled, else 0
 
     // A memory type index with all of `flags` among `type_bits`; throws when there is none.

@@ -168,7 +168,7 @@ bool unit(V3<T>& a) {
 // Defined results for hard inputs (the stability suite asserts them):
 //  - n or l without a direction → 0 (no surface orientation / no light direction);
 //  - v without a direction → the viewer is taken along n;
-//  - N·L ≤ 0 → 0; N·V floored at 1e-4; v = −l → h = n;
+//  - N·L ≤ 0 → 0; N·V floored at 1e-4; v = −l → no specular, diffuse weighted by 1 − F0;
 //  - roughness NaN or below the floor → 0.045; metalness, albedo clamped to [0, 1], NaN → 0;
 //  - intensity NaN, negative or infinite → 0 (a light must have a finite power).
 template <class T, class P = Exact>
@@ -188,9 +188,11 @@ std::array<T, 3> shade(Inputs<T> in, Model model) {
     NoL = std::min(NoL, T(1));
     const T NoV = P::q(clamp_nan(dot(n, v), T(kMinNoV), T(1), T(kMinNoV)));
     V3<T> h{v.x + l.x, v.y + l.y, v.z + l.z};
-    if (!detail::unit(h)) h = n;  // v = −l: no half vector; N·L or N·V ≤ 0 there anyway
+    // v = −l: no half vector, no mirror configuration: no specular (the shader does the same).
+    const bool has_h = detail::unit(h);
+    if (!has_h) h = n;
     const T NoH = P::q(clamp_nan(dot(n, h), T(0), T(1), T(0)));
-    const T VoH = P::q(clamp_nan(dot(v, h), T(0), T(1), T(0)));
+    const T VoH = has_h ? P::q(clamp_nan(dot(v, h), T(0), T(1), T(0))) : T(1);
     const V3<T> nxh = cross(n, h);
 
     // D (Walter et al. 2007, eq. 33), Lagrange form.
@@ -220,7 +222,7 @@ std::array<T, 3> shade(Inputs<T> in, Model model) {
         const T albedo = clamp_nan(in.albedo[i], T(0), T(1), T(0));
         const T f0 = T(0.04) * (T(1) - metal) + albedo * metal;
         const T F = P::q(f0 + (T(1) - f0) * m5);
-        T spec = P::q(DV * F);
+        T spec = has_h ? P::q(DV * F) : T(0);
         if (model == Model::accurate)
             spec = P::q(spec * (T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1))));
         const T diffuse = P::q((T(1) - F) * albedo * (T(1) - metal) * diffuse_norm);

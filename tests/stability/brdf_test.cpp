@@ -2,8 +2,8 @@
 // stated bound of the double-precision evaluation, and the white-furnace check — the specular
 // lobe's directional albedo with F = 1 never exceeds 1.
 //
-// The same grid through the shader itself (a compute harness on lavapipe) belongs with the
-// renderer's tests once lib/render exposes a way to run brdf.glsl on arbitrary inputs.
+// The same grid through the shader itself (a compute harness on lavapipe) is
+// tests/render/brdf_grid_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -121,11 +121,13 @@ TEST(BrdfGrid, DefinedValuesAtTheBoundaries) {
         EXPECT_NEAR(r[0], expected, expected * 1e-12);
         EXPECT_LT(r[0], 65504.0 * 2) << "finite, and the floor keeps it near half-float range";
     }
-    // v = −l with both on the surface side impossible; v = −l with N·L > 0 gives N·V < 0: finite.
-    {
+    // v = −l with N·L > 0 (so N·V < 0: a normal bent away from the viewer): no half vector, no
+    // specular; exactly the diffuse lobe at normal-incidence Fresnel, (1 − F0) albedo/π · E · N·L,
+    // at every roughness (a fallback h = n gave a ~1e5 · E spike at roughness 0).
+    for (double rough : {0.0, 0.5, 1.0}) {
         const V3<double> l{0.6, 0, 0.8}, v{-0.6, 0, -0.8};
-        const auto r = shade(Inputs<double>{n, v, l, white, 0.5, 0.0, 1.0}, Model::standard);
-        for (double c : r) EXPECT_TRUE(std::isfinite(c) && c > 0.0);
+        const auto r = shade(Inputs<double>{n, v, l, white, rough, 0.0, 1.0}, Model::standard);
+        for (double c : r) EXPECT_NEAR(c, (1.0 - 0.04) / std::numbers::pi * 0.8, 1e-12) << rough;
     }
     // Zero-length l or n: no light. Zero-length v: viewer along n.
     {

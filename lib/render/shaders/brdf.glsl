@@ -3,7 +3,23 @@
 #ifndef MF_BRDF_GLSL
 #define MF_BRDF_GLSL
 
+// Arithmetic type of the terms: fp32 (the preview), or binary16 where the includer enables
+// GL_EXT_shader_explicit_arithmetic_types_float16 and defines MF_BRDF_FP16 (the accuracy harness,
+// brdf_grid_f16.comp). Literals are written mf_float(…) because that extension converts float16_t
+// to float implicitly but not the other way; in fp32 mf_float(x) is x.
+#ifdef MF_BRDF_FP16
+#define mf_float float16_t
+#define mf_vec3 f16vec3
+#else
+#define mf_float float
+#define mf_vec3 vec3
+#endif
+
 const float PI = 3.14159265358979323846;
+
+const int BRDF_STANDARD = 0;
+const int BRDF_ACCURATE = 1;
+const int BRDF_ASSIGNMENT = 2;  // Standard with the assignment's diffuse (no 1/π, erratum 6)
 
 // Smallest perceptual roughness. A point light reflected by a perfect mirror is a Dirac peak;
 // 0.045 (Filament's floor for fp32) gives α² ≈ 4.1e-6 and a finite peak
@@ -18,19 +34,19 @@ const float MIN_NOV = 1e-4;
 // D = α² / (π ((n·h)²(α² − 1) + 1)²), written as (α / ((n·h)²α² + |n×h|²))² / π:
 // 1 − (n·h)² = |n×h|² (Lagrange's identity) keeps its precision where n·h → 1, which is where
 // a smooth surface's highlight is (Filament, "Physically Based Rendering in Filament", 4.4.1).
-float D_GGX(float NoH, vec3 n_cross_h, float alpha) {
-    float a = NoH * alpha;
-    float k = alpha / (dot(n_cross_h, n_cross_h) + a * a);
-    return k * k * (1.0 / PI);
+mf_float D_GGX(mf_float NoH, mf_vec3 n_cross_h, mf_float alpha) {
+    mf_float a = NoH * alpha;
+    mf_float k = alpha / (dot(n_cross_h, n_cross_h) + a * a);
+    return k * k * mf_float(1.0 / PI);
 }
 
 // Fresnel reflectance, Schlick's approximation.
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering", eq. 15.
 // F0 is a color: metals tint their reflection (erratum 1 of the assignment).
-vec3 F_Schlick(vec3 f0, float VoH) {
-    float m = 1.0 - VoH;
-    float m2 = m * m;
-    return f0 + (1.0 - f0) * (m2 * m2 * m);
+mf_vec3 F_Schlick(mf_vec3 f0, mf_float VoH) {
+    mf_float m = mf_float(1.0) - VoH;
+    mf_float m2 = m * m;
+    return f0 + (mf_float(1.0) - f0) * (m2 * m2 * m);
 }
 
 // Schlick-GGX masking-shadowing for punctual lights, as the visibility term
@@ -38,35 +54,28 @@ vec3 F_Schlick(vec3 f0, float VoH) {
 // "+ k", erratum 3) with k = (r + 1)² / 8 (Karis 2013, "Real Shading in Unreal Engine 4",
 // p. 3: the remap for analytic lights only; image-based lighting uses k = α/2, erratum 8).
 // The numerators n·l and n·v cancel against the denominator and are left out of both.
-float V_SchlickGGX_k(float NoV, float NoL, float k) {
-    return 0.25 / ((NoL * (1.0 - k) + k) * (NoV * (1.0 - k) + k));
+mf_float V_SchlickGGX_k(mf_float NoV, mf_float NoL, mf_float k) {
+    return mf_float(0.25) / ((NoL * (mf_float(1.0) - k) + k) * (NoV * (mf_float(1.0) - k) + k));
 }
-float V_SchlickGGX(float NoV, float NoL, float roughness) {
-    return V_SchlickGGX_k(NoV, NoL, (roughness + 1.0) * (roughness + 1.0) / 8.0);
+mf_float V_SchlickGGX(mf_float NoV, mf_float NoL, mf_float roughness) {
+    return V_SchlickGGX_k(NoV, NoL, (roughness + mf_float(1.0)) * (roughness + mf_float(1.0)) / mf_float(8.0));
 }
 
 // Height-correlated Smith masking-shadowing for GGX, as V = G / (4 (n·l)(n·v)).
 // Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", eq. 99.
-float V_SmithGGXCorrelated(float NoV, float NoL, float alpha) {
-    float a2 = alpha * alpha;
-    float lv = NoL * sqrt(NoV * NoV * (1.0 - a2) + a2);
-    float ll = NoV * sqrt(NoL * NoL * (1.0 - a2) + a2);
-    return 0.5 / (lv + ll);
+mf_float V_SmithGGXCorrelated(mf_float NoV, mf_float NoL, mf_float alpha) {
+    mf_float a2 = alpha * alpha;
+    mf_float lv = NoL * sqrt(NoV * NoV * (mf_float(1.0) - a2) + a2);
+    mf_float ll = NoV * sqrt(NoL * NoL * (mf_float(1.0) - a2) + a2);
+    return mf_float(0.5) / (lv + ll);
 }
 
 // Lambert diffuse: albedo / π. The 1/π is what makes a white surface under irradiance E
 // reflect radiance E/π; the assignment leaves it out (erratum 6; Brdf::Assignment restores that).
-float Fd_Lambert() {
-    return 1.0 / PI;
+mf_float Fd_Lambert() {
+    return mf_float(1.0 / PI);
 }
 
-// Half vector normalize(v + l) (erratum 4: not (v + l)/2). For v = −l it has no direction
-// (erratum 5); any unit vector gives finite terms there, and n·l ≤ 0 or n·v ≤ 0 then anyway.
-vec3 half_vector(vec3 v, vec3 l, vec3 n) {
-    vec3 h = v + l;
-    float len2 = dot(h, h);
-    return len2 > 1e-12 ? h * inversesqrt(len2) : n;
-}
 
 // Multiple-scattering energy compensation for the specular lobe. Single-scattering GGX loses
 // the energy 1 − E(μ) of light bouncing between microfacets (Kulla & Conty 2017, "Revisiting
@@ -74,8 +83,45 @@ vec3 half_vector(vec3 v, vec3 l, vec3 n) {
 // (Fdez-Agüera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based
 // Lighting", and Turquin 2019 for the punctual form). E(μ, α) = directional albedo of the lobe
 // with F = 1, from the BRDF lookup table.
-vec3 energy_compensation(vec3 f0, float E) {
-    return 1.0 + f0 * (1.0 / max(E, 1e-4) - 1.0);
+mf_vec3 energy_compensation(mf_vec3 f0, mf_float E) {
+    return mf_float(1.0) + f0 * (mf_float(1.0) / max(E, mf_float(1e-4)) - mf_float(1.0));
+}
+
+// One punctual light's reflected radiance (f_d + f_s) E (n·l): the body of shade.frag's light
+// loop, here so that the preview and the accuracy harness (brdf_grid.comp) run the same code.
+// n, v, l unit; NoV = clamp(n·v, MIN_NOV, 1); roughness in [MIN_ROUGHNESS, 1]; f0 = lerp(0.04,
+// albedo, metalness) (Karis 2013, p. 9); diffuse_color = albedo (1 − metalness); spec_scale the
+// accurate model's energy compensation (1 otherwise); E the light's irradiance at normal incidence.
+mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_float roughness,
+                   mf_vec3 f0, mf_vec3 diffuse_color, mf_vec3 spec_scale, mf_vec3 E) {
+    mf_float NoL = dot(n, l);
+    // Also rejects NaN: NaN × max(n·l, 0) = NaN would survive (erratum 5).
+    if (!(NoL > mf_float(0.0))) return mf_vec3(0.0);
+    NoL = min(NoL, mf_float(1.0));
+    mf_float alpha = roughness * roughness;
+    mf_float diffuse_norm = model == BRDF_ASSIGNMENT ? mf_float(1.0) : Fd_Lambert();
+    // Half vector normalize(v + l) (erratum 4: not (v + l)/2). For v = −l it has no direction
+    // (erratum 5): there is no mirror configuration, so no specular reflection, and the diffuse
+    // lobe keeps its normal-incidence weight 1 − F0. With n·l > 0 this needs n·v < 0, i.e. a
+    // normal map bent away from the viewer; a fallback h = n would put D's peak (~1e5 E with the
+    // N·V floor) exactly there. The cut-off is |v + l|² ≤ 1e-30, as the CPU reference: a wider one
+    // (1e-12) replaced a well-defined h for nearly opposite v and l at grazing angles (measured by
+    // tests/render/brdf_grid_test.cpp: 1.5e4 · E against 2e-6 · E).
+    mf_vec3 hv = v + l;
+    mf_float hlen2 = dot(hv, hv);
+    bool has_h = hlen2 > mf_float(1e-30);
+    mf_vec3 h = has_h ? hv * inversesqrt(hlen2) : n;
+    mf_float NoH = clamp(dot(n, h), mf_float(0.0), mf_float(1.0));
+    mf_float VoH = has_h ? clamp(dot(v, h), mf_float(0.0), mf_float(1.0)) : mf_float(1.0);
+    mf_vec3 F = F_Schlick(f0, VoH);
+    mf_float D = D_GGX(NoH, cross(n, h), alpha);
+    mf_float V = model == BRDF_ACCURATE ? V_SmithGGXCorrelated(NoV, NoL, alpha)
+                                        : V_SchlickGGX(NoV, NoL, roughness);
+    // A select, not a product: D at the fallback h may overflow in fp16, and inf × 0 = NaN.
+    mf_vec3 specular = has_h ? (D * V) * F * spec_scale : mf_vec3(0.0);
+    // Energy left to the diffuse lobe: (1 − F)(1 − metalness).
+    mf_vec3 diffuse = (mf_float(1.0) - F) * diffuse_color * diffuse_norm;
+    return (diffuse + specular) * E * NoL;
 }
 
 #endif

@@ -28,9 +28,6 @@ layout(constant_id = 18) const int OPACITY_TEX = -1;
 layout(constant_id = 19) const int OPACITY_CH = 0;
 layout(constant_id = 20) const bool OPACITY_INVERT = false;
 
-const int BRDF_STANDARD = 0;
-const int BRDF_ACCURATE = 1;
-const int BRDF_ASSIGNMENT = 2;
 const bool NEEDS_LUT = HAS_ENV || BRDF_MODEL == BRDF_ACCURATE;
 
 layout(set = 0, binding = 1) uniform sampler2D brdf_lut;     // (scale, bias) of F0; x: n·v, y: roughness
@@ -131,7 +128,6 @@ void main() {
 
     roughness = clamp(roughness, MIN_ROUGHNESS, 1.0);
     metalness = clamp(metalness, 0.0, 1.0);
-    float alpha = roughness * roughness;
     // Metalness workflow: F0 = lerp(0.04, albedo, metalness) (Karis 2013, p. 9); metals have no
     // diffuse lobe.
     vec3 f0 = mix(vec3(0.04), albedo, metalness);
@@ -161,21 +157,7 @@ void main() {
             l = to_light * inversesqrt(d2);
             E /= d2;
         }
-        float NoL = dot(n, l);
-        // Also rejects NaN: NaN × max(n·l, 0) = NaN would survive (erratum 5).
-        if (!(NoL > 0.0)) continue;
-        NoL = min(NoL, 1.0);
-        vec3 h = half_vector(v, l, n);
-        float NoH = clamp(dot(n, h), 0.0, 1.0);
-        float VoH = clamp(dot(v, h), 0.0, 1.0);
-        vec3 F = F_Schlick(f0, VoH);
-        float D = D_GGX(NoH, cross(n, h), alpha);
-        float V = BRDF_MODEL == BRDF_ACCURATE ? V_SmithGGXCorrelated(NoV, NoL, alpha)
-                                              : V_SchlickGGX(NoV, NoL, roughness);
-        vec3 specular = (D * V) * F * spec_scale;
-        // Energy left to the diffuse lobe: (1 − F)(1 − metalness).
-        vec3 diffuse = (1.0 - F) * diffuse_color * diffuse_norm;
-        color += (diffuse + specular) * E * NoL;
+        color += brdf_light(BRDF_MODEL, n, v, l, NoV, roughness, f0, diffuse_color, spec_scale, E);
     }
 
     if (HAS_ENV) {

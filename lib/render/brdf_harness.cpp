@@ -1,0 +1,215 @@
+// Accuracy harness of the preview's BRDF (see brdf_harness.hpp).
+#include "render/brdf_harness.hpp"
+
+#include <cstring>
+
+#include "render/internal.hpp"
+
+namespace mf::render {
+
+using namespace detail;
+
+namespace {
+
+constexpr uint32_t kBrdfGridComp[] =
+#include "shaders/brdf_grid.comp.inc"
+    ;
+constexpr uint32_t kBrdfGridF16Comp[] =
+#include "shaders/brdf_grid_f16.comp.inc"
+    ;
+
+constexpr uint32_t kEnergyN = 32;
+constexpr uint32_t kGroup = 64;       // brdf_grid.glsl's local_size_x
+constexpr uint32_t kMaxGroupsX = 32768;  // ≤ the guaranteed maxComputeWorkGroupCount[0] (65535)
+
+struct Push {
+    uint32_t count, width, spp;
+    int32_t model;
+};
+
+}  // namespace
+
+struct BrdfHarness::Impl {
+    Device& d;
+    Unique<VkCommandPool> pool;
+    Unique<VkQueryPool> queries;
+    Unique<VkDescriptorSetLayout> set_layout;
+    Unique<VkPipelineLayout> layout;
+    Unique<VkDescriptorPool> descriptor_pool;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    Unique<VkPipeline> pipelines[2][2];  // [precision][mode]
+    Buffer energy;
+
+    Impl(Context& context, const std::vector<float>& e) : d(device_of(context)) {
+        if (e.size() != kEnergyN * kEnergyN) throw Error("BRDF harness: energy table must be 32 × 32");
+        auto pi = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+        pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        pi.queueFamilyIndex = d.queue_family;
+        VkCommandPool ph = VK_NULL_HANDLE;
+        VK_CHECK(d.fn.vkCreateCommandPool(d.device, &pi, nullptr, &ph));
+        pool = Unique<VkCommandPool>(d, ph);
+        if (d.info.timestamps) {
+            auto qi = vk_struct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
+            qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+            qi.queryCount = 2;
+            VkQueryPool q = VK_NULL_HANDLE;
+            VK_CHECK(d.fn.vkCreateQueryPool(d.device, &qi, nullptr, &q));
+            queries = Unique<VkQueryPool>(d, q);
+        }
+        VkDescriptorSetLayoutBinding b[3];
+        for (uint32_t i = 0; i < 3; ++i)
+            b[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+        auto sci = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+        sci.bindingCount = 3;
+        sci.pBindings = b;
+        VkDescriptorSetLayout sl = VK_NULL_HANDLE;
+        VK_CHECK(d.fn.vkCreateDescriptorSetLayout(d.device, &sci, nullptr, &sl));
+        set_layout = Unique<VkDescriptorSetLayout>(d, sl);
+        const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push)};
+        auto lci = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+        lci.setLayoutCount = 1;
+        lci.pSetLayouts = &sl;
+        lci.pushConstantRangeCount = 1;
+        lci.pPushConstantRanges = &range;
+        VkPipelineLayout pl = VK_NULL_HANDLE;
+        VK_CHECK(d.fn.vkCreatePipelineLayout(d.device, &lci, nullptr, &pl));
+        layout = Unique<VkPipelineLayout>(d, pl);
+        const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
+        auto dci = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+        dci.maxSets = 1;
+        dci.poolSizeCount = 1;
+        dci.pPoolSizes = &size;
+        VkDescriptorPool dp = VK_NULL_HANDLE;
+        VK_CHECK(d.fn.vkCreateDescriptorPool(d.device, &dci, nullptr, &dp));
+        descriptor_pool = Unique<VkDescriptorPool>(d, dp);
+        auto ai = vk_struct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+        ai.descriptorPool = dp;
+        ai.descriptorSetCount = 1;
+        ai.pSetLayouts = &sl;
+        VK_CHECK(d.fn.vkAllocateDescriptorSets(d.device, &ai, &set));
+
+        energy = create_buffer(d, e.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        std::memcpy(energy.mapped, e.data(), e.size() * sizeof(float));
+        flush(d, energy);
+    }
+
+    VkPipeline pipeline(BrdfPrecision p, int mode) {
+        const int pi = p == BrdfPrecision::Fp16 ? 1 : 0;
+        if (pi == 1 && !d.shader_float16) throw Error(d.info.name + " lacks shaderFloat16");
+        Unique<VkPipeline>& slot = pipelines[pi][mode];
+        if (slot) return slot;
+        Unique<VkShaderModule> module = pi ? create_shader(d, kBrdfGridF16Comp, sizeof kBrdfGridF16Comp)
+                                           : create_shader(d, kBrdfGridComp, sizeof kBrdfGridComp);
+        const int32_t mode_value = mode;
+        const VkSpecializationMapEntry entry{0, 0, 4};
+        const VkSpecializationInfo spec{1, &entry, 4, &mode_value};
+        auto ci = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+        ci.stage = vk_struct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
+        ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+        ci.stage.module = module;
+        ci.stage.pName = "main";
+        ci.stage.pSpecializationInfo = &spec;
+        ci.layout = layout;
+        VkPipeline h = VK_NULL_HANDLE;
+        VK_CHECK(d.fn.vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &h));
+        slot = Unique<VkPipeline>(d, h);
+        return slot;
+    }
+
+    // Binds inputs/outputs, dispatches `count` invocations (timed), copies `out` to `readback`
+    // when given. Returns GPU milliseconds.
+    double run(VkPipeline pipe, const Buffer& in, const Buffer& out, const Buffer* readback, const Push& push) {
+        VkDescriptorBufferInfo bi[3] = {{in.buffer, 0, VK_WHOLE_SIZE},
+                                        {out.buffer, 0, VK_WHOLE_SIZE},
+                                        {energy.buffer, 0, VK_WHOLE_SIZE}};
+        VkWriteDescriptorSet w[3];
+        for (uint32_t i = 0; i < 3; ++i) {
+            w[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+            w[i].dstSet = set;
+            w[i].dstBinding = i;
+            w[i].descriptorCount = 1;
+            w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            w[i].pBufferInfo = &bi[i];
+        }
+        d.fn.vkUpdateDescriptorSets(d.device, 3, w, 0, nullptr);
+
+        const uint32_t groups = (push.count + kGroup - 1) / kGroup;
+        const uint32_t gx = groups < kMaxGroupsX ? groups : kMaxGroupsX;
+        const uint32_t gy = (groups + gx - 1) / gx;
+        Submission s(d, pool, queries, 2);
+        VkCommandBuffer cmd = s.cmd();
+        // The host wrote the inputs before submission (the submission makes them visible).
+        d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe);
+        d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+        d.fn.vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        s.begin_pass("brdf");
+        d.fn.vkCmdDispatch(cmd, gx, gy, 1);
+        s.end_pass();
+        if (readback) {
+            memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                           VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            const VkBufferCopy region{0, 0, out.size};
+            d.fn.vkCmdCopyBuffer(cmd, out.buffer, readback->buffer, 1, &region);
+            memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        } else {
+            memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        }
+        std::vector<PassTime> times;
+        s.finish(times);
+        return times.empty() ? 0.0 : times.front().ms;
+    }
+};
+
+BrdfHarness::BrdfHarness(Context& context, const std::vector<float>& energy)
+    : impl_(std::make_unique<Impl>(context, energy)) {}
+BrdfHarness::~BrdfHarness() = default;
+
+bool BrdfHarness::supports_fp16() const { return impl_->d.shader_float16; }
+
+std::vector<std::array<float, 3>> BrdfHarness::evaluate(const std::vector<BrdfInput>& inputs,
+                                                        BrdfPrecision precision, double* gpu_ms) {
+    Impl& m = *impl_;
+    std::vector<std::array<float, 3>> result(inputs.size() * 3);
+    if (inputs.empty()) return result;
+    if (inputs.size() > 0xffffffffu / 3) throw Error("BRDF harness: too many inputs");
+    VkPipeline pipe = m.pipeline(precision, 0);
+    Buffer in = create_buffer(m.d, inputs.size() * sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    std::memcpy(in.mapped, inputs.data(), inputs.size() * sizeof(BrdfInput));
+    flush(m.d, in);
+    Buffer out = create_buffer(m.d, inputs.size() * 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    const Push push{static_cast<uint32_t>(inputs.size()), 0, 0, 0};
+    const double ms = m.run(pipe, in, out, nullptr, push);
+    if (gpu_ms) *gpu_ms = ms;
+    invalidate(m.d, out);
+    const auto* f = static_cast<const float*>(out.mapped);
+    for (size_t i = 0; i < result.size(); ++i) result[i] = {f[4 * i], f[4 * i + 1], f[4 * i + 2]};
+    return result;
+}
+
+double BrdfHarness::sphere(uint32_t size, Brdf model, uint32_t spp, BrdfPrecision precision, std::vector<float>* rgb) {
+    Impl& m = *impl_;
+    if (size == 0 || size > 8192) throw Error("BRDF harness: sphere size must be 1..8192");
+    if (spp != 1 && spp != 4 && spp != 8) throw Error("BRDF harness: 1, 4 or 8 samples per pixel");
+    VkPipeline pipe = m.pipeline(precision, 1);
+    const VkDeviceSize bytes = VkDeviceSize{size} * size * 16;
+    Buffer dummy = create_buffer(m.d, sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    // Device-local output: on a GPU the shading is timed against its own memory, as the preview's.
+    Buffer out = create_buffer(m.d, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    Buffer readback;
+    if (rgb) readback = create_buffer(m.d, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const int32_t model_id = model == Brdf::Accurate ? 1 : model == Brdf::Assignment ? 2 : 0;
+    const Push push{size * size, size, spp, model_id};
+    const double ms = m.run(pipe, dummy, out, rgb ? &readback : nullptr, push);
+    if (rgb) {
+        invalidate(m.d, readback);
+        const auto* f = static_cast<const float*>(readback.mapped);
+        rgb->resize(size_t{size} * size * 3);
+        for (size_t i = 0; i < size_t{size} * size; ++i)
+            for (size_t c = 0; c < 3; ++c) (*rgb)[3 * i + c] = f[4 * i + c];
+    }
+    return ms;
+}
+
+}  // namespace mf::render
