@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the main job on sample_materials/:
-# ingest (glTF preset) -> out/, validate -> out/validate.json.
+#   ingest (glTF preset)  -> out/<material>/..., out/manifest.json
+#   validate              -> out/validate.json (JSON report; text summary on the terminal)
+#   preview               -> out/preview/<material>.png and out/contact_sheet.png
+#                            (a GPU when there is one, else Mesa's lavapipe on the CPU)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 out=${1:-$root/out}
@@ -8,4 +11,6 @@ out=${1:-$root/out}
 mf="$root/build/tools/matforge/matforge"
 "$mf" ingest "$root/sample_materials" -o "$out" --preset gltf
 "$mf" validate "$root/sample_materials" --report json --report-file "$out/validate.json"
-echo "demo: outputs and manifest in $out, validation report in $out/validate.json"
+"$mf" validate "$root/sample_materials" --report text | tail -n 1
+"$mf" preview "$out/manifest.json" -o "$out/preview" --contact-sheet "$out/contact_sheet.png"
+echo "demo: outputs + manifest.json, validate.json, preview/ and contact_sheet.png in $out"
