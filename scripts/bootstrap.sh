@@ -12,6 +12,7 @@ packages=(
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libzip-dev libssl-dev libxml2-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
   libglvnd0 libglx0 libgl1 libegl1 libopengl0
+  clang-14 clang-tidy-14 libclang-rt-14-dev  # CI: scripts/tidy.sh, scripts/fuzz.sh (libFuzzer)
 )
 missing=()
 for p in "${packages[@]}"; do

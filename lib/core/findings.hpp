@@ -40,6 +40,7 @@ inline constexpr std::string_view normal_convention_unknown = "NORMAL_CONVENTION
 inline constexpr std::string_view output_write_failed = "OUTPUT_WRITE_FAILED";
 inline constexpr std::string_view resized = "RESIZED";
 inline constexpr std::string_view input_not_found = "INPUT_NOT_FOUND";
+inline constexpr std::string_view unsafe_path = "UNSAFE_PATH";  // an archive entry naming a path outside it
 }  // namespace code
 
 struct Finding {

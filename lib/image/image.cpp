@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <fstream>
@@ -47,6 +48,53 @@ std::string oiio_error_text(std::string text) {
     return text.empty() ? "not a readable image" : text;
 }
 
+// OpenImageIO's format name from a file's first bytes; empty when no signature is known (TGA
+// has none). Files are opened by content with the reader chosen here, never through
+// OpenImageIO's fallback of trying every reader once the extension's fails: that loop is not
+// thread-safe in 2.4 (with sets decoded in parallel, a misnamed PNG read as 0-bit or failed, at
+// random), and it is turned off (try_all_readers = 0).
+std::string sniff_format(const unsigned char* b, size_t n) {
+    auto starts = [&](std::initializer_list<unsigned char> sig) {
+        return n >= sig.size() && std::equal(sig.begin(), sig.end(), b);
+    };
+    if (starts({0x89, 'P', 'N', 'G'})) return "png";
+    if (starts({0xFF, 0xD8, 0xFF})) return "jpeg";
+    if (starts({0x76, 0x2F, 0x31, 0x01})) return "openexr";
+    if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42}) || starts({'I', 'I', 43, 0}) || starts({'M', 'M', 0, 43}))
+        return "tiff";
+    if (starts({'B', 'M'})) return "bmp";
+    if (starts({'#', '?'})) return "hdr";
+    if (starts({'R', 'I', 'F', 'F'}) && n >= 12 && std::equal(b + 8, b + 12, "WEBP")) return "webp";
+    if (starts({'8', 'B', 'P', 'S'})) return "psd";
+    if (starts({'D', 'D', 'S', ' '})) return "dds";
+    if (starts({'G', 'I', 'F', '8'})) return "gif";
+    return {};
+}
+
+// Opens `name` with the reader of `format` (a format name, or a file name whose extension picks
+// the reader). Sets `error` on failure.
+std::unique_ptr<OIIO::ImageInput> open_with(const std::string& format, const std::string& name,
+                                            const OIIO::ImageSpec& config, OIIO::Filesystem::IOProxy* proxy,
+                                            std::string& error) {
+    static std::once_flag once;
+    std::call_once(once, [] { OIIO::attribute("try_all_readers", 0); });
+    auto in = OIIO::ImageInput::create(format, false, &config);
+    if (!in) {
+        error = oiio_error_text(OIIO::geterror());
+        return nullptr;
+    }
+    if (proxy && !in->set_ioproxy(proxy)) {
+        error = "the " + std::string(in->format_name()) + " reader cannot read from memory";
+        return nullptr;
+    }
+    OIIO::ImageSpec spec;
+    if (!in->open(name, spec, config)) {
+        error = oiio_error_text(in->geterror());
+        return nullptr;
+    }
+    return in;
+}
+
 bool open_reader(const InputFile& in, Reader& r, std::string& error) {
     OIIO::ImageSpec config;
     // Texture data: a 4th channel is not necessarily transparency; never premultiply.
@@ -54,35 +102,62 @@ bool open_reader(const InputFile& in, Reader& r, std::string& error) {
     const std::string name = in.bytes ? in.display : in.path.string();
     if (!in.bytes) {
         std::error_code ec;
-        if (!fs::is_regular_file(in.path, ec)) {
-            error = in.display + ": not a regular file";
+        const fs::file_status st = fs::status(in.path, ec);
+        if (ec) {  // never opened: a FIFO or device would block or never end
+            std::error_code lec;
+            const bool link = fs::is_symlink(fs::symlink_status(in.path, lec));
+            error = in.display + ": " + (link ? "broken symbolic link" : "cannot open") + " (" + ec.message() + ")";
+            return false;
+        }
+        if (!fs::is_regular_file(st)) {
+            const char* what = fs::is_directory(st) ? "a folder"
+                               : fs::is_fifo(st)    ? "a FIFO"
+                               : fs::is_socket(st)  ? "a socket"
+                                                    : "a device or special file";
+            error = in.display + ": not a regular file (" + what + ")";
             return false;
         }
         if (fs::file_size(in.path, ec) == 0) {
             error = in.display + ": empty file (0 bytes)";
             return false;
         }
-        r.in = OIIO::ImageInput::open(name, &config);
+        std::array<unsigned char, 16> head{};
+        std::ifstream f(in.path, std::ios::binary);
+        f.read(reinterpret_cast<char*>(head.data()), head.size());
+        const std::string format = sniff_format(head.data(), static_cast<size_t>(f.gcount()));
+        std::string why;
+        r.in = open_with(format.empty() ? name : format, name, config, nullptr, why);
+        if (!r.in) {
+            error = in.display + ": " + why;
+            return false;
+        }
     } else {
+        if (!in.open_error.empty()) {
+            error = in.display + ": " + in.open_error;
+            return false;
+        }
         if (in.bytes->empty()) {
             error = in.display + ": empty file (0 bytes)";
             return false;
         }
-        auto probe = OIIO::ImageInput::create(name, false);
+        std::string format = sniff_format(in.bytes->data(), in.bytes->size());
+        if (format.empty()) format = name;  // no signature: the extension decides
+        auto probe = OIIO::ImageInput::create(format, false);
+        std::string why;
         if (probe && probe->supports("ioproxy")) {
             r.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(in.bytes->data(), in.bytes->size());
-            r.in = OIIO::ImageInput::open(name, &config, r.proxy.get());
+            r.in = open_with(format, name, config, r.proxy.get(), why);
         } else {
             r.temp = std::make_unique<TempFile>(in.extension());
             std::ofstream(r.temp->path, std::ios::binary)
                 .write(reinterpret_cast<const char*>(in.bytes->data()),
                        static_cast<std::streamsize>(in.bytes->size()));
-            r.in = OIIO::ImageInput::open(r.temp->path.string(), &config);
+            r.in = open_with(format, r.temp->path.string(), config, nullptr, why);
         }
-    }
-    if (!r.in) {
-        error = in.display + ": " + oiio_error_text(OIIO::geterror());
-        return false;
+        if (!r.in) {
+            error = in.display + ": " + why;
+            return false;
+        }
     }
     return true;
 }

@@ -39,6 +39,7 @@ struct InputFile {
     std::string display;                                   // name used in messages
     std::filesystem::path path;                            // set for files on disk
     std::shared_ptr<const std::vector<unsigned char>> bytes;  // set for in-memory entries
+    std::string open_error;  // why an in-memory entry could not be read (then bytes is empty)
     std::string extension() const;                         // lower case, without the dot
 };
 

@@ -804,6 +804,7 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
     }
 
     std::vector<Role> targets;
+    targets.reserve(kOutputRoleCount + 1);
     for (int i = 0; i < kOutputRoleCount; ++i) targets.push_back(static_cast<Role>(i));
     targets.push_back(Role::translucency);
     for (const Role target : targets) {

@@ -81,7 +81,7 @@ struct RoleSource {
 // metallic_roughness, ort), then gloss (inverted) for roughness. discover_set applies it to the
 // chosen files; ingest applies it again over the files that actually decoded.
 struct Provider {
-    Role from;
+    Role from = Role::albedo;
     int channel = -1;  // -1: the whole map; 0/1/2: R/G/B of a packed input
     bool invert = false;
 };

@@ -34,10 +34,10 @@ void invert(Image& img);
 // unit GL vectors. Zero-length or non-finite texels become (0,0,1). `from` unknown is treated as
 // gl. Returns the share of texels whose stored length was far from 1 (|len-1| > 0.2) or Z < 0.
 double decode_normal(const Image& encoded, NormalConvention from, Image& out);
-// Rescales 3-channel vectors to unit length; zero or non-finite ones become (0,0,1).
-void renormalize(Image& vectors);
-// Unit GL vectors -> encoded colors in `to` (renormalizing first: resampling shortens vectors).
-Image encode_normal(const Image& unit_gl, NormalConvention to);
+// Rescales the 3-channel vectors of `n` to unit length; zero or non-finite ones become (0,0,1).
+void renormalize(Image& n);
+// Unit GL vectors `n` -> encoded colors in `to` (renormalizing first: resampling shortens vectors).
+Image encode_normal(const Image& n, NormalConvention to);
 
 // Resamples to w x h with a Lanczos-3 filter (OpenImageIO). Callers resample color in linear
 // light and renormalize normals afterwards.

@@ -45,6 +45,11 @@ bool parse_channel(const std::string& key, const nlohmann::json& v, ChannelSpec&
 bool parse_output(const nlohmann::json& j, OutputSpec& o, std::string& error) {
     o.suffix = j.at("suffix").get<std::string>();
     const std::string where = "output '" + o.suffix + "': ";
+    // The suffix lands in a file name: no folder separators, no "..", so no way out of the
+    // output folder (ingest checks the final path again).
+    if (o.suffix.empty() || o.suffix.find_first_of("/\\") != std::string::npos ||
+        o.suffix.find("..") != std::string::npos)
+        return fail(error, where + "suffix must be a non-empty file-name part without '/', '\\' or '..'");
     const std::string cs = j.value("color_space", "linear");
     if (cs != "srgb" && cs != "linear") return fail(error, where + "color_space must be srgb or linear");
     o.srgb = cs == "srgb";

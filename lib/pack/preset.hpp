@@ -52,7 +52,7 @@ struct Preset {
 };
 
 // Parses a preset document; false + `error` naming the field on any problem.
-bool parse_preset(const nlohmann::json& j, Preset& out, std::string& error);
+bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error);
 
 // `name_or_path`: a shipped preset's name (embedded in the binary) or a JSON file path.
 std::optional<Preset> load_preset(const std::string& name_or_path, std::string& error);

@@ -14,8 +14,10 @@ namespace {
 
 bool hidden(const std::string& name) { return name.empty() || name[0] == '.' || name == "__MACOSX"; }
 
-// Folder -> its files, for a zip archive's entries.
-std::map<std::string, std::vector<std::string>> zip_folders(const fs::path& zip_path, std::string& error) {
+// Folder -> its files, for a zip archive's entries. Entries named to climb out of the archive
+// ("../x", "/abs/x") go to `unsafe`.
+std::map<std::string, std::vector<std::string>> zip_folders(const fs::path& zip_path, std::string& error,
+                                                            std::vector<std::string>& unsafe) {
     std::map<std::string, std::vector<std::string>> folders;
     int err = 0;
     zip_t* z = zip_open(zip_path.c_str(), ZIP_RDONLY, &err);
@@ -33,17 +35,19 @@ std::map<std::string, std::vector<std::string>> zip_folders(const fs::path& zip_
         const std::string name = raw;
         if (name.empty() || name.back() == '/') continue;
         // Entries are only ever read into memory, so "../" names cannot escape anywhere, but
-        // they are no part of a material set either.
-        bool skip = name.front() == '/';
+        // they are no part of a material set either: reported (a crafted archive), then skipped.
+        bool escapes = name.front() == '/', skip = false;
         size_t start = 0;
         for (size_t p = 0; p <= name.size(); ++p) {
             if (p == name.size() || name[p] == '/') {
                 const std::string part = name.substr(start, p - start);
-                if (part == ".." || hidden(part)) skip = true;
+                if (part == "..") escapes = true;
+                else if (hidden(part)) skip = true;
                 start = p + 1;
             }
         }
-        if (skip) continue;
+        if (escapes) unsafe.push_back(name);
+        if (escapes || skip) continue;
         const auto slash = name.rfind('/');
         const std::string folder = slash == std::string::npos ? "" : name.substr(0, slash);
         folders[folder].push_back(slash == std::string::npos ? name : name.substr(slash + 1));
@@ -68,11 +72,15 @@ void add_groups(const std::string& fallback, const std::vector<std::string>& fil
 
 void scan_zip(const fs::path& zip, std::vector<MaterialSource>& out, std::vector<SourceFailure>& failures) {
     std::string error;
-    auto folders = zip_folders(zip, error);
+    std::vector<std::string> unsafe;
+    auto folders = zip_folders(zip, error, unsafe);
     if (!error.empty()) {
         failures.push_back({zip.string(), std::string(code::unreadable_file), zip.string() + ": not a readable .zip (" + error + ")"});
         return;
     }
+    for (const auto& name : unsafe)
+        failures.push_back({zip.string(), std::string(code::unsafe_path),
+                            zip.string() + ": entry '" + name + "' points outside the archive; skipped"});
     const size_t before = out.size();
     for (auto& [folder, files] : folders) {
         MaterialSource proto;
@@ -90,15 +98,24 @@ void scan_zip(const fs::path& zip, std::vector<MaterialSource>& out, std::vector
 void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vector<SourceFailure>& failures) {
     std::vector<std::string> files;
     std::error_code ec;
-    for (fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end; !ec && it != end;
-         it.increment(ec)) {
+    fs::directory_iterator it(dir, ec);
+    for (fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
         if (hidden(name)) continue;
         std::error_code fec;
-        if (it->is_regular_file(fec)) {  // follows file symlinks; a dangling one is not regular
-            if (name.size() > 4 && fs::path(name).extension() == ".zip") scan_zip(it->path(), out, failures);
-            else files.push_back(name);
-        }
+        const fs::file_status st = it->status(fec);  // follows symlinks
+        if (fs::is_directory(st)) continue;          // walk() decides about folders
+        // Everything else is a candidate file, also FIFOs, sockets and broken or looping links:
+        // they get a coded error naming them when read (never opened, so a FIFO cannot hang us).
+        if (fs::is_regular_file(st) && name.size() > 4 && fs::path(name).extension() == ".zip")
+            scan_zip(it->path(), out, failures);
+        else
+            files.push_back(name);
+    }
+    if (ec) {  // unreadable folder, path beyond PATH_MAX, I/O error: reported, not silently lost
+        failures.push_back({dir.string(), std::string(code::unreadable_file),
+                            dir.string() + ": cannot list the folder (" + ec.message() + ")"});
+        return;
     }
     std::sort(files.begin(), files.end());
     MaterialSource proto;
@@ -112,8 +129,7 @@ void walk(const fs::path& root, const fs::path& exclude, std::vector<MaterialSou
     scan_folder(root, out, failures);
     std::vector<fs::path> subdirs;
     std::error_code ec;
-    for (fs::directory_iterator it(root, fs::directory_options::skip_permission_denied, ec), end; !ec && it != end;
-         it.increment(ec)) {
+    for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
         std::error_code fec;
         // Real folders only: a symlink to a folder could loop back to an ancestor.
         if (it->is_directory(fec) && !it->is_symlink(fec) && !hidden(it->path().filename().string())) {
@@ -147,21 +163,62 @@ InputFile MaterialSource::open(const std::string& file) const {
     in.display = root.string() + "/" + entry;
     auto bytes = std::make_shared<std::vector<unsigned char>>();
     int err = 0;
-    if (zip_t* z = zip_open(root.c_str(), ZIP_RDONLY, &err)) {
+    zip_t* z = zip_open(root.c_str(), ZIP_RDONLY, &err);
+    if (!z) {
+        in.open_error = "cannot open the archive";
+    } else {
+        constexpr zip_uint64_t kMaxEntry = zip_uint64_t{1} << 31;  // 2 GiB cap on one entry
         zip_stat_t st;
-        if (zip_stat(z, entry.c_str(), 0, &st) == 0 && (st.valid & ZIP_STAT_SIZE) &&
-            st.size <= static_cast<zip_uint64_t>(1) << 31) {  // 2 GiB cap on one entry
-            if (zip_file_t* f = zip_fopen(z, entry.c_str(), 0)) {
-                bytes->resize(st.size);
-                const zip_int64_t got = zip_fread(f, bytes->data(), st.size);
-                if (got < 0 || static_cast<zip_uint64_t>(got) != st.size) bytes->clear();
-                zip_fclose(f);
+        zip_file_t* f = nullptr;
+        if (zip_stat(z, entry.c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
+            in.open_error = "entry not found in the archive";
+        } else if (st.size > kMaxEntry) {
+            in.open_error = "entry declares " + std::to_string(st.size) + " bytes, more than the 2 GiB limit";
+        } else if (!(f = zip_fopen(z, entry.c_str(), 0))) {
+            in.open_error = std::string("cannot read the entry (") + zip_strerror(z) + ")";
+        } else {
+            // The declared size is the archive's claim, not a fact: read in chunks and grow, so a
+            // forged header cannot make us allocate what the data does not hold.
+            constexpr size_t kChunk = size_t{1} << 20;
+            size_t got = 0;
+            for (;;) {
+                bytes->resize(got + kChunk);
+                const zip_int64_t n = zip_fread(f, bytes->data() + got, kChunk);
+                if (n < 0) {
+                    in.open_error = std::string("corrupt entry (") + zip_file_strerror(f) + ")";
+                    break;
+                }
+                if (n == 0) break;
+                got += static_cast<size_t>(n);
+                if (got > kMaxEntry) {
+                    in.open_error = "entry inflates beyond the 2 GiB limit";
+                    break;
+                }
             }
+            bytes->resize(got);
+            if (in.open_error.empty() && got != st.size)
+                in.open_error = "entry holds " + std::to_string(got) + " bytes, its header declares " +
+                                std::to_string(st.size);
+            zip_fclose(f);
         }
         zip_close(z);
     }
-    in.bytes = std::move(bytes);  // empty bytes read as "empty file"
+    if (!in.open_error.empty()) bytes->clear();
+    in.bytes = std::move(bytes);
     return in;
+}
+
+std::string output_overlaps_input(const fs::path& out_dir, const std::vector<fs::path>& inputs) {
+    std::error_code ec;
+    const fs::path out = fs::weakly_canonical(fs::absolute(out_dir, ec), ec);
+    for (const auto& i : inputs) {
+        const fs::path in = fs::weakly_canonical(fs::absolute(i, ec), ec);
+        const fs::path rel = in.lexically_relative(out);
+        if (!rel.empty() && *rel.begin() != "..")
+            return "the output folder " + out_dir.string() + (rel == "." ? " is the input " : " holds the input ") +
+                   i.string() + "; choose an output folder outside the inputs (or inside one)";
+    }
+    return {};
 }
 
 std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inputs, const fs::path& exclude,

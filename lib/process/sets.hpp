@@ -34,6 +34,11 @@ std::vector<MaterialSource> find_material_sets(const std::vector<std::filesystem
                                                const std::filesystem::path& exclude,
                                                std::vector<SourceFailure>& failures);
 
+// Non-empty (a message) when `out_dir` is one of `inputs` or holds one: outputs would then be
+// found as inputs by the next run. An output folder inside an input is fine (it is skipped).
+std::string output_overlaps_input(const std::filesystem::path& out_dir,
+                                  const std::vector<std::filesystem::path>& inputs);
+
 // A name safe as one path component: [A-Za-z0-9._-] kept, others '_', no leading dot, ≤ 96 bytes.
 std::string safe_name(const std::string& name);
 

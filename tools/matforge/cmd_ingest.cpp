@@ -20,7 +20,11 @@ struct IngestArgs {
 };
 
 int run_ingest(const IngestArgs& a) {
-    std::string error;
+    std::string error = output_overlaps_input(a.out_dir, {a.inputs.begin(), a.inputs.end()});
+    if (!error.empty()) {
+        std::cerr << "matforge ingest: " << error << "\n";
+        return kExitUsage;
+    }
     auto preset = load_preset(a.preset, error);
     if (!preset) {
         std::cerr << "matforge ingest: " << error << "\n";

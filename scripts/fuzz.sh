@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# libFuzzer targets (tests/fuzz) for our parsers: preset, file-name discovery, and, when the
+# preview module is built, the scene file and manifest reader.
+#   scripts/fuzz.sh [SECONDS]          each target for SECONDS (default 30) on a scratch copy of
+#                                      its committed corpus (CI: bounded, the corpus is unchanged)
+#   FUZZ_GROW=1 scripts/fuzz.sh 3600   by hand: longer, new inputs merged into tests/fuzz/corpus
+# A crash leaves crash-* in build-fuzz/artifacts/ and fails; commit it to the corpus once fixed.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+secs=${1:-30}
+build=${FUZZ_BUILD:-$root/build-fuzz}
+command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 missing (apt-get install clang)" >&2; exit 2; }
+flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+# Warnings are gcc's job in the main build; here only crashes matter.
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_CXX_FLAGS="$flags" \
+  -DMATFORGE_FUZZ=ON -DMATFORGE_WERROR=OFF -DMATFORGE_BENCHMARKS=OFF \
+  -DMATFORGE_SKIP="${MATFORGE_SKIP:-}" >/dev/null
+cmake --build "$build" --target fuzz -j"$(nproc)"
+mkdir -p "$build/artifacts"
+status=0
+for exe in "$build"/tests/fuzz/fuzz_*; do
+  name=${exe##*/fuzz_}
+  seeds=$root/tests/fuzz/corpus/$name
+  work=$build/corpus/$name
+  rm -rf "$work" && mkdir -p "$work"
+  echo "fuzz: $name for ${secs}s" >&2
+  # -rss_limit_mb bounds a parser's memory; ASan's own leak check runs at exit.
+  if ! ASAN_OPTIONS=detect_leaks=1 "$exe" "$work" "$seeds" -max_total_time="$secs" -rss_limit_mb=2048 \
+       -timeout=10 -print_final_stats=1 -artifact_prefix="$build/artifacts/$name-" 2>"$build/$name.log"; then
+    echo "fuzz: $name FAILED (log: $build/$name.log)" >&2
+    tail -40 "$build/$name.log" >&2
+    status=1
+  else
+    grep -E "stat::number_of_executed_units|stat::new_units_added" "$build/$name.log" | tr '\n' ' ' >&2; echo >&2
+  fi
+  if [[ ${FUZZ_GROW:-0} == 1 ]]; then
+    "$exe" -merge=1 "$seeds" "$work" 2>/dev/null
+  fi
+done
+exit $status

@@ -1,0 +1,806 @@
+// Hostile inputs: each case is generated here, run through `matforge ingest` beside a good set,
+// and must give a coded result naming the file — no crash, no hang, no runaway memory — while
+// the good set still finishes. The corpus and what each class gets are listed in README.md
+// ("Hostile inputs").
+#include <OpenImageIO/imageio.h>
+#include <zip.h>
+
+#include <sys/stat.h>
+
+#include "hostile_util.hpp"
+
+using namespace mfh;
+
+namespace {
+
+constexpr long kBombRssLimitKb = 600 * 1024;  // far below what decoding any bomb would need
+
+class Hostile : public ::testing::Test {
+protected:
+    fs::path in, out;
+    nlohmann::json manifest;
+
+    void SetUp() override {
+        in = temp_dir("in");
+        out = temp_dir("out");
+        fs::remove(out);  // ingest creates it
+        write_bytes(in / "Good" / "Good_Color.png", encode(gradient(16, 16, 3)));
+        write_bytes(in / "Good" / "Good_Roughness.png", encode(gradient(16, 16, 1)));
+    }
+    void TearDown() override {
+        if (HasFailure()) return;  // keep the evidence
+        std::error_code ec;
+        fs::permissions(in, fs::perms::all, ec);
+        fs::remove_all(in, ec);
+        fs::remove_all(out, ec);
+    }
+
+    Proc ingest(std::vector<std::string> extra = {}, const std::vector<std::string>& prefix = {}) {
+        std::vector<std::string> argv = prefix;
+        for (const auto& a : std::vector<std::string>{bin(), "ingest", in.string(), "-o", out.string(), "--quiet"})
+            argv.push_back(a);
+        argv.insert(argv.end(), extra.begin(), extra.end());
+        Proc p = spawn(argv, 120);
+        EXPECT_FALSE(p.hung) << "ingest hung\n" << p.output;
+        EXPECT_EQ(p.signal, 0) << "ingest crashed\n" << p.output;
+        if (fs::exists(out / "manifest.json")) manifest = read_json(out / "manifest.json");
+        return p;
+    }
+
+    const nlohmann::json* mat(const std::string& name) const {
+        for (const auto& m : manifest["materials"])
+            if (m["name"] == name) return &m;
+        return nullptr;
+    }
+
+    // The good set finished: listed as ok, its outputs on disk.
+    void expect_good_done() const {
+        const auto* g = mat("Good");
+        ASSERT_TRUE(g) << manifest.dump(1);
+        EXPECT_EQ((*g)["status"], "ok");
+        EXPECT_TRUE(fs::is_regular_file(out / "Good" / "Good_basecolor.png"));
+        EXPECT_TRUE(fs::is_regular_file(out / "Good" / "Good_orm.png"));
+        EXPECT_TRUE(temp_files_under(out).empty());
+    }
+
+    // Material `m` has a finding `code` about `file`, whose message names the file.
+    const nlohmann::json* expect_finding(const std::string& m, const std::string& code, const std::string& file,
+                                         const std::string& needle = "") const {
+        const auto* mm = mat(m);
+        EXPECT_TRUE(mm) << manifest.dump(1);
+        if (!mm) return nullptr;
+        for (const auto& f : (*mm)["findings"]) {
+            if (f["code"] != code || f.value("file", "") != file) continue;
+            const std::string msg = f["message"];
+            EXPECT_NE(msg.find(file), std::string::npos) << "message names the file: " << msg;
+            if (!needle.empty()) {
+                EXPECT_NE(msg.find(needle), std::string::npos) << msg;
+            }
+            return &f;
+        }
+        ADD_FAILURE() << "no " << code << " for " << file << " in " << mm->dump(1);
+        return nullptr;
+    }
+
+    // manifest.failures has `code` with a message holding `needle` (the file), also on stderr.
+    void expect_failure(const Proc& p, const std::string& code, const std::string& needle) const {
+        for (const auto& f : manifest["failures"])
+            if (f["code"] == code && f["message"].get<std::string>().find(needle) != std::string::npos) {
+                EXPECT_NE(p.output.find(code), std::string::npos) << p.output;
+                return;
+            }
+        ADD_FAILURE() << "no failure " << code << " naming " << needle << " in " << manifest["failures"].dump(1);
+    }
+
+    // A set whose one bad map is skipped: UNREADABLE_FILE (error) naming it, status partial,
+    // the set's good albedo still converted, the good set done, exit 1.
+    void bad_map(const std::string& name, const Bytes& bytes, const std::string& needle = "") {
+        write_bytes(in / "Hostile" / "Hostile_Color.png", encode(gradient(16, 16, 3)));
+        write_bytes(in / "Hostile" / name, bytes);
+        const Proc p = ingest();
+        expect_bad_map_result(p, name, needle);
+    }
+    void expect_bad_map_result(const Proc& p, const std::string& name, const std::string& needle = "") {
+        EXPECT_EQ(p.code, 1) << p.output;
+        expect_good_done();
+        const auto* h = mat("Hostile");
+        ASSERT_TRUE(h) << manifest.dump(1);
+        EXPECT_EQ((*h)["status"], "partial");
+        const auto* f = expect_finding("Hostile", "UNREADABLE_FILE", name, needle);
+        if (f) {
+            EXPECT_EQ((*f)["severity"], "error");
+        }
+        EXPECT_TRUE(fs::is_regular_file(out / "Hostile" / "Hostile_basecolor.png"));
+    }
+
+    // A bomb: refused from its header (the guard's message), with bounded memory.
+    void bomb(const std::string& name, const Bytes& bytes, const std::string& needle = "exceeds the limit") {
+        write_bytes(in / "Hostile" / "Hostile_Color.png", encode(gradient(16, 16, 3)));
+        write_bytes(in / "Hostile" / name, bytes);
+        const Proc p = ingest();
+        expect_bad_map_result(p, name, needle);
+        EXPECT_LT(p.maxrss_kb, kBombRssLimitKb) << "the size guard fires before any pixel buffer is allocated";
+    }
+
+    // An odd but valid map: read, converted, no UNREADABLE_FILE. Returns the set's entry.
+    const nlohmann::json* odd_ok(const std::string& name, const Bytes& bytes) {
+        write_bytes(in / "Odd" / name, bytes);
+        return odd_ok_run(name);
+    }
+    const nlohmann::json* odd_ok_run(const std::string& name) {
+        const Proc p = ingest({"--fail-on", "never"});
+        EXPECT_EQ(p.code, 0) << p.output;
+        expect_good_done();
+        const auto* o = mat("Odd");
+        EXPECT_TRUE(o) << manifest.dump(1);
+        if (!o) return nullptr;
+        EXPECT_EQ((*o)["status"], "ok") << o->dump(1);
+        for (const auto& f : (*o)["findings"]) EXPECT_NE(f["code"], "UNREADABLE_FILE") << f.dump();
+        bool listed = false;
+        for (const auto& [role, i] : (*o)["inputs"].items()) listed = listed || i["file"] == name;
+        EXPECT_TRUE(listed) << name << " is an input: " << o->dump(1);
+        return o;
+    }
+
+    static mf::Image read_out(const fs::path& p) {
+        mf::Image img;
+        mf::ImageInfo info;
+        std::string err;
+        mf::InputFile f;
+        f.path = p;
+        f.display = p.string();
+        EXPECT_TRUE(mf::read_image(f, img, info, err)) << err;
+        return img;
+    }
+};
+
+Bytes valid_png() { return encode(gradient(16, 16, 1)); }
+
+// OpenImageIO writes what our encoder does not offer (float TIFF, many channels).
+Bytes oiio_file(const std::string& ext, int w, int h, int c, OIIO::TypeDesc type, const std::vector<float>& px) {
+    const fs::path tmp = fs::temp_directory_path() / ("matforge-hostile-oiio-" + std::to_string(::getpid()) + "." + ext);
+    auto o = OIIO::ImageOutput::create(tmp.string());
+    EXPECT_TRUE(o);
+    OIIO::ImageSpec spec(w, h, c, type);
+    EXPECT_TRUE(o->open(tmp.string(), spec)) << o->geterror();
+    EXPECT_TRUE(o->write_image(OIIO::TypeDesc::FLOAT, px.data())) << o->geterror();
+    o->close();
+    Bytes b = read_bytes(tmp);
+    fs::remove(tmp);
+    return b;
+}
+
+struct ZipEntry {
+    std::string name;
+    Bytes data;
+};
+void write_zip(const fs::path& p, const std::vector<ZipEntry>& entries, bool stored = false) {
+    fs::create_directories(p.parent_path());
+    int err = 0;
+    zip_t* z = zip_open(p.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+    ASSERT_TRUE(z);
+    for (const auto& e : entries) {
+        zip_source_t* s = zip_source_buffer(z, e.data.data(), e.data.size(), 0);
+        ASSERT_TRUE(s);
+        const zip_int64_t idx = zip_file_add(z, e.name.c_str(), s, ZIP_FL_OVERWRITE);
+        ASSERT_GE(idx, 0) << zip_strerror(z);
+        if (stored) zip_set_file_compression(z, static_cast<zip_uint64_t>(idx), ZIP_CM_STORE, 0);
+    }
+    ASSERT_EQ(zip_close(z), 0);
+}
+
+bool is_root() { return ::geteuid() == 0; }
+
+// A private mount namespace (root, or an unprivileged user namespace) for tmpfs output disks:
+// the mount vanishes with the process, whatever happens to the test.
+bool can_mount_tmpfs() {
+    const Proc p = spawn({"unshare", is_root() ? "-m" : "-rm", "sh", "-c",
+                          "d=$(mktemp -d) && mount -t tmpfs -o size=64k tmpfs \"$d\" && umount \"$d\" && rmdir \"$d\""},
+                         30);
+    return p.code == 0;
+}
+
+}  // namespace
+
+// ===== unreadable images: UNREADABLE_FILE naming the file, the set goes on without it
+
+TEST_F(Hostile, ZeroBytePng) { bad_map("Hostile_Roughness.png", {}, "empty file"); }
+
+TEST_F(Hostile, TruncatedPngSignature) {
+    const Bytes png = valid_png();
+    bad_map("Hostile_Roughness.png", Bytes(png.begin(), png.begin() + 5));
+}
+
+TEST_F(Hostile, TruncatedPngHalf) {
+    const Bytes png = encode(gradient(64, 64, 1));
+    bad_map("Hostile_Roughness.png", Bytes(png.begin(), png.begin() + static_cast<long>(png.size() / 2)));
+}
+
+TEST_F(Hostile, PngWithBadCrc) {
+    Bytes png = encode(gradient(16, 16, 1));
+    png[png.size() - 20] ^= 0xff;  // inside the last IDAT's data: its CRC no longer matches
+    bad_map("Hostile_Roughness.png", png);
+}
+
+TEST_F(Hostile, TruncatedExr) {
+    const Bytes exr = encode(gradient(32, 32, 1), "exr", 16);
+    bad_map("Hostile_Roughness.exr", Bytes(exr.begin(), exr.begin() + static_cast<long>(exr.size() / 2)));
+}
+
+TEST_F(Hostile, TextNamedPng) { bad_map("Hostile_Roughness.png", Bytes{'h', 'e', 'l', 'l', 'o', '\n'}); }
+
+TEST_F(Hostile, HtmlNamedJpg) {
+    const std::string html = "<!DOCTYPE html><html><body>404 Not Found</body></html>\n";
+    bad_map("Hostile_Roughness.jpg", Bytes(html.begin(), html.end()));
+}
+
+TEST_F(Hostile, RandomBytesNamedTif) {
+    Bytes b(4096);
+    uint32_t s = 12345;
+    for (auto& c : b) c = static_cast<unsigned char>((s = s * 1664525u + 1013904223u) >> 24);
+    b[0] = 'I', b[1] = 'I', b[2] = 42, b[3] = 0;  // a TIFF signature over noise
+    bad_map("Hostile_Roughness.tif", b);
+}
+
+TEST_F(Hostile, PngHeaderWithZeroWidth) {
+    bad_map("Hostile_Roughness.png", make_png(0, 16, 8, 0, {}, {}, false));
+}
+
+// ===== decompression bombs: refused from the header, before any pixel buffer exists
+
+TEST_F(Hostile, PngBomb100000Squared) {
+    bomb("Hostile_Roughness.png", make_png(100000, 100000, 8, 0, {}, {}, false));
+}
+
+TEST_F(Hostile, PngBombJustOverTheLimit) {
+    bomb("Hostile_Roughness.png", make_png(16385, 16384, 8, 0, {}, {}, false));
+}
+
+TEST_F(Hostile, TiffBomb) { bomb("Hostile_Roughness.tif", make_tiff_bomb(100000, 100000)); }
+
+// OpenImageIO's BMP reader has a size check of its own, which fires first.
+TEST_F(Hostile, BmpBomb) {
+    bomb("Hostile_Roughness.bmp", make_bmp_bomb(100000, 100000), "Invalid image size 100000 x 100000");
+}
+
+TEST_F(Hostile, HdrBomb) {
+    const std::string h = make_hdr_bomb(100000, 100000);
+    bomb("Hostile_Roughness.hdr", Bytes(h.begin(), h.end()));
+}
+
+TEST_F(Hostile, TooManyChannels) {
+    bomb("Hostile_Roughness.tif", oiio_file("tif", 4, 4, 9, OIIO::TypeDesc::UINT8, std::vector<float>(4 * 4 * 9, 0.5f)));
+}
+
+TEST_F(Hostile, PngBombInsideZip) {
+    write_zip(in / "Zipped.zip", {{"Zipped_Color.png", encode(gradient(16, 16, 3))},
+                                  {"Zipped_Roughness.png", make_png(100000, 100000, 8, 0, {}, {}, false)}});
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_good_done();
+    expect_finding("Zipped", "UNREADABLE_FILE", "Zipped_Roughness.png", "exceeds the limit");
+    EXPECT_EQ((*mat("Zipped"))["status"], "partial");
+    EXPECT_LT(p.maxrss_kb, kBombRssLimitKb);
+}
+
+// A zip entry that claims 1.5 GB: never trusted for an allocation.
+TEST_F(Hostile, ZipEntryWithForgedSize) {
+    const fs::path z = in / "Forged.zip";
+    write_zip(z, {{"Forged_Color.png", encode(gradient(16, 16, 3))}, {"Forged_Roughness.png", valid_png()}}, true);
+    Bytes b = read_bytes(z);
+    const std::string entry = "Forged_Roughness.png";
+    int patched = 0;
+    for (size_t i = 0; i + 46 < b.size(); ++i) {
+        const bool local = b[i] == 'P' && b[i + 1] == 'K' && b[i + 2] == 3 && b[i + 3] == 4;
+        const bool central = b[i] == 'P' && b[i + 1] == 'K' && b[i + 2] == 1 && b[i + 3] == 2;
+        if (!local && !central) continue;
+        const size_t name_at = i + (local ? 30 : 46);
+        if (name_at + entry.size() > b.size() || std::memcmp(&b[name_at], entry.data(), entry.size()) != 0) continue;
+        const size_t size_at = i + (local ? 22 : 24);
+        const uint32_t forged = 1500u * 1000u * 1000u;
+        for (int k = 0; k < 4; ++k) b[size_at + static_cast<size_t>(k)] = static_cast<unsigned char>(forged >> (8 * k));
+        ++patched;
+    }
+    ASSERT_EQ(patched, 2);
+    write_bytes(z, b);
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_good_done();
+    expect_finding("Forged", "UNREADABLE_FILE", "Forged_Roughness.png");
+    EXPECT_LT(p.maxrss_kb, kBombRssLimitKb);
+}
+
+// ===== archives
+
+TEST_F(Hostile, ZeroByteZip) {
+    write_bytes(in / "Empty_Color.zip", {});
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1);
+    expect_good_done();
+    expect_failure(p, "UNREADABLE_FILE", "Empty_Color.zip");
+}
+
+TEST_F(Hostile, TextNamedZip) {
+    write_text(in / "Notes.zip", "this is not an archive\n");
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1);
+    expect_good_done();
+    expect_failure(p, "UNREADABLE_FILE", "Notes.zip");
+}
+
+TEST_F(Hostile, TruncatedZip) {
+    write_zip(in / "Cut.zip", {{"Cut_Color.png", encode(gradient(32, 32, 3))}});
+    Bytes b = read_bytes(in / "Cut.zip");
+    b.resize(b.size() / 2);  // the central directory is gone
+    write_bytes(in / "Cut.zip", b);
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1);
+    expect_good_done();
+    expect_failure(p, "UNREADABLE_FILE", "Cut.zip");
+}
+
+// Entries named to climb out ("../", absolute, "a/../../") are refused with UNSAFE_PATH; the
+// archive's other entries are ingested; nothing lands outside the output folder.
+TEST_F(Hostile, ZipEntriesThatEscape) {
+    const Bytes png = encode(gradient(16, 16, 3));
+    write_zip(in / "Sneaky.zip", {{"Sneaky_Color.png", png},
+                                  {"../../Evil_Color.png", png},
+                                  {"/tmp/Evil_Color.png", png},
+                                  {"a/../../Evil_Normal.png", png}});
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_good_done();
+    ASSERT_TRUE(mat("Sneaky"));
+    EXPECT_EQ(mat("Evil"), nullptr);
+    expect_failure(p, "UNSAFE_PATH", "../../Evil_Color.png");
+    expect_failure(p, "UNSAFE_PATH", "/tmp/Evil_Color.png");
+    expect_failure(p, "UNSAFE_PATH", "a/../../Evil_Normal.png");
+    for (const auto& d : {out.parent_path(), in.parent_path(), fs::path("/tmp")})
+        for (const auto& e : fs::directory_iterator(d))
+            EXPECT_EQ(e.path().filename().string().find("Evil"), std::string::npos) << e.path();
+}
+
+// ===== odd but valid images: read by content, converted, values kept
+
+TEST_F(Hostile, JpegNamedPng) {
+    const auto* o = odd_ok("Odd_Color.png", encode(gradient(16, 16, 3), "jpg"));
+    ASSERT_TRUE(o);
+    EXPECT_EQ((*o)["inputs"]["albedo"]["width"], 16);
+}
+
+TEST_F(Hostile, PngNamedExr) {
+    const auto* o = odd_ok("Odd_Color.exr", encode(gradient(8, 8, 3)));
+    ASSERT_TRUE(o);
+    EXPECT_EQ((*o)["inputs"]["albedo"]["bit_depth"], 8);
+}
+
+TEST_F(Hostile, Png16Bit) {
+    const auto* o = odd_ok("Odd_Roughness.png", encode(gradient(16, 16, 1), "png", 16));
+    ASSERT_TRUE(o);
+    EXPECT_EQ((*o)["inputs"]["roughness"]["bit_depth"], 16);
+}
+
+TEST_F(Hostile, PalettePng) {
+    // 2x1, palette index 0 = (200, 40, 10), 1 = (10, 90, 250): the albedo keeps the exact colors.
+    const auto* o = odd_ok("Odd_Color.png", make_png(2, 1, 8, 3, {0, 1}, {200, 40, 10, 10, 90, 250}));
+    ASSERT_TRUE(o);
+    EXPECT_EQ((*o)["inputs"]["albedo"]["channels"], 3);
+    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    ASSERT_EQ(img.width, 2);
+    ASSERT_EQ(img.channels, 3);
+    EXPECT_EQ(mf::quantize(img.at(0, 0, 0), 8), 200);
+    EXPECT_EQ(mf::quantize(img.at(0, 0, 2), 8), 10);
+    EXPECT_EQ(mf::quantize(img.at(1, 0, 1), 8), 90);
+    EXPECT_EQ(mf::quantize(img.at(1, 0, 2), 8), 250);
+}
+
+TEST_F(Hostile, GreyAlphaPngAlbedo) {
+    // grey 100 with alpha 0 and 255: grey is kept under zero alpha (never premultiplied), alpha
+    // becomes opacity in the basecolor's A.
+    const auto* o = odd_ok("Odd_Color.png", make_png(2, 1, 8, 4, {100, 0, 100, 255}));
+    ASSERT_TRUE(o);
+    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    ASSERT_EQ(img.channels, 4);
+    EXPECT_EQ(mf::quantize(img.at(0, 0, 0), 8), 100);
+    EXPECT_EQ(mf::quantize(img.at(0, 0, 1), 8), 100);
+    EXPECT_EQ(mf::quantize(img.at(0, 0, 3), 8), 0);
+    EXPECT_EQ(mf::quantize(img.at(1, 0, 3), 8), 255);
+}
+
+TEST_F(Hostile, GreyPngAlbedo) {
+    const auto* o = odd_ok("Odd_Color.png", make_png(2, 1, 8, 0, {60, 180}));
+    ASSERT_TRUE(o);
+    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    ASSERT_EQ(img.channels, 3);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(mf::quantize(img.at(1, 0, c), 8), 180);
+}
+
+TEST_F(Hostile, FloatTiffAlbedo) {
+    const auto* o = odd_ok("Odd_Color.tif", oiio_file("tif", 4, 4, 3, OIIO::TypeDesc::FLOAT, std::vector<float>(48, 0.25f)));
+    ASSERT_TRUE(o);
+    EXPECT_EQ((*o)["inputs"]["albedo"]["bit_depth"], 32);
+    EXPECT_EQ((*o)["inputs"]["albedo"]["color_space"], "linear");
+}
+
+TEST_F(Hostile, HalfExrRoughness) {
+    write_bytes(in / "Odd" / "Odd_Color.png", encode(gradient(8, 8, 3)));
+    write_bytes(in / "Odd" / "Odd_Roughness.exr", encode(gradient(8, 8, 1), "exr", 16));
+    const auto* o = odd_ok_run("Odd_Roughness.exr");
+    ASSERT_TRUE(o);
+    EXPECT_EQ((*o)["inputs"]["roughness"]["bit_depth"], 16);
+    EXPECT_EQ((*o)["inputs"]["roughness"]["float"], true);
+}
+
+TEST_F(Hostile, OneByOne) {
+    write_bytes(in / "Odd" / "Odd_Color.png", encode(gradient(1, 1, 3)));
+    write_bytes(in / "Odd" / "Odd_NormalGL.png", make_png(1, 1, 8, 2, {128, 128, 255}));
+    write_bytes(in / "Odd" / "Odd_Roughness.png", encode(gradient(1, 1, 1)));
+    ASSERT_TRUE(odd_ok_run("Odd_NormalGL.png"));
+    const mf::Image n = read_out(out / "Odd" / "Odd_normal.png");
+    EXPECT_EQ(n.width, 1);
+    EXPECT_EQ(n.height, 1);
+}
+
+TEST_F(Hostile, Wide65535x1) {
+    ASSERT_TRUE(odd_ok("Odd_Color.png", encode(gradient(65535, 1, 3))));
+    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    EXPECT_EQ(img.width, 65535);
+    EXPECT_EQ(img.height, 1);
+}
+
+TEST_F(Hostile, Tall1x65535) {
+    ASSERT_TRUE(odd_ok("Odd_Roughness.png", encode(gradient(1, 65535, 1))));
+    const mf::Image img = read_out(out / "Odd" / "Odd_orm.png");
+    EXPECT_EQ(img.width, 1);
+    EXPECT_EQ(img.height, 65535);
+}
+
+TEST_F(Hostile, NanInfExr) {
+    mf::Image r = gradient(8, 8, 1);
+    r.at(0, 0) = std::numeric_limits<float>::quiet_NaN();
+    r.at(1, 0) = std::numeric_limits<float>::infinity();
+    r.at(2, 0) = -std::numeric_limits<float>::infinity();
+    const auto* o = odd_ok("Odd_Roughness.exr", encode(r, "exr", 32));
+    ASSERT_TRUE(o);
+    expect_finding("Odd", "NONFINITE_VALUES", "Odd_Roughness.exr");
+    // Written values are finite codes: NaN and -Inf clamp to 0, +Inf to 255.
+    const mf::Image orm = read_out(out / "Odd" / "Odd_orm.png");
+    EXPECT_EQ(mf::quantize(orm.at(0, 0, 1), 8), 0);
+    EXPECT_EQ(mf::quantize(orm.at(1, 0, 1), 8), 255);
+    EXPECT_EQ(mf::quantize(orm.at(2, 0, 1), 8), 0);
+}
+
+TEST_F(Hostile, AllNanExrAlbedo) {
+    mf::Image a(4, 4, 3, std::numeric_limits<float>::quiet_NaN());
+    ASSERT_TRUE(odd_ok("Odd_Color.exr", encode(a, "exr", 16)));
+    expect_finding("Odd", "NONFINITE_VALUES", "Odd_Color.exr");
+    EXPECT_TRUE(fs::is_regular_file(out / "Odd" / "Odd_basecolor.png"));
+}
+
+TEST_F(Hostile, NegativeRoughnessExr) {
+    mf::Image r = gradient(8, 8, 1);
+    for (float& v : r.pixels) v -= 1.5f;
+    ASSERT_TRUE(odd_ok("Odd_Roughness.exr", encode(r, "exr", 32)));
+    expect_finding("Odd", "OUT_OF_RANGE_VALUES", "Odd_Roughness.exr");
+}
+
+TEST_F(Hostile, MixedResolutions) {
+    write_bytes(in / "Odd" / "Odd_Color.png", encode(gradient(64, 64, 3)));
+    write_bytes(in / "Odd" / "Odd_Roughness.png", encode(gradient(1, 1, 1)));
+    const auto* o = odd_ok_run("Odd_Roughness.png");
+    ASSERT_TRUE(o);
+    bool mismatch = false;
+    for (const auto& f : (*o)["findings"]) mismatch = mismatch || f["code"] == "RESOLUTION_MISMATCH";
+    EXPECT_TRUE(mismatch) << o->dump(1);
+    EXPECT_EQ(read_out(out / "Odd" / "Odd_orm.png").width, 64);
+}
+
+// ===== files that are not files
+
+TEST_F(Hostile, FifoNamedPng) {
+    write_bytes(in / "Hostile" / "Hostile_Color.png", encode(gradient(16, 16, 3)));
+    ASSERT_EQ(::mkfifo((in / "Hostile" / "Hostile_Roughness.png").c_str(), 0644), 0);
+    const Proc p = ingest();  // a reader that opened the FIFO would block forever: the deadline catches it
+    expect_bad_map_result(p, "Hostile_Roughness.png", "not a regular file");
+}
+
+TEST_F(Hostile, DanglingSymlinkPng) {
+    write_bytes(in / "Hostile" / "Hostile_Color.png", encode(gradient(16, 16, 3)));
+    fs::create_symlink("no-such-target.png", in / "Hostile" / "Hostile_Roughness.png");
+    const Proc p = ingest();
+    expect_bad_map_result(p, "Hostile_Roughness.png", "broken symbolic link");
+}
+
+TEST_F(Hostile, SymlinkLoopPng) {
+    write_bytes(in / "Hostile" / "Hostile_Color.png", encode(gradient(16, 16, 3)));
+    fs::create_symlink("Hostile_Roughness.png", in / "Hostile" / "Hostile_Roughness.png");
+    fs::create_symlink("Hostile_Metalness.png", in / "Hostile" / "Hostile_Metalness_b.png");
+    fs::create_symlink("Hostile_Metalness_b.png", in / "Hostile" / "Hostile_Metalness.png");
+    const Proc p = ingest();
+    expect_bad_map_result(p, "Hostile_Roughness.png", "symbolic link");
+    expect_finding("Hostile", "UNREADABLE_FILE", "Hostile_Metalness.png", "symbolic link");
+}
+
+// Folder links pointing up (loops) are never followed: each set is found once, quickly.
+TEST_F(Hostile, SymlinkLoopFolders) {
+    write_bytes(in / "Odd" / "Odd_Color.png", encode(gradient(8, 8, 3)));
+    fs::create_directory_symlink("..", in / "Odd" / "up");
+    fs::create_directory_symlink(".", in / "Odd" / "self");
+    fs::create_directory_symlink(in, in / "Good" / "root");
+    fs::create_directory_symlink("b", in / "a");
+    fs::create_directory_symlink("a", in / "b");
+    ASSERT_TRUE(odd_ok_run("Odd_Color.png"));
+    EXPECT_EQ(manifest["materials"].size(), 2u) << manifest.dump(1);
+}
+
+// A folder named like a map is a folder: walked, never opened as an image.
+TEST_F(Hostile, FolderNamedPng) {
+    write_bytes(in / "Odd" / "Odd_Color.png", encode(gradient(8, 8, 3)));
+    fs::create_directories(in / "Odd" / "Odd_Roughness.png");
+    const auto* o = odd_ok_run("Odd_Color.png");
+    ASSERT_TRUE(o);
+    EXPECT_FALSE((*o)["inputs"].contains("roughness"));
+}
+
+TEST_F(Hostile, UnreadableFile) {
+    write_bytes(in / "Hostile" / "Hostile_Color.png", encode(gradient(16, 16, 3)));
+    write_bytes(in / "Hostile" / "Hostile_Roughness.png", valid_png());
+    fs::permissions(in / "Hostile" / "Hostile_Roughness.png", fs::perms::none);
+    // Root reads any file: run as nobody then (setpriv), with an output folder nobody may write.
+    std::vector<std::string> prefix;
+    if (is_root()) {
+        prefix = {"setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"};
+        fs::create_directories(out);
+        fs::permissions(out, fs::perms::all);
+    }
+    const Proc p = ingest({}, prefix);
+    expect_bad_map_result(p, "Hostile_Roughness.png");
+}
+
+TEST_F(Hostile, UnreadableFolder) {
+    write_bytes(in / "Locked" / "Locked_Color.png", encode(gradient(16, 16, 3)));
+    fs::permissions(in / "Locked", fs::perms::none);
+    std::vector<std::string> prefix;
+    if (is_root()) {
+        prefix = {"setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"};
+        fs::create_directories(out);
+        fs::permissions(out, fs::perms::all);
+    }
+    const Proc p = ingest({}, prefix);
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_good_done();
+    expect_failure(p, "UNREADABLE_FILE", "Locked");
+}
+
+// A folder whose path exceeds PATH_MAX cannot be opened by name: reported, not silently lost.
+TEST_F(Hostile, PathBeyondPathMax) {
+    const std::string part(200, 'd');
+    int fd = ::open(in.c_str(), O_RDONLY | O_DIRECTORY);
+    ASSERT_GE(fd, 0);
+    for (int i = 0; i < 24; ++i) {  // 24 × 201 bytes > 4096
+        ASSERT_EQ(::mkdirat(fd, part.c_str(), 0755), 0);
+        const int next = ::openat(fd, part.c_str(), O_RDONLY | O_DIRECTORY);
+        ::close(fd);
+        ASSERT_GE(next, 0);
+        fd = next;
+    }
+    const Bytes png = encode(gradient(8, 8, 3));
+    const int f = ::openat(fd, "Deep_Color.png", O_WRONLY | O_CREAT, 0644);
+    ASSERT_GE(f, 0);
+    ASSERT_EQ(::write(f, png.data(), png.size()), static_cast<ssize_t>(png.size()));
+    ::close(f);
+    ::close(fd);
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_good_done();
+    expect_failure(p, "UNREADABLE_FILE", part);
+}
+
+// ===== names
+
+TEST_F(Hostile, NonUtf8Name) {
+    // Latin-1 "Caf\xe9": the bytes are a valid path, not valid UTF-8. The map is read; the
+    // manifest stays valid JSON (read_json would throw) and names the file with U+FFFD.
+    const std::string name = "Caf\xe9_Color.png";
+    write_bytes(in / "Weird" / name, encode(gradient(8, 8, 3)));
+    const Proc p = ingest({"--fail-on", "never"});
+    EXPECT_EQ(p.code, 0) << p.output;
+    expect_good_done();
+    const nlohmann::json* w = nullptr;
+    for (const auto& m : manifest["materials"])
+        if (m["name"] == "Caf_") w = &m;
+    ASSERT_TRUE(w) << manifest.dump(1);
+    EXPECT_EQ((*w)["inputs"]["albedo"]["file"], "Caf\xef\xbf\xbd_Color.png");
+    EXPECT_TRUE(fs::is_regular_file(out / "Caf_" / "Caf__basecolor.png"));
+}
+
+TEST_F(Hostile, VeryLongName) {
+    const std::string stem(240, 'L');  // + "_Color.png" = 250 bytes, near NAME_MAX (255)
+    write_bytes(in / "Long" / (stem + "_Color.png"), encode(gradient(8, 8, 3)));
+    const Proc p = ingest({"--fail-on", "never"});
+    EXPECT_EQ(p.code, 0) << p.output;
+    expect_good_done();
+    const std::string safe(96, 'L');  // names are capped at 96 bytes: outputs and temporaries fit
+    ASSERT_TRUE(mat(safe)) << manifest.dump(1);
+    EXPECT_TRUE(fs::is_regular_file(out / safe / (safe + "_basecolor.png")));
+}
+
+TEST_F(Hostile, NameWithNewlineQuotesAndSpaces) {
+    // The material is named from the file's stem, made safe for a folder name.
+    const std::string name = "it's \"a\"\nname $(touch pwned) _Color.png";
+    write_bytes(in / "Odd" / name, encode(gradient(8, 8, 3)));
+    const Proc p = ingest({"--fail-on", "never"});
+    EXPECT_EQ(p.code, 0) << p.output;
+    expect_good_done();
+    const nlohmann::json* o = nullptr;
+    for (const auto& m : manifest["materials"])
+        if (m["inputs"].contains("albedo") && m["inputs"]["albedo"]["file"] == name) o = &m;
+    ASSERT_TRUE(o) << manifest.dump(1);
+    const std::string safe = (*o)["name"];
+    EXPECT_EQ(safe.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-"),
+              std::string::npos) << safe;
+    EXPECT_TRUE(fs::is_regular_file(out / safe / (safe + "_basecolor.png")));
+    EXPECT_FALSE(fs::exists("pwned"));
+}
+
+// ===== escaping the output folder through a preset
+
+TEST_F(Hostile, PresetFilePatternEscapes) {
+    for (const std::string pattern :
+         {"../{material}_{suffix}.{ext}", "/tmp/{material}_{suffix}.{ext}", "{material}/../../{suffix}.{ext}"}) {
+        const fs::path preset = in.parent_path() / ("preset-" + std::to_string(::getpid()) + ".json");
+        write_text(preset, R"({"name": "evil", "file_pattern": ")" + pattern +
+                               R"(", "outputs": [{"suffix": "c", "channels": {"RGB": "albedo"}}]})");
+        const Proc p = ingest({"--preset", preset.string()});
+        fs::remove(preset);
+        EXPECT_EQ(p.code, 2) << pattern << "\n" << p.output;
+        EXPECT_NE(p.output.find("file_pattern"), std::string::npos) << p.output;
+        EXPECT_FALSE(fs::exists(out / "manifest.json"));
+    }
+}
+
+TEST_F(Hostile, PresetSuffixEscapes) {
+    for (const std::string suffix : {"../../../evil", "/../../evil", "a/b"}) {
+        const fs::path preset = in.parent_path() / ("preset-" + std::to_string(::getpid()) + ".json");
+        write_text(preset, R"({"name": "evil", "outputs": [{"suffix": ")" + suffix +
+                               R"(", "channels": {"RGB": "albedo"}}]})");
+        const Proc p = ingest({"--preset", preset.string()});
+        fs::remove(preset);
+        EXPECT_EQ(p.code, 2) << suffix << "\n" << p.output;
+        EXPECT_NE(p.output.find("suffix"), std::string::npos) << p.output;
+    }
+    EXPECT_FALSE(fs::exists(in.parent_path() / "evil.png"));
+}
+
+// ===== output folder placement
+
+TEST_F(Hostile, OutputInsideAnInputSet) {
+    write_bytes(in / "Odd" / "Odd_Color.png", encode(gradient(8, 8, 3)));
+    out = in / "Odd" / "out";
+    ASSERT_TRUE(odd_ok_run("Odd_Color.png"));
+    const Bytes first = read_bytes(out / "manifest.json");
+    ASSERT_TRUE(odd_ok_run("Odd_Color.png"));
+    EXPECT_EQ(read_bytes(out / "manifest.json"), first) << "the outputs of the first run are not inputs of the second";
+    EXPECT_EQ(manifest["materials"].size(), 2u);
+}
+
+TEST_F(Hostile, OutputIsTheInput) {
+    out = in;
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 2) << p.output;
+    EXPECT_NE(p.output.find("output folder"), std::string::npos) << p.output;
+    EXPECT_FALSE(fs::exists(in / "manifest.json"));
+}
+
+TEST_F(Hostile, InputInsideTheOutput) {
+    out = in.parent_path() / (in.filename().string() + "-outer");
+    fs::create_directories(out);
+    fs::rename(in, out / "in");
+    in = out / "in";
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 2) << p.output;
+    EXPECT_NE(p.output.find("output folder"), std::string::npos) << p.output;
+    EXPECT_FALSE(fs::exists(out / "manifest.json"));
+    fs::remove_all(out);
+    out = in;
+}
+
+TEST_F(Hostile, OutputFolderIsAFile) {
+    write_text(out, "I am a file");
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    EXPECT_NE(p.output.find(out.string()), std::string::npos) << p.output;
+    EXPECT_EQ(read_bytes(out).size(), 11u) << "left untouched";
+    fs::remove(out);
+}
+
+TEST_F(Hostile, OutputFileIsAFolder) {
+    fs::create_directories(out / "Good" / "Good_basecolor.png" / "keep");
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    const auto* g = mat("Good");
+    ASSERT_TRUE(g);
+    EXPECT_EQ((*g)["status"], "partial");
+    bool named = false;
+    for (const auto& f : (*g)["findings"])
+        named = named || (f["code"] == "OUTPUT_WRITE_FAILED" &&
+                          f["message"].get<std::string>().find("Good_basecolor.png") != std::string::npos);
+    EXPECT_TRUE(named) << g->dump(1);
+    EXPECT_TRUE(fs::is_regular_file(out / "Good" / "Good_orm.png"));
+    EXPECT_TRUE(fs::is_directory(out / "Good" / "Good_basecolor.png" / "keep"));
+    EXPECT_TRUE(temp_files_under(out).empty());
+}
+
+// Read-only output disk: a read-only tmpfs in a private mount namespace.
+TEST_F(Hostile, ReadOnlyOutputDisk) {
+    ASSERT_TRUE(can_mount_tmpfs()) << "needs root or unprivileged user namespaces (unshare -rm)";
+    fs::create_directories(out);
+    const Proc p = spawn({"unshare", is_root() ? "-m" : "-rm", "sh", "-c",
+                          "mount -t tmpfs -o size=1m,ro tmpfs \"$0\" && exec \"$1\" ingest \"$2\" -o \"$0\" --quiet",
+                          out.string(), bin(), in.string()},
+                         120);
+    EXPECT_FALSE(p.hung);
+    EXPECT_EQ(p.code, 1) << p.output;
+    EXPECT_NE(p.output.find("manifest.json"), std::string::npos) << p.output;
+    EXPECT_NE(p.output.find("Read-only file system"), std::string::npos) << p.output;
+}
+
+// Full output disk: a 64 KiB tmpfs. The big set's texture does not fit (OUTPUT_WRITE_FAILED
+// naming it, its temporary removed), the small set and the manifest do.
+TEST_F(Hostile, FullOutputDisk) {
+    ASSERT_TRUE(can_mount_tmpfs()) << "needs root or unprivileged user namespaces (unshare -rm)";
+    mf::Image noise(256, 256, 3);
+    uint32_t s = 1;
+    for (float& v : noise.pixels) v = static_cast<float>((s = s * 1664525u + 1013904223u) >> 24) / 255.f;
+    write_bytes(in / "Big" / "Big_Color.png", encode(noise));
+    const fs::path snapshot = temp_dir("snapshot");
+    fs::create_directories(out);
+    const Proc p = spawn({"unshare", is_root() ? "-m" : "-rm", "sh", "-c",
+                          "mount -t tmpfs -o size=64k tmpfs \"$0\" || exit 99; \"$1\" ingest \"$2\" -o \"$0\" --quiet "
+                          "--jobs 1; rc=$?; cp -a \"$0\"/. \"$3\"/; exit $rc",
+                          out.string(), bin(), in.string(), snapshot.string()},
+                         120);
+    EXPECT_FALSE(p.hung);
+    EXPECT_EQ(p.code, 1) << p.output;
+    fs::remove_all(out);
+    out = snapshot;
+    ASSERT_TRUE(fs::exists(out / "manifest.json")) << p.output;
+    manifest = read_json(out / "manifest.json");
+    expect_good_done();
+    const auto* b = mat("Big");
+    ASSERT_TRUE(b) << manifest.dump(1);
+    EXPECT_EQ((*b)["status"], "partial");
+    bool full = false;
+    for (const auto& f : (*b)["findings"]) {
+        const std::string msg = f["message"];
+        full = full || (f["code"] == "OUTPUT_WRITE_FAILED" && msg.find("Big_basecolor.png") != std::string::npos &&
+                        msg.find("No space left on device") != std::string::npos);
+    }
+    EXPECT_TRUE(full) << b->dump(1);
+    EXPECT_FALSE(fs::exists(out / "Big" / "Big_basecolor.png"));
+    EXPECT_TRUE(temp_files_under(out).empty());
+}
+
+// Misnamed files in sets decoded in parallel: each read by its content, every time. (OpenImageIO's
+// own try-every-reader fallback raced here: 0-bit specs or failures at random.)
+TEST_F(Hostile, MisnamedFilesInParallelSets) {
+    for (int s = 0; s < 6; ++s) {
+        const std::string set = "Mis" + std::to_string(s);
+        write_bytes(in / set / (set + "_Color.exr"), encode(gradient(8, 8, 3)));
+        write_bytes(in / set / (set + "_Roughness.tif"), encode(gradient(8, 8, 1), "jpg"));
+        write_bytes(in / set / (set + "_Metalness.png"), encode(gradient(8, 8, 1), "exr", 16));
+    }
+    for (int round = 0; round < 3; ++round) {
+        const Proc p = ingest({"--fail-on", "never", "--jobs", "4"});
+        ASSERT_EQ(p.code, 0) << p.output;
+        expect_good_done();
+        for (int s = 0; s < 6; ++s) {
+            const auto* m = mat("Mis" + std::to_string(s));
+            ASSERT_TRUE(m) << manifest.dump(1);
+            EXPECT_EQ((*m)["status"], "ok");
+            EXPECT_EQ((*m)["inputs"]["albedo"]["bit_depth"], 8);
+            EXPECT_EQ((*m)["inputs"]["roughness"]["bit_depth"], 8);
+            EXPECT_EQ((*m)["inputs"]["metalness"]["bit_depth"], 16);
+        }
+    }
+}

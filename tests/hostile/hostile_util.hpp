@@ -1,0 +1,295 @@
+// Helpers for the hostile-input and interrupt tests: running the binary with a deadline (a hang
+// is a failure, never a stuck CI job), and hand-built file bytes that encoders refuse to make
+// (bombs, palettes, broken headers).
+#pragma once
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/files.hpp"
+#include "image/image.hpp"
+
+namespace mfh {
+namespace fs = std::filesystem;
+using Bytes = std::vector<unsigned char>;
+
+struct Proc {
+    int code = -1;        // exit status when it exited
+    int signal = 0;       // the signal that ended it, 0 when it exited
+    bool hung = false;    // killed at the deadline
+    std::string output;   // stdout + stderr
+    long maxrss_kb = 0;   // peak resident memory of the process
+};
+
+// Runs argv[0] with argv (no shell: names with quotes or invalid UTF-8 pass through untouched).
+// `kill_after_s`: SIGKILL it after that many seconds (interrupt tests). `deadline_s`: a run still
+// going then is a hang: killed and reported as hung.
+inline Proc spawn(const std::vector<std::string>& argv, double deadline_s = 120,
+                  std::optional<double> kill_after_s = std::nullopt) {
+    Proc p;
+    char log_name[] = "/tmp/matforge-hostile-log-XXXXXX";
+    const int log_fd = ::mkstemp(log_name);
+    if (log_fd < 0) return p;
+    ::unlink(log_name);
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::dup2(log_fd, STDOUT_FILENO);
+        ::dup2(log_fd, STDERR_FILENO);
+        ::execvp(args[0], args.data());
+        ::_exit(127);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    int status = 0;
+    rusage ru{};
+    bool killed_on_purpose = false;
+    for (;;) {
+        const pid_t r = ::wait4(pid, &status, WNOHANG, &ru);
+        if (r == pid) break;
+        const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (kill_after_s && t >= *kill_after_s && !killed_on_purpose) {
+            ::kill(pid, SIGKILL);
+            killed_on_purpose = true;
+        } else if (t >= deadline_s && !p.hung) {
+            ::kill(pid, SIGKILL);
+            p.hung = true;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(kill_after_s ? 1 : 5));
+    }
+    if (WIFEXITED(status)) p.code = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) p.signal = WTERMSIG(status);
+    p.maxrss_kb = ru.ru_maxrss;
+    ::lseek(log_fd, 0, SEEK_SET);
+    std::array<char, 4096> buf{};
+    for (ssize_t n; (n = ::read(log_fd, buf.data(), buf.size())) > 0;) p.output.append(buf.data(), static_cast<size_t>(n));
+    ::close(log_fd);
+    return p;
+}
+
+inline std::string bin() { return MATFORGE_BIN; }
+
+// A fresh, empty folder per test (ctest runs tests in parallel, one process each).
+inline fs::path temp_dir(const std::string& name) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    fs::path d = fs::temp_directory_path() / ("matforge-hostile-" + std::string(info->test_suite_name()) + "-" +
+                                              info->name() + "-" + name + "-" + std::to_string(::getpid()));
+    std::error_code ec;
+    fs::remove_all(d, ec);
+    fs::create_directories(d);
+    return d;
+}
+
+inline void write_bytes(const fs::path& p, const Bytes& b) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+}
+inline void write_text(const fs::path& p, const std::string& s) { write_bytes(p, Bytes(s.begin(), s.end())); }
+
+inline Bytes read_bytes(const fs::path& p) {
+    Bytes b;
+    std::string err;
+    EXPECT_TRUE(mf::read_file(p, b, err)) << err;
+    return b;
+}
+
+inline nlohmann::json read_json(const fs::path& p) {
+    std::ifstream f(p);
+    return nlohmann::json::parse(f);  // throws (test fails) when not valid JSON / UTF-8
+}
+
+// sha256 of every regular file under `dir`, by path relative to it (symlinks not followed).
+inline std::map<std::string, std::string> tree_hashes(const fs::path& dir) {
+    std::map<std::string, std::string> h;
+    for (auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file() || e.is_symlink()) continue;
+        h[e.path().lexically_relative(dir).string()] = mf::sha256_hex(read_bytes(e.path()));
+    }
+    return h;
+}
+
+inline std::vector<std::string> temp_files_under(const fs::path& dir) {
+    std::vector<std::string> found;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename().string().find(mf::kTempMarker) != std::string::npos) found.push_back(it->path().string());
+    return found;
+}
+
+// A smooth test image with distinct channels (never constant, never out of range).
+inline mf::Image gradient(int w, int h, int c) {
+    mf::Image img(w, h, c);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int k = 0; k < c; ++k)
+                img.at(x, y, k) = 0.2f + 0.6f * static_cast<float>((x * 7 + y * 3 + k * 50) % 256) / 255.f;
+    return img;
+}
+
+inline Bytes encode(const mf::Image& img, const std::string& format = "png", int bits = 8) {
+    Bytes b;
+    std::string err;
+    EXPECT_TRUE(mf::encode_image(img, {format, bits}, b, err)) << err;
+    return b;
+}
+
+// ---- hand-built PNG (stored deflate: no zlib needed, any bit depth / color type)
+
+inline uint32_t crc32(const unsigned char* p, size_t n, uint32_t crc = 0) {
+    crc = ~crc;
+    for (size_t i = 0; i < n; ++i) {
+        crc ^= p[i];
+        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+inline void put32be(Bytes& b, uint32_t v) {
+    for (int s = 24; s >= 0; s -= 8) b.push_back(static_cast<unsigned char>(v >> s));
+}
+
+inline void png_chunk(Bytes& png, const char* type, const Bytes& data) {
+    put32be(png, static_cast<uint32_t>(data.size()));
+    Bytes td(type, type + 4);
+    td.insert(td.end(), data.begin(), data.end());
+    png.insert(png.end(), td.begin(), td.end());
+    put32be(png, crc32(td.data(), td.size()));
+}
+
+// zlib stream of stored (uncompressed) deflate blocks.
+inline Bytes zlib_stored(const Bytes& raw) {
+    Bytes z{0x78, 0x01};
+    size_t pos = 0;
+    do {
+        const size_t n = std::min<size_t>(65535, raw.size() - pos);
+        z.push_back(pos + n == raw.size() ? 1 : 0);
+        z.push_back(static_cast<unsigned char>(n & 0xff));
+        z.push_back(static_cast<unsigned char>(n >> 8));
+        z.push_back(static_cast<unsigned char>(~n & 0xff));
+        z.push_back(static_cast<unsigned char>((~n >> 8) & 0xff));
+        z.insert(z.end(), raw.begin() + static_cast<long>(pos), raw.begin() + static_cast<long>(pos + n));
+        pos += n;
+    } while (pos < raw.size());
+    uint32_t a = 1, b = 0;
+    for (unsigned char c : raw) {
+        a = (a + c) % 65521;
+        b = (b + a) % 65521;
+    }
+    put32be(z, (b << 16) | a);
+    return z;
+}
+
+// color_type: 0 grey, 2 RGB, 3 palette, 4 grey+alpha, 6 RGBA. `rows` are the raw scanlines
+// without filter bytes; `idat` false writes a header-only file (a bomb declares, never holds).
+inline Bytes make_png(uint32_t w, uint32_t h, int bit_depth, int color_type, const Bytes& rows,
+                      const Bytes& palette = {}, bool idat = true) {
+    Bytes png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    Bytes ihdr;
+    put32be(ihdr, w);
+    put32be(ihdr, h);
+    ihdr.insert(ihdr.end(), {static_cast<unsigned char>(bit_depth), static_cast<unsigned char>(color_type), 0, 0, 0});
+    png_chunk(png, "IHDR", ihdr);
+    if (!palette.empty()) png_chunk(png, "PLTE", palette);
+    if (idat) {
+        const size_t row_bytes = h ? rows.size() / h : 0;
+        Bytes raw;
+        for (uint32_t y = 0; y < h; ++y) {
+            raw.push_back(0);  // filter: none
+            raw.insert(raw.end(), rows.begin() + static_cast<long>(y * row_bytes),
+                       rows.begin() + static_cast<long>((y + 1) * row_bytes));
+        }
+        png_chunk(png, "IDAT", zlib_stored(raw));
+    } else {
+        png_chunk(png, "IDAT", Bytes{0x78, 0x01});
+    }
+    png_chunk(png, "IEND", {});
+    return png;
+}
+
+// ---- other formats' headers that declare what they do not hold
+
+inline void put16le(Bytes& b, uint32_t v) {
+    b.push_back(static_cast<unsigned char>(v));
+    b.push_back(static_cast<unsigned char>(v >> 8));
+}
+inline void put32le(Bytes& b, uint32_t v) {
+    put16le(b, v & 0xffff);
+    put16le(b, v >> 16);
+}
+
+// Little-endian baseline TIFF, 8-bit grey, one strip of 16 bytes, declaring w×h.
+inline Bytes make_tiff_bomb(uint32_t w, uint32_t h) {
+    Bytes t{'I', 'I', 42, 0};
+    put32le(t, 8);  // first IFD
+    const uint16_t n = 9;
+    const uint32_t data_at = 8 + 2 + n * 12 + 4;
+    put16le(t, n);
+    auto entry = [&](uint16_t tag, uint16_t type, uint32_t value) {
+        put16le(t, tag);
+        put16le(t, type);
+        put32le(t, 1);
+        if (type == 3) {
+            put16le(t, value);
+            put16le(t, 0);
+        } else {
+            put32le(t, value);
+        }
+    };
+    entry(256, 4, w);         // ImageWidth
+    entry(257, 4, h);         // ImageLength
+    entry(258, 3, 8);         // BitsPerSample
+    entry(259, 3, 1);         // Compression: none
+    entry(262, 3, 1);         // Photometric: min-is-black
+    entry(273, 4, data_at);   // StripOffsets
+    entry(277, 3, 1);         // SamplesPerPixel
+    entry(278, 4, h);         // RowsPerStrip
+    entry(279, 4, 16);        // StripByteCounts
+    put32le(t, 0);            // no next IFD
+    t.insert(t.end(), 16, 0x80);
+    return t;
+}
+
+// Windows BMP, 24-bit, declaring w×h, holding one row.
+inline Bytes make_bmp_bomb(uint32_t w, uint32_t h) {
+    Bytes b{'B', 'M'};
+    put32le(b, 54 + 64);
+    put32le(b, 0);
+    put32le(b, 54);
+    put32le(b, 40);
+    put32le(b, w);
+    put32le(b, h);
+    put16le(b, 1);
+    put16le(b, 24);
+    put32le(b, 0);  // BI_RGB
+    put32le(b, 0);
+    put32le(b, 2835);
+    put32le(b, 2835);
+    put32le(b, 0);
+    put32le(b, 0);
+    b.insert(b.end(), 64, 0x40);
+    return b;
+}
+
+inline std::string make_hdr_bomb(uint32_t w, uint32_t h) {
+    return "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(h) + " +X " + std::to_string(w) + "\n";
+}
+
+}  // namespace mfh
