@@ -801,7 +801,7 @@ std::string text_content(const SetDef& set, Text kind) {
 }
 
 std::string encoding_name(const FileDef& f) {
-    const std::string dim = std::to_string(f.size) + "²";
+    std::string dim = std::to_string(f.size) + "²";
     switch (f.enc) {
     case Enc::png8: return dim + " PNG 8-bit";
     case Enc::png16: return dim + " PNG 16-bit";
