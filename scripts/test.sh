@@ -14,7 +14,9 @@ ctest --test-dir "$root/build" --output-on-failure -j"$(nproc)" --timeout 900
 echo "test: release tests $((SECONDS - t0)) s" >&2
 if [[ ${MATFORGE_SANITIZE:-0} == 1 ]]; then
   t0=$SECONDS
-  "$root/scripts/bootstrap.sh" "$root/build-asan" -DMATFORGE_SANITIZE=ON -DMATFORGE_BENCHMARKS=OFF
+  # -O1 -g1: a third less compile time than -O2 -g; line tables keep file:line in reports.
+  "$root/scripts/bootstrap.sh" "$root/build-asan" -DMATFORGE_SANITIZE=ON -DMATFORGE_BENCHMARKS=OFF \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
   echo "test: sanitizer build $((SECONDS - t0)) s" >&2
   t0=$SECONDS
   # Child processes (the CLI and hostile tests run the binary) inherit these. Never
