@@ -455,9 +455,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     m["materials"] = std::move(materials);
     m["failures"] = std::move(failures);
     result.manifest = m;
-    // File and folder names are bytes, not necessarily UTF-8: invalid sequences become U+FFFD
-    // rather than an exception that would end the run without a manifest.
-    const std::string text = m.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    const std::string text = json_text(m);  // never throws on non-UTF-8 names
     std::string err;
     if (!write_file_atomic(opt_.out_dir / "manifest.json",
                            std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), err))

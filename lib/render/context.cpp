@@ -80,6 +80,14 @@ constexpr const char* kDriverHint =
 // threads or atexit handlers is what makes leak checkers and some drivers unhappy.
 PFN_vkGetInstanceProcAddr load_loader() {
     static void* handle = [] {
+#if defined(__SANITIZE_ADDRESS__)
+        // LeakSanitizer checks after the loader has unloaded the driver and layer, so their
+        // one-time allocations show up as leaks in "<unknown module>" that no suppression can
+        // name. Pinning them (RTLD_NODELETE) keeps their symbols for LSan's report and its
+        // suppressions (scripts/lsan.supp). Only sanitizer builds do this.
+        for (const char* pinned : {"libvulkan_lvp.so", "libVkLayer_khronos_validation.so"})
+            dlopen(pinned, RTLD_NOW | RTLD_NODELETE);
+#endif
         void* h = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
         if (!h) h = dlopen("libvulkan.so", RTLD_NOW | RTLD_LOCAL);
         return h;

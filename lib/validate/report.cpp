@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 
+#include "core/text.hpp"
 #include "validate/rules.hpp"
 
 namespace mf::validate {
@@ -101,7 +102,7 @@ nlohmann::json report_json(const Report& r) {
     return j;
 }
 
-std::string write_json(const Report& r) { return report_json(r).dump(2) + "\n"; }
+std::string write_json(const Report& r) { return json_text(report_json(r)); }
 
 std::string write_text(const Report& r, FailOn fail_on) {
     std::string out;
@@ -137,7 +138,8 @@ std::string write_text(const Report& r, FailOn fail_on) {
     return out;
 }
 
-std::string xml_escape(std::string_view s) {
+std::string xml_escape(std::string_view raw) {
+    const std::string s = utf8_or_replacement(raw);  // XML must be well-formed UTF-8
     std::string o;
     o.reserve(s.size());
     for (unsigned char c : s) {
@@ -297,7 +299,7 @@ std::string write_sarif(const Report& r) {
     nlohmann::json log{{"$schema", "https://json.schemastore.org/sarif-2.1.0.json"},
                        {"version", "2.1.0"},
                        {"runs", nlohmann::json::array({run})}};
-    return log.dump(2) + "\n";
+    return json_text(log);
 }
 
 }  // namespace mf::validate

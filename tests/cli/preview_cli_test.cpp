@@ -41,7 +41,8 @@ TEST(PreviewCli, ContactSheetAndMissingManifest) {
     const auto r = run("preview " + q(work / "manifest.json") + " -o " + q(work / "p") +
                        " --size 48 --device cpu --contact-sheet " + q(work / "sheet.png"));
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const auto& m : read_json(work / "manifest.json")["materials"])
+    const auto manifest = read_json(work / "manifest.json");  // a named object: the loop borrows it
+    for (const auto& m : manifest["materials"])
         EXPECT_TRUE(fs::exists(work / "p" / (m["name"].get<std::string>() + ".png"))) << m["name"];
     const auto sheet = read_pixels(work / "sheet.png");
     EXPECT_GT(sheet.width, 3 * 48);

@@ -612,6 +612,26 @@ TEST_F(Hostile, NonUtf8Name) {
     ASSERT_TRUE(w) << manifest.dump(1);
     EXPECT_EQ((*w)["inputs"]["albedo"]["file"], "Caf\xef\xbf\xbd_Color.png");
     EXPECT_TRUE(fs::is_regular_file(out / "Caf_" / "Caf__basecolor.png"));
+    // validate's machine-readable reports stay well-formed: a Latin-1 folder name becomes U+FFFD
+    // in the JSON report's "source" and the JUnit property, and %E9 in SARIF's file URI.
+    write_bytes(in / "Caf\xe9s" / "Bar_Color.png", encode(gradient(8, 8, 3)));
+    for (const std::string format : {"json", "sarif", "junit"}) {
+        const fs::path report = out / ("report." + format);
+        const Proc v = spawn({bin(), "validate", in.string(), "--report", format, "--report-file", report.string(),
+                              "--fail-on", "never"},
+                             120);
+        EXPECT_EQ(v.code, 0) << format << "\n" << v.output;
+        std::ifstream f(report, std::ios::binary);
+        const std::string text{std::istreambuf_iterator<char>(f), {}};
+        EXPECT_EQ(text.find('\xe9'), std::string::npos) << format << ": the raw Latin-1 byte";
+        if (format != "junit") {
+            EXPECT_TRUE(nlohmann::json::accept(text)) << format;
+        }
+        const std::string expected = format == "json"    ? "Caf\xef\xbf\xbds\""
+                                     : format == "sarif" ? "Caf%E9s\""
+                                                         : "Caf\xef\xbf\xbds\"/>";
+        EXPECT_NE(text.find(expected), std::string::npos) << format << ": " << text;
+    }
 }
 
 TEST_F(Hostile, VeryLongName) {

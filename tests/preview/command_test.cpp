@@ -1,6 +1,5 @@
 // The command end to end: files, exit codes, contact sheet.
 #include <OpenImageIO/imageio.h>
-#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -34,7 +33,7 @@ const char* kGold = R"({"image": {"width": 48, "height": 32}, "background": [0.1
 class Command : public ::testing::Test {
 protected:
     void SetUp() override {
-        test::keep_vulkan_modules_loaded();
+        test::use_lavapipe_only();
     }
     Options options(const fs::path& dir) {
         Options o;

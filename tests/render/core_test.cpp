@@ -142,7 +142,7 @@ TEST_F(VariantTest, BadMaterialsAreRejected) {
 }
 
 TEST(Device, GpuRequestWithoutGpuNamesTheWayOut) {
-    keep_vulkan_modules_loaded();
+    use_lavapipe_only();
     render::ContextOptions o;
     o.device = render::DeviceKind::Gpu;
     try {

@@ -1,7 +1,6 @@
 // Every renderer test runs on lavapipe with the Khronos validation layer; a validation message
 // of any kind (objects left undestroyed at vkDestroyDevice included) fails the test.
 #pragma once
-#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -12,14 +11,11 @@
 
 namespace mf::test {
 
-// LeakSanitizer reports what a shared object still held when it was unloaded as leaked from an
-// "unknown module", with no way to suppress it (shared/notes/platform.md). The loader unloads
-// lavapipe and the validation layer when the instance goes; keeping them loaded for the life of
-// the process keeps the report to real leaks.
-//
 // The tests run on lavapipe alone: the loader is pointed at its manifest (unless the caller set
 // VK_ICD_FILENAMES), so other drivers of mesa-vulkan-drivers are neither loaded nor unloaded.
-inline void keep_vulkan_modules_loaded() {
+// (Sanitizer builds pin lavapipe and the validation layer in render::Context itself, so
+// LeakSanitizer sees real leaks only; see lib/render/context.cpp.)
+inline void use_lavapipe_only() {
     static const bool once = [] {
         for (const char* dir : {"/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d", "/usr/local/share/vulkan/icd.d"}) {
             std::error_code ec;
@@ -31,17 +27,13 @@ inline void keep_vulkan_modules_loaded() {
         }
         return false;
     }();
-    static void* lavapipe = dlopen("libvulkan_lvp.so", RTLD_NOW | RTLD_NODELETE);
-    static void* validation = dlopen("libVkLayer_khronos_validation.so", RTLD_NOW | RTLD_NODELETE);
     (void)once;
-    (void)lavapipe;
-    (void)validation;
 }
 
 class VulkanTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        keep_vulkan_modules_loaded();
+        use_lavapipe_only();
         log_ = std::make_shared<render::MessageLog>();
         render::ContextOptions opt;
         opt.device = render::DeviceKind::Cpu;  // CI has no GPU; results must not depend on one

@@ -1,0 +1,59 @@
+#include "core/text.hpp"
+
+namespace mf {
+
+namespace {
+
+struct Prefix {
+    std::size_t needed;  // bytes the lead byte announces (0: not a lead byte)
+    std::size_t valid;   // bytes from the lead on that still fit a well-formed sequence
+};
+
+// Unicode Table 3-7: the second byte's range depends on the lead byte, which excludes
+// overlongs, surrogates (ED A0..BF) and code points above U+10FFFF.
+Prefix well_formed_prefix(std::string_view s, std::size_t i) {
+    const auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+    const unsigned char lead = b(i);
+    if (lead < 0x80) return {1, 1};
+    std::size_t n = 0;
+    unsigned char lo = 0x80, hi = 0xBF;
+    if (lead >= 0xC2 && lead <= 0xDF) {
+        n = 2;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+        n = 3;
+        if (lead == 0xE0) lo = 0xA0;
+        if (lead == 0xED) hi = 0x9F;
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+        n = 4;
+        if (lead == 0xF0) lo = 0x90;
+        if (lead == 0xF4) hi = 0x8F;
+    } else {
+        return {0, 0};
+    }
+    std::size_t k = 1;
+    for (; k < n && i + k < s.size(); ++k) {
+        const unsigned char c = b(i + k);
+        if (k == 1 ? (c < lo || c > hi) : (c & 0xC0) != 0x80) break;
+    }
+    return {n, k};
+}
+
+}  // namespace
+
+std::string utf8_or_replacement(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (std::size_t i = 0; i < s.size();) {
+        const Prefix p = well_formed_prefix(s, i);
+        if (p.needed != 0 && p.valid == p.needed) {
+            out.append(s.substr(i, p.needed));
+            i += p.needed;
+        } else {
+            out.append("\xEF\xBF\xBD");  // U+FFFD for the maximal subpart (at least the lead)
+            i += p.valid > 0 ? p.valid : 1;
+        }
+    }
+    return out;
+}
+
+}  // namespace mf

@@ -1,0 +1,38 @@
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <string>
+
+#include "core/text.hpp"
+
+namespace {
+
+const std::string R = "\xEF\xBF\xBD";  // U+FFFD
+
+TEST(Utf8OrReplacement, ValidTextIsUnchanged) {
+    for (const std::string& s : std::initializer_list<std::string>{"", "plain ascii", "Caf\xC3\xA9", "\xE2\x82\xAC 20", "\xF0\x9F\x98\x80",
+                                "\xEF\xBF\xBD", "\xF4\x8F\xBF\xBF" /* U+10FFFF */, std::string("a\0b", 3)})
+        EXPECT_EQ(mf::utf8_or_replacement(s), s);
+}
+
+TEST(Utf8OrReplacement, Latin1ByteBecomesOneReplacement) {
+    EXPECT_EQ(mf::utf8_or_replacement("Caf\xE9_Color.png"), "Caf" + R + "_Color.png");
+    EXPECT_EQ(mf::utf8_or_replacement("\xFF\xFE"), R + R);
+}
+
+TEST(Utf8OrReplacement, RejectsOverlongsSurrogatesAndBeyondUnicode) {
+    EXPECT_EQ(mf::utf8_or_replacement("\xC0\xAF"), R + R);          // overlong '/': C0 is never a lead
+    EXPECT_EQ(mf::utf8_or_replacement("\xE0\x80\xAF"), R + R + R);  // overlong 3-byte form
+    EXPECT_EQ(mf::utf8_or_replacement("\xED\xA0\x80"), R + R + R);  // surrogate U+D800
+    EXPECT_EQ(mf::utf8_or_replacement("\xF4\x90\x80\x80"), R + R + R + R);  // U+110000
+}
+
+TEST(Utf8OrReplacement, MaximalSubpartsAsInTheUnicodeStandard) {
+    // Unicode 15 §3.9, Table 3-11: "61 F1 80 80 E1 80 C2 62 80 63 80 BF 64" gives
+    // a, FFFD (F1 80 80), FFFD (E1 80), FFFD (C2), b, FFFD, c, FFFD, FFFD, d.
+    EXPECT_EQ(mf::utf8_or_replacement("\x61\xF1\x80\x80\xE1\x80\xC2\x62\x80\x63\x80\xBF\x64"),
+              "a" + R + R + R + "b" + R + "c" + R + R + "d");
+    EXPECT_EQ(mf::utf8_or_replacement("ok\xE2\x82"), "ok" + R);  // truncated at the end
+}
+
+}  // namespace
