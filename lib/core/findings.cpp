@@ -49,8 +49,4 @@ std::optional<Severity> worst(const std::vector<Finding>& findings) {
     return w;
 }
 
-std::string json_text(const nlohmann::json& j) {
-    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-}
-
 }  // namespace mf

@@ -58,9 +58,4 @@ Finding finding_from_json(const nlohmann::json& j);
 // Highest severity in a list, or nullopt when empty.
 std::optional<Severity> worst(const std::vector<Finding>& findings);
 
-// JSON text for files we write (manifest, reports): 2-space indent, trailing newline. File and
-// folder names are bytes, not necessarily UTF-8; invalid sequences become U+FFFD instead of
-// throwing, so one odd name never costs the whole report.
-std::string json_text(const nlohmann::json& j);
-
 }  // namespace mf

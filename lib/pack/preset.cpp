@@ -1,8 +1,12 @@
 #include "pack/preset.hpp"
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+
+#include "core/json.hpp"
 
 namespace mf {
 namespace {
@@ -15,11 +19,22 @@ bool fail(std::string& error, const std::string& msg) {
     return false;
 }
 
+// A missing integer field takes `def`; a present one must be an integer within [lo, hi].
+std::optional<int> int_field(const nlohmann::json& j, const char* key, int def, int lo, int hi) {
+    return j.contains(key) ? json_int(j.at(key), lo, hi) : std::optional<int>(def);
+}
+
+// Constants and defaults are texture values: a generous range that still rules out nonsense
+// (and float overflow) while allowing HDR emissive defaults.
+constexpr double kValueMin = -65504.0, kValueMax = 65504.0;  // the half-float range
+
 bool parse_channel(const std::string& key, const nlohmann::json& v, ChannelSpec& c, std::string& error) {
     c.key = key;
     if (v.is_number()) {
+        const auto value = json_float(v, kValueMin, kValueMax);
+        if (!value) return fail(error, "channel " + key + ": constant must be a finite number within the half-float range");
         c.kind = ChannelSpec::Kind::constant;
-        c.value = v.get<float>();
+        c.value = *value;
         return true;
     }
     if (!v.is_string()) return fail(error, "channel " + key + ": expected a role name, \"smoothness\", \"unused\" or a number");
@@ -53,9 +68,9 @@ bool parse_output(const nlohmann::json& j, OutputSpec& o, std::string& error) {
     const std::string cs = j.value("color_space", "linear");
     if (cs != "srgb" && cs != "linear") return fail(error, where + "color_space must be srgb or linear");
     o.srgb = cs == "srgb";
-    o.bit_depth = j.value("bit_depth", 8);
-    if (o.bit_depth != 8 && o.bit_depth != 16 && o.bit_depth != 32)
-        return fail(error, where + "bit_depth must be 8, 16 or 32");
+    const auto depth = int_field(j, "bit_depth", 8, 8, 32);
+    if (!depth || (*depth != 8 && *depth != 16 && *depth != 32)) return fail(error, where + "bit_depth must be 8, 16 or 32");
+    o.bit_depth = *depth;
     const std::string when = j.value("when", "always");
     if (when != "always" && when != "if-present") return fail(error, where + "when must be always or if-present");
     o.always = when == "always";
@@ -131,7 +146,7 @@ std::string Preset::output_path(const std::string& material, const OutputSpec& o
 
 bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
     try {
-        if (j.value("preset_version", 1) != 1) return fail(error, "preset_version must be 1");
+        if (int_field(j, "preset_version", 1, 1, 1) != 1) return fail(error, "preset_version must be 1");
         p.source_json = j;
         p.name = j.at("name").get<std::string>();
         p.description = j.value("description", "");
@@ -143,10 +158,12 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
         p.format = j.value("format", "png");
         if (p.format != "png" && p.format != "exr" && p.format != "tif" && p.format != "tga")
             return fail(error, "format must be png, exr, tif or tga");
-        p.max_size = j.value("max_size", 0);
-        p.constant_size = j.value("constant_size", 2);
-        if (p.max_size < 0 || p.constant_size < 1 || p.constant_size > 64)
-            return fail(error, "max_size must be >= 0 and constant_size within 1..64");
+        const auto max_size = int_field(j, "max_size", 0, 0, 65536);
+        const auto constant_size = int_field(j, "constant_size", 2, 1, 64);
+        if (!max_size || !constant_size)
+            return fail(error, "max_size must be within 0..65536 (0: no limit) and constant_size within 1..64");
+        p.max_size = *max_size;
+        p.constant_size = *constant_size;
         p.file_pattern = j.value("file_pattern", p.file_pattern);
         if (p.file_pattern.find("{suffix}") == std::string::npos || p.file_pattern.find("..") != std::string::npos ||
             (!p.file_pattern.empty() && p.file_pattern.front() == '/'))
@@ -158,10 +175,16 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
             const auto r = role_from_name(k);
             if (!r) return fail(error, "defaults: unknown role '" + k + "'");
             if (*r == Role::albedo || *r == Role::emissive) {
-                if (!v.is_array() || v.size() != 3) return fail(error, "defaults." + k + ": expected [r, g, b]");
-                if (*r == Role::albedo) p.default_albedo = {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
+                std::array<std::optional<float>, 3> c;
+                if (v.is_array() && v.size() == 3)
+                    for (size_t i = 0; i < 3; ++i) c[i] = json_float(v[i], kValueMin, kValueMax);
+                if (!c[0] || !c[1] || !c[2])
+                    return fail(error, "defaults." + k + ": expected [r, g, b] of finite numbers");
+                if (*r == Role::albedo) p.default_albedo = {*c[0], *c[1], *c[2]};
             } else {
-                p.defaults[*r] = v.get<float>();
+                const auto value = json_float(v, kValueMin, kValueMax);
+                if (!value) return fail(error, "defaults." + k + ": expected a finite number");
+                p.defaults[*r] = *value;
             }
         }
         for (const auto& [k, v] : missing.items()) {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
+#include "core/json.hpp"
 #include "preview/preview.hpp"
 
 namespace mf::preview {
@@ -13,6 +15,9 @@ namespace mf::preview {
 using nlohmann::json;
 
 namespace {
+
+// Manifest constants are texture values; the half-float range admits HDR emissive.
+constexpr double kConstantMin = -65504.0, kConstantMax = 65504.0;
 
 bool is_color_role(const std::string& r) { return r == "albedo" || r == "emissive"; }
 
@@ -142,13 +147,18 @@ render::Material load_manifest_material(const ManifestMaterial& mm, std::vector<
     }
     for (const auto& [role, value] : mm.constants) {
         if (role == "albedo" || role == "emissive") {
-            render::Vec3 v{};
-            if (value.is_number()) v = {value.get<float>(), value.get<float>(), value.get<float>()};
-            else if (value.is_array() && value.size() == 3) v = {value[0].get<float>(), value[1].get<float>(), value[2].get<float>()};
-            else continue;
-            (role == "albedo" ? m.albedo : m.emissive).value = v;
-        } else if (render::ScalarRole* s = scalar_slot(m, role); s && value.is_number()) {
-            s->value = role == "smoothness" ? 1.f - value.get<float>() : value.get<float>();
+            // A constant is one number or [r, g, b]; anything else (or a non-finite, out-of-range
+            // value) is ignored and the material keeps its default.
+            std::optional<float> c[3];
+            if (value.is_array() && value.size() == 3)
+                for (size_t i = 0; i < 3; ++i) c[i] = json_float(value[i], kConstantMin, kConstantMax);
+            else
+                c[0] = c[1] = c[2] = json_float(value, kConstantMin, kConstantMax);
+            if (!c[0] || !c[1] || !c[2]) continue;
+            (role == "albedo" ? m.albedo : m.emissive).value = {*c[0], *c[1], *c[2]};
+        } else if (render::ScalarRole* s = scalar_slot(m, role)) {
+            if (const auto v = json_float(value, kConstantMin, kConstantMax))
+                s->value = role == "smoothness" ? 1.f - *v : *v;
         }
     }
     return m;

@@ -1,10 +1,12 @@
 // Scene files and --light specs.
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "core/json.hpp"
 #include "preview/preview.hpp"
 
 namespace mf::preview {
@@ -33,9 +35,9 @@ namespace {
 
 float number(const json& j, const std::string& where) {
     if (!j.is_number()) fail(where, "expected a number, got " + j.dump());
-    const double v = j.get<double>();
-    if (!std::isfinite(v)) fail(where, "not a finite number");
-    return static_cast<float>(v);
+    const auto v = json_float(j, -std::numeric_limits<float>::max(), std::numeric_limits<float>::max());
+    if (!v) fail(where, "not a finite number within the float range, got " + j.dump());
+    return *v;
 }
 
 render::Vec3 vec3(const json& j, const std::string& where) {

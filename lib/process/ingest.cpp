@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/files.hpp"
+#include "core/json.hpp"
 #include "core/parallel.hpp"
 #include "material/discovery.hpp"
 #include "pack/pack.hpp"

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 
+#include "core/json.hpp"
 #include "core/text.hpp"
 #include "validate/rules.hpp"
 

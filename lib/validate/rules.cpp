@@ -1,6 +1,7 @@
 #include "validate/rules.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace mf::validate {
 namespace {
@@ -55,7 +56,7 @@ std::optional<Severity> parse_severity(const nlohmann::json& v) {
     if (v.is_string()) return severity_from_name(v.get<std::string>());
     if (v.is_number_integer()) {
         // glTF Validator severities: 0 error, 1 warning, 2 information, 3 hint.
-        switch (v.get<int>()) {
+        switch (v.get<std::int64_t>()) {  // never narrowed before the range is known
             case 0: return Severity::error;
             case 1: return Severity::warning;
             case 2: case 3: return Severity::info;

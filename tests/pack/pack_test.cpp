@@ -72,9 +72,9 @@ TEST(Presets, AllShippedParse) {
 
 TEST(Presets, RejectsBrokenDocuments) {
     std::string err;
-    mf::Preset p;
     auto bad = [&](const char* text) {
         err.clear();
+        mf::Preset p;
         return !mf::parse_preset(nlohmann::json::parse(text), p, err) && !err.empty();
     };
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[]})"));
@@ -84,6 +84,20 @@ TEST(Presets, RejectsBrokenDocuments) {
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":"roughness","B":"metalness"}}]})"));  // gap
     EXPECT_TRUE(bad(R"({"name":"x","file_pattern":"../{suffix}.{ext}","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
     EXPECT_TRUE(bad(R"({"name":"x","normal_convention":"up","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    // Numbers out of their field's range are errors, never narrowed (undefined behaviour the
+    // preset fuzzer found with "preset_version": 1e100).
+    const std::string ok_outputs = R"("outputs":[{"suffix":"a","channels":{"R":"roughness"}}])";
+    for (const std::string field : {R"("preset_version":1e100)", R"("preset_version":18446744073709551615)",
+                                    R"("preset_version":1.0)", R"("max_size":99999999999)", R"("max_size":-1)",
+                                    R"("constant_size":1e300)", R"("constant_size":0)"}) {
+        EXPECT_TRUE(bad(("{\"name\":\"x\"," + field + "," + ok_outputs + "}").c_str())) << field;
+    }
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","bit_depth":1e100,"channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","bit_depth":8.5,"channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":1e300}}]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","defaults":{"roughness":1e300},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(bad(R"({"name":"x","defaults":{"albedo":[0.5,"red",0.5]},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    EXPECT_FALSE(bad(("{\"name\":\"x\",\"preset_version\":1,\"max_size\":4096," + ok_outputs + "}").c_str())) << err;
     auto missing = mf::load_preset("no-such-preset", err);
     EXPECT_FALSE(missing);
     EXPECT_NE(err.find("no-such-preset"), std::string::npos);

@@ -113,6 +113,20 @@ TEST(Manifest, SmoothnessConstantsUnusedAndConventions) {
     EXPECT_EQ(notes.size(), 1u);  // height
 }
 
+TEST(Manifest, ConstantsOutOfRangeKeepTheDefault) {
+    // 1e300 would overflow a float (undefined behaviour when narrowed): ignored, not inf.
+    const json j = json::parse(R"({"manifest_version": 1, "materials": [{"name": "m", "outputs": [],
+      "constants": {"roughness": 1e300, "metalness": 0.25, "albedo": [0.5, 1e300, 0.5], "emissive": [2, 3, 4]}}]})");
+    std::vector<std::string> notes;
+    const render::Material def;
+    const render::Material mat = load_manifest_material(parse_manifest(j, ".").materials[0], notes);
+    EXPECT_EQ(mat.roughness.value, def.roughness.value);
+    EXPECT_EQ(mat.metalness.value, 0.25f);
+    EXPECT_EQ(mat.albedo.value[0], def.albedo.value[0]);
+    EXPECT_EQ(mat.albedo.value[1], def.albedo.value[1]);
+    EXPECT_EQ(mat.emissive.value[2], 4.f);
+}
+
 TEST(Manifest, BadManifestsAreUsageErrors) {
     EXPECT_THROW(parse_manifest(json::parse(R"({"materials": []})"), "."), UsageError);
     EXPECT_THROW(parse_manifest(json::parse(R"({"manifest_version": 1})"), "."), UsageError);

@@ -72,6 +72,7 @@ TEST(SceneFile, MistakesAreUsageErrorsNamingTheKey) {
         R"({"output": {"transfer": "gamma22"}})",
         R"({"cammera": {}})",
         R"({"background": [1, 2]})",
+        R"({"background": [1, 1e300, 1]})",  // finite as a double, infinite as a float
     };
     for (const char* text : bad) EXPECT_THROW(parse_scene(json::parse(text), ".", "t"), UsageError) << text;
     try {
