@@ -1,17 +1,19 @@
 // floor: the I/O floor of the throughput benchmark.
 //
-//   floor <library-dir> -o <out-dir> [--jobs N] [--durable]
+//   floor <library-dir> -o <out-dir> [--jobs N] [--durable] [--png-default]
 //
 // For each set of <library-dir>/library.tsv (written by make_library), OpenImageIO reads every
 // input file in its native pixel type and writes what matforge's gltf preset writes — three
-// 8-bit PNGs per set (basecolor RGB, normal RGB, orm RGB) at the set's size, zlib level 6 as
-// matforge — with no processing: no float conversion, no color management, no normal decode,
+// 8-bit PNGs per set (basecolor RGB, normal RGB, orm RGB) at the set's size, with matforge's
+// PNG settings (Paeth filter, zlib RLE) — with no processing: no float conversion, no color management, no normal decode,
 // no validation. The only work is the byte interleave that puts AO/roughness/metalness into one
 // RGB buffer, so the PNG encoder compresses real content rather than a constant.
 // Sets run in parallel on --jobs threads, as matforge's --jobs.
 //
 // --durable writes each output aside, fsyncs and renames it, as matforge does (its contract: a
 // killed run leaves no partial file); plain mode is OpenImageIO writing to the final path.
+// --png-default writes with libpng's defaults instead (adaptive filters, zlib level 6), as
+// oiiotool does: the floor of the peer script.
 
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
@@ -81,9 +83,20 @@ bool read_native(const fs::path& p, Pixels& px, std::string& err) {
     return true;
 }
 
-bool write_png(const fs::path& p, int w, int h, int ch, const unsigned char* data, bool durable, std::string& err) {
+struct Options {
+    bool durable = false;
+    bool png_default = false;
+};
+
+bool write_png(const fs::path& p, int w, int h, int ch, const unsigned char* data, const Options& opt,
+               std::string& err) {
+    const bool durable = opt.durable;
     OIIO::ImageSpec spec(w, h, ch, OIIO::TypeDesc::UINT8);
-    spec.attribute("png:compressionLevel", 6);  // matforge's level
+    if (!opt.png_default) {  // matforge's settings (lib/image/image.cpp encode_image)
+        spec.attribute("png:compressionLevel", 1);
+        spec.attribute("png:filter", 0x80);  // PNG_FILTER_PAETH
+        spec.attribute("compression", "rle");
+    }
     const fs::path target = durable ? fs::path(p.string() + ".tmp") : p;
     auto out = OIIO::ImageOutput::create("png");  // by format: the aside name ends in .tmp
     if (!out || !out->open(target.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, data) ||
@@ -114,7 +127,7 @@ const unsigned char* plane8(const Pixels& px) {
     return px.spec.format == OIIO::TypeDesc::UINT8 ? px.data.data() : nullptr;
 }
 
-bool run_set(const fs::path& lib, const fs::path& out, const Row& r, bool durable, std::atomic<uint64_t>& bytes_read,
+bool run_set(const fs::path& lib, const fs::path& out, const Row& r, const Options& opt, std::atomic<uint64_t>& bytes_read,
              std::string& err) {
     const fs::path d = lib / "sets" / r.dir;
     // Every input of the set, native type, as matforge decodes every chosen map (height too).
@@ -133,8 +146,8 @@ bool run_set(const fs::path& lib, const fs::path& out, const Row& r, bool durabl
     const fs::path od = out / r.name;
     std::error_code ec;
     fs::create_directories(od, ec);
-    if (!write_png(od / (r.name + "_basecolor.png"), w, h, albedo.spec.nchannels, albedo.data.data(), durable, err) ||
-        !write_png(od / (r.name + "_normal.png"), w, h, normal.spec.nchannels, normal.data.data(), durable, err))
+    if (!write_png(od / (r.name + "_basecolor.png"), w, h, albedo.spec.nchannels, albedo.data.data(), opt, err) ||
+        !write_png(od / (r.name + "_normal.png"), w, h, normal.spec.nchannels, normal.data.data(), opt, err))
         return false;
     const unsigned char* orm = nullptr;
     std::vector<unsigned char> packed;
@@ -158,11 +171,11 @@ bool run_set(const fs::path& lib, const fs::path& out, const Row& r, bool durabl
         }
         orm = packed.data();
     }
-    return write_png(od / (r.name + "_orm.png"), w, h, 3, orm, durable, err);
+    return write_png(od / (r.name + "_orm.png"), w, h, 3, orm, opt, err);
 }
 
 int usage() {
-    std::cerr << "usage: floor <library-dir> -o <out-dir> [--jobs N (2)] [--durable]\n";
+    std::cerr << "usage: floor <library-dir> -o <out-dir> [--jobs N (2)] [--durable] [--png-default]\n";
     return 2;
 }
 
@@ -172,7 +185,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     std::string lib, out;
     int jobs = 2;
-    bool durable = false;
+    Options opt;
     for (size_t i = 0; i < args.size(); ++i) {
         if ((args[i] == "-o" || args[i] == "--out") && i + 1 < args.size()) {
             out = args[++i];
@@ -181,7 +194,9 @@ int main(int argc, char** argv) {
             const auto res = std::from_chars(v.data(), v.data() + v.size(), jobs);
             if (res.ec != std::errc() || jobs < 1) return usage();
         } else if (args[i] == "--durable") {
-            durable = true;
+            opt.durable = true;
+        } else if (args[i] == "--png-default") {
+            opt.png_default = true;
         } else if (!args[i].starts_with("-") && lib.empty()) {
             lib = args[i];
         } else {
@@ -201,7 +216,7 @@ int main(int argc, char** argv) {
     std::atomic<size_t> next{0};
     auto worker = [&] {
         for (size_t i = next++; i < rows.size(); i = next++)
-            if (!run_set(lib, out, rows[i], durable, bytes_read, errors[i]) && errors[i].empty()) errors[i] = "failed";
+            if (!run_set(lib, out, rows[i], opt, bytes_read, errors[i]) && errors[i].empty()) errors[i] = "failed";
     };
     std::vector<std::thread> pool;
     for (int t = 1; t < std::min<int>(jobs, static_cast<int>(rows.size())); ++t) pool.emplace_back(worker);
@@ -214,6 +229,7 @@ int main(int argc, char** argv) {
             ++failed;
         }
     std::cerr << "floor: " << rows.size() - static_cast<size_t>(failed) << " sets, "
-              << bytes_read.load() / (1024 * 1024) << " MiB decoded" << (durable ? " (durable writes)" : "") << "\n";
+              << bytes_read.load() / (1024 * 1024) << " MiB decoded" << (opt.durable ? " (durable writes)" : "")
+              << (opt.png_default ? " (libpng default PNG settings)" : "") << "\n";
     return failed ? 1 : 0;
 }

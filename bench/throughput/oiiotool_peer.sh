@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # oiiotool_peer.sh: the studio-script peer of `matforge ingest --preset gltf`.
 #
-#   oiiotool_peer.sh <library-dir> <out-dir> [--jobs N]
+#   oiiotool_peer.sh <library-dir> <out-dir> [--jobs N] [--png-like-matforge]
 #
 # For each set of <library-dir>/library.tsv (written by make_library) it writes the outputs
 # matforge's gltf preset writes, with one oiiotool process per output map (decode, convert,
@@ -13,18 +13,23 @@
 #   <name>/<name>_orm.png        R = AO (1 when none), G = roughness, B = metalness (0 when
 #                                none) 8-bit; a Poly Haven _arm_ map is already in that layout
 # --jobs 1 (default) runs the commands one after another; --jobs N runs N at once (xargs -P).
+# --png-like-matforge writes PNGs with matforge's encoder settings (Paeth filter, zlib RLE)
+# instead of oiiotool's defaults: the script as it would be with matforge's encoder choice, so
+# the report can separate what the encoder settings buy from what the rest of matforge does.
 # The set list comes from library.tsv rather than from parsing vendor names in bash: the
 # peer measures the conversions, not a naming parser.
 set -euo pipefail
 
-usage() { echo "usage: oiiotool_peer.sh <library-dir> <out-dir> [--jobs N]" >&2; exit 2; }
+usage() { echo "usage: oiiotool_peer.sh <library-dir> <out-dir> [--jobs N] [--png-like-matforge]" >&2; exit 2; }
 [[ $# -ge 2 ]] || usage
 lib=$1 out=$2
 shift 2
 jobs=1
+png=()
 while [[ $# -gt 0 ]]; do
   case $1 in
     --jobs) [[ $# -ge 2 && $2 =~ ^[1-9][0-9]*$ ]] || usage; jobs=$2; shift 2 ;;
+    --png-like-matforge) png=(--attrib png:compressionLevel 1 --attrib:type=int png:filter 128 --compression rle); shift ;;
     *) usage ;;
   esac
 done
@@ -33,7 +38,14 @@ command -v oiiotool >/dev/null || { echo "oiiotool_peer.sh: oiiotool not found (
 
 # Scalar maps are 1-channel files (channel "Y"): --ch 0 picks the first channel by index.
 cmds=()
-add() { local q; printf -v q '%q ' "$@"; cmds+=("$q"); }
+# The last argument of every command is the output file: the PNG settings go just before -o.
+add() {
+  local q args=("$@")
+  local n=${#args[@]}
+  args=("${args[@]:0:n-2}" ${png[@]+"${png[@]}"} "${args[@]:n-2}")
+  printf -v q '%q ' "${args[@]}"
+  cmds+=("$q")
+}
 while IFS=$'\t' read -r name dir size albedo normal conv ao rough metal arm height; do
   [[ $name == name ]] && continue  # header
   src=$lib/sets/$dir

@@ -60,9 +60,7 @@ bool encode(const Picture& p, const Setting& s, std::vector<unsigned char>& byte
 
 bool decode_equals(const Picture& p, std::vector<unsigned char>& bytes) {
     OIIO::Filesystem::IOMemReader mem(bytes.data(), bytes.size());
-    OIIO::ImageSpec config;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &mem);
-    auto in = OIIO::ImageInput::open("x.png", &config);
+    auto in = OIIO::ImageInput::open("x.png", nullptr, &mem);
     if (!in) return false;
     std::vector<std::uint8_t> px(p.pixels.size());
     const bool ok = in->read_image(0, 0, 0, p.spec.nchannels, OIIO::TypeDesc::UINT8, px.data());

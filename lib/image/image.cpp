@@ -278,12 +278,17 @@ bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string
     return guarded(in, error, [&] { return read_bands_impl(in, band_rows, info, error, fn); });
 }
 
-uint16_t quantize(float v, int bit_depth) {
-    const float maxv = bit_depth == 16 ? 65535.f : 255.f;
-    if (!(v > 0.f)) return 0;  // also NaN
-    if (v >= 1.f) return static_cast<uint16_t>(maxv);
-    return static_cast<uint16_t>(std::floor(v * maxv + 0.5f));
+namespace {
+// Branch-free clamp (NaN -> 0) and round half up: the cast truncates a non-negative value, which
+// is floor, so the loop vectorizes with no call to std::floor.
+inline uint16_t quantize_to(float v, float maxv) {
+    const float c = v > 0.f ? (v < 1.f ? v : 1.f) : 0.f;
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings): round half up is the contract; lround is a call per sample
+    return static_cast<uint16_t>(c * maxv + 0.5f);
 }
+}  // namespace
+
+uint16_t quantize(float v, int bit_depth) { return quantize_to(v, bit_depth == 16 ? 65535.f : 255.f); }
 
 bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
                   std::string& error) {
@@ -299,7 +304,16 @@ bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsign
     spec.attribute("DateTime", "2000:01:01 00:00:00");
     spec.attribute("Software", "matforge");
     if (opt.format == "exr") spec.attribute("compression", "zip");
-    if (opt.format == "png") spec.attribute("png:compressionLevel", 6);
+    if (opt.format == "png") {
+        // Paeth row filter + zlib's run-length strategy instead of libpng's default (adaptive
+        // filter choice, zlib level 6): 4-7x faster to encode and 1-4 % smaller on textures and
+        // photographs alike; decoders see an ordinary PNG. Measured by bench/throughput/
+        // png_tradeoff (docs/throughput/png_tradeoff.md). Deflate is 75 % of ingest's time at
+        // libpng's default, so this choice sets matforge's throughput.
+        spec.attribute("png:compressionLevel", 1);  // Z_RLE ignores the level's match search
+        spec.attribute("png:filter", 0x80);         // PNG_FILTER_PAETH (png.h)
+        spec.attribute("compression", "rle");       // OpenImageIO: Z_RLE strategy
+    }
 
     // Quantize ourselves (round to nearest, clamp) so results never depend on a plugin's rounding.
     std::vector<unsigned char> raw;
@@ -310,11 +324,11 @@ bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsign
         data = img.pixels.data();
     } else if (opt.bit_depth == 16) {
         q16.resize(img.pixels.size());
-        for (size_t i = 0; i < q16.size(); ++i) q16[i] = quantize(img.pixels[i], 16);
+        for (size_t i = 0; i < q16.size(); ++i) q16[i] = quantize_to(img.pixels[i], 65535.f);
         data = q16.data();
     } else {
         q8.resize(img.pixels.size());
-        for (size_t i = 0; i < q8.size(); ++i) q8[i] = static_cast<uint8_t>(quantize(img.pixels[i], 8));
+        for (size_t i = 0; i < q8.size(); ++i) q8[i] = static_cast<uint8_t>(quantize_to(img.pixels[i], 255.f));
         data = q8.data();
     }
     const OIIO::TypeDesc memtype = is_float ? OIIO::TypeDesc::FLOAT : type;

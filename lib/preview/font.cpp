@@ -148,7 +148,7 @@ void compose_contact_sheet(const std::vector<SheetTile>& tiles, uint32_t& width,
     const uint32_t gap = 8, label_h = static_cast<uint32_t>(8 * scale) + 8;
     uint32_t cols = 1;
     while (cols * cols < tiles.size()) ++cols;
-    const uint32_t rows = static_cast<uint32_t>((tiles.size() + cols - 1) / cols);
+    const auto rows = static_cast<uint32_t>((tiles.size() + cols - 1) / cols);
     width = cols * tw + (cols + 1) * gap;
     height = rows * (th + label_h) + (rows + 1) * gap;
     rgba8.assign(size_t{width} * height * 4, 0);

@@ -21,7 +21,7 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::filesystem::path& file) 
 }
 
 void write_aside_and_rename(const std::filesystem::path& file, const char* format, const OIIO::ImageSpec& spec,
-                            OIIO::TypeDesc type, const void* pixels) {
+                            const OIIO::TypeDesc& type, const void* pixels) {
     std::filesystem::path tmp = file;
     tmp += ".tmp";
     {

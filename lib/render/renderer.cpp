@@ -110,7 +110,7 @@ GpuMaterial& GpuMaterial::operator=(GpuMaterial&&) noexcept = default;
 const std::string& GpuMaterial::name() const { return impl_->name; }
 const std::string& GpuMaterial::variant() const { return impl_->variant; }
 
-Renderer::Impl::Impl(Context& context, const Scene& s) : d(device_of(context)), scene(s) {
+Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(std::move(s)) {
     if (scene.width == 0 || scene.height == 0 || scene.width > 16384 || scene.height > 16384)
         throw Error("image size must be 1..16384 pixels a side");
     if (scene.lights.size() > kMaxLights)
@@ -147,7 +147,7 @@ Renderer::Impl::~Impl() {
     if (d.device) d.fn.vkDeviceWaitIdle(d.device);
 }
 
-Unique<VkSampler> Renderer::Impl::make_sampler(VkSamplerAddressMode mode, bool anisotropic) {
+Unique<VkSampler> Renderer::Impl::make_sampler(VkSamplerAddressMode mode, bool anisotropic) const {
     auto si = vk_struct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
     si.magFilter = VK_FILTER_LINEAR;
     si.minFilter = VK_FILTER_LINEAR;
@@ -170,7 +170,7 @@ void Renderer::Impl::create_samplers() {
 }
 
 Unique<VkDescriptorSetLayout> Renderer::Impl::make_set_layout(
-    const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+    const std::vector<VkDescriptorSetLayoutBinding>& bindings) const {
     auto ci = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     ci.bindingCount = static_cast<uint32_t>(bindings.size());
     ci.pBindings = bindings.data();
@@ -180,7 +180,7 @@ Unique<VkDescriptorSetLayout> Renderer::Impl::make_set_layout(
 }
 
 Unique<VkPipelineLayout> Renderer::Impl::make_pipeline_layout(
-    const std::vector<VkDescriptorSetLayout>& sets, uint32_t push_bytes, VkShaderStageFlags push_stages) {
+    const std::vector<VkDescriptorSetLayout>& sets, uint32_t push_bytes, VkShaderStageFlags push_stages) const {
     VkPushConstantRange range{push_stages, 0, push_bytes};
     auto ci = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     ci.setLayoutCount = static_cast<uint32_t>(sets.size());
@@ -194,7 +194,7 @@ Unique<VkPipelineLayout> Renderer::Impl::make_pipeline_layout(
 
 Unique<VkPipeline> Renderer::Impl::make_compute_pipeline(const uint32_t* code, size_t bytes,
                                                          VkPipelineLayout layout,
-                                                         const VkSpecializationInfo* spec) {
+                                                         const VkSpecializationInfo* spec) const {
     Unique<VkShaderModule> module = create_shader(d, code, bytes);
     auto ci = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
     ci.stage = vk_struct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
@@ -247,7 +247,7 @@ void Renderer::Impl::create_layouts() {
     encode_set = allocate_set(descriptor_pool, encode_set_layout);
 }
 
-VkDescriptorSet Renderer::Impl::allocate_set(VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+VkDescriptorSet Renderer::Impl::allocate_set(VkDescriptorPool pool, VkDescriptorSetLayout layout) const {
     auto ai = vk_struct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
     ai.descriptorPool = pool;
     ai.descriptorSetCount = 1;
@@ -286,6 +286,9 @@ void Renderer::Impl::create_targets() {
     d.fn.vkUpdateDescriptorSets(d.device, 2, w, 0, nullptr);
 }
 
+// Not const, though it would compile so: it allocates, submits and frees a command buffer of the renderer's own
+// command pool, which Vulkan requires externally synchronized; const would read as safe to call concurrently.
+// NOLINTNEXTLINE(readability-make-member-function-const): mutates the renderer's command pool (see above)
 Buffer Renderer::Impl::upload_buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage) {
     Buffer staging = create_buffer(d, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     std::memcpy(staging.mapped, data, bytes);
@@ -308,7 +311,8 @@ void Renderer::Impl::upload_mesh() {
     index_count = static_cast<uint32_t>(mesh.indices.size());
 }
 
-Image Renderer::Impl::upload_texture(const PreparedTexture& t, VkCommandBuffer cmd, std::vector<Buffer>& staging) {
+Image Renderer::Impl::upload_texture(const PreparedTexture& t, VkCommandBuffer cmd,
+                                     std::vector<Buffer>& staging) const {
     ImageDesc desc;
     desc.format = t.format;
     desc.width = t.levels[0].width;

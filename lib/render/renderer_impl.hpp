@@ -38,18 +38,20 @@ struct Renderer::Impl {
     detail::Image env_specular, env_irradiance;  // when the scene has an environment
     uint32_t env_specular_mips = 0;
 
-    Impl(Context& context, const Scene& scene);
+    Impl(Context& context, Scene scene);
     ~Impl();
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    detail::Unique<VkSampler> make_sampler(VkSamplerAddressMode mode, bool anisotropic);
-    detail::Unique<VkDescriptorSetLayout> make_set_layout(const std::vector<VkDescriptorSetLayoutBinding>& b);
+    // Factories: they create Vulkan objects through d and touch no state of the renderer.
+    detail::Unique<VkSampler> make_sampler(VkSamplerAddressMode mode, bool anisotropic) const;
+    detail::Unique<VkDescriptorSetLayout> make_set_layout(const std::vector<VkDescriptorSetLayoutBinding>& b) const;
     detail::Unique<VkPipelineLayout> make_pipeline_layout(const std::vector<VkDescriptorSetLayout>& sets,
-                                                          uint32_t push_bytes, VkShaderStageFlags push_stages);
+                                                          uint32_t push_bytes, VkShaderStageFlags push_stages) const;
     detail::Unique<VkPipeline> make_compute_pipeline(const uint32_t* code, size_t bytes, VkPipelineLayout layout,
-                                                     const VkSpecializationInfo* spec);
-    VkDescriptorSet allocate_set(VkDescriptorPool pool, VkDescriptorSetLayout layout);
+                                                     const VkSpecializationInfo* spec) const;
+    // Allocates from `pool`, which the caller owns (and synchronizes).
+    VkDescriptorSet allocate_set(VkDescriptorPool pool, VkDescriptorSetLayout layout) const;
     void create_samplers();
     void create_layouts();
     void create_targets();
@@ -58,8 +60,9 @@ struct Renderer::Impl {
     void build_environment();  // ibl.cpp
     void write_frame_descriptors();
     detail::Buffer upload_buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage);
+    // Records into the caller's `cmd`; the staging buffers go to the caller's `staging`.
     detail::Image upload_texture(const detail::PreparedTexture& t, VkCommandBuffer cmd,
-                                 std::vector<detail::Buffer>& staging);
+                                 std::vector<detail::Buffer>& staging) const;
     VkPipeline shade_pipeline(const std::vector<int32_t>& constants);
     std::vector<int32_t> variant_constants(const Material& m, std::string& description) const;
     void write_frame(const Material& m);

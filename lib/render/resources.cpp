@@ -204,8 +204,7 @@ void Submission::finish(std::vector<PassTime>& times) {
                                              sizeof(uint64_t),
                                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     for (size_t i = 0; i < names_.size(); ++i) {
-        const double ticks =
-            static_cast<double>((stamps[2 * i + 1] - stamps[2 * i]) & d_.timestamp_mask);
+        const auto ticks = static_cast<double>((stamps[2 * i + 1] - stamps[2 * i]) & d_.timestamp_mask);
         times.push_back({names_[i], queries_ ? ticks * d_.info.timestamp_period_ns * 1e-6 : 0.0});
     }
 }

@@ -26,7 +26,7 @@ uint16_t float_to_half(float f) {
     if (exp <= 0) {
         if (exp < -10) return static_cast<uint16_t>(sign);
         mant |= 0x800000u;
-        const uint32_t shift = static_cast<uint32_t>(14 - exp);
+        const auto shift = static_cast<uint32_t>(14 - exp);
         uint32_t h = mant >> shift;
         const uint32_t rem = mant & ((1u << shift) - 1u), halfway = 1u << (shift - 1);
         if (rem > halfway || (rem == halfway && (h & 1u))) ++h;
@@ -132,7 +132,7 @@ void to_domain(FloatLevel& l, MipKind kind, bool srgb, bool eight_bit) {
         float* c = &l.rgba[4 * p];
         for (int i = 0; i < 3; ++i) {
             if (kind == MipKind::Color && srgb)
-                c[i] = eight_bit ? decode[static_cast<size_t>(c[i] * 255.f + 0.5f)]
+                c[i] = eight_bit ? decode[static_cast<size_t>(std::lround(c[i] * 255.f))]
                                  : static_cast<float>(srgb_to_linear(c[i]));
             if (kind == MipKind::Normal) c[i] = c[i] * 2.f - 1.f;
         }
@@ -177,12 +177,12 @@ void store(const FloatLevel& l, Storage s, MipKind kind, bool encode_srgb, Textu
         const float v = from_domain(l.rgba[i], static_cast<int>(i % 4), kind, encode_srgb);
         switch (s) {
             case Storage::U8: {
-                // round half up of a non-negative value: lround's libm call is a third of the time
-                out.bytes[i] = static_cast<uint8_t>(std::clamp(v, 0.f, 1.f) * 255.f + 0.5f);
+                // lround, not (x + 0.5) truncated: the float sum rounds 0.49999997 up to 1
+                out.bytes[i] = static_cast<uint8_t>(std::lround(std::clamp(v, 0.f, 1.f) * 255.f));
                 break;
             }
             case Storage::U16: {
-                const auto q = static_cast<uint16_t>(std::clamp(v, 0.f, 1.f) * 65535.f + 0.5f);
+                const auto q = static_cast<uint16_t>(std::lround(std::clamp(v, 0.f, 1.f) * 65535.f));
                 std::memcpy(out.bytes.data() + 2 * i, &q, 2);
                 break;
             }
@@ -216,23 +216,19 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
     // ContextOptions::precise_cpu_textures: on lavapipe 8-bit texels go up as 16-bit linear
     // UNORM (data × 257 exactly; color decoded here with the exact curve), filtered in float.
     const bool promote = d.precise_textures && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter);
+    const bool srgb_color = t.srgb && kind == MipKind::Color;
     if (t.type == TexelType::U8 && !promote) {
         storage = Storage::U8;
-        encode_srgb = t.srgb && kind == MipKind::Color;
+        encode_srgb = srgb_color;
         out.format = encode_srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-    } else if (t.type == TexelType::U8 && !(t.srgb && kind == MipKind::Color)) {
+    } else if (!srgb_color && (t.type == TexelType::U8 ||  // promoted: `promote` checked the format
+                               (t.type == TexelType::U16 && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter)))) {
         storage = Storage::U16;
         out.format = VK_FORMAT_R16G16B16A16_UNORM;
-    } else if (t.type == TexelType::U8 && d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, kFilter)) {
-        // decoded color: float keeps the darkest codes exact (16-bit UNORM would round 1/255
-        // of sRGB, 3.0e-4 linear, by half a per cent)
-        storage = Storage::F32;
-        out.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    } else if (t.type == TexelType::U16 && !(t.srgb && kind == MipKind::Color) &&
-               d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter)) {
-        storage = Storage::U16;
-        out.format = VK_FORMAT_R16G16B16A16_UNORM;
-    } else if (t.type == TexelType::F32 && d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, kFilter)) {
+    } else if ((t.type == TexelType::U8 || t.type == TexelType::F32) &&
+               d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, kFilter)) {
+        // U8 here is promoted color, decoded: float keeps the darkest codes exact (16-bit UNORM
+        // would round 1/255 of sRGB, 3.0e-4 linear, by half a per cent)
         storage = Storage::F32;
         out.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     } else {

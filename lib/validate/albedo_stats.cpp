@@ -45,7 +45,7 @@ float AlbedoStats::linear(float v) const {
     if (linear_input_) return std::max(v, 0.f);
     if (!(v > 0.f)) return 0.f;
     if (v >= 1.f) return 1.f;
-    return decode_table()[static_cast<size_t>(v * 65535.f + 0.5f)];
+    return decode_table()[static_cast<size_t>(std::lround(v * 65535.f))];
 }
 
 void AlbedoStats::add(const float* rgb, float m) {
@@ -56,7 +56,7 @@ void AlbedoStats::add(const float* rgb, float m) {
     else if (m >= t_.metal_min) c = &metal_;
     else return;  // blends (rust, dirt on metal): no bound applies
     ++c->n;
-    const size_t code = static_cast<size_t>(std::lower_bound(edges_.begin(), edges_.end(), y) - edges_.begin());
+    const auto code = static_cast<size_t>(std::lower_bound(edges_.begin(), edges_.end(), y) - edges_.begin());
     ++c->hist[std::min<size_t>(code, 255)];
     if (c == &dielectric_) {
         if (y < dark_lin_) ++c->below;
@@ -68,7 +68,7 @@ void AlbedoStats::add(const float* rgb, float m) {
 
 double AlbedoStats::Class::percentile(double p) const {
     if (n == 0) return 0.0;
-    const long long target = static_cast<long long>(std::ceil(p * static_cast<double>(n)));
+    const auto target = static_cast<long long>(std::ceil(p * static_cast<double>(n)));
     long long acc = 0;
     for (size_t k = 0; k < hist.size(); ++k) {
         acc += hist[k];

@@ -10,7 +10,7 @@ BandStream::BandStream(const BandReader& reader, const InputFile& in, int band_r
 
 BandStream::~BandStream() { finish(); }
 
-void BandStream::run(BandReader reader, InputFile in, int band_rows) {
+void BandStream::run(const BandReader& reader, const InputFile& in, int band_rows) {
     std::string err;
     ImageInfo info;
     bool ok = false;

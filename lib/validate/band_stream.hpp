@@ -33,7 +33,8 @@ public:
     const ImageInfo& info() const { return info_; }
 
 private:
-    void run(BandReader reader, InputFile in, int band_rows);
+    // std::thread hands run() its own copies of the arguments, alive until run() returns.
+    void run(const BandReader& reader, const InputFile& in, int band_rows);
 
     std::mutex m_;
     std::condition_variable cv_;

@@ -26,7 +26,7 @@ std::string_view color_tag_name(ColorTag t);  // "none" | "srgb" | "linear" | "o
 // Never fails: an unreadable or untagged file gives ColorTag::none.
 ColorTagInfo read_color_tag(const InputFile& in);
 
-// PNG chunk parser over a whole file's bytes (exposed for tests).
-ColorTagInfo png_color_tag(const unsigned char* data, size_t size);
+// PNG chunk parser over a whole file's bytes d[0, n) (exposed for tests).
+ColorTagInfo png_color_tag(const unsigned char* d, size_t n);
 
 }  // namespace mf::validate

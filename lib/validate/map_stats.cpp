@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace mf::validate::detail {
 namespace {
@@ -41,8 +42,8 @@ std::optional<Role> channel_role(Role input_role, int channel) {
     return input_role;
 }
 
-MapStats::MapStats(const MapInput& in, const ImageInfo& info, const Thresholds& th)
-    : input(in), t(th), width(info.width), height(info.height), channels(info.channels) {
+MapStats::MapStats(MapInput in, const ImageInfo& info, const Thresholds& th)
+    : input(std::move(in)), t(th), width(info.width), height(info.height), channels(info.channels) {
     const std::string ext = input.file.extension();
     is_jpeg = ext == "jpg" || ext == "jpeg" || info.format == "jpeg";
     min.fill(std::numeric_limits<double>::infinity());
@@ -196,9 +197,12 @@ void MapStats::findings(std::vector<Finding>& out) const {
         } else {
             std::vector<int> g;
             for (int c = 0; c < std::min(channels, 3); ++c) g.push_back(c);
-            groups.push_back({g, input.role});
+            groups.emplace_back(std::move(g), input.role);
         }
-        for (const auto& [chs, r] : groups) {
+        for (const auto& group : groups) {
+            // Named, not a structured binding: the lambda below captures chs (clang < 16 cannot).
+            const std::vector<int>& chs = group.first;
+            const Role r = group.second;
             bool constant = true;
             nlohmann::json value = nlohmann::json::array(), range = nlohmann::json::array();
             for (int c : chs) {

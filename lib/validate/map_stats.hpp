@@ -38,7 +38,7 @@ struct MapStats {
     long long normal_bad_length = 0, normal_negative_z = 0;
     double normal_sum_length = 0, normal_sum_z = 0;
 
-    MapStats(const MapInput& in, const ImageInfo& info, const Thresholds& th);
+    MapStats(MapInput in, const ImageInfo& info, const Thresholds& th);
     void add_band(int y0, int rows, const float* px);
 
     // Findings that depend on this map alone (severity/enable applied later).

@@ -146,7 +146,7 @@ void NormalConventionDetector::add_row(const float* xyz, const float* height) {
     if (impl_->levels.empty()) return;
     const int w = impl_->levels[0].width;
     std::vector<float> p(w), q(w);
-    const float min_nz = static_cast<float>(impl_->opt.min_nz);
+    const auto min_nz = static_cast<float>(impl_->opt.min_nz);
     for (int x = 0; x < w; ++x) {
         const float nz = std::max(xyz[3 * x + 2], min_nz);
         p[x] = -xyz[3 * x] / nz;

@@ -213,9 +213,11 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                         }
                         if (v.get<bool>()) enable(c); else disable(c);
                     } else {
-                        auto it = std::find_if(params().begin(), params().end(), [&](const Param& p) {
-                            return p.code == c && p.name == name;
-                        });
+                        // Init-captures: clang < 16 cannot capture the structured bindings c and name.
+                        auto it = std::find_if(params().begin(), params().end(),
+                                               [&rule = c, &threshold = name](const Param& p) {
+                                                   return p.code == rule && p.name == threshold;
+                                               });
                         if (it == params().end()) {
                             error = "rules: \"" + c + "\" has no threshold \"" + name + "\"";
                             return std::nullopt;

@@ -1,6 +1,9 @@
 // Pixel-exact packing for every shipped preset, on tiny planes built here.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "color/srgb.hpp"
 #include "pack/pack.hpp"
 
@@ -250,4 +253,28 @@ TEST(Resample, LinearLightForColor) {
     mf::fit_plane(mf::Role::albedo, plane, 1, 1, *c);
     EXPECT_EQ(plane.encoding, mf::ColorEncoding::linear);
     EXPECT_NEAR(plane.image.pixels[0], 0.5f, 0.02f);
+}
+
+TEST(Quantize, MatchesClampAndRoundHalfUp) {
+    // The encoder's fast path must equal the definition: clamp to [0,1] (NaN -> 0), scale, floor(x + 0.5).
+    auto reference = [](float v, float maxv) -> int {
+        if (!(v > 0.f)) return 0;
+        if (v >= 1.f) return static_cast<int>(maxv);
+        return static_cast<int>(std::floor(v * maxv + 0.5f));
+    };
+    for (int bits : {8, 16}) {
+        const float maxv = bits == 16 ? 65535.f : 255.f;
+        for (int i = -1000; i <= 1001000; ++i) {
+            const float v = static_cast<float>(i) / 1e6f;
+            ASSERT_EQ(mf::quantize(v, bits), reference(v, maxv)) << v << " at " << bits << " bits";
+        }
+        for (int code = 0; code <= static_cast<int>(maxv); ++code) {  // exact codes and the half-way points
+            const float v = static_cast<float>(code) / maxv, h = (static_cast<float>(code) + 0.5f) / maxv;
+            ASSERT_EQ(mf::quantize(v, bits), code);
+            ASSERT_EQ(mf::quantize(h, bits), reference(h, maxv)) << code;
+        }
+        EXPECT_EQ(mf::quantize(std::numeric_limits<float>::quiet_NaN(), bits), 0);
+        EXPECT_EQ(mf::quantize(std::numeric_limits<float>::infinity(), bits), static_cast<int>(maxv));
+        EXPECT_EQ(mf::quantize(-std::numeric_limits<float>::infinity(), bits), 0);
+    }
 }

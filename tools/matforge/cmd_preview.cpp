@@ -19,6 +19,27 @@ struct PreviewArgs {
     bool validation = false;
 };
 
+// Runs at command time, not during static initialization: the registration below holds no reference to
+// std::cerr (a global of another translation unit).
+int run_preview(const PreviewArgs& a) {
+    mf::preview::Options o;
+    if (!a.manifest.empty()) o.manifest = a.manifest;
+    o.out_dir = a.out;
+    if (!a.scene.empty()) o.scene = a.scene;
+    if (a.size) o.size = a.size;
+    if (!a.shape.empty()) o.shape = a.shape;
+    o.lights = a.lights;
+    if (!a.env.empty()) o.env = a.env;
+    o.format = a.format;
+    if (!a.contact_sheet.empty()) o.contact_sheet = a.contact_sheet;
+    o.device = a.device;
+    if (!a.brdf.empty()) o.brdf = a.brdf;
+    o.validation = a.validation;
+    // Progress on a terminal, quiet otherwise (scripts read the exit code and the files).
+    o.quiet = !isatty(STDERR_FILENO);
+    return mf::preview::run(o, std::cerr);
+}
+
 const mf::cli::Register reg{{
     "preview", 30,
     [](CLI::App& sub) -> std::function<int()> {
@@ -41,24 +62,7 @@ const mf::cli::Register reg{{
                        "| assignment (diffuse without 1/π, as the course's engine); default: the scene's, else standard")
             ->check(CLI::IsMember({"standard", "accurate", "assignment"}));
         sub.add_flag("--vk-validation", a->validation, "run with the Khronos validation layer and report its messages (diagnostics; slow)");
-        return [a]() {
-            mf::preview::Options o;
-            if (!a->manifest.empty()) o.manifest = a->manifest;
-            o.out_dir = a->out;
-            if (!a->scene.empty()) o.scene = a->scene;
-            if (a->size) o.size = a->size;
-            if (!a->shape.empty()) o.shape = a->shape;
-            o.lights = a->lights;
-            if (!a->env.empty()) o.env = a->env;
-            o.format = a->format;
-            if (!a->contact_sheet.empty()) o.contact_sheet = a->contact_sheet;
-            o.device = a->device;
-            if (!a->brdf.empty()) o.brdf = a->brdf;
-            o.validation = a->validation;
-            // Progress on a terminal, quiet otherwise (scripts read the exit code and the files).
-            o.quiet = !isatty(STDERR_FILENO);
-            return mf::preview::run(o, std::cerr);
-        };
+        return [a] { return run_preview(*a); };
     },
     "render the materials of a manifest with the full BRDF, headless (PNG or EXR)"}};
 

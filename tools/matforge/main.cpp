@@ -3,6 +3,7 @@
 #include <map>
 
 #include "command.hpp"
+#include "core/allocator.hpp"
 
 namespace mf::cli {
 std::vector<Command>& registry() {
@@ -12,6 +13,7 @@ std::vector<Command>& registry() {
 }  // namespace mf::cli
 
 int main(int argc, char** argv) {
+    mf::prefer_heap_reuse_for_large_images();  // first: before any thread or large block exists
     using namespace mf::cli;
     CLI::App app{"matforge — PBR material sets to engine-ready textures, CI checks and previews"};
     app.set_version_flag("--version", "matforge 0.1.0");
