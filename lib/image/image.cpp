@@ -306,10 +306,10 @@ bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsign
     if (opt.format == "exr") spec.attribute("compression", "zip");
     if (opt.format == "png") {
         // Paeth row filter + zlib's run-length strategy instead of libpng's default (adaptive
-        // filter choice, zlib level 6): 4-7x faster to encode and 1-4 % smaller on textures and
-        // photographs alike; decoders see an ordinary PNG. Measured by bench/throughput/
-        // png_tradeoff (docs/throughput/png_tradeoff.md). Deflate is 75 % of ingest's time at
-        // libpng's default, so this choice sets matforge's throughput.
+        // filter choice, zlib level 6): 4-5x faster to encode and 2-4 % smaller on textures and
+        // a photograph alike; decoders see an ordinary PNG. Measured by bench/throughput/
+        // png_tradeoff (docs/throughput/png_tradeoff.md). zlib + libpng are 75 % of ingest's
+        // time at libpng's default, so this choice sets matforge's throughput.
         spec.attribute("png:compressionLevel", 1);  // Z_RLE ignores the level's match search
         spec.attribute("png:filter", 0x80);         // PNG_FILTER_PAETH (png.h)
         spec.attribute("compression", "rle");       // OpenImageIO: Z_RLE strategy

@@ -13,6 +13,7 @@
 
 #include "core/files.hpp"
 #include "image/image.hpp"
+#include "test_files.hpp"
 
 namespace mft {
 namespace fs = std::filesystem;
@@ -49,21 +50,8 @@ inline fs::path temp_dir(const std::string& name) {
     return d;
 }
 
-inline nlohmann::json read_json(const fs::path& p) {
-    std::ifstream f(p);
-    return nlohmann::json::parse(f);
-}
-
-inline mf::Image read_pixels(const fs::path& p) {
-    mf::Image img;
-    mf::ImageInfo info;
-    std::string err;
-    mf::InputFile in;
-    in.path = p;
-    in.display = p.string();
-    EXPECT_TRUE(mf::read_image(in, img, info, err)) << err;
-    return img;
-}
+using mf::testfiles::read_json;
+using mf::testfiles::read_pixels;
 
 inline int code8(float v) { return mf::quantize(v, 8); }
 

@@ -141,17 +141,6 @@ protected:
         EXPECT_TRUE(listed) << name << " is an input: " << o->dump(1);
         return o;
     }
-
-    static mf::Image read_out(const fs::path& p) {
-        mf::Image img;
-        mf::ImageInfo info;
-        std::string err;
-        mf::InputFile f;
-        f.path = p;
-        f.display = p.string();
-        EXPECT_TRUE(mf::read_image(f, img, info, err)) << err;
-        return img;
-    }
 };
 
 Bytes valid_png() { return encode(gradient(16, 16, 1)); }
@@ -385,7 +374,7 @@ TEST_F(Hostile, PalettePng) {
     const auto* o = odd_ok("Odd_Color.png", make_png(2, 1, 8, 3, {0, 1}, {200, 40, 10, 10, 90, 250}));
     ASSERT_TRUE(o);
     EXPECT_EQ((*o)["inputs"]["albedo"]["channels"], 3);
-    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    const mf::Image img = read_pixels(out / "Odd" / "Odd_basecolor.png");
     ASSERT_EQ(img.width, 2);
     ASSERT_EQ(img.channels, 3);
     EXPECT_EQ(mf::quantize(img.at(0, 0, 0), 8), 200);
@@ -399,7 +388,7 @@ TEST_F(Hostile, GreyAlphaPngAlbedo) {
     // becomes opacity in the basecolor's A.
     const auto* o = odd_ok("Odd_Color.png", make_png(2, 1, 8, 4, {100, 0, 100, 255}));
     ASSERT_TRUE(o);
-    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    const mf::Image img = read_pixels(out / "Odd" / "Odd_basecolor.png");
     ASSERT_EQ(img.channels, 4);
     EXPECT_EQ(mf::quantize(img.at(0, 0, 0), 8), 100);
     EXPECT_EQ(mf::quantize(img.at(0, 0, 1), 8), 100);
@@ -410,7 +399,7 @@ TEST_F(Hostile, GreyAlphaPngAlbedo) {
 TEST_F(Hostile, GreyPngAlbedo) {
     const auto* o = odd_ok("Odd_Color.png", make_png(2, 1, 8, 0, {60, 180}));
     ASSERT_TRUE(o);
-    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    const mf::Image img = read_pixels(out / "Odd" / "Odd_basecolor.png");
     ASSERT_EQ(img.channels, 3);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(mf::quantize(img.at(1, 0, c), 8), 180);
 }
@@ -436,21 +425,21 @@ TEST_F(Hostile, OneByOne) {
     write_bytes(in / "Odd" / "Odd_NormalGL.png", make_png(1, 1, 8, 2, {128, 128, 255}));
     write_bytes(in / "Odd" / "Odd_Roughness.png", encode(gradient(1, 1, 1)));
     ASSERT_TRUE(odd_ok_run("Odd_NormalGL.png"));
-    const mf::Image n = read_out(out / "Odd" / "Odd_normal.png");
+    const mf::Image n = read_pixels(out / "Odd" / "Odd_normal.png");
     EXPECT_EQ(n.width, 1);
     EXPECT_EQ(n.height, 1);
 }
 
 TEST_F(Hostile, Wide65535x1) {
     ASSERT_TRUE(odd_ok("Odd_Color.png", encode(gradient(65535, 1, 3))));
-    const mf::Image img = read_out(out / "Odd" / "Odd_basecolor.png");
+    const mf::Image img = read_pixels(out / "Odd" / "Odd_basecolor.png");
     EXPECT_EQ(img.width, 65535);
     EXPECT_EQ(img.height, 1);
 }
 
 TEST_F(Hostile, Tall1x65535) {
     ASSERT_TRUE(odd_ok("Odd_Roughness.png", encode(gradient(1, 65535, 1))));
-    const mf::Image img = read_out(out / "Odd" / "Odd_orm.png");
+    const mf::Image img = read_pixels(out / "Odd" / "Odd_orm.png");
     EXPECT_EQ(img.width, 1);
     EXPECT_EQ(img.height, 65535);
 }
@@ -464,7 +453,7 @@ TEST_F(Hostile, NanInfExr) {
     ASSERT_TRUE(o);
     expect_finding("Odd", "NONFINITE_VALUES", "Odd_Roughness.exr");
     // Written values are finite codes: NaN and -Inf clamp to 0, +Inf to 255.
-    const mf::Image orm = read_out(out / "Odd" / "Odd_orm.png");
+    const mf::Image orm = read_pixels(out / "Odd" / "Odd_orm.png");
     EXPECT_EQ(mf::quantize(orm.at(0, 0, 1), 8), 0);
     EXPECT_EQ(mf::quantize(orm.at(1, 0, 1), 8), 255);
     EXPECT_EQ(mf::quantize(orm.at(2, 0, 1), 8), 0);
@@ -492,7 +481,7 @@ TEST_F(Hostile, MixedResolutions) {
     bool mismatch = false;
     for (const auto& f : (*o)["findings"]) mismatch = mismatch || f["code"] == "RESOLUTION_MISMATCH";
     EXPECT_TRUE(mismatch) << o->dump(1);
-    EXPECT_EQ(read_out(out / "Odd" / "Odd_orm.png").width, 64);
+    EXPECT_EQ(read_pixels(out / "Odd" / "Odd_orm.png").width, 64);
 }
 
 // ===== files that are not files

@@ -25,6 +25,7 @@
 
 #include "core/files.hpp"
 #include "image/image.hpp"
+#include "test_files.hpp"
 
 namespace mfh {
 namespace fs = std::filesystem;
@@ -111,10 +112,8 @@ inline Bytes read_bytes(const fs::path& p) {
     return b;
 }
 
-inline nlohmann::json read_json(const fs::path& p) {
-    std::ifstream f(p);
-    return nlohmann::json::parse(f);  // throws (test fails) when not valid JSON / UTF-8
-}
+using mf::testfiles::read_json;
+using mf::testfiles::read_pixels;
 
 // sha256 of every regular file under `dir`, by path relative to it (symlinks not followed).
 inline std::map<std::string, std::string> tree_hashes(const fs::path& dir) {

@@ -31,23 +31,6 @@ std::vector<float> energy_table() {
     return e;
 }
 
-// Directions with cos θ to +Z at the boundaries (0, ±1e-7, ±1, grazing) and four azimuths, plus
-// the zero vector. The set is symmetric, so v = −l occurs for every direction.
-std::vector<V3<float>> hard_directions() {
-    std::vector<V3<float>> d;
-    d.push_back({0.f, 0.f, 1.f});
-    d.push_back({0.f, 0.f, -1.f});
-    for (double c : {0.7, 0.3, 0.01, 1e-4, 1e-7, 0.0, -1e-7, -0.3, -0.7}) {
-        const double s = std::sqrt(1.0 - c * c);
-        for (int k = 0; k < 4; ++k) {
-            const double phi = k * std::numbers::pi / 2.0;
-            d.push_back({static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
-                         static_cast<float>(c)});
-        }
-    }
-    d.push_back({0.f, 0.f, 0.f});
-    return d;
-}
 
 // 1 / |v̂ + l̂| (capped): how strongly rounding moves the half vector.
 double condition(V3<double> v, V3<double> l) {

@@ -17,23 +17,6 @@ namespace {
 
 using namespace mf::cpubrdf;
 
-// Directions with cos θ to +Z at the boundaries (0, ±1e-7, ±1, grazing) and four azimuths, plus
-// the zero vector. The set is symmetric, so v = −l occurs for every direction.
-std::vector<V3<float>> hard_directions() {
-    std::vector<V3<float>> d;
-    d.push_back({0.f, 0.f, 1.f});
-    d.push_back({0.f, 0.f, -1.f});
-    for (double c : {0.7, 0.3, 0.01, 1e-4, 1e-7, 0.0, -1e-7, -0.3, -0.7}) {
-        const double s = std::sqrt(1.0 - c * c);
-        for (int k = 0; k < 4; ++k) {
-            const double phi = k * std::numbers::pi / 2.0;
-            d.push_back({static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
-                         static_cast<float>(c)});
-        }
-    }
-    d.push_back({0.f, 0.f, 0.f});
-    return d;
-}
 
 V3<double> to_d(V3<float> a) { return {a.x, a.y, a.z}; }
 
