@@ -214,18 +214,28 @@ std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error)
     return info;
 }
 
-bool read_image_impl(const InputFile& in, Image& out, ImageInfo& info, std::string& error) {
-    out = Image{};
+// Decodes into `codes` when keep_codes and the file is 8-bit integer, else into `floats`.
+bool read_image_impl(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error, bool keep_codes) {
+    out = Decoded{};
     Reader r;
     if (!open_reader(in, r, error)) return false;
     info = info_of(*r.in);
     if (!check_dimensions(in, info, error)) return false;
-    Image img(info.width, info.height, info.channels);
-    if (!r.in->read_image(0, 0, 0, info.channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
+    const bool codes = keep_codes && !info.is_float && info.bit_depth == 8;
+    bool ok = false;
+    if (codes) {
+        Image8 img(info.width, info.height, info.channels);
+        ok = r.in->read_image(0, 0, 0, info.channels, OIIO::TypeDesc::UINT8, img.pixels.data());
+        if (ok) out.codes = std::move(img);
+    } else {
+        Image img(info.width, info.height, info.channels);
+        ok = r.in->read_image(0, 0, 0, info.channels, OIIO::TypeDesc::FLOAT, img.pixels.data());
+        if (ok) out.floats = std::move(img);
+    }
+    if (!ok) {
         error = in.display + ": " + oiio_error_text(r.in->geterror());
         return false;
     }
-    out = std::move(img);
     return true;
 }
 
@@ -268,9 +278,38 @@ std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
 }
 
 bool read_image(const InputFile& in, Image& out, ImageInfo& info, std::string& error) {
-    const bool ok = guarded(in, error, [&] { return read_image_impl(in, out, info, error); });
-    if (!ok) out = Image{};
+    Decoded d;
+    const bool ok = guarded(in, error, [&] { return read_image_impl(in, d, info, error, false); });
+    out = ok ? std::move(d.floats) : Image{};
     return ok;
+}
+
+bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error) {
+    const bool ok = guarded(in, error, [&] { return read_image_impl(in, out, info, error, true); });
+    if (!ok) out = Decoded{};
+    return ok;
+}
+
+const std::array<float, 256>& unorm8_values() {
+    static const std::array<float, 256> table = [] {
+        std::array<uint8_t, 256> codes{};
+        for (size_t k = 0; k < codes.size(); ++k) codes[k] = static_cast<uint8_t>(k);
+        std::array<float, 256> v{};
+        OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, v.data(), 256);
+        return v;
+    }();
+    return table;
+}
+
+void to_float(const uint8_t* codes, size_t n, float* out) {
+    const std::array<float, 256>& v = unorm8_values();
+    for (size_t i = 0; i < n; ++i) out[i] = v[codes[i]];
+}
+
+Image to_float(const Image8& codes) {
+    Image out(codes.width, codes.height, codes.channels);
+    to_float(codes.pixels.data(), codes.pixels.size(), out.pixels.data());
+    return out;
 }
 
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
@@ -278,27 +317,13 @@ bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string
     return guarded(in, error, [&] { return read_bands_impl(in, band_rows, info, error, fn); });
 }
 
+uint16_t quantize(float v, int bit_depth) { return quantize_unorm(v, bit_depth == 16 ? 65535.f : 255.f); }
+
 namespace {
-// Branch-free clamp (NaN -> 0) and round half up: the cast truncates a non-negative value, which
-// is floor, so the loop vectorizes with no call to std::floor.
-inline uint16_t quantize_to(float v, float maxv) {
-    const float c = v > 0.f ? (v < 1.f ? v : 1.f) : 0.f;
-    // NOLINTNEXTLINE(bugprone-incorrect-roundings): round half up is the contract; lround is a call per sample
-    return static_cast<uint16_t>(c * maxv + 0.5f);
-}
-}  // namespace
-
-uint16_t quantize(float v, int bit_depth) { return quantize_to(v, bit_depth == 16 ? 65535.f : 255.f); }
-
-bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
-                  std::string& error) {
-    bytes.clear();
-    const std::string name = "output." + opt.format;
-    const bool is_float = opt.format == "exr";
-    OIIO::TypeDesc type = is_float ? (opt.bit_depth == 32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF)
-                                   : (opt.bit_depth == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
-    OIIO::ImageSpec spec(img.width, img.height, img.channels, type);
-    if (img.channels == 4 || img.channels == 2) spec.alpha_channel = img.channels - 1;
+// The output spec of every encode: reproducible bytes and matforge's PNG settings.
+OIIO::ImageSpec output_spec(int width, int height, int channels, const EncodeOptions& opt, OIIO::TypeDesc type) {
+    OIIO::ImageSpec spec(width, height, channels, type);
+    if (channels == 4 || channels == 2) spec.alpha_channel = channels - 1;
     spec.attribute("oiio:UnassociatedAlpha", 1);
     // Reproducible bytes: no timestamps, no software version stamps.
     spec.attribute("DateTime", "2000:01:01 00:00:00");
@@ -314,25 +339,13 @@ bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsign
         spec.attribute("png:filter", 0x80);         // PNG_FILTER_PAETH (png.h)
         spec.attribute("compression", "rle");       // OpenImageIO: Z_RLE strategy
     }
+    return spec;
+}
 
-    // Quantize ourselves (round to nearest, clamp) so results never depend on a plugin's rounding.
-    std::vector<unsigned char> raw;
-    const void* data = nullptr;
-    std::vector<uint16_t> q16;
-    std::vector<uint8_t> q8;
-    if (is_float) {
-        data = img.pixels.data();
-    } else if (opt.bit_depth == 16) {
-        q16.resize(img.pixels.size());
-        for (size_t i = 0; i < q16.size(); ++i) q16[i] = quantize_to(img.pixels[i], 65535.f);
-        data = q16.data();
-    } else {
-        q8.resize(img.pixels.size());
-        for (size_t i = 0; i < q8.size(); ++i) q8[i] = static_cast<uint8_t>(quantize_to(img.pixels[i], 255.f));
-        data = q8.data();
-    }
-    const OIIO::TypeDesc memtype = is_float ? OIIO::TypeDesc::FLOAT : type;
-
+// Writes `data` (of `memtype`) with `spec` in opt.format to bytes.
+bool write_encoded(const OIIO::ImageSpec& spec, OIIO::TypeDesc memtype, const void* data, const EncodeOptions& opt,
+                   std::vector<unsigned char>& bytes, std::string& error) {
+    const std::string name = "output." + opt.format;
     auto out = OIIO::ImageOutput::create(name);
     if (!out) {
         error = "cannot create a writer for format '" + opt.format + "': " + oiio_error_text(OIIO::geterror());
@@ -355,6 +368,37 @@ bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsign
     std::ifstream f(temp.path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(f), {});
     return true;
+}
+}  // namespace
+
+bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
+                  std::string& error) {
+    bytes.clear();
+    const bool is_float = opt.format == "exr";
+    const OIIO::TypeDesc type = is_float ? (opt.bit_depth == 32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF)
+                                         : (opt.bit_depth == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+    const OIIO::ImageSpec spec = output_spec(img.width, img.height, img.channels, opt, type);
+    // Quantize ourselves (round to nearest, clamp) so results never depend on a plugin's rounding.
+    if (is_float) return write_encoded(spec, OIIO::TypeDesc::FLOAT, img.pixels.data(), opt, bytes, error);
+    if (opt.bit_depth == 16) {
+        std::vector<uint16_t> q16(img.pixels.size());
+        for (size_t i = 0; i < q16.size(); ++i) q16[i] = quantize_unorm(img.pixels[i], 65535.f);
+        return write_encoded(spec, type, q16.data(), opt, bytes, error);
+    }
+    std::vector<uint8_t> q8(img.pixels.size());
+    for (size_t i = 0; i < q8.size(); ++i) q8[i] = static_cast<uint8_t>(quantize_unorm(img.pixels[i], 255.f));
+    return write_encoded(spec, type, q8.data(), opt, bytes, error);
+}
+
+bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
+                  std::string& error) {
+    bytes.clear();
+    if (opt.format == "exr" || opt.bit_depth != 8) {
+        error = "8-bit codes cannot be written as " + std::to_string(opt.bit_depth) + "-bit " + opt.format;
+        return false;
+    }
+    const OIIO::ImageSpec spec = output_spec(img.width, img.height, img.channels, opt, OIIO::TypeDesc::UINT8);
+    return write_encoded(spec, OIIO::TypeDesc::UINT8, img.pixels.data(), opt, bytes, error);
 }
 
 }  // namespace mf

@@ -1,13 +1,16 @@
-// Plain float images and the file access every stage shares.
+// Plain images (float, or the untouched codes of 8-bit files) and the file access every stage
+// shares.
 //
 // Conventions of this module (as OpenImageIO's ImageBufAlgo, decided once here):
-//  - pixels are float32, interleaved, rows top to bottom, channels R,G,B,A in file order;
+//  - pixels are float32 (Image) or 8-bit codes (Image8, only where a reader asked for them),
+//    interleaved, rows top to bottom, channels R,G,B,A in file order;
 //  - values are as stored in the file, normalized to [0,1] for integer files; no color
 //    transform is ever applied on read (the role decides the encoding, not the file's tags);
 //  - alpha is read unassociated (never premultiplied): a 4th channel is data until a role
 //    says otherwise;
 //  - errors are returned as text naming the file and the problem, never thrown.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -19,20 +22,34 @@
 
 namespace mf {
 
-struct Image {
+template <class T>
+struct BasicImage {
     int width = 0, height = 0, channels = 0;
-    std::vector<float> pixels;  // width * height * channels
+    std::vector<T> pixels;  // width * height * channels
 
-    Image() = default;
-    Image(int w, int h, int c, float fill = 0.f)
+    BasicImage() = default;
+    BasicImage(int w, int h, int c, T fill = T{})
         : width(w), height(h), channels(c), pixels(static_cast<size_t>(w) * h * c, fill) {}
     bool empty() const { return pixels.empty(); }
     size_t index(int x, int y, int c = 0) const {
         return (static_cast<size_t>(y) * width + x) * channels + c;
     }
-    float& at(int x, int y, int c = 0) { return pixels[index(x, y, c)]; }
-    float at(int x, int y, int c = 0) const { return pixels[index(x, y, c)]; }
+    T& at(int x, int y, int c = 0) { return pixels[index(x, y, c)]; }
+    T at(int x, int y, int c = 0) const { return pixels[index(x, y, c)]; }
 };
+using Image = BasicImage<float>;
+// The codes of an 8-bit file, untouched. Code k stands for the float unorm8_values()[k]: an
+// 8-bit map that needs no float step (no resampling, no color change) goes from decoder to
+// encoder in a quarter of the memory and without two conversions.
+using Image8 = BasicImage<uint8_t>;
+
+// The float OpenImageIO reads 8-bit code k as (its own conversion: read_image's floats of an
+// 8-bit file and these agree bit for bit).
+const std::array<float, 256>& unorm8_values();
+// The codes as floats (unorm8_values).
+Image to_float(const Image8& codes);
+// One row band of codes as floats into `out` (size n).
+void to_float(const uint8_t* codes, size_t n, float* out);
 
 // A readable input: a file on disk, or bytes held in memory (an entry of a .zip).
 struct InputFile {
@@ -60,6 +77,18 @@ std::optional<ImageInfo> read_info(const InputFile& in, std::string& error);
 // Whole image as float. Returns false and sets `error` on failure (the image is left empty).
 bool read_image(const InputFile& in, Image& out, ImageInfo& info, std::string& error);
 
+// A decoded file: an 8-bit integer file as its codes, any other as float (exactly one is set).
+struct Decoded {
+    Image floats;
+    Image8 codes;
+    bool is_codes() const { return !codes.empty(); }
+    int width() const { return is_codes() ? codes.width : floats.width; }
+    int height() const { return is_codes() ? codes.height : floats.height; }
+    int channels() const { return is_codes() ? codes.channels : floats.channels; }
+};
+// As read_image, but an 8-bit file keeps its codes (no float conversion).
+bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error);
+
 // Streams the image in horizontal bands of at most `band_rows` rows (bounded memory for 8K
 // maps). `fn(y0, rows, pixels)` gets float pixels of rows [y0, y0+rows). Returns false on error.
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
@@ -74,6 +103,21 @@ struct EncodeOptions {
 // deterministically (no timestamps). Rounds to nearest code. Returns false and sets `error`.
 bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
                   std::string& error);
+
+// Encodes 8-bit codes as they are (an 8-bit integer format: png, tif, tga). Returns false and
+// sets `error` for any other format or depth.
+bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
+                  std::string& error);
+
+// The quantization of every integer output: round half up of clamp(v, 0, 1) * maxv, NaN -> 0.
+// Branch-free: the cast truncates a non-negative value, which is floor, so loops vectorize with
+// no call to std::floor.
+inline uint16_t quantize_unorm(float v, float maxv) {
+    const float c = v > 0.f ? (v < 1.f ? v : 1.f) : 0.f;
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings): round half up is the contract; lround is a call per sample
+    return static_cast<uint16_t>(c * maxv + 0.5f);
+}
+inline uint8_t quantize8(float v) { return static_cast<uint8_t>(quantize_unorm(v, 255.f)); }
 
 // Quantization used by encode_image, exposed for tests: round-half-up of clamp(v,0,1)*max.
 uint16_t quantize(float v, int bit_depth);

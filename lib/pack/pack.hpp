@@ -18,17 +18,37 @@
 namespace mf {
 
 struct RolePlane {
+    RolePlane() = default;
+    RolePlane(Image img, ColorEncoding enc) : image(std::move(img)), encoding(enc) {}
+
     Image image;
     ColorEncoding encoding = ColorEncoding::linear;  // only albedo/emissive may be srgb
+    // Or, while no step needs floats, the 8-bit codes the plane came from (then `image` is
+    // empty): scalar roles and sRGB albedo/emissive as the values above (code k = unorm8 k),
+    // normals as stored, encoded in `codes_convention` (2 to 4 channels). An output made of codes
+    // planes only is packed in 8 bits straight from them (pack_output8).
+    Image8 codes;
+    NormalConvention codes_convention = NormalConvention::gl;
+
+    bool is_codes() const { return !codes.empty(); }
+    int width() const { return is_codes() ? codes.width : image.width; }
+    int height() const { return is_codes() ? codes.height : image.height; }
 };
 using Planes = std::map<Role, RolePlane>;
 
 // One channel of `src` as a 1-channel image.
 Image extract_channel(const Image& src, int channel);
+Image8 extract_channel(const Image8& src, int channel);
 // 3-channel color from grey (replicated), grey+alpha, RGB or RGBA (alpha dropped).
 Image to_rgb(const Image& src);
-// v -> 1 - v in place (gloss/smoothness <-> roughness).
+Image8 to_rgb(const Image8& src);
+// v -> 1 - v in place (gloss/smoothness <-> roughness); codes: k -> 255 - k.
 void invert(Image& img);
+void invert(Image8& codes);
+
+// The plane of `role` in floats (codes decoded; normal codes to unit GL vectors), and in place.
+Image plane_floats(Role role, const RolePlane& plane);
+void make_floats(Role role, RolePlane& plane);
 
 // Decodes an encoded normal map (c in [0,1], 2 to 4 channels; with 2 channels Z is rebuilt) to
 // unit GL vectors. Zero-length or non-finite texels become (0,0,1). `from` unknown is treated as
@@ -43,7 +63,8 @@ Image encode_normal(const Image& n, NormalConvention to);
 // light and renormalize normals afterwards.
 Image resample(const Image& src, int w, int h);
 
-// Brings a plane to w x h: color goes to linear first; normals are renormalized.
+// Brings a plane to w x h: color goes to linear first; normals are renormalized. A codes plane
+// already at w x h stays codes.
 void fit_plane(Role role, RolePlane& plane, int w, int h, const ColorContext& color);
 
 // The size of an output: the largest of its map-backed roles, scaled so neither side exceeds
@@ -62,5 +83,12 @@ std::vector<ChannelSpec> effective_channels(const OutputSpec& o, const Planes& p
 // preset's default value.
 Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
                   const ColorContext& color);
+
+// The same output as 8-bit codes made straight from codes planes, with no float image: what
+// quantizing pack_output's result gives, code for code (tests/pack check every code). nullopt
+// when a plane the output reads is float, or a color plane's encoding is not the output's
+// (then use pack_output).
+std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
+                                   const ColorContext& color);
 
 }  // namespace mf

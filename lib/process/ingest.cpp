@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct Loaded {
-    Image img;
+    Decoded img;  // 8-bit files stay codes until a step needs floats
     ImageInfo info;
 };
 
@@ -48,10 +48,17 @@ std::string input_color_space(Role r, const ImageInfo& info) {
     return info.is_float ? "linear" : "sRGB";
 }
 
-bool has_real_alpha(const Image& img) {
-    if (img.channels != 4 && img.channels != 2) return false;
-    for (size_t i = static_cast<size_t>(img.channels) - 1; i < img.pixels.size(); i += static_cast<size_t>(img.channels))
-        if (img.pixels[i] < 0.999f) return true;
+bool has_real_alpha(const Decoded& d) {
+    const int nc = d.channels();
+    if (nc != 4 && nc != 2) return false;
+    const auto step = static_cast<size_t>(nc);
+    if (d.is_codes()) {  // code 254 reads as 0.996, 255 as 1
+        for (size_t i = step - 1; i < d.codes.pixels.size(); i += step)
+            if (d.codes.pixels[i] < 255) return true;
+        return false;
+    }
+    for (size_t i = step - 1; i < d.floats.pixels.size(); i += step)
+        if (d.floats.pixels[i] < 0.999f) return true;
     return false;
 }
 
@@ -81,11 +88,13 @@ nlohmann::json channels_json(const std::vector<ChannelSpec>& channels) {
     return j;
 }
 
-// Estimated peak bytes of a set: its decoded maps (float) plus the planes made from them.
+// Estimated peak bytes of a set: its decoded maps (8-bit files as codes, others as float) plus
+// the planes made from them.
 uint64_t estimated_bytes(const SetDiscovery& d) {
     uint64_t total = 0;
     for (const auto& c : d.choices)
-        total += uint64_t{4} * static_cast<uint64_t>(std::max(0, c.chosen.header.width)) *
+        total += uint64_t{c.chosen.header.bit_depth == 8 && !c.chosen.header.is_float ? 1U : 4U} *
+                 static_cast<uint64_t>(std::max(0, c.chosen.header.width)) *
                  static_cast<uint64_t>(std::max(0, c.chosen.header.height)) *
                  static_cast<uint64_t>(std::clamp(c.chosen.header.channels, 1, 4));
     return total * 2;
@@ -153,10 +162,23 @@ validate::SetValidation validate_loaded(SetState& st, const validate::RuleConfig
             error = in.display + ": not decoded";
             return false;
         }
-        const Image& img = it->second->img;
+        const Decoded& d = it->second->img;
         info = it->second->info;
-        for (int y0 = 0; y0 < img.height; y0 += band_rows)
-            fn(y0, std::min(band_rows, img.height - y0), &img.pixels[img.index(0, y0)]);
+        if (!d.is_codes()) {
+            for (int y0 = 0; y0 < d.floats.height; y0 += band_rows)
+                fn(y0, std::min(band_rows, d.floats.height - y0), &d.floats.pixels[d.floats.index(0, y0)]);
+            return true;
+        }
+        // Codes are served as the floats read_image would give, one band at a time (the band
+        // stays in cache; the map is never held as floats).
+        const Image8& c = d.codes;
+        std::vector<float> band(static_cast<size_t>(c.width) * c.channels * static_cast<size_t>(band_rows));
+        for (int y0 = 0; y0 < c.height; y0 += band_rows) {
+            const int rows = std::min(band_rows, c.height - y0);
+            to_float(&c.pixels[c.index(0, y0)], static_cast<size_t>(c.width) * c.channels * static_cast<size_t>(rows),
+                     band.data());
+            fn(y0, rows, band.data());
+        }
         return true;
     };
     return validate::validate_set(maps, rules, vo);
@@ -257,9 +279,9 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     // Opacity carried in the albedo's alpha, when no opacity map exists.
     if (!route_of.count(Role::opacity) && route_of.count(Role::albedo) && route_of[Role::albedo].channel < 0) {
         const Candidate& c = *st.used.at(route_of[Role::albedo].from);
-        const Image& img = st.loaded.at(c.file).img;
+        const Decoded& img = st.loaded.at(c.file).img;
         if (has_real_alpha(img)) {
-            route_of[Role::opacity] = Provider{route_of[Role::albedo].from, img.channels - 1, false};
+            route_of[Role::opacity] = Provider{route_of[Role::albedo].from, img.channels() - 1, false};
             st.add(code::packed_input_unpacked, Severity::info, Role::opacity, c.file,
                    "opacity taken from the albedo map's alpha channel");
         }
@@ -275,8 +297,10 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
         Loaded& l = st.loaded.at(c.file);
         const bool last_use = --uses[c.file] == 0;
         RolePlane plane;
+        Decoded& img = l.img;
         if (out == Role::albedo || out == Role::emissive) {
-            plane.image = last_use && l.img.channels == 3 ? std::move(l.img) : to_rgb(l.img);
+            if (img.is_codes()) plane.codes = last_use && img.codes.channels == 3 ? std::move(img.codes) : to_rgb(img.codes);
+            else plane.image = last_use && img.floats.channels == 3 ? std::move(img.floats) : to_rgb(img.floats);
             plane.encoding = l.info.is_float ? ColorEncoding::linear : ColorEncoding::srgb;
         } else if (out == Role::normal) {
             const NormalFacts nf = normal_facts(c, checked.normal);
@@ -285,22 +309,31 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
                 st.add(code::normal_convention_unknown, Severity::warning, out, c.file,
                        "neither the file name nor the content decides OpenGL (+Y) vs DirectX (-Y); assumed OpenGL: "
                        "check the preview, or rename the file with _gl/_dx");
-            decode_normal(l.img, nf.convention, plane.image);
             const NormalConvention effective =
                 nf.convention == NormalConvention::unknown ? NormalConvention::gl : nf.convention;
+            if (img.is_codes()) {  // decoded when packed (pack_output8) or resampled (fit_plane)
+                plane.codes = last_use ? std::move(img.codes) : img.codes;
+                plane.codes_convention = effective;
+            } else {
+                decode_normal(img.floats, nf.convention, plane.image);
+            }
             if (effective != target)
                 st.add(code::normal_convention_converted, Severity::info, out, c.file,
                        "green channel flipped from " + std::string(convention_name(effective)) + " to " +
                            std::string(convention_name(target)) + " for the preset",
                        {{"from", convention_name(effective)}, {"to", convention_name(target)}});
         } else {
-            plane.image = last_use && l.img.channels == 1 ? std::move(l.img)
-                                                           : extract_channel(l.img, route.channel < 0 ? 0 : route.channel);
-            if (route.invert) {
-                invert(plane.image);
+            const int ch = route.channel < 0 ? 0 : route.channel;
+            if (img.is_codes()) {
+                plane.codes = last_use && img.codes.channels == 1 ? std::move(img.codes) : extract_channel(img.codes, ch);
+                if (route.invert) invert(plane.codes);
+            } else {
+                plane.image = last_use && img.floats.channels == 1 ? std::move(img.floats) : extract_channel(img.floats, ch);
+                if (route.invert) invert(plane.image);
+            }
+            if (route.invert)
                 st.add(code::gloss_inverted, Severity::info, out, c.file,
                        "gloss map converted to roughness (roughness = 1 - gloss)");
-            }
         }
         if (last_use) st.loaded.erase(c.file);
         if (traits(route.from).packed) unpacked.insert(route.from);
@@ -322,9 +355,9 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     int w = 0, h = 0;
     std::set<std::pair<int, int>> sizes;
     for (const auto& [r, p] : planes) {
-        sizes.insert({p.image.width, p.image.height});
-        w = std::max(w, p.image.width);
-        h = std::max(h, p.image.height);
+        sizes.insert({p.width(), p.height()});
+        w = std::max(w, p.width());
+        h = std::max(h, p.height());
     }
     if (preset_.max_size > 0 && std::max(w, h) > preset_.max_size) {
         const int ow = w, oh = h;
@@ -363,10 +396,16 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
         const auto roles = o.roles();
         const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
         const Size size = any_map ? Size{w, h} : Size{preset_.constant_size, preset_.constant_size};
-        const Image packed = pack_output(o, planes, preset_, size, *color_);
+        // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
+        std::optional<Image8> packed8;
+        if (preset_.format != "exr") packed8 = pack_output8(o, planes, preset_, size, *color_);
+        const EncodeOptions enc{preset_.format, o.bit_depth};
         std::vector<unsigned char> bytes;
         std::string err;
-        if (!encode_image(packed, {preset_.format, o.bit_depth}, bytes, err) ||
+        const bool encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
+                                     : encode_image(pack_output(o, planes, preset_, size, *color_), enc, bytes, err);
+        packed8.reset();
+        if (!encoded ||
             !write_file_atomic(opt_.out_dir / rel_path, bytes, err)) {
             st.findings.push_back({std::string(code::output_write_failed), Severity::error, "", "", rel + ": " + err, {}});
             st.partial = true;
