@@ -321,7 +321,7 @@ uint16_t quantize(float v, int bit_depth) { return quantize_unorm(v, bit_depth =
 
 namespace {
 // The output spec of every encode: reproducible bytes and matforge's PNG settings.
-OIIO::ImageSpec output_spec(int width, int height, int channels, const EncodeOptions& opt, OIIO::TypeDesc type) {
+OIIO::ImageSpec output_spec(int width, int height, int channels, const EncodeOptions& opt, const OIIO::TypeDesc& type) {
     OIIO::ImageSpec spec(width, height, channels, type);
     if (channels == 4 || channels == 2) spec.alpha_channel = channels - 1;
     spec.attribute("oiio:UnassociatedAlpha", 1);
@@ -343,7 +343,7 @@ OIIO::ImageSpec output_spec(int width, int height, int channels, const EncodeOpt
 }
 
 // Writes `data` (of `memtype`) with `spec` in opt.format to bytes.
-bool write_encoded(const OIIO::ImageSpec& spec, OIIO::TypeDesc memtype, const void* data, const EncodeOptions& opt,
+bool write_encoded(const OIIO::ImageSpec& spec, const OIIO::TypeDesc& memtype, const void* data, const EncodeOptions& opt,
                    std::vector<unsigned char>& bytes, std::string& error) {
     const std::string name = "output." + opt.format;
     auto out = OIIO::ImageOutput::create(name);

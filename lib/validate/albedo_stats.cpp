@@ -39,34 +39,11 @@ AlbedoStats::AlbedoStats(const Thresholds& t, bool linear_input) : t_(t), linear
     bright_lin_ = lin(t.albedo_max_srgb);
     metal_dark_lin_ = lin(t.metal_albedo_min_srgb);
     for (int k = 0; k < 256; ++k) edges_[k] = lin(k + 0.5);
-}
-
-float AlbedoStats::linear(float v) const {
-    if (linear_input_) return std::max(v, 0.f);
-    if (!(v > 0.f)) return 0.f;
-    if (v >= 1.f) return 1.f;
-    // v in (0, 1): adding 0.5 and truncating equals lround here (checked for every float in
-    // [0, 1]) without a libm call per channel per pixel.
-    // NOLINTNEXTLINE(bugprone-incorrect-roundings): exhaustively equal to lround on this domain
-    return decode_table()[static_cast<size_t>(v * 65535.f + 0.5f)];
-}
-
-void AlbedoStats::add(const float* rgb, float m) {
-    const float y = 0.2126f * linear(rgb[0]) + 0.7152f * linear(rgb[1]) + 0.0722f * linear(rgb[2]);
-    if (!std::isfinite(y) || !std::isfinite(m)) return;
-    Class* c = nullptr;
-    if (m <= t_.dielectric_max) c = &dielectric_;
-    else if (m >= t_.metal_min) c = &metal_;
-    else return;  // blends (rust, dirt on metal): no bound applies
-    ++c->n;
-    const auto code = static_cast<size_t>(std::lower_bound(edges_.begin(), edges_.end(), y) - edges_.begin());
-    ++c->hist[std::min<size_t>(code, 255)];
-    if (c == &dielectric_) {
-        if (y < dark_lin_) ++c->below;
-        if (y > bright_lin_) ++c->above;
-    } else if (y < metal_dark_lin_) {
-        ++c->below;
+    for (size_t b = 0; b <= kBuckets; ++b) {
+        const float lo = static_cast<float>(b) / static_cast<float>(kBuckets);
+        first_code_[b] = static_cast<uint16_t>(std::lower_bound(edges_.begin(), edges_.end(), lo) - edges_.begin());
     }
+    decode_ = decode_table().data();
 }
 
 double AlbedoStats::Class::percentile(double p) const {

@@ -52,6 +52,8 @@ MapStats::MapStats(MapInput in, const ImageInfo& info, const Thresholds& th)
     else if (input.role == Role::orm || input.role == Role::metallic_roughness) metal_channel = 2;
     if (metal_channel >= channels) metal_channel = -1;
     if (!input.info.is_float) normal_signed = 0;
+    if (!input.info.is_float && (input.info.bit_depth == 8 || input.info.bit_depth == 16))
+        code_scale = input.info.bit_depth == 8 ? 255.f : 65535.f;
 }
 
 bool MapStats::scalar_role() const {
@@ -71,29 +73,48 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         for (long long i = 0; i < n * channels && !neg; ++i) neg = px[i] < -1e-3f;
         normal_signed = neg ? 1 : 0;
     }
-    // Per-channel min/max/sum, channel by channel so the accumulators live in registers: the
-    // pixel-major form kept them in the member arrays, one store-to-load chain per sample, and was
-    // the hottest loop of ingest. Same operations in the same order: results are bit-identical.
-    for (int c = 0; c < channels; ++c) {
-        const int k = std::min(c, 3);
-        double mn = min[k], mx = max[k], sm = sum[k];
-        long long fin = 0, nans = 0, infs = 0;
-        for (long long i = 0; i < n; ++i) {
-            const float v = px[i * channels + c];
-            if (!std::isfinite(v)) {
-                ++(std::isnan(v) ? nans : infs);
-                continue;
+    // Per-channel min/max/sum, channel by channel so the accumulators live in registers (the
+    // pixel-major form kept them in the member arrays, one store-to-load chain per sample).
+    if (code_scale > 0.f) {
+        for (int c = 0; c < std::min(channels, 4); ++c) {
+            // Integer file: no NaN or Inf can occur, min/max in float are exact, the sum is exact in
+            // codes; no branch and no dependency through a double add per sample.
+            float mn = std::numeric_limits<float>::infinity(), mx = -mn;
+            long long codes = 0;
+            for (long long i = 0; i < n; ++i) {
+                const float v = px[i * channels + c];
+                mn = std::min(mn, v);
+                mx = std::max(mx, v);
+                // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
+                codes += static_cast<long long>(v * code_scale + 0.5f);
             }
-            mn = std::min(mn, double{v});
-            mx = std::max(mx, double{v});
-            sm += v;
-            ++fin;
+            min[c] = std::min(min[c], double{mn});
+            max[c] = std::max(max[c], double{mx});
+            code_sum[c] += codes;
+            finite[c] += n;
         }
-        nan += nans;
-        inf += infs;
-        if (c < 4) {
-            min[k] = mn, max[k] = mx, sum[k] = sm;
-            finite[k] += fin;
+    } else {
+        for (int c = 0; c < channels; ++c) {
+            const int k = std::min(c, 3);
+            double mn = min[k], mx = max[k], sm = sum[k];
+            long long fin = 0, nans = 0, infs = 0;
+            for (long long i = 0; i < n; ++i) {
+                const float v = px[i * channels + c];
+                if (!std::isfinite(v)) {
+                    ++(std::isnan(v) ? nans : infs);
+                    continue;
+                }
+                mn = std::min(mn, double{v});
+                mx = std::max(mx, double{v});
+                sm += v;
+                ++fin;
+            }
+            nan += nans;
+            inf += infs;
+            if (c < 4) {
+                min[k] = mn, max[k] = mx, sum[k] = sm;
+                finite[k] += fin;
+            }
         }
     }
     samples += n * channels;
@@ -228,7 +249,7 @@ void MapStats::findings(std::vector<Finding>& out) const {
             nlohmann::json value = nlohmann::json::array(), range = nlohmann::json::array();
             for (int c : chs) {
                 if (finite[c] == 0 || max[c] - min[c] > tol) constant = false;
-                value.push_back(finite[c] ? sum[c] / static_cast<double>(finite[c]) : 0.0);
+                value.push_back(mean(c));
                 range.push_back(finite[c] ? max[c] - min[c] : 0.0);
             }
             if (!constant) continue;

@@ -27,6 +27,10 @@ struct MapStats {
     long long samples = 0, pixels = 0, nan = 0, inf = 0, out_of_range_pixels = 0;
     std::array<double, 4> min{}, max{}, sum{};
     std::array<long long, 4> finite{};
+    // 8/16-bit files: every value is finite and a code / code_scale; the sums are kept exactly,
+    // in codes (code_scale 0: a float file, summed in `sum`).
+    float code_scale = 0.f;
+    std::array<long long, 4> code_sum{};
     // NOT_GRAYSCALE (scalar roles with ≥ 3 channels).
     long long gray_differing = 0;
     double gray_max_diff = 0, gray_sum_rg = 0, gray_sum_rb = 0;
@@ -45,6 +49,11 @@ struct MapStats {
     void findings(std::vector<Finding>& out) const;
 
     bool is_normal() const { return input.role == Role::normal; }
+    double mean(int c) const {
+        if (finite[c] == 0) return 0.0;
+        const double total = code_scale > 0.f ? static_cast<double>(code_sum[c]) / code_scale : sum[c];
+        return total / static_cast<double>(finite[c]);
+    }
     bool scalar_role() const;
 };
 
