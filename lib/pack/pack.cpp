@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mf {
 
@@ -29,44 +30,74 @@ BasicImage<T> to_rgb_t(const BasicImage<T>& src) {
     return out;
 }
 
-// One normal texel, shared by the float path (decode_normal, encode_normal) and the codes path
-// (pack_output8), so both run the same float operations in the same order and write the same
-// codes.
-struct Texel {
-    float x, y, z;
+// Normal texels in blocks of kBlock, as three arrays: the float path (decode_normal,
+// encode_normal) and the codes path (pack_output8) share these loops, so both run the same float
+// operations in the same order and write the same codes. The loops have no branch and a fixed
+// trip count, so the compiler vectorizes them; SIMD sqrt and division round exactly as the
+// scalar ones do.
+constexpr size_t kBlock = 64;
+struct NormalBlock {
+    std::array<float, kBlock> x, y, z;
 };
 
-// Stored color (2 to 4 channels; 2: Z rebuilt from unit length) -> unit vector, Y times ysign;
-// zero-length or non-finite -> (0,0,1). `bad`: the stored length was far from 1, or Z < 0.
-inline Texel decode_texel(const float* e, int channels, float ysign, bool& bad) {
-    float x = e[0] * 2.f - 1.f;
-    float y = (channels > 1 ? e[1] : 0.5f) * 2.f - 1.f;
-    float z;
-    if (channels >= 3) {
-        z = e[2] * 2.f - 1.f;
-    } else {  // two-channel (BC5-style) normals: Z from unit length
-        z = std::sqrt(std::max(0.f, 1.f - x * x - y * y));
+// A length that can divide: not ~0, not Inf, not NaN.
+// Both comparisons evaluated (no short circuit): the loops below stay branch-free.
+inline bool usable(float len) { return (len > 1e-6f) & (len <= std::numeric_limits<float>::max()); }
+
+// Stored colors in [0,1] -> unit vectors, Y times ysign; zero-length or non-finite -> (0,0,1).
+// channels < 3: Z rebuilt from unit length (BC5-style; one channel: Y = 0.5 too). Returns how
+// many had a stored length far from 1 (|len-1| > 0.2) or Z < 0.
+template <bool kStoredZ>
+size_t decode_block_t(NormalBlock& b, float ysign) {
+    size_t bad = 0;
+    for (size_t i = 0; i < kBlock; ++i) {
+        const float x = b.x[i] * 2.f - 1.f;
+        const float y = b.y[i] * 2.f - 1.f;
+        const float z = kStoredZ ? b.z[i] * 2.f - 1.f : std::sqrt(std::max(0.f, 1.f - x * x - y * y));
+        const float len = std::sqrt(x * x + y * y + z * z);
+        bad += static_cast<size_t>(!(std::abs(len - 1.f) <= 0.2f) | (z < 0.f));
+        const bool ok = usable(len);
+        const float d = ok ? len : 1.f;  // divide unconditionally, select after
+        const float nx = x / d, ny = y / d, nz = z / d;
+        b.x[i] = ok ? nx : 0.f;
+        b.y[i] = (ok ? ny : 0.f) * ysign;
+        b.z[i] = ok ? nz : 1.f;
     }
-    const float len = std::sqrt(x * x + y * y + z * z);
-    bad = !(std::abs(len - 1.f) <= 0.2f) || z < 0.f;
-    if (!(len > 1e-6f) || !std::isfinite(len)) {
-        x = 0.f, y = 0.f, z = 1.f;
-    } else {
-        x /= len, y /= len, z /= len;
-    }
-    return {x, y * ysign, z};
+    return bad;
+}
+size_t decode_block(NormalBlock& b, int channels, float ysign) {
+    return channels >= 3 ? decode_block_t<true>(b, ysign) : decode_block_t<false>(b, ysign);
 }
 
-// Unit vector (renormalized first: resampling shortens vectors) -> stored color, Y times ysign.
-inline Texel encode_texel(Texel n, float ysign) {
-    float x = n.x, y = n.y, z = n.z;
-    const float len = std::sqrt(x * x + y * y + z * z);
-    if (len > 1e-6f && std::isfinite(len)) {
-        x /= len, y /= len, z /= len;
-    } else {
-        x = 0.f, y = 0.f, z = 1.f;
+// Unit vectors (renormalized first: resampling shortens them) -> stored colors, Y times ysign.
+void encode_block(NormalBlock& b, float ysign) {
+    for (size_t i = 0; i < kBlock; ++i) {
+        const float x = b.x[i], y = b.y[i], z = b.z[i];
+        const float len = std::sqrt(x * x + y * y + z * z);
+        const bool ok = usable(len);
+        const float d = ok ? len : 1.f;
+        const float nx = x / d, ny = y / d, nz = z / d;
+        b.x[i] = (ok ? nx : 0.f) * 0.5f + 0.5f;
+        b.y[i] = (ok ? ny : 0.f) * ysign * 0.5f + 0.5f;
+        b.z[i] = (ok ? nz : 1.f) * 0.5f + 0.5f;
     }
-    return {x * 0.5f + 0.5f, y * ysign * 0.5f + 0.5f, z * 0.5f + 0.5f};
+}
+
+// Texels [i0, i0 + n) of an interleaved image into a block, the rest padded with a flat normal
+// (stored (0.5, 0.5, 1): decodes to (0,0,1), never counted bad).
+template <class T, class F>
+void load_block(NormalBlock& b, const BasicImage<T>& img, size_t i0, size_t n, F value) {
+    const auto ch = static_cast<size_t>(img.channels);
+    for (size_t i = 0; i < kBlock; ++i) {
+        if (i >= n) {
+            b.x[i] = 0.5f, b.y[i] = 0.5f, b.z[i] = 1.f;
+            continue;
+        }
+        const T* p = &img.pixels[(i0 + i) * ch];
+        b.x[i] = value(p[0]);
+        b.y[i] = ch > 1 ? value(p[1]) : 0.5f;
+        b.z[i] = ch > 2 ? value(p[2]) : 1.f;
+    }
 }
 
 float ysign_of(NormalConvention c) { return c == NormalConvention::dx ? -1.f : 1.f; }
@@ -90,13 +121,16 @@ double decode_normal(const Image& enc, NormalConvention from, Image& out) {
     const size_t n = static_cast<size_t>(enc.width) * enc.height;
     const float ysign = ysign_of(from);
     size_t bad = 0;
-    for (size_t i = 0; i < n; ++i) {
-        bool b = false;
-        const Texel t = decode_texel(&enc.pixels[i * enc.channels], enc.channels, ysign, b);
-        bad += b ? 1 : 0;
-        out.pixels[i * 3 + 0] = t.x;
-        out.pixels[i * 3 + 1] = t.y;
-        out.pixels[i * 3 + 2] = t.z;
+    NormalBlock b{};
+    for (size_t i0 = 0; i0 < n; i0 += kBlock) {
+        const size_t m = std::min(kBlock, n - i0);
+        load_block(b, enc, i0, m, [](float v) { return v; });
+        bad += decode_block(b, enc.channels, ysign);  // the padding (flat) is never bad
+        for (size_t i = 0; i < m; ++i) {
+            out.pixels[(i0 + i) * 3 + 0] = b.x[i];
+            out.pixels[(i0 + i) * 3 + 1] = b.y[i];
+            out.pixels[(i0 + i) * 3 + 2] = b.z[i];
+        }
     }
     return n ? static_cast<double>(bad) / static_cast<double>(n) : 0.0;
 }
@@ -116,11 +150,17 @@ void renormalize(Image& n) {
 Image encode_normal(const Image& n, NormalConvention to) {
     Image out(n.width, n.height, 3);
     const float ysign = ysign_of(to);
-    for (size_t i = 0, count = static_cast<size_t>(n.width) * n.height; i < count; ++i) {
-        const Texel t = encode_texel({n.pixels[i * 3], n.pixels[i * 3 + 1], n.pixels[i * 3 + 2]}, ysign);
-        out.pixels[i * 3 + 0] = t.x;
-        out.pixels[i * 3 + 1] = t.y;
-        out.pixels[i * 3 + 2] = t.z;
+    const size_t count = static_cast<size_t>(n.width) * n.height;
+    NormalBlock b{};
+    for (size_t i0 = 0; i0 < count; i0 += kBlock) {
+        const size_t m = std::min(kBlock, count - i0);
+        load_block(b, n, i0, m, [](float v) { return v; });
+        encode_block(b, ysign);
+        for (size_t i = 0; i < m; ++i) {
+            out.pixels[(i0 + i) * 3 + 0] = b.x[i];
+            out.pixels[(i0 + i) * 3 + 1] = b.y[i];
+            out.pixels[(i0 + i) * 3 + 2] = b.z[i];
+        }
     }
     return out;
 }
@@ -309,14 +349,16 @@ std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, co
                 const Image8& enc = it->second.codes;
                 const std::array<float, 256>& unorm = unorm8_values();
                 const float from = ysign_of(it->second.codes_convention), to = ysign_of(preset.normal_convention);
-                const int ec = enc.channels;
-                for (size_t i = 0; i < n; ++i) {
-                    float e[3] = {0.f, 0.f, 0.f};
-                    for (int k = 0; k < std::min(ec, 3); ++k) e[k] = unorm[enc.pixels[i * ec + static_cast<size_t>(k)]];
-                    bool bad = false;
-                    const Texel t = encode_texel(decode_texel(e, ec, from, bad), to);
-                    uint8_t* px = &out.pixels[i * nch + dst];
-                    px[0] = quantize8(t.x), px[1] = quantize8(t.y), px[2] = quantize8(t.z);
+                NormalBlock b{};
+                for (size_t i0 = 0; i0 < n; i0 += kBlock) {
+                    const size_t m = std::min(kBlock, n - i0);
+                    load_block(b, enc, i0, m, [&unorm](uint8_t k) { return unorm[k]; });
+                    decode_block(b, enc.channels, from);
+                    encode_block(b, to);
+                    for (size_t i = 0; i < m; ++i) {
+                        uint8_t* px = &out.pixels[(i0 + i) * nch + dst];
+                        px[0] = quantize8(b.x[i]), px[1] = quantize8(b.y[i]), px[2] = quantize8(b.z[i]);
+                    }
                 }
             } else {
                 for (int k = 0; k < 3; ++k) copy(dst + k, it->second.codes, k, false);
