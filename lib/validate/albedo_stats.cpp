@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <limits>
 
 #include "validate/map_stats.hpp"
 
@@ -39,6 +40,7 @@ AlbedoStats::AlbedoStats(const Thresholds& t, bool linear_input) : t_(t), linear
     bright_lin_ = lin(t.albedo_max_srgb);
     metal_dark_lin_ = lin(t.metal_albedo_min_srgb);
     for (int k = 0; k < 256; ++k) edges_[k] = lin(k + 0.5);
+    edges_[256] = std::numeric_limits<float>::infinity();
     for (size_t b = 0; b <= kBuckets; ++b) {
         const float lo = static_cast<float>(b) / static_cast<float>(kBuckets);
         first_code_[b] = static_cast<uint16_t>(std::lower_bound(edges_.begin(), edges_.end(), lo) - edges_.begin());

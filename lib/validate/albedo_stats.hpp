@@ -41,11 +41,14 @@ public:
         }
     }
     // The sRGB code of linear luminance y (finite, >= 0): the number of edges below y, as a
-    // binary search over edges_ would give, found from a coarse table in one or two steps.
+    // binary search over the edges would give, from a coarse table and one branch-free step.
     size_t srgb_code(float y) const {
         // y * 4096 is exact (a power of two): bucket b holds exactly the y in [b/4096, (b+1)/4096).
+        // Edges are at least 3e-4 apart (the curve's steepest part, near 0) and a bucket is
+        // 2.4e-4 wide: at most one edge lies between the bucket's start and y. y >= 1 takes the
+        // last entry (255 edges lie below 1); the sentinel edge (+inf) stops the step at 256.
         size_t k = first_code_[y < 1.f ? static_cast<size_t>(y * 4096.f) : kBuckets];
-        while (k < edges_.size() && edges_[k] < y) ++k;
+        k += edges_[k] < y ? 1 : 0;
         return std::min<size_t>(k, 255);
     }
     void findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask,
@@ -70,7 +73,7 @@ private:
     Thresholds t_;
     bool linear_input_;
     float dark_lin_, bright_lin_, metal_dark_lin_;
-    std::array<float, 256> edges_{};  // linear luminance at sRGB code k + 0.5
+    std::array<float, 257> edges_{};  // linear luminance at sRGB code k + 0.5; [256] = +inf
     std::array<uint16_t, kBuckets + 1> first_code_{};  // edges below b / 4096 (b = kBuckets: below 1)
     const float* decode_;  // sRGB decode of every 16-bit code
     Class dielectric_, metal_;

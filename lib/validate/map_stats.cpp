@@ -79,18 +79,30 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         for (int c = 0; c < std::min(channels, 4); ++c) {
             // Integer file: no NaN or Inf can occur, min/max in float are exact, the sum is exact in
             // codes; no branch and no dependency through a double add per sample.
-            float mn = std::numeric_limits<float>::infinity(), mx = -mn;
-            long long codes = 0;
-            for (long long i = 0; i < n; ++i) {
-                const float v = px[i * channels + c];
-                mn = std::min(mn, v);
-                mx = std::max(mx, v);
+            // Four independent chains: min, max and integer sums are exact in any order.
+            constexpr float kInf = std::numeric_limits<float>::infinity();
+            float mn[4] = {kInf, kInf, kInf, kInf}, mx[4] = {-kInf, -kInf, -kInf, -kInf};
+            long long codes[4] = {0, 0, 0, 0};
+            const float scale = code_scale;
+            auto step = [&](size_t j, float v) {
+                mn[j] = std::min(mn[j], v);
+                mx[j] = std::max(mx[j], v);
                 // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
-                codes += static_cast<long long>(v * code_scale + 0.5f);
+                codes[j] += static_cast<long long>(v * scale + 0.5f);
+            };
+            const float* q = px + c;
+            const auto stride = static_cast<size_t>(channels);
+            long long i = 0;
+            for (; i + 4 <= n; i += 4, q += 4 * stride) {
+                step(0, q[0]);
+                step(1, q[stride]);
+                step(2, q[2 * stride]);
+                step(3, q[3 * stride]);
             }
-            min[c] = std::min(min[c], double{mn});
-            max[c] = std::max(max[c], double{mx});
-            code_sum[c] += codes;
+            for (; i < n; ++i, q += stride) step(0, q[0]);
+            min[c] = std::min({min[c], double{mn[0]}, double{mn[1]}, double{mn[2]}, double{mn[3]}});
+            max[c] = std::max({max[c], double{mx[0]}, double{mx[1]}, double{mx[2]}, double{mx[3]}});
+            code_sum[c] += codes[0] + codes[1] + codes[2] + codes[3];
             finite[c] += n;
         }
     } else {
@@ -118,39 +130,58 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         }
     }
     samples += n * channels;
-    if (!check_range && !gray && metal_channel < 0 && !is_normal()) {
-        pixels += n;
-        return;
-    }
-    for (long long i = 0; i < n; ++i) {
-        const float* p = px + i * channels;
-        if (check_range) {
+    pixels += n;
+    // One loop per check, each with its counters in locals (members would be stored back every
+    // pixel); the same operations in the same order as one loop: results are bit-identical.
+    if (check_range) {
+        long long bad = 0;
+        for (long long i = 0; i < n; ++i) {
+            const float* p = px + i * channels;
             bool bad_range = false;
             for (int c = 0; c < channels; ++c) {
                 const float v = p[c];
                 if (std::isfinite(v) && (v < lo - eps || v > 1.0 + eps)) bad_range = true;
             }
-            if (bad_range) ++out_of_range_pixels;
+            bad += bad_range ? 1 : 0;
         }
-        if (gray) {
+        out_of_range_pixels += bad;
+    }
+    if (gray) {
+        long long differing = 0;
+        double max_diff = gray_max_diff, sum_rg = gray_sum_rg, sum_rb = gray_sum_rb;
+        for (long long i = 0; i < n; ++i) {
+            const float* p = px + i * channels;
             const double rg = std::abs(double{p[0]} - p[1]), rb = std::abs(double{p[0]} - p[2]),
                          gb = std::abs(double{p[1]} - p[2]);
             const double d = std::max({rg, rb, gb});
             if (std::isfinite(d)) {
-                if (d > gtol) ++gray_differing;
-                gray_max_diff = std::max(gray_max_diff, d);
-                gray_sum_rg += rg;
-                gray_sum_rb += rb;
+                if (d > gtol) ++differing;
+                max_diff = std::max(max_diff, d);
+                sum_rg += rg;
+                sum_rb += rb;
             }
         }
-        if (metal_channel >= 0) {
-            const float m = p[metal_channel];
-            if (m <= t.dielectric_max) ++metal_dielectric;
-            else if (m >= t.metal_min) ++metal_metal;
-            else if (std::isfinite(m)) ++metal_between;
+        gray_differing += differing;
+        gray_max_diff = max_diff, gray_sum_rg = sum_rg, gray_sum_rb = sum_rb;
+    }
+    if (metal_channel >= 0) {
+        long long dielectric = 0, metal = 0, between = 0;
+        for (long long i = 0; i < n; ++i) {
+            const float m = px[i * channels + metal_channel];
+            if (m <= t.dielectric_max) ++dielectric;
+            else if (m >= t.metal_min) ++metal;
+            else if (std::isfinite(m)) ++between;
         }
-        if (is_normal() && channels >= 2) {
-            auto dec = [&](float c) { return normal_signed == 1 ? c : 2.f * c - 1.f; };
+        metal_dielectric += dielectric, metal_metal += metal, metal_between += between;
+    }
+    if (is_normal() && channels >= 2) {
+        const bool is_signed = normal_signed == 1;
+        auto dec = [is_signed](float c) { return is_signed ? c : 2.f * c - 1.f; };
+        const double len_tol = t.normal_length_tolerance, z_eps = t.normal_z_epsilon;
+        long long bad_length = 0, negative_z = 0;
+        double sum_length = normal_sum_length, sum_z = normal_sum_z;
+        for (long long i = 0; i < n; ++i) {
+            const float* p = px + i * channels;
             const double x = dec(p[0]), y = dec(p[1]);
             double len, z;
             if (channels >= 3) {
@@ -162,14 +193,15 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
                 len = std::max(1.0, std::sqrt(xy));
             }
             if (std::isfinite(len)) {
-                if (std::abs(len - 1.0) > t.normal_length_tolerance) ++normal_bad_length;
-                if (z < -t.normal_z_epsilon) ++normal_negative_z;
-                normal_sum_length += len;
-                normal_sum_z += z;
+                if (std::abs(len - 1.0) > len_tol) ++bad_length;
+                if (z < -z_eps) ++negative_z;
+                sum_length += len;
+                sum_z += z;
             }
         }
+        normal_bad_length += bad_length, normal_negative_z += negative_z;
+        normal_sum_length = sum_length, normal_sum_z = sum_z;
     }
-    pixels += n;
 }
 
 void MapStats::findings(std::vector<Finding>& out) const {
