@@ -3,7 +3,7 @@
 # to the I/O floor"). Builds nothing.
 #
 #   bench/throughput/run.sh [BUILD_DIR (build)] [--quick] [--work DIR] [--results DIR]
-#                           [--jobs N (2)] [--peer-jobs "1 2"]
+#                           [--jobs N (2)] [--peer-jobs "1 2"] [--repeat N (3; --quick: 1)]
 #
 # 1. make_library writes the library into WORK/lib (full: 40 x 1K, 8 x 2K, 2 x 4K; --quick:
 #    4 x 1K, 1 x 2K) and a 4K-only one into WORK/lib4k (full: 4 sets; --quick: 2).
@@ -12,6 +12,8 @@
 #    matforge writes), `matforge ingest --preset gltf --jobs N`, and oiiotool_peer.sh once per
 #    --peer-jobs value (1 = serial as a plain script, 2 = xargs -P2). Then on the 4K library:
 #    matforge and the floor, for peak RSS.
+#    The floor and matforge run --repeat times, alternating (a drift in the machine's speed hits
+#    both alike); each keeps its median-wall run.
 # 3. Checks the peer's outputs against matforge's (compare_outputs; 1 code, normals 2).
 # 4. Writes RESULTS/results.md and RESULTS/results.csv (default docs/throughput/ for a full
 #    run; WORK/ for --quick so a smoke run never overwrites committed figures).
@@ -22,9 +24,9 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 invocation="bench/throughput/run.sh${*:+ $*}"
 
-build=build quick=0 work=/tmp/matforge-throughput results="" jobs=2 peer_jobs="1 2"
+build=build quick=0 work=/tmp/matforge-throughput results="" jobs=2 peer_jobs="1 2" repeat=""
 usage() {
-  echo "usage: run.sh [BUILD_DIR] [--quick] [--work DIR] [--results DIR] [--jobs N] [--peer-jobs \"1 2\"]" >&2
+  echo "usage: run.sh [BUILD_DIR] [--quick] [--work DIR] [--results DIR] [--jobs N] [--peer-jobs \"1 2\"] [--repeat N]" >&2
   exit 2
 }
 build_set=0
@@ -35,6 +37,7 @@ while [[ $# -gt 0 ]]; do
     --results) [[ $# -ge 2 ]] || usage; results=$2; shift 2 ;;
     --jobs) [[ $# -ge 2 && $2 =~ ^[1-9][0-9]*$ ]] || usage; jobs=$2; shift 2 ;;
     --peer-jobs) [[ $# -ge 2 && $2 =~ ^[0-9\ ]*$ ]] || usage; peer_jobs=$2; shift 2 ;;
+    --repeat) [[ $# -ge 2 && $2 =~ ^[1-9][0-9]*$ ]] || usage; repeat=$2; shift 2 ;;
     -h|--help) usage ;;
     -*) usage ;;
     *) [[ $build_set == 0 ]] || usage; build=$1; build_set=1; shift ;;
@@ -43,10 +46,10 @@ done
 [[ $build = /* ]] || build=$repo/$build
 if [[ $quick == 1 ]]; then
   n1=4 n2=1 n4=0 n4rss=2 mode=quick
-  : "${results:=$work}"
+  : "${results:=$work}" "${repeat:=1}"
 else
   n1=40 n2=8 n4=2 n4rss=4 mode=full
-  : "${results:=$repo/docs/throughput}"
+  : "${results:=$repo/docs/throughput}" "${repeat:=3}"
 fi
 
 matforge=$build/tools/matforge/matforge
@@ -94,10 +97,32 @@ timed() {
   echo "$label $n $(tail -1 "$work/time.$label")" >> "$work/times"
 }
 
-timed floor "$sets" "$tp/floor" "$work/lib" -o "$work/out-floor" --jobs "$jobs"
+# keep_median LABEL: of the runs labelled LABEL, keep the one with the median wall time.
+: > "$work/repeats"
+keep_median() {
+  local label=$1 n
+  awk -v l="$label" '$1 == l' "$work/times" | sort -k3,3n > "$work/runs.$label"
+  awk -v l="$label" '$1 != l' "$work/times" > "$work/times.rest"
+  mv "$work/times.rest" "$work/times"
+  n=$(wc -l < "$work/runs.$label")
+  sed -n "$(((n + 1) / 2))p" "$work/runs.$label" >> "$work/times"
+  echo "$label: $(cut -d' ' -f3 "$work/runs.$label" | paste -sd' ' -) s" >> "$work/repeats"
+}
+# floor_and_matforge SUFFIX LIB SETS: the floor and matforge, alternating, --repeat times each.
+floor_and_matforge() {
+  local sfx=$1 lib=$2 n=$3 r
+  for ((r = 1; r <= repeat; r++)); do
+    rm -rf "$work/out-floor$sfx" "$work/out-matforge$sfx"
+    timed "floor$sfx" "$n" "$tp/floor" "$lib" -o "$work/out-floor$sfx" --jobs "$jobs"
+    timed "matforge$sfx" "$n" "$matforge" ingest "$lib/sets" -o "$work/out-matforge$sfx" --preset gltf --jobs "$jobs"
+  done
+  keep_median "floor$sfx"
+  keep_median "matforge$sfx"
+}
+
+floor_and_matforge "" "$work/lib" "$sets"
 timed floor-durable "$sets" "$tp/floor" "$work/lib" -o "$work/out-floor-durable" --jobs "$jobs" --durable
 timed floor-pngdefault "$sets" "$tp/floor" "$work/lib" -o "$work/out-floor-pngdefault" --jobs "$jobs" --png-default
-timed matforge "$sets" "$matforge" ingest "$work/lib/sets" -o "$work/out-matforge" --preset gltf --jobs "$jobs"
 peers=()
 for p in $peer_jobs; do
   timed "oiiotool-P$p" "$sets" "$here/oiiotool_peer.sh" "$work/lib" "$work/out-oiiotool-P$p" --jobs "$p"
@@ -108,8 +133,7 @@ done
 timed "oiiotool-P$jobs-fastpng" "$sets" "$here/oiiotool_peer.sh" "$work/lib" "$work/out-oiiotool-P$jobs-fastpng" \
   --jobs "$jobs" --png-like-matforge
 peers+=("oiiotool-P$jobs-fastpng")
-timed matforge-4k "$sets4k" "$matforge" ingest "$work/lib4k/sets" -o "$work/out-matforge-4k" --preset gltf --jobs "$jobs"
-timed floor-4k "$sets4k" "$tp/floor" "$work/lib4k" -o "$work/out-floor-4k" --jobs "$jobs"
+floor_and_matforge -4k "$work/lib4k" "$sets4k"
 load_after=$(uptime)
 kill "$sampler" 2>/dev/null || true
 load_stats=$(awk -v cpus="$(nproc)" '
@@ -232,10 +256,13 @@ ratio_cpu=$(col matforge ratio_vs_floor_cpu) speed_cpu=$(col matforge cpu_speedu
   echo "- \`/usr/bin/time -f '%e %U %S %M'\`: wall, user + sys CPU (children included), max RSS. For"
   echo "  the oiiotool script, max RSS is that of its largest single process, not the sum of the"
   echo "  processes running at once."
+  echo "- The floor and matforge (both libraries) ran $repeat times each, alternating; the table keeps"
+  echo "  each one's median-wall run. All walls: $(paste -sd';' "$work/repeats" | sed 's/;/; /g')."
   echo "- × floor is wall (or CPU) time over the plain floor's (4K rows: over the 4K floor). The floor decodes"
   echo "  to native 8/16-bit/half pixels and encodes the same three 8-bit PNGs per set with matforge's"
   echo "  PNG settings (--png-default: libpng's);"
-  echo "  matforge also decodes to float, validates, decodes/renormalizes normals, hashes and fsyncs."
+  echo "  matforge also validates every pixel, decodes, converts and renormalizes normals, hashes and"
+  echo "  fsyncs (its 8-bit maps stay 8-bit codes otherwise; EXR inputs are read as float)."
   echo "- The peer copies the 8-bit normal codes (oiiotool has no renormalization); matforge"
   echo "  renormalizes, hence the 2-code tolerance for normals."
 } > "$results/results.md"

@@ -2,6 +2,7 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include <array>
 #include <cstdlib>
 #include <sstream>
 
@@ -26,7 +27,20 @@ public:
         to_srgb_ = config_->getProcessor(linear_.c_str(), srgb_.c_str())
                        ->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
                                                   OCIO::OPTIMIZATION_LOSSLESS);
+        if (!to_linear_->hasChannelCrosstalk()) {
+            // Code k as a grey pixel (R = G = B): with no crosstalk each channel's result is
+            // that of its own value, whatever the others hold.
+            const std::array<float, 256>& unorm = unorm8_values();
+            std::vector<float> rgb(256 * 3);
+            for (size_t k = 0; k < 256; ++k) rgb[k * 3] = rgb[k * 3 + 1] = rgb[k * 3 + 2] = unorm[k];
+            OCIO::PackedImageDesc desc(rgb.data(), 256, 1, 3);
+            to_linear_->apply(desc);
+            codes_to_linear_.resize(256);
+            for (size_t k = 0; k < 256; ++k) codes_to_linear_[k] = rgb[k * 3];
+        }
     }
+
+    const std::vector<float>& srgb_codes_to_linear() const override { return codes_to_linear_; }
 
     void convert(Image& img, ColorEncoding from, ColorEncoding to) const override {
         if (from == to || img.empty()) return;
@@ -59,6 +73,7 @@ private:
     OCIO::ConstConfigRcPtr config_;
     std::string origin_, linear_, srgb_;
     OCIO::ConstCPUProcessorRcPtr to_linear_, to_srgb_;
+    std::vector<float> codes_to_linear_;  // 256 entries, or empty (crosstalk)
 };
 
 // The sRGB texture space in a user's config: our alias, then names common configs use.

@@ -5,6 +5,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "image/image.hpp"
 
@@ -23,6 +24,12 @@ public:
     // Grey (1-2 channel) images are converted per channel as well.
     virtual void convert(Image& img, ColorEncoding from, ColorEncoding to) const = 0;
     virtual void convert(float* rgb, size_t pixels, ColorEncoding from, ColorEncoding to) const = 0;
+
+    // 8-bit sRGB codes as linear floats: entry k is what convert() makes of code k's float
+    // (unorm8_values), computed once through the same processor, so a lookup per sample replaces
+    // the transfer curve (an 8-bit map resampled in linear light). Empty when the conversion
+    // mixes channels (a user config whose linear space has other primaries): use convert().
+    virtual const std::vector<float>& srgb_codes_to_linear() const = 0;
 
     // Where the config came from ("built-in" or the $OCIO path) and the spaces used.
     virtual std::string description() const = 0;

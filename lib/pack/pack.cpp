@@ -192,6 +192,15 @@ Image resample(const Image& src, int w, int h) {
 
 void fit_plane(Role role, RolePlane& plane, int w, int h, const ColorContext& color) {
     if (plane.width() == w && plane.height() == h) return;
+    const std::vector<float>& lut = color.srgb_codes_to_linear();
+    if (plane.is_codes() && plane.encoding == ColorEncoding::srgb && !lut.empty()) {
+        // 8-bit color to linear light by lookup: the processor ran once per code, not per sample.
+        Image lin(plane.codes.width, plane.codes.height, plane.codes.channels);
+        for (size_t i = 0; i < lin.pixels.size(); ++i) lin.pixels[i] = lut[plane.codes.pixels[i]];
+        plane.image = std::move(lin);
+        plane.codes = Image8{};
+        plane.encoding = ColorEncoding::linear;
+    }
     make_floats(role, plane);
     if (plane.encoding == ColorEncoding::srgb) {  // filter in linear light, never on encoded values
         color.convert(plane.image, ColorEncoding::srgb, ColorEncoding::linear);

@@ -99,19 +99,27 @@ struct NormalConventionDetector::Impl {
         ++L.rows;
         if (L.rows >= 3) {
             // Central differences at the middle row (slot 1).
-            const auto &p0 = L.p[0], &p1 = L.p[1], &p2 = L.p[2];
-            const auto& q1 = L.q[1];
+            // Accumulators in locals (the members would be stored back every texel), one loop
+            // per statistic; the same additions in the same order: bit-identical sums.
+            const float *p0 = L.p[0].data(), *p1 = L.p[1].data(), *p2 = L.p[2].data();
+            const float* q1 = L.q[1].data();
+            Corr curl = L.curl;
             for (int x = 1; x + 1 < L.width; ++x) {
                 const double a = 0.5 * (double{p2[x]} - p0[x]);
                 const double b = 0.5 * (double{q1[x + 1]} - q1[x - 1]);
-                L.curl.add(a, b);
-                if (L.with_height) {
-                    const auto &h0 = L.h[0], &h1 = L.h[1], &h2 = L.h[2];
+                curl.add(a, b);
+            }
+            L.curl = curl;
+            if (L.with_height) {
+                const float *h0 = L.h[0].data(), *h1 = L.h[1].data(), *h2 = L.h[2].data();
+                Corr cx = L.cx, cy = L.cy;
+                for (int x = 1; x + 1 < L.width; ++x) {
                     const double gx = 0.5 * (double{h1[x + 1]} - h1[x - 1]);
                     const double gr = 0.5 * (double{h2[x]} - h0[x]);
-                    L.cx.add(p1[x], gx);
-                    L.cy.add(q1[x], gr);
+                    cx.add(p1[x], gx);
+                    cy.add(q1[x], gr);
                 }
+                L.cx = cx, L.cy = cy;
             }
         }
         // Build the next level's row from 2×2 blocks.

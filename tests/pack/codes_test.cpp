@@ -218,4 +218,30 @@ TEST(Codes, FitPlaneKeepsCodesAtTheirSizeAndDecodesToResample) {
     EXPECT_EQ(albedo.image.width, 100);
 }
 
+TEST(Codes, SrgbLookupEqualsTheProcessorForEveryCode) {
+    auto c = ctx();
+    ASSERT_TRUE(c);
+    const std::vector<float>& lut = c->srgb_codes_to_linear();
+    ASSERT_EQ(lut.size(), 256u) << "the built-in config converts channel by channel";
+    const mf::Image8 rgb = codes(3, color_code);
+    mf::Image f = mf::to_float(rgb);
+    c->convert(f, mf::ColorEncoding::srgb, mf::ColorEncoding::linear);
+    size_t differing = 0;
+    for (size_t i = 0; i < f.pixels.size(); ++i) differing += lut[rgb.pixels[i]] != f.pixels[i] ? 1 : 0;
+    EXPECT_EQ(differing, 0u);
+    EXPECT_EQ(lut[0], 0.f);
+    EXPECT_NEAR(lut[255], 1.f, 1e-6f);
+    EXPECT_NEAR(lut[128], 0.2158605f, 1e-5f);  // IEC 61966-2-1 at 128/255
+
+    // fit_plane resamples codes (looked up) and floats (converted) to the same linear image.
+    mf::RolePlane from_codes;
+    from_codes.codes = rgb;
+    from_codes.encoding = mf::ColorEncoding::srgb;
+    mf::RolePlane from_floats{mf::to_float(rgb), mf::ColorEncoding::srgb};
+    mf::fit_plane(mf::Role::albedo, from_codes, 100, 60, *c);
+    mf::fit_plane(mf::Role::albedo, from_floats, 100, 60, *c);
+    EXPECT_EQ(from_codes.encoding, mf::ColorEncoding::linear);
+    EXPECT_EQ(from_codes.image.pixels, from_floats.image.pixels);
+}
+
 }  // namespace
