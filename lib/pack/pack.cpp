@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace mf {
 
@@ -272,58 +273,110 @@ int channel_count(const std::vector<ChannelSpec>& channels) {
 
 }  // namespace
 
-Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
-                  const ColorContext& color) {
+namespace {
+
+// One packing walk for both sample types: floats (any plane; codes planes decoded) or 8-bit
+// codes (codes planes only, checked by pack_output8). The codes walk writes what quantizing the
+// float walk's result gives: constants are quantized once, codes copied (inverted as 255 - k),
+// normals decoded and re-encoded through the same block loops.
+template <class T>
+BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
+                        const ColorContext& color) {
+    constexpr bool kCodes = std::is_same_v<T, uint8_t>;
     const auto channels = effective_channels(o, planes);
     const int nch = channel_count(channels);
-    Image out(size.width, size.height, nch);
+    BasicImage<T> out(size.width, size.height, nch);
     const size_t n = static_cast<size_t>(size.width) * size.height;
+    auto fill = [&](int ch, float v) {
+        T k{};
+        if constexpr (kCodes) k = quantize8(v);
+        else k = v;
+        for (size_t i = 0; i < n; ++i) out.pixels[i * nch + ch] = k;
+    };
+    auto copy = [&](int ch, const BasicImage<T>& src, int sc, bool inv) {
+        for (size_t i = 0; i < n; ++i) {
+            const T v = src.pixels[i * src.channels + sc];
+            if constexpr (kCodes) out.pixels[i * nch + ch] = inv ? static_cast<uint8_t>(255 - v) : v;
+            else out.pixels[i * nch + ch] = inv ? 1.f - v : v;
+        }
+    };
+    // The plane's samples in T, copied only when they must be made: codes as they are, a float
+    // plane's image, or a codes plane decoded into `scratch`.
+    auto view = [](Role role, const RolePlane& p, BasicImage<T>& scratch) -> const BasicImage<T>& {
+        if constexpr (kCodes) {
+            return p.codes;
+        } else {
+            if (!p.is_codes()) return p.image;
+            scratch = plane_floats(role, p);
+            return scratch;
+        }
+    };
     int dst = 0;
     for (const auto& c : channels) {
-        auto fill = [&](int ch, float v) {
-            for (size_t i = 0; i < n; ++i) out.pixels[i * nch + ch] = v;
-        };
-        auto copy = [&](int ch, const Image& src, int sc, bool inv) {
-            for (size_t i = 0; i < n; ++i) {
-                const float v = src.pixels[i * src.channels + sc];
-                out.pixels[i * nch + ch] = inv ? 1.f - v : v;
-            }
-        };
         if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused) {
             fill(dst++, c.kind == ChannelSpec::Kind::constant ? c.value : 0.f);
             continue;
         }
         const auto it = planes.find(c.role);
-        if (c.key == "RGB") {
-            if (it == planes.end()) {  // default color or flat normal
-                for (int k = 0; k < 3; ++k) fill(dst + k, default_rgb(c, k, o, preset, color));
-            } else if (c.role == Role::normal) {
-                const Image enc = encode_normal(plane_floats(c.role, it->second), preset.normal_convention);
-                for (int k = 0; k < 3; ++k) copy(dst + k, enc, k, false);
-            } else {
-                Image rgb = plane_floats(c.role, it->second);
-                color.convert(rgb, it->second.encoding, o.srgb ? ColorEncoding::srgb : ColorEncoding::linear);
-                for (int k = 0; k < 3; ++k) copy(dst + k, rgb, k, false);
-            }
-            dst += 3;
+        if (c.key != "RGB") {
+            BasicImage<T> scratch;
+            if (it == planes.end()) fill(dst++, default_scalar(c, preset));
+            else copy(dst++, view(c.role, it->second, scratch), 0, c.kind == ChannelSpec::Kind::smoothness);
             continue;
         }
-        if (it == planes.end()) {
-            fill(dst++, default_scalar(c, preset));
-        } else if (it->second.is_codes()) {
-            copy(dst++, to_float(it->second.codes), 0, c.kind == ChannelSpec::Kind::smoothness);
+        if (it == planes.end()) {  // default color or flat normal
+            for (int k = 0; k < 3; ++k) fill(dst + k, default_rgb(c, k, o, preset, color));
+        } else if (c.role == Role::normal) {
+            const RolePlane& p = it->second;
+            const float to = ysign_of(preset.normal_convention);
+            const std::array<float, 256>& unorm = unorm8_values();
+            BasicImage<T> scratch;
+            const BasicImage<T>& stored = view(c.role, p, scratch);  // codes, or unit GL vectors
+            NormalBlock b{};
+            for (size_t i0 = 0; i0 < n; i0 += kBlock) {
+                const size_t m = std::min(kBlock, n - i0);
+                if constexpr (kCodes) {  // decode the stored codes here, as plane_floats would
+                    load_block(b, stored, i0, m, [&unorm](uint8_t k) { return unorm[k]; });
+                    decode_block(b, stored.channels, ysign_of(p.codes_convention));
+                } else {
+                    load_block(b, stored, i0, m, [](float v) { return v; });
+                }
+                encode_block(b, to);
+                for (size_t i = 0; i < m; ++i) {
+                    T* px = &out.pixels[(i0 + i) * nch + dst];
+                    if constexpr (kCodes) px[0] = quantize8(b.x[i]), px[1] = quantize8(b.y[i]), px[2] = quantize8(b.z[i]);
+                    else px[0] = b.x[i], px[1] = b.y[i], px[2] = b.z[i];
+                }
+            }
         } else {
-            copy(dst++, it->second.image, 0, c.kind == ChannelSpec::Kind::smoothness);
+            BasicImage<T> scratch;
+            const BasicImage<T>* rgb = &view(c.role, it->second, scratch);
+            const ColorEncoding want = o.srgb ? ColorEncoding::srgb : ColorEncoding::linear;
+            if constexpr (!kCodes) {  // codes are already in the output's encoding (pack_output8)
+                if (it->second.encoding != want) {
+                    if (rgb != &scratch) scratch = *rgb;
+                    color.convert(scratch, it->second.encoding, want);
+                    rgb = &scratch;
+                }
+            }
+            for (int k = 0; k < 3; ++k) copy(dst + k, *rgb, k, false);
         }
+        dst += 3;
     }
     return out;
+}
+
+}  // namespace
+
+Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
+                  const ColorContext& color) {
+    return pack_walk<float>(o, planes, preset, size, color);
 }
 
 std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
                                    const ColorContext& color) {
     if (o.bit_depth != 8) return std::nullopt;
-    const auto channels = effective_channels(o, planes);
-    for (const auto& c : channels) {
+    for (const auto& c : effective_channels(o, planes)) {
         const auto it = planes.find(c.role);
         if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused || it == planes.end()) continue;
         const RolePlane& p = it->second;
@@ -332,53 +385,7 @@ std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, co
         if (c.key == "RGB" && c.role != Role::normal && p.encoding != (o.srgb ? ColorEncoding::srgb : ColorEncoding::linear))
             return std::nullopt;
     }
-    const int nch = channel_count(channels);
-    Image8 out(size.width, size.height, nch);
-    const size_t n = static_cast<size_t>(size.width) * size.height;
-    int dst = 0;
-    for (const auto& c : channels) {
-        auto fill = [&](int ch, float v) {
-            const uint8_t k = quantize8(v);
-            for (size_t i = 0; i < n; ++i) out.pixels[i * nch + ch] = k;
-        };
-        auto copy = [&](int ch, const Image8& src, int sc, bool inv) {
-            const uint8_t x = inv ? 255 : 0;  // 255 - k == 255 ^ k for a byte
-            for (size_t i = 0; i < n; ++i) out.pixels[i * nch + ch] = src.pixels[i * src.channels + sc] ^ x;
-        };
-        if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused) {
-            fill(dst++, c.kind == ChannelSpec::Kind::constant ? c.value : 0.f);
-            continue;
-        }
-        const auto it = planes.find(c.role);
-        if (c.key == "RGB") {
-            if (it == planes.end()) {
-                for (int k = 0; k < 3; ++k) fill(dst + k, default_rgb(c, k, o, preset, color));
-            } else if (c.role == Role::normal) {
-                // Decode, convert the convention and encode each texel as the float path does.
-                const Image8& enc = it->second.codes;
-                const std::array<float, 256>& unorm = unorm8_values();
-                const float from = ysign_of(it->second.codes_convention), to = ysign_of(preset.normal_convention);
-                NormalBlock b{};
-                for (size_t i0 = 0; i0 < n; i0 += kBlock) {
-                    const size_t m = std::min(kBlock, n - i0);
-                    load_block(b, enc, i0, m, [&unorm](uint8_t k) { return unorm[k]; });
-                    decode_block(b, enc.channels, from);
-                    encode_block(b, to);
-                    for (size_t i = 0; i < m; ++i) {
-                        uint8_t* px = &out.pixels[(i0 + i) * nch + dst];
-                        px[0] = quantize8(b.x[i]), px[1] = quantize8(b.y[i]), px[2] = quantize8(b.z[i]);
-                    }
-                }
-            } else {
-                for (int k = 0; k < 3; ++k) copy(dst + k, it->second.codes, k, false);
-            }
-            dst += 3;
-            continue;
-        }
-        if (it == planes.end()) fill(dst++, default_scalar(c, preset));
-        else copy(dst++, it->second.codes, 0, c.kind == ChannelSpec::Kind::smoothness);
-    }
-    return out;
+    return pack_walk<uint8_t>(o, planes, preset, size, color);
 }
 
 }  // namespace mf

@@ -6,15 +6,11 @@
 #include <algorithm>
 
 #include "pack/pack.hpp"
+#include "test_color.hpp"
 
 namespace {
 
-std::shared_ptr<const mf::ColorContext> ctx() {
-    std::string err;
-    auto c = mf::ColorContext::create(err);
-    if (!c) ADD_FAILURE() << err;
-    return c;
-}
+std::shared_ptr<const mf::ColorContext> ctx() { return mf::testcolor::color_context(); }
 
 const char* const kPresets[] = {"gltf", "godot", "separate", "unity-hdrp", "unity-urp", "unreal"};
 

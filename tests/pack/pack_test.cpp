@@ -6,15 +6,11 @@
 
 #include "color/srgb.hpp"
 #include "pack/pack.hpp"
+#include "test_color.hpp"
 
 namespace {
 
-std::shared_ptr<const mf::ColorContext> ctx() {
-    std::string err;
-    auto c = mf::ColorContext::create(err);
-    if (!c) ADD_FAILURE() << err;
-    return c;
-}
+std::shared_ptr<const mf::ColorContext> ctx() { return mf::testcolor::color_context(); }
 
 // A 2x1 set with distinct, known values per role and texel.
 mf::Planes make_planes(bool with_metal = true) {

@@ -26,6 +26,7 @@
 #include "image/image.hpp"
 #include "pack/pack.hpp"
 #include "pack/preset.hpp"
+#include "test_color.hpp"
 
 namespace {
 
@@ -33,12 +34,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kDenorm = std::numeric_limits<float>::denorm_min();
 
-std::shared_ptr<const mf::ColorContext> ctx() {
-    std::string err;
-    auto c = mf::ColorContext::create(err);
-    EXPECT_TRUE(c) << err;
-    return c;
-}
+std::shared_ptr<const mf::ColorContext> ctx() { return mf::testcolor::color_context(); }
 
 // A sorted sweep from −1e6 to 1e6 through denormals, the segment breaks, 0 and 1.
 std::vector<float> sweep() {

@@ -7,20 +7,12 @@
 #include <vector>
 
 #include "color/color.hpp"
+#include "test_color.hpp"
 #include "image/image.hpp"
 
 namespace mf::stability {
 
-// One OpenColorIO context for the whole program (building processors is the slow part).
-inline std::shared_ptr<const ColorContext> color_context() {
-    static const std::shared_ptr<const ColorContext> ctx = [] {
-        std::string err;
-        auto c = ColorContext::create(err);
-        if (!c) ADD_FAILURE() << err;
-        return c;
-    }();
-    return ctx;
-}
+using testcolor::color_context;
 
 // Encodes `img` to file bytes and decodes them again: what a consumer of the output reads.
 inline Image encode_and_read(const Image& img, const EncodeOptions& opt) {
