@@ -2,6 +2,7 @@
 // from each output's `channels`, whatever preset produced them.
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -44,33 +45,53 @@ std::string lower(std::string s) {
 
 }  // namespace
 
+namespace {
+
+// A string member of `o`: `fallback` when absent; any other type is the manifest's error.
+std::string string_member(const json& o, const char* key, const std::string& fallback, const std::string& where) {
+    const auto it = o.find(key);
+    if (it == o.end()) return fallback;
+    if (!it->is_string()) throw UsageError("manifest: " + where + ": \"" + key + "\" is not a string");
+    return it->get<std::string>();
+}
+
+}  // namespace
+
+// Every member is type-checked before use: a malformed manifest is a UsageError naming what is
+// wrong, never a JSON type_error (the manifest fuzzer found `"materials": ["x/x.png", ...]`).
 Manifest parse_manifest(const json& j, const std::filesystem::path& dir) {
     if (!j.is_object()) throw UsageError("manifest: expected a JSON object");
-    const auto version = j.value("manifest_version", 0);
-    if (version < 1) throw UsageError("manifest: missing or invalid manifest_version");
+    const auto v = j.find("manifest_version");
+    if (v == j.end() || !json_int(*v, 1, std::numeric_limits<int>::max()))
+        throw UsageError("manifest: missing or invalid manifest_version");
     Manifest out;
     out.dir = dir;
     const auto it = j.find("materials");
     if (it == j.end() || !it->is_array()) throw UsageError("manifest: no \"materials\" array");
-    for (const json& mj : *it) {
+    for (size_t i = 0; i < it->size(); ++i) {
+        const json& mj = (*it)[i];
+        const std::string at = "materials[" + std::to_string(i) + "]";
+        if (!mj.is_object()) throw UsageError("manifest: " + at + " is not an object");
         ManifestMaterial m;
-        m.name = mj.value("name", std::string());
+        m.name = string_member(mj, "name", "", at);
         if (m.name.empty()) throw UsageError("manifest: a material has no name");
         if (const auto o = mj.find("outputs"); o != mj.end() && o->is_array()) {
             for (const json& oj : *o) {
+                const std::string where = "material " + m.name + ": an output";
+                if (!oj.is_object()) throw UsageError("manifest: " + where + " is not an object");
                 ManifestOutput out_tex;
-                const std::string file = oj.value("file", std::string());
+                const std::string file = string_member(oj, "file", "", where);
                 if (file.empty()) throw UsageError("manifest: material " + m.name + " has an output without \"file\"");
                 out_tex.file = dir / file;
-                out_tex.color_space = oj.value("color_space", std::string("linear"));
-                out_tex.normal_convention = oj.value("normal_convention", std::string());
+                out_tex.color_space = string_member(oj, "color_space", "linear", where);
+                out_tex.normal_convention = string_member(oj, "normal_convention", "", where);
                 if (const auto ch = oj.find("channels"); ch != oj.end() && ch->is_object())
-                    for (const auto& [k, v] : ch->items()) out_tex.channels.emplace_back(k, v);
+                    for (const auto& [k, val] : ch->items()) out_tex.channels.emplace_back(k, val);
                 m.outputs.push_back(std::move(out_tex));
             }
         }
         if (const auto c = mj.find("constants"); c != mj.end() && c->is_object())
-            for (const auto& [k, v] : c->items()) m.constants.emplace_back(k, v);
+            for (const auto& [k, val] : c->items()) m.constants.emplace_back(k, val);
         out.materials.push_back(std::move(m));
     }
     return out;

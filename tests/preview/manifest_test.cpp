@@ -131,6 +131,32 @@ TEST(Manifest, BadManifestsAreUsageErrors) {
     EXPECT_THROW(parse_manifest(json::parse(R"({"materials": []})"), "."), UsageError);
     EXPECT_THROW(parse_manifest(json::parse(R"({"manifest_version": 1})"), "."), UsageError);
     EXPECT_THROW(read_manifest("/nonexistent/manifest.json"), UsageError);
+    // Wrong types anywhere are UsageErrors too, never a JSON type_error (found by the fuzzer:
+    // a string among the materials).
+    for (const char* bad : {
+             R"({"manifest_version": 1, "materials": ["x/x.png", {"name": "x"}]})",
+             R"({"manifest_version": "1", "materials": []})",
+             R"({"manifest_version": 1e100, "materials": []})",
+             R"({"manifest_version": 1, "materials": [{"name": 7}]})",
+             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [3]}]})",
+             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": ["a"]}]}]})",
+             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "color_space": 1}]}]})",
+             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "normal_convention": {}}]}]})",
+         }) {
+        try {
+            (void)parse_manifest(json::parse(bad), ".");
+            ADD_FAILURE() << "accepted: " << bad;
+        } catch (const UsageError& e) {
+            EXPECT_NE(std::string(e.what()).find("manifest"), std::string::npos) << e.what();
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "not a UsageError for " << bad << ": " << e.what();
+        }
+    }
+    // The same members with the right types parse.
+    const auto ok = parse_manifest(json::parse(R"({"manifest_version": 1, "materials": [{"name": "x",
+        "outputs": [{"file": "a.png", "color_space": "sRGB", "normal_convention": "gl"}]}]})"), ".");
+    ASSERT_EQ(ok.materials.size(), 1u);
+    EXPECT_EQ(ok.materials[0].outputs[0].color_space, "sRGB");
 }
 
 // ---- one surface, ingested by every shipped preset, previews the same
