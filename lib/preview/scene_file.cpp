@@ -136,7 +136,9 @@ SceneFile parse_scene(const json& j, const std::filesystem::path& base, const st
             const std::string w = name + ": lights[" + std::to_string(i) + "]";
             check_keys(l, w, {"type", "direction", "position", "color", "intensity"});
             render::Light light;
-            const std::string type = l.value("type", std::string("directional"));
+            const json* t = find(l, "type");
+            if (t && !t->is_string()) fail(w + ".type", "expected \"directional\" or \"point\"");
+            const std::string type = t ? t->get<std::string>() : "directional";
             if (type == "directional") {
                 light.type = render::LightType::Directional;
                 if (const json* d = find(l, "direction")) light.direction = vec3(*d, w + ".direction");

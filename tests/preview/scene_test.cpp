@@ -73,6 +73,15 @@ TEST(SceneFile, MistakesAreUsageErrorsNamingTheKey) {
         R"({"cammera": {}})",
         R"({"background": [1, 2]})",
         R"({"background": [1, 1e300, 1]})",  // finite as a double, infinite as a float
+        // Wrong JSON types: UsageErrors, never a JSON type_error (the scene fuzzer found the first).
+        R"({"lights": [{"type": 10.0}]})",
+        R"({"lights": [3]})",
+        R"({"shape": {"type": 3}})",
+        R"({"environment": {"file": 3}})",
+        R"({"output": {"transfer": 1}})",
+        R"({"material": {"maps": {"roughness": 1}}})",
+        R"({"material": {"normal_convention": 1}})",
+        R"({"image": {"width": "512"}})",
     };
     for (const char* text : bad) EXPECT_THROW(parse_scene(json::parse(text), ".", "t"), UsageError) << text;
     try {
