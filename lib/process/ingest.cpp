@@ -4,6 +4,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <thread>
 
 #include "core/files.hpp"
 #include "core/json.hpp"
@@ -237,6 +238,13 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
 }
 
 MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget) const {
+    struct InFlight {  // counts this set as running until it returns or throws
+        std::atomic<int>& n;
+        explicit InFlight(std::atomic<int>& c) : n(c) { ++n; }
+        ~InFlight() { --n; }
+        InFlight(const InFlight&) = delete;
+        InFlight& operator=(const InFlight&) = delete;
+    } in_flight(in_flight_);
     MaterialResult res;
     SetState st{src, {}, {}, {}, {}, false};
     const NormalConvention target = preset_.normal_convention;
@@ -382,17 +390,26 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     // Pack, encode, write.
     const fs::path mat_dir = opt_.out_dir / src.name;
     remove_stale_temps(mat_dir);
-    nlohmann::json outputs = nlohmann::json::array();
-    for (const auto& o : preset_.outputs) {
-        if (!output_needed(o, planes)) continue;
+    // The outputs of a large set are packed and encoded on two threads (each output on one:
+    // deflate is serial) when a worker is idle, so a 4K set running alone (at the end of a batch,
+    // or on its own) keeps both cores busy; with every worker busy that would only oversubscribe.
+    struct Written {
+        std::optional<nlohmann::json> entry;  // set when written
+        std::optional<Finding> failure;
+    };
+    std::vector<const OutputSpec*> wanted;
+    for (const auto& o : preset_.outputs)
+        if (output_needed(o, planes)) wanted.push_back(&o);
+    std::vector<Written> written(wanted.size());
+    auto write_output = [&](const OutputSpec& o) -> Written {
+        auto failed = [](std::string msg) {
+            return Written{std::nullopt, Finding{std::string(code::output_write_failed), Severity::error, "", "",
+                                                 std::move(msg), {}}};
+        };
         const std::string rel = preset_.output_path(src.name, o);
         const fs::path rel_path = fs::path(rel).lexically_normal();
-        if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..") {
-            st.findings.push_back({std::string(code::output_write_failed), Severity::error, "", "",
-                                   "output path '" + rel + "' leaves the output folder; skipped", {}});
-            st.partial = true;
-            continue;
-        }
+        if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..")
+            return failed("output path '" + rel + "' leaves the output folder; skipped");
         const auto roles = o.roles();
         const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
         const Size size = any_map ? Size{w, h} : Size{preset_.constant_size, preset_.constant_size};
@@ -405,12 +422,7 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
         const bool encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
                                      : encode_image(pack_output(o, planes, preset_, size, *color_), enc, bytes, err);
         packed8.reset();
-        if (!encoded ||
-            !write_file_atomic(opt_.out_dir / rel_path, bytes, err)) {
-            st.findings.push_back({std::string(code::output_write_failed), Severity::error, "", "", rel + ": " + err, {}});
-            st.partial = true;
-            continue;
-        }
+        if (!encoded || !write_file_atomic(opt_.out_dir / rel_path, bytes, err)) return failed(rel + ": " + err);
         nlohmann::json e;
         e["file"] = rel_path.generic_string();
         e["color_space"] = o.srgb ? "sRGB" : "linear";
@@ -422,7 +434,25 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
         e["bit_depth"] = o.bit_depth;
         e["format"] = preset_.format;
         e["sha256"] = sha256_hex(bytes);
-        outputs.push_back(std::move(e));
+        return Written{std::move(e), std::nullopt};
+    };
+    const int workers = opt_.jobs > 0 ? opt_.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+    const bool idle_worker = in_flight_.load() < workers;
+    parallel_for(wanted.size(), footprint > (uint64_t{64} << 20) && idle_worker ? 2 : 1, [&](size_t i) {
+        try {
+            written[i] = write_output(*wanted[i]);
+        } catch (const std::exception& e) {  // parallel_for's fn must not throw (bad_alloc)
+            written[i].failure = Finding{std::string(code::output_write_failed), Severity::error, "", "",
+                                         preset_.output_path(src.name, *wanted[i]) + ": " + e.what(), {}};
+        }
+    });
+    nlohmann::json outputs = nlohmann::json::array();
+    for (auto& r : written) {  // preset order, whatever finished first
+        if (r.entry) outputs.push_back(std::move(*r.entry));
+        if (r.failure) {
+            st.findings.push_back(std::move(*r.failure));
+            st.partial = true;
+        }
     }
 
     validate::apply_config(st.findings, src.name, opt_.rules);  // suppressions reach every finding

@@ -4,6 +4,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,9 @@ private:
     Preset preset_;
     std::shared_ptr<const ColorContext> color_;
     IngestOptions opt_;
+    // Sets inside process() now: a large set with a worker left idle (the batch's tail, or a
+    // single set) encodes its outputs on two threads; with every worker busy, one.
+    mutable std::atomic<int> in_flight_{0};
 };
 
 }  // namespace mf
