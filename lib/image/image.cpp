@@ -301,14 +301,14 @@ const std::array<float, 256>& unorm8_values() {
     return table;
 }
 
-void to_float(const uint8_t* codes, size_t n, float* out) {
-    const std::array<float, 256>& v = unorm8_values();
+void to_float(const uint8_t* codes, size_t n, float* out, const float* table) {
+    const float* v = table ? table : unorm8_values().data();
     for (size_t i = 0; i < n; ++i) out[i] = v[codes[i]];
 }
 
-Image to_float(const Image8& codes) {
+Image to_float(const Image8& codes, const float* table) {
     Image out(codes.width, codes.height, codes.channels);
-    to_float(codes.pixels.data(), codes.pixels.size(), out.pixels.data());
+    to_float(codes.pixels.data(), codes.pixels.size(), out.pixels.data(), table);
     return out;
 }
 

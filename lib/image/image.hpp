@@ -46,10 +46,11 @@ using Image8 = BasicImage<uint8_t>;
 // The float OpenImageIO reads 8-bit code k as (its own conversion: read_image's floats of an
 // 8-bit file and these agree bit for bit).
 const std::array<float, 256>& unorm8_values();
-// The codes as floats (unorm8_values).
-Image to_float(const Image8& codes);
-// One row band of codes as floats into `out` (size n).
-void to_float(const uint8_t* codes, size_t n, float* out);
+// The codes as floats through a 256-entry `table`: by default unorm8_values() (what read_image
+// gives), or another per-code table such as ColorContext::srgb_codes_to_linear().
+Image to_float(const Image8& codes, const float* table = nullptr);
+// One row band of codes as floats into `out` (size n), as above.
+void to_float(const uint8_t* codes, size_t n, float* out, const float* table = nullptr);
 
 // A readable input: a file on disk, or bytes held in memory (an entry of a .zip).
 struct InputFile {

@@ -196,9 +196,7 @@ void fit_plane(Role role, RolePlane& plane, int w, int h, const ColorContext& co
     const std::vector<float>& lut = color.srgb_codes_to_linear();
     if (plane.is_codes() && plane.encoding == ColorEncoding::srgb && !lut.empty()) {
         // 8-bit color to linear light by lookup: the processor ran once per code, not per sample.
-        Image lin(plane.codes.width, plane.codes.height, plane.codes.channels);
-        for (size_t i = 0; i < lin.pixels.size(); ++i) lin.pixels[i] = lut[plane.codes.pixels[i]];
-        plane.image = std::move(lin);
+        plane.image = to_float(plane.codes, lut.data());
         plane.codes = Image8{};
         plane.encoding = ColorEncoding::linear;
     }
@@ -270,10 +268,6 @@ int channel_count(const std::vector<ChannelSpec>& channels) {
     for (const auto& c : channels) n += c.key == "RGB" ? 3 : 1;
     return n;
 }
-
-}  // namespace
-
-namespace {
 
 // One packing walk for both sample types: floats (any plane; codes planes decoded) or 8-bit
 // codes (codes planes only, checked by pack_output8). The codes walk writes what quantizing the
@@ -375,7 +369,7 @@ Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& prese
 
 std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
                                    const ColorContext& color) {
-    if (o.bit_depth != 8) return std::nullopt;
+    if (o.bit_depth != 8 || preset.format == "exr") return std::nullopt;  // 8-bit integer formats only
     for (const auto& c : effective_channels(o, planes)) {
         const auto it = planes.find(c.role);
         if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused || it == planes.end()) continue;

@@ -86,8 +86,8 @@ Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& prese
 
 // The same output as 8-bit codes made straight from codes planes, with no float image: what
 // quantizing pack_output's result gives, code for code (tests/pack check every code). nullopt
-// when a plane the output reads is float, or a color plane's encoding is not the output's
-// (then use pack_output).
+// when the output is not 8-bit integer (16-bit, EXR), a plane it reads is float, or a color
+// plane's encoding is not the output's (then use pack_output).
 std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
                                    const ColorContext& color);
 

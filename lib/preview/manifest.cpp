@@ -43,10 +43,6 @@ std::string lower(std::string s) {
     return s;
 }
 
-}  // namespace
-
-namespace {
-
 // A string member of `o`: `fallback` when absent; any other type is the manifest's error.
 std::string string_member(const json& o, const char* key, const std::string& fallback, const std::string& where) {
     const auto it = o.find(key);

@@ -52,15 +52,13 @@ std::string input_color_space(Role r, const ImageInfo& info) {
 bool has_real_alpha(const Decoded& d) {
     const int nc = d.channels();
     if (nc != 4 && nc != 2) return false;
-    const auto step = static_cast<size_t>(nc);
-    if (d.is_codes()) {  // code 254 reads as 0.996, 255 as 1
-        for (size_t i = step - 1; i < d.codes.pixels.size(); i += step)
-            if (d.codes.pixels[i] < 255) return true;
+    auto any_alpha_below = [step = static_cast<size_t>(nc)](const auto& pixels, auto limit) {
+        for (size_t i = step - 1; i < pixels.size(); i += step)
+            if (pixels[i] < limit) return true;
         return false;
-    }
-    for (size_t i = step - 1; i < d.floats.pixels.size(); i += step)
-        if (d.floats.pixels[i] < 0.999f) return true;
-    return false;
+    };
+    // Code 254 reads as 0.996, 255 as 1: the same test on codes and on floats.
+    return d.is_codes() ? any_alpha_below(d.codes.pixels, uint8_t{255}) : any_alpha_below(d.floats.pixels, 0.999f);
 }
 
 std::string relative_to(const fs::path& p, const fs::path& base) {
@@ -414,8 +412,7 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
         const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
         const Size size = any_map ? Size{w, h} : Size{preset_.constant_size, preset_.constant_size};
         // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
-        std::optional<Image8> packed8;
-        if (preset_.format != "exr") packed8 = pack_output8(o, planes, preset_, size, *color_);
+        std::optional<Image8> packed8 = pack_output8(o, planes, preset_, size, *color_);
         const EncodeOptions enc{preset_.format, o.bit_depth};
         std::vector<unsigned char> bytes;
         std::string err;

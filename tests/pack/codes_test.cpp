@@ -175,6 +175,10 @@ TEST(Codes, PackOutput8DeclinesWhatNeedsFloats) {
     mf::make_floats(mf::Role::roughness, mixed[mf::Role::roughness]);
     EXPECT_TRUE(mixed[mf::Role::roughness].codes.empty());
     EXPECT_FALSE(mf::pack_output8(*orm, mixed, *preset, {256, 256}, *c));
+    // An EXR output (half or float samples), whatever its declared depth.
+    mf::Preset exr = *preset;
+    exr.format = "exr";
+    EXPECT_FALSE(mf::pack_output8(*orm, planes, exr, {256, 256}, *c));
     // A plane not at the output's size (fit_plane resamples it in floats first).
     EXPECT_FALSE(mf::pack_output8(*orm, planes, *preset, {128, 128}, *c));
     // Linear-encoded color codes cannot go into an sRGB output as they are.
