@@ -15,8 +15,11 @@
 // Error: at --ref-size², the green channel's display code (exact sRGB of radiance clamped to
 // [0, 1], × 255, unrounded) against the accurate model in double precision with 16 × 16
 // stratified samples per pixel (CPU, tests/stability/brdf_reference.hpp). A pixel that is not
-// finite counts as 255 codes off. Links only the renderer core: shared/tools/device-bundle.sh
-// carries it to the GPU machine.
+// finite counts as 255 codes off. Links only the renderer core (Vulkan loaded at run time), so
+// the binary runs on a GPU machine with nothing but the C++ runtime and a driver.
+//
+// Models, by their --brdf names: assignment (standard without Lambert's 1/π: diffuse π times too
+// strong against the specular lobe), standard, accurate.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +28,7 @@
 #include <vector>
 
 #include "brdf_reference.hpp"
+#include "color/srgb.hpp"
 #include "render/brdf_harness.hpp"
 #include "render/render.hpp"
 
@@ -76,10 +80,7 @@ Args parse(int argc, char** argv) {
     return a;
 }
 
-double linear_to_srgb(double l) {  // IEC 61966-2-1
-    return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
-}
-double display_code(double radiance) { return linear_to_srgb(std::clamp(radiance, 0.0, 1.0)) * 255.0; }
+double display_code(double radiance) { return mf::linear_to_srgb(std::clamp(radiance, 0.0, 1.0)) * 255.0; }
 
 // knobs_brdf.cpp's scene in double, green channel of the accurate model.
 double reference_radiance(double sx, double sy) {
@@ -147,7 +148,7 @@ int main(int argc, char** argv) {
             Brdf brdf;
             const char* name;
         };
-        const ModelName models[] = {{Brdf::Assignment, "assignment"}, {Brdf::Standard, "standard"}, {Brdf::Accurate, "accurate"}};
+        const ModelName models[] = {{Brdf::UnnormalizedDiffuse, "assignment"}, {Brdf::Standard, "standard"}, {Brdf::Accurate, "accurate"}};
         std::vector<BrdfPrecision> precisions{BrdfPrecision::Fp32};
         if (harness.supports_fp16()) precisions.push_back(BrdfPrecision::Fp16);
 

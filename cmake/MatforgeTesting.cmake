@@ -1,9 +1,10 @@
-# matforge_test(name SOURCES... LIBS ...): one GoogleTest program, discovered by ctest.
+# matforge_test(name [RUNS_BINARY] SOURCES... LIBS ...): one GoogleTest program, discovered by
+# ctest. RUNS_BINARY: the tests run the matforge binary (MATFORGE_BIN), and every manifest and
+# validate report they leave behind is copied to the schema spool (tests/common/run_binary.hpp),
+# which the schema_check test validates after them (tests/CMakeLists.txt).
+set(MATFORGE_SCHEMA_SPOOL ${PROJECT_BINARY_DIR}/schema-spool)
 function(matforge_test name)
-  cmake_parse_arguments(T "" "" "SOURCES;LIBS" ${ARGN})
-  if(NOT T_SOURCES)
-    return()
-  endif()
+  cmake_parse_arguments(T "RUNS_BINARY" "" "SOURCES;LIBS" ${ARGN})
   add_executable(test_${name} ${T_SOURCES})
   matforge_target_defaults(test_${name})
   target_link_libraries(test_${name} PRIVATE ${T_LIBS} GTest::gtest_main GTest::gmock)
@@ -11,6 +12,12 @@ function(matforge_test name)
   target_compile_definitions(test_${name} PRIVATE
     MATFORGE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     MATFORGE_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60
-    PROPERTIES ENVIRONMENT "MATFORGE_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+  set(_props ENVIRONMENT "MATFORGE_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+  if(T_RUNS_BINARY)
+    target_compile_definitions(test_${name} PRIVATE MATFORGE_BIN="$<TARGET_FILE:matforge>"
+      MATFORGE_SCHEMA_SPOOL="${MATFORGE_SCHEMA_SPOOL}")
+    add_dependencies(test_${name} matforge)
+    list(APPEND _props FIXTURES_REQUIRED schema_spool)
+  endif()
+  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${_props})
 endfunction()

@@ -13,6 +13,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
   libglvnd0 libglx0 libgl1 libegl1 libopengl0
   clang-14 clang-tidy-14 libclang-rt-14-dev  # CI: scripts/tidy.sh, scripts/fuzz.sh (libFuzzer)
+  python3 python3-jsonschema  # tests: scripts/check-schemas.py (manifest and report schemas)
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -28,5 +29,7 @@ if ((${#missing[@]})); then
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+# The project's own builds treat every C++ and shader warning as an error (a plain `cmake`
+# build does not); extra args after it may override.
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMATFORGE_WERROR=ON "$@" >/dev/null
 cmake --build "$build" -j"$(nproc)"

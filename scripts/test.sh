@@ -20,7 +20,7 @@ if [[ ${MATFORGE_SANITIZE:-0} == 1 ]]; then
   echo "test: sanitizer build $((SECONDS - t0)) s" >&2
   t0=$SECONDS
   # Child processes (the CLI and hostile tests run the binary) inherit these. Never
-  # fast_unwind_on_malloc=0: it deadlocks lavapipe (shared/notes/platform.md). A 32 MB
+  # fast_unwind_on_malloc=0: it deadlocks lavapipe (checked on Mesa 22.3). A 32 MB
   # quarantine (default 256) keeps the memory-bound tests (8K set, bombs) meaningful.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1:quarantine_size_mb=32 \
   LSAN_OPTIONS=suppressions=$root/scripts/lsan.supp:print_suppressions=0 \

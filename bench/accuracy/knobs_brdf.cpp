@@ -1,4 +1,5 @@
-// The preview's BRDF on the CPU: the assignment's vs the standard vs the accurate model, fp32 vs
+// The preview's BRDF on the CPU: the standard, the accurate and the un-normalized-Lambert model
+// (--brdf assignment: diffuse without 1/π, π times too strong against the specular), fp32 vs
 // fp16 (emulated: every intermediate rounded to binary16), 1/4/8 samples per pixel, against a
 // 256-sample double-precision render of the accurate model. A sphere under one directional light
 // with bands of roughness (0.045 through the highlight) and a metal/dielectric split.
@@ -103,8 +104,8 @@ std::vector<Variant> brdf_variants(const Config& c) {
     };
     const Kind kinds[] = {{"BRDF: accurate fp32 (CPU)", "accurate, fp32", Model::accurate, false},
                           {"BRDF: accurate fp16 (CPU emul.)", "accurate, fp16 (emulated)", Model::accurate, true},
-                          {"BRDF: standard fp32 (CPU)", "standard (mission, errata fixed), fp32", Model::standard, false},
-                          {"BRDF: assignment fp32 (CPU)", "assignment (diffuse without 1/pi), fp32", Model::assignment, false}};
+                          {"BRDF: standard fp32 (CPU)", "standard (GGX, Schlick F, Schlick-GGX k = (r+1)^2/8), fp32", Model::standard, false},
+                          {"BRDF: Lambert x pi fp32 (CPU)", "--brdf assignment: Lambert without 1/pi (diffuse pi x too strong vs specular), fp32", Model::unnormalized_diffuse, false}};
     for (const Kind& k : kinds) {
         for (int spp : {1, 4, 8}) {
             const auto& pattern = spp == 1 ? kPattern1 : spp == 4 ? kPattern4 : kPattern8;
@@ -129,7 +130,7 @@ std::vector<Variant> brdf_variants(const Config& c) {
             v.max_codes = max_c, v.mean_codes = sum_c / static_cast<double>(img.size());
             v.max_linear = max_l, v.mean_linear = sum_l / static_cast<double>(img.size());
             v.linear_unit = "radiance";
-            if (nonfinite) v.note = std::to_string(nonfinite) + " non-finite pixels (fp16 overflow: erratum 7)";
+            if (nonfinite) v.note = std::to_string(nonfinite) + " non-finite pixels (fp16 overflow: D past the half-float maximum)";
             v.work = [run] { (void)run(); };
             v.pixels = static_cast<double>(size) * size;
             v.unit = "ns/px";

@@ -136,7 +136,7 @@ std::vector<Variant> transfer_variants(const Config& c) {
     add(dk, "exact IEC 61966-2-1 (float)", "EXACT", [d, n] {
         for (size_t i = 0; i < n; ++i) d->out[i] = srgb_to_linear(d->codes_f[i]);
     }, true);
-    add(dk, "pow(x, 2.2) (assignment)", "POW 2.2", [d, n] {
+    add(dk, "pow(x, 2.2) (gamma 2.2 approximation)", "POW 2.2", [d, n] {
         for (size_t i = 0; i < n; ++i) d->out[i] = std::pow(d->codes_f[i], 2.2f);
     }, true);
     add(dk, "OCIO float, lossless optimization", "OCIO LOSSLESS", [d] {
@@ -158,7 +158,7 @@ std::vector<Variant> transfer_variants(const Config& c) {
     add(ek, "exact IEC 61966-2-1 (float)", "EXACT", [d, n] {
         for (size_t i = 0; i < n; ++i) d->out[i] = linear_to_srgb(d->linear_in[i]);
     }, false);
-    add(ek, "pow(x, 1/2.2) (assignment)", "POW 1/2.2", [d, n] {
+    add(ek, "pow(x, 1/2.2) (gamma 2.2 approximation)", "POW 1/2.2", [d, n] {
         for (size_t i = 0; i < n; ++i) d->out[i] = std::pow(d->linear_in[i], 1.f / 2.2f);
     }, false);
     add(ek, "OCIO float, lossless optimization", "OCIO LOSSLESS", [d] {

@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
                << "Lavapipe: [docs/bench/brdf_lavapipe.txt](../bench/brdf_lavapipe.txt) ([csv](../bench/brdf_lavapipe.csv)). "
                << "NVIDIA H200: [docs/bench/brdf_h200.txt](../bench/brdf_h200.txt) ([csv](../bench/brdf_h200.csv)): every "
                << "model 0.046 ms at 1 spp for 2048²; fp16 saves nothing there and gave non-finite pixels at 4 and 8 spp "
-               << "(D past the half-float maximum near the roughness floor, erratum 7), which is why the preview shades in fp32.\n";
+               << "(D past the half-float maximum near the roughness floor: [docs/shading.md](../shading.md)), which is why the preview shades in fp32.\n";
         };
         std::string knob;
         for (const Variant& v : variants) {

@@ -162,7 +162,10 @@ int main(int argc, char** argv) {
     std::cout << "kind       files  max-diff  per-channel max   codes differing      worst file\n";
     for (const auto& [kind, k] : stats) {
         std::string per;
-        for (int c = 0; c < 4; ++c) per += (c ? "/" : "") + std::to_string(k.max_per_channel[static_cast<size_t>(c)]);
+        for (int c = 0; c < 4; ++c) {
+            if (c) per += '/';
+            per += std::to_string(k.max_per_channel[static_cast<size_t>(c)]);
+        }
         const double share = k.codes ? 100.0 * static_cast<double>(k.differing_codes) / static_cast<double>(k.codes) : 0.0;
         std::printf("%-10s %5d  %8d  %-16s  %8.4f%% of codes  %s\n", kind.c_str(), k.files, std::max(k.worst, 0),
                     per.c_str(), share, k.worst_file.c_str());

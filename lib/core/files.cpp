@@ -27,7 +27,26 @@ std::string sha256_hex(std::span<const unsigned char> bytes) {
     return out;
 }
 
+std::optional<std::string> not_a_regular_file(const fs::path& path) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (ec) {
+        std::error_code lec;
+        const bool link = fs::is_symlink(fs::symlink_status(path, lec));
+        return std::string(link ? "broken symbolic link" : "cannot open") + " (" + ec.message() + ")";
+    }
+    if (fs::is_regular_file(st)) return std::nullopt;
+    return std::string("not a regular file (") +
+           (fs::is_directory(st) ? "a folder" : fs::is_fifo(st) ? "a FIFO" : fs::is_socket(st) ? "a socket" : "a device or special file") +
+           ")";
+}
+
 bool read_file(const fs::path& path, std::vector<unsigned char>& bytes, std::string& error) {
+    // Checked before opening: opening a FIFO blocks until a writer comes, a device may never end.
+    if (const auto why = not_a_regular_file(path)) {
+        error = path.string() + ": " + *why;
+        return false;
+    }
     std::ifstream f(path, std::ios::binary);
     if (!f) {
         error = path.string() + ": cannot open (" + std::strerror(errno) + ")";
@@ -74,8 +93,12 @@ bool write_file_atomic(const fs::path& dest, std::span<const unsigned char> byte
     }
     if (same_content(dest, bytes)) return true;
     static std::atomic<unsigned> counter{0};
-    const fs::path tmp = dir / ("." + dest.filename().string() + kTempMarker +
-                                std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    // Appended, not `"." + name`: GCC 12 at -O3 takes that prepend into a temporary string for
+    // an overlapping memcpy (a false -Wrestrict, a known bug of that release).
+    std::string name = ".";
+    name.append(dest.filename().string()).append(kTempMarker);
+    name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
+    const fs::path tmp = dir / name;
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {
         error = dest.string() + ": cannot write (" + std::strerror(errno) + ")";

@@ -2,6 +2,7 @@
 // interrupted run never leaves a half-written file under a final name).
 #pragma once
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -21,6 +22,11 @@ bool write_file_atomic(const std::filesystem::path& dest, std::span<const unsign
 inline constexpr const char* kTempMarker = ".matforge-tmp-";
 int remove_stale_temps(const std::filesystem::path& dir);
 
+// The whole file. Only a regular file is opened (a FIFO would block, a device never end): every
+// reader of the project (JSON documents, sidecars) comes through here or through lib/image.
 bool read_file(const std::filesystem::path& path, std::vector<unsigned char>& bytes, std::string& error);
+// Why `path` must not be opened (broken link, folder, FIFO, socket, device), nullopt when it is a
+// regular file (following symbolic links).
+std::optional<std::string> not_a_regular_file(const std::filesystem::path& path);
 
 }  // namespace mf

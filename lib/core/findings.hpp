@@ -41,6 +41,9 @@ inline constexpr std::string_view output_write_failed = "OUTPUT_WRITE_FAILED";
 inline constexpr std::string_view resized = "RESIZED";
 inline constexpr std::string_view input_not_found = "INPUT_NOT_FOUND";
 inline constexpr std::string_view unsafe_path = "UNSAFE_PATH";  // an archive entry naming a path outside it
+inline constexpr std::string_view normal_not_unit_length = "NORMAL_NOT_UNIT_LENGTH";  // valid map, renormalized on ingest
+inline constexpr std::string_view normal_gamma_encoded = "NORMAL_GAMMA_ENCODED";  // normal map stored sRGB-encoded
+inline constexpr std::string_view opacity_all_transparent = "OPACITY_ALL_TRANSPARENT";  // the material would be invisible
 }  // namespace code
 
 struct Finding {
@@ -53,7 +56,18 @@ struct Finding {
 };
 
 nlohmann::json to_json(const Finding& f);
-Finding finding_from_json(const nlohmann::json& j);
+// nullopt + `error` naming the member when `j` is not a finding (a code and a known severity).
+std::optional<Finding> finding_from_json(const nlohmann::json& j, std::string& error);
+
+// An input that could not be processed at all (an unreadable archive, a set with no readable
+// map, a folder that does not exist): the one shape for manifests, reports and the CLI.
+struct InputFailure {
+    std::string source;  // the input as the manifest/report names it
+    std::string code;    // a finding code (UNREADABLE_FILE, INPUT_NOT_FOUND, UNSAFE_PATH, ...)
+    std::string message;
+};
+nlohmann::json to_json(const InputFailure& f);
+std::optional<InputFailure> input_failure_from_json(const nlohmann::json& j, std::string& error);
 
 // Highest severity in a list, or nullopt when empty.
 std::optional<Severity> worst(const std::vector<Finding>& findings);

@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "core/files.hpp"
+
 namespace mf {
 
 std::string json_text(const nlohmann::json& j) {
@@ -25,6 +27,51 @@ std::optional<float> json_float(const nlohmann::json& v, double lo, double hi) {
     const double d = v.get<double>();
     if (!(d >= lo && d <= hi)) return std::nullopt;  // also NaN
     return static_cast<float>(d);
+}
+
+namespace {
+// Counts nesting; stops the parse at the first container past the limit.
+struct DepthCheck : nlohmann::json_sax<nlohmann::json> {
+    int depth = 0;
+    bool too_deep = false;
+    std::string message;
+    bool open() {
+        too_deep = ++depth > kMaxJsonDepth;
+        return !too_deep;
+    }
+    bool null() override { return true; }
+    bool boolean(bool) override { return true; }
+    bool number_integer(number_integer_t) override { return true; }
+    bool number_unsigned(number_unsigned_t) override { return true; }
+    bool number_float(number_float_t, const string_t&) override { return true; }
+    bool string(string_t&) override { return true; }
+    bool binary(binary_t&) override { return true; }
+    bool start_object(std::size_t) override { return open(); }
+    bool key(string_t&) override { return true; }
+    bool end_object() override { return --depth, true; }
+    bool start_array(std::size_t) override { return open(); }
+    bool end_array() override { return --depth, true; }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+        message = e.what();
+        return false;
+    }
+};
+}  // namespace
+
+std::optional<nlohmann::json> parse_json(std::string_view text, const std::string& what, std::string& error) {
+    DepthCheck check;
+    if (!nlohmann::json::sax_parse(text, &check)) {
+        error = what + (check.too_deep ? ": JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"
+                                       : ": not valid JSON (" + check.message + ")");
+        return std::nullopt;
+    }
+    return nlohmann::json::parse(text, nullptr, false);
+}
+
+std::optional<nlohmann::json> read_json_file(const std::filesystem::path& file, std::string& error) {
+    std::vector<unsigned char> bytes;
+    if (!read_file(file, bytes, error)) return std::nullopt;
+    return parse_json(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file.string(), error);
 }
 
 }  // namespace mf

@@ -2,8 +2,10 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace mf {
 
@@ -19,5 +21,15 @@ std::string json_text(const nlohmann::json& j);
 //   json_float: a finite number within [lo, hi], narrowed to float
 std::optional<int> json_int(const nlohmann::json& v, int lo, int hi);
 std::optional<float> json_float(const nlohmann::json& v, double lo, double hi);
+
+// Every JSON document matforge reads (presets, rules, scene files, manifests, sidecars) is
+// parsed here. Nesting deeper than kMaxJsonDepth is refused before a DOM is built: a document
+// 100,000 levels deep would exhaust the stack of any code that walks the tree recursively, and
+// no document of ours nests past a dozen levels. nullopt + `error` naming `what` (a file name)
+// and the problem (not JSON, at which byte; too deep).
+inline constexpr int kMaxJsonDepth = 256;
+std::optional<nlohmann::json> parse_json(std::string_view text, const std::string& what, std::string& error);
+// read_file (a regular file only, never a FIFO or device) + parse_json.
+std::optional<nlohmann::json> read_json_file(const std::filesystem::path& file, std::string& error);
 
 }  // namespace mf

@@ -1,15 +1,32 @@
-// Discovery: from file names to roles. Pure functions over names (and optional header facts),
-// so every family's table is testable without images.
+// Discovery: from file names (and, when present, a set's glTF or Megascans JSON sidecar) to
+// roles. Pure functions over names, header facts and sidecar text, so every rule is testable
+// without images or a file system.
 //
-// Conventions of this module:
-//  - Names are matched case-insensitively after splitting the stem on '_', '-', '.', ' ' and
-//    on lower→upper camel-case boundaries (so "baseColor" and "base_color" both give the
-//    tokens "base","color"; "NormalGL" gives "normal","gl").
-//  - Resolution tags (1k 2k 4k 8k 16k, 512 1024 2048 4096 8192, 2048px, …) and format tags
-//    (png jpg jpeg exr tif tiff tga 8bit 16bit 16 32 hdr …) are ignored for the role but kept
-//    as hints (resolution_hint).
-//  - The role tag is the match ending nearest the end of the name; on a tie the longer match
-//    wins, then a family rule over the generic one ("metal_plate_diff_1k": diff, not metal).
+// Conventions of this module (implementation by job: tokens.cpp the tokenizer, families.cpp the
+// rule tables, classify.cpp clutter and role tags, choose.cpp ranking and discover_set,
+// group.cpp group_files, sidecar.cpp glTF / Megascans JSON):
+//  - Tokens: a name's stem splits on '_' '-' '.' ' ', on the UTF-8 en dash, em dash, middle dot
+//    and no-break space, and on lower→upper camel-case boundaries ("baseColor" and "base_color"
+//    give "base","color"; "NormalGL" gives "normal","gl"). Matching is case-insensitive unless a
+//    family's rule asks for a case (ambientCG "_Color", Textures.com "_COL").
+//  - Tags: a resolution tag (1k…64k, 2048px, 4096x4096, a bare power of two 256…16384) or a
+//    format tag (png jpg jpeg exr tif tiff tga hdr bmp webp psd dds 8bit 16bit 32bit 8b 16b 32b)
+//    is ignored for the role and the material name but kept as a hint (resolution_hint, bit
+//    depth). A piece of a camel-case word is never a tag ("TgaRle" is a name, not tga + "Rle").
+//    A bare 16 or 32 is a bit-depth tag only after the role tag ("Rock_Height_16"); before it, it
+//    belongs to the material's name ("Metal_16_Color" is the material "Metal_16", apart from
+//    "Metal_32_Color"). Any other number ("001", "059", "600") is a word: part of the name when
+//    it stands before the role tag.
+//  - Role tag: the match ending nearest the end of the name; on a tie the longer match wins, then
+//    a family rule over the generic one ("metal_plate_diff_1k": diff, not metal).
+//  - Clutter (never a map, reported as UNRECOGNIZED_FILE info with its kind): previews,
+//    thumbnails, swatches, icons, renders ("Material_1639": a 3dtextures.me preview), ID and other
+//    masks with no PBR role ("_mask", "_IdMap"), all-black placeholders ("_black"), and Megascans
+//    billboard maps (a plant's far-LOD impostor, "Billboard" anywhere in the name).
+//  - Sidecars (optional): a role a glTF material or a Megascans JSON states for a file beats the
+//    name's; the Megascans JSON beats a glTF. Where the name agrees on the role, what else it
+//    states is kept (opacity in A, a GL/DX tag the sidecar leaves open). Billboard names stay
+//    clutter whatever a sidecar says.
 #pragma once
 #include <functional>
 #include <optional>
@@ -29,13 +46,22 @@ struct NameMatch {
     std::string family;  // the convention whose rule matched
     std::string rule;    // human-readable rule id, e.g. "ambientcg:_NormalGL"
     NormalConvention normal = NormalConvention::unknown;  // what the name says, if anything
+    // The map's alpha channel is opacity: Megascans "_B-O" (base color + opacity), a glTF
+    // baseColorTexture of a material with alphaMode MASK or BLEND.
+    bool opacity_in_alpha = false;
+    // Output roles this map must not feed although its role holds them: a glTF
+    // metallicRoughnessTexture whose material has metallicFactor 0 (metalness; roughnessFactor 0:
+    // roughness), an emissiveTexture whose emissiveFactor is 0 (emissive). Sorted, in Role order.
+    std::vector<Role> unused;
+    std::string sidecar;  // the sidecar file that stated the role; empty when the name did
 };
 
 // True for extensions OpenImageIO reads that matforge treats as maps
 // (png jpg jpeg tga tif tiff exr hdr webp bmp dds psd).
 bool is_image_file(std::string_view filename);
 
-// Previews, thumbnails, ID masks, renders, swatches: images that are never maps.
+// Previews, thumbnails, ID masks, renders, swatches, placeholders, billboards: images that are
+// never maps of the material.
 bool is_clutter(std::string_view filename);
 
 // The role a file name states, or nullopt (clutter, non-image, no role tag).
@@ -48,6 +74,51 @@ std::string material_stem(std::string_view filename);
 
 // Pixel size a name claims ("_2K" → 2048, "_1024" → 1024), 0 when none.
 int resolution_hint(std::string_view filename);
+
+// ---------------------------------------------------------------------------------------------
+// Sidecars: roles a set's own material description states.
+//
+// Which files: every `*.gltf` and `*.glb` of the set, and every `*.json` (a Megascans asset file is
+// "<id>.json" beside its maps); is_sidecar_name() says which names to read. Read at most
+// kSidecarMaxBytes of each (a .glb's JSON chunk comes first, so its first bytes are enough; a
+// larger .gltf or .json is skipped: the names decide). Pass the file's path relative to the
+// set's root, '/'-separated, the same spelling as in the `files` given to discover_set: map URIs
+// are resolved against the sidecar's folder.
+
+inline constexpr size_t kSidecarMaxBytes = size_t{8} << 20;
+
+bool is_sidecar_name(std::string_view filename);  // .gltf .glb .json
+
+enum class SidecarKind { none, gltf, megascans };
+
+struct SidecarMap {
+    std::string file;  // relative to the set's root, '/'-separated, "." and ".." resolved
+    NameMatch match;   // family "gltf" or "megascans", rule e.g. "gltf:materials[0].normalTexture"
+};
+
+struct SidecarRoles {
+    std::string source;  // the sidecar's path as given
+    SidecarKind kind = SidecarKind::none;
+    std::vector<SidecarMap> maps;  // one per file, in the sidecar's order (first role wins)
+    std::string error;             // why nothing could be read; empty when the text was read
+};
+
+// glTF 2.0 (.gltf JSON, or .glb: its JSON chunk): for every material, baseColorTexture → albedo
+// (opacity in A when alphaMode is MASK or BLEND), normalTexture → normal with glTF's +Y
+// convention (gl), metallicRoughnessTexture → metallic_roughness (orm when the material's
+// occlusionTexture is the same image), occlusionTexture → occlusion, emissiveTexture → emissive;
+// factors of 0 mark the role unused (NameMatch::unused). Images given as data: URIs or absolute
+// URLs name no file of the set and are skipped; URIs are percent-decoded.
+// Megascans (.json): "maps": [{"type", "uri"}] (surfaces, decals, 3D plants) and "components":
+// [{"type", "uris": [{"resolutions": [{"formats": [{"uri"}]}]}]}] (3D assets, atlases); the types
+// albedo/diffuse, normal, roughness, gloss, specular, displacement/bump (height), ao (occlusion),
+// cavity, opacity, translucency and metalness have roles; others (fuzz, thickness, curvature,
+// brush, mask, transmission) are skipped.
+// Never throws; content that is not one of these gives kind none and an error.
+SidecarRoles sidecar_roles(std::string_view filename, std::string_view content);
+
+// ---------------------------------------------------------------------------------------------
+// Choosing one map per role
 
 // Header facts used to rank candidates; all zero when unknown.
 struct HeaderInfo {
@@ -106,17 +177,37 @@ struct SetDiscovery {
 // bit depth; then byte-wise name order. A dedicated map beats a packed one for the same role;
 // roughness beats gloss. Every choice among several candidates gets one AMBIGUOUS_MAP (info)
 // per role naming all candidates, the chosen one and why. `header` may return nullopt.
+// `sidecars`: sidecar_roles() of the set's sidecar files. A file a sidecar names takes the
+// sidecar's role (a Megascans JSON before a glTF, then the order given); a sidecar that named at
+// least one file of the set is not reported, one that named none is UNRECOGNIZED_FILE.
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
-                          const ChoicePolicy& policy);
+                          const ChoicePolicy& policy,
+                          const std::vector<SidecarRoles>& sidecars = {});
 
-// Split one folder's files into material groups by material_stem (case-insensitive). Files
-// with no stem, clutter and unrecognized files join the group whose stem is the longest prefix
-// of their own name, else the first group. Groups are returned sorted by stem; `name` is the
-// stem in its first-seen original case, or `fallback_name` for the empty stem.
+// ---------------------------------------------------------------------------------------------
+// Grouping a flat folder into materials
+
+// Two or more different spellings of a material name that reduced to one group name.
+struct StemMerge {
+    std::vector<std::string> spellings;  // the name part as written (tags included), byte order
+    std::vector<std::string> files;      // the first file of each spelling
+    bool tags_differ = false;      // resolution/format tags differ ("Metal_1K" / "Metal_2K-PNG")
+    bool spelling_differs = false;  // letter case or separators differ ("Wood" / "WOOD")
+    std::string message;           // one sentence, ready for a finding
+};
+
+// Split one folder's files into material groups by material_stem (case-insensitive, separators
+// unified). Files with no stem, clutter and unrecognized files join the group whose stem is the
+// longest prefix of their own name, else the first group. Groups are returned sorted by stem;
+// `name` is the stem in its first-seen original case, or `fallback_name` for the empty stem.
+// `merge` is set when files spell the group's name differently: the caller decides whether that
+// is worth a warning (tags only: one material at several sizes or formats, expected; a spelling
+// difference: possibly two materials).
 struct FileGroup {
     std::string name;
     std::vector<std::string> files;
+    std::optional<StemMerge> merge;
 };
 std::vector<FileGroup> group_files(const std::vector<std::string>& files,
                                    const std::string& fallback_name);

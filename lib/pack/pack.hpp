@@ -13,7 +13,7 @@
 #include "color/color.hpp"
 #include "image/image.hpp"
 #include "material/roles.hpp"
-#include "pack/preset.hpp"
+#include "preset/preset.hpp"
 
 namespace mf {
 

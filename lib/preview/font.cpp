@@ -138,7 +138,11 @@ void draw_text(std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height, int
 
 void compose_contact_sheet(const std::vector<SheetTile>& tiles, uint32_t& width, uint32_t& height,
                            std::vector<uint8_t>& rgba8) {
-    if (tiles.empty()) throw std::runtime_error("contact sheet: no images");
+    if (tiles.empty()) {  // nothing to lay out
+        width = height = 0;
+        rgba8.clear();
+        return;
+    }
     uint32_t tw = 0, th = 0;
     for (const SheetTile& t : tiles) {
         tw = std::max(tw, t.width);

@@ -29,9 +29,11 @@ SceneFile default_scene() {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& where, const std::string& what) {
-    throw UsageError(where + ": " + what);
-}
+// Parsing stops at the first problem: a SceneError carries it to the one catch in parse_scene.
+struct SceneError {
+    std::string message;
+};
+[[noreturn]] void fail(const std::string& where, const std::string& what) { throw SceneError{where + ": " + what}; }
 
 float number(const json& j, const std::string& where) {
     if (!j.is_number()) fail(where, "expected a number, got " + j.dump());
@@ -43,6 +45,22 @@ float number(const json& j, const std::string& where) {
 render::Vec3 vec3(const json& j, const std::string& where) {
     if (!j.is_array() || j.size() != 3) fail(where, "expected [x, y, z], got " + j.dump());
     return {number(j[0], where), number(j[1], where), number(j[2], where)};
+}
+
+// A number within [lo, hi] (a roughness of -3 or a metalness of 7 is a mistake, not a value).
+float number_in(const json& j, const std::string& where, float lo, float hi) {
+    const float v = number(j, where);
+    if (!(v >= lo && v <= hi)) fail(where, "must be within [" + json(lo).dump() + ", " + json(hi).dump() + "], got " + j.dump());
+    return v;
+}
+
+// An RGB triple each of whose components is within [lo, hi] (linear colors are never negative).
+render::Vec3 color(const json& j, const std::string& where, float hi = std::numeric_limits<float>::max()) {
+    const render::Vec3 c = vec3(j, where);
+    for (float v : c)
+        if (!(v >= 0.f && v <= hi))
+            fail(where, "components must be within [0, " + (hi < 1e30f ? json(hi).dump() : std::string("inf")) + "], got " + j.dump());
+    return c;
 }
 
 const json* find(const json& obj, const char* key) {
@@ -82,9 +100,7 @@ SceneMaterial::Map map_ref(const json& j, const std::filesystem::path& base, con
     return m;
 }
 
-}  // namespace
-
-SceneFile parse_scene(const json& j, const std::filesystem::path& base, const std::string& name) {
+SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base, const std::string& name) {
     SceneFile out = default_scene();
     render::Scene& sc = out.scene;
     check_keys(j, name, {"image", "camera", "shape", "background", "lights", "environment", "material",
@@ -110,10 +126,9 @@ SceneFile parse_scene(const json& j, const std::filesystem::path& base, const st
         check_keys(*sh, w, {"type", "radius", "size"});
         if (const json* t = find(*sh, "type")) {
             const std::string type = t->is_string() ? t->get<std::string>() : "";
-            if (type == "sphere") sc.shape.type = render::ShapeType::Sphere;
-            else if (type == "cube") sc.shape.type = render::ShapeType::Cube;
-            else if (type == "plane") sc.shape.type = render::ShapeType::Plane;
-            else fail(w + ".type", "expected \"sphere\", \"cube\" or \"plane\", got " + t->dump());
+            const auto shape = parse_shape(type);
+            if (!shape) fail(w + ".type", "expected \"sphere\", \"cube\" or \"plane\", got " + t->dump());
+            sc.shape.type = *shape;
         }
         sc.shape.size = default_shape_size(sc.shape.type);
         const json* size = find(*sh, sc.shape.type == render::ShapeType::Sphere ? "radius" : "size");
@@ -125,7 +140,7 @@ SceneFile parse_scene(const json& j, const std::filesystem::path& base, const st
             out.shape_size_given = true;
         }
     }
-    if (const json* bg = find(j, "background")) sc.background = vec3(*bg, name + ": background");
+    if (const json* bg = find(j, "background")) sc.background = color(*bg, name + ": background");
     if (const json* lights = find(j, "lights")) {
         if (!lights->is_array()) fail(name + ": lights", "expected an array");
         if (lights->size() > render::kMaxLights)
@@ -153,7 +168,7 @@ SceneFile parse_scene(const json& j, const std::filesystem::path& base, const st
             } else {
                 fail(w + ".type", "expected \"directional\" or \"point\"");
             }
-            if (const json* c = find(l, "color")) light.color = vec3(*c, w + ".color");
+            if (const json* c = find(l, "color")) light.color = color(*c, w + ".color");
             if (const json* v = find(l, "intensity")) light.intensity = number(*v, w + ".intensity");
             if (light.intensity < 0.f) fail(w + ".intensity", "must not be negative");
             sc.lights.push_back(light);
@@ -165,19 +180,19 @@ SceneFile parse_scene(const json& j, const std::filesystem::path& base, const st
         const json* f = find(*env, "file");
         if (!f || !f->is_string()) fail(w, "needs \"file\"");
         out.environment = base / f->get<std::string>();
-        if (const json* v = find(*env, "intensity")) out.environment_intensity = number(*v, w + ".intensity");
+        if (const json* v = find(*env, "intensity")) out.environment_intensity = number_in(*v, w + ".intensity", 0.f, std::numeric_limits<float>::max());
     }
     if (const json* m = find(j, "material")) {
         const std::string w = name + ": material";
         check_keys(*m, w, {"albedo", "roughness", "metalness", "emissive", "maps", "normal_convention"});
         SceneMaterial sm;
-        if (const json* v = find(*m, "albedo")) sm.albedo = vec3(*v, w + ".albedo");
-        if (const json* v = find(*m, "emissive")) sm.emissive = vec3(*v, w + ".emissive");
-        if (const json* v = find(*m, "roughness")) sm.roughness = number(*v, w + ".roughness");
-        if (const json* v = find(*m, "metalness")) sm.metalness = number(*v, w + ".metalness");
+        if (const json* v = find(*m, "albedo")) sm.albedo = color(*v, w + ".albedo", 1.f);
+        if (const json* v = find(*m, "emissive")) sm.emissive = color(*v, w + ".emissive");
+        if (const json* v = find(*m, "roughness")) sm.roughness = number_in(*v, w + ".roughness", 0.f, 1.f);
+        if (const json* v = find(*m, "metalness")) sm.metalness = number_in(*v, w + ".metalness", 0.f, 1.f);
         if (const json* v = find(*m, "normal_convention")) {
             if (*v != "gl" && *v != "dx") fail(w + ".normal_convention", "expected \"gl\" or \"dx\"");
-            sm.normal_dx = *v == "dx";
+            sm.normal_convention = *v == "dx" ? NormalConvention::dx : NormalConvention::gl;
         }
         if (const json* maps = find(*m, "maps")) {
             const std::string wm = w + ".maps";
@@ -216,16 +231,29 @@ SceneFile parse_scene(const json& j, const std::filesystem::path& base, const st
     return out;
 }
 
-SceneFile read_scene_file(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    if (!in) throw UsageError("cannot read scene file " + file.string());
-    json j;
+}  // namespace
+
+std::optional<SceneFile> parse_scene(const json& j, const std::filesystem::path& base, const std::string& name,
+                                     std::string& error) {
     try {
-        in >> j;
-    } catch (const json::exception& e) {
-        throw UsageError(file.string() + ": not valid JSON: " + e.what());
+        return parse_scene_or_throw(j, base, name);
+    } catch (const SceneError& e) {
+        error = e.message;
+        return std::nullopt;
     }
-    return parse_scene(j, file.parent_path(), file.string());
+}
+
+std::optional<SceneFile> read_scene_file(const std::filesystem::path& file, std::string& error) {
+    const auto j = read_json_file(file, error);
+    if (!j) return std::nullopt;
+    return parse_scene(*j, file.parent_path(), file.string(), error);
+}
+
+std::optional<render::ShapeType> parse_shape(std::string_view name) {
+    if (name == "sphere") return render::ShapeType::Sphere;
+    if (name == "cube") return render::ShapeType::Cube;
+    if (name == "plane") return render::ShapeType::Plane;
+    return std::nullopt;
 }
 
 std::optional<render::Light> parse_light_spec(const std::string& spec, std::string& error) {

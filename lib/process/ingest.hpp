@@ -1,9 +1,10 @@
-// Ingest: material sets -> engine-ready outputs + manifest.json (shared/spec/interface.md).
+// Ingest: material sets -> engine-ready outputs + manifest.json (docs/interface.md).
+// Per set: plan_set (decode mode) -> canonical planes -> packed outputs written atomically ->
+// the set's manifest entry; the batch writes manifest.json last.
 #pragma once
 #include <filesystem>
 #include <functional>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <atomic>
 #include <optional>
 #include <string>
@@ -12,11 +13,17 @@
 #include "color/color.hpp"
 #include "core/budget.hpp"
 #include "core/findings.hpp"
-#include "pack/preset.hpp"
+#include "manifest/manifest.hpp"
+#include "preset/preset.hpp"
 #include "process/sets.hpp"
 #include "validate/rules.hpp"
 
 namespace mf {
+
+struct MaterialResult {
+    manifest::Material entry;           // one element of the manifest's "materials"
+    std::optional<std::string> failure; // nothing could be produced (goes to "failures")
+};
 
 struct IngestOptions {
     std::filesystem::path out_dir;
@@ -26,21 +33,12 @@ struct IngestOptions {
     // Cap on the estimated decoded bytes of the sets in flight (0 = no cap). A set larger than
     // the cap runs alone.
     uint64_t memory_budget = uint64_t{1} << 30;
-    // Called after each set (from worker threads, serialized): done count, total, name, status.
-    std::function<void(size_t done, size_t total, const std::string& name, const std::string& status)> progress;
-};
-
-struct MaterialResult {
-    nlohmann::json manifest_entry;  // one element of manifest "materials"
-    std::vector<Finding> findings;
-    bool failed = false;            // nothing could be produced (goes to "failures")
-    std::string failure_message;
+    // Called after each set (from worker threads, serialized): done count, total, name, result.
+    std::function<void(size_t done, size_t total, const std::string& name, const MaterialResult& result)> progress;
 };
 
 struct IngestResult {
-    nlohmann::json manifest;
-    size_t materials = 0, failures = 0;
-    std::optional<Severity> worst;
+    manifest::Manifest manifest;
     std::string error;  // batch-level error (output folder unusable); empty when fine
 };
 

@@ -1,6 +1,8 @@
 #include "process/missing.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 
 namespace mf {
 namespace {
@@ -27,36 +29,42 @@ std::set<Role> written_roles(const Preset& preset, const std::set<Role>& availab
 }
 
 std::vector<Finding> missing_map_findings(const Preset& preset, const std::set<Role>& available,
-                                          const std::set<Role>& written, nlohmann::json& constants) {
+                                          const std::set<Role>& written, std::vector<manifest::Constant>& constants,
+                                          bool generated) {
     std::vector<Finding> findings;
+    const std::string verb = generated ? "generated" : "ingest generates";
     for (int ri = 0; ri < kOutputRoleCount; ++ri) {
         const Role r = static_cast<Role>(ri);
         if (available.count(r)) continue;
         const std::string rname(role_name(r));
         std::string what;
+        std::optional<manifest::Constant> made;
         if (written.count(r)) {
             if (r == Role::albedo) {
                 const auto& a = preset.default_albedo;
-                constants[rname] = a;
-                what = "generated constant albedo (linear " + format_number(a[0]) + ", " + format_number(a[1]) + ", " +
+                made = manifest::Constant{r, {a[0], a[1], a[2]}};
+                what = verb + " constant albedo (linear " + format_number(a[0]) + ", " + format_number(a[1]) + ", " +
                        format_number(a[2]) + ")";
             } else if (r == Role::normal || r == Role::emissive) {
-                constants[rname] = r == Role::normal ? nlohmann::json{0, 0, 1} : nlohmann::json{0, 0, 0};
-                what = r == Role::normal ? "generated a flat normal" : "generated black emission";
+                made = manifest::Constant{r, r == Role::normal ? std::vector<float>{0.f, 0.f, 1.f}
+                                                               : std::vector<float>{0.f, 0.f, 0.f}};
+                what = verb + (r == Role::normal ? " a flat normal" : " black emission");
             } else {
                 const float v = preset.default_value(r);
-                constants[rname] = v;
-                what = "generated constant " + format_number(v);
+                made = manifest::Constant{r, {v}};
+                what = verb + " constant " + format_number(v);
                 if (r == Role::metalness) what += v == 0.f ? " (dielectric)" : " (metal)";
             }
+            constants.push_back(*made);
         } else {
             what = "nothing written for it";
         }
         const auto sev = preset.missing_severity.find(r);
         if (sev == preset.missing_severity.end()) continue;
+        nlohmann::json figures = nlohmann::json::object();
+        if (made) figures["generated"] = made->value.size() == 1 ? nlohmann::json(made->value[0]) : nlohmann::json(made->value);
         findings.push_back({std::string(code::missing_map), sev->second, rname, "", "no " + rname + " map; " + what,
-                            constants.contains(rname) ? nlohmann::json{{"generated", constants[rname]}}
-                                                      : nlohmann::json::object()});
+                            std::move(figures)});
     }
     return findings;
 }

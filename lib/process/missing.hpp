@@ -1,19 +1,23 @@
-// What a preset needs that a set lacks: constants and MISSING_MAP findings (ingest and validate).
+// What a preset needs that a set lacks: the constants generated for it and the MISSING_MAP
+// findings (called once per set, by plan_set).
 #pragma once
-#include <nlohmann/json.hpp>
 #include <set>
 #include <vector>
 
 #include "core/findings.hpp"
-#include "pack/preset.hpp"
+#include "manifest/manifest.hpp"
+#include "preset/preset.hpp"
 
 namespace mf {
 
-// `available`: output roles the set provides (after unpacking). `written_roles`: roles read by
-// the outputs that will be written. Fills `constants` (role -> value generated for an output)
-// and returns one MISSING_MAP per role the preset lists in missing_severity.
+// `available`: output roles the set provides (its routes). `written_roles`: roles read by the
+// outputs that will be written. Appends to `constants` (in role order) the value generated for
+// each missing role an output needs, and returns one MISSING_MAP per missing role the preset
+// lists in missing_severity. `generated`: the words say what ingest did ("generated constant
+// 0"); false (validate, which writes nothing): what ingest would generate.
 std::vector<Finding> missing_map_findings(const Preset& preset, const std::set<Role>& available,
-                                          const std::set<Role>& written_roles, nlohmann::json& constants);
+                                          const std::set<Role>& written_roles,
+                                          std::vector<manifest::Constant>& constants, bool generated);
 
 // The roles read by the outputs a set with `available` roles gets.
 std::set<Role> written_roles(const Preset& preset, const std::set<Role>& available);

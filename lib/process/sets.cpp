@@ -70,7 +70,7 @@ void add_groups(const std::string& fallback, const std::vector<std::string>& fil
     }
 }
 
-void scan_zip(const fs::path& zip, std::vector<MaterialSource>& out, std::vector<SourceFailure>& failures) {
+void scan_zip(const fs::path& zip, std::vector<MaterialSource>& out, std::vector<InputFailure>& failures) {
     std::string error;
     std::vector<std::string> unsafe;
     auto folders = zip_folders(zip, error, unsafe);
@@ -95,7 +95,7 @@ void scan_zip(const fs::path& zip, std::vector<MaterialSource>& out, std::vector
         failures.push_back({zip.string(), std::string(code::unrecognized_file), zip.string() + ": the archive holds no recognizable material maps"});
 }
 
-void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vector<SourceFailure>& failures) {
+void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vector<InputFailure>& failures) {
     std::vector<std::string> files;
     std::error_code ec;
     fs::directory_iterator it(dir, ec);
@@ -125,7 +125,7 @@ void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vec
 }
 
 void walk(const fs::path& root, const fs::path& exclude, std::vector<MaterialSource>& out,
-          std::vector<SourceFailure>& failures) {
+          std::vector<InputFailure>& failures) {
     scan_folder(root, out, failures);
     std::vector<fs::path> subdirs;
     std::error_code ec;
@@ -222,7 +222,7 @@ std::string output_overlaps_input(const fs::path& out_dir, const std::vector<fs:
 }
 
 std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inputs, const fs::path& exclude,
-                                               std::vector<SourceFailure>& failures) {
+                                               std::vector<InputFailure>& failures) {
     std::vector<MaterialSource> sets;
     for (const auto& in : inputs) {
         std::error_code ec;

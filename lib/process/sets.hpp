@@ -21,18 +21,12 @@ struct MaterialSource {
     InputFile open(const std::string& file) const;  // zip entries are read into memory
 };
 
-struct SourceFailure {
-    std::string source;
-    std::string code;
-    std::string message;
-};
-
 // Every material set under `inputs`. Skips `exclude` (the output folder, when it lies inside an
 // input), hidden files and folders, __MACOSX, and does not follow symbolic links to folders
 // (no loops). Names are made unique by appending _2, _3 … in path order.
 std::vector<MaterialSource> find_material_sets(const std::vector<std::filesystem::path>& inputs,
                                                const std::filesystem::path& exclude,
-                                               std::vector<SourceFailure>& failures);
+                                               std::vector<InputFailure>& failures);
 
 // Non-empty (a message) when `out_dir` is one of `inputs` or holds one: outputs would then be
 // found as inputs by the next run. An output folder inside an input is fine (it is skipped).

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "pack/preset.hpp"
+#include "preset/preset.hpp"
 #include "validate/report.hpp"
 #include "validate/rules.hpp"
 

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "render/internal.hpp"
+#include "render/shaders/interface.h"
 
 namespace mf::render {
 
@@ -18,14 +19,19 @@ constexpr uint32_t kBrdfGridF16Comp[] =
 #include "shaders/brdf_grid_f16.comp.inc"
     ;
 
-constexpr uint32_t kEnergyN = 32;
-constexpr uint32_t kGroup = 64;       // brdf_grid.glsl's local_size_x
+constexpr auto kEnergyN = static_cast<size_t>(gpu::kEnergyTableSize);
 constexpr uint32_t kMaxGroupsX = 32768;  // ≤ the guaranteed maxComputeWorkGroupCount[0] (65535)
 
-struct Push {
-    uint32_t count, width, spp;
-    int32_t model;
+static_assert(sizeof(BrdfInput) == sizeof(gpu::GridInput), "BrdfInput is brdf_grid.glsl's GridInput");
+// The inputs mode writes model m of input i at 3 i + m (evaluate()'s order).
+static_assert(gpu::kBrdfStandard == 0 && gpu::kBrdfAccurate == 1 && gpu::kBrdfUnnormalizedDiffuse == 2);
+
+constexpr VkSpecializationMapEntry kGridEntries[] = {
+    spec_entry(gpu::kSpecGridMode, offsetof(gpu::GridSpecialization, mode)),
 };
+
+// The storage buffers of brdf_grid.glsl, in binding order.
+constexpr int kGridBindings[] = {gpu::kBindingGridInputs, gpu::kBindingGridOutputs, gpu::kBindingGridEnergy};
 
 }  // namespace
 
@@ -37,7 +43,7 @@ struct BrdfHarness::Impl {
     Unique<VkPipelineLayout> layout;
     Unique<VkDescriptorPool> descriptor_pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    Unique<VkPipeline> pipelines[2][2];  // [precision][mode]
+    Unique<VkPipeline> pipelines[2][2];  // [precision][gpu::kGridMode*]
     Buffer energy;
 
     Impl(Context& context, const std::vector<float>& e) : d(device_of(context)) {
@@ -57,15 +63,16 @@ struct BrdfHarness::Impl {
             queries = Unique<VkQueryPool>(d, q);
         }
         VkDescriptorSetLayoutBinding b[3];
-        for (uint32_t i = 0; i < 3; ++i)
-            b[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+        for (size_t i = 0; i < 3; ++i)
+            b[i] = {static_cast<uint32_t>(kGridBindings[i]), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                    VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
         auto sci = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
         sci.bindingCount = 3;
         sci.pBindings = b;
         VkDescriptorSetLayout sl = VK_NULL_HANDLE;
         VK_CHECK(d.fn.vkCreateDescriptorSetLayout(d.device, &sci, nullptr, &sl));
         set_layout = Unique<VkDescriptorSetLayout>(d, sl);
-        const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push)};
+        const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::GridPush)};
         auto lci = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
         lci.setLayoutCount = 1;
         lci.pSetLayouts = &sl;
@@ -100,9 +107,9 @@ struct BrdfHarness::Impl {
         if (slot) return slot;
         Unique<VkShaderModule> module = pi ? create_shader(d, kBrdfGridF16Comp, sizeof kBrdfGridF16Comp)
                                            : create_shader(d, kBrdfGridComp, sizeof kBrdfGridComp);
-        const int32_t mode_value = mode;
-        const VkSpecializationMapEntry entry{0, 0, 4};
-        const VkSpecializationInfo spec{1, &entry, 4, &mode_value};
+        gpu::GridSpecialization values;
+        values.mode = mode;
+        const VkSpecializationInfo spec = spec_info(kGridEntries, values);
         auto ci = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
         ci.stage = vk_struct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
         ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -118,22 +125,22 @@ struct BrdfHarness::Impl {
 
     // Binds inputs/outputs, dispatches `count` invocations (timed), copies `out` to `readback`
     // when given. Returns GPU milliseconds.
-    double run(VkPipeline pipe, const Buffer& in, const Buffer& out, const Buffer* readback, const Push& push) {
+    double run(VkPipeline pipe, const Buffer& in, const Buffer& out, const Buffer* readback, const gpu::GridPush& push) {
         VkDescriptorBufferInfo bi[3] = {{in.buffer, 0, VK_WHOLE_SIZE},
                                         {out.buffer, 0, VK_WHOLE_SIZE},
                                         {energy.buffer, 0, VK_WHOLE_SIZE}};
         VkWriteDescriptorSet w[3];
-        for (uint32_t i = 0; i < 3; ++i) {
+        for (size_t i = 0; i < 3; ++i) {
             w[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
             w[i].dstSet = set;
-            w[i].dstBinding = i;
+            w[i].dstBinding = static_cast<uint32_t>(kGridBindings[i]);
             w[i].descriptorCount = 1;
             w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
             w[i].pBufferInfo = &bi[i];
         }
         d.fn.vkUpdateDescriptorSets(d.device, 3, w, 0, nullptr);
 
-        const uint32_t groups = (push.count + kGroup - 1) / kGroup;
+        const uint32_t groups = (push.count + gpu::kGridGroup - 1) / gpu::kGridGroup;
         const uint32_t gx = groups < kMaxGroupsX ? groups : kMaxGroupsX;
         const uint32_t gy = (groups + gx - 1) / gx;
         Submission s(d, pool, queries, 2);
@@ -174,12 +181,12 @@ std::vector<std::array<float, 3>> BrdfHarness::evaluate(const std::vector<BrdfIn
     std::vector<std::array<float, 3>> result(inputs.size() * 3);
     if (inputs.empty()) return result;
     if (inputs.size() > 0xffffffffu / 3) throw Error("BRDF harness: too many inputs");
-    VkPipeline pipe = m.pipeline(precision, 0);
+    VkPipeline pipe = m.pipeline(precision, gpu::kGridModeInputs);
     Buffer in = create_buffer(m.d, inputs.size() * sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     std::memcpy(in.mapped, inputs.data(), inputs.size() * sizeof(BrdfInput));
     flush(m.d, in);
     Buffer out = create_buffer(m.d, inputs.size() * 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    const Push push{static_cast<uint32_t>(inputs.size()), 0, 0, 0};
+    const gpu::GridPush push{static_cast<uint32_t>(inputs.size()), 0, 0, 0};
     const double ms = m.run(pipe, in, out, nullptr, push);
     if (gpu_ms) *gpu_ms = ms;
     invalidate(m.d, out);
@@ -192,15 +199,14 @@ double BrdfHarness::sphere(uint32_t size, Brdf model, uint32_t spp, BrdfPrecisio
     Impl& m = *impl_;
     if (size == 0 || size > 8192) throw Error("BRDF harness: sphere size must be 1..8192");
     if (spp != 1 && spp != 4 && spp != 8) throw Error("BRDF harness: 1, 4 or 8 samples per pixel");
-    VkPipeline pipe = m.pipeline(precision, 1);
+    VkPipeline pipe = m.pipeline(precision, gpu::kGridModeSphere);
     const VkDeviceSize bytes = VkDeviceSize{size} * size * 16;
     Buffer dummy = create_buffer(m.d, sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     // Device-local output: on a GPU the shading is timed against its own memory, as the preview's.
     Buffer out = create_buffer(m.d, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
     Buffer readback;
     if (rgb) readback = create_buffer(m.d, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-    const int32_t model_id = model == Brdf::Accurate ? 1 : model == Brdf::Assignment ? 2 : 0;
-    const Push push{size * size, size, spp, model_id};
+    const gpu::GridPush push{size * size, size, spp, brdf_model_id(model)};
     const double ms = m.run(pipe, dummy, out, rgb ? &readback : nullptr, push);
     if (rgb) {
         invalidate(m.d, readback);

@@ -12,7 +12,7 @@
 
 namespace mf::render {
 
-// One input of the grid; the layout of brdf_grid.glsl's GridInput (std430).
+// One input of the grid; the layout of gpu::GridInput (render/shaders/interface.h, std430).
 struct BrdfInput {
     std::array<float, 4> n;       // w: roughness
     std::array<float, 4> v;       // w: metalness
@@ -35,7 +35,7 @@ public:
     // Whether the device can run BrdfPrecision::Fp16 (the shaderFloat16 feature).
     bool supports_fp16() const;
 
-    // Radiance of each input under Standard, Accurate and Assignment (in that order): 3 RGB
+    // Radiance of each input under Standard, Accurate and UnnormalizedDiffuse (in that order): 3 RGB
     // triples per input. gpu_ms (optional): GPU time of the dispatch from timestamp queries.
     std::vector<std::array<float, 3>> evaluate(const std::vector<BrdfInput>& inputs,
                                                BrdfPrecision precision = BrdfPrecision::Fp32,

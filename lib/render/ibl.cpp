@@ -1,6 +1,17 @@
 // Load-time passes: the split-sum BRDF table and, with an environment, its prefiltered maps.
-// Only what the scene calls for is computed.
+// Only what the scene calls for is computed. All of it is recorded into one submission:
+//
+//   brdf_lut        the table (F0 scale, bias) over (n·v, roughness)       accurate BRDF or env
+//   env_upload      the equirectangular image to the device                  env
+//   env_cube        equirect → cube mip 0, then each mip from the one above  env
+//   env_prefilter   GGX-prefiltered cube, one roughness per mip             env
+//   env_irradiance  E(n)/π cube                                              env
+//
+// The three cube stages are rows of one table (kCubeStages) run by one loop.
+#include <algorithm>
 #include <cstring>
+#include <deque>
+#include <utility>
 
 #include "render/renderer_impl.hpp"
 
@@ -16,7 +27,6 @@ constexpr uint32_t kBrdfLutComp[] =
 constexpr uint32_t kBrdfLutF16Comp[] =
 #include "shaders/brdf_lut_f16.comp.inc"
     ;
-
 constexpr uint32_t kEnvToCubeComp[] =
 #include "shaders/env_to_cube.comp.inc"
     ;
@@ -38,12 +48,16 @@ constexpr uint32_t kIrradianceFace = 32;  // E(n)/π varies slowly
 constexpr uint32_t kPrefilterSamples = 256;
 constexpr uint32_t kIrradianceSamples = 512;
 
-struct IblParams {
-    uint32_t size;
-    float roughness;
-    uint32_t samples;
-    float src_size;
+constexpr VkSpecializationMapEntry kLutEntries[] = {
+    spec_entry(gpu::kSpecLutCorrelated, offsetof(gpu::LutSpecialization, correlated)),
+    spec_entry(gpu::kSpecLutSamples, offsetof(gpu::LutSpecialization, samples)),
 };
+static_assert(spec_entries_distinct(kLutEntries));
+
+constexpr auto kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+constexpr auto kFragment = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+constexpr auto kWrite = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+constexpr auto kSampled = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
 
 uint32_t mip_count(uint32_t size) {
     uint32_t n = 1;
@@ -54,16 +68,142 @@ uint32_t mip_count(uint32_t size) {
     return n;
 }
 
-}  // namespace
+// ---- what the recorded commands use: alive until the submission has completed
 
-void Renderer::Impl::build_environment() {
-    const bool need_lut = scene.environment || scene.brdf == Brdf::Accurate;
-    if (!need_lut) return;
+struct Recording {
+    explicit Recording(Renderer::Impl& renderer)
+        : r(renderer), s(renderer.d, renderer.command_pool, renderer.queries, kQueryCount) {}
+    Renderer::Impl& r;
+    Submission s;
+    std::deque<Image> images;  // temporaries (the equirectangular image, the source cube)
+    std::vector<Buffer> staging;
+    std::vector<Unique<VkSampler>> samplers;
+    std::vector<Unique<VkImageView>> views;
+    std::vector<Unique<VkDescriptorSetLayout>> set_layouts;
+    std::vector<Unique<VkPipelineLayout>> pipeline_layouts;
+    std::vector<Unique<VkPipeline>> pipelines;
+};
 
-    Submission s(d, command_pool, queries, 16);
-    VkCommandBuffer cmd = s.cmd();
+// ---- the cube stages, one table
 
-    // ---- BRDF table
+enum class Shader { EnvToCube, Downsample, Prefilter, Irradiance };
+enum class Source {
+    Equirect,  // the uploaded environment (longitude wraps, latitude clamps)
+    MipAbove,  // the target's previous mip, made readable just before
+    Cube,      // the finished source cube, all mips
+};
+enum class Target { Cube, Specular, Irradiance };
+
+// Dispatches into mips [first_mip, first_mip + mips) of the stage's target, all six faces at
+// once; mips = 0: to the target's last mip.
+struct CubeStep {
+    Shader shader;
+    Source source;
+    uint32_t first_mip, mips;
+    uint32_t samples;        // IblParams::samples
+    bool roughness_per_mip;  // IblParams::roughness = m / (mips − 1), else 0
+};
+// One timed pass: its steps write `target`, which `consumer` then samples.
+struct CubeStage {
+    const char* name;
+    Target target;
+    VkPipelineStageFlags2 consumer;
+    std::vector<CubeStep> steps;
+};
+
+const CubeStage kCubeStages[] = {
+    {"env_cube", Target::Cube, kCompute,
+     {{Shader::EnvToCube, Source::Equirect, 0, 1, 0, false},
+      {Shader::Downsample, Source::MipAbove, 1, 0, 0, false}}},  // 2×2 box per mip: radiance is linear
+    {"env_prefilter", Target::Specular, kFragment, {{Shader::Prefilter, Source::Cube, 0, 0, kPrefilterSamples, true}}},
+    {"env_irradiance", Target::Irradiance, kFragment, {{Shader::Irradiance, Source::Cube, 0, 0, kIrradianceSamples, false}}},
+};
+
+// What the stages read and write.
+struct CubeResources {
+    VkPipeline pipelines[4];  // by Shader
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout layout;
+    VkSampler equirect_sampler;
+    VkImageView equirect;
+    uint32_t face;           // the source cube's face size (IblParams::src_size)
+    const Image* targets[3];  // by Target
+};
+
+// One dispatch over the six faces of one mip: `src` sampled, mip `mip` of `dst` a storage view.
+void dispatch(Recording& rec, const CubeResources& res, VkPipeline pipeline, VkSampler sampler, VkImageView src,
+              const Image& dst, uint32_t mip, const gpu::IblParams& params) {
+    const Device& d = rec.r.d;
+    VkCommandBuffer cmd = rec.s.cmd();
+    rec.views.push_back(create_view(d, dst, VK_IMAGE_VIEW_TYPE_2D_ARRAY, mip, 1, 0, 6));
+    VkDescriptorSet ds = rec.r.allocate_set(rec.r.descriptor_pool, res.set_layout);
+    VkDescriptorImageInfo in{sampler, src, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo out{VK_NULL_HANDLE, rec.views.back(), VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet writes[2] = {vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET),
+                                      vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET)};
+    writes[0].dstSet = writes[1].dstSet = ds;
+    writes[0].dstBinding = static_cast<uint32_t>(gpu::kBindingIblSource);
+    writes[0].descriptorCount = 1;
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    writes[0].pImageInfo = &in;
+    writes[1].dstBinding = static_cast<uint32_t>(gpu::kBindingIblTarget);
+    writes[1].descriptorCount = 1;
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    writes[1].pImageInfo = &out;
+    d.fn.vkUpdateDescriptorSets(d.device, 2, writes, 0, nullptr);
+    d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, res.layout, 0, 1, &ds, 0, nullptr);
+    d.fn.vkCmdPushConstants(cmd, res.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
+    d.fn.vkCmdDispatch(cmd, tile_groups(params.size), tile_groups(params.size), 6);
+}
+
+// One row of kCubeStages: the target goes from undefined to written, each mip made readable
+// for the next step that reads it or, at the end, for the stage's consumer.
+void record_cube_stage(Recording& rec, const CubeResources& res, const CubeStage& stage) {
+    const Device& d = rec.r.d;
+    VkCommandBuffer cmd = rec.s.cmd();
+    const Image& dst = *res.targets[static_cast<int>(stage.target)];
+    const uint32_t mips = dst.desc.mips;
+    rec.s.begin_pass(stage.name);
+    image_barrier(d, cmd, dst.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                  kCompute, kWrite);
+    uint32_t unread = 0;  // mips below this one are already readable
+    for (const CubeStep& step : stage.steps) {
+        const uint32_t end = step.mips ? step.first_mip + step.mips : mips;
+        for (uint32_t m = step.first_mip; m < end; ++m) {
+            VkSampler sampler = rec.r.sampler_clamp;
+            VkImageView src = VK_NULL_HANDLE;
+            switch (step.source) {
+                case Source::Equirect:
+                    sampler = res.equirect_sampler;
+                    src = res.equirect;
+                    break;
+                case Source::MipAbove:
+                    image_barrier(d, cmd, dst.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                  kCompute, kWrite, kCompute, kSampled, m - 1, 1);
+                    unread = m;
+                    rec.views.push_back(create_view(d, dst, VK_IMAGE_VIEW_TYPE_2D_ARRAY, m - 1, 1, 0, 6));
+                    src = rec.views.back();
+                    break;
+                case Source::Cube: src = res.targets[static_cast<int>(Target::Cube)]->view; break;
+            }
+            const float roughness = step.roughness_per_mip && mips > 1 ? float(m) / float(mips - 1) : 0.f;
+            const gpu::IblParams params{std::max(1u, dst.desc.width >> m), roughness, step.samples, float(res.face)};
+            dispatch(rec, res, res.pipelines[static_cast<int>(step.shader)], sampler, src, dst, m, params);
+        }
+    }
+    image_barrier(d, cmd, dst.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kCompute,
+                  kWrite, stage.consumer, kSampled, unread, mips - unread);
+    rec.s.end_pass();
+}
+
+// ---- the stages before
+
+// The split-sum table that shade.frag samples (kBindingBrdfLut).
+void record_brdf_lut(Recording& rec) {
+    Renderer::Impl& r = rec.r;
+    const Device& d = r.d;
+    VkCommandBuffer cmd = rec.s.cmd();
     ImageDesc ld;
     // fp32 where it can be filtered: half floats alone would put 2.4e-4 of rounding into E ≈ 1.
     const bool f32 = d.supports(VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -71,47 +211,43 @@ void Renderer::Impl::build_environment() {
     ld.format = f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
     ld.width = ld.height = kLutSize;
     ld.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    brdf_lut = create_image(d, ld);
-    auto layout = make_set_layout({{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}});
-    auto pipeline_layout = make_pipeline_layout({layout}, 0, 0);
-    const uint32_t spec_values[2] = {scene.brdf == Brdf::Accurate ? 1u : 0u, kLutSamples};
-    const VkSpecializationMapEntry entries[2] = {{0, 0, 4}, {1, 4, 4}};
-    const VkSpecializationInfo spec{2, entries, sizeof spec_values, spec_values};
-    auto pipeline = f32 ? make_compute_pipeline(kBrdfLutComp, sizeof(kBrdfLutComp), pipeline_layout, &spec)
-                        : make_compute_pipeline(kBrdfLutF16Comp, sizeof(kBrdfLutF16Comp), pipeline_layout, &spec);
-    VkDescriptorSet set = allocate_set(descriptor_pool, layout);
-    VkDescriptorImageInfo ii{VK_NULL_HANDLE, brdf_lut.view, VK_IMAGE_LAYOUT_GENERAL};
+    r.brdf_lut = create_image(d, ld);
+    rec.set_layouts.push_back(r.make_set_layout({{static_cast<uint32_t>(gpu::kBindingLut),
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}}));
+    const VkDescriptorSetLayout set_layout = rec.set_layouts.back();
+    rec.pipeline_layouts.push_back(r.make_pipeline_layout({set_layout}, 0, 0));
+    const VkPipelineLayout layout = rec.pipeline_layouts.back();
+    gpu::LutSpecialization values;
+    values.correlated = r.scene.brdf == Brdf::Accurate ? 1u : 0u;
+    values.samples = kLutSamples;
+    const VkSpecializationInfo spec = spec_info(kLutEntries, values);
+    rec.pipelines.push_back(f32 ? r.make_compute_pipeline(kBrdfLutComp, sizeof(kBrdfLutComp), layout, &spec)
+                                : r.make_compute_pipeline(kBrdfLutF16Comp, sizeof(kBrdfLutF16Comp), layout, &spec));
+    const VkPipeline pipeline = rec.pipelines.back();
+    VkDescriptorSet set = r.allocate_set(r.descriptor_pool, set_layout);
+    VkDescriptorImageInfo ii{VK_NULL_HANDLE, r.brdf_lut.view, VK_IMAGE_LAYOUT_GENERAL};
     auto w = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     w.dstSet = set;
+    w.dstBinding = static_cast<uint32_t>(gpu::kBindingLut);
     w.descriptorCount = 1;
     w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     w.pImageInfo = &ii;
     d.fn.vkUpdateDescriptorSets(d.device, 1, &w, 0, nullptr);
 
-    image_barrier(d, cmd, brdf_lut.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                  VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    s.begin_pass("brdf_lut");
+    image_barrier(d, cmd, r.brdf_lut.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                  VK_PIPELINE_STAGE_2_NONE, 0, kCompute, kWrite);
+    rec.s.begin_pass("brdf_lut");
     d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_layout, 0, 1, &set, 0, nullptr);
-    d.fn.vkCmdDispatch(cmd, kLutSize / 8, kLutSize / 8, 1);
-    s.end_pass();
-    image_barrier(d, cmd, brdf_lut.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+    d.fn.vkCmdDispatch(cmd, tile_groups(kLutSize), tile_groups(kLutSize), 1);
+    rec.s.end_pass();
+    image_barrier(d, cmd, r.brdf_lut.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  kCompute, kWrite, kFragment, kSampled);
+}
 
-    if (!scene.environment) {
-        s.finish(load_times);
-        return;
-    }
-
-    // ---- environment: equirectangular → cube → mips → prefiltered specular + irradiance
-    const Environment& env = *scene.environment;
-    if (env.width < 2 || env.height < 1 || env.rgba.size() != size_t{env.width} * env.height * 4)
-        throw Error("environment image data does not match its size");
-    std::vector<Buffer> staging;
-    std::vector<Unique<VkImageView>> views;  // alive until the submission completes
-
+// The equirectangular image as a sampled texture (fp32 where filterable, else half floats).
+const Image& upload_equirect(Recording& rec, const Environment& env) {
+    const Device& d = rec.r.d;
     PreparedTexture eq;
     const bool eq32 = d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
     eq.format = eq32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -127,9 +263,20 @@ void Renderer::Impl::build_environment() {
         }
     }
     eq.levels.push_back(std::move(level0));
-    s.begin_pass("env_upload");
-    Image equirect = upload_texture(eq, cmd, staging);
-    s.end_pass();
+    rec.s.begin_pass("env_upload");
+    const Image& img = rec.images.emplace_back(rec.r.upload_texture(eq, rec.s.cmd(), rec.staging));
+    rec.s.end_pass();
+    return img;
+}
+
+// Equirectangular → cube → mips → prefiltered specular + irradiance (kCubeStages).
+void record_environment(Recording& rec, const Environment& env) {
+    Renderer::Impl& r = rec.r;
+    const Device& d = r.d;
+    if (env.width < 2 || env.height < 1 || env.rgba.size() != size_t{env.width} * env.height * 4)
+        throw Error("environment image data does not match its size");
+    CubeResources res{};
+    res.equirect = upload_equirect(rec, env).view;
 
     // Longitude wraps, latitude clamps (wrapping would blend the poles together).
     auto si = vk_struct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
@@ -138,105 +285,66 @@ void Renderer::Impl::build_environment() {
     si.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     si.maxLod = VK_LOD_CLAMP_NONE;
-    VkSampler eq_sampler_handle = VK_NULL_HANDLE;
-    VK_CHECK(d.fn.vkCreateSampler(d.device, &si, nullptr, &eq_sampler_handle));
-    Unique<VkSampler> eq_sampler(d, eq_sampler_handle);
+    VkSampler eq_sampler = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkCreateSampler(d.device, &si, nullptr, &eq_sampler));
+    rec.samplers.emplace_back(d, eq_sampler);
+    res.equirect_sampler = eq_sampler;
 
     uint32_t face = 16;
     while (face < env.width / 4 && face < 512) face *= 2;
-    const uint32_t src_mips = mip_count(face);
+    res.face = face;
     ImageDesc cd;
     cd.format = VK_FORMAT_R16G16B16A16_SFLOAT;  // storage and filtering on every device
     cd.width = cd.height = face;
-    cd.mips = src_mips;
+    cd.mips = mip_count(face);
     cd.layers = 6;
     cd.cube = true;
     cd.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    Image cube = create_image(d, cd);
+    res.targets[static_cast<int>(Target::Cube)] = &rec.images.emplace_back(create_image(d, cd));
 
     ImageDesc sd = cd;
     sd.width = sd.height = std::min(face, kSpecularFace);
     sd.mips = std::min(kSpecularLevels, mip_count(sd.width));
-    env_specular = create_image(d, sd);
-    env_specular_mips = sd.mips;
+    r.env_specular = create_image(d, sd);
+    r.env_specular_mips = sd.mips;
+    res.targets[static_cast<int>(Target::Specular)] = &r.env_specular;
     ImageDesc id = cd;
     id.width = id.height = std::min(face, kIrradianceFace);
     id.mips = 1;
-    env_irradiance = create_image(d, id);
+    r.env_irradiance = create_image(d, id);
+    res.targets[static_cast<int>(Target::Irradiance)] = &r.env_irradiance;
 
-    auto ibl_layout = make_set_layout({
-        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-    });
-    auto ibl_pipeline_layout = make_pipeline_layout({ibl_layout}, sizeof(IblParams), VK_SHADER_STAGE_COMPUTE_BIT);
-    auto to_cube = make_compute_pipeline(kEnvToCubeComp, sizeof(kEnvToCubeComp), ibl_pipeline_layout, nullptr);
-    auto downsample = make_compute_pipeline(kCubeDownsampleComp, sizeof(kCubeDownsampleComp), ibl_pipeline_layout, nullptr);
-    auto prefilter = make_compute_pipeline(kPrefilterComp, sizeof(kPrefilterComp), ibl_pipeline_layout, nullptr);
-    auto irradiance = make_compute_pipeline(kIrradianceComp, sizeof(kIrradianceComp), ibl_pipeline_layout, nullptr);
-
-    // One dispatch over the six faces of one mip: `src` sampled, `dst` a storage view.
-    auto dispatch = [&](VkPipeline pass_pipeline, VkSampler sampler, VkImageView src, const Image& dst, uint32_t mip,
-                        const IblParams& params) {
-        views.push_back(create_view(d, dst, VK_IMAGE_VIEW_TYPE_2D_ARRAY, mip, 1, 0, 6));
-        VkDescriptorSet ds = allocate_set(descriptor_pool, ibl_layout);
-        VkDescriptorImageInfo in{sampler, src, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkDescriptorImageInfo out{VK_NULL_HANDLE, views.back(), VK_IMAGE_LAYOUT_GENERAL};
-        VkWriteDescriptorSet writes[2] = {vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET),
-                                          vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET)};
-        writes[0].dstSet = writes[1].dstSet = ds;
-        writes[0].dstBinding = 0;
-        writes[0].descriptorCount = 1;
-        writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        writes[0].pImageInfo = &in;
-        writes[1].dstBinding = 1;
-        writes[1].descriptorCount = 1;
-        writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        writes[1].pImageInfo = &out;
-        d.fn.vkUpdateDescriptorSets(d.device, 2, writes, 0, nullptr);
-        d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass_pipeline);
-        d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ibl_pipeline_layout, 0, 1, &ds, 0, nullptr);
-        d.fn.vkCmdPushConstants(cmd, ibl_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
-        d.fn.vkCmdDispatch(cmd, (params.size + 7) / 8, (params.size + 7) / 8, 6);
-    };
-    constexpr auto kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    constexpr auto kWrite = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    constexpr auto kSampled = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
-
-    s.begin_pass("env_cube");
-    image_barrier(d, cmd, cube.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                  kCompute, kWrite);
-    dispatch(to_cube, eq_sampler, equirect.view, cube, 0, {face, 0.f, 0, float(face)});
-    for (uint32_t m = 1; m < src_mips; ++m) {
-        // The mip above becomes the source of this one.
-        image_barrier(d, cmd, cube.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kCompute,
-                      kWrite, kCompute, kSampled, m - 1, 1);
-        views.push_back(create_view(d, cube, VK_IMAGE_VIEW_TYPE_2D_ARRAY, m - 1, 1, 0, 6));
-        dispatch(downsample, sampler_clamp, views.back(), cube, m, {std::max(1u, face >> m), 0.f, 0, float(face)});
+    rec.set_layouts.push_back(r.make_set_layout({
+        {static_cast<uint32_t>(gpu::kBindingIblSource), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {static_cast<uint32_t>(gpu::kBindingIblTarget), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+    }));
+    res.set_layout = rec.set_layouts.back();
+    rec.pipeline_layouts.push_back(
+        r.make_pipeline_layout({res.set_layout}, sizeof(gpu::IblParams), VK_SHADER_STAGE_COMPUTE_BIT));
+    res.layout = rec.pipeline_layouts.back();
+    const std::pair<const uint32_t*, size_t> code[] = {{kEnvToCubeComp, sizeof kEnvToCubeComp},
+                                                       {kCubeDownsampleComp, sizeof kCubeDownsampleComp},
+                                                       {kPrefilterComp, sizeof kPrefilterComp},
+                                                       {kIrradianceComp, sizeof kIrradianceComp}};
+    for (size_t i = 0; i < 4; ++i) {
+        rec.pipelines.push_back(r.make_compute_pipeline(code[i].first, code[i].second, res.layout, nullptr));
+        res.pipelines[i] = rec.pipelines.back();
     }
-    image_barrier(d, cmd, cube.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kCompute,
-                  kWrite, kCompute, kSampled, src_mips - 1, 1);
-    s.end_pass();
 
-    s.begin_pass("env_prefilter");
-    image_barrier(d, cmd, env_specular.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                  VK_PIPELINE_STAGE_2_NONE, 0, kCompute, kWrite);
-    for (uint32_t m = 0; m < env_specular_mips; ++m) {
-        const float roughness = env_specular_mips > 1 ? float(m) / float(env_specular_mips - 1) : 0.f;
-        dispatch(prefilter, sampler_clamp, cube.view, env_specular, m,
-                 {std::max(1u, sd.width >> m), roughness, kPrefilterSamples, float(face)});
-    }
-    image_barrier(d, cmd, env_specular.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  kCompute, kWrite, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, kSampled);
-    s.end_pass();
+    for (const CubeStage& stage : kCubeStages) record_cube_stage(rec, res, stage);
+}
 
-    s.begin_pass("env_irradiance");
-    image_barrier(d, cmd, env_irradiance.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                  VK_PIPELINE_STAGE_2_NONE, 0, kCompute, kWrite);
-    dispatch(irradiance, sampler_clamp, cube.view, env_irradiance, 0, {id.width, 0.f, kIrradianceSamples, float(face)});
-    image_barrier(d, cmd, env_irradiance.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  kCompute, kWrite, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, kSampled);
-    s.end_pass();
-    s.finish(load_times);
+}  // namespace
+
+void Renderer::Impl::build_environment() {
+    const bool need_lut = scene.environment || scene.brdf == Brdf::Accurate;
+    if (!need_lut) return;
+    Recording rec(*this);
+    record_brdf_lut(rec);
+    if (scene.environment) record_environment(rec, *scene.environment);
+    rec.s.finish(load_times);
 }
 
 }  // namespace mf::render

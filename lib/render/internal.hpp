@@ -1,11 +1,16 @@
 // Internal pieces of the renderer core shared between its source files.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "render/vk.hpp"
 
 namespace mf::render::detail {
+
+// ---- renderer.cpp
+
+int32_t brdf_model_id(Brdf b);  // the shaders' value of a model (a kBrdf* of shaders/interface.h)
 
 // ---- geometry.cpp
 
@@ -49,8 +54,27 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
 
 uint16_t float_to_half(float f);  // round to nearest even; overflow → infinity
 
-// Exact IEC 61966-2-1 curves.
-double srgb_to_linear(double c);
-double linear_to_srgb(double l);
+// ---- specialization constants by name
+
+// The map entry of one 4-byte constant (int32 or VkBool32): the shader's id (a kSpec* of
+// shaders/interface.h) and offsetof(its field) in the C++ struct of values. Tables of these
+// replace positional filling, so adding a constant cannot shift the others.
+constexpr VkSpecializationMapEntry spec_entry(int id, size_t offset) {
+    return {static_cast<uint32_t>(id), static_cast<uint32_t>(offset), 4};
+}
+// No id and no field mapped twice.
+template <size_t N>
+constexpr bool spec_entries_distinct(const VkSpecializationMapEntry (&e)[N]) {
+    for (size_t i = 0; i < N; ++i)
+        for (size_t j = i + 1; j < N; ++j)
+            if (e[i].constantID == e[j].constantID || e[i].offset == e[j].offset) return false;
+    return true;
+}
+// `values` is the struct the entries' offsets index; every field must have an entry.
+template <class Values, size_t N>
+VkSpecializationInfo spec_info(const VkSpecializationMapEntry (&entries)[N], const Values& values) {
+    static_assert(N * 4 == sizeof(Values), "a field without a map entry");
+    return {static_cast<uint32_t>(N), entries, sizeof(Values), &values};
+}
 
 }  // namespace mf::render::detail

@@ -1,5 +1,6 @@
 // matforge preview renderer core: headless offscreen Vulkan rendering of one material on a
-// sphere, cube or plane, with the Cook-Torrance BRDF of the mission (errata fixed).
+// sphere, cube or plane, with a Cook-Torrance BRDF (GGX, Schlick Fresnel with a colored F0,
+// Schlick-GGX or height-correlated Smith visibility, energy-conserving Lambert diffuse).
 //
 // Conventions of this module (decided once here):
 //  - links Vulkan (loaded at run time) and the standard library only: pixels come in and go out
@@ -24,6 +25,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "render/shaders/interface.h"  // the GPU interface, shared with the shaders (array sizes)
 
 namespace mf::render {
 
@@ -134,13 +137,19 @@ struct Environment {
 };
 
 enum class Brdf {
-    Standard,    // the mission's BRDF, errata fixed: GGX, Schlick F, Schlick-GGX k=(r+1)²/8, Lambert
-    Accurate,    // height-correlated Smith visibility + multiple-scattering energy compensation
-    Assignment,  // Standard with the assignment's diffuse (albedo · N·L, no 1/π), for comparison
+    // GGX D, Schlick F with F0 = lerp(0.04, albedo, metalness), Schlick-GGX visibility with
+    // k = (r+1)²/8, Lambert diffuse albedo/π × (1 − F)(1 − metalness)
+    Standard,
+    // height-correlated Smith visibility + multiple-scattering energy compensation
+    Accurate,
+    // Standard with Lambert's diffuse lacking its 1/π (albedo · N·L): diffuse π times too strong
+    // against the specular lobe, for comparison with engines that do this. CLI value
+    // "assignment".
+    UnnormalizedDiffuse,
 };
 std::optional<Brdf> parse_brdf(std::string_view s);  // "standard" | "accurate" | "assignment"
 
-inline constexpr size_t kMaxLights = 16;
+inline constexpr size_t kMaxLights = gpu::kMaxLights;
 
 struct Scene {
     uint32_t width = 512, height = 512;
@@ -181,7 +190,7 @@ struct NormalRole {
     bool green_down = false;  // DirectX convention (−Y); OpenGL (+Y) otherwise
 };
 
-inline constexpr size_t kMaxTextures = 8;
+inline constexpr size_t kMaxTextures = gpu::kMaxTextures;
 
 struct Material {
     std::string name;

@@ -1,17 +1,32 @@
-// Internal: the state behind Renderer and GpuMaterial.
+// Internal: the state behind Renderer and GpuMaterial, and which source file does what.
+//
+//   renderer.cpp   construction order, scene and material checks, accessors
+//   pipelines.cpp  descriptor and pipeline layouts, shading variants (specialization constants
+//                  by name), the encode pipeline
+//   upload.cpp     buffers, the mesh, textures with their mips, placeholders; Renderer::upload
+//   frame.cpp      per-frame uniforms (camera, material constants, lights), frame descriptors
+//   draw.cpp       render targets; Renderer::render: shade, encode or copy, readback
+//   ibl.cpp        load-time passes: BRDF table, environment cube and its prefiltered maps
 #pragma once
 #include <map>
 #include <string>
 #include <vector>
 
 #include "render/internal.hpp"
+#include "render/shaders/interface.h"
 
 namespace mf::render {
+
+inline constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // linear radiance
+inline constexpr uint32_t kQueryCount = 16;  // two timestamps for each of up to 8 passes
 
 // Descriptor needs of the image-based-lighting passes (ibl.cpp), reserved in the renderer's pool.
 inline constexpr uint32_t kIblSets = 24;
 inline constexpr uint32_t kIblSamplers = 24;
 inline constexpr uint32_t kIblStorageImages = 24;  // 1 table + 1 cube + ≤ 9 mips + 6 levels + 1
+
+// Workgroups of kTile × kTile invocations covering `n` texels.
+inline uint32_t tile_groups(uint32_t n) { return (n + gpu::kTile - 1) / gpu::kTile; }
 
 struct Renderer::Impl {
     detail::Device& d;
@@ -26,13 +41,13 @@ struct Renderer::Impl {
     detail::Unique<VkShaderModule> vert, frag;
     detail::Unique<VkPipeline> encode_pipeline;
     // Shading pipelines by specialization constants: materials of one variant share one.
-    std::map<std::vector<int32_t>, detail::Unique<VkPipeline>> shade_pipelines;
+    std::map<gpu::ShadeSpecialization, detail::Unique<VkPipeline>> shade_pipelines;
     detail::Unique<VkDescriptorPool> descriptor_pool;
     VkDescriptorSet frame_set = VK_NULL_HANDLE, encode_set = VK_NULL_HANDLE;
 
     detail::Buffer vertices, indices, uniforms, readback;
     uint32_t index_count = 0;
-    detail::Image target;  // linear radiance, RGBA32F
+    detail::Image target;  // linear radiance, kTargetFormat
     detail::Image dummy_2d, dummy_cube;
     detail::Image brdf_lut;                      // when the accurate BRDF or an environment needs it
     detail::Image env_specular, env_irradiance;  // when the scene has an environment
@@ -43,8 +58,12 @@ struct Renderer::Impl {
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    // Factories: they create Vulkan objects through d and touch no state of the renderer.
+    // renderer.cpp
     detail::Unique<VkSampler> make_sampler(VkSamplerAddressMode mode, bool anisotropic) const;
+    void create_samplers();
+
+    // pipelines.cpp. The factories create Vulkan objects through d and touch no state of the
+    // renderer.
     detail::Unique<VkDescriptorSetLayout> make_set_layout(const std::vector<VkDescriptorSetLayoutBinding>& b) const;
     detail::Unique<VkPipelineLayout> make_pipeline_layout(const std::vector<VkDescriptorSetLayout>& sets,
                                                           uint32_t push_bytes, VkShaderStageFlags push_stages) const;
@@ -52,20 +71,29 @@ struct Renderer::Impl {
                                                      const VkSpecializationInfo* spec) const;
     // Allocates from `pool`, which the caller owns (and synchronizes).
     VkDescriptorSet allocate_set(VkDescriptorPool pool, VkDescriptorSetLayout layout) const;
-    void create_samplers();
     void create_layouts();
-    void create_targets();
+    // The variant of shade.frag a material needs in this scene, and its one-line description.
+    gpu::ShadeSpecialization specialization(const Material& m) const;
+    std::string describe(const gpu::ShadeSpecialization& c) const;
+    VkPipeline shade_pipeline(const gpu::ShadeSpecialization& c);
+
+    // upload.cpp
+    detail::Buffer upload_buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage);
     void upload_mesh();
     void create_dummies();
-    void build_environment();  // ibl.cpp
-    void write_frame_descriptors();
-    detail::Buffer upload_buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage);
     // Records into the caller's `cmd`; the staging buffers go to the caller's `staging`.
     detail::Image upload_texture(const detail::PreparedTexture& t, VkCommandBuffer cmd,
                                  std::vector<detail::Buffer>& staging) const;
-    VkPipeline shade_pipeline(const std::vector<int32_t>& constants);
-    std::vector<int32_t> variant_constants(const Material& m, std::string& description) const;
+
+    // frame.cpp
+    void write_frame_descriptors();
     void write_frame(const Material& m);
+
+    // draw.cpp
+    void create_targets();
+
+    // ibl.cpp: the BRDF table and environment maps, only when the scene calls for them.
+    void build_environment();
 };
 
 struct GpuMaterial::Impl {

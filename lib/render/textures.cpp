@@ -4,16 +4,16 @@
 #include <cmath>
 #include <cstring>
 
+#include "color/srgb.hpp"  // header-only, standard library only
 #include "render/internal.hpp"
 
 namespace mf::render::detail {
 
-double srgb_to_linear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-double linear_to_srgb(double l) {
-    return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
-}
+// The sRGB curves are mf::srgb_to_linear / mf::linear_to_srgb (exact IEC 61966-2-1, in double
+// here). Negatives are mirrored (−f(−x)): for −0.04045 ≤ x < 0 that is the linear segment
+// continued, x / 12.92. The encoder here only ever sees [0, 1] (clamped first); the decoder sees
+// negatives only in a float texture tagged sRGB. NaN passes through, but none arrives: to_rgba()
+// turns non-finite float texels into 0.
 
 uint16_t float_to_half(float f) {
     uint32_t x;
@@ -124,7 +124,7 @@ FloatLevel downsample(const FloatLevel& src) {
 void to_domain(FloatLevel& l, MipKind kind, bool srgb, bool eight_bit) {
     static const std::array<float, 256> decode = [] {
         std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[size_t(i)] = static_cast<float>(srgb_to_linear(i / 255.0));
+        for (int i = 0; i < 256; ++i) t[size_t(i)] = static_cast<float>(mf::srgb_to_linear(i / 255.0));
         return t;
     }();
     const size_t n = size_t{l.width} * l.height;
@@ -133,7 +133,7 @@ void to_domain(FloatLevel& l, MipKind kind, bool srgb, bool eight_bit) {
         for (int i = 0; i < 3; ++i) {
             if (kind == MipKind::Color && srgb)
                 c[i] = eight_bit ? decode[static_cast<size_t>(std::lround(c[i] * 255.f))]
-                                 : static_cast<float>(srgb_to_linear(c[i]));
+                                 : static_cast<float>(mf::srgb_to_linear(double{c[i]}));
             if (kind == MipKind::Normal) c[i] = c[i] * 2.f - 1.f;
         }
     }
@@ -160,7 +160,7 @@ float from_domain(float v, int channel, MipKind kind, bool encode_srgb) {
     if (channel < 3) {
         if (kind == MipKind::Normal) return v * 0.5f + 0.5f;
         if (kind == MipKind::Color && encode_srgb)
-            return static_cast<float>(linear_to_srgb(std::clamp(v, 0.f, 1.f)));
+            return static_cast<float>(mf::linear_to_srgb(double{std::clamp(v, 0.f, 1.f)}));
     }
     return v;
 }

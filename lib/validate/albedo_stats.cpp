@@ -10,17 +10,6 @@
 namespace mf::validate::detail {
 namespace {
 
-// sRGB decode of every 16-bit code (8-bit codes k/255 are 16-bit codes k·257): exact for
-// integer files, and a table lookup instead of a pow per channel per pixel.
-const std::vector<float>& decode_table() {
-    static const std::vector<float> lut = [] {
-        std::vector<float> v(65536);
-        for (int i = 0; i < 65536; ++i) v[i] = srgb_to_linear(static_cast<float>(i) / 65535.f);
-        return v;
-    }();
-    return lut;
-}
-
 std::string fmt0(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.0f", v);
@@ -45,7 +34,7 @@ AlbedoStats::AlbedoStats(const Thresholds& t, bool linear_input) : t_(t), linear
         const float lo = static_cast<float>(b) / static_cast<float>(kBuckets);
         first_code_[b] = static_cast<uint16_t>(std::lower_bound(edges_.begin(), edges_.end(), lo) - edges_.begin());
     }
-    decode_ = decode_table().data();
+    decode_ = srgb_decode_table().data();
 }
 
 double AlbedoStats::Class::percentile(double p) const {
@@ -63,7 +52,9 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
                            std::vector<Finding>& out) const {
     auto figures = [&](const Class& c, long long count, double threshold) {
         return nlohmann::json{{"share", ratio(count, c.n)},
+                              {"surface_share", ratio(count, visible_)},
                               {"pixels", c.n},
+                              {"visible_pixels", visible_},
                               {"threshold_srgb", threshold},
                               {"p1_srgb", c.percentile(0.01)},
                               {"median_srgb", c.percentile(0.5)},
@@ -81,32 +72,37 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
         f.figures = std::move(fig);
         out.push_back(std::move(f));
     };
-    const std::string which = has_metal_mask ? "dielectric" : "(no metalness map: all taken as dielectric)";
+    // Shares are of the visible albedo; with a metalness mask the share of the class is given too.
+    auto amount = [&](const Class& c, long long count, const std::string& cls, const std::string& comparison) {
+        if (!has_metal_mask)
+            return pct(ratio(count, visible_)) + " of the visible albedo (no metalness map: all taken as dielectric) is " +
+                   comparison + " (median " + fmt0(c.percentile(0.5)) + ")";
+        return pct(ratio(count, visible_)) + " of the visible albedo is " + cls + " and " + comparison + " (" +
+               pct(ratio(count, c.n)) + " of the " + std::to_string(c.n) + " " + cls + " pixels; median " +
+               fmt0(c.percentile(0.5)) + ")";
+    };
     const Class& d = dielectric_;
     if (d.n > 0) {
-        const double dark = ratio(d.below, d.n), bright = ratio(d.above, d.n);
+        const double dark = ratio(d.below, visible_), bright = ratio(d.above, visible_);
         if (dark > t_.albedo_max_share)
             add(code::albedo_too_dark,
-                file + ": " + pct(dark) + " of " + which + " albedo is darker than " +
-                    fmt0(t_.albedo_min_srgb) + " sRGB (median " + fmt0(d.percentile(0.5)) +
-                    "); no real dielectric is that dark — keep shadows and cavities out of the "
+                file + ": " + amount(d, d.below, "dielectric", "darker than " + fmt0(t_.albedo_min_srgb) + " sRGB") +
+                    "; no real dielectric is that dark — keep shadows and cavities out of the "
                     "albedo (they belong in occlusion)",
                 figures(d, d.below, t_.albedo_min_srgb));
         if (bright > t_.albedo_max_share)
             add(code::albedo_too_bright,
-                file + ": " + pct(bright) + " of " + which + " albedo is brighter than " +
-                    fmt0(t_.albedo_max_srgb) + " sRGB (median " + fmt0(d.percentile(0.5)) +
-                    "); even fresh snow reflects less — remove baked lighting or highlights",
+                file + ": " + amount(d, d.above, "dielectric", "brighter than " + fmt0(t_.albedo_max_srgb) + " sRGB") +
+                    "; even fresh snow reflects less — remove baked lighting or highlights",
                 figures(d, d.above, t_.albedo_max_srgb));
     }
     const Class& m = metal_;
     if (m.n > 0) {
-        const double dark = ratio(m.below, m.n);
+        const double dark = ratio(m.below, visible_);
         if (dark > t_.metal_albedo_max_share)
             add(code::metal_albedo_too_dark,
-                file + ": " + pct(dark) + " of metallic albedo is darker than " +
-                    fmt0(t_.metal_albedo_min_srgb) + " sRGB (median " + fmt0(m.percentile(0.5)) +
-                    "); raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
+                file + ": " + amount(m, m.below, "metallic", "darker than " + fmt0(t_.metal_albedo_min_srgb) + " sRGB") +
+                    "; raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
                     "or its metalness is wrong",
                 figures(m, m.below, t_.metal_albedo_min_srgb));
     }

@@ -27,6 +27,7 @@ public:
     void add(const float* rgb, float metalness) {
         const float y = 0.2126f * linear(rgb[0]) + 0.7152f * linear(rgb[1]) + 0.0722f * linear(rgb[2]);
         if (!std::isfinite(y) || !std::isfinite(metalness)) return;
+        ++visible_;
         Class* c = nullptr;
         if (metalness <= t_.dielectric_max) c = &dielectric_;
         else if (metalness >= t_.metal_min) c = &metal_;
@@ -77,6 +78,10 @@ private:
     std::array<uint16_t, kBuckets + 1> first_code_{};  // edges below b / 4096 (b = kBuckets: below 1)
     const float* decode_;  // sRGB decode of every 16-bit code
     Class dielectric_, metal_;
+    // Every visible pixel, blends included: the shares a rule compares are of the visible
+    // surface, so a few dark dielectric pixels in a mostly metal map (dirt in the cracks of a
+    // graded metalness map) stay a few pixels, not "80 % of the dielectric".
+    long long visible_ = 0;
 };
 
 }  // namespace mf::validate::detail

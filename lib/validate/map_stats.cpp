@@ -34,6 +34,15 @@ float linear_to_srgb(float v) {
     return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
 }
 
+const std::vector<float>& srgb_decode_table() {
+    static const std::vector<float> lut = [] {
+        std::vector<float> v(65536);
+        for (int i = 0; i < 65536; ++i) v[static_cast<size_t>(i)] = srgb_to_linear(static_cast<float>(i) / 65535.f);
+        return v;
+    }();
+    return lut;
+}
+
 std::optional<Role> channel_role(Role input_role, int channel) {
     if (traits(input_role).packed) {
         if (channel < 0 || channel > 2) return std::nullopt;
@@ -51,6 +60,10 @@ MapStats::MapStats(MapInput in, const ImageInfo& info, const Thresholds& th)
     if (input.role == Role::metalness) metal_channel = 0;
     else if (input.role == Role::orm || input.role == Role::metallic_roughness) metal_channel = 2;
     if (metal_channel >= channels) metal_channel = -1;
+    // The albedo's alpha is glTF's opacity when the set has no opacity map (the set-level
+    // caller overrides this when it has one).
+    if (input.role == Role::opacity) opacity_channel = 0;
+    else if (input.role == Role::albedo && channels == 4) opacity_channel = 3;
     if (!input.info.is_float) normal_signed = 0;
     if (!input.info.is_float && (input.info.bit_depth == 8 || input.info.bit_depth == 16))
         code_scale = input.info.bit_depth == 8 ? 255.f : 65535.f;
@@ -174,34 +187,133 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         }
         metal_dielectric += dielectric, metal_metal += metal, metal_between += between;
     }
-    if (is_normal() && channels >= 2) {
-        const bool is_signed = normal_signed == 1;
-        auto dec = [is_signed](float c) { return is_signed ? c : 2.f * c - 1.f; };
-        const double len_tol = t.normal_length_tolerance, z_eps = t.normal_z_epsilon;
-        long long bad_length = 0, negative_z = 0;
-        double sum_length = normal_sum_length, sum_z = normal_sum_z;
+    if (opacity_channel >= 0 && opacity_channel < channels) {
+        long long invisible = 0, below = 0;
+        const auto inv = static_cast<float>(t.opacity_invisible_max), cut = static_cast<float>(t.opacity_visible);
         for (long long i = 0; i < n; ++i) {
-            const float* p = px + i * channels;
-            const double x = dec(p[0]), y = dec(p[1]);
-            double len, z;
-            if (channels >= 3) {
-                z = dec(p[2]);
-                len = std::sqrt(x * x + y * y + z * z);
-            } else {
-                const double xy = x * x + y * y;
-                z = std::sqrt(std::max(0.0, 1.0 - xy));
-                len = std::max(1.0, std::sqrt(xy));
-            }
-            if (std::isfinite(len)) {
-                if (std::abs(len - 1.0) > len_tol) ++bad_length;
-                if (z < -z_eps) ++negative_z;
-                sum_length += len;
-                sum_z += z;
-            }
+            const float o = px[i * channels + opacity_channel];
+            invisible += o <= inv ? 1 : 0;  // NaN counts as neither
+            below += o < cut ? 1 : 0;
         }
-        normal_bad_length += bad_length, normal_negative_z += negative_z;
-        normal_sum_length = sum_length, normal_sum_z = sum_z;
+        opacity_invisible += invisible, opacity_below_cutoff += below;
     }
+    if (is_normal() && channels >= 2) normal_band(n, px);
+}
+
+// The normal-map statistics of one band: one loop for the stored vectors, one for the vectors the
+// same codes would give if the file were sRGB-encoded (integer files only). Float math per pixel
+// (the figures need a few digits), double sums, integer counts, no branch on the pixel's values:
+// the loops stay vectorizable, about as fast as the length check alone was.
+void MapStats::normal_band(long long n, const float* px) {
+    const bool is_signed = normal_signed == 1;
+    const auto nc = static_cast<size_t>(channels);
+    const bool rgb = channels >= 3;
+    const auto len_tol = static_cast<float>(t.normal_length_tolerance), z_eps = static_cast<float>(t.normal_z_epsilon);
+    const auto gtol = static_cast<float>(is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance);
+    const float a = is_signed ? 1.f : 2.f, b = is_signed ? 0.f : -1.f;  // n = a c + b
+    long long bad_length = 0, negative_z = 0, upward = 0, grey = 0;
+    double sum_length = 0, sum_z = 0, sxx = 0, syy = 0;
+    for (long long i = 0; i < n; ++i) {
+        const float* p = px + static_cast<size_t>(i) * nc;
+        const float x = a * p[0] + b, y = a * p[1] + b;
+        const float xy = x * x + y * y;
+        // Two channels (BC5-style): z rebuilt, the length is 1 unless x, y alone exceed it.
+        const float z = rgb ? a * p[2] + b : std::sqrt(std::max(0.f, 1.f - xy));
+        const float len = rgb ? std::sqrt(xy + z * z) : std::max(1.f, std::sqrt(xy));
+        const bool ok = std::isfinite(len);
+        if (rgb) {
+            const float d = std::max(std::max(std::abs(p[0] - p[1]), std::abs(p[0] - p[2])), std::abs(p[1] - p[2]));
+            grey += d <= gtol ? 1 : 0;
+        }
+        bad_length += ok && std::abs(len - 1.f) > len_tol ? 1 : 0;
+        negative_z += ok && z < -z_eps ? 1 : 0;
+        upward += ok && z >= 0.f && z * z >= xy ? 1 : 0;
+        sum_length += ok ? double{len} : 0.0;
+        sum_z += ok ? double{z} : 0.0;
+        sxx += ok ? double{x * x} : 0.0;
+        syy += ok ? double{y * y} : 0.0;
+    }
+    normal_bad_length += bad_length, normal_negative_z += negative_z, normal_upward += upward, normal_gray += grey;
+    normal_sum_length += sum_length, normal_sum_z += sum_z, normal_sum_xx += sxx, normal_sum_yy += syy;
+    if (input.info.is_float || code_scale <= 0.f) return;
+    // An integer file's value is code / scale in [0, 1]: its 16-bit code (8-bit k is 257 k)
+    // indexes the decode table exactly.
+    const float* lut = srgb_decode_table().data();
+    auto dec = [lut](float c) {
+        // NOLINTNEXTLINE(bugprone-incorrect-roundings): c is a code / scale in [0, 1]
+        return 2.f * lut[static_cast<size_t>(c * 65535.f + 0.5f)] - 1.f;
+    };
+    long long srgb_upward = 0;
+    double ssx = 0, ssy = 0, ssl = 0;
+    for (long long i = 0; i < n; ++i) {
+        const float* p = px + static_cast<size_t>(i) * nc;
+        const float x = dec(p[0]), y = dec(p[1]);
+        const float xy = x * x + y * y;
+        const float z = rgb ? dec(p[2]) : std::sqrt(std::max(0.f, 1.f - xy));
+        ssx += x;
+        ssy += y;
+        ssl += std::sqrt(xy + z * z);
+        srgb_upward += z >= 0.f && z * z >= xy ? 1 : 0;
+    }
+    normal_srgb_upward += srgb_upward;
+    normal_srgb_sum_x += ssx, normal_srgb_sum_y += ssy, normal_srgb_sum_length += ssl;
+}
+
+nlohmann::json NormalSummary::figures() const {
+    nlohmann::json j{{"mean_x", mean_x}, {"mean_y", mean_y}, {"mean_z", mean_z},
+                     {"mean_length", mean_length}, {"std_x", std_x}, {"std_y", std_y},
+                     {"bad_length_share", bad_length_share}, {"negative_z_share", negative_z_share},
+                     {"upward_share", upward_share}, {"gray_share", gray_share}};
+    if (srgb_measured) {
+        j["srgb_decoded_mean_x"] = srgb_mean_x;
+        j["srgb_decoded_mean_y"] = srgb_mean_y;
+        j["srgb_decoded_mean_length"] = srgb_mean_length;
+        j["srgb_decoded_upward_share"] = srgb_upward_share;
+    }
+    return j;
+}
+
+NormalSummary MapStats::normal_summary() const {
+    NormalSummary s;
+    if (pixels == 0 || channels < 2) return s;
+    const auto np = static_cast<double>(pixels);
+    // Means of x and y from the (exact) channel sums: x = 2c − 1 is linear in c.
+    auto mean_dec = [&](int c) { return normal_signed == 1 ? mean(c) : 2.0 * mean(c) - 1.0; };
+    s.mean_x = mean_dec(0);
+    s.mean_y = mean_dec(1);
+    s.mean_z = normal_sum_z / np;
+    s.mean_length = normal_sum_length / np;
+    s.std_x = std::sqrt(std::max(0.0, normal_sum_xx / np - s.mean_x * s.mean_x));
+    s.std_y = std::sqrt(std::max(0.0, normal_sum_yy / np - s.mean_y * s.mean_y));
+    s.bad_length_share = ratio(normal_bad_length, pixels);
+    s.negative_z_share = ratio(normal_negative_z, pixels);
+    s.upward_share = ratio(normal_upward, pixels);
+    s.gray_share = channels >= 3 ? ratio(normal_gray, pixels) : 0.0;
+    s.srgb_measured = !input.info.is_float && code_scale > 0.f;
+    if (s.srgb_measured) {
+        s.srgb_mean_x = normal_srgb_sum_x / np;
+        s.srgb_mean_y = normal_srgb_sum_y / np;
+        s.srgb_mean_length = normal_srgb_sum_length / np;
+        s.srgb_upward_share = ratio(normal_srgb_upward, pixels);
+        // Decoded, it must be a tangent-space map: X/Y centred, pointing up, length about 1.
+        s.gamma_encoded = s.mean_x > t.normal_gamma_min_stored_mean_xy && s.mean_y > t.normal_gamma_min_stored_mean_xy &&
+                          std::abs(s.srgb_mean_x) <= t.normal_max_mean_xy && std::abs(s.srgb_mean_y) <= t.normal_max_mean_xy &&
+                          s.srgb_upward_share >= t.normal_min_upward_share && s.gray_share <= t.normal_max_gray_share &&
+                          (channels < 3 || std::abs(s.srgb_mean_length - 1.0) <= t.normal_gamma_max_decoded_length_error);
+    }
+    if (!s.gamma_encoded) {
+        // Each test on its own names a kind of wrong map; the message lists every one that fails.
+        if (s.upward_share < t.normal_min_upward_share)
+            s.invalid.push_back("only " + pct(s.upward_share) + " of the vectors lie within 45 degrees of +Z (a tangent-space map: most)");
+        if (std::abs(s.mean_x) > t.normal_max_mean_xy || std::abs(s.mean_y) > t.normal_max_mean_xy)
+            s.invalid.push_back("X/Y average (" + fmt(s.mean_x) + ", " + fmt(s.mean_y) + "), not about 0 (codes about 128)");
+        if (s.negative_z_share > t.normal_max_negative_z_share)
+            s.invalid.push_back(pct(s.negative_z_share) + " point into the surface (Z < 0)");
+        if (s.gray_share > t.normal_max_gray_share)
+            s.invalid.push_back("R = G = B in " + pct(s.gray_share) + " of the pixels (a greyscale map)");
+    }
+    s.not_unit_length = s.invalid.empty() && s.bad_length_share > t.normal_max_bad_length_share;
+    return s;
 }
 
 void MapStats::findings(std::vector<Finding>& out) const {
@@ -316,7 +428,23 @@ void MapStats::findings(std::vector<Finding>& out) const {
                  {"max_share", t.metalness_max_intermediate_share}});
         }
     }
-    // NORMAL_INVALID
+    // OPACITY_ALL_TRANSPARENT
+    if (opacity_channel >= 0 && opacity_channel < channels) {
+        const double share = ratio(opacity_invisible, pixels);
+        if (share > t.opacity_max_invisible_share) {
+            const bool alpha = input.role != Role::opacity;
+            const int oc = std::min(opacity_channel, 3);
+            add(code::opacity_all_transparent, "opacity",
+                (alpha ? "the alpha of " + file + " (the set's opacity: it has no opacity map)" : file) + ": " +
+                    pct(share) + " of pixels have opacity at most " + fmt(t.opacity_invisible_max, 2) + " (max " +
+                    fmt(max[oc]) + "): the whole material would be invisible — if the map stores transparency, "
+                    "invert it; if it is empty, remove it",
+                {{"invisible_share", share}, {"invisible_max", t.opacity_invisible_max},
+                 {"below_cutoff_share", ratio(opacity_below_cutoff, pixels)}, {"cutoff", t.opacity_visible},
+                 {"max", max[oc]}, {"channel", channel_letter(oc)}, {"max_share", t.opacity_max_invisible_share}});
+        }
+    }
+    // NORMAL_INVALID, NORMAL_GAMMA_ENCODED, NORMAL_NOT_UNIT_LENGTH
     if (is_normal()) {
         if (channels < 2) {
             add(code::normal_invalid, role,
@@ -324,23 +452,45 @@ void MapStats::findings(std::vector<Finding>& out) const {
                        "height or bump map?)",
                 {{"channels", channels}});
         } else {
-            const double bad = ratio(normal_bad_length, pixels);
-            const double negz = ratio(normal_negative_z, pixels);
-            if (bad > t.normal_max_bad_length_share || negz > t.normal_max_negative_z_share) {
+            const NormalSummary s = normal_summary();
+            nlohmann::json fig = s.figures();
+            fig["decoding"] = normal_signed == 1 ? "signed" : "2c-1";
+            if (s.gamma_encoded) {
+                nlohmann::json g = fig;
+                g["min_stored_mean_xy"] = t.normal_gamma_min_stored_mean_xy;
+                g["max_mean_xy"] = t.normal_max_mean_xy;
+                g["min_upward_share"] = t.normal_min_upward_share;
+                g["max_decoded_length_error"] = t.normal_gamma_max_decoded_length_error;
+                add(code::normal_gamma_encoded, role,
+                    file + ": stored sRGB/gamma-encoded: mean R, G = " + fmt(127.5 * (s.mean_x + 1), 1) + ", " +
+                        fmt(127.5 * (s.mean_y + 1), 1) + " instead of about 128 (X/Y centred at " +
+                        fmt(0.5 * (s.mean_x + 1), 2) + ", " + fmt(0.5 * (s.mean_y + 1), 2) +
+                        ", not 0.5); decoded with the sRGB curve they average " + fmt(s.srgb_mean_x, 2) + ", " +
+                        fmt(s.srgb_mean_y, 2) + " with mean length " + fmt(s.srgb_mean_length, 2) +
+                        " — re-export it as linear data (no sRGB conversion)",
+                    g);
+            } else if (!s.invalid.empty()) {
                 std::string why;
-                if (bad > t.normal_max_bad_length_share)
-                    why = pct(bad) + " of pixels decode to vectors whose length is more than " +
-                          fmt(t.normal_length_tolerance, 2) + " from 1";
-                if (negz > t.normal_max_negative_z_share)
-                    why += std::string(why.empty() ? "" : " and ") + pct(negz) +
-                           " point into the surface (Z < 0)";
+                for (const auto& w : s.invalid) why += (why.empty() ? "" : "; ") + w;
+                nlohmann::json g = fig;
+                g["min_upward_share"] = t.normal_min_upward_share;
+                g["max_mean_xy"] = t.normal_max_mean_xy;
+                g["max_negative_z_share"] = t.normal_max_negative_z_share;
+                g["max_gray_share"] = t.normal_max_gray_share;
                 add(code::normal_invalid, role,
                     file + ": not a tangent-space normal map: " + why +
-                        " (an object-space, height or color map named as normal?)",
-                    {{"bad_length_share", bad}, {"negative_z_share", negz},
-                     {"mean_length", normal_sum_length / static_cast<double>(pixels)}, {"mean_z", normal_sum_z / static_cast<double>(pixels)},
-                     {"length_tolerance", t.normal_length_tolerance},
-                     {"decoding", normal_signed == 1 ? "signed" : "2c-1"}});
+                        " — is it a height, color or object-space map named as normal?",
+                    g);
+            }
+            if (s.not_unit_length) {
+                nlohmann::json g = fig;
+                g["length_tolerance"] = t.normal_length_tolerance;
+                g["max_bad_length_share"] = t.normal_max_bad_length_share;
+                add(code::normal_not_unit_length, role,
+                    file + ": vectors not unit length (mean |2c-1| = " + fmt(s.mean_length) + ", " +
+                        pct(s.bad_length_share) + " off by > " + fmt(t.normal_length_tolerance, 1) +
+                        "); renormalized on ingest",
+                    g);
             }
         }
     }
@@ -349,12 +499,17 @@ void MapStats::findings(std::vector<Finding>& out) const {
     const bool color = is_color_role(input.role);
     nlohmann::json tagfig{{"tag", color_tag_name(tag)}, {"tag_source", input.color_tag.source},
                           {"tag_value", input.color_tag.value}};
-    if (!color && tag == ColorTag::srgb) {
+    if (!color && (tag == ColorTag::srgb || tag == ColorTag::other)) {
+        // An ICC profile of any name on a data map is a color statement too.
         tagfig["expected"] = "linear";
         add(code::color_space_mismatch, role,
-            file + ": tagged sRGB (" + input.color_tag.source + ") but holds " + role +
-                " data; tools that honour the tag will decode it as color — re-export it "
-                "untagged or as linear/raw",
+            file + ": " +
+                (tag == ColorTag::srgb ? "tagged sRGB (" + input.color_tag.source + ")"
+                                       : "carries a color profile (" + input.color_tag.source + " \"" +
+                                             input.color_tag.value + "\")") +
+                " but holds " + role +
+                " data; matforge reads it as data by its role and ignores the tag (other tools "
+                "that honour it would decode it as color: re-export it untagged or as linear/raw)",
             tagfig);
     } else if (color && !input.info.is_float && tag == ColorTag::linear) {
         tagfig["expected"] = "srgb";

@@ -2,6 +2,7 @@
 // that need nothing but that one map (values, channels, constants, metalness, normals, tags).
 #pragma once
 #include <array>
+#include <string>
 #include <vector>
 
 #include "validate/validate.hpp"
@@ -16,6 +17,26 @@ inline double ratio(long long a, long long b) {
 // IEC 61966-2-1 sRGB transfer functions (exact piecewise curve).
 float srgb_to_linear(float v);
 float linear_to_srgb(float v);
+// srgb_to_linear of every 16-bit code k / 65535 (an 8-bit code k is the 16-bit code 257 k):
+// exact for integer files, a lookup instead of a pow per sample.
+const std::vector<float>& srgb_decode_table();
+
+// What a normal map's statistics say (NORMAL_INVALID, NORMAL_GAMMA_ENCODED,
+// NORMAL_NOT_UNIT_LENGTH); every figure is also in the findings' figures.
+struct NormalSummary {
+    double mean_x = 0, mean_y = 0, mean_z = 0, mean_length = 0, std_x = 0, std_y = 0;
+    double bad_length_share = 0;  // |len − 1| > length_tolerance
+    double negative_z_share = 0;  // z < −z_epsilon
+    double upward_share = 0;      // within 45° of +Z: z ≥ |(x, y)|
+    double gray_share = 0;        // R, G, B equal within the grayscale tolerance (≥ 3 channels)
+    // The same pixels decoded as if the file were sRGB-encoded (8/16-bit files only).
+    bool srgb_measured = false;
+    double srgb_mean_x = 0, srgb_mean_y = 0, srgb_mean_length = 0, srgb_upward_share = 0;
+    bool gamma_encoded = false;
+    std::vector<std::string> invalid;  // why it is not a tangent-space normal map (empty: it is)
+    bool not_unit_length = false;
+    nlohmann::json figures() const;
+};
 
 struct MapStats {
     MapInput input;  // copy: the stats outlive no one, and this keeps the thread self-contained
@@ -37,18 +58,25 @@ struct MapStats {
     // METALNESS_NOT_BINARY (the channel holding metalness, if any).
     int metal_channel = -1;
     long long metal_dielectric = 0, metal_metal = 0, metal_between = 0;
-    // NORMAL_INVALID.
+    // Normal maps (the means of x and y come from the channel sums above).
     int normal_signed = -1;  // -1 undecided, 0 n = 2c − 1, 1 stored signed (float files)
-    long long normal_bad_length = 0, normal_negative_z = 0;
-    double normal_sum_length = 0, normal_sum_z = 0;
+    long long normal_bad_length = 0, normal_negative_z = 0, normal_upward = 0, normal_gray = 0, normal_srgb_upward = 0;
+    double normal_sum_length = 0, normal_sum_z = 0, normal_sum_xx = 0, normal_sum_yy = 0;
+    double normal_srgb_sum_x = 0, normal_srgb_sum_y = 0, normal_srgb_sum_length = 0;
+    // OPACITY_ALL_TRANSPARENT: the channel holding opacity (an opacity map's first, the albedo's
+    // alpha when it is the set's opacity; the set-level caller decides, -1: none).
+    int opacity_channel = -1;
+    long long opacity_invisible = 0, opacity_below_cutoff = 0;
 
     MapStats(MapInput in, const ImageInfo& info, const Thresholds& th);
     void add_band(int y0, int rows, const float* px);
+    void normal_band(long long n, const float* px);  // add_band's normal-map part
 
     // Findings that depend on this map alone (severity/enable applied later).
     void findings(std::vector<Finding>& out) const;
 
     bool is_normal() const { return input.role == Role::normal; }
+    NormalSummary normal_summary() const;  // meaningful for normal maps of ≥ 2 channels
     double mean(int c) const {
         if (finite[c] == 0) return 0.0;
         const double total = code_scale > 0.f ? static_cast<double>(code_sum[c]) / code_scale : sum[c];

@@ -66,6 +66,9 @@ struct NormalConventionDetector::Impl {
     DetectorOptions opt;
     bool with_height = false;
     std::vector<Level> levels;
+    // Full-resolution slope moments (the flat test).
+    double sp = 0, sq = 0, spp = 0, sqq = 0;
+    long long ns = 0;
 
     Impl(int width, bool wh, const DetectorOptions& o) : opt(o), with_height(wh) {
         int w = width;
@@ -155,11 +158,21 @@ void NormalConventionDetector::add_row(const float* xyz, const float* height) {
     const int w = impl_->levels[0].width;
     std::vector<float> p(w), q(w);
     const auto min_nz = static_cast<float>(impl_->opt.min_nz);
+    double sp = 0, sq = 0, spp = 0, sqq = 0;
+    long long ns = 0;
     for (int x = 0; x < w; ++x) {
         const float nz = std::max(xyz[3 * x + 2], min_nz);
         p[x] = -xyz[3 * x] / nz;
         q[x] = xyz[3 * x + 1] / nz;
+        if (std::isfinite(p[x]) && std::isfinite(q[x])) {
+            sp += p[x];
+            sq += q[x];
+            spp += double{p[x]} * p[x];
+            sqq += double{q[x]} * q[x];
+            ++ns;
+        }
     }
+    impl_->sp += sp, impl_->sq += sq, impl_->spp += spp, impl_->sqq += sqq, impl_->ns += ns;
     // A missing height row (the height map ended early) reads as flat: no evidence, no crash.
     std::vector<float> flat;
     if (impl_->with_height && !height) {
@@ -225,6 +238,16 @@ NormalVerdict NormalConventionDetector::verdict() const {
         } else {
             conf = cc - ch;
         }
+    }
+    if (I.ns > 0) {
+        const auto n = static_cast<double>(I.ns);
+        const double mp = I.sp / n, mq = I.sq / n;
+        const double std_p = std::sqrt(std::max(0.0, I.spp / n - mp * mp));
+        const double std_q = std::sqrt(std::max(0.0, I.sqq / n - mq * mq));
+        v.flat = std_p <= I.opt.flat_max_slope_std && std_q <= I.opt.flat_max_slope_std;
+        v.figures["slope_std_x"] = std_p;
+        v.figures["slope_std_y"] = std_q;
+        v.figures["flat"] = v.flat;
     }
     if (dir == NormalConvention::unknown) conf = 0.0;
     v.leaning = dir;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -26,6 +27,39 @@ std::string join_path(const std::string& source, const std::string& file) {
     if (file.empty()) return source;
     if (source.empty() || source == ".") return file;
     return source.back() == '/' ? source + file : source + "/" + file;
+}
+
+// "  albedo      Bricks_Color.png  [ambientcg:_Color]" per input, the normal verdict, constants.
+std::string decisions_text(const MaterialReport& m) {
+    std::string out = m.convention.empty() ? "" : "  naming: " + m.convention + "\n";
+    for (const auto& in : m.inputs) {
+        std::string role(role_name(in.role));
+        role.resize(std::max<size_t>(role.size() + 1, 20), ' ');
+        out += "  " + role + in.file + "  [" + in.rule + "]";
+        if (in.normal) {
+            out += "  " + std::string(convention_name(in.normal->convention));
+            if (in.normal->source == "name") out += " (from the name)";
+            else if (in.normal->source == "content")
+                out += " (from the content: " + in.normal->method + " test, confidence " +
+                       std::to_string(static_cast<int>(std::lround(in.normal->confidence.value_or(0) * 100))) + " %)";
+            else out += " (undecided)";
+        }
+        out += "\n";
+    }
+    if (!m.constants.empty()) {
+        std::string list;
+        for (const auto& c : m.constants) {
+            std::string v;
+            for (float x : c.value) {
+                char buf[32];
+                std::snprintf(buf, sizeof buf, "%g", static_cast<double>(x));
+                v += (v.empty() ? "" : ", ") + std::string(buf);
+            }
+            list += (list.empty() ? "" : "; ") + std::string(role_name(c.role)) + " " + v;
+        }
+        out += "  generated on ingest: " + list + "\n";
+    }
+    return out;
 }
 
 std::string finding_line(const Finding& f) {
@@ -64,24 +98,28 @@ bool fails(Severity s, FailOn f) {
     return false;
 }
 
+void add_material(Summary& s, const std::vector<Finding>& findings) {
+    bool incomplete = false;
+    for (const auto& f : findings) {
+        if (f.severity == Severity::error) ++s.error;
+        else if (f.severity == Severity::warning) ++s.warning;
+        else ++s.info;
+        incomplete = incomplete || f.code == code::unreadable_file || f.code == code::output_write_failed;
+    }
+    s.incomplete += incomplete ? 1 : 0;
+}
+
 Summary summarize(const Report& r) {
     Summary s;
-    for (const auto& m : r.materials)
-        for (const auto& f : m.findings) {
-            if (f.severity == Severity::error) ++s.error;
-            else if (f.severity == Severity::warning) ++s.warning;
-            else ++s.info;
-        }
+    for (const auto& m : r.materials) add_material(s, m.findings);
     s.failures = static_cast<int>(r.failures.size());
     return s;
 }
 
-int exit_code(const Summary& s, FailOn f) {
-    if (s.failures > 0) return 1;
-    if ((s.error > 0 && fails(Severity::error, f)) || (s.warning > 0 && fails(Severity::warning, f)) ||
-        (s.info > 0 && fails(Severity::info, f)))
-        return 1;
-    return 0;
+bool run_fails(const Summary& s, FailOn f) {
+    if (s.failures > 0 || s.incomplete > 0) return true;
+    return (s.error > 0 && fails(Severity::error, f)) || (s.warning > 0 && fails(Severity::warning, f)) ||
+           (s.info > 0 && fails(Severity::info, f));
 }
 
 nlohmann::json report_json(const Report& r) {
@@ -92,7 +130,12 @@ nlohmann::json report_json(const Report& r) {
     for (const auto& m : r.materials) {
         nlohmann::json fs = nlohmann::json::array();
         for (const auto& f : m.findings) fs.push_back(to_json(f));
-        mats.push_back({{"name", m.name}, {"source", m.source}, {"findings", fs}});
+        mats.push_back({{"name", m.name},
+                        {"source", m.source},
+                        {"convention", m.convention},
+                        {"inputs", manifest::to_json(m.inputs)},
+                        {"constants", manifest::to_json(m.constants)},
+                        {"findings", fs}});
     }
     j["materials"] = mats;
     nlohmann::json fl = nlohmann::json::array();
@@ -112,6 +155,7 @@ std::string write_text(const Report& r, FailOn fail_on) {
         for (const auto& f : m.findings) code_w = std::max(code_w, f.code.size());
     for (const auto& m : r.materials) {
         out += m.name + "  (" + m.source + ")\n";
+        out += decisions_text(m);
         if (m.findings.empty()) out += "  ok: no findings\n";
         for (const auto& f : m.findings) {
             std::string sev(severity_name(f.severity));
@@ -130,11 +174,11 @@ std::string write_text(const Report& r, FailOn fail_on) {
         out += "\n";
     }
     const Summary s = summarize(r);
-    const int rc = exit_code(s, fail_on);
+    const bool failed = run_fails(s, fail_on);
     out += std::to_string(r.materials.size()) + " material(s): " + std::to_string(s.error) + " error(s), " +
            std::to_string(s.warning) + " warning(s), " + std::to_string(s.info) + " info";
     if (s.failures) out += "; " + std::to_string(s.failures) + " input(s) failed";
-    out += rc ? " — FAIL" : " — PASS";
+    out += failed ? " — FAIL" : " — PASS";
     out += " (--fail-on " + std::string(fail_on_name(fail_on)) + ")\n";
     return out;
 }
@@ -292,10 +336,26 @@ std::string write_sarif(const Report& r) {
                            {"level", "error"},
                            {"message", {{"text", f.message}}},
                            {"locations", location(f.source)}});
+    // The decisions (SARIF §3.24 artifact, §3.8 property bag): each input file with its role,
+    // the naming rule that matched and the normal map's verdict; each material's constants.
+    nlohmann::json artifacts = nlohmann::json::array(), decided = nlohmann::json::array();
+    for (const auto& m : r.materials) {
+        for (const auto& in : m.inputs) {
+            nlohmann::json props = manifest::to_json(in);
+            props.erase("file");
+            props["material"] = m.name;
+            props["role"] = role_name(in.role);
+            artifacts.push_back({{"location", location(join_path(m.source, in.file))[0]["physicalLocation"]["artifactLocation"]},
+                                 {"properties", props}});
+        }
+        decided.push_back({{"material", m.name}, {"convention", m.convention}, {"constants", manifest::to_json(m.constants)}});
+    }
     nlohmann::json run{{"tool", {{"driver", {{"name", "matforge"},
                                              {"semanticVersion", r.tool_version},
                                              {"version", r.tool_version},
                                              {"rules", rules}}}}},
+                       {"artifacts", artifacts},
+                       {"properties", {{"materials", decided}}},
                        {"results", results}};
     nlohmann::json log{{"$schema", "https://json.schemastore.org/sarif-2.1.0.json"},
                        {"version", "2.1.0"},

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "core/findings.hpp"
+#include "core/version.hpp"
+#include "manifest/manifest.hpp"
 
 namespace mf::validate {
 
@@ -26,30 +28,36 @@ struct MaterialReport {
     std::string source;                 // as given / relative to the report's folder
     std::vector<Finding> findings;      // Finding::file is relative to `source`
     std::vector<std::string> rules;     // codes evaluated (JUnit passes); empty: the validate rules
+    // What was decided, not only what is wrong: the naming family, each chosen file's role and
+    // the rule that matched (with the normal map's convention verdict), and the constants
+    // ingest generates for missing roles.
+    std::string convention;
+    std::vector<manifest::Input> inputs;
+    std::vector<manifest::Constant> constants;
 };
 
-struct InputFailure {                   // an input that could not be processed at all
-    std::string source;
-    std::string code;
-    std::string message;
-};
+using mf::InputFailure;                  // an input that could not be processed at all
 
 struct Report {
-    std::string tool_version = "0.1.0";
+    std::string tool_version{kVersion};
     std::vector<MaterialReport> materials;
     std::vector<InputFailure> failures;
 };
 
 struct Summary {
     int error = 0, warning = 0, info = 0;
-    int failures = 0;  // inputs that could not be processed
+    int failures = 0;    // inputs that could not be processed
+    int incomplete = 0;  // materials with a map not read or an output not written
 };
 
 Summary summarize(const Report& r);
+// Counts one material's findings into `s` (summarize's step, for other kinds of results).
+void add_material(Summary& s, const std::vector<Finding>& findings);
 
-// Spec: 0 no finding at/above fail-on; 1 findings at/above fail-on, or some inputs could not be
-// processed. (2, usage/configuration errors, is the CLI's.)
-int exit_code(const Summary& s, FailOn fail_on);
+// The run's verdict: it fails when an input could not be processed or a material is incomplete
+// (whatever --fail-on says, even never), or when a finding is at or above `fail_on`. The exit
+// code that says so is the CLI's (tools/matforge/command.hpp).
+bool run_fails(const Summary& s, FailOn fail_on);
 
 nlohmann::json report_json(const Report& r);   // {"report_version": 1, ...}
 std::string write_json(const Report& r);

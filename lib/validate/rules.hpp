@@ -41,7 +41,7 @@ struct Thresholds {
     // / 243 sRGB (strict) — the bounds of Substance's "PBR Validate" node.
     double albedo_min_srgb = 30.0;
     double albedo_max_srgb = 240.0;
-    double albedo_max_share = 0.05;  // matforge: tolerate 5 % (crevices, small decals)
+    double albedo_max_share = 0.05;  // matforge: tolerate 5 % of the visible surface (crevices, decals)
     // METAL_ALBEDO_TOO_DARK: raw metals reflect 70–100 % → 180–255 sRGB (same guide,
     // "Metal reflectance values"). Measured F0 agrees: Real-Time Rendering 4th ed., Table 9.2
     // (after Hoffman 2015): the darkest common metal, titanium, has luminance ~188 sRGB.
@@ -68,12 +68,37 @@ struct Thresholds {
     double out_of_range_max_share = 0.0;
     // NONFINITE_VALUES: any NaN/Inf is reported (max share 0).
     double nonfinite_max_share = 0.0;
-    // NORMAL_INVALID: decoded n = 2c − 1. 8-bit quantization alone keeps |n| within ~0.01 of 1;
-    // resized or lossy maps drift further (matforge: 0.2). Z < −z_epsilon counts as negative.
+    // Normal maps, decoded n = 2c − 1. Every number below was set between the values measured
+    // on real vendor maps (ambientCG, Poly Haven, 3dtextures.me; JPEG and WebP) and on maps that
+    // are not tangent-space normals (height, roughness, occlusion, color photos, object-space,
+    // gamma-encoded); docs/rules.md "Normal maps" lists both ranges.
+    // NORMAL_NOT_UNIT_LENGTH (info): 8-bit quantization alone keeps |n| within ~0.01 of 1;
+    // resized, blurred or lossy maps drift further and ingest renormalizes them.
     double normal_length_tolerance = 0.2;
-    double normal_max_bad_length_share = 0.05;
+    double normal_max_bad_length_share = 0.10;
+    // NORMAL_INVALID (error): not a tangent-space normal map at all. A tangent map points away
+    // from the surface: most vectors lie within 45° of +Z (real maps ≥ 73 %; photos, grey and
+    // packed maps ≤ 5 %, object-space maps 3–25 %), its X and Y average near 0 (real |mean|
+    // ≤ 0.13), it has no Z < −z_epsilon (real ≤ 0.3 %) and is never grey (R = G = B: real
+    // ≤ 0.1 %, height/roughness/occlusion maps 100 %). Each map that is not a normal map fails
+    // one of these by 1.5x or more.
+    double normal_min_upward_share = 0.4;
+    double normal_max_mean_xy = 0.25;
     double normal_z_epsilon = 0.02;
-    double normal_max_negative_z_share = 0.01;
+    double normal_max_negative_z_share = 0.05;
+    double normal_max_gray_share = 0.5;
+    // NORMAL_GAMMA_ENCODED (error): stored sRGB-encoded, so a flat vector (0.5, 0.5, 1) reads as
+    // (0.74, 0.74, 1): both stored X/Y means above min_stored_mean_xy (real ≤ 0.13, encoded
+    // ≥ 0.38), and decoded with the sRGB curve it passes NORMAL_INVALID's tests (X/Y means, upward
+    // share, grey share) with a mean length within max_decoded_length_error of 1 (encoded copies
+    // of real maps: ≤ 0.19; a grey height map decoded: 0.49).
+    double normal_gamma_min_stored_mean_xy = 0.25;
+    double normal_gamma_max_decoded_length_error = 0.3;
+    // OPACITY_ALL_TRANSPARENT (error): more than max_share of the opacity (map, or the albedo's
+    // alpha when it is the opacity) at or below invisible_max. Not the 0.5 cutoff: a blended
+    // material of opacity 0.1–0.4 (glass, gauze) is visible. 0.02 holds JPEG noise around 0.
+    double opacity_invisible_max = 0.02;
+    double opacity_max_invisible_share = 0.999;
     // NORMAL_CONVENTION_MISMATCH / _UNKNOWN: confidence (0–1) a content verdict needs.
     double normal_convention_min_confidence = 0.6;
 };

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 
+#include "material/routing.hpp"
 #include "validate/albedo_stats.hpp"
 #include "validate/band_stream.hpp"
 #include "validate/map_stats.hpp"
@@ -26,6 +27,13 @@ struct Source {
     int map = -1;     // index into maps
     int channel = 0;  // channel holding the value
 };
+
+// The first map of input role `r` whose header could be read, -1 when none.
+int first_readable(const std::vector<MapInput>& maps, const std::vector<bool>& readable, Role r) {
+    for (size_t i = 0; i < maps.size(); ++i)
+        if (readable[i] && maps[i].role == r) return static_cast<int>(i);
+    return -1;
+}
 
 // RESOLUTION_MISMATCH: every map whose size differs from the most common size (ties: the
 // largest), so the message names the odd ones out.
@@ -101,21 +109,21 @@ SetValidation validate_set(const std::vector<MapInput>& input_maps, const RuleCo
         }
     }
 
-    // Which maps feed the joint statistics. A dedicated map beats a packed one.
-    auto first_of = [&](std::initializer_list<std::pair<Role, int>> prefs) {
-        for (const auto& [r, ch] : prefs)
-            for (size_t i = 0; i < maps.size(); ++i)
-                if (readable[i] && maps[i].role == r && maps[i].info.channels > ch)
-                    return Source{static_cast<int>(i), ch};
-        return Source{};
+    // Which maps feed the joint statistics: the routes ingest uses (material/routing).
+    const Routes routes = route_roles([&](Role r) {
+        const int i = first_readable(maps, readable, r);
+        return i < 0 ? 0 : maps[static_cast<size_t>(i)].info.channels;
+    });
+    auto source_of = [&](Role out) {
+        const auto it = routes.find(out);
+        if (it == routes.end()) return Source{};
+        return Source{first_readable(maps, readable, it->second.from), std::max(0, it->second.channel)};
     };
-    const Source albedo = first_of({{Role::albedo, 0}});
-    const Source metal = first_of({{Role::metalness, 0}, {Role::orm, 2}, {Role::metallic_roughness, 2}});
-    Source opacity = first_of({{Role::opacity, 0}});
-    // glTF 2.0 §3.9.2: baseColor's alpha is the opacity when there is no separate map.
-    if (opacity.map < 0 && albedo.map >= 0 && maps[albedo.map].info.channels >= 4) opacity = {albedo.map, 3};
-    const Source normal = first_of({{Role::normal, 0}});
-    const Source height = first_of({{Role::height, 0}});
+    const Source albedo = source_of(Role::albedo);
+    const Source metal = source_of(Role::metalness);
+    const Source opacity = source_of(Role::opacity);
+    const Source normal = source_of(Role::normal);
+    const Source height = source_of(Role::height);
     const bool albedo_pass = albedo.map >= 0 && maps[albedo.map].info.channels >= 3;
     const bool normal_pass = normal.map >= 0 && maps[normal.map].info.channels >= 2;
 
@@ -133,6 +141,7 @@ SetValidation validate_set(const std::vector<MapInput>& input_maps, const RuleCo
     for (size_t i = 0; i < maps.size(); ++i) {
         if (!readable[i]) continue;
         stats[i] = std::make_unique<MapStats>(maps[i], maps[i].info, t);
+        stats[i]->opacity_channel = opacity.map == static_cast<int>(i) ? opacity.channel : -1;  // OPACITY_ALL_TRANSPARENT
         MapStats* s = stats[i].get();
         const ImageInfo expected = maps[i].info;
         streams[i] = std::make_unique<BandStream>(
@@ -231,7 +240,7 @@ SetValidation validate_set(const std::vector<MapInput>& input_maps, const RuleCo
                         " %, " + nc.content.method + " test); check the green channel before trusting the name";
             f.figures = fig;
             found.push_back(std::move(f));
-        } else if (nc.name == NormalConvention::unknown && !decided) {
+        } else if (nc.name == NormalConvention::unknown && !decided && !nc.content.flat) {  // flat: GL = DX
             Finding f;
             f.code = std::string(code::normal_convention_unknown);
             f.role = "normal";
@@ -254,6 +263,10 @@ SetValidation validate_set(const std::vector<MapInput>& input_maps, const RuleCo
             read_errors[i] = streams[i]->error();
         }
     }
+
+    // The albedo's alpha: the plan keeps it as the opacity only when some texel is below opaque.
+    if (opacity.map >= 0 && opacity.map == albedo.map && readable[static_cast<size_t>(albedo.map)])
+        result.albedo_alpha_min = stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
 
     for (size_t i = 0; i < maps.size(); ++i) {
         if (!readable[i]) {

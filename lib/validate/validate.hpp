@@ -68,6 +68,9 @@ struct NormalCheck {
 struct SetValidation {
     std::vector<Finding> findings;
     std::optional<NormalCheck> normal;
+    // The smallest finite value of the albedo's alpha channel, when the albedo has one and no
+    // opacity map exists (routing's opacity-from-alpha); nullopt otherwise.
+    std::optional<double> albedo_alpha_min;
     int suppressed = 0;  // findings removed by "ignore"/"suppress"/"off"
 };
 

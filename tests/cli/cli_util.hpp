@@ -2,8 +2,6 @@
 #pragma once
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -13,6 +11,7 @@
 
 #include "core/files.hpp"
 #include "image/image.hpp"
+#include "run_binary.hpp"
 #include "test_files.hpp"
 
 namespace mft {
@@ -23,17 +22,16 @@ struct RunResult {
     std::string output;  // stdout + stderr
 };
 
-inline RunResult run(const std::string& args) {
-    RunResult r;
-    const std::string cmd = std::string(MATFORGE_BIN) + " " + args + " 2>&1";
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf{};
-    while (size_t n = std::fread(buf.data(), 1, buf.size(), p)) r.output.append(buf.data(), n);
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+// Runs `matforge ARGS` through the shell (ARGS quoted with q()), with `env` (VAR=value ...)
+// prepended. A JSON report printed to stdout goes to the schema spool like the files.
+inline RunResult run_env(const std::string& env, const std::string& args) {
+    const auto p = mf::testbin::spawn({"/bin/sh", "-c", env + " exec " + std::string(MATFORGE_BIN) + " " + args});
+    if (args.find("--report json") != std::string::npos && args.find("--report-file") == std::string::npos)
+        mf::testbin::spool_text(p.output, "stdout");
+    return {p.signal ? -1 : p.code, p.output};
 }
+
+inline RunResult run(const std::string& args) { return run_env("", args); }
 
 inline std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
@@ -47,6 +45,7 @@ inline fs::path temp_dir(const std::string& name) {
                   std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
+    mf::testbin::register_test_dir(d);
     return d;
 }
 

@@ -100,11 +100,9 @@ TEST(IngestErrors, UsageErrorsExitTwo) {
     EXPECT_NE(r.output.find("--preset"), std::string::npos);
     const fs::path bad_ocio = out / "broken.ocio";
     write_text(bad_ocio, "not: [a config");
-    r = run("ingest " + q(samples()) + " -o " + q(out) + " 2>&1; true");  // sanity: normal run works
-    r = mft::RunResult{};
-    const std::string cmd = "OCIO=" + q(bad_ocio) + " " + std::string(MATFORGE_BIN) + " ingest " + q(samples()) +
-                            " -o " + q(out) + " >/dev/null 2>&1";
-    EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 2) << "unreadable OpenColorIO config";
+    r = run_env("OCIO=" + q(bad_ocio), "ingest " + q(samples()) + " -o " + q(out));
+    EXPECT_EQ(r.code, 2) << "unreadable OpenColorIO config: " << r.output;
+    EXPECT_NE(r.output.find("matforge ingest: "), std::string::npos) << r.output;
 }
 
 TEST(IngestErrors, MissingInputIsAFailureNotACrash) {

@@ -1,5 +1,7 @@
 // The preview reads whatever layout a preset wrote: one source set, every shipped preset, the
 // same image (issue: "previews to the same image within 1 code").
+#include <sys/stat.h>
+
 #include "cli_util.hpp"
 
 using namespace mft;
@@ -48,4 +50,112 @@ TEST(PreviewCli, ContactSheetAndMissingManifest) {
     EXPECT_GT(sheet.width, 3 * 48);
     EXPECT_GT(sheet.height, 3 * 48);
     EXPECT_EQ(run("preview " + q(work / "nope.json") + " -o " + q(work / "x")).code, 2);
+}
+
+// ---- the command end to end: files, exit codes
+
+namespace {
+
+const char* kGold = R"({"image": {"width": 48, "height": 32}, "background": [0.1, 0.1, 0.1],
+  "material": {"albedo": [1.0, 0.766, 0.336], "roughness": 0.3, "metalness": 1.0}})";
+
+// A preview on lavapipe under the validation layer: any validation message makes it exit 1.
+RunResult preview(const std::string& args) { return run("preview --device cpu --vk-validation " + args); }
+
+}  // namespace
+
+TEST(PreviewCli, SceneMaterialWithoutManifestWritesSceneNamedPng) {
+    const fs::path dir = temp_dir("png");
+    write_text(dir / "gold.json", kGold);
+    const auto r = preview("--scene " + q(dir / "gold.json") + " -o " + q(dir / "out"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    mf::ImageInfo info;
+    mf::InputFile in;
+    in.path = dir / "out/gold.png";
+    in.display = in.path.string();
+    std::string err;
+    const auto header = mf::read_info(in, err);
+    ASSERT_TRUE(header) << err;
+    EXPECT_EQ(header->width, 48);
+    EXPECT_EQ(header->height, 32);
+    EXPECT_EQ(header->channels, 3);
+    EXPECT_EQ(header->bit_depth, 8);
+}
+
+TEST(PreviewCli, ExrIsLinearRadianceAndSizeOverrides) {
+    const fs::path dir = temp_dir("exr");
+    write_text(dir / "gold.json", kGold);
+    const auto r = preview("--scene " + q(dir / "gold.json") + " -o " + q(dir / "out") + " --format exr --size 24" +
+                           " --contact-sheet " + q(dir / "sheet.png"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    const mf::Image px = read_pixels(dir / "out/gold.exr");
+    ASSERT_EQ(px.width, 24);
+    EXPECT_NEAR(px.pixels[0], 0.1f, 1e-6f);  // background corner: the linear value itself
+    EXPECT_TRUE(fs::exists(dir / "sheet.png"));
+}
+
+TEST(PreviewCli, ExitCodes) {
+    const fs::path dir = temp_dir("codes");
+    write_text(dir / "gold.json", kGold);
+    EXPECT_EQ(preview("-o " + q(dir / "out")).code, 2);  // nothing to render
+    EXPECT_EQ(preview(q(dir / "missing.json") + " -o " + q(dir / "out")).code, 2);
+    const auto bad_light = preview("--scene " + q(dir / "gold.json") + " -o " + q(dir / "out") + " --light sun");
+    EXPECT_EQ(bad_light.code, 2);
+    EXPECT_NE(bad_light.output.find("matforge preview: --light"), std::string::npos) << bad_light.output;
+    write_text(dir / "bad.json", R"({"material": {"metalness": 7}})");
+    const auto bad_scene = preview("--scene " + q(dir / "bad.json") + " -o " + q(dir / "out"));
+    EXPECT_EQ(bad_scene.code, 2);
+    EXPECT_NE(bad_scene.output.find("material.metalness"), std::string::npos) << bad_scene.output;
+    // A manifest whose texture is missing: that material fails (1), the run goes on.
+    write_text(dir / "manifest.json", R"({"manifest_version": 1, "materials": [
+        {"name": "Gone", "outputs": [{"file": "gone.png", "color_space": "sRGB", "channels": {"RGB": "albedo"}}]},
+        {"name": "Plain", "outputs": [], "constants": {"albedo": [0.5, 0.5, 0.5]}}]})");
+    const auto partial = preview(q(dir / "manifest.json") + " -o " + q(dir / "out") + " --size 16");
+    EXPECT_EQ(partial.code, 1) << partial.output;
+    EXPECT_NE(partial.output.find("matforge preview: Gone: "), std::string::npos) << partial.output;
+    EXPECT_TRUE(fs::exists(dir / "out/Plain.png"));
+    EXPECT_FALSE(fs::exists(dir / "out/Gone.png"));
+}
+
+TEST(PreviewCli, NamesThatMeetOnOneFileGetDistinctFiles) {
+    const fs::path dir = temp_dir("stems");
+    write_text(dir / "manifest.json", R"({"manifest_version": 1, "materials": [
+        {"name": "Rock", "outputs": [], "constants": {"albedo": [0.5, 0.5, 0.5]}},
+        {"name": "rock", "outputs": [], "constants": {"albedo": [0.2, 0.2, 0.2]}},
+        {"name": "a/b", "outputs": [], "constants": {"albedo": [0.1, 0.1, 0.1]}},
+        {"name": "a_b", "outputs": [], "constants": {"albedo": [0.9, 0.9, 0.9]}}]})");
+    const auto r = preview(q(dir / "manifest.json") + " -o " + q(dir / "out") + " --size 8");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* f : {"Rock.png", "rock_2.png", "a_b.png", "a_b_2.png"}) EXPECT_TRUE(fs::exists(dir / "out" / f)) << f;
+    // Each file holds its own material: the brighter albedo renders brighter.
+    auto sum = [](const mf::Image& img) {
+        double t = 0;
+        for (float v : img.pixels) t += v;
+        return t;
+    };
+    EXPECT_GT(sum(read_pixels(dir / "out/Rock.png")), sum(read_pixels(dir / "out/rock_2.png")));
+    EXPECT_GT(sum(read_pixels(dir / "out/a_b_2.png")), sum(read_pixels(dir / "out/a_b.png")));
+}
+
+TEST(PreviewCli, AFifoNamedInAManifestIsRefusedNotWaitedFor) {
+    const fs::path dir = temp_dir("fifo");
+    ASSERT_EQ(::mkfifo((dir / "albedo.png").c_str(), 0600), 0);
+    write_text(dir / "manifest.json", R"({"manifest_version": 1, "materials": [
+        {"name": "F", "outputs": [{"file": "albedo.png", "color_space": "sRGB", "channels": {"RGB": "albedo"}}]}]})");
+    const auto r = preview(q(dir / "manifest.json") + " -o " + q(dir / "out") + " --size 8");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("not a regular file (a FIFO)"), std::string::npos) << r.output;
+    ASSERT_EQ(::mkfifo((dir / "scene.json").c_str(), 0600), 0);
+    EXPECT_EQ(preview("--scene " + q(dir / "scene.json") + " -o " + q(dir / "out")).code, 2);
+}
+
+TEST(PreviewCli, NoVulkanDriverIsAConfigurationErrorNamingThePackage) {
+    const fs::path dir = temp_dir("nodriver");
+    write_text(dir / "gold.json", kGold);
+    // The loader finds no driver manifest: as on a machine without mesa-vulkan-drivers.
+    const std::string none = q(dir / "none.json");
+    const auto r = run_env("VK_ICD_FILENAMES=" + none + " VK_DRIVER_FILES=" + none,
+                           "preview --device cpu --scene " + q(dir / "gold.json") + " -o " + q(dir / "out"));
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.output.find("mesa-vulkan-drivers"), std::string::npos) << r.output;
 }

@@ -74,9 +74,18 @@ TEST(Findings, JsonRoundTrip) {
     const auto j = mf::to_json(f);
     EXPECT_EQ(j["severity"], "info");
     EXPECT_FALSE(j.contains("file"));
-    const auto g = mf::finding_from_json(j);
-    EXPECT_EQ(g.code, f.code);
-    EXPECT_EQ(g.role, "metalness");
-    EXPECT_EQ(g.figures["generated"], 0.0);
+    std::string error;
+    const auto g = mf::finding_from_json(j, error);
+    ASSERT_TRUE(g) << error;
+    EXPECT_EQ(g->code, f.code);
+    EXPECT_EQ(g->role, "metalness");
+    EXPECT_EQ(g->figures["generated"], 0.0);
+    // Malformed findings are refused naming the member, never a JSON type_error.
+    EXPECT_FALSE(mf::finding_from_json({{"code", "X"}, {"severity", "fatal"}}, error));
+    EXPECT_NE(error.find("fatal"), std::string::npos);
+    EXPECT_FALSE(mf::finding_from_json({{"code", 3}, {"severity", "info"}}, error));
+    EXPECT_NE(error.find("code"), std::string::npos);
+    EXPECT_FALSE(mf::finding_from_json({{"severity", "info"}}, error));
+    EXPECT_FALSE(mf::finding_from_json({{"code", "X"}, {"severity", "info"}, {"figures", 2}}, error));
     EXPECT_EQ(mf::worst({f, {"X", mf::Severity::error, "", "", "", {}}}), mf::Severity::error);
 }

@@ -1,16 +1,38 @@
 // File-name discovery: newline-separated names (one folder's listing; the first line is the
-// folder name). Every name is classified; grouping must place each file in exactly one group;
-// choosing per role must name files of the set only.
+// folder name), optionally followed by a line "%%sidecar NAME" and the text of that sidecar
+// (glTF or Megascans JSON, or anything). Every name is classified; grouping must place each file
+// in exactly one group; choosing per role must name files of the set only; a sidecar's maps are
+// relative paths that stay inside the set.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "material/discovery.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    const std::string text(reinterpret_cast<const char*>(data), size);
+    const std::string input(reinterpret_cast<const char*>(data), size);
+    std::string text = input;
+    std::vector<mf::SidecarRoles> sidecars;
+    constexpr std::string_view kMarker = "\n%%sidecar ";
+    if (const auto at = input.find(kMarker); at != std::string::npos) {
+        text = input.substr(0, at);
+        const auto name_start = at + kMarker.size();
+        const auto name_end = std::min(input.find('\n', name_start), input.size());
+        const std::string name = input.substr(name_start, name_end - name_start);
+        const std::string content = name_end < input.size() ? input.substr(name_end + 1) : std::string();
+        sidecars.push_back(mf::sidecar_roles(name, content));
+        for (const auto& m : sidecars.back().maps) {
+            const auto& f = m.file;
+            if (f.empty() || f.front() == '/' || f.find('\\') != std::string::npos) __builtin_trap();
+            if (f == ".." || f.starts_with("../") || f.find("/../") != std::string::npos || f.ends_with("/..")) __builtin_trap();
+            if (m.match.sidecar != name) __builtin_trap();
+        }
+        text += "\n" + name;  // the sidecar is a file of the set
+    }
     std::vector<std::string> lines;
     size_t start = 0;
     for (size_t p = 0; p <= text.size(); ++p)
@@ -26,13 +48,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (const auto& f : files) {
         (void)mf::is_image_file(f);
         (void)mf::is_clutter(f);
+        (void)mf::is_sidecar_name(f);
         (void)mf::classify_name(f);
         (void)mf::material_stem(f);
         if (mf::resolution_hint(f) < 0) __builtin_trap();
     }
 
     size_t grouped = 0;
-    for (const auto& g : mf::group_files(files, folder)) grouped += g.files.size();
+    for (const auto& g : mf::group_files(files, folder)) {
+        grouped += g.files.size();
+        if (g.merge && (g.merge->spellings.size() < 2 || g.merge->spellings.size() != g.merge->files.size()))
+            __builtin_trap();
+    }
     if (grouped != files.size()) __builtin_trap();
 
     // Header facts derived from the name, absent for some: the ranking must cope with both.
@@ -41,13 +68,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const int s = 1 << (f.size() % 13);
         return mf::HeaderInfo{s, s, 1 + static_cast<int>(f.size() % 4), f.size() % 2 ? 8 : 16, f.size() % 5 == 0};
     };
-    const mf::SetDiscovery d = mf::discover_set(files, header, mf::ChoicePolicy{mf::NormalConvention::gl, 2048});
+    const mf::SetDiscovery d =
+        mf::discover_set(files, header, mf::ChoicePolicy{mf::NormalConvention::gl, 2048}, sidecars);
     for (const auto& c : d.choices) {
-        if (!unique.count(c.chosen.file)) __builtin_trap();
+        if (!unique.count(c.chosen.file) || c.chosen.match.role != c.role) __builtin_trap();
         for (const auto& r : c.rejected)
-            if (!unique.count(r.file)) __builtin_trap();
+            if (!unique.count(r.file) || r.match.role != c.role) __builtin_trap();
     }
-    for (const auto& s : d.sources)
-        if (!unique.count(s.file)) __builtin_trap();
+    for (const auto& f : d.findings)
+        if (!f.file.empty() && !unique.count(f.file)) __builtin_trap();
     return 0;
 }

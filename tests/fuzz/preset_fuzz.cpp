@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "pack/preset.hpp"
+#include "preset/preset.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const auto j = nlohmann::json::parse(data, data + size, nullptr, false);

@@ -25,65 +25,19 @@
 
 #include "core/files.hpp"
 #include "image/image.hpp"
+#include "run_binary.hpp"
 #include "test_files.hpp"
 
 namespace mfh {
 namespace fs = std::filesystem;
 using Bytes = std::vector<unsigned char>;
 
-struct Proc {
-    int code = -1;        // exit status when it exited
-    int signal = 0;       // the signal that ended it, 0 when it exited
-    bool hung = false;    // killed at the deadline
-    std::string output;   // stdout + stderr
-    long maxrss_kb = 0;   // peak resident memory of the process
-};
+using mf::testbin::Proc;
 
-// Runs argv[0] with argv (no shell: names with quotes or invalid UTF-8 pass through untouched).
-// `kill_after_s`: SIGKILL it after that many seconds (interrupt tests). `deadline_s`: a run still
-// going then is a hang: killed and reported as hung.
+// The deadline of a hostile run: a hang is reported, never a stuck CI job.
 inline Proc spawn(const std::vector<std::string>& argv, double deadline_s = 120,
                   std::optional<double> kill_after_s = std::nullopt) {
-    Proc p;
-    char log_name[] = "/tmp/matforge-hostile-log-XXXXXX";
-    const int log_fd = ::mkstemp(log_name);
-    if (log_fd < 0) return p;
-    ::unlink(log_name);
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        ::dup2(log_fd, STDOUT_FILENO);
-        ::dup2(log_fd, STDERR_FILENO);
-        ::execvp(args[0], args.data());
-        ::_exit(127);
-    }
-    const auto start = std::chrono::steady_clock::now();
-    int status = 0;
-    rusage ru{};
-    bool killed_on_purpose = false;
-    for (;;) {
-        const pid_t r = ::wait4(pid, &status, WNOHANG, &ru);
-        if (r == pid) break;
-        const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (kill_after_s && t >= *kill_after_s && !killed_on_purpose) {
-            ::kill(pid, SIGKILL);
-            killed_on_purpose = true;
-        } else if (t >= deadline_s && !p.hung) {
-            ::kill(pid, SIGKILL);
-            p.hung = true;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(kill_after_s ? 1 : 5));
-    }
-    if (WIFEXITED(status)) p.code = WEXITSTATUS(status);
-    if (WIFSIGNALED(status)) p.signal = WTERMSIG(status);
-    p.maxrss_kb = ru.ru_maxrss;
-    ::lseek(log_fd, 0, SEEK_SET);
-    std::array<char, 4096> buf{};
-    for (ssize_t n; (n = ::read(log_fd, buf.data(), buf.size())) > 0;) p.output.append(buf.data(), static_cast<size_t>(n));
-    ::close(log_fd);
-    return p;
+    return mf::testbin::spawn(argv, deadline_s, kill_after_s);
 }
 
 inline std::string bin() { return MATFORGE_BIN; }
@@ -96,6 +50,7 @@ inline fs::path temp_dir(const std::string& name) {
     std::error_code ec;
     fs::remove_all(d, ec);
     fs::create_directories(d);
+    mf::testbin::register_test_dir(d);
     return d;
 }
 

@@ -344,8 +344,10 @@ std::vector<std::string> sources(const SetDiscovery& d) {
     std::vector<std::string> out;
     for (const auto& s : d.sources) {
         std::string e = std::string(role_name(s.role)) + "<-" + (s.invert ? "~" : "") + s.file;
-        if (s.channel >= 0) e += "[" + std::string(1, "RGB"[s.channel]) + "]";
-        e += "(" + std::string(role_name(s.from)) + ")";
+        // Appended piece by piece: GCC 12 at -O3 reports `"[" + std::string` as an overlapping
+        // memcpy (a false -Wrestrict).
+        if (s.channel >= 0) e.append("[").append(1, "RGB"[s.channel]).append("]");
+        e.append("(").append(role_name(s.from)).append(")");
         out.push_back(e);
     }
     return out;

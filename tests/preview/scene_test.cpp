@@ -1,6 +1,8 @@
 // Scene files and --light specs.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "preview/preview.hpp"
 
 namespace mf::preview {
@@ -34,7 +36,10 @@ TEST(SceneFile, ReadsTheSpecExample) {
                     "maps": { "roughness": "mr.png#G", "normal": "n.png" }, "normal_convention": "dx" },
       "output": { "transfer": "linear", "exposure": 2.0 }
     })");
-    const SceneFile s = parse_scene(j, "/scenes", "test.json");
+    std::string error;
+    const auto parsed = parse_scene(j, "/scenes", "test.json", error);
+    ASSERT_TRUE(parsed) << error;
+    const SceneFile& s = *parsed;
     EXPECT_EQ(s.scene.width, 512u);
     EXPECT_EQ(s.scene.height, 256u);
     EXPECT_FLOAT_EQ(s.scene.shape.size, 1.5f);
@@ -48,19 +53,22 @@ TEST(SceneFile, ReadsTheSpecExample) {
     ASSERT_TRUE(s.material->roughness_map);
     EXPECT_EQ(s.material->roughness_map->file, std::filesystem::path("/scenes/mr.png"));
     EXPECT_EQ(s.material->roughness_map->channel, render::Channel::G);
-    EXPECT_TRUE(s.material->normal_dx);
+    EXPECT_EQ(s.material->normal_convention, NormalConvention::dx);
     EXPECT_EQ(s.output.transfer, render::Transfer::Linear);
     EXPECT_FLOAT_EQ(s.output.exposure, 2.f);
 }
 
 TEST(SceneFile, ShapesTakeTheirOwnDefaultSize) {
-    const SceneFile s = parse_scene(json::parse(R"({"shape": {"type": "cube"}})"), ".", "t");
+    std::string error;
+    const auto parsed = parse_scene(json::parse(R"({"shape": {"type": "cube"}})"), ".", "t", error);
+    ASSERT_TRUE(parsed) << error;
+    const SceneFile& s = *parsed;
     EXPECT_EQ(s.scene.shape.type, render::ShapeType::Cube);
     EXPECT_FLOAT_EQ(s.scene.shape.size, default_shape_size(render::ShapeType::Cube));
     EXPECT_FALSE(s.shape_size_given);
 }
 
-TEST(SceneFile, MistakesAreUsageErrorsNamingTheKey) {
+TEST(SceneFile, MistakesAreErrorsNamingTheKey) {
     const char* bad[] = {
         R"({"camera": {"yfov_deg": 0}})",
         R"({"image": {"width": 0}})",
@@ -82,13 +90,36 @@ TEST(SceneFile, MistakesAreUsageErrorsNamingTheKey) {
         R"({"material": {"maps": {"roughness": 1}}})",
         R"({"material": {"normal_convention": 1}})",
         R"({"image": {"width": "512"}})",
+        // Values outside what the quantity can be.
+        R"({"material": {"albedo": [-0.1, 0.5, 0.5]}})",
+        R"({"material": {"albedo": [1.5, 0.5, 0.5]}})",
+        R"({"material": {"metalness": 7}})",
+        R"({"material": {"roughness": -3}})",
+        R"({"material": {"emissive": [0, -1, 0]}})",
+        R"({"background": [-1, 0, 0]})",
+        R"({"lights": [{"type": "directional", "color": [1, -0.5, 1]}]})",
+        R"({"environment": {"file": "e.hdr", "intensity": -1}})",
     };
-    for (const char* text : bad) EXPECT_THROW(parse_scene(json::parse(text), ".", "t"), UsageError) << text;
-    try {
-        parse_scene(json::parse(R"({"lights": [{"type": "point"}]})"), ".", "scene.json");
-    } catch (const UsageError& e) {
-        EXPECT_NE(std::string(e.what()).find("scene.json: lights[0]"), std::string::npos) << e.what();
+    std::string error;
+    for (const char* text : bad) {
+        error.clear();
+        EXPECT_FALSE(parse_scene(json::parse(text), ".", "t", error)) << text;
+        EXPECT_EQ(error.rfind("t: ", 0), 0u) << text << " -> " << error;
     }
+    EXPECT_FALSE(parse_scene(json::parse(R"({"lights": [{"type": "point"}]})"), ".", "scene.json", error));
+    EXPECT_NE(error.find("scene.json: lights[0]"), std::string::npos) << error;
+    EXPECT_FALSE(parse_scene(json::parse(R"({"material": {"metalness": 7}})"), ".", "scene.json", error));
+    EXPECT_NE(error.find("scene.json: material.metalness"), std::string::npos) << error;
+}
+
+TEST(SceneFile, DeeplyNestedJsonIsRefusedNamingTheFile) {
+    const std::filesystem::path f = std::filesystem::temp_directory_path() / "matforge_deep_scene.json";
+    std::ofstream(f) << std::string(100000, '[') << std::string(100000, ']');
+    std::string error;
+    EXPECT_FALSE(read_scene_file(f, error));
+    EXPECT_NE(error.find(f.string()), std::string::npos) << error;
+    EXPECT_NE(error.find("nested deeper"), std::string::npos) << error;
+    std::filesystem::remove(f);
 }
 
 TEST(LightSpec, DirectionalAndPoint) {

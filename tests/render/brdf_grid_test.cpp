@@ -73,7 +73,7 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
     const auto out = harness.evaluate(in, mf::render::BrdfPrecision::Fp32, &ms);
     ASSERT_EQ(out.size(), in.size() * 3);
 
-    const Model models[] = {Model::standard, Model::accurate, Model::assignment};
+    const Model models[] = {Model::standard, Model::accurate, Model::unnormalized_diffuse};
     size_t nonfinite = 0, disagree = 0, lit = 0, zero_mismatch = 0;
     double worst_ratio = 0.0, worst_rel[3] = {0, 0, 0}, worst_abs_unlit = 0.0;
     for (size_t i = 0; i < in.size(); ++i) {
@@ -118,7 +118,7 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
     }
     std::printf("shader grid: %zu inputs x 3 models in %.1f ms (lavapipe), lit channels %zu; worst error / bound "
                 "%.3g; worst relative error (well-conditioned, value > 1e-3 E): standard %.3g, accurate %.3g, "
-                "assignment %.3g; worst GPU value where double is 0: %.3g E\n",
+                "unnormalized diffuse %.3g; worst GPU value where double is 0: %.3g E\n",
                 in.size(), ms, lit, worst_ratio, worst_rel[0], worst_rel[1], worst_rel[2], worst_abs_unlit);
     EXPECT_GE(in.size(), size_t{1000000});
     EXPECT_EQ(nonfinite, 0u) << "NaN, Inf or negative radiance from the shader";

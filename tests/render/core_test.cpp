@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "color/srgb.hpp"
 #include "render/internal.hpp"
 #include "vulkan_fixture.hpp"
 
@@ -59,10 +60,32 @@ TEST_P(MipTest, ColorIsAveragedInLinearLight) {
     if (p.format == VK_FORMAT_R8G8B8A8_SRGB) {
         // black and white average to linear 0.5, sRGB 0.7354 → code 188, not the naive 128
         EXPECT_EQ(p.levels[1].bytes[0], 188);
-        v = render::detail::srgb_to_linear(v);
+        v = mf::srgb_to_linear(v);
     }
     EXPECT_NEAR(v, 0.5, 4e-3);  // 188 decodes to 0.5029
     EXPECT_NEAR(texel(p, 1, 3), 1.0, 1e-6);  // alpha is plain data
+}
+
+TEST_P(MipTest, FloatColorIsDecodedExactlyNegativesMirrored) {
+    // A float texture tagged sRGB is decoded on the CPU with the exact curve (color/srgb.hpp) and
+    // stored linear. Negatives are mirrored, −f(−x): down to −0.04045 that is the linear segment
+    // continued (x / 12.92), below it the power segment, not a clamp to 0.
+    const float values[6] = {0.5f, -0.02f, -0.5f, 0.04045f, 1.f, 0.f};
+    Texture t;
+    t.width = 2;
+    t.height = 1;
+    t.channels = 3;
+    t.type = render::TexelType::F32;
+    t.srgb = true;
+    t.data.resize(sizeof values);
+    std::memcpy(t.data.data(), values, sizeof values);
+    const PreparedTexture p = prepare(t, MipKind::Color);
+    ASSERT_EQ(p.format, VK_FORMAT_R32G32B32A32_SFLOAT);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(texel(p, 0, c), static_cast<float>(mf::srgb_to_linear(double{values[c]}))) << c;
+    EXPECT_FLOAT_EQ(static_cast<float>(texel(p, 0, 1)), -0.02f / 12.92f);
+    EXPECT_NEAR(texel(p, 0, 2), -0.214041140482232, 1e-7);
+    EXPECT_EQ(texel(p, 0, 3), 1.0);  // alpha
 }
 
 TEST_P(MipTest, NormalsAreRenormalized) {

@@ -8,6 +8,9 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "../stability/brdf_reference.hpp"
+#include "color/srgb.hpp"
+
 namespace mf::test {
 
 using render::Channel;
@@ -19,9 +22,8 @@ using render::TexelType;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-// The renderer's documented floors (lib/render/shaders/brdf.glsl), part of "the same BRDF".
-constexpr double kMinRoughness = 0.045;
-constexpr double kMinNoV = 1e-4;
+using cpubrdf::kMinNoV;
+using cpubrdf::kMinRoughness;
 
 struct V3 {
     double x = 0, y = 0, z = 0;
@@ -33,37 +35,20 @@ double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 V3 normalize(V3 a) { return a * (1.0 / std::sqrt(dot(a, a))); }
 V3 v3(const render::Vec3& a) { return {a[0], a[1], a[2]}; }
+cpubrdf::V3<double> to_oracle(V3 a) { return {a.x, a.y, a.z}; }
+
+cpubrdf::Model model_of(render::Brdf b) {
+    switch (b) {
+        case render::Brdf::Standard: return cpubrdf::Model::standard;
+        case render::Brdf::Accurate: return cpubrdf::Model::accurate;
+        case render::Brdf::UnnormalizedDiffuse: return cpubrdf::Model::unnormalized_diffuse;
+    }
+    throw std::invalid_argument("reference: unknown BRDF");
+}
 
 struct RGB {
     double c[3] = {0, 0, 0};
 };
-
-// ---- the BRDF, term by term, from the papers
-
-// GGX NDF, Walter et al. 2007, eq. 33.
-double ndf_ggx(double NoH, double alpha) {
-    const double a2 = alpha * alpha;
-    const double t = NoH * NoH * (a2 - 1.0) + 1.0;
-    return a2 / (kPi * t * t);
-}
-
-// Schlick 1994 Fresnel.
-double fresnel_schlick(double f0, double VoH) { return f0 + (1.0 - f0) * std::pow(1.0 - VoH, 5.0); }
-
-// Schlick-GGX G1 with Karis's k = (r + 1)² / 8.
-double g1_schlick(double x, double roughness) {
-    const double k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
-    return x / (x * (1.0 - k) + k);
-}
-
-// Smith Λ for GGX (Heitz 2014, eq. 72) and the height-correlated G2 = 1 / (1 + Λ(v) + Λ(l)).
-double lambda_ggx(double cos_theta, double alpha) {
-    const double tan2 = (1.0 - cos_theta * cos_theta) / (cos_theta * cos_theta);
-    return 0.5 * (-1.0 + std::sqrt(1.0 + alpha * alpha * tan2));
-}
-double g2_correlated(double NoV, double NoL, double alpha) {
-    return 1.0 / (1.0 + lambda_ggx(NoV, alpha) + lambda_ggx(NoL, alpha));
-}
 
 struct Surface {
     double albedo[3];
@@ -72,28 +57,23 @@ struct Surface {
     V3 n;
 };
 
+// The scene's lights through the BRDF oracle (tests/stability/brdf_reference.hpp), prepared as
+// shade.frag prepares them: roughness and metalness clamped, albedo as sampled; E(μ, r) of the
+// accurate model's compensation by quadrature (specular_albedo_correlated), where the GPU reads
+// its table.
 RGB shade(const Scene& scene, const Surface& s, V3 p, V3 v) {
     const double r = std::clamp(s.roughness, kMinRoughness, 1.0);
     const double metal = std::clamp(s.metalness, 0.0, 1.0);
-    const double alpha = r * r;
     const V3 n = s.n;
     const double NoV = std::clamp(dot(n, v), kMinNoV, 1.0);
-    double f0[3], diffuse_color[3], comp[3] = {1, 1, 1};
-    for (int i = 0; i < 3; ++i) {
-        f0[i] = 0.04 * (1.0 - metal) + s.albedo[i] * metal;
-        diffuse_color[i] = s.albedo[i] * (1.0 - metal);
-    }
-    if (scene.brdf == render::Brdf::Accurate) {
-        const double E = specular_albedo_correlated(NoV, r);
-        for (int i = 0; i < 3; ++i) comp[i] = 1.0 + f0[i] * (1.0 / E - 1.0);
-    }
-    const double diffuse_norm = scene.brdf == render::Brdf::Assignment ? 1.0 : 1.0 / kPi;
+    const std::array<double, 3> albedo{s.albedo[0], s.albedo[1], s.albedo[2]};
+    const cpubrdf::Model model = model_of(scene.brdf);
 
     RGB out;
     for (const render::Light& light : scene.lights) {
         V3 l;
-        double E[3];
-        for (int i = 0; i < 3; ++i) E[i] = double{light.color[static_cast<size_t>(i)]} * light.intensity;
+        std::array<double, 3> E{};
+        for (size_t i = 0; i < 3; ++i) E[i] = double{light.color[i]} * light.intensity;
         if (light.type == render::LightType::Directional) {
             l = normalize(v3(light.direction)) * -1.0;
         } else {
@@ -103,22 +83,9 @@ RGB shade(const Scene& scene, const Surface& s, V3 p, V3 v) {
             l = d * (1.0 / std::sqrt(d2));
             for (double& e : E) e /= d2;
         }
-        const double NoL = std::min(dot(n, l), 1.0);
-        if (!(NoL > 0.0)) continue;
-        V3 h = v + l;
-        h = dot(h, h) > 1e-12 ? normalize(h) : n;
-        const double NoH = std::clamp(dot(n, h), 0.0, 1.0);
-        const double VoH = std::clamp(dot(v, h), 0.0, 1.0);
-        const double D = ndf_ggx(NoH, alpha);
-        const double G = scene.brdf == render::Brdf::Accurate
-                             ? g2_correlated(NoV, NoL, alpha)
-                             : g1_schlick(NoL, r) * g1_schlick(NoV, r);
-        for (int i = 0; i < 3; ++i) {
-            const double F = fresnel_schlick(f0[i], VoH);
-            const double specular = D * F * G / (4.0 * NoL * NoV) * comp[i];
-            const double diffuse = (1.0 - F) * diffuse_color[i] * diffuse_norm;
-            out.c[i] += (diffuse + specular) * E[i] * NoL;
-        }
+        const auto c = cpubrdf::light_radiance<double>(model, to_oracle(n), to_oracle(v), to_oracle(l), NoV, r, metal,
+                                                       albedo, E, specular_albedo_correlated);
+        for (size_t i = 0; i < 3; ++i) out.c[i] += c[i];
     }
     for (int i = 0; i < 3; ++i) {
         const double o = std::clamp(s.opacity, 0.0, 1.0);
@@ -154,7 +121,7 @@ double texel(const Texture& t, int x, int y, int c) {
             break;
         }
     }
-    if (t.srgb && c < 3) v = srgb_decode(v);
+    if (t.srgb && c < 3) v = mf::srgb_to_linear(v);
     return v;
 }
 
@@ -220,50 +187,12 @@ void sphere_st(V3 n, double& s, double& t) {
 
 }  // namespace
 
-double srgb_encode(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055; }
-double srgb_decode(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 int to_code(double e) { return static_cast<int>(std::floor(std::clamp(e, 0.0, 1.0) * 255.0 + 0.5)); }
-
-namespace {
-
-// E by quasi-Monte Carlo over visible normals (Heitz 2018), where the estimator G2/G1(v) is
-// bounded: 16384 Hammersley points in double precision reach about 1e-5.
-double specular_albedo_qmc(double NoV, double alpha) {
-    constexpr uint32_t kSamples = 16384;
-    const V3 v{std::sqrt(std::max(0.0, 1 - NoV * NoV)), 0, NoV};
-    const V3 vh = normalize(V3{alpha * v.x, alpha * v.y, v.z});
-    const double len2 = vh.x * vh.x + vh.y * vh.y;
-    const V3 t1 = len2 > 0 ? V3{-vh.y, vh.x, 0} * (1 / std::sqrt(len2)) : V3{1, 0, 0};
-    const V3 t2 = cross(vh, t1);
-    const double g1 = 1.0 / (1.0 + lambda_ggx(NoV, alpha));
-    double sum = 0;
-    for (uint32_t i = 0; i < kSamples; ++i) {
-        uint32_t bits = i;
-        bits = (bits << 16u) | (bits >> 16u);
-        bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-        bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-        bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-        bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-        const double u1 = (i + 0.5) / kSamples, u2 = bits * 0x1p-32;
-        const double r = std::sqrt(u1), phi = 2 * kPi * u2;
-        const double p1 = r * std::cos(phi);
-        const double s = 0.5 * (1 + vh.z);
-        const double p2 = (1 - s) * std::sqrt(1 - p1 * p1) + s * r * std::sin(phi);
-        const V3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0, 1 - p1 * p1 - p2 * p2));
-        const V3 h = normalize(V3{alpha * nh.x, alpha * nh.y, std::max(0.0, nh.z)});
-        const double VoH = dot(v, h);
-        const double NoL = 2 * VoH * h.z - v.z;
-        if (NoL <= 0 || VoH <= 0) continue;
-        sum += g2_correlated(NoV, NoL, alpha) / g1;
-    }
-    return sum / kSamples;
-}
-
-}  // namespace
 
 double specular_albedo_correlated(double NoV, double roughness) {
     // Tabulated per roughness over √(n·v) (E is steepest at grazing angles), 257 entries,
-    // linear in between: the interpolation error stays near 1e-6.
+    // linear in between: the interpolation error stays near 1e-6. Each entry is the oracle's
+    // quadrature over visible normals, 128² points.
     static std::map<double, std::vector<double>> tables;
     static std::mutex mutex;
     const double r = std::max(roughness, kMinRoughness);
@@ -276,7 +205,8 @@ double specular_albedo_correlated(double NoV, double roughness) {
             table->resize(kEntries);
             for (int i = 0; i < kEntries; ++i) {
                 const double x = double(i) / (kEntries - 1);
-                (*table)[size_t(i)] = specular_albedo_qmc(std::max(x * x, kMinNoV), r * r);
+                (*table)[size_t(i)] =
+                    cpubrdf::specular_albedo(cpubrdf::Model::accurate, std::max(x * x, kMinNoV), r, 128, 128);
             }
         }
     }
@@ -357,7 +287,7 @@ ReferenceImage render_reference(const Scene& scene, const Material& m) {
             surf.opacity = scalar(m, m.opacity, s, t);
             surf.n = n;
             if (m.normal.texture >= 0) {
-                // Tangent ∂p/∂u and bitangent toward +v (spec: three.js sphere).
+                // Tangent ∂p/∂u and bitangent toward +v of three.js's sphere parameterization.
                 const V3 tangent = normalize(V3{n.z, 0, -n.x});
                 const V3 bitangent = cross(n, tangent);
                 const auto c = sample(m.textures[size_t(m.normal.texture)], s, t);

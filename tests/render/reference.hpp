@@ -1,6 +1,7 @@
-// Independent CPU evaluation of the preview's BRDF, in double precision, over the analytic
-// shapes: the oracle the GPU images are compared with. Written from the papers' formulas, not
-// from the shaders (which rewrite several terms for fp32).
+// CPU rendering of the preview's scenes in double precision over the analytic sphere: the
+// reference the GPU images are compared with. The BRDF itself is the one CPU oracle of
+// tests/stability/brdf_reference.hpp (written from the papers' formulas, not from the shaders);
+// this adds the camera, the exact sphere, bilinear texture sampling, lights, opacity.
 #pragma once
 #include <vector>
 
@@ -22,15 +23,14 @@ struct ReferenceImage {
     bool silhouette(uint32_t x, uint32_t y) const;
 };
 
-// Sphere scenes only (the analytic shape the spec defines the preview by).
+// Sphere scenes only (the one shape the renderer shades analytically, see shade.frag).
 ReferenceImage render_reference(const render::Scene& scene, const render::Material& material);
 
 // Directional albedo with F = 1 of the accurate BRDF's specular lobe (height-correlated Smith
-// GGX), by quadrature.
+// GGX), by quadrature (cpubrdf::specular_albedo), tabulated per roughness.
 double specular_albedo_correlated(double NoV, double roughness);
 
-double srgb_encode(double linear);  // IEC 61966-2-1
-double srgb_decode(double encoded);
-int to_code(double encoded);        // round to nearest 8-bit code, clamped
+// The sRGB curves are mf::linear_to_srgb / mf::srgb_to_linear (color/srgb.hpp).
+int to_code(double encoded);  // round to nearest 8-bit code, clamped
 
 }  // namespace mf::test

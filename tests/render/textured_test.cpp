@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "color/srgb.hpp"
 #include "reference.hpp"
 #include "vulkan_fixture.hpp"
 
@@ -155,7 +156,7 @@ Result compare_with_reference(render::Context& context, const Material& m, const
             ++res.compared;
             const size_t i = (size_t{y} * kSize + x) * 4;
             for (int c = 0; c < 3; ++c) {
-                const int dc = std::abs(to_code(srgb_encode(r.rgb[c])) - int(f8.rgba8[i + size_t(c)]));
+                const int dc = std::abs(to_code(mf::linear_to_srgb(r.rgb[c])) - int(f8.rgba8[i + size_t(c)]));
                 res.max_code = std::max(res.max_code, dc);
                 res.max_rel = std::max(res.max_rel, std::abs(f32.rgba32f[i + size_t(c)] - r.rgb[c]) /
                                                         std::max(r.rgb[c], 1e-4));

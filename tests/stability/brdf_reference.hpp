@@ -1,12 +1,14 @@
-// A CPU evaluator of the preview's BRDF for the stability suite and the accuracy benchmark:
-// the mission's Cook-Torrance with its errata fixed, written from the papers' formulas and
-// templated on the arithmetic type so one source gives the double-precision reference, an fp32
-// evaluation and an fp16 emulation (every intermediate rounded to IEEE binary16).
+// The CPU oracle of the preview's BRDF, the one the tests and the accuracy benchmarks compare
+// with: the stability suite (tests/stability), the renderer's scene reference
+// (tests/render/reference.cpp) and shader harness (tests/render/brdf_grid_test.cpp),
+// bench/brdf_bench.cpp and bench/accuracy. Written from the papers' formulas and templated on
+// the arithmetic type, so one source gives the double-precision reference, an fp32 evaluation
+// and an fp16 emulation (every intermediate rounded to IEEE binary16).
 //
-// lib/render has no CPU BRDF in its public headers (tests/render/reference.cpp keeps its terms
-// private to the scene renderer), so this one is self-contained. It follows the renderer's
-// documented conventions (lib/render/shaders/brdf.glsl): perceptual roughness floored at 0.045,
-// N·V floored at 1e-4, half vector = normalize(v + l) with n where v = −l.
+// It follows the renderer's documented conventions (lib/render/shaders/brdf.glsl): perceptual
+// roughness floored at 0.045, N·V floored at 1e-4, half vector normalize(v + l) (not (v + l)/2),
+// and where v = −l (no half vector) no specular lobe. light_radiance() is the twin of the
+// shader's brdf_light(); shade() adds the handling of arbitrary (hard) inputs.
 //
 // Terms and sources:
 //  - D: GGX / Trowbridge-Reitz, α = roughness² (Walter et al. 2007, eq. 33), in the
@@ -16,8 +18,9 @@
 //    the remap for punctual lights), folded into V = G / (4 N·L N·V);
 //  - accurate variant: height-correlated Smith G2 (Heitz 2014, eq. 99) and the multiple-
 //    scattering compensation 1 + F0 (1/E − 1) (Kulla & Conty 2017; Fdez-Agüera 2019);
-//  - diffuse: Lambert albedo / π, scaled by (1 − F)(1 − metalness); the assignment variant
-//    leaves out the 1/π (its erratum 6) so students can compare.
+//  - diffuse: Lambert albedo / π, scaled by (1 − F)(1 − metalness); the unnormalized_diffuse
+//    variant leaves out Lambert's 1/π (diffuse π times too strong against the specular lobe),
+//    for comparison with engines that do this.
 #pragma once
 #include <Imath/half.h>
 
@@ -33,7 +36,11 @@ namespace mf::cpubrdf {
 inline constexpr double kMinRoughness = 0.045;  // brdf.glsl: D(r=0.045, n·h=1) ≈ 7.7e4 < fp32 max
 inline constexpr double kMinNoV = 1e-4;         // brdf.glsl: keeps 1/(N·V) finite
 
-enum class Model { standard, accurate, assignment };
+enum class Model {
+    standard,
+    accurate,
+    unnormalized_diffuse,  // standard without Lambert's 1/π (render::Brdf::UnnormalizedDiffuse)
+};
 
 template <class T>
 struct V3 {
@@ -182,29 +189,22 @@ bool unit(V3<T>& a) {
 }
 }  // namespace detail
 
-// Outgoing radiance (f_diffuse + f_specular) · E · N·L for one light, RGB.
-// Defined results for hard inputs (the stability suite asserts them):
-//  - n or l without a direction → 0 (no surface orientation / no light direction);
-//  - v without a direction → the viewer is taken along n;
-//  - N·L ≤ 0 → 0; N·V floored at 1e-4; v = −l → no specular, diffuse weighted by 1 − F0;
-//  - roughness NaN or below the floor → 0.045; metalness, albedo clamped to [0, 1], NaN → 0;
-//  - intensity NaN, negative or infinite → 0 (a light must have a finite power).
-template <class T, class P = Exact>
-std::array<T, 3> shade(Inputs<T> in, Model model) {
+// One punctual light's reflected radiance (f_diffuse + f_specular) · E · N·L, RGB: the twin of
+// brdf.glsl's brdf_light(). n, v, l unit; NoV = N·V clamped to [kMinNoV, 1]; r = perceptual
+// roughness in [kMinRoughness, 1]; metal in [0, 1]; `albedo` as given (not clamped); E the
+// light's irradiance at normal incidence per channel. energy(NoV, r) gives E(μ, r) of the
+// height-correlated lobe, asked for by the accurate model only.
+//  - N·L ≤ 0, and NaN (NaN × 0 = NaN would survive a max(N·L, 0) clamp) → 0;
+//  - v = −l → no specular, diffuse weighted by 1 − F0.
+template <class T, class P = Exact, class Energy>
+std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T r, T metal,
+                                const std::array<T, 3>& albedo, const std::array<T, 3>& E, Energy&& energy) {
     using detail::clamp_nan;
     const std::array<T, 3> zero{};
-    T E = in.intensity;
-    if (!(E > T(0)) || !std::isfinite(E)) return zero;
-    V3<T> n = in.n, l = in.l, v = in.v;
-    if (!detail::unit(n) || !detail::unit(l)) return zero;
-    if (!detail::unit(v)) v = n;
-    const T r = clamp_nan(in.roughness, T(kMinRoughness), T(1), T(kMinRoughness));
-    const T metal = clamp_nan(in.metalness, T(0), T(1), T(0));
     const T alpha = P::q(r * r);
     T NoL = P::q(dot(n, l));
     if (!(NoL > T(0))) return zero;
     NoL = std::min(NoL, T(1));
-    const T NoV = P::q(clamp_nan(dot(n, v), T(kMinNoV), T(1), T(kMinNoV)));
     V3<T> h{v.x + l.x, v.y + l.y, v.z + l.z};
     // v = −l: no half vector, no mirror configuration: no specular (the shader does the same).
     const bool has_h = detail::unit(h);
@@ -230,23 +230,48 @@ std::array<T, 3> shade(Inputs<T> in, Model model) {
     }
     const T m = T(1) - VoH;
     const T m5 = P::q(P::q(m * m) * P::q(m * m) * m);
-    const T comp_e = model == Model::accurate
-                         ? static_cast<T>(EnergyTable::get().lookup(static_cast<double>(NoV), static_cast<double>(r)))
-                         : T(1);
-    const T diffuse_norm = model == Model::assignment ? T(1) : T(1.0 / std::numbers::pi);
+    const T comp_e = model == Model::accurate ? static_cast<T>(energy(NoV, r)) : T(1);
+    // Lambert's 1/π: a white surface under irradiance E reflects radiance E/π.
+    const T diffuse_norm = model == Model::unnormalized_diffuse ? T(1) : T(1.0 / std::numbers::pi);
     const T DV = P::q(D * Vis);
     std::array<T, 3> out{};
     for (size_t i = 0; i < 3; ++i) {
-        const T albedo = clamp_nan(in.albedo[i], T(0), T(1), T(0));
-        const T f0 = T(0.04) * (T(1) - metal) + albedo * metal;
+        // F0 is a color: metals tint their reflection.
+        const T f0 = T(0.04) * (T(1) - metal) + albedo[i] * metal;
         const T F = P::q(f0 + (T(1) - f0) * m5);
         T spec = has_h ? P::q(DV * F) : T(0);
         if (model == Model::accurate)
             spec = P::q(spec * (T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1))));
-        const T diffuse = P::q((T(1) - F) * albedo * (T(1) - metal) * diffuse_norm);
-        out[i] = P::q(P::q(P::q(diffuse + spec) * E) * NoL);
+        const T diffuse = P::q((T(1) - F) * albedo[i] * (T(1) - metal) * diffuse_norm);
+        out[i] = P::q(P::q(P::q(diffuse + spec) * E[i]) * NoL);
     }
     return out;
+}
+
+// light_radiance() for arbitrary inputs, with E(μ, r) from EnergyTable (as the shader harness
+// reads it). Defined results for hard inputs (the stability suite asserts them):
+//  - n or l without a direction → 0 (no surface orientation / no light direction);
+//  - v without a direction → the viewer is taken along n;
+//  - N·L ≤ 0 → 0; N·V floored at 1e-4; v = −l → no specular, diffuse weighted by 1 − F0;
+//  - roughness NaN or below the floor → 0.045; metalness, albedo clamped to [0, 1], NaN → 0;
+//  - intensity NaN, negative or infinite → 0 (a light must have a finite power).
+template <class T, class P = Exact>
+std::array<T, 3> shade(Inputs<T> in, Model model) {
+    using detail::clamp_nan;
+    const std::array<T, 3> zero{};
+    const T E = in.intensity;
+    if (!(E > T(0)) || !std::isfinite(E)) return zero;
+    V3<T> n = in.n, l = in.l, v = in.v;
+    if (!detail::unit(n) || !detail::unit(l)) return zero;
+    if (!detail::unit(v)) v = n;
+    const T r = clamp_nan(in.roughness, T(kMinRoughness), T(1), T(kMinRoughness));
+    const T metal = clamp_nan(in.metalness, T(0), T(1), T(0));
+    const T NoV = P::q(clamp_nan(dot(n, v), T(kMinNoV), T(1), T(kMinNoV)));
+    std::array<T, 3> albedo{};
+    for (size_t i = 0; i < 3; ++i) albedo[i] = clamp_nan(in.albedo[i], T(0), T(1), T(0));
+    return light_radiance<T, P>(model, n, v, l, NoV, r, metal, albedo, {E, E, E}, [](T mu, T rough) {
+        return EnergyTable::get().lookup(static_cast<double>(mu), static_cast<double>(rough));
+    });
 }
 
 }  // namespace mf::cpubrdf

@@ -43,7 +43,7 @@ TEST(BrdfGrid, MillionHardInputsFiniteAndFp32AgreesWithDouble) {
                                              {{1.f, 0.5f, 0.f}, 1.f}, {{1.f, 1.f, 1.f}, 0.f},
                                              {{0.f, 0.f, 0.f}, 0.f}, {{0.8f, 0.5f, 0.2f}, 0.5f}};
     const std::vector<float> intensities = {0.f, 1.f, 1e3f, 1e6f};
-    const Model models[] = {Model::standard, Model::accurate, Model::assignment};
+    const Model models[] = {Model::standard, Model::accurate, Model::unnormalized_diffuse};
 
     size_t count = 0, nonfinite = 0, disagree = 0, nonzero = 0;
     double worst_rel = 0.0, worst_ratio = 0.0;
@@ -137,18 +137,18 @@ TEST(BrdfGrid, DefinedValuesAtTheBoundaries) {
                                Model::standard);
         EXPECT_EQ(inf[0], 0.0);
     }
-    // The assignment's diffuse is π times the Lambert one (its erratum 6), nothing else differs.
+    // Without Lambert's 1/π the diffuse lobe is π times stronger; nothing else differs.
     {
         const V3<double> l{0, 0.6, 0.8};
         const auto s = shade(Inputs<double>{n, n, l, {0.5, 0.5, 0.5}, 1.0, 0.0, 1.0}, Model::standard);
-        const auto a = shade(Inputs<double>{n, n, l, {0.5, 0.5, 0.5}, 1.0, 0.0, 1.0}, Model::assignment);
+        const auto a = shade(Inputs<double>{n, n, l, {0.5, 0.5, 0.5}, 1.0, 0.0, 1.0}, Model::unnormalized_diffuse);
         const auto spec = shade(Inputs<double>{n, n, l, {0.0, 0.0, 0.0}, 1.0, 0.0, 1.0}, Model::standard);
         EXPECT_NEAR(a[0] - spec[0], (s[0] - spec[0]) * std::numbers::pi, 1e-12);
     }
 }
 
 TEST(BrdfGrid, Fp16EmulationOverflowsOnlyWhereDocumented) {
-    // Erratum 7: D at the roughness floor and N·H = 1 is 7.7e4 > 65504, the half maximum. The
+    // D at the roughness floor and N·H = 1 is 7.7e4 > 65504, the half maximum. The
     // emulated fp16 evaluation overflows exactly there; at roughness ≥ 0.1 it stays finite.
     const V3<float> n{0, 0, 1};
     const std::array<float, 3> white{1, 1, 1};

@@ -25,7 +25,7 @@
 #include "color/srgb.hpp"
 #include "image/image.hpp"
 #include "pack/pack.hpp"
-#include "pack/preset.hpp"
+#include "preset/preset.hpp"
 #include "test_color.hpp"
 
 namespace {

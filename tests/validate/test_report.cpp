@@ -26,15 +26,28 @@ mf::Finding finding(std::string code, mf::Severity s, std::string role, std::str
 
 mv::Report sample() {
     mv::Report r;
-    r.materials.push_back({"Bricks059", "in/Bricks059 1K",
-                           {finding("ALBEDO_TOO_DARK", mf::Severity::warning, "albedo", "Bricks059_Color.png",
-                                    "25.0 % of dielectric albedo is darker than 30 sRGB <&> \"quoted\""),
-                            finding("NORMAL_INVALID", mf::Severity::error, "normal", "Bricks059_Normal.png",
-                                    std::string("control \x01 char")),
-                            finding("CONSTANT_MAP", mf::Severity::info, "metalness", "Bricks059_Metal.png",
-                                    "holds one value (0)")},
-                           {}});
-    r.materials.push_back({"Clean", "in/Clean", {}, {}});
+    mv::MaterialReport bricks;
+    bricks.name = "Bricks059";
+    bricks.source = "in/Bricks059 1K";
+    bricks.findings = {finding("ALBEDO_TOO_DARK", mf::Severity::warning, "albedo", "Bricks059_Color.png",
+                               "25.0 % of dielectric albedo is darker than 30 sRGB <&> \"quoted\""),
+                       finding("NORMAL_INVALID", mf::Severity::error, "normal", "Bricks059_Normal.png",
+                               std::string("control \x01 char")),
+                       finding("CONSTANT_MAP", mf::Severity::info, "metalness", "Bricks059_Metal.png",
+                               "holds one value (0)")};
+    bricks.convention = "ambientcg";
+    mf::manifest::Input normal;
+    normal.role = mf::Role::normal;
+    normal.file = "Bricks059_Normal.png";
+    normal.rule = "ambientcg:_Normal";
+    normal.normal = mf::manifest::NormalFacts{mf::NormalConvention::dx, "content", 0.87, "height+curl"};
+    bricks.inputs.push_back(normal);
+    bricks.constants.push_back({mf::Role::metalness, {0.f}});
+    r.materials.push_back(std::move(bricks));
+    mv::MaterialReport clean;
+    clean.name = "Clean";
+    clean.source = "in/Clean";
+    r.materials.push_back(std::move(clean));
     r.failures.push_back({"in/Broken.zip", "UNREADABLE_FILE", "in/Broken.zip: not a zip archive"});
     return r;
 }
@@ -75,19 +88,22 @@ TEST(Report, JsonShape) {
     EXPECT_EQ(mv::write_json(sample()), mv::write_json(sample())) << "deterministic";
 }
 
-TEST(Report, ExitCodes) {
+TEST(Report, Verdict) {
     mv::Summary s;
-    EXPECT_EQ(mv::exit_code(s, mv::FailOn::error), 0);
+    EXPECT_FALSE(mv::run_fails(s, mv::FailOn::error));
     s.warning = 1;
-    EXPECT_EQ(mv::exit_code(s, mv::FailOn::error), 0);
-    EXPECT_EQ(mv::exit_code(s, mv::FailOn::warning), 1);
-    EXPECT_EQ(mv::exit_code(s, mv::FailOn::never), 0);
+    EXPECT_FALSE(mv::run_fails(s, mv::FailOn::error));
+    EXPECT_TRUE(mv::run_fails(s, mv::FailOn::warning));
+    EXPECT_FALSE(mv::run_fails(s, mv::FailOn::never));
     s.error = 1;
-    EXPECT_EQ(mv::exit_code(s, mv::FailOn::error), 1);
-    EXPECT_EQ(mv::exit_code(s, mv::FailOn::never), 0);
+    EXPECT_TRUE(mv::run_fails(s, mv::FailOn::error));
+    EXPECT_FALSE(mv::run_fails(s, mv::FailOn::never));
     mv::Summary f;
     f.failures = 1;
-    EXPECT_EQ(mv::exit_code(f, mv::FailOn::never), 1) << "inputs that could not be processed";
+    EXPECT_TRUE(mv::run_fails(f, mv::FailOn::never)) << "inputs that could not be processed";
+    mv::Summary partial;
+    partial.incomplete = 1;
+    EXPECT_TRUE(mv::run_fails(partial, mv::FailOn::never)) << "a map that could not be read";
     EXPECT_EQ(mv::fail_on_from_name("warning"), mv::FailOn::warning);
     EXPECT_FALSE(mv::fail_on_from_name("fatal"));
 }
@@ -180,6 +196,30 @@ TEST(Report, SarifRequiredFields) {
               "in/Bricks059%201K/Bricks059_Color.png");
     EXPECT_EQ(results[2].at("level"), "note");
     EXPECT_EQ(results[0].at("properties").at("material"), "Bricks059");
+}
+
+TEST(Report, ShowsWhatWasDecided) {
+    const json j = json::parse(mv::write_json(sample()));
+    const json& m = j.at("materials")[0];
+    EXPECT_EQ(m.at("convention"), "ambientcg");
+    EXPECT_EQ(m.at("inputs").at("normal").at("file"), "Bricks059_Normal.png");
+    EXPECT_EQ(m.at("inputs").at("normal").at("normal_convention"), "dx");
+    EXPECT_EQ(m.at("inputs").at("normal").at("normal_convention_source"), "content");
+    EXPECT_EQ(m.at("inputs").at("normal").at("normal_convention_method"), "height+curl");
+    EXPECT_EQ(m.at("constants").at("metalness"), 0.0);
+    const std::string text = mv::write_text(sample(), mv::FailOn::error);
+    EXPECT_NE(text.find("normal              Bricks059_Normal.png  [ambientcg:_Normal]  dx (from the content: "
+                        "height+curl test, confidence 87 %)"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("generated on ingest: metalness 0"), std::string::npos) << text;
+    const json sarif = json::parse(mv::write_sarif(sample()));
+    const json& run = sarif.at("runs")[0];
+    ASSERT_EQ(run.at("artifacts").size(), 1u);
+    EXPECT_EQ(run.at("artifacts")[0].at("location").at("uri"), "in/Bricks059%201K/Bricks059_Normal.png");
+    EXPECT_EQ(run.at("artifacts")[0].at("properties").at("role"), "normal");
+    EXPECT_EQ(run.at("artifacts")[0].at("properties").at("normal_convention_confidence"), 0.87);
+    EXPECT_EQ(run.at("properties").at("materials")[0].at("constants").at("metalness"), 0.0);
 }
 
 TEST(Report, Escaping) {

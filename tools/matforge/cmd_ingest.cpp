@@ -8,6 +8,7 @@
 #include "options.hpp"
 #include "process/ingest.hpp"
 #include "process/validate_batch.hpp"
+#include "summary.hpp"
 
 namespace mf::cli {
 namespace {
@@ -19,27 +20,15 @@ struct IngestArgs {
     bool quiet = false;
 };
 
-int run_ingest(const IngestArgs& a) {
+ExitCode run_ingest(const IngestArgs& a) {
     std::string error = output_overlaps_input(a.out_dir, {a.inputs.begin(), a.inputs.end()});
-    if (!error.empty()) {
-        std::cerr << "matforge ingest: " << error << "\n";
-        return kExitUsage;
-    }
+    if (!error.empty()) return fail("ingest", error);
     auto preset = load_preset(a.preset, error);
-    if (!preset) {
-        std::cerr << "matforge ingest: " << error << "\n";
-        return kExitUsage;
-    }
+    if (!preset) return fail("ingest", error);
     auto rules = load_rule_config(*preset, a.rules_file, error);
-    if (!rules) {
-        std::cerr << "matforge ingest: " << error << "\n";
-        return kExitUsage;
-    }
+    if (!rules) return fail("ingest", error);
     auto color = ColorContext::create(error);
-    if (!color) {
-        std::cerr << "matforge ingest: " << error << "\n";
-        return kExitUsage;
-    }
+    if (!color) return fail("ingest", error);
     IngestOptions opt;
     opt.out_dir = a.out_dir;
     opt.jobs = a.jobs;
@@ -47,33 +36,29 @@ int run_ingest(const IngestArgs& a) {
     if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
     const bool tty = ::isatty(STDERR_FILENO) && !a.quiet;
     if (tty) {
-        opt.progress = [](size_t done, size_t total, const std::string& name, const std::string& status) {
-            std::cerr << "\r\033[K[" << done << "/" << total << "] " << name << " " << status << std::flush;
+        opt.progress = [](size_t done, size_t total, const std::string& name, const MaterialResult& r) {
+            std::cerr << "\r\033[K[" << done << "/" << total << "] " << name << " " << set_status(r) << std::flush;
             if (done == total) std::cerr << "\n";
         };
     }
     Ingestor ingestor(std::move(*preset), color, opt);
     std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
     const IngestResult r = ingestor.run(inputs);
-    if (!r.error.empty()) {
-        std::cerr << "matforge ingest: " << r.error << "\n";
-        return kExitFindings;
+    if (!r.error.empty()) return fail("ingest", r.error, ExitCode::findings);
+    for (const auto& f : r.manifest.failures) say("ingest", f.code + ": " + f.message);
+    if (!a.quiet) {
+        const auto counts = manifest::count_findings(r.manifest);
+        say("ingest", std::to_string(r.manifest.materials.size()) + " materials, " +
+                          std::to_string(r.manifest.failures.size()) + " failed; findings: " + std::to_string(counts[2]) +
+                          " error, " + std::to_string(counts[1]) + " warning, " + std::to_string(counts[0]) +
+                          " info; manifest: " + (std::filesystem::path(a.out_dir) / "manifest.json").string());
+        print_attention("ingest", r.manifest);
     }
-    for (const auto& f : r.manifest["failures"])
-        std::cerr << "matforge ingest: " << f["code"].get<std::string>() << ": " << f["message"].get<std::string>() << "\n";
-    size_t counts[3] = {0, 0, 0};
-    for (const auto& m : r.manifest["materials"])
-        for (const auto& f : m["findings"])
-            ++counts[static_cast<int>(severity_from_name(f["severity"].get<std::string>()).value_or(Severity::error))];
-    if (!a.quiet)
-        std::cerr << "matforge ingest: " << r.materials << " materials, " << r.failures << " failed; findings: "
-                  << counts[2] << " error, " << counts[1] << " warning, " << counts[0] << " info; manifest: "
-                  << (std::filesystem::path(a.out_dir) / "manifest.json").string() << "\n";
-    return findings_exit(r.worst, a.fail_on, r.failures > 0);
+    return verdict_exit(validate::run_fails(summarize(r.manifest), fail_on_of(a.fail_on)));
 }
 
 const Register reg{{"ingest", 10,
-                    [](CLI::App& sub) -> std::function<int()> {
+                    [](CLI::App& sub) -> std::function<ExitCode()> {
                         auto a = std::make_shared<IngestArgs>();
                         sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
                             ->required();

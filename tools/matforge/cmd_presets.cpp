@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "command.hpp"
-#include "pack/preset.hpp"
+#include "preset/preset.hpp"
 
 namespace mf::cli {
 namespace {
@@ -12,30 +12,28 @@ struct PresetsArgs {
     std::string action = "list", name;
 };
 
-int run_presets(const PresetsArgs& a) {
+ExitCode run_presets(const PresetsArgs& a) {
     std::string error;
     if (a.action == "list") {
         for (const auto& n : shipped_presets()) {
             auto p = load_preset(n, error);
             std::cout << n << "\t" << (p ? p->engine_convention : error) << "\n";
         }
-        return kExitOk;
+        return ExitCode::ok;
     }
     if (a.name.empty()) {
-        std::cerr << "matforge presets show: name a preset\n";
-        return kExitUsage;
+        return fail("presets", "show: name a preset");
     }
     auto p = load_preset(a.name, error);
     if (!p) {
-        std::cerr << "matforge presets: " << error << "\n";
-        return kExitUsage;
+        return fail("presets", error);
     }
     std::cout << p->source_json.dump(2) << "\n";
-    return kExitOk;
+    return ExitCode::ok;
 }
 
 const Register reg{{"presets", 40,
-                    [](CLI::App& sub) -> std::function<int()> {
+                    [](CLI::App& sub) -> std::function<ExitCode()> {
                         auto a = std::make_shared<PresetsArgs>();
                         sub.add_option("action", a->action, "list | show")
                             ->check(CLI::IsMember({"list", "show"}))

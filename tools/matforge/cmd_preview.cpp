@@ -1,14 +1,21 @@
 // matforge preview [<manifest.json>] -o <out-dir> [--scene FILE.json] [--size N]
 //   [--shape sphere|cube|plane] [--light SPEC]... [--env FILE.hdr|.exr] [--format png|exr]
 //   [--contact-sheet FILE.png] [--device auto|gpu|cpu] [--brdf standard|accurate|assignment]
+//   [--allow-outside] [--vk-validation]
+// Options -> scene -> materials -> images: every material is loaded, uploaded, rendered and
+// written in turn; one that fails is reported and the others are still rendered.
 #include <unistd.h>
 
-#include <iostream>
+#include <algorithm>
+#include <cctype>
+#include <functional>
 #include <memory>
+#include <set>
 
 #include "command.hpp"
 #include "preview/preview.hpp"
 
+namespace mf::cli {
 namespace {
 
 struct PreviewArgs {
@@ -16,33 +23,203 @@ struct PreviewArgs {
     uint32_t size = 0;
     std::vector<std::string> lights;
     std::string format = "png", device = "auto";
-    bool validation = false;
+    bool validation = false, allow_outside = false;
 };
 
-// Runs at command time, not during static initialization: the registration below holds no reference to
-// std::cerr (a global of another translation unit).
-int run_preview(const PreviewArgs& a) {
-    mf::preview::Options o;
-    if (!a.manifest.empty()) o.manifest = a.manifest;
-    o.out_dir = a.out;
-    if (!a.scene.empty()) o.scene = a.scene;
-    if (a.size) o.size = a.size;
-    if (!a.shape.empty()) o.shape = a.shape;
-    o.lights = a.lights;
-    if (!a.env.empty()) o.env = a.env;
-    o.format = a.format;
-    if (!a.contact_sheet.empty()) o.contact_sheet = a.contact_sheet;
-    o.device = a.device;
-    if (!a.brdf.empty()) o.brdf = a.brdf;
-    o.validation = a.validation;
-    // Progress on a terminal, quiet otherwise (scripts read the exit code and the files).
-    o.quiet = !isatty(STDERR_FILENO);
-    return mf::preview::run(o, std::cerr);
+// A material name as a file name: path separators and characters shells trip on become '_';
+// names that meet case-insensitively (A, a) get _2, _3 … so no preview overwrites another.
+std::string unique_stem(const std::string& name, std::set<std::string>& taken) {
+    std::string s = name;
+    for (char& c : s)
+        if (c == '/' || c == '\\' || c == ':' || c == '*' || c == '?' || c == '"' || c == '<' || c == '>' || c == '|')
+            c = '_';
+    if (s.empty() || s == "." || s == "..") s = "material";
+    auto key = [](std::string k) {
+        std::transform(k.begin(), k.end(), k.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        return k;
+    };
+    std::string candidate = s;
+    for (int n = 2; !taken.insert(key(candidate)).second; ++n) candidate = s + "_" + std::to_string(n);
+    return candidate;
 }
 
-const mf::cli::Register reg{{
+struct Job {
+    std::string name, stem;
+    std::function<std::optional<render::Material>(std::vector<std::string>& notes, std::string& error)> load;
+};
+
+// The scene with the command line's overrides applied; nullopt after printing a usage error.
+std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
+    std::string error;
+    std::optional<preview::SceneFile> sf = a.scene.empty() ? preview::default_scene() : preview::read_scene_file(a.scene, error);
+    if (!sf) {
+        say("preview", error);
+        return std::nullopt;
+    }
+    render::Scene& scene = sf->scene;
+    if (a.size) scene.width = scene.height = a.size;
+    if (!a.shape.empty()) {
+        scene.shape.type = *preview::parse_shape(a.shape);  // CLI11 checked the name
+        if (!sf->shape_size_given) scene.shape.size = preview::default_shape_size(scene.shape.type);
+    }
+    if (!a.lights.empty()) {
+        if (a.lights.size() > render::kMaxLights) {
+            say("preview", "at most " + std::to_string(render::kMaxLights) + " lights");
+            return std::nullopt;
+        }
+        scene.lights.clear();
+        for (const std::string& spec : a.lights) {
+            const auto light = preview::parse_light_spec(spec, error);
+            if (!light) {
+                say("preview", "--light: " + error);
+                return std::nullopt;
+            }
+            scene.lights.push_back(*light);
+        }
+    }
+    if (!a.brdf.empty()) scene.brdf = *render::parse_brdf(a.brdf);  // CLI11 checked the name
+    if (!a.env.empty()) sf->environment = a.env;
+    if (sf->environment) {
+        auto env = preview::read_environment(*sf->environment, sf->environment_intensity, error);
+        if (!env) {
+            say("preview", "environment: " + error);
+            return std::nullopt;
+        }
+        scene.environment = std::make_shared<render::Environment>(std::move(*env));
+    }
+    return sf;
+}
+
+// The materials to render: the manifest's, or the scene file's own. nullopt after a usage error.
+std::optional<std::vector<Job>> build_jobs(const PreviewArgs& a, const preview::SceneFile& sf) {
+    std::vector<Job> jobs;
+    std::set<std::string> stems;
+    if (!a.manifest.empty()) {
+        std::string error;
+        auto m = manifest::read_manifest(a.manifest, error);
+        if (!m) {
+            say("preview", error);
+            return std::nullopt;
+        }
+        const std::filesystem::path dir = std::filesystem::path(a.manifest).parent_path();
+        const preview::MaterialOptions mo{a.allow_outside};
+        for (manifest::Material& mm : m->materials) {
+            const std::string stem = unique_stem(mm.name, stems);
+            jobs.push_back({mm.name, stem,
+                            [mm = std::move(mm), dir, mo, &sf](std::vector<std::string>& notes, std::string& err)
+                                -> std::optional<render::Material> {
+                                auto mat = preview::load_material(mm, dir, mo, notes, err);
+                                if (mat && sf.material && !preview::apply_scene_material(*sf.material, *mat, err))
+                                    return std::nullopt;
+                                return mat;
+                            }});
+        }
+        if (jobs.empty()) say("preview", "note: " + a.manifest + " lists no materials");
+        return jobs;
+    }
+    if (!sf.material) {
+        say("preview", a.scene + ": without a manifest the scene must hold a \"material\"");
+        return std::nullopt;
+    }
+    const std::string name = std::filesystem::path(a.scene).stem().string();
+    jobs.push_back({name, unique_stem(name, stems),
+                    [name, &sf](std::vector<std::string>&, std::string& err) -> std::optional<render::Material> {
+                        render::Material m;
+                        m.name = name;
+                        if (!preview::apply_scene_material(*sf.material, m, err)) return std::nullopt;
+                        return m;
+                    }});
+    return jobs;
+}
+
+ExitCode run_preview(const PreviewArgs& a) {
+    if (a.manifest.empty() && a.scene.empty())
+        return fail("preview", "nothing to render: give a manifest.json, or a --scene file that holds a material");
+    const auto sf = build_scene(a);
+    if (!sf) return ExitCode::usage;
+    const auto jobs = build_jobs(a, *sf);
+    if (!jobs) return ExitCode::usage;
+    // Progress on a terminal, quiet otherwise (scripts read the exit code and the files).
+    const bool quiet = !::isatty(STDERR_FILENO);
+    const render::Scene& scene = sf->scene;
+
+    render::ContextOptions co;
+    co.device = *render::parse_device_kind(a.device);  // CLI11 checked the name
+    co.validation = a.validation;
+    if (a.validation) co.log = std::make_shared<render::MessageLog>();
+    ExitCode status = ExitCode::ok;
+    std::vector<preview::SheetTile> tiles;
+    std::error_code ec;
+    std::filesystem::create_directories(a.out, ec);
+    try {
+        render::Context context(co);
+        if (!quiet)
+            say("preview", context.info().name + (context.info().cpu ? " (CPU)" : "") + ", " + std::to_string(scene.width) +
+                               "x" + std::to_string(scene.height) + ", " + std::to_string(jobs->size()) + " material(s)");
+        render::Renderer renderer(context, scene);
+        for (size_t i = 0; i < jobs->size(); ++i) {
+            const Job& job = (*jobs)[i];
+            std::vector<std::string> notes;
+            std::string error;
+            auto m = job.load(notes, error);
+            for (const std::string& n : notes) say("preview", "note: " + n);
+            if (!m) {
+                say("preview", job.name + ": " + error);
+                status = ExitCode::findings;
+                continue;
+            }
+            try {
+                const render::GpuMaterial gm = renderer.upload(*m);
+                const std::filesystem::path out = std::filesystem::path(a.out) / (job.stem + "." + a.format);
+                std::vector<uint8_t> rgba8;
+                if (a.format == "png" || !a.contact_sheet.empty()) rgba8 = renderer.render(gm, sf->output).rgba8;
+                bool written = false;
+                if (a.format == "png") {
+                    written = preview::write_png(out, scene.width, scene.height, rgba8, error);
+                } else {
+                    render::OutputOptions lin;
+                    lin.format = render::PixelFormat::Rgba32F;
+                    written = preview::write_exr(out, scene.width, scene.height, renderer.render(gm, lin).rgba32f, error);
+                }
+                if (!written) {
+                    say("preview", job.name + ": " + error);
+                    status = ExitCode::findings;
+                    continue;
+                }
+                if (!a.contact_sheet.empty()) tiles.push_back({job.name, scene.width, scene.height, std::move(rgba8)});
+                if (!quiet) say("preview", "[" + std::to_string(i + 1) + "/" + std::to_string(jobs->size()) + "] " + out.string());
+            } catch (const render::NoDeviceError&) {
+                throw;
+            } catch (const std::exception& e) {  // this material's upload or draw failed; the others go on
+                say("preview", job.name + ": " + e.what());
+                status = ExitCode::findings;
+            }
+        }
+    } catch (const render::NoDeviceError& e) {
+        return fail("preview", e.what());
+    } catch (const std::exception& e) {
+        return fail("preview", e.what(), ExitCode::findings);
+    }
+    if (co.log) {
+        for (const std::string& msg : co.log->messages()) say("preview", "vulkan validation: " + msg);
+        if (co.log->count() > 0) status = ExitCode::findings;
+    }
+    if (!a.contact_sheet.empty() && !tiles.empty()) {
+        uint32_t w = 0, h = 0;
+        std::vector<uint8_t> sheet;
+        preview::compose_contact_sheet(tiles, w, h, sheet);
+        const std::filesystem::path file(a.contact_sheet);
+        if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ec);
+        std::string error;
+        if (!preview::write_png(file, w, h, sheet, error)) return fail("preview", error, ExitCode::findings);
+        if (!quiet) say("preview", "contact sheet: " + file.string());
+    }
+    return status;
+}
+
+const Register reg{{
     "preview", 30,
-    [](CLI::App& sub) -> std::function<int()> {
+    [](CLI::App& sub) -> std::function<ExitCode()> {
         auto a = std::make_shared<PreviewArgs>();
         sub.add_option("manifest", a->manifest, "manifest.json written by `matforge ingest` (optional with a --scene that holds a material)");
         sub.add_option("-o,--out", a->out, "output folder: <material name>.png|.exr (with no manifest: <scene name>.png)")->required();
@@ -58,12 +235,15 @@ const mf::cli::Register reg{{
         sub.add_option("--contact-sheet", a->contact_sheet, "also write every material on one labeled PNG");
         sub.add_option("--device", a->device, "auto (a GPU if any, else lavapipe) | gpu | cpu; default auto")->check(CLI::IsMember({"auto", "gpu", "cpu"}));
         sub.add_option("--brdf", a->brdf,
-                       "standard (the mission's BRDF, errata fixed) | accurate (height-correlated Smith, multiple-scattering compensation) "
-                       "| assignment (diffuse without 1/π, as the course's engine); default: the scene's, else standard")
+                       "standard (GGX, Schlick Fresnel, Schlick-GGX, Lambert) | accurate (height-correlated Smith, "
+                       "multiple-scattering compensation) | assignment (un-normalized Lambert: diffuse without 1/π, π× too "
+                       "strong against the specular); default: the scene's, else standard")
             ->check(CLI::IsMember({"standard", "accurate", "assignment"}));
+        sub.add_flag("--allow-outside", a->allow_outside, "read manifest textures that lie outside the manifest's folder");
         sub.add_flag("--vk-validation", a->validation, "run with the Khronos validation layer and report its messages (diagnostics; slow)");
         return [a] { return run_preview(*a); };
     },
-    "render the materials of a manifest with the full BRDF, headless (PNG or EXR)"}};
+    "render the materials of a manifest with a physically based BRDF, headless (PNG or EXR)"}};
 
 }  // namespace
+}  // namespace mf::cli

@@ -17,24 +17,18 @@ struct ValidateArgs {
     int jobs = 0;
 };
 
-int run_validate(const ValidateArgs& a) {
+ExitCode run_validate(const ValidateArgs& a) {
     std::string error;
     auto preset = load_preset(a.preset, error);
-    if (!preset) {
-        std::cerr << "matforge validate: " << error << "\n";
-        return kExitUsage;
-    }
+    if (!preset) return fail("validate", error);
     auto rules = load_rule_config(*preset, a.rules_file, error);
-    if (!rules) {
-        std::cerr << "matforge validate: " << error << "\n";
-        return kExitUsage;
-    }
+    if (!rules) return fail("validate", error);
     ValidateBatchOptions opt;
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
     const validate::Report report =
         validate_inputs(std::vector<std::filesystem::path>(a.inputs.begin(), a.inputs.end()), *preset, opt);
-    const auto fail_on = validate::fail_on_from_name(a.fail_on).value_or(validate::FailOn::error);
+    const auto fail_on = fail_on_of(a.fail_on);
     std::string text;
     if (a.report == "json") text = validate::write_json(report);
     else if (a.report == "junit") text = validate::write_junit(report, fail_on);
@@ -45,14 +39,13 @@ int run_validate(const ValidateArgs& a) {
         if (!text.empty() && text.back() != '\n') std::cout << "\n";
     } else if (!write_file_atomic(a.report_file, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()),
                                   error)) {
-        std::cerr << "matforge validate: " << error << "\n";
-        return kExitUsage;
+        return fail("validate", error);
     }
-    return validate::exit_code(validate::summarize(report), fail_on);
+    return verdict_exit(validate::run_fails(validate::summarize(report), fail_on));
 }
 
 const Register reg{{"validate", 20,
-                    [](CLI::App& sub) -> std::function<int()> {
+                    [](CLI::App& sub) -> std::function<ExitCode()> {
                         auto a = std::make_shared<ValidateArgs>();
                         sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
                             ->required();

@@ -1,21 +1,31 @@
 // Subcommand registry: each cmd_*.cpp registers itself; main() parses and runs the chosen one.
-// Exit codes (shared/spec/interface.md): 0 done, 1 findings at/above --fail-on or inputs not
-// processed, 2 usage or configuration error.
+// Exit codes are decided in tools/ only (docs/interface.md, "Exit codes"); the library returns
+// results and findings. Every message a command prints starts with "matforge <command>: ".
 #pragma once
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <iostream>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "core/findings.hpp"
+#include "validate/report.hpp"
 
 namespace mf::cli {
 
-enum Exit : int { kExitOk = 0, kExitFindings = 1, kExitUsage = 2 };
+enum class ExitCode : int {
+    ok = 0,        // done; no finding at or above --fail-on
+    findings = 1,  // a finding at or above --fail-on, or an input not processed / an output not written
+    usage = 2,     // a usage or configuration error: option, preset, rules, scene, manifest, no Vulkan device
+};
 
 struct Command {
     std::string name;
     int order;  // position in --help
     // Adds the subcommand's options to `sub`; returns the function to run after parsing.
-    std::function<std::function<int()>(CLI::App& sub)> setup;
+    std::function<std::function<ExitCode()>(CLI::App& sub)> setup;
     std::string description;
 };
 
@@ -24,5 +34,18 @@ std::vector<Command>& registry();
 struct Register {
     explicit Register(Command c) { registry().push_back(std::move(c)); }
 };
+
+// "matforge <command>: <message>" on stderr.
+inline void say(std::string_view command, const std::string& message) {
+    std::cerr << "matforge " << command << ": " << message << "\n";
+}
+// say() and return `code`: the shape of every early exit.
+inline ExitCode fail(std::string_view command, const std::string& message, ExitCode code = ExitCode::usage) {
+    say(command, message);
+    return code;
+}
+
+// The exit code of a run's verdict (validate::run_fails decides it).
+inline ExitCode verdict_exit(bool run_fails) { return run_fails ? ExitCode::findings : ExitCode::ok; }
 
 }  // namespace mf::cli

@@ -1,7 +1,9 @@
-// The preview's BRDF, one small function per term. The CPU reference in
-// tests/render/reference.cpp is an independent double-precision implementation of the same.
+// The preview's BRDF, one small function per term. Its CPU twin, written from the papers'
+// formulas in double precision, is tests/stability/brdf_reference.hpp (the oracle of the tests).
 #ifndef MF_BRDF_GLSL
 #define MF_BRDF_GLSL
+
+#include "interface.h"  // kBrdfStandard, kBrdfAccurate, kBrdfUnnormalizedDiffuse
 
 // Arithmetic type of the terms: fp32 (the preview), or binary16 where the includer enables
 // GL_EXT_shader_explicit_arithmetic_types_float16 and defines MF_BRDF_FP16 (the accuracy harness,
@@ -17,14 +19,10 @@
 
 const float PI = 3.14159265358979323846;
 
-const int BRDF_STANDARD = 0;
-const int BRDF_ACCURATE = 1;
-const int BRDF_ASSIGNMENT = 2;  // Standard with the assignment's diffuse (no 1/π, erratum 6)
-
 // Smallest perceptual roughness. A point light reflected by a perfect mirror is a Dirac peak;
 // 0.045 (Filament's floor for fp32) gives α² ≈ 4.1e-6 and a finite peak
-// D = 1/(πα²) ≈ 7.7e4, well inside fp32 (the assignment's 1e-6 floor on α² gives 3.2e5, which
-// overflows half floats: erratum 7).
+// D = 1/(πα²) ≈ 7.7e4, well inside fp32 (a floor of 1e-6 on α² instead gives 3.2e5, which
+// overflows half floats, whose maximum is 65504).
 const float MIN_ROUGHNESS = 0.045;
 // N·V floor: a normal map can tilt n away from the viewer; the BRDF's 1/(N·V) must stay finite.
 const float MIN_NOV = 1e-4;
@@ -42,7 +40,7 @@ mf_float D_GGX(mf_float NoH, mf_vec3 n_cross_h, mf_float alpha) {
 
 // Fresnel reflectance, Schlick's approximation.
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering", eq. 15.
-// F0 is a color: metals tint their reflection (erratum 1 of the assignment).
+// F0 is a color, not a scalar: metals tint their reflection.
 mf_vec3 F_Schlick(mf_vec3 f0, mf_float VoH) {
     mf_float m = mf_float(1.0) - VoH;
     mf_float m2 = m * m;
@@ -50,9 +48,9 @@ mf_vec3 F_Schlick(mf_vec3 f0, mf_float VoH) {
 }
 
 // Schlick-GGX masking-shadowing for punctual lights, as the visibility term
-// V = G / (4 (n·l)(n·v)). G1(x) = x / (x (1 − k) + k) (Schlick 1994, eq. 19; denominator
-// "+ k", erratum 3) with k = (r + 1)² / 8 (Karis 2013, "Real Shading in Unreal Engine 4",
-// p. 3: the remap for analytic lights only; image-based lighting uses k = α/2, erratum 8).
+// V = G / (4 (n·l)(n·v)). G1(x) = x / (x (1 − k) + k) (Schlick 1994, eq. 19: the denominator
+// adds k, so G1(1) = 1) with k = (r + 1)² / 8 (Karis 2013, "Real Shading in Unreal Engine 4",
+// p. 3: the remap for analytic lights only; image-based lighting uses k = α/2, brdf_lut.glsl).
 // The numerators n·l and n·v cancel against the denominator and are left out of both.
 mf_float V_SchlickGGX_k(mf_float NoV, mf_float NoL, mf_float k) {
     return mf_float(0.25) / ((NoL * (mf_float(1.0) - k) + k) * (NoV * (mf_float(1.0) - k) + k));
@@ -71,7 +69,8 @@ mf_float V_SmithGGXCorrelated(mf_float NoV, mf_float NoL, mf_float alpha) {
 }
 
 // Lambert diffuse: albedo / π. The 1/π is what makes a white surface under irradiance E
-// reflect radiance E/π; the assignment leaves it out (erratum 6; Brdf::Assignment restores that).
+// reflect radiance E/π, conserving energy; kBrdfUnnormalizedDiffuse leaves it out (diffuse π
+// times too strong against the specular lobe), for comparison with engines that do.
 mf_float Fd_Lambert() {
     return mf_float(1.0 / PI);
 }
@@ -95,13 +94,13 @@ mf_vec3 energy_compensation(mf_vec3 f0, mf_float E) {
 mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_float roughness,
                    mf_vec3 f0, mf_vec3 diffuse_color, mf_vec3 spec_scale, mf_vec3 E) {
     mf_float NoL = dot(n, l);
-    // Also rejects NaN: NaN × max(n·l, 0) = NaN would survive (erratum 5).
+    // Also rejects NaN: NaN × 0 = NaN would survive a max(n·l, 0) clamp.
     if (!(NoL > mf_float(0.0))) return mf_vec3(0.0);
     NoL = min(NoL, mf_float(1.0));
     mf_float alpha = roughness * roughness;
-    mf_float diffuse_norm = model == BRDF_ASSIGNMENT ? mf_float(1.0) : Fd_Lambert();
-    // Half vector normalize(v + l) (erratum 4: not (v + l)/2). For v = −l it has no direction
-    // (erratum 5): there is no mirror configuration, so no specular reflection, and the diffuse
+    mf_float diffuse_norm = model == kBrdfUnnormalizedDiffuse ? mf_float(1.0) : Fd_Lambert();
+    // Half vector normalize(v + l), not (v + l)/2 (which is not unit length). For v = −l it has
+    // no direction: there is no mirror configuration, so no specular reflection, and the diffuse
     // lobe keeps its normal-incidence weight 1 − F0. With n·l > 0 this needs n·v < 0, i.e. a
     // normal map bent away from the viewer; a fallback h = n would put D's peak (~1e5 E with the
     // N·V floor) exactly there. The cut-off is |v + l|² ≤ 1e-30, as the CPU reference: a wider one
@@ -115,7 +114,7 @@ mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_
     mf_float VoH = has_h ? clamp(dot(v, h), mf_float(0.0), mf_float(1.0)) : mf_float(1.0);
     mf_vec3 F = F_Schlick(f0, VoH);
     mf_float D = D_GGX(NoH, cross(n, h), alpha);
-    mf_float V = model == BRDF_ACCURATE ? V_SmithGGXCorrelated(NoV, NoL, alpha)
+    mf_float V = model == kBrdfAccurate ? V_SmithGGXCorrelated(NoV, NoL, alpha)
                                         : V_SchlickGGX(NoV, NoL, roughness);
     // A select, not a product: D at the fallback h may overflow in fp16, and inf × 0 = NaN.
     mf_vec3 specular = has_h ? (D * V) * F * spec_scale : mf_vec3(0.0);

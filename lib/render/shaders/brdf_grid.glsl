@@ -3,42 +3,33 @@
 // bench/brdf_bench.cpp. Included by brdf_grid.comp (fp32) and brdf_grid_f16.comp (the BRDF's
 // arithmetic in binary16; inputs, normalization and the sphere's geometry stay fp32).
 //
-// MODE 0, grid: one arbitrary input per invocation (n, v, l, albedo, roughness, metalness,
+// MODE kGridModeInputs: one arbitrary input per invocation (n, v, l, albedo, roughness, metalness,
 // intensity), each shaded with the three models. The preview only ever passes unit vectors; the
 // harness takes anything and applies the CPU reference's conventions (tests/stability/
 // brdf_reference.hpp): n or l without a direction → 0, v without one → n, intensity not positive
 // and finite → 0, roughness clamped to [MIN_ROUGHNESS, 1], metalness and albedo to [0, 1].
-// MODE 1, sphere: the accuracy benchmark's scene (bench/accuracy/knobs_brdf.cpp): an
+// MODE kGridModeSphere: the accuracy benchmark's scene (bench/accuracy/knobs_brdf.cpp): an
 // orthographic unit sphere, one directional light, roughness bands, metal on the right half,
 // with 1/4/8 samples per pixel at the D3D11 standard multisample positions.
 //
 // The accurate model's energy compensation needs E(n·v, roughness), which the preview samples
-// from its BRDF lookup table; here it is a 32 × 32 table of texel centres (binding 2) read
+// from its BRDF lookup table; here it is a 32 × 32 table of texel centres (kBindingGridEnergy) read
 // bilinearly, the same table and interpolation as the CPU reference's EnergyTable, so the two
 // evaluations differ by arithmetic only.
-#include "brdf.glsl"
+#include "brdf.glsl"  // includes interface.h: GridInput, GridPush
 
-layout(local_size_x = 64) in;
-layout(constant_id = 0) const int MODE = 0;
+layout(local_size_x = kGridGroup) in;
+layout(constant_id = kSpecGridMode) const int MODE = kGridModeInputs;
 
-struct GridInput {
-    vec4 n;       // w: roughness
-    vec4 v;       // w: metalness
-    vec4 l;       // w: intensity (irradiance at normal incidence)
-    vec4 albedo;  // rgb
+layout(std430, set = 0, binding = kBindingGridInputs) readonly buffer Inputs { GridInput inputs[]; };
+layout(std430, set = 0, binding = kBindingGridOutputs) writeonly buffer Outputs { vec4 outputs[]; };
+layout(std430, set = 0, binding = kBindingGridEnergy) readonly buffer Energy { float energy[]; };  // [roughness][n·v]
+
+layout(push_constant) uniform GridPushBlock {
+    GridPush pc;
 };
-layout(std430, set = 0, binding = 0) readonly buffer Inputs { GridInput inputs[]; };
-layout(std430, set = 0, binding = 1) writeonly buffer Outputs { vec4 outputs[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Energy { float energy[]; };  // [roughness][n·v]
 
-layout(push_constant) uniform Push {
-    uint count;  // grid: inputs; sphere: pixels (width × height)
-    uint width;  // sphere: image side
-    uint spp;    // sphere: 1, 4 or 8
-    int model;   // sphere: BRDF_STANDARD, BRDF_ACCURATE or BRDF_ASSIGNMENT
-} pc;
-
-const int kEnergyN = 32;
+const int kEnergyN = kEnergyTableSize;
 
 float energy_lookup(float NoV, float r) {
     float x = clamp(NoV * float(kEnergyN) - 0.5, 0.0, float(kEnergyN - 1));
@@ -66,7 +57,7 @@ vec3 shade_one(int model, vec3 n, vec3 v, vec3 l, vec3 albedo, float roughness, 
     vec3 diffuse_color = albedo * (1.0 - metalness);
     float NoV = clamp(dot(n, v), MIN_NOV, 1.0);
     mf_vec3 spec_scale = mf_vec3(1.0);
-    if (model == BRDF_ACCURATE) spec_scale = energy_compensation(mf_vec3(f0), mf_float(energy_lookup(NoV, roughness)));
+    if (model == kBrdfAccurate) spec_scale = energy_compensation(mf_vec3(f0), mf_float(energy_lookup(NoV, roughness)));
     return vec3(brdf_light(model, mf_vec3(n), mf_vec3(v), mf_vec3(l), mf_float(NoV), mf_float(roughness),
                            mf_vec3(f0), mf_vec3(diffuse_color), spec_scale, mf_vec3(E)));
 }
@@ -91,7 +82,7 @@ vec3 sphere_sample(float sx, float sy) {
 void main() {
     uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
     if (i >= pc.count) return;
-    if (MODE == 0) {
+    if (MODE == kGridModeInputs) {
         GridInput g = inputs[i];
         vec3 n = g.n.xyz, v = g.v.xyz, l = g.l.xyz;
         float E = g.l.w;

@@ -4,10 +4,10 @@
 // energy compensation needs.
 #include "brdf.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(constant_id = 0) const bool CORRELATED = false;  // accurate BRDF: Heitz's height-correlated Smith
-layout(constant_id = 1) const uint SAMPLES = 1024;
-layout(set = 0, binding = 0, LUT_FORMAT) uniform writeonly image2D lut;
+layout(local_size_x = kTile, local_size_y = kTile) in;
+layout(constant_id = kSpecLutCorrelated) const bool CORRELATED = false;  // accurate BRDF: Heitz's height-correlated Smith
+layout(constant_id = kSpecLutSamples) const uint SAMPLES = 1024;
+layout(set = 0, binding = kBindingLut, LUT_FORMAT) uniform writeonly image2D lut;
 
 // Hammersley point set: low discrepancy, the same every run.
 vec2 hammersley(uint i) {
@@ -56,7 +56,8 @@ void main() {
         vec3 l = 2.0 * VoH * h - v;
         float NoL = l.z;
         if (NoL <= 0.0 || VoH <= 0.0) continue;
-        // Image-based lighting takes k = α/2 in Schlick-GGX (Karis 2013, erratum 8).
+        // Image-based lighting takes k = α/2 in Schlick-GGX, not the (r + 1)²/8 of punctual
+        // lights (Karis 2013, p. 3: that remap is for analytic lights only).
         float vis = CORRELATED ? V_SmithGGXCorrelated(NoV, NoL, alpha) : V_SchlickGGX_k(NoV, NoL, alpha * 0.5);
         // f (n·l) / pdf(l) = G2 / G1(v) × F, with G2 = 4 V (n·l)(n·v).
         float g = 4.0 * vis * NoL * NoV / g1;

@@ -2,9 +2,8 @@
 // One mip of a cube map from the one above: 2×2 box average per face (radiance is linear).
 #include "ibl_common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform sampler2DArray src;  // the mip above, all six faces
-layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray dst;
+layout(set = 0, binding = kBindingIblSource) uniform sampler2DArray src;  // the mip above, all six faces
+layout(set = 0, binding = kBindingIblTarget, rgba16f) uniform writeonly image2DArray dst;
 
 void main() {
     uvec3 id = gl_GlobalInvocationID;

@@ -1,17 +1,19 @@
 #version 460
 // The one place the output is encoded: linear radiance × exposure → transfer curve → 8 bits,
 // rounded to nearest.
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "interface.h"
 
-layout(set = 0, binding = 0, rgba32f) uniform readonly image2D radiance;
-layout(set = 0, binding = 1, std430) writeonly buffer Pixels { uint rgba8[]; } pixels;
-layout(push_constant) uniform Params {
-    uvec2 size;
-    float exposure;
-    uint srgb;  // 1: IEC 61966-2-1 sRGB curve; 0: linear
-} params;
+layout(local_size_x = kTile, local_size_y = kTile) in;
 
-// IEC 61966-2-1 encoding, the exact piecewise curve (not pow(x, 1/2.2)).
+layout(set = 0, binding = kBindingEncodeRadiance, rgba32f) uniform readonly image2D radiance;
+layout(set = 0, binding = kBindingEncodePixels, std430) writeonly buffer Pixels { uint rgba8[]; } pixels;
+layout(push_constant) uniform EncodePush {
+    EncodeParams params;
+};
+
+// IEC 61966-2-1 encoding, the exact piecewise curve (not pow(x, 1/2.2)), for x ≥ 0: the caller
+// clamps negatives to 0 first. The C++ oracle (lib/color/srgb.hpp) mirrors negatives instead;
+// both give code 0, since quantize() clamps to [0, 1]. NaN ends as code 0 (quantize).
 float srgb_encode(float x) {
     return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
 }

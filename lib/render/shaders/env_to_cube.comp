@@ -3,9 +3,8 @@
 // v = acos(d.y)/π: the image's centre is seen looking along −Z, its top row is straight up.
 #include "ibl_common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform sampler2D equirect;
-layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray cube;
+layout(set = 0, binding = kBindingIblSource) uniform sampler2D equirect;
+layout(set = 0, binding = kBindingIblTarget, rgba16f) uniform writeonly image2DArray cube;
 
 void main() {
     uvec3 id = gl_GlobalInvocationID;

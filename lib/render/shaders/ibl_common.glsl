@@ -1,15 +1,15 @@
-// Shared by the environment passes: cube-map texel directions and the equirectangular mapping.
+// Shared by the environment passes: push constants, workgroup size, cube-map texel directions,
+// an orthonormal basis and the Hammersley points.
 #ifndef MF_IBL_COMMON_GLSL
 #define MF_IBL_COMMON_GLSL
 
-#include "brdf.glsl"
+#include "brdf.glsl"  // includes interface.h
 
-layout(push_constant) uniform IblParams {
-    uint size;          // destination face size in texels
-    float roughness;    // prefilter: perceptual roughness of this mip
-    uint samples;       // prefilter / irradiance: sample count
-    float src_size;     // face size of the source cube's mip 0
-} params;
+layout(push_constant) uniform IblPush {
+    IblParams params;
+};
+
+layout(local_size_x = kTile, local_size_y = kTile) in;
 
 // Direction through texel `xy` of cube face `face` (Vulkan/OpenGL face orientation).
 vec3 cube_direction(uvec2 xy, uint face, uint size) {

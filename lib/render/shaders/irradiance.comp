@@ -4,9 +4,8 @@
 // sampling as in prefilter.comp.
 #include "ibl_common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform samplerCube src;
-layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray dst;
+layout(set = 0, binding = kBindingIblSource) uniform samplerCube src;
+layout(set = 0, binding = kBindingIblTarget, rgba16f) uniform writeonly image2DArray dst;
 
 void main() {
     uvec3 id = gl_GlobalInvocationID;

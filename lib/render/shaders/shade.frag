@@ -6,34 +6,35 @@
 #include "common.glsl"
 #include "brdf.glsl"
 
-layout(constant_id = 0) const int NUM_DIRECTIONAL = 1;
-layout(constant_id = 1) const int NUM_POINT = 0;
-layout(constant_id = 2) const int BRDF_MODEL = 0;  // 0 standard, 1 accurate, 2 assignment
-layout(constant_id = 3) const bool ANALYTIC_SPHERE = true;
-layout(constant_id = 4) const bool HAS_ENV = false;
-layout(constant_id = 5) const int ALBEDO_TEX = -1;  // texture slot, or −1: constant
-layout(constant_id = 6) const int EMISSIVE_TEX = -1;
-layout(constant_id = 7) const int NORMAL_TEX = -1;
-layout(constant_id = 8) const bool NORMAL_GREEN_DOWN = false;  // DirectX normal map
-layout(constant_id = 9) const int ROUGHNESS_TEX = -1;
-layout(constant_id = 10) const int ROUGHNESS_CH = 0;
-layout(constant_id = 11) const bool ROUGHNESS_INVERT = false;  // smoothness
-layout(constant_id = 12) const int METALNESS_TEX = -1;
-layout(constant_id = 13) const int METALNESS_CH = 0;
-layout(constant_id = 14) const bool METALNESS_INVERT = false;
-layout(constant_id = 15) const int OCCLUSION_TEX = -1;
-layout(constant_id = 16) const int OCCLUSION_CH = 0;
-layout(constant_id = 17) const bool OCCLUSION_INVERT = false;
-layout(constant_id = 18) const int OPACITY_TEX = -1;
-layout(constant_id = 19) const int OPACITY_CH = 0;
-layout(constant_id = 20) const bool OPACITY_INVERT = false;
+// Ids in interface.h (kSpec*); the renderer fills them by name (gpu::ShadeSpecialization).
+layout(constant_id = kSpecNumDirectional) const int NUM_DIRECTIONAL = 1;
+layout(constant_id = kSpecNumPoint) const int NUM_POINT = 0;
+layout(constant_id = kSpecBrdfModel) const int BRDF_MODEL = kBrdfStandard;  // a kBrdf* value
+layout(constant_id = kSpecAnalyticSphere) const bool ANALYTIC_SPHERE = true;
+layout(constant_id = kSpecHasEnv) const bool HAS_ENV = false;
+layout(constant_id = kSpecAlbedoTex) const int ALBEDO_TEX = -1;  // texture slot, or −1: constant
+layout(constant_id = kSpecEmissiveTex) const int EMISSIVE_TEX = -1;
+layout(constant_id = kSpecNormalTex) const int NORMAL_TEX = -1;
+layout(constant_id = kSpecNormalGreenDown) const bool NORMAL_GREEN_DOWN = false;  // DirectX normal map
+layout(constant_id = kSpecRoughnessTex) const int ROUGHNESS_TEX = -1;
+layout(constant_id = kSpecRoughnessChannel) const int ROUGHNESS_CH = 0;
+layout(constant_id = kSpecRoughnessInvert) const bool ROUGHNESS_INVERT = false;  // smoothness
+layout(constant_id = kSpecMetalnessTex) const int METALNESS_TEX = -1;
+layout(constant_id = kSpecMetalnessChannel) const int METALNESS_CH = 0;
+layout(constant_id = kSpecMetalnessInvert) const bool METALNESS_INVERT = false;
+layout(constant_id = kSpecOcclusionTex) const int OCCLUSION_TEX = -1;
+layout(constant_id = kSpecOcclusionChannel) const int OCCLUSION_CH = 0;
+layout(constant_id = kSpecOcclusionInvert) const bool OCCLUSION_INVERT = false;
+layout(constant_id = kSpecOpacityTex) const int OPACITY_TEX = -1;
+layout(constant_id = kSpecOpacityChannel) const int OPACITY_CH = 0;
+layout(constant_id = kSpecOpacityInvert) const bool OPACITY_INVERT = false;
 
-const bool NEEDS_LUT = HAS_ENV || BRDF_MODEL == BRDF_ACCURATE;
+const bool NEEDS_LUT = HAS_ENV || BRDF_MODEL == kBrdfAccurate;
 
-layout(set = 0, binding = 1) uniform sampler2D brdf_lut;     // (scale, bias) of F0; x: n·v, y: roughness
-layout(set = 0, binding = 2) uniform samplerCube env_specular;  // GGX-prefiltered, mip = roughness
-layout(set = 0, binding = 3) uniform samplerCube env_irradiance;  // E(n)/π
-layout(set = 1, binding = 0) uniform sampler2D textures[8];
+layout(set = kSetFrame, binding = kBindingBrdfLut) uniform sampler2D brdf_lut;  // (scale, bias) of F0; x: n·v, y: roughness
+layout(set = kSetFrame, binding = kBindingEnvSpecular) uniform samplerCube env_specular;  // GGX-prefiltered, mip = roughness
+layout(set = kSetFrame, binding = kBindingEnvIrradiance) uniform samplerCube env_irradiance;  // E(n)/π
+layout(set = kSetMaterial, binding = kBindingMaterialTextures) uniform sampler2D textures[kMaxTextures];
 
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
@@ -132,7 +133,7 @@ void main() {
     // diffuse lobe.
     vec3 f0 = mix(vec3(0.04), albedo, metalness);
     vec3 diffuse_color = albedo * (1.0 - metalness);
-    float diffuse_norm = BRDF_MODEL == BRDF_ASSIGNMENT ? 1.0 : Fd_Lambert();
+    float diffuse_norm = BRDF_MODEL == kBrdfUnnormalizedDiffuse ? 1.0 : Fd_Lambert();
 
     vec3 v = normalize(frame.camera_position.xyz - p);
     float NoV = clamp(dot(n, v), MIN_NOV, 1.0);
@@ -141,7 +142,7 @@ void main() {
     vec2 dfg = vec2(1.0, 0.0);
     if (NEEDS_LUT) {
         dfg = textureLod(brdf_lut, vec2(NoV, roughness), 0.0).xy;
-        if (BRDF_MODEL == BRDF_ACCURATE) spec_scale = energy_compensation(f0, dfg.x + dfg.y);
+        if (BRDF_MODEL == kBrdfAccurate) spec_scale = energy_compensation(f0, dfg.x + dfg.y);
     }
 
     vec3 color = vec3(0.0);
@@ -168,7 +169,7 @@ void main() {
         // Split sum (Karis 2013): ∫ f L ≈ prefiltered(r, α) × (F0 · A + B).
         vec3 FssEss = f0 * dfg.x + dfg.y;
         vec3 ibl;
-        if (BRDF_MODEL == BRDF_ACCURATE) {
+        if (BRDF_MODEL == kBrdfAccurate) {
             // Fdez-Agüera 2019, eqs. 11-16: multiple scattering for the split sum.
             float Ess = dfg.x + dfg.y;
             float Ems = 1.0 - Ess;

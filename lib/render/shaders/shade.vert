@@ -2,10 +2,10 @@
 // Object space is world space: the shapes sit at the origin (the cube's turn is baked in).
 #include "common.glsl"
 
-layout(location = 0) in vec3 in_position;
-layout(location = 1) in vec3 in_normal;
-layout(location = 2) in vec4 in_tangent;  // xyz: tangent (+u); w: bitangent sign (+v)
-layout(location = 3) in vec2 in_uv;
+layout(location = kLocationPosition) in vec3 in_position;
+layout(location = kLocationNormal) in vec3 in_normal;
+layout(location = kLocationTangent) in vec4 in_tangent;  // xyz: tangent (+u); w: bitangent sign (+v)
+layout(location = kLocationUv) in vec2 in_uv;
 
 layout(location = 0) out vec3 v_position;
 layout(location = 1) out vec3 v_normal;

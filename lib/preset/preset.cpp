@@ -1,4 +1,4 @@
-#include "pack/preset.hpp"
+#include "preset/preset.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,0 +1,336 @@
+#include "manifest/manifest.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <limits>
+
+#include "core/json.hpp"
+
+namespace mf::manifest {
+using nlohmann::json;
+
+namespace {
+
+// Reading: a ParseError carries the message to the one catch in manifest_from_json.
+struct ParseError {
+    std::string message;
+};
+[[noreturn]] void fail(const std::string& where, const std::string& what) { throw ParseError{where + ": " + what}; }
+
+const json* member(const json& o, const char* key) {
+    const auto it = o.find(key);
+    return it == o.end() ? nullptr : &*it;
+}
+
+std::string string_of(const json& o, const char* key, const std::string& where, bool required,
+                      const std::string& fallback = {}) {
+    const json* v = member(o, key);
+    if (!v) {
+        if (required) fail(where, std::string("no \"") + key + "\"");
+        return fallback;
+    }
+    if (!v->is_string()) fail(where, std::string("\"") + key + "\" is not a string");
+    return v->get<std::string>();
+}
+
+int int_of(const json& o, const char* key, const std::string& where, int lo = 0,
+           int hi = std::numeric_limits<int>::max()) {
+    const json* v = member(o, key);
+    if (!v) return 0;
+    const auto i = json_int(*v, lo, hi);
+    if (!i) fail(where, std::string("\"") + key + "\" is not an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+    return *i;
+}
+
+// The texture-value range of constants: the half-float range admits HDR emissive.
+constexpr double kValueMin = -65504.0, kValueMax = 65504.0;
+
+float float_of(const json& v, const std::string& where, const std::string& what) {
+    const auto f = json_float(v, kValueMin, kValueMax);
+    if (!f) fail(where, what + " is not a finite number in [-65504, 65504]");
+    return *f;
+}
+
+const json& object_of(const json& v, const std::string& where) {
+    if (!v.is_object()) fail(where, "is not an object");
+    return v;
+}
+
+Role role_of(const std::string& name, const std::string& where) {
+    const auto r = role_from_name(name);
+    if (!r) fail(where, "unknown role \"" + name + "\"");
+    return *r;
+}
+
+NormalConvention convention_of(const std::string& name, const std::string& where) {
+    const auto c = convention_from_name(name);
+    if (!c) fail(where, "unknown normal convention \"" + name + "\" (gl, dx or unknown)");
+    return *c;
+}
+
+bool is_channel_key(const std::string& k) { return k == "RGB" || k == "R" || k == "G" || k == "B" || k == "A"; }
+
+Input input_of(const std::string& role, const json& j, const std::string& where) {
+    object_of(j, where);
+    Input in;
+    in.role = role_of(role, where);
+    in.file = string_of(j, "file", where, true);
+    in.family = string_of(j, "family", where, false);
+    in.rule = string_of(j, "rule", where, false);
+    in.width = int_of(j, "width", where);
+    in.height = int_of(j, "height", where);
+    in.channels = int_of(j, "channels", where);
+    in.bit_depth = int_of(j, "bit_depth", where);
+    in.color_space = string_of(j, "color_space", where, false);
+    if (const json* f = member(j, "float")) {
+        if (!f->is_boolean()) fail(where, "\"float\" is not a boolean");
+        in.is_float = f->get<bool>();
+    }
+    if (member(j, "normal_convention")) {
+        NormalFacts n;
+        n.convention = convention_of(string_of(j, "normal_convention", where, true), where);
+        n.source = string_of(j, "normal_convention_source", where, false);
+        if (const json* c = member(j, "normal_convention_confidence")) {
+            const auto v = json_float(*c, 0.0, 1.0);
+            if (!v) fail(where, "\"normal_convention_confidence\" is not a number in [0, 1]");
+            n.confidence = c->get<double>();
+        }
+        n.method = string_of(j, "normal_convention_method", where, false);
+        in.normal = std::move(n);
+    }
+    return in;
+}
+
+Output output_of(const json& j, const std::string& where) {
+    object_of(j, where);
+    Output o;
+    o.file = string_of(j, "file", where, true);
+    if (o.file.empty()) fail(where, "\"file\" is empty");
+    // Written as "sRGB" / "linear"; read in any case (presets and hand-made manifests say "srgb").
+    std::string cs = string_of(j, "color_space", where, false, "linear");
+    std::transform(cs.begin(), cs.end(), cs.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (cs != "srgb" && cs != "linear") fail(where, "\"color_space\" must be \"sRGB\" or \"linear\", not \"" + cs + "\"");
+    o.srgb = cs == "srgb";
+    if (const json* ch = member(j, "channels")) {
+        for (const auto& [key, value] : object_of(*ch, where + ": channels").items()) {
+            const std::string at = where + ": channel " + key;
+            if (!is_channel_key(key)) fail(at, "unknown channel key (RGB, R, G, B or A)");
+            Channel c;
+            c.key = key;
+            if (value.is_number()) {
+                c.kind = Channel::Kind::constant;
+                c.value = float_of(value, at, "the constant");
+            } else if (!value.is_string()) {
+                fail(at, "is neither a role name nor a number");
+            } else if (value == "smoothness") {
+                c.kind = Channel::Kind::smoothness;
+                c.role = Role::roughness;
+            } else if (value == "unused") {
+                c.kind = Channel::Kind::unused;
+            } else {
+                c.kind = Channel::Kind::role;
+                c.role = role_of(value.get<std::string>(), at);
+            }
+            o.channels.push_back(std::move(c));
+        }
+    }
+    if (member(j, "normal_convention"))
+        o.normal_convention = convention_of(string_of(j, "normal_convention", where, true), where);
+    o.width = int_of(j, "width", where);
+    o.height = int_of(j, "height", where);
+    o.bit_depth = int_of(j, "bit_depth", where);
+    o.format = string_of(j, "format", where, false);
+    o.sha256 = string_of(j, "sha256", where, false);
+    return o;
+}
+
+Material material_of(const json& j, const std::string& at) {
+    object_of(j, at);
+    Material m;
+    m.name = string_of(j, "name", at, true);
+    if (m.name.empty()) fail(at, "\"name\" is empty");
+    const std::string where = "material " + m.name;
+    m.source = string_of(j, "source", where, false);
+    if (member(j, "archive")) m.archive = string_of(j, "archive", where, true);
+    m.convention = string_of(j, "convention", where, false);
+    const std::string status = string_of(j, "status", where, false, "ok");
+    if (status != "ok" && status != "partial") fail(where, "\"status\" must be \"ok\" or \"partial\"");
+    m.status = status == "ok" ? Status::ok : Status::partial;
+    if (const json* in = member(j, "inputs"))
+        for (const auto& [role, v] : object_of(*in, where + ": inputs").items())
+            m.inputs.push_back(input_of(role, v, where + ": input " + role));
+    std::sort(m.inputs.begin(), m.inputs.end(), [](const Input& a, const Input& b) { return a.role < b.role; });
+    if (const json* c = member(j, "constants")) {
+        for (const auto& [role, v] : object_of(*c, where + ": constants").items()) {
+            const std::string cat = where + ": constant " + role;
+            Constant k;
+            k.role = role_of(role, cat);
+            if (v.is_array()) {
+                if (v.size() != 3) fail(cat, "an RGB constant has 3 numbers");
+                for (const json& x : v) k.value.push_back(float_of(x, cat, "a component"));
+            } else {
+                k.value.push_back(float_of(v, cat, "the value"));
+            }
+            m.constants.push_back(std::move(k));
+        }
+    }
+    std::sort(m.constants.begin(), m.constants.end(), [](const Constant& a, const Constant& b) { return a.role < b.role; });
+    if (const json* o = member(j, "outputs")) {
+        if (!o->is_array()) fail(where, "\"outputs\" is not an array");
+        for (size_t i = 0; i < o->size(); ++i) m.outputs.push_back(output_of((*o)[i], where + ": outputs[" + std::to_string(i) + "]"));
+    }
+    if (const json* f = member(j, "findings")) {
+        if (!f->is_array()) fail(where, "\"findings\" is not an array");
+        for (size_t i = 0; i < f->size(); ++i) {
+            std::string error;
+            auto finding = finding_from_json((*f)[i], error);
+            if (!finding) fail(where + ": findings[" + std::to_string(i) + "]", error);
+            m.findings.push_back(std::move(*finding));
+        }
+    }
+    return m;
+}
+
+}  // namespace
+
+std::string_view status_name(Status s) { return s == Status::ok ? "ok" : "partial"; }
+
+json to_json(const Input& in) {
+    json j = {{"file", in.file}, {"family", in.family}, {"rule", in.rule}};
+    j["width"] = in.width;
+    j["height"] = in.height;
+    j["channels"] = in.channels;
+    j["bit_depth"] = in.bit_depth;
+    j["color_space"] = in.color_space;
+    if (in.is_float) j["float"] = true;
+    if (in.normal) {
+        j["normal_convention"] = convention_name(in.normal->convention);
+        if (!in.normal->source.empty()) j["normal_convention_source"] = in.normal->source;
+        if (in.normal->confidence) j["normal_convention_confidence"] = *in.normal->confidence;
+        if (!in.normal->method.empty()) j["normal_convention_method"] = in.normal->method;
+    }
+    return j;
+}
+
+json to_json(const std::vector<Input>& inputs) {
+    json j = json::object();
+    for (const Input& in : inputs) j[std::string(role_name(in.role))] = to_json(in);
+    return j;
+}
+
+json to_json(const std::vector<Constant>& constants) {
+    json j = json::object();
+    for (const Constant& c : constants) {
+        const std::string r(role_name(c.role));
+        if (c.value.size() == 1) j[r] = c.value[0];
+        else j[r] = c.value;
+    }
+    return j;
+}
+
+json to_json(const Output& o) {
+    json j;
+    j["file"] = o.file;
+    j["color_space"] = o.srgb ? "sRGB" : "linear";
+    json ch = json::object();
+    for (const Channel& c : o.channels) {
+        switch (c.kind) {
+            case Channel::Kind::role: ch[c.key] = role_name(c.role); break;
+            case Channel::Kind::smoothness: ch[c.key] = "smoothness"; break;
+            case Channel::Kind::constant: ch[c.key] = c.value; break;
+            case Channel::Kind::unused: ch[c.key] = "unused"; break;
+        }
+    }
+    j["channels"] = std::move(ch);
+    if (o.normal_convention) j["normal_convention"] = convention_name(*o.normal_convention);
+    j["width"] = o.width;
+    j["height"] = o.height;
+    j["bit_depth"] = o.bit_depth;
+    j["format"] = o.format;
+    j["sha256"] = o.sha256;
+    return j;
+}
+
+json to_json(const Material& m) {
+    json j;
+    j["name"] = m.name;
+    j["source"] = m.source;
+    if (m.archive) j["archive"] = *m.archive;
+    j["convention"] = m.convention;
+    j["status"] = status_name(m.status);
+    j["inputs"] = to_json(m.inputs);
+    j["constants"] = to_json(m.constants);
+    json outputs = json::array();
+    for (const Output& o : m.outputs) outputs.push_back(to_json(o));
+    j["outputs"] = std::move(outputs);
+    json findings = json::array();
+    for (const Finding& f : m.findings) findings.push_back(mf::to_json(f));
+    j["findings"] = std::move(findings);
+    return j;
+}
+
+json to_json(const Manifest& m) {
+    json j;
+    j["manifest_version"] = m.manifest_version;
+    j["generator"] = m.generator;
+    j["preset"] = m.preset;
+    j["normal_convention"] = convention_name(m.normal_convention);
+    json materials = json::array();
+    for (const Material& mat : m.materials) materials.push_back(to_json(mat));
+    j["materials"] = std::move(materials);
+    json failures = json::array();
+    for (const InputFailure& f : m.failures) failures.push_back(mf::to_json(f));
+    j["failures"] = std::move(failures);
+    return j;
+}
+
+std::optional<Manifest> manifest_from_json(const json& j, std::string& error) {
+    try {
+        if (!j.is_object()) fail("manifest", "is not a JSON object");
+        Manifest m;
+        const json* v = member(j, "manifest_version");
+        const auto version = v ? json_int(*v, 1, std::numeric_limits<int>::max()) : std::nullopt;
+        if (!version) fail("manifest", "missing or invalid \"manifest_version\" (an integer, 1)");
+        if (*version > kVersion)
+            fail("manifest", "version " + std::to_string(*version) + " is newer than this matforge reads (" +
+                                 std::to_string(kVersion) + ")");
+        m.manifest_version = *version;
+        m.generator = string_of(j, "generator", "manifest", false);
+        m.preset = string_of(j, "preset", "manifest", false);
+        if (member(j, "normal_convention"))
+            m.normal_convention = convention_of(string_of(j, "normal_convention", "manifest", true), "manifest");
+        const json* mats = member(j, "materials");
+        if (!mats || !mats->is_array()) fail("manifest", "no \"materials\" array");
+        for (size_t i = 0; i < mats->size(); ++i)
+            m.materials.push_back(material_of((*mats)[i], "materials[" + std::to_string(i) + "]"));
+        if (const json* f = member(j, "failures")) {
+            if (!f->is_array()) fail("manifest", "\"failures\" is not an array");
+            for (size_t i = 0; i < f->size(); ++i) {
+                auto failure = input_failure_from_json((*f)[i], error);
+                if (!failure) fail("failures[" + std::to_string(i) + "]", error);
+                m.failures.push_back(std::move(*failure));
+            }
+        }
+        return m;
+    } catch (const ParseError& e) {
+        error = e.message;
+        return std::nullopt;
+    }
+}
+
+std::optional<Manifest> read_manifest(const std::string& path, std::string& error) {
+    const auto j = read_json_file(path, error);
+    if (!j) return std::nullopt;
+    auto m = manifest_from_json(*j, error);
+    if (!m) error = path + ": " + error;
+    return m;
+}
+
+std::array<size_t, 3> count_findings(const Manifest& m) {
+    std::array<size_t, 3> n{0, 0, 0};
+    for (const Material& mat : m.materials)
+        for (const Finding& f : mat.findings) ++n[static_cast<size_t>(f.severity)];
+    return n;
+}
+
+}  // namespace mf::manifest

@@ -1,0 +1,108 @@
+// manifest.json (version 1): what `ingest` wrote, typed. Ingest builds a Manifest and writes it
+// with to_json(); preview (and every later reader) reads it back with manifest_from_json().
+// The schema is docs/manifest.schema.json; docs/interface.md describes every field.
+//
+// Conventions of this module (decided once here):
+//  - paths are kept as the manifest writes them: Material::source and Output::file relative to
+//    the manifest's folder, Input::file relative to the source; resolving them is the reader's;
+//  - JSON objects are written with sorted keys and the numbers as the types below give them,
+//    so the same manifest is the same bytes (core/json: json_text);
+//  - reading never throws: every member is type-checked, an unknown role, channel key or
+//    status is an error naming the material and the member (a typo must not become a default).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/findings.hpp"
+#include "material/roles.hpp"
+
+namespace mf::manifest {
+
+inline constexpr int kVersion = 1;
+
+// How an input normal map's green convention was decided.
+struct NormalFacts {
+    NormalConvention convention = NormalConvention::unknown;
+    std::string source;                 // "name" | "content" | "" (undecided)
+    std::optional<double> confidence;   // with source "content"
+    std::string method;                 // with source "content": the test that decided ("height+curl", "curl")
+};
+
+struct Input {
+    Role role = Role::albedo;  // input role (orm, gloss, … included)
+    std::string file;          // relative to the material's source
+    std::string family, rule;  // the naming rule that matched
+    int width = 0, height = 0, channels = 0, bit_depth = 0;
+    bool is_float = false;
+    std::string color_space;            // "sRGB" | "linear" (float color) | "data"
+    std::optional<NormalFacts> normal;  // normal inputs only
+};
+
+// One entry of Output::channels: what a channel (or the RGB triple) holds.
+struct Channel {
+    enum class Kind { role, smoothness, constant, unused };
+    std::string key;  // "RGB", "R", "G", "B", "A"
+    Kind kind = Kind::unused;
+    Role role = Role::albedo;  // kind == role
+    float value = 0.f;         // kind == constant
+};
+
+struct Output {
+    std::string file;  // relative to the manifest's folder
+    bool srgb = false;  // "color_space": "sRGB" (color channels encoded) or "linear"
+    std::vector<Channel> channels;
+    std::optional<NormalConvention> normal_convention;  // textures holding a normal
+    int width = 0, height = 0, bit_depth = 0;
+    std::string format, sha256;
+};
+
+// A value ingest generated for a role the set has no map of (scalar, or RGB for a color).
+struct Constant {
+    Role role = Role::metalness;
+    std::vector<float> value;  // 1 or 3 numbers
+};
+
+enum class Status { ok, partial };  // partial: some map could not be read or written
+
+struct Material {
+    std::string name;
+    std::string source;                 // relative to the manifest's folder
+    std::optional<std::string> archive; // the .zip holding the set
+    std::string convention;             // naming family
+    Status status = Status::ok;
+    std::vector<Input> inputs;          // in role order
+    std::vector<Constant> constants;    // in role order
+    std::vector<Output> outputs;        // in preset order
+    std::vector<Finding> findings;
+};
+
+struct Manifest {
+    int manifest_version = kVersion;
+    std::string generator;
+    std::string preset;
+    NormalConvention normal_convention = NormalConvention::gl;
+    std::vector<Material> materials;    // sorted by name
+    std::vector<InputFailure> failures; // sorted by source
+};
+
+std::string_view status_name(Status s);  // "ok" | "partial"
+
+nlohmann::json to_json(const Input& in);
+nlohmann::json to_json(const std::vector<Input>& inputs);         // {role: input, ...}
+nlohmann::json to_json(const std::vector<Constant>& constants);   // {role: number or [r, g, b], ...}
+nlohmann::json to_json(const Output& out);
+nlohmann::json to_json(const Material& m);
+nlohmann::json to_json(const Manifest& m);
+
+// nullopt + `error` (naming the material and member) when `j` is not a manifest this version
+// reads. Members a later version may add are ignored; members of the wrong type are errors.
+std::optional<Manifest> manifest_from_json(const nlohmann::json& j, std::string& error);
+// Reads and parses a manifest file (the error names the file).
+std::optional<Manifest> read_manifest(const std::string& path, std::string& error);
+
+// Findings of every material by severity: [info, warning, error].
+std::array<size_t, 3> count_findings(const Manifest& m);
+
+}  // namespace mf::manifest

@@ -1,0 +1,322 @@
+// One set: classify every file, rank the candidates of each role, explain every choice.
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "material/classify.hpp"
+#include "material/discovery.hpp"
+#include "material/families.hpp"
+
+namespace mf {
+namespace {
+
+using naming::extension_of;
+using naming::lower_copy;
+using naming::RoleTag;
+
+// Lossless first, then lossy; the order of the header's contract (exr tif png tga bmp webp jpg),
+// with the other readable formats placed by how much they lose.
+int format_rank(std::string_view file) {
+    static constexpr std::array<std::string_view, 12> kOrder{
+        "exr", "tif", "tiff", "png", "tga", "bmp", "psd", "hdr", "webp", "jpg", "jpeg", "dds"};
+    const auto ext = lower_copy(extension_of(file));
+    const auto it = std::find(kOrder.begin(), kOrder.end(), ext);
+    int rank = static_cast<int>(it - kOrder.begin());
+    if (ext == "tiff") rank -= 1;  // same rank as tif
+    if (ext == "jpeg") rank -= 1;  // same rank as jpg
+    return rank;
+}
+
+struct Ranked {
+    Candidate cand;
+    int normal_rank = 0;  // 0 policy's convention, 1 other known, 2 unknown
+    bool over_limit = false;
+    int size = 0;  // longest side, header else name hint; 0 unknown
+    int format = 0;
+    int depth = 0;
+
+    // Smaller is better.
+    auto key() const {
+        return std::make_tuple(normal_rank, over_limit, over_limit ? size : -size, format, -depth,
+                               std::string_view(cand.file));
+    }
+};
+
+Ranked rank_candidate(const Candidate& c, const ChoicePolicy& policy) {
+    Ranked r;
+    r.cand = c;
+    if (c.match.role == Role::normal) {
+        const auto n = c.match.normal;
+        const bool preferred = n != NormalConvention::unknown && n == policy.preferred_normal;
+        r.normal_rank = preferred ? 0 : n != NormalConvention::unknown ? 1 : 2;
+    }
+    r.size = c.header.width > 0 || c.header.height > 0 ? std::max(c.header.width, c.header.height)
+                                                       : resolution_hint(c.file);
+    r.over_limit = policy.max_size > 0 && r.size > policy.max_size;
+    r.format = format_rank(c.file);
+    r.depth = c.header.bit_depth > 0 ? c.header.bit_depth : naming::name_bit_depth(naming::analyse(c.file).tokens);
+    return r;
+}
+
+// Why `a` ranks before `b`: the first criterion that separates them.
+std::string why_first(const Ranked& a, const Ranked& b, const ChoicePolicy& policy) {
+    const auto conv = [](const Ranked& r) { return std::string(convention_name(r.cand.match.normal)); };
+    if (a.normal_rank != b.normal_rank)
+        return a.normal_rank == 0 ? "its normal convention (" + conv(a) + ") is the preset's"
+                                  : "its name states a normal convention (" + conv(a) + ")";
+    if (a.over_limit != b.over_limit)
+        return "it fits the size limit of " + std::to_string(policy.max_size) + " px";
+    if (a.size != b.size)
+        return a.over_limit ? "it is the smallest above the size limit (" + std::to_string(a.size) +
+                                  " px vs " + std::to_string(b.size) + " px)"
+                            : "it is the largest (" + std::to_string(a.size) + " px vs " +
+                                  std::to_string(b.size) + " px)";
+    if (a.format != b.format)
+        return "its format (" + lower_copy(extension_of(a.cand.file)) + ") ranks above " +
+               lower_copy(extension_of(b.cand.file)) + " (lossless first)";
+    if (a.depth != b.depth)
+        return "higher bit depth (" + std::to_string(a.depth) + " vs " + std::to_string(b.depth) + ")";
+    return "equal otherwise; first by name";
+}
+
+std::string why_provider(Role out, const Provider& a, const Provider& b) {
+    const auto name = [](Role r) { return std::string(role_name(r)); };
+    if (a.from == out && traits(b.from).packed)
+        return "a dedicated " + name(out) + " map beats the packed " + name(b.from) + " map";
+    if (a.from == out && b.from == Role::gloss) return "a roughness map beats a gloss map";
+    if (traits(a.from).packed && b.from == Role::gloss)
+        return "the packed " + name(a.from) + " map's roughness beats a gloss map (no inversion)";
+    return "the " + name(a.from) + " map comes before the " + name(b.from) + " map";
+}
+
+// Everything one AMBIGUOUS_MAP says; built up per role, emitted once.
+struct Ambiguity {
+    std::vector<std::string> candidates;  // chosen first
+    std::string chosen;
+    std::vector<std::string> reasons;
+
+    void add(const std::string& file) {
+        if (std::find(candidates.begin(), candidates.end(), file) == candidates.end())
+            candidates.push_back(file);
+    }
+    void put_first(const std::string& file) {
+        std::erase(candidates, file);
+        candidates.insert(candidates.begin(), file);
+    }
+};
+
+std::string join(const std::vector<std::string>& parts, std::string_view sep) {
+    std::string out;
+    for (size_t i = 0; i < parts.size(); ++i) out += (i ? std::string(sep) : "") + parts[i];
+    return out;
+}
+
+Finding ambiguity_finding(Role role, const Ambiguity& a) {
+    Finding f;
+    f.code = std::string(code::ambiguous_map);
+    f.severity = Severity::info;
+    f.role = std::string(role_name(role));
+    f.file = a.chosen;
+    const auto reason = join(a.reasons, "; ");
+    f.message = std::to_string(a.candidates.size()) + " files could be the " + f.role + " map (" +
+                join(a.candidates, ", ") + "); chose " + a.chosen + ": " + reason;
+    f.figures = {{"candidates", a.candidates}, {"chosen", a.chosen}, {"reason", reason}};
+    return f;
+}
+
+Finding unrecognized_finding(const std::string& file, std::string_view reason) {
+    Finding f;
+    f.code = std::string(code::unrecognized_file);
+    f.severity = Severity::info;
+    f.file = file;
+    f.message = std::string(reason) + "; not used as a map";
+    f.figures = {{"reason", std::string(reason)}};
+    return f;
+}
+
+// The set's convention: the family compatible with the most files; ties go to the family more
+// files name distinctively (only it has the rule), then to the one whose layout more names
+// follow, then to priority order. A family that is not compatible with a strict majority of the
+// maps means a mixed set: "generic".
+std::string vote_convention(const std::vector<RoleTag>& tags) {
+    std::tuple<int, int, int> best{0, 0, 0};
+    std::string_view winner = "generic";
+    for (size_t fi = 0; fi < naming::kGenericFamily; ++fi) {
+        const auto name = naming::kFamilies[fi].name;
+        int votes = 0, distinct = 0, fitting = 0;
+        for (const auto& t : tags) {
+            const bool in = std::find(t.families.begin(), t.families.end(), name) != t.families.end();
+            votes += in;
+            distinct += in && t.families.size() == 1;
+            fitting += std::find(t.fitting.begin(), t.fitting.end(), name) != t.fitting.end();
+        }
+        const std::tuple<int, int, int> score{votes, distinct, fitting};
+        if (score > best) {
+            best = score;
+            winner = name;
+        }
+    }
+    const auto votes = static_cast<size_t>(std::get<0>(best));
+    return votes * 2 > tags.size() ? std::string(winner) : "generic";
+}
+
+// The role every file of the set named by a sidecar takes. A Megascans JSON goes before a glTF
+// (it describes the maps themselves, a glTF one use of them), then the order given; the first
+// sidecar to name a file decides. A path that is not a file of the set matches the one file
+// with that base name, if exactly one has it (a JSON written beside "Textures/…" may name the
+// maps without the folder).
+std::map<std::string, NameMatch> sidecar_matches(const std::vector<std::string>& set_files,
+                                                 const std::vector<SidecarRoles>& sidecars,
+                                                 std::set<std::string>& used) {
+    std::set<std::string> in_set(set_files.begin(), set_files.end());
+    std::map<std::string, std::vector<std::string>> by_base;
+    for (const auto& f : set_files) by_base[std::string(naming::base_name(f))].push_back(f);
+    std::vector<const SidecarRoles*> order;
+    for (const auto& s : sidecars) order.push_back(&s);
+    const auto rank = [](SidecarKind k) { return k == SidecarKind::megascans ? 0 : k == SidecarKind::gltf ? 1 : 2; };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](const SidecarRoles* a, const SidecarRoles* b) { return rank(a->kind) < rank(b->kind); });
+    std::map<std::string, NameMatch> out;
+    for (const SidecarRoles* s : order)
+        for (const auto& m : s->maps) {
+            std::string file = m.file;
+            if (!in_set.count(file)) {
+                const auto it = by_base.find(std::string(naming::base_name(file)));
+                if (it == by_base.end() || it->second.size() != 1) continue;
+                file = it->second.front();
+            }
+            if (!is_image_file(file)) continue;
+            used.insert(s->source);
+            out.try_emplace(file, m.match);
+        }
+    return out;
+}
+
+// The family's name with static storage (RoleTag keeps views), "generic" when unknown.
+std::string_view family_view(std::string_view name) {
+    for (const auto& f : naming::kFamilies)
+        if (f.name == name) return f.name;
+    return naming::kFamilies[naming::kGenericFamily].name;
+}
+
+}  // namespace
+
+// Best first: a dedicated map, then packed inputs (Role order), then gloss. Packed roughness
+// beats gloss because it needs no inversion ("roughness beats gloss").
+std::vector<Provider> providers_of(Role out) {
+    std::vector<Provider> list{{out, -1, false}};
+    for (const Role packed : {Role::orm, Role::metallic_roughness, Role::ort}) {
+        const auto layout = packed_layout(packed);
+        for (int ch = 0; ch < 3; ++ch)
+            if (layout[static_cast<size_t>(ch)] == out) list.push_back({packed, ch, false});
+    }
+    if (out == Role::roughness) list.push_back({Role::gloss, -1, true});
+    return list;
+}
+
+SetDiscovery discover_set(const std::vector<std::string>& files,
+                          const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
+                          const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars) {
+    SetDiscovery out;
+    std::vector<std::string> sorted = files;  // directory order must not change the result
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+
+    std::set<std::string> used_sidecars;
+    const auto from_sidecar = sidecar_matches(sorted, sidecars, used_sidecars);
+    std::map<std::string, const SidecarRoles*> sidecar_files;
+    for (const auto& s : sidecars) sidecar_files.try_emplace(s.source, &s);
+
+    std::vector<Finding> unrecognized;
+    std::vector<RoleTag> tags;
+    std::map<Role, std::vector<Ranked>> by_role;
+    auto add_candidate = [&](Candidate c) {
+        if (header)
+            if (auto h = header(c.file)) c.header = *h;
+        by_role[c.match.role].push_back(rank_candidate(c, policy));
+    };
+    for (const auto& file : sorted) {
+        if (const auto sc = sidecar_files.find(file); sc != sidecar_files.end()) {
+            if (used_sidecars.count(file)) continue;  // read for its roles: recognized
+            const auto& err = sc->second->error;
+            unrecognized.push_back(unrecognized_finding(
+                file, err.empty() ? "sidecar naming no map of this set" : "sidecar not read (" + err + ")"));
+            continue;
+        }
+        if (!is_image_file(file)) {
+            unrecognized.push_back(unrecognized_finding(file, "not an image"));
+            continue;
+        }
+        auto a = naming::analyse(file);
+        const auto sc = from_sidecar.find(file);
+        if (sc != from_sidecar.end() && !(a.clutter && a.clutter->kind == naming::ClutterKind::billboard)) {
+            RoleTag t;
+            t.match = sc->second;
+            // Where the name agrees on the role, what else it states stays ("_B-O": opacity in A).
+            if (a.tag && a.tag->match.role == t.match.role) {
+                t.match.opacity_in_alpha = t.match.opacity_in_alpha || a.tag->match.opacity_in_alpha;
+                if (t.match.normal == NormalConvention::unknown) t.match.normal = a.tag->match.normal;
+            }
+            t.families = {family_view(t.match.family)};
+            t.fitting = t.families;
+            add_candidate({file, t.match, {}});
+            tags.push_back(std::move(t));
+            continue;
+        }
+        if (a.clutter) {
+            unrecognized.push_back(unrecognized_finding(file, naming::clutter_reason(a.clutter->kind)));
+            continue;
+        }
+        if (!a.tag) {
+            unrecognized.push_back(unrecognized_finding(file, "no role tag in the name"));
+            continue;
+        }
+        add_candidate({file, a.tag->match, {}});
+        tags.push_back(std::move(*a.tag));
+    }
+    out.convention = vote_convention(tags);
+
+    std::map<Role, Ambiguity> ambiguities;
+    std::map<Role, std::string> chosen_file;
+    for (auto& [role, ranked] : by_role) {
+        std::sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) { return a.key() < b.key(); });
+        RoleChoice choice{role, ranked.front().cand, {}};
+        for (size_t i = 1; i < ranked.size(); ++i) choice.rejected.push_back(ranked[i].cand);
+        chosen_file[role] = choice.chosen.file;
+        if (ranked.size() > 1) {
+            auto& a = ambiguities[role];
+            for (const auto& r : ranked) a.add(r.cand.file);
+            a.chosen = choice.chosen.file;
+            a.reasons.push_back(why_first(ranked[0], ranked[1], policy));
+        }
+        out.choices.push_back(std::move(choice));
+    }
+
+    std::vector<Role> targets;
+    targets.reserve(kOutputRoleCount + 1);
+    for (int i = 0; i < kOutputRoleCount; ++i) targets.push_back(static_cast<Role>(i));
+    targets.push_back(Role::translucency);
+    for (const Role target : targets) {
+        std::vector<Provider> available;
+        for (const auto& p : providers_of(target))
+            if (chosen_file.count(p.from)) available.push_back(p);
+        if (available.empty()) continue;
+        const Provider& best = available.front();
+        out.sources.push_back({target, chosen_file[best.from], best.from, best.channel, best.invert});
+        if (available.size() < 2) continue;
+        auto& a = ambiguities[target];
+        const std::string& file = chosen_file[best.from];
+        a.put_first(file);
+        for (const auto& p : available) a.add(chosen_file[p.from]);
+        a.chosen = file;
+        a.reasons.push_back(why_provider(target, best, available[1]));
+    }
+
+    for (const auto& [role, a] : ambiguities) out.findings.push_back(ambiguity_finding(role, a));
+    for (auto& f : unrecognized) out.findings.push_back(std::move(f));
+    return out;
+}
+
+}  // namespace mf

@@ -1,0 +1,200 @@
+// The naming rules of every family. Sources: each vendor's downloads as they are named (ambientCG
+// "<Id>_<res>-<FMT>_<Tag>", Poly Haven "<name>_<tag>_<res>", Textures.com/Poliigon legacy
+// "<Name>_<TAG>_<res>" and current "Poliigon_<Name>_<Tag>", Megascans "<id>_<res>_<Tag>" and its
+// Unreal export "T_<id>_<res>_<TAG>", Substance Painter's export presets, glTF sample models).
+#include "material/families.hpp"
+
+namespace mf::naming {
+namespace {
+
+using enum Role;
+constexpr auto kU = NormalConvention::unknown;
+constexpr auto kGL = NormalConvention::gl;
+constexpr auto kDX = NormalConvention::dx;
+
+constexpr Rule kAmbientCG[] = {
+    {"color", albedo, kU, Case::capital, false, "_Color"},
+    {"normal gl", normal, kGL, Case::capital, true, "_NormalGL"},
+    {"normal dx", normal, kDX, Case::capital, true, "_NormalDX"},
+    {"normal", normal, kU, Case::capital, false, "_Normal"},  // older sets
+    {"roughness", roughness, kU, Case::capital, false, "_Roughness"},
+    {"metalness", metalness, kU, Case::capital, false, "_Metalness"},
+    {"ambient occlusion", occlusion, kU, Case::capital, true, "_AmbientOcclusion"},
+    {"displacement", height, kU, Case::capital, false, "_Displacement"},
+    {"opacity", opacity, kU, Case::capital, false, "_Opacity"},
+    {"emission", emissive, kU, Case::capital, false, "_Emission"},
+};
+
+constexpr Rule kPolyHaven[] = {
+    {"diff", albedo, kU, Case::lower, false, "_diff_"},
+    {"col", albedo, kU, Case::lower, false, "_col_"},
+    {"nor gl", normal, kGL, Case::lower, false, "_nor_gl_"},
+    {"nor dx", normal, kDX, Case::lower, false, "_nor_dx_"},
+    {"nor", normal, kU, Case::lower, false, "_nor_"},
+    {"rough", roughness, kU, Case::lower, false, "_rough_"},
+    {"arm", orm, kU, Case::lower, false, "_arm_"},
+    {"ao", occlusion, kU, Case::lower, false, "_ao_"},
+    {"disp", height, kU, Case::lower, false, "_disp_"},
+    {"bump", height, kU, Case::lower, false, "_bump_"},
+    {"metal", metalness, kU, Case::lower, false, "_metal_"},
+    {"spec", specular, kU, Case::lower, false, "_spec_"},
+    // Plants and cut-outs: recorded for their role even where no preset packs it.
+    {"translucent", translucency, kU, Case::lower, false, "_translucent_", Need::res_after},
+    {"alpha", opacity, kU, Case::lower, false, "_alpha_", Need::res_after},
+};
+
+// Textures.com / Poliigon: the legacy upper-case tags first, so that "METALNESS" reads as the
+// legacy rule rather than the current "Metalness".
+constexpr Rule kTexturesCom[] = {
+    {"col", albedo, kU, Case::upper, false, "_COL"},
+    {"nrm", normal, kU, Case::upper, false, "_NRM"},
+    {"nrm16", normal, kU, Case::upper, false, "_NRM16"},
+    {"gloss", gloss, kU, Case::upper, false, "_GLOSS"},
+    {"refl", specular, kU, Case::upper, false, "_REFL"},
+    {"disp", height, kU, Case::upper, false, "_DISP"},
+    {"disp16", height, kU, Case::upper, false, "_DISP16"},
+    {"bump", height, kU, Case::upper, false, "_BUMP"},
+    {"bump16", height, kU, Case::upper, false, "_BUMP16"},
+    {"ao", occlusion, kU, Case::upper, false, "_AO"},
+    {"metalness", metalness, kU, Case::upper, false, "_METALNESS"},
+    {"base color", albedo, kU, Case::capital, true, "_BaseColor"},
+    {"normal gl", normal, kGL, Case::capital, true, "_NormalGL"},
+    {"normal dx", normal, kDX, Case::capital, true, "_NormalDX"},
+    {"normal", normal, kU, Case::capital, false, "_Normal"},
+    {"roughness", roughness, kU, Case::capital, false, "_Roughness"},
+    {"metallic", metalness, kU, Case::capital, false, "_Metallic"},
+    {"metalness", metalness, kU, Case::capital, false, "_Metalness"},
+    {"ambient occlusion", occlusion, kU, Case::capital, true, "_AmbientOcclusion"},
+    {"displacement", height, kU, Case::capital, false, "_Displacement"},
+    {"height", height, kU, Case::capital, false, "_Height"},
+};
+
+constexpr Rule kMegascans[] = {
+    {"albedo", albedo, kU, Case::capital, false, "_Albedo"},
+    {"roughness", roughness, kU, Case::capital, false, "_Roughness"},
+    {"gloss", gloss, kU, Case::capital, false, "_Gloss"},
+    {"specular", specular, kU, Case::capital, false, "_Specular"},
+    {"normal", normal, kU, Case::capital, false, "_Normal"},
+    {"cavity", cavity, kU, Case::capital, false, "_Cavity"},
+    {"bump", height, kU, Case::capital, false, "_Bump"},
+    {"displacement", height, kU, Case::capital, false, "_Displacement"},
+    {"ao", occlusion, kU, Case::capital, false, "_AO"},
+    {"opacity", opacity, kU, Case::capital, false, "_Opacity"},
+    {"translucency", translucency, kU, Case::capital, false, "_Translucency"},
+    {"ort", Role::ort, kU, Case::any, false, "_ORT"},  // only Megascans packs ORT
+    // Fab's current names ("Bracken_Fern_okdr22_4K_BaseColor").
+    {"base color", albedo, kU, Case::capital, true, "_BaseColor"},
+    // The Unreal export ("T_tbdpec3r_4K_B-O"): B base color, B-O base color with opacity in A,
+    // N normal, ORM / ORT packed. Billboard maps ("T_<id>_4K_Billboard_B-O") are clutter.
+    {"b o", albedo, kU, Case::upper, false, "_B-O", Need::unreal_texture, true},
+    {"b", albedo, kU, Case::upper, false, "_B", Need::unreal_texture},
+    {"n", normal, kU, Case::upper, false, "_N", Need::unreal_texture},
+    {"orm", orm, kU, Case::upper, false, "_ORM", Need::unreal_texture},
+};
+
+constexpr Rule kSubstance[] = {
+    {"base color", albedo, kU, Case::capital, false, "_BaseColor"},
+    {"normal opengl", normal, kGL, Case::capital, false, "_Normal_OpenGL"},
+    {"normal directx", normal, kDX, Case::capital, false, "_Normal_DirectX"},
+    {"normal", normal, kU, Case::capital, false, "_Normal"},
+    {"height", height, kU, Case::capital, false, "_Height"},
+    {"emissive", emissive, kU, Case::capital, false, "_Emissive"},
+    {"metallic", metalness, kU, Case::capital, false, "_Metallic"},
+    {"roughness", roughness, kU, Case::capital, false, "_Roughness"},
+    {"occlusion roughness metallic", orm, kU, Case::capital, true, "_OcclusionRoughnessMetallic"},
+    {"mixed ao", occlusion, kU, Case::capital, false, "_Mixed_AO"},
+    {"opacity", opacity, kU, Case::capital, false, "_Opacity"},
+};
+
+constexpr Rule kGltf[] = {
+    {"base color", albedo, kU, Case::lower_initial, true, "baseColor"},
+    {"metallic roughness", metallic_roughness, kU, Case::lower_initial, true, "metallicRoughness"},
+    {"metal roughness", metallic_roughness, kU, Case::lower_initial, true, "metalRoughness"},
+    {"occlusion roughness metallic", orm, kU, Case::lower_initial, true,
+     "occlusionRoughnessMetallic"},
+    {"occlusion", occlusion, kU, Case::lower_initial, false, "occlusion"},
+    {"emissive", emissive, kU, Case::lower_initial, false, "emissive"},
+    {"normal", normal, kU, Case::lower_initial, false, "normal"},
+};
+
+// Any case, any separators. Deliberately no "metal roughness" with separators: a roughness map
+// of "Rusty_Metal" is named "Rusty_Metal_Roughness".
+constexpr Rule kGeneric[] = {
+    {"diffuse", albedo, kU, Case::any, false, "diffuse"},
+    {"diff", albedo, kU, Case::any, false, "diff"},
+    {"albedo", albedo, kU, Case::any, false, "albedo"},
+    {"base color", albedo, kU, Case::any, false, "base_color"},
+    {"base colour", albedo, kU, Case::any, false, "base_colour"},
+    {"basecolor", albedo, kU, Case::any, false, "basecolor"},
+    {"base", albedo, kU, Case::any, false, "base"},
+    {"col", albedo, kU, Case::any, false, "col"},
+    {"color", albedo, kU, Case::any, false, "color"},
+    {"colour", albedo, kU, Case::any, false, "colour"},
+    {"normal gl", normal, kGL, Case::any, false, "normal_gl"},
+    {"normal opengl", normal, kGL, Case::any, false, "normal_opengl"},
+    {"normal dx", normal, kDX, Case::any, false, "normal_dx"},
+    {"normal directx", normal, kDX, Case::any, false, "normal_directx"},
+    {"normalgl", normal, kGL, Case::any, false, "normalgl"},
+    {"normaldx", normal, kDX, Case::any, false, "normaldx"},
+    {"nrm gl", normal, kGL, Case::any, false, "nrm_gl"},
+    {"nrm dx", normal, kDX, Case::any, false, "nrm_dx"},
+    {"nor gl", normal, kGL, Case::any, false, "nor_gl"},
+    {"nor dx", normal, kDX, Case::any, false, "nor_dx"},
+    {"normal", normal, kU, Case::any, false, "normal"},
+    {"norm", normal, kU, Case::any, false, "norm"},
+    {"nrm", normal, kU, Case::any, false, "nrm"},
+    {"nor", normal, kU, Case::any, false, "nor"},
+    {"roughness", roughness, kU, Case::any, false, "roughness"},
+    {"rough", roughness, kU, Case::any, false, "rough"},
+    {"rgh", roughness, kU, Case::any, false, "rgh"},
+    {"gloss", gloss, kU, Case::any, false, "gloss"},
+    {"glossiness", gloss, kU, Case::any, false, "glossiness"},
+    {"smoothness", gloss, kU, Case::any, false, "smoothness"},
+    {"metalness", metalness, kU, Case::any, false, "metalness"},
+    {"metallic", metalness, kU, Case::any, false, "metallic"},
+    {"metal", metalness, kU, Case::any, false, "metal"},
+    {"ao", occlusion, kU, Case::any, false, "ao"},
+    {"occ", occlusion, kU, Case::any, false, "occ"},  // 3dtextures.me's older "_OCC"
+    {"occlusion", occlusion, kU, Case::any, false, "occlusion"},
+    {"ambient occlusion", occlusion, kU, Case::any, false, "ambient_occlusion"},
+    {"ambientocclusion", occlusion, kU, Case::any, false, "ambientocclusion"},
+    {"height", height, kU, Case::any, false, "height"},
+    {"heightmap", height, kU, Case::any, false, "heightmap"},
+    {"disp", height, kU, Case::any, false, "disp"},
+    {"displacement", height, kU, Case::any, false, "displacement"},
+    {"bump", height, kU, Case::any, false, "bump"},
+    {"emissive", emissive, kU, Case::any, false, "emissive"},
+    {"emission", emissive, kU, Case::any, false, "emission"},
+    {"opacity", opacity, kU, Case::any, false, "opacity"},
+    {"alpha", opacity, kU, Case::any, false, "alpha"},
+    // "mask" alone is clutter (a mask with no PBR role); these two are opacity.
+    {"opacity mask", opacity, kU, Case::any, false, "opacity_mask"},
+    {"alpha mask", opacity, kU, Case::any, false, "alpha_mask"},
+    {"specular", specular, kU, Case::any, false, "specular"},
+    {"spec", specular, kU, Case::any, false, "spec"},
+    {"orm", orm, kU, Case::any, false, "orm"},
+    {"arm", orm, kU, Case::any, false, "arm"},
+    {"occlusion roughness metallic", orm, kU, Case::any, true, "occlusion_roughness_metallic"},
+    {"metallic roughness", metallic_roughness, kU, Case::any, true, "metallic_roughness"},
+    {"metal roughness", metallic_roughness, kU, Case::any, true, "metal_roughness"},
+    {"metallicroughness", metallic_roughness, kU, Case::any, false, "metallicroughness"},
+    {"translucency", translucency, kU, Case::any, false, "translucency"},
+    {"translucent", translucency, kU, Case::any, false, "translucent"},
+    {"cavity", cavity, kU, Case::any, false, "cavity"},
+};
+
+}  // namespace
+
+const std::array<Family, 7> kFamilies{{
+    {"ambientcg", kAmbientCG, [](const Layout& l) { return l.res_format_pair; }},
+    {"polyhaven", kPolyHaven, [](const Layout& l) { return l.res_after; }},
+    {"texturescom", kTexturesCom,
+     [](const Layout& l) { return l.res_after || l.poliigon_prefix; }},
+    {"megascans", kMegascans, [](const Layout& l) { return l.res_before; }},
+    {"substance", kSubstance, [](const Layout& l) { return l.no_resolution; }},
+    {"gltf", kGltf, [](const Layout& l) { return l.no_resolution; }},
+    {"generic", kGeneric, [](const Layout&) { return false; }},
+}};
+
+}  // namespace mf::naming
+

@@ -1,0 +1,63 @@
+// Internal to lib/material (not a public API): the naming rules of each family, in one table per
+// family (families.cpp). Matching them against a name is classify.cpp's job.
+#pragma once
+#include <array>
+#include <span>
+#include <string_view>
+
+#include "material/roles.hpp"
+
+namespace mf::naming {
+
+enum class Case {
+    any,
+    lower,          // all letters lower case ("nor_gl")
+    upper,          // all letters upper case ("COL", "NRM16")
+    capital,        // first letter upper case ("NormalGL", "AO")
+    lower_initial,  // first letter lower case ("baseColor", "normal")
+};
+
+// A condition on the whole name, for tags too short to trust anywhere.
+enum class Need {
+    none,
+    // Megascans' Unreal export (Fab): "T_<id>_<res>_<tag>", the name starts with the token "T" and
+    // a resolution tag stands right before the role tag ("T_tbdpec3r_4K_B-O"). Only there is a
+    // lone "B" or "N" a role and not a variant letter ("Wall_B").
+    unreal_texture,
+    // A resolution tag right after the role tag (Poly Haven's "_alpha_1k"): for tags whose bare
+    // form ("leaf_alpha") is left to the generic rules.
+    res_after,
+};
+
+struct Rule {
+    std::string_view tokens;  // lower-case tokens separated by ' '
+    Role role;
+    NormalConvention normal;
+    Case casing;
+    bool joined;  // the tokens must form one camel-case word ("NormalGL", not "Normal_GL")
+    std::string_view display;
+    Need need = Need::none;
+    bool opacity_in_alpha = false;  // the map's alpha channel is opacity ("_B-O": base color + opacity)
+};
+
+// How a name is laid out around its role tag; each family has a typical layout, used to
+// attribute a rule several families share ("_Roughness").
+struct Layout {
+    bool res_format_pair = false;  // "1K-PNG": ambientCG
+    bool res_before = false;       // "_2K_Albedo": Megascans
+    bool res_after = false;        // "_COL_VAR1_2K", "_nor_gl_1k": Poliigon legacy, Poly Haven
+    bool poliigon_prefix = false;  // "Poliigon_…": current Poliigon
+    bool no_resolution = false;    // "Mat_BaseColor": Substance, glTF
+};
+
+struct Family {
+    std::string_view name;
+    std::span<const Rule> rules;
+    bool (*fits)(const Layout&);
+};
+
+// Priority order: also the tie-break when nothing else decides. The generic family is last.
+extern const std::array<Family, 7> kFamilies;
+inline constexpr size_t kGenericFamily = 6;
+
+}  // namespace mf::naming

@@ -1,0 +1,36 @@
+#include "material/routing.hpp"
+
+namespace mf {
+
+std::vector<Route> route_candidates(Role out) {
+    std::vector<Route> list{{out, -1, false, false}};
+    for (const Role packed : {Role::orm, Role::metallic_roughness, Role::ort}) {
+        const auto layout = packed_layout(packed);
+        for (int ch = 0; ch < 3; ++ch)
+            if (layout[static_cast<size_t>(ch)] == out) list.push_back({packed, ch, false, false});
+    }
+    if (out == Role::roughness) list.push_back({Role::gloss, -1, true, false});
+    return list;
+}
+
+Routes route_roles(const std::function<int(Role)>& channels, bool albedo_alpha) {
+    Routes routes;
+    for (int ri = 0; ri < kOutputRoleCount; ++ri) {
+        const Role out = static_cast<Role>(ri);
+        for (const Route& r : route_candidates(out)) {
+            const int n = channels(r.from);
+            if (n > 0 && n > r.channel) {
+                routes.emplace(out, r);
+                break;
+            }
+        }
+    }
+    if (albedo_alpha && !routes.count(Role::opacity)) {
+        const auto albedo = routes.find(Role::albedo);
+        const int n = albedo != routes.end() && albedo->second.from == Role::albedo ? channels(Role::albedo) : 0;
+        if (n == 2 || n == 4) routes.emplace(Role::opacity, Route{Role::albedo, n - 1, false, true});
+    }
+    return routes;
+}
+
+}  // namespace mf

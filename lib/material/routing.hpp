@@ -1,0 +1,35 @@
+// Routing: which input map feeds each output role. Decided here and nowhere else: the set
+// planner (lib/process/plan) and the validator (lib/validate) both call route_roles(), so ingest
+// and validate always judge the same maps.
+//
+// Preference, for every output role: its dedicated map, then a packed input holding it (orm,
+// metallic_roughness, ort — see packed_layout()), then gloss (inverted) for roughness; opacity
+// with no map of its own comes from the albedo's alpha (glTF 2.0 §3.9.2: baseColor's alpha is
+// the coverage). A packed input feeds a role only when it has that channel.
+#pragma once
+#include <functional>
+#include <map>
+#include <vector>
+
+#include "material/roles.hpp"
+
+namespace mf {
+
+struct Route {
+    Role from = Role::albedo;  // the input role whose map holds the values
+    int channel = -1;          // -1: the whole map; 0..3: one channel of it
+    bool invert = false;       // gloss -> roughness (1 - v)
+    bool from_alpha = false;   // opacity carried in the albedo's last channel
+};
+using Routes = std::map<Role, Route>;  // output role -> its route
+
+// Every route an output role may take, best first (a dedicated map, packed inputs, gloss).
+// The albedo-alpha route of opacity is not listed: it depends on the albedo's channels.
+std::vector<Route> route_candidates(Role out);
+
+// The route of every output role that has one. `channels(r)` is the channel count of the input
+// of role r that can be read, 0 when there is none. `albedo_alpha`: whether an albedo with an
+// alpha channel (grey+alpha or RGBA: 2 or 4 channels) provides opacity when no opacity map exists.
+Routes route_roles(const std::function<int(Role)>& channels, bool albedo_alpha = true);
+
+}  // namespace mf

@@ -1,0 +1,307 @@
+#include "process/plan.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "core/parallel.hpp"
+#include "process/missing.hpp"
+#include "validate/validate.hpp"
+
+namespace mf {
+namespace {
+
+// What a plan works from: the set, each file opened once (a zip entry is read once).
+struct Files {
+    const MaterialSource& src;
+    std::map<std::string, InputFile> opened;
+
+    const InputFile& open(const std::string& f) {
+        auto it = opened.find(f);
+        if (it == opened.end()) it = opened.emplace(f, src.open(f)).first;
+        return it->second;
+    }
+};
+
+Finding make_finding(std::string_view code, Severity s, Role role, std::string file, std::string msg,
+                     nlohmann::json figures = nlohmann::json::object()) {
+    return {std::string(code), s, std::string(role_name(role)), std::move(file), std::move(msg), std::move(figures)};
+}
+
+// Estimated peak bytes of a set: its decoded maps (8-bit files as codes, others as float) plus
+// the planes made from them.
+uint64_t estimated_bytes(const SetDiscovery& d) {
+    uint64_t total = 0;
+    for (const auto& c : d.choices)
+        total += uint64_t{c.chosen.header.bit_depth == 8 && !c.chosen.header.is_float ? 1U : 4U} *
+                 static_cast<uint64_t>(std::max(0, c.chosen.header.width)) *
+                 static_cast<uint64_t>(std::max(0, c.chosen.header.height)) *
+                 static_cast<uint64_t>(std::clamp(c.chosen.header.channels, 1, 4));
+    return total * 2;
+}
+
+// One readable map per input role: each choice's candidates in order until one reads (decode
+// mode: the whole image, in parallel for large sets; stream mode: the header). Every candidate
+// that fails is an UNREADABLE_FILE finding, and the set is partial.
+void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode mode, int threads,
+                  std::vector<validate::MapInput>& maps) {
+    std::vector<std::vector<const Candidate*>> orders;
+    for (const auto& choice : d.choices) {
+        std::vector<const Candidate*> order{&choice.chosen};
+        for (const auto& r : choice.rejected) order.push_back(&r);
+        for (const Candidate* c : order) files.open(c->file);  // the map of files is not thread-safe
+        orders.push_back(std::move(order));
+    }
+    struct Outcome {
+        const Candidate* used = nullptr;
+        DecodedMap decoded;
+        std::optional<validate::MapInput> map;
+        std::vector<std::pair<const Candidate*, std::string>> errors;
+    };
+    std::vector<Outcome> outcomes(orders.size());
+    parallel_for(orders.size(), mode == PlanMode::decode ? threads : 1, [&](size_t i) {
+        Outcome& o = outcomes[i];
+        const Role role = d.choices[i].role;
+        for (const Candidate* c : orders[i]) {
+            const InputFile& in = files.opened.at(c->file);
+            std::string err;
+            if (mode == PlanMode::decode) {
+                if (read_image(in, o.decoded.img, o.decoded.info, err)) {
+                    validate::MapInput m;
+                    m.role = role;
+                    m.file = in;
+                    m.name = c->file;
+                    m.info = o.decoded.info;
+                    m.color_tag = validate::read_color_tag(in);
+                    m.name_convention = c->match.normal;
+                    o.map = std::move(m);
+                }
+            } else {
+                o.map = validate::make_map_input(role, in, c->file, c->match.normal, err);
+            }
+            if (o.map) {
+                o.used = c;
+                return;
+            }
+            o.errors.emplace_back(c, err);
+        }
+    });
+    for (size_t i = 0; i < orders.size(); ++i) {
+        const Role role = d.choices[i].role;
+        for (const auto& [c, err] : outcomes[i].errors) {
+            plan.partial = true;
+            plan.findings.push_back(make_finding(code::unreadable_file, Severity::error, role, c->file,
+                                                 err + "; the file is skipped"));
+        }
+        if (!outcomes[i].used) continue;
+        plan.inputs.emplace(role, *outcomes[i].used);
+        if (mode == PlanMode::decode) plan.decoded.emplace(outcomes[i].used->file, std::move(outcomes[i].decoded));
+        maps.push_back(std::move(*outcomes[i].map));
+    }
+}
+
+// Serves decoded maps to the rules band by band, as mf::read_bands would read them: codes are
+// converted one band at a time (the band stays in cache; the map is never held as floats).
+validate::BandReader memory_reader(std::map<std::string, const DecodedMap*> by_display) {
+    return [by_display = std::move(by_display)](const InputFile& in, int band_rows, ImageInfo& info,
+                                                std::string& error,
+                                                const std::function<void(int, int, const float*)>& fn) {
+        const auto it = by_display.find(in.display);
+        if (it == by_display.end()) {
+            error = in.display + ": not decoded";
+            return false;
+        }
+        const Decoded& d = it->second->img;
+        info = it->second->info;
+        if (!d.is_codes()) {
+            for (int y0 = 0; y0 < d.floats.height; y0 += band_rows)
+                fn(y0, std::min(band_rows, d.floats.height - y0), &d.floats.pixels[d.floats.index(0, y0)]);
+            return true;
+        }
+        const Image8& c = d.codes;
+        std::vector<float> band(static_cast<size_t>(c.width) * c.channels * static_cast<size_t>(band_rows));
+        for (int y0 = 0; y0 < c.height; y0 += band_rows) {
+            const int rows = std::min(band_rows, c.height - y0);
+            to_float(&c.pixels[c.index(0, y0)], static_cast<size_t>(c.width) * c.channels * static_cast<size_t>(rows),
+                     band.data());
+            fn(y0, rows, band.data());
+        }
+        return true;
+    };
+}
+
+// The normal map's convention: the name's, else the content's verdict (validate_set decides).
+manifest::NormalFacts normal_facts(const Candidate& c, const std::optional<validate::NormalCheck>& check) {
+    manifest::NormalFacts f;
+    f.convention = c.match.normal;
+    if (f.convention != NormalConvention::unknown) f.source = "name";
+    if (check && check->file == c.file) {
+        f.convention = check->resolved;
+        f.source = check->source == "none" ? "" : check->source;
+        if (check->source == "content") {
+            f.confidence = check->content.confidence;
+            f.method = check->content.method;
+        }
+    }
+    return f;
+}
+
+// Routes over the maps that were read; the albedo's alpha is the opacity only when some texel
+// is below opaque (codes 254 and below read under 0.999).
+void route(SetPlan& plan, const validate::SetValidation& checked) {
+    plan.routes = route_roles([&](Role r) {
+        const auto it = plan.inputs.find(r);
+        return it == plan.inputs.end() ? 0 : std::max(0, it->second.header.channels);
+    });
+    const auto op = plan.routes.find(Role::opacity);
+    if (op == plan.routes.end() || !op->second.from_alpha) return;
+    if (!checked.albedo_alpha_min || !(*checked.albedo_alpha_min < 0.999)) {
+        plan.routes.erase(op);
+        return;
+    }
+    plan.findings.push_back(make_finding(code::packed_input_unpacked, Severity::info, Role::opacity,
+                                         plan.inputs.at(Role::albedo).file,
+                                         "opacity taken from the albedo map's alpha channel"));
+}
+
+// What each route does to its input, said once: the normal convention conversion, gloss
+// inversion and packed inputs split into roles.
+void conversion_findings(SetPlan& plan, NormalConvention target) {
+    std::set<Role> unpacked;
+    for (const auto& [out, r] : plan.routes) {
+        const Candidate& c = plan.inputs.at(r.from);
+        if (out == Role::normal) {
+            const NormalConvention from = plan.normal_from();
+            if (from != target)
+                plan.findings.push_back(make_finding(
+                    code::normal_convention_converted, Severity::info, out, c.file,
+                    "green channel flipped from " + std::string(convention_name(from)) + " to " +
+                        std::string(convention_name(target)) + " for the preset",
+                    {{"from", convention_name(from)}, {"to", convention_name(target)}}));
+        }
+        if (r.invert)
+            plan.findings.push_back(make_finding(code::gloss_inverted, Severity::info, out, c.file,
+                                                 "gloss map converted to roughness (roughness = 1 - gloss)"));
+        if (traits(r.from).packed) unpacked.insert(r.from);
+    }
+    for (Role p : unpacked) {
+        std::string parts;
+        const auto layout = packed_layout(p);
+        static constexpr const char* kCh[] = {"R", "G", "B"};
+        for (size_t i = 0; i < 3; ++i)
+            if (layout[i])
+                parts += (parts.empty() ? "" : ", ") + std::string(kCh[i]) + " = " + std::string(role_name(*layout[i]));
+        plan.findings.push_back(make_finding(code::packed_input_unpacked, Severity::info, p, plan.inputs.at(p).file,
+                                             "packed " + std::string(role_name(p)) + " map split into " + parts +
+                                                 (p == Role::ort ? " (translucency is not metalness)" : "")));
+    }
+}
+
+// One size for the set: the largest routed map, within the preset's limit.
+void decide_size(SetPlan& plan, const Preset& preset) {
+    int w = 0, h = 0;
+    for (const auto& [out, r] : plan.routes) {
+        const HeaderInfo& hd = plan.inputs.at(r.from).header;
+        w = std::max(w, hd.width);
+        h = std::max(h, hd.height);
+    }
+    if (preset.max_size > 0 && std::max(w, h) > preset.max_size) {
+        const int ow = w, oh = h;
+        const double k = static_cast<double>(preset.max_size) / std::max(w, h);
+        w = std::max(1, static_cast<int>(std::lround(w * k)));
+        h = std::max(1, static_cast<int>(std::lround(h * k)));
+        plan.findings.push_back({std::string(code::resized), Severity::info, "", "",
+                                 "downsampled from " + std::to_string(ow) + "x" + std::to_string(oh) + " to " +
+                                     std::to_string(w) + "x" + std::to_string(h) + " (preset max_size " +
+                                     std::to_string(preset.max_size) + ")",
+                                 {{"from", {ow, oh}}, {"to", {w, h}}}});
+    }
+    plan.width = w;
+    plan.height = h;
+}
+
+}  // namespace
+
+NormalConvention SetPlan::normal_from() const {
+    return normal && normal->convention != NormalConvention::unknown ? normal->convention : NormalConvention::gl;
+}
+
+SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
+    const Preset& preset = *opt.preset;
+    SetPlan plan;
+    Files files{src, {}};
+
+    auto header = [&](const std::string& f) -> std::optional<HeaderInfo> {
+        std::string err;
+        auto info = read_info(files.open(f), err);
+        if (!info) return std::nullopt;
+        return HeaderInfo{info->width, info->height, info->channels, info->bit_depth, info->is_float};
+    };
+    const SetDiscovery d = discover_set(src.files, header, ChoicePolicy{preset.normal_convention, preset.max_size});
+    plan.convention = d.convention;
+    plan.findings = d.findings;
+    plan.footprint = estimated_bytes(d);
+    if (opt.mode == PlanMode::decode) plan.lease = std::make_unique<BudgetLease>(opt.budget, plan.footprint);
+
+    // Sets of 4 Mpixel maps and up decode their maps on two threads; small ones stay on one
+    // (the batch is already parallel across sets).
+    std::vector<validate::MapInput> maps;
+    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) ? 2 : 1, maps);
+    if (maps.empty()) {
+        std::string msg = src.display + ": no map of the set could be read";
+        for (const auto& f : plan.findings)
+            if (f.code == code::unreadable_file) msg += "; " + f.message;
+        plan.failure = std::move(msg);
+        return plan;
+    }
+
+    validate::ValidateOptions vo;
+    vo.material = src.name;
+    if (opt.mode == PlanMode::decode) {
+        std::map<std::string, const DecodedMap*> by_display;
+        for (const auto& [role, c] : plan.inputs) by_display[files.open(c.file).display] = &plan.decoded.at(c.file);
+        vo.reader = memory_reader(std::move(by_display));
+    }
+    const validate::SetValidation checked = validate::validate_set(maps, *opt.rules, vo);
+    plan.findings.insert(plan.findings.end(), checked.findings.begin(), checked.findings.end());
+    maps.clear();
+    files.opened.clear();  // read (decode mode) or streamed (stream mode): free zip bytes early
+
+    route(plan, checked);
+    if (const auto n = plan.routes.find(Role::normal); n != plan.routes.end())
+        plan.normal = normal_facts(plan.inputs.at(n->second.from), checked.normal);
+    conversion_findings(plan, preset.normal_convention);
+    decide_size(plan, preset);
+
+    // Missing roles: constants where an output needs them, reported per the preset.
+    std::set<Role> available;
+    for (const auto& [r, route] : plan.routes) available.insert(r);
+    auto missing = missing_map_findings(preset, available, written_roles(preset, available), plan.constants,
+                                        opt.mode == PlanMode::decode);
+    plan.findings.insert(plan.findings.end(), missing.begin(), missing.end());
+
+    validate::apply_config(plan.findings, src.name, *opt.rules);  // suppressions reach every finding
+    return plan;
+}
+
+std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {
+    std::vector<manifest::Input> inputs;
+    for (const auto& [role, c] : plan.inputs) {
+        manifest::Input in;
+        in.role = role;
+        in.file = c.file;
+        in.family = c.match.family;
+        in.rule = c.match.rule;
+        const HeaderInfo& hd = c.header;
+        in.width = hd.width;
+        in.height = hd.height;
+        in.channels = hd.channels;
+        in.bit_depth = hd.bit_depth;
+        in.is_float = hd.is_float;
+        in.color_space = !is_color_role(role) ? "data" : hd.is_float ? "linear" : "sRGB";
+        if (role == Role::normal) in.normal = plan.normal.value_or(manifest::NormalFacts{});
+        inputs.push_back(std::move(in));
+    }
+    return inputs;
+}
+
+}  // namespace mf

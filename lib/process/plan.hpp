@@ -1,0 +1,67 @@
+// plan_set: the front half of every command, decided once per material set. It discovers the
+// files' roles, reads the chosen maps (falling back to the next candidate), routes every output
+// role to its input (material/routing), runs every validation rule, judges the normal map's
+// convention, decides the set's size and what the preset must generate for missing roles, and
+// applies the rules config. `ingest` = plan -> planes -> outputs -> manifest; `validate` =
+// plan -> report. Every finding these stages raise comes from here (or from validate_set, which
+// this calls), once.
+#pragma once
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/budget.hpp"
+#include "core/findings.hpp"
+#include "image/image.hpp"
+#include "manifest/manifest.hpp"
+#include "material/discovery.hpp"
+#include "material/routing.hpp"
+#include "preset/preset.hpp"
+#include "process/sets.hpp"
+#include "validate/rules.hpp"
+
+namespace mf {
+
+enum class PlanMode {
+    decode,  // ingest: every chosen map decoded once, kept in memory for the planes
+    stream,  // validate: headers only up front; the rules stream each map in bands
+};
+
+struct PlanOptions {
+    const Preset* preset = nullptr;               // normal convention (override applied), sizes, needs
+    const validate::RuleConfig* rules = nullptr;  // thresholds, severities, suppressions
+    PlanMode mode = PlanMode::decode;
+    MemoryBudget* budget = nullptr;  // decode mode: the set's decoded bytes are leased from it
+};
+
+struct DecodedMap {
+    Decoded img;  // 8-bit files stay codes until a step needs floats
+    ImageInfo info;
+};
+
+struct SetPlan {
+    std::string convention;                // naming family most maps follow
+    std::map<Role, Candidate> inputs;      // input role -> the file that was read
+    Routes routes;                         // output role -> where its values come from
+    std::map<std::string, DecodedMap> decoded;  // decode mode: by file
+    std::optional<manifest::NormalFacts> normal;  // the routed normal map's convention verdict
+    int width = 0, height = 0;             // the set's output size (largest routed map, within max_size)
+    std::vector<manifest::Constant> constants;  // generated for roles the outputs need
+    std::vector<Finding> findings;         // in emission order; config applied
+    bool partial = false;                  // some map could not be read
+    std::optional<std::string> failure;    // nothing could be read: the set is an input failure
+    uint64_t footprint = 0;                // estimated decoded bytes (decode mode)
+    std::unique_ptr<BudgetLease> lease;    // held until the plan is destroyed
+
+    // The normal convention the outputs are converted from: the verdict, gl when undecided.
+    NormalConvention normal_from() const;
+};
+
+SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt);
+
+// The manifest entry's inputs of a plan (role order).
+std::vector<manifest::Input> manifest_inputs(const SetPlan& plan);
+
+}  // namespace mf

@@ -1,0 +1,129 @@
+// The frame: render targets, then Renderer::render's passes — shade into the linear fp32
+// target, encode to 8 bits (or copy the floats), read back.
+#include <cstring>
+
+#include "render/internal.hpp"
+#include "render/renderer_impl.hpp"
+
+namespace mf::render {
+
+using namespace detail;
+
+void Renderer::Impl::create_targets() {
+    ImageDesc td;
+    td.format = kTargetFormat;
+    td.width = scene.width;
+    td.height = scene.height;
+    td.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    target = create_image(d, td);
+    readback = create_buffer(d, VkDeviceSize{scene.width} * scene.height * 16,
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    uniforms = create_buffer(d, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+
+    VkDescriptorImageInfo ii{VK_NULL_HANDLE, target.view, VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorBufferInfo bi{readback.buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w[2]{};
+    w[0] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w[0].dstSet = encode_set;
+    w[0].dstBinding = static_cast<uint32_t>(gpu::kBindingEncodeRadiance);
+    w[0].descriptorCount = 1;
+    w[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    w[0].pImageInfo = &ii;
+    w[1] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w[1].dstSet = encode_set;
+    w[1].dstBinding = static_cast<uint32_t>(gpu::kBindingEncodePixels);
+    w[1].descriptorCount = 1;
+    w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w[1].pBufferInfo = &bi;
+    d.fn.vkUpdateDescriptorSets(d.device, 2, w, 0, nullptr);
+}
+
+Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output) {
+    Impl& r = *impl_;
+    const Device& d = r.d;
+    const GpuMaterial::Impl& m = material.impl();
+    if (m.owner != impl_.get()) throw Error("material '" + m.name + "' was uploaded by another renderer");
+    const uint32_t w = r.scene.width, h = r.scene.height;
+    r.write_frame(m.constants);
+    r.frame_times.clear();
+
+    Submission s(d, r.command_pool, r.queries, kQueryCount);
+    VkCommandBuffer cmd = s.cmd();
+    // The previous frame read the target (encode or copy); this one overwrites it.
+    image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+
+    s.begin_pass("shade");
+    auto att = vk_struct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    att.imageView = r.target.view;
+    att.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att.clearValue.color = {{r.scene.background[0], r.scene.background[1], r.scene.background[2], 1.f}};
+    auto ri = vk_struct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+    ri.renderArea = {{0, 0}, {w, h}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = 1;
+    ri.pColorAttachments = &att;
+    d.fn.vkCmdBeginRendering(cmd, &ri);
+    d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline);
+    const VkViewport viewport{0.f, 0.f, static_cast<float>(w), static_cast<float>(h), 0.f, 1.f};
+    const VkRect2D scissor{{0, 0}, {w, h}};
+    d.fn.vkCmdSetViewport(cmd, 0, 1, &viewport);
+    d.fn.vkCmdSetScissor(cmd, 0, 1, &scissor);
+    const VkDescriptorSet sets[] = {r.frame_set, m.set};  // gpu::kSetFrame, gpu::kSetMaterial
+    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.shade_layout, 0, 2, sets, 0, nullptr);
+    const VkDeviceSize zero = 0;
+    const VkBuffer vb = r.vertices.buffer;
+    d.fn.vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
+    d.fn.vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    d.fn.vkCmdDrawIndexed(cmd, r.index_count, 1, 0, 0, 0);
+    d.fn.vkCmdEndRendering(cmd);
+    s.end_pass();
+
+    if (output.format == PixelFormat::Rgba8) {
+        image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        s.begin_pass("encode");
+        d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_pipeline);
+        d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_layout, 0, 1, &r.encode_set, 0, nullptr);
+        const gpu::EncodeParams params{{w, h}, output.exposure, output.transfer == Transfer::Srgb ? 1u : 0u};
+        d.fn.vkCmdPushConstants(cmd, r.encode_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
+        d.fn.vkCmdDispatch(cmd, tile_groups(w), tile_groups(h), 1);
+        s.end_pass();
+        memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    } else {
+        image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+        s.begin_pass("readback");
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {w, h, 1};
+        d.fn.vkCmdCopyImageToBuffer(cmd, r.target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.readback.buffer, 1, &region);
+        s.end_pass();
+        memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    }
+    s.finish(r.frame_times);
+    invalidate(d, r.readback);
+
+    Frame frame;
+    frame.width = w;
+    frame.height = h;
+    const size_t n = size_t{w} * h * 4;
+    if (output.format == PixelFormat::Rgba8) {
+        frame.rgba8.resize(n);
+        std::memcpy(frame.rgba8.data(), r.readback.mapped, n);
+    } else {
+        frame.rgba32f.resize(n);
+        std::memcpy(frame.rgba32f.data(), r.readback.mapped, n * sizeof(float));
+    }
+    return frame;
+}
+
+}  // namespace mf::render

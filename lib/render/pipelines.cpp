@@ -1,0 +1,273 @@
+// Descriptor and pipeline layouts, the shading pipeline's variants and the encode pipeline.
+//
+// Specialization constants are mapped by name: each VkSpecializationMapEntry pairs an id of
+// shaders/interface.h with the offset of its field in gpu::ShadeSpecialization, so adding a
+// constant cannot shift the others.
+#include <cstddef>
+#include <sstream>
+
+#include "render/internal.hpp"
+#include "render/renderer_impl.hpp"
+
+namespace mf::render {
+
+using namespace detail;
+
+namespace {
+
+constexpr uint32_t kShadeVert[] =
+#include "shaders/shade.vert.inc"
+    ;
+constexpr uint32_t kShadeFrag[] =
+#include "shaders/shade.frag.inc"
+    ;
+constexpr uint32_t kEncodeComp[] =
+#include "shaders/encode.comp.inc"
+    ;
+
+using gpu::ShadeSpecialization;
+
+constexpr VkSpecializationMapEntry kShadeEntries[] = {
+    spec_entry(gpu::kSpecNumDirectional, offsetof(ShadeSpecialization, num_directional)),
+    spec_entry(gpu::kSpecNumPoint, offsetof(ShadeSpecialization, num_point)),
+    spec_entry(gpu::kSpecBrdfModel, offsetof(ShadeSpecialization, brdf_model)),
+    spec_entry(gpu::kSpecAnalyticSphere, offsetof(ShadeSpecialization, analytic_sphere)),
+    spec_entry(gpu::kSpecHasEnv, offsetof(ShadeSpecialization, has_env)),
+    spec_entry(gpu::kSpecAlbedoTex, offsetof(ShadeSpecialization, albedo_tex)),
+    spec_entry(gpu::kSpecEmissiveTex, offsetof(ShadeSpecialization, emissive_tex)),
+    spec_entry(gpu::kSpecNormalTex, offsetof(ShadeSpecialization, normal_tex)),
+    spec_entry(gpu::kSpecNormalGreenDown, offsetof(ShadeSpecialization, normal_green_down)),
+    spec_entry(gpu::kSpecRoughnessTex, offsetof(ShadeSpecialization, roughness_tex)),
+    spec_entry(gpu::kSpecRoughnessChannel, offsetof(ShadeSpecialization, roughness_channel)),
+    spec_entry(gpu::kSpecRoughnessInvert, offsetof(ShadeSpecialization, roughness_invert)),
+    spec_entry(gpu::kSpecMetalnessTex, offsetof(ShadeSpecialization, metalness_tex)),
+    spec_entry(gpu::kSpecMetalnessChannel, offsetof(ShadeSpecialization, metalness_channel)),
+    spec_entry(gpu::kSpecMetalnessInvert, offsetof(ShadeSpecialization, metalness_invert)),
+    spec_entry(gpu::kSpecOcclusionTex, offsetof(ShadeSpecialization, occlusion_tex)),
+    spec_entry(gpu::kSpecOcclusionChannel, offsetof(ShadeSpecialization, occlusion_channel)),
+    spec_entry(gpu::kSpecOcclusionInvert, offsetof(ShadeSpecialization, occlusion_invert)),
+    spec_entry(gpu::kSpecOpacityTex, offsetof(ShadeSpecialization, opacity_tex)),
+    spec_entry(gpu::kSpecOpacityChannel, offsetof(ShadeSpecialization, opacity_channel)),
+    spec_entry(gpu::kSpecOpacityInvert, offsetof(ShadeSpecialization, opacity_invert)),
+};
+static_assert(spec_entries_distinct(kShadeEntries), "an id or field mapped twice");
+
+uint32_t flag(bool b) { return b ? 1u : 0u; }
+
+const char* role_text(int texture) { return texture >= 0 ? "tex" : "const"; }
+
+}  // namespace
+
+Unique<VkDescriptorSetLayout> Renderer::Impl::make_set_layout(
+    const std::vector<VkDescriptorSetLayoutBinding>& bindings) const {
+    auto ci = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    ci.bindingCount = static_cast<uint32_t>(bindings.size());
+    ci.pBindings = bindings.data();
+    VkDescriptorSetLayout h = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkCreateDescriptorSetLayout(d.device, &ci, nullptr, &h));
+    return Unique<VkDescriptorSetLayout>(d, h);
+}
+
+Unique<VkPipelineLayout> Renderer::Impl::make_pipeline_layout(
+    const std::vector<VkDescriptorSetLayout>& sets, uint32_t push_bytes, VkShaderStageFlags push_stages) const {
+    VkPushConstantRange range{push_stages, 0, push_bytes};
+    auto ci = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    ci.setLayoutCount = static_cast<uint32_t>(sets.size());
+    ci.pSetLayouts = sets.data();
+    ci.pushConstantRangeCount = push_bytes ? 1u : 0u;
+    ci.pPushConstantRanges = &range;
+    VkPipelineLayout h = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkCreatePipelineLayout(d.device, &ci, nullptr, &h));
+    return Unique<VkPipelineLayout>(d, h);
+}
+
+Unique<VkPipeline> Renderer::Impl::make_compute_pipeline(const uint32_t* code, size_t bytes,
+                                                         VkPipelineLayout layout,
+                                                         const VkSpecializationInfo* spec) const {
+    Unique<VkShaderModule> module = create_shader(d, code, bytes);
+    auto ci = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+    ci.stage = vk_struct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = module;
+    ci.stage.pName = "main";
+    ci.stage.pSpecializationInfo = spec;
+    ci.layout = layout;
+    VkPipeline h = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &h));
+    return Unique<VkPipeline>(d, h);
+}
+
+VkDescriptorSet Renderer::Impl::allocate_set(VkDescriptorPool pool, VkDescriptorSetLayout layout) const {
+    auto ai = vk_struct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkAllocateDescriptorSets(d.device, &ai, &set));
+    return set;
+}
+
+void Renderer::Impl::create_layouts() {
+    constexpr auto kFrag = VK_SHADER_STAGE_FRAGMENT_BIT;
+    constexpr auto kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
+    auto binding = [](int b, VkDescriptorType type, uint32_t count, VkShaderStageFlags stages) {
+        return VkDescriptorSetLayoutBinding{static_cast<uint32_t>(b), type, count, stages, nullptr};
+    };
+    frame_layout = make_set_layout({
+        binding(gpu::kBindingFrameData, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | kFrag),
+        binding(gpu::kBindingBrdfLut, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrag),
+        binding(gpu::kBindingEnvSpecular, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrag),
+        binding(gpu::kBindingEnvIrradiance, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, kFrag),
+    });
+    material_layout = make_set_layout({
+        binding(gpu::kBindingMaterialTextures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                static_cast<uint32_t>(kMaxTextures), kFrag),
+    });
+    encode_set_layout = make_set_layout({
+        binding(gpu::kBindingEncodeRadiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, kCompute),
+        binding(gpu::kBindingEncodePixels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kCompute),
+    });
+    static_assert(gpu::kSetFrame == 0 && gpu::kSetMaterial == 1, "the order of shade_layout's sets");
+    shade_layout = make_pipeline_layout({frame_layout, material_layout}, 0, 0);
+    encode_layout = make_pipeline_layout({encode_set_layout}, sizeof(gpu::EncodeParams), kCompute);
+    encode_pipeline = make_compute_pipeline(kEncodeComp, sizeof(kEncodeComp), encode_layout, nullptr);
+    vert = create_shader(d, kShadeVert, sizeof(kShadeVert));
+    frag = create_shader(d, kShadeFrag, sizeof(kShadeFrag));
+
+    // One pool for the renderer's own sets; materials bring their own.
+    const VkDescriptorPoolSize sizes[] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 + kIblSamplers},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1 + kIblStorageImages},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+    };
+    auto pci = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    pci.maxSets = 2 + kIblSets;
+    pci.poolSizeCount = 4;
+    pci.pPoolSizes = sizes;
+    VkDescriptorPool h = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkCreateDescriptorPool(d.device, &pci, nullptr, &h));
+    descriptor_pool = Unique<VkDescriptorPool>(d, h);
+    frame_set = allocate_set(descriptor_pool, frame_layout);
+    encode_set = allocate_set(descriptor_pool, encode_set_layout);
+}
+
+ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
+    ShadeSpecialization c{};
+    for (const Light& l : scene.lights) ++(l.type == LightType::Directional ? c.num_directional : c.num_point);
+    const bool env = static_cast<bool>(scene.environment);
+    c.brdf_model = brdf_model_id(scene.brdf);
+    c.analytic_sphere = flag(scene.shape.type == ShapeType::Sphere);
+    c.has_env = flag(env);
+    c.albedo_tex = m.albedo.texture;
+    c.emissive_tex = m.emissive.texture;
+    c.normal_tex = m.normal.texture;
+    c.normal_green_down = flag(m.normal.green_down);
+    auto scalar = [](const ScalarRole& r, int32_t& tex, int32_t& channel, uint32_t& invert) {
+        tex = r.texture;
+        channel = static_cast<int32_t>(r.channel);
+        invert = flag(r.invert);
+    };
+    scalar(m.roughness, c.roughness_tex, c.roughness_channel, c.roughness_invert);
+    scalar(m.metalness, c.metalness_tex, c.metalness_channel, c.metalness_invert);
+    // Occlusion only darkens light from the environment: without one it is never sampled.
+    ScalarRole occlusion = m.occlusion;
+    if (!env) occlusion.texture = -1;
+    scalar(occlusion, c.occlusion_tex, c.occlusion_channel, c.occlusion_invert);
+    scalar(m.opacity, c.opacity_tex, c.opacity_channel, c.opacity_invert);
+    return c;
+}
+
+std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
+    static const char* const brdf_names[] = {"standard", "accurate", "assignment"};  // CLI values
+    static const char* const shape_names[] = {"sphere", "cube", "plane"};
+    std::ostringstream os;
+    os << shape_names[static_cast<int>(scene.shape.type)] << ' ' << brdf_names[static_cast<int>(scene.brdf)]
+       << " dir" << c.num_directional << " point" << c.num_point << (c.has_env ? " env" : "")
+       << " albedo:" << role_text(c.albedo_tex)
+       << " normal:" << (c.normal_tex >= 0 ? (c.normal_green_down ? "dx" : "gl") : "none")
+       << " roughness:" << role_text(c.roughness_tex) << " metalness:" << role_text(c.metalness_tex);
+    if (c.emissive_tex >= 0) os << " emissive:tex";
+    if (c.opacity_tex >= 0) os << " opacity:tex";
+    if (c.occlusion_tex >= 0) os << " occlusion:tex";
+    return os.str();
+}
+
+VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) {
+    auto it = shade_pipelines.find(constants);
+    if (it != shade_pipelines.end()) return it->second;
+
+    const VkSpecializationInfo spec = spec_info(kShadeEntries, constants);
+
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0] = vk_struct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vert;
+    stages[0].pName = "main";
+    stages[1] = vk_struct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = frag;
+    stages[1].pName = "main";
+    stages[1].pSpecializationInfo = &spec;
+
+    const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    auto attribute = [](int location, VkFormat format, size_t offset) {
+        return VkVertexInputAttributeDescription{static_cast<uint32_t>(location), 0, format,
+                                                 static_cast<uint32_t>(offset)};
+    };
+    const VkVertexInputAttributeDescription attributes[] = {
+        attribute(gpu::kLocationPosition, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)),
+        attribute(gpu::kLocationNormal, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)),
+        attribute(gpu::kLocationTangent, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)),
+        attribute(gpu::kLocationUv, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)),
+    };
+    auto vi = vk_struct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
+    vi.vertexBindingDescriptionCount = 1;
+    vi.pVertexBindingDescriptions = &binding;
+    vi.vertexAttributeDescriptionCount = 4;
+    vi.pVertexAttributeDescriptions = attributes;
+    auto ia = vk_struct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
+    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    auto vp = vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
+    vp.viewportCount = 1;
+    vp.scissorCount = 1;
+    // The shapes are convex: culling back faces is all the visibility they need (no depth buffer).
+    auto rs = vk_struct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = VK_CULL_MODE_BACK_BIT;
+    rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    rs.lineWidth = 1.f;
+    auto ms = vk_struct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineColorBlendAttachmentState blend{};
+    blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                           VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    auto cb = vk_struct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
+    cb.attachmentCount = 1;
+    cb.pAttachments = &blend;
+    const VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    auto ds = vk_struct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
+    ds.dynamicStateCount = 2;
+    ds.pDynamicStates = dyn;
+    auto rendering = vk_struct<VkPipelineRenderingCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO);
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachmentFormats = &kTargetFormat;
+
+    auto ci = vk_struct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
+    ci.pNext = &rendering;
+    ci.stageCount = 2;
+    ci.pStages = stages;
+    ci.pVertexInputState = &vi;
+    ci.pInputAssemblyState = &ia;
+    ci.pViewportState = &vp;
+    ci.pRasterizationState = &rs;
+    ci.pMultisampleState = &ms;
+    ci.pColorBlendState = &cb;
+    ci.pDynamicState = &ds;
+    ci.layout = shade_layout;
+    VkPipeline h = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &h));
+    return shade_pipelines.emplace(constants, Unique<VkPipeline>(d, h)).first->second;
+}
+
+}  // namespace mf::render

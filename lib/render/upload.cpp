@@ -1,0 +1,174 @@
+// To the device: buffers, the mesh, textures with their mip chains, the placeholders bound
+// where a variant samples nothing, and Renderer::upload (a material's textures and set).
+#include <cstring>
+
+#include "render/internal.hpp"
+#include "render/renderer_impl.hpp"
+
+namespace mf::render {
+
+using namespace detail;
+
+// Not const, though it would compile so: it allocates, submits and frees a command buffer of the renderer's own
+// command pool, which Vulkan requires externally synchronized; const would read as safe to call concurrently.
+// NOLINTNEXTLINE(readability-make-member-function-const): mutates the renderer's command pool (see above)
+Buffer Renderer::Impl::upload_buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+    Buffer staging = create_buffer(d, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memcpy(staging.mapped, data, bytes);
+    flush(d, staging);
+    Buffer dst = create_buffer(d, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+    Submission s(d, command_pool, VK_NULL_HANDLE, 0);
+    VkBufferCopy region{0, 0, bytes};
+    d.fn.vkCmdCopyBuffer(s.cmd(), staging.buffer, dst.buffer, 1, &region);
+    std::vector<PassTime> unused;
+    s.finish(unused);  // the fence wait orders the copy before any later submission's reads
+    return dst;
+}
+
+void Renderer::Impl::upload_mesh() {
+    const Mesh mesh = make_shape(scene.shape);
+    vertices = upload_buffer(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vertex),
+                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    indices = upload_buffer(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
+                            VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    index_count = static_cast<uint32_t>(mesh.indices.size());
+}
+
+Image Renderer::Impl::upload_texture(const PreparedTexture& t, VkCommandBuffer cmd,
+                                     std::vector<Buffer>& staging) const {
+    ImageDesc desc;
+    desc.format = t.format;
+    desc.width = t.levels[0].width;
+    desc.height = t.levels[0].height;
+    desc.mips = static_cast<uint32_t>(t.levels.size());
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    Image img = create_image(d, desc);
+
+    VkDeviceSize total = 0;
+    for (const TextureLevel& l : t.levels) total += (l.bytes.size() + 15) & ~VkDeviceSize{15};
+    Buffer buf = create_buffer(d, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::vector<VkBufferImageCopy> regions;
+    VkDeviceSize offset = 0;
+    for (uint32_t i = 0; i < t.levels.size(); ++i) {
+        const TextureLevel& l = t.levels[i];
+        std::memcpy(static_cast<uint8_t*>(buf.mapped) + offset, l.bytes.data(), l.bytes.size());
+        VkBufferImageCopy r{};
+        r.bufferOffset = offset;
+        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, i, 0, 1};
+        r.imageExtent = {l.width, l.height, 1};
+        regions.push_back(r);
+        offset += (l.bytes.size() + 15) & ~VkDeviceSize{15};
+    }
+    flush(d, buf);
+    image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    d.fn.vkCmdCopyBufferToImage(cmd, buf.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                static_cast<uint32_t>(regions.size()), regions.data());
+    image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    staging.push_back(std::move(buf));
+    return img;
+}
+
+void Renderer::Impl::create_dummies() {
+    // Bound wherever a variant samples nothing, so that every descriptor is valid.
+    PreparedTexture flat;
+    flat.format = VK_FORMAT_R8G8B8A8_UNORM;
+    flat.levels.push_back({1, 1, {128, 128, 255, 255}});
+    PreparedTexture cube;
+    cube.format = VK_FORMAT_R8G8B8A8_UNORM;
+    cube.levels.push_back({1, 1, {0, 0, 0, 255}});
+
+    std::vector<Buffer> staging;
+    Submission s(d, command_pool, VK_NULL_HANDLE, 0);
+    dummy_2d = upload_texture(flat, s.cmd(), staging);
+
+    ImageDesc cd;
+    cd.format = VK_FORMAT_R8G8B8A8_UNORM;
+    cd.layers = 6;
+    cd.cube = true;
+    cd.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    dummy_cube = create_image(d, cd);
+    Buffer buf = create_buffer(d, 6 * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memset(buf.mapped, 0, 24);
+    flush(d, buf);
+    image_barrier(d, s.cmd(), dummy_cube.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy r{};
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 6};
+    r.imageExtent = {1, 1, 1};
+    d.fn.vkCmdCopyBufferToImage(s.cmd(), buf.buffer, dummy_cube.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+    image_barrier(d, s.cmd(), dummy_cube.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    staging.push_back(std::move(buf));
+    std::vector<PassTime> unused;
+    s.finish(unused);
+}
+
+GpuMaterial Renderer::upload(const Material& material) {
+    check_material(material);
+    Impl& r = *impl_;
+    const Device& d = r.d;
+    GpuMaterial out;
+    out.impl_ = std::make_unique<GpuMaterial::Impl>();
+    GpuMaterial::Impl& m = *out.impl_;
+    m.owner = impl_.get();
+    m.name = material.name;
+    m.constants = material;
+    m.constants.textures.clear();
+    m.constants.textures.shrink_to_fit();
+
+    const gpu::ShadeSpecialization constants = r.specialization(material);
+    m.variant = r.describe(constants);
+    m.pipeline = r.shade_pipeline(constants);
+
+    // Which textures the variant samples: the rest are not uploaded at all.
+    std::vector<bool> used(material.textures.size(), false);
+    for (const int32_t slot : constants.texture_slots())
+        if (slot >= 0) used[static_cast<size_t>(slot)] = true;
+
+    std::vector<Buffer> staging;
+    Submission s(d, r.command_pool, r.queries, kQueryCount);
+    s.begin_pass("upload " + material.name);
+    m.textures.resize(material.textures.size());
+    for (size_t i = 0; i < material.textures.size(); ++i) {
+        if (!used[i]) continue;
+        const Texture& t = material.textures[i];
+        const MipKind kind = static_cast<int>(i) == material.normal.texture ? MipKind::Normal
+                             : t.srgb                                        ? MipKind::Color
+                                                                             : MipKind::Data;
+        m.textures[i] = r.upload_texture(prepare_texture(d, t, kind), s.cmd(), staging);
+    }
+    s.finish(r.load_times);
+
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, static_cast<uint32_t>(kMaxTextures)};
+    auto pci = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    pci.maxSets = 1;
+    pci.poolSizeCount = 1;
+    pci.pPoolSizes = &size;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VK_CHECK(d.fn.vkCreateDescriptorPool(d.device, &pci, nullptr, &pool));
+    m.pool = Unique<VkDescriptorPool>(d, pool);
+    m.set = r.allocate_set(pool, r.material_layout);
+    std::vector<VkDescriptorImageInfo> infos(kMaxTextures);
+    for (size_t i = 0; i < kMaxTextures; ++i) {
+        const bool have = i < m.textures.size() && m.textures[i].view;
+        infos[i] = {r.sampler_repeat, have ? m.textures[i].view.get() : r.dummy_2d.view.get(),
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    }
+    auto w = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w.dstSet = m.set;
+    w.dstBinding = static_cast<uint32_t>(gpu::kBindingMaterialTextures);
+    w.descriptorCount = static_cast<uint32_t>(kMaxTextures);
+    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pImageInfo = infos.data();
+    d.fn.vkUpdateDescriptorSets(d.device, 1, &w, 0, nullptr);
+    return out;
+}
+
+}  // namespace mf::render

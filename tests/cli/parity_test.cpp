@@ -1,0 +1,106 @@
+// ingest and validate decide once (process/plan): on the same sets they report the same
+// findings, code by code, and no finding twice. Run on the bundled samples and on every set of
+// the real-material corpus.
+#include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "cli_util.hpp"
+
+using namespace mft;
+using nlohmann::json;
+
+namespace {
+
+using Key = std::tuple<std::string, std::string, std::string, std::string>;  // code, severity, role, file
+
+std::multiset<Key> keys(const json& findings) {
+    std::multiset<Key> k;
+    for (const auto& f : findings) {
+        // Only ingest writes files, so only ingest can fail to write one.
+        if (f["code"] == "OUTPUT_WRITE_FAILED") continue;
+        k.insert({f["code"], f["severity"], f.value("role", ""), f.value("file", "")});
+    }
+    return k;
+}
+
+void expect_parity(const fs::path& input, const fs::path& work, size_t min_materials) {
+    const auto in = run("ingest " + q(input) + " -o " + q(work / "out") + " --fail-on never -q");
+    ASSERT_TRUE(in.code == 0 || in.code == 1) << in.output;
+    const auto va = run("validate " + q(input) + " --report json --report-file " + q(work / "report.json") +
+                        " --fail-on never");
+    ASSERT_TRUE(va.code == 0 || va.code == 1) << va.output;
+    const json manifest = read_json(work / "out/manifest.json");
+    const json report = read_json(work / "report.json");
+    ASSERT_GE(manifest["materials"].size(), min_materials);
+    ASSERT_EQ(manifest["materials"].size(), report["materials"].size());
+    std::map<std::string, const json*> reported;
+    for (const auto& m : report["materials"]) reported[m["name"]] = &m;
+    size_t compared = 0;
+    for (const auto& m : manifest["materials"]) {
+        const std::string name = m["name"];
+        ASSERT_TRUE(reported.count(name)) << name << " is in the manifest, not in the report";
+        const auto a = keys(m["findings"]), b = keys((*reported[name])["findings"]);
+        EXPECT_EQ(a, b) << name << ": ingest and validate disagree";
+        // No finding twice: the same code for the same file and role is one finding.
+        const std::set<Key> unique(a.begin(), a.end());
+        EXPECT_EQ(unique.size(), a.size()) << name << ": a finding appears twice";
+        // validate shows the inputs ingest read, with the same roles and normal verdicts.
+        EXPECT_EQ(m["inputs"], (*reported[name])["inputs"]) << name;
+        EXPECT_EQ(m["constants"], (*reported[name])["constants"]) << name;
+        compared += a.size();
+    }
+    EXPECT_GT(compared, manifest["materials"].size()) << "the sets raise findings to compare";
+}
+
+}  // namespace
+
+TEST(Parity, IngestAndValidateAgreeOnTheSamples) { expect_parity(samples(), temp_dir("samples"), 8); }
+
+TEST(Parity, IngestAndValidateAgreeOnTheRealCorpus) {
+    const fs::path corpus = fs::path(MATFORGE_CORPUS_DIR) / "real";
+    ASSERT_TRUE(fs::is_directory(corpus)) << corpus << ": the real-material corpus is missing";
+    expect_parity(corpus, temp_dir("corpus"), 15);
+}
+
+TEST(Parity, OneFindingPerFactForAnUndecidedNormalMap) {
+    // A normal map whose name says nothing and whose content is flat noise (no height map, no
+    // integrable structure): NORMAL_CONVENTION_UNKNOWN once, from both commands.
+    const fs::path work = temp_dir("unknown");
+    mf::Image albedo(32, 32, 3, 0.5f), normal(32, 32, 3);
+    uint32_t s = 12345;
+    for (size_t i = 0; i < normal.pixels.size(); i += 3) {
+        s = s * 1664525u + 1013904223u;
+        const float x = static_cast<float>((s >> 8) & 0xFF) / 255.f * 0.4f - 0.2f;
+        s = s * 1664525u + 1013904223u;
+        const float y = static_cast<float>((s >> 8) & 0xFF) / 255.f * 0.4f - 0.2f;
+        const float z = std::sqrt(1.f - x * x - y * y);
+        normal.pixels[i] = x * 0.5f + 0.5f;
+        normal.pixels[i + 1] = y * 0.5f + 0.5f;
+        normal.pixels[i + 2] = z * 0.5f + 0.5f;
+    }
+    write_png(work / "in/Noise/Noise_albedo.png", albedo);
+    write_png(work / "in/Noise/Noise_normal.png", normal);
+    expect_parity(work / "in", work, 1);
+    const json manifest = read_json(work / "out/manifest.json");
+    int unknown = 0;
+    for (const auto& f : manifest["materials"][0]["findings"]) unknown += f["code"] == "NORMAL_CONVENTION_UNKNOWN";
+    EXPECT_EQ(unknown, 1) << manifest.dump(2);
+}
+
+TEST(Parity, SchemaSpoolReceivesWhatTheRunsWrote) {
+    // The schema check at the end of the suite sees this test's manifest (the spool works).
+    const fs::path work = temp_dir("spool");
+    ASSERT_EQ(run("ingest " + q(samples() / "WalnutInlay") + " -o " + q(work / "out") + " -q").code, 0);
+    const fs::path spool(MATFORGE_SCHEMA_SPOOL);
+    mf::testbin::spool_folder(work, "Parity.spool");
+    const std::string mine = "Parity.spool-" + std::to_string(::getpid()) + "-";
+    int found = 0;
+    for (const auto& e : fs::directory_iterator(spool))
+        if (e.path().filename().string().rfind(mine, 0) == 0) {
+            ++found;
+            EXPECT_NE(read_json(e.path()).value("manifest_version", 0), 0) << e.path();
+        }
+    EXPECT_EQ(found, 1);
+}

@@ -1,0 +1,271 @@
+// Every real set of the corpus through the binary, judged against truth.json: the role of every
+// file, the normal map's convention, the findings (no false error or warning, every true problem
+// at warning/error reported at its expected severity) and `validate --fail-on error`'s exit code.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "corpus.hpp"
+
+namespace {
+
+using nlohmann::json;
+using corpus::fs::path;
+
+struct SetRun {
+    std::string folder;  // as truth.json names it: real/<set>
+    const json* truth = nullptr;
+    corpus::RunResult validate_text;  // validate <set> --fail-on error
+    int validate_json_code = -1;
+    json report;    // validate --report json
+    int ingest_code = -1;
+    json manifest;  // ingest -o <tmp> --preset gltf
+    std::string ingest_output;
+};
+
+json read_json_file(const path& p) {
+    std::ifstream f(p);
+    if (!f) return json();
+    auto j = json::parse(f, nullptr, false);
+    return j.is_discarded() ? json() : j;
+}
+
+// Runs each set once for all the tests below.
+const std::vector<SetRun>& runs() {
+    static const std::vector<SetRun> all = [] {
+        std::vector<SetRun> v;
+        const json* t = corpus::truth();
+        if (!t) return v;
+        const path tmp = corpus::temp_dir("sets");
+        int i = 0;
+        for (const auto& s : t->at("sets")) {
+            SetRun r;
+            r.folder = s.at("folder").get<std::string>();
+            r.truth = &s;
+            const path in = corpus::dir() / r.folder;
+            r.validate_text = corpus::run("validate " + corpus::q(in) + " --fail-on error");
+            const path rep = tmp / ("report" + std::to_string(i) + ".json");
+            r.validate_json_code =
+                corpus::run("validate " + corpus::q(in) + " --report json --report-file " + corpus::q(rep)).code;
+            r.report = read_json_file(rep);
+            const path out = tmp / ("out" + std::to_string(i));
+            const auto ing = corpus::run("ingest " + corpus::q(in) + " -o " + corpus::q(out) + " --preset gltf");
+            r.ingest_code = ing.code;
+            r.ingest_output = ing.output;
+            r.manifest = read_json_file(out / "manifest.json");
+            v.push_back(std::move(r));
+            ++i;
+        }
+        std::error_code ec;
+        corpus::fs::remove_all(tmp, ec);
+        return v;
+    }();
+    return all;
+}
+
+// Every finding of every material of a report (the flat folder holds two materials).
+std::vector<json> findings_of(const json& doc) {
+    std::vector<json> out;
+    if (!doc.is_object() || !doc.contains("materials")) return out;
+    for (const auto& m : doc.at("materials"))
+        for (const auto& f : m.value("findings", json::array())) out.push_back(f);
+    return out;
+}
+
+// The role matforge gave a file: a manifest input's role; else the role of an AMBIGUOUS_MAP that
+// names it among the candidates; else "ignore" when validate reported UNRECOGNIZED_FILE; else "".
+std::string found_role(const SetRun& r, const std::string& file) {
+    if (r.manifest.contains("materials"))
+        for (const auto& m : r.manifest.at("materials")) {
+            const json inputs = m.value("inputs", json::object());
+            for (const auto& [role, in] : inputs.items())
+                if (in.value("file", "") == file) return role;
+        }
+    for (const auto& f : findings_of(r.report)) {
+        if (f.value("code", "") != "AMBIGUOUS_MAP") continue;
+        const json fig = f.value("figures", json::object());
+        for (const auto& c : fig.value("candidates", json::array()))
+            if (c.is_string() && c.get<std::string>() == file) return f.value("role", "");
+    }
+    for (const auto& f : findings_of(r.report))
+        if (f.value("code", "") == "UNRECOGNIZED_FILE" && f.value("file", "") == file) return "ignore";
+    return "";
+}
+
+// The manifest's normal convention for a normal input file, "" when it is not an input.
+std::string found_convention(const SetRun& r, const std::string& file) {
+    if (!r.manifest.contains("materials")) return "";
+    for (const auto& m : r.manifest.at("materials")) {
+        const json inputs = m.value("inputs", json::object());
+        if (inputs.contains("normal") && inputs.at("normal").value("file", "") == file)
+            return inputs.at("normal").value("normal_convention", "?");
+    }
+    return "";
+}
+
+std::string set_name(const std::string& folder) { return folder.substr(folder.find('/') + 1); }
+
+bool is_blocking(const std::string& s) { return s == "error" || s == "warning"; }
+
+// A finding is explained by truth.json when a true problem or an acceptable entry on its file maps
+// to its code.
+bool explained(const json& set, const json& f) {
+    const std::string file = f.value("file", ""), c = f.value("code", "");
+    for (const char* key : {"true_problems", "acceptable"})
+        for (const auto& p : set.value(key, json::array()))
+            if (p.value("file", "") == file && corpus::code_of_problem(p.value("problem", "")) == c) return true;
+    return false;
+}
+
+TEST(RealCorpus, EveryTrueProblemKindHasACode) {
+    const json* t = corpus::truth();
+    ASSERT_TRUE(t);
+    for (const auto& s : t->at("sets"))
+        for (const char* key : {"true_problems", "acceptable"})
+            for (const auto& p : s.value(key, json::array()))
+                EXPECT_TRUE(corpus::code_of_problem(p.value("problem", "")))
+                    << s.at("folder") << ": no code for \"" << p.value("problem", "") << "\" (add it to problem_codes())";
+}
+
+TEST(RealCorpus, EverySetRuns) {
+    ASSERT_TRUE(corpus::truth());
+    ASSERT_FALSE(runs().empty());
+    for (const auto& r : runs()) {
+        EXPECT_TRUE(r.report.contains("materials")) << r.folder << ": no JSON report";
+        EXPECT_TRUE(r.manifest.contains("materials")) << r.folder << ": no manifest\n" << r.ingest_output;
+        EXPECT_TRUE(r.ingest_code == 0 || r.ingest_code == 1) << r.folder << ": ingest exit " << r.ingest_code;
+        EXPECT_EQ(r.validate_json_code, r.validate_text.code) << r.folder << ": the report format changed the exit code";
+    }
+}
+
+TEST(RealCorpus, RolesMatchTruth) {
+    ASSERT_TRUE(corpus::truth());
+    for (const auto& r : runs())
+        for (const auto& [file, info] : r.truth->at("files").items()) {
+            const std::string want = info.at("role").get<std::string>(), got = found_role(r, file);
+            if (want == "ignore")
+                EXPECT_EQ(got, "ignore") << r.folder << "/" << file << ": truth says not a material map";
+            else
+                EXPECT_TRUE(corpus::role_matches(want, got))
+                    << r.folder << "/" << file << ": truth role " << want << ", matforge " << (got.empty() ? "(none)" : got);
+        }
+}
+
+TEST(RealCorpus, NormalConventionsMatchTruth) {
+    ASSERT_TRUE(corpus::truth());
+    int checked = 0;
+    for (const auto& r : runs())
+        for (const auto& [file, info] : r.truth->at("files").items()) {
+            if (info.at("role") != "normal") continue;
+            const std::string got = found_convention(r, file);
+            if (got.empty()) continue;  // not the chosen normal map (RolesMatchTruth checks its role)
+            ++checked;
+            EXPECT_EQ(got, info.at("normal_convention").get<std::string>()) << r.folder << "/" << file;
+        }
+    // One normal map per material: 15 materials in 14 folders.
+    EXPECT_EQ(checked, 15);
+}
+
+TEST(RealCorpus, GoodSetsHaveNoError) {
+    ASSERT_TRUE(corpus::truth());
+    for (const auto& r : runs()) {
+        if (!r.truth->at("good_set").get<bool>()) continue;
+        for (const auto& f : findings_of(r.report))
+            EXPECT_NE(f.value("severity", ""), "error") << r.folder << ": " << f.dump();
+    }
+}
+
+TEST(RealCorpus, EveryErrorAndWarningIsATrueProblem) {
+    ASSERT_TRUE(corpus::truth());
+    for (const auto& r : runs())
+        for (const auto& f : findings_of(r.report)) {
+            if (!is_blocking(f.value("severity", ""))) continue;
+            EXPECT_TRUE(explained(*r.truth, f)) << r.folder << ": false " << f.value("severity", "") << " "
+                                                << f.value("code", "") << " on " << f.value("file", "") << ": "
+                                                << f.value("message", "");
+        }
+}
+
+TEST(RealCorpus, EveryTrueProblemIsReportedAtItsSeverity) {
+    ASSERT_TRUE(corpus::truth());
+    for (const auto& r : runs())
+        for (const auto& p : r.truth->at("true_problems")) {
+            const std::string sev = p.at("expected_severity").get<std::string>();
+            if (!is_blocking(sev)) continue;
+            const std::string file = p.at("file").get<std::string>();
+            const auto c = corpus::code_of_problem(p.at("problem").get<std::string>());
+            ASSERT_TRUE(c) << p.dump();
+            std::string seen;
+            for (const auto& f : findings_of(r.report))
+                if (f.value("file", "") == file && f.value("code", "") == *c) seen = f.value("severity", "");
+            EXPECT_EQ(seen, sev) << r.folder << "/" << file << ": " << *c << " for \"" << p.at("problem").get<std::string>()
+                                 << "\"" << (seen.empty() ? " not reported" : "");
+        }
+}
+
+TEST(RealCorpus, FailOnErrorPassesGoodSetsAndNamesTheErrorOfTheOthers) {
+    ASSERT_TRUE(corpus::truth());
+    for (const auto& r : runs()) {
+        const bool good = r.truth->at("good_set").get<bool>();
+        EXPECT_EQ(r.validate_text.code, good ? 0 : 1) << r.folder << "\n" << r.validate_text.output;
+        if (good) continue;
+        for (const auto& p : r.truth->at("true_problems")) {
+            if (p.at("expected_severity") != "error") continue;
+            const auto c = corpus::code_of_problem(p.at("problem").get<std::string>());
+            ASSERT_TRUE(c);
+            const std::string file = p.at("file").get<std::string>();
+            bool named = false;
+            std::istringstream lines(r.validate_text.output);
+            for (std::string line; std::getline(lines, line);)
+                named = named || (line.find("error") != std::string::npos && line.find(*c) != std::string::npos &&
+                                  line.find(file) != std::string::npos);
+            EXPECT_TRUE(named) << r.folder << ": the text report names no error " << *c << " on " << file << "\n"
+                               << r.validate_text.output;
+        }
+    }
+}
+
+// The summary table (printed; the tests above assert): roles right/total, normal verdicts,
+// error/warning findings true/false, true problems at warning/error missed.
+TEST(RealCorpus, PrintsTheTable) {
+    ASSERT_TRUE(corpus::truth());
+    std::printf("\n%-42s %-7s %-26s %-11s %s\n", "set", "roles", "normal (got/truth)", "err+warn", "missed");
+    for (const auto& r : runs()) {
+        int right = 0, total = 0;
+        std::string normals, wrong_roles;
+        for (const auto& [file, info] : r.truth->at("files").items()) {
+            const std::string want = info.at("role").get<std::string>(), got = found_role(r, file);
+            ++total;
+            const bool ok = want == "ignore" ? got == "ignore" : corpus::role_matches(want, got);
+            right += ok ? 1 : 0;
+            if (!ok) wrong_roles += " " + file + "(" + want + "->" + (got.empty() ? "none" : got) + ")";
+            if (want == "normal") {
+                const std::string c = found_convention(r, file);
+                if (!c.empty())
+                    normals += (normals.empty() ? "" : ",") + c + "/" + info.at("normal_convention").get<std::string>() +
+                               (c == info.at("normal_convention") ? "" : "!");
+            }
+        }
+        int true_f = 0, false_f = 0;
+        for (const auto& f : findings_of(r.report))
+            if (is_blocking(f.value("severity", ""))) ++(explained(*r.truth, f) ? true_f : false_f);
+        int missed = 0;
+        for (const auto& p : r.truth->at("true_problems")) {
+            if (!is_blocking(p.at("expected_severity"))) continue;
+            const auto c = corpus::code_of_problem(p.at("problem").get<std::string>());
+            bool seen = false;
+            for (const auto& f : findings_of(r.report))
+                seen = seen || (c && f.value("file", "") == p.at("file") && f.value("code", "") == *c &&
+                                f.value("severity", "") == p.at("expected_severity"));
+            missed += seen ? 0 : 1;
+        }
+        std::printf("%-42s %2d/%-4d %-26s %3d/%-7d %d%s\n", set_name(r.folder).c_str(), right, total, normals.c_str(),
+                    true_f, false_f, missed, wrong_roles.empty() ? "" : ("   roles:" + wrong_roles).c_str());
+    }
+    SUCCEED();
+}
+
+}  // namespace
