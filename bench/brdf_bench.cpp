@@ -38,7 +38,7 @@ using namespace mf::render;
 namespace cb = mf::cpubrdf;
 
 struct Args {
-    DeviceKind device = DeviceKind::Auto;
+    DeviceKind device = DeviceKind::automatic;
     uint32_t size = 2048, ref_size = 256;
     int reps = 0;  // 0: 20 on a GPU, 5 on a CPU device
     std::string csv;
@@ -148,9 +148,9 @@ int main(int argc, char** argv) {
             Brdf brdf;
             const char* name;
         };
-        const ModelName models[] = {{Brdf::UnnormalizedDiffuse, "assignment"}, {Brdf::Standard, "standard"}, {Brdf::Accurate, "accurate"}};
-        std::vector<BrdfPrecision> precisions{BrdfPrecision::Fp32};
-        if (harness.supports_fp16()) precisions.push_back(BrdfPrecision::Fp16);
+        const ModelName models[] = {{Brdf::unnormalized_diffuse, "assignment"}, {Brdf::standard, "standard"}, {Brdf::accurate, "accurate"}};
+        std::vector<BrdfPrecision> precisions{BrdfPrecision::fp32};
+        if (harness.supports_fp16()) precisions.push_back(BrdfPrecision::fp16);
 
         std::vector<Row> rows;
         for (const ModelName& m : models)
@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
                 for (uint32_t spp : {1u, 4u, 8u}) {
                     Row r;
                     r.model = m.name;
-                    r.precision = p == BrdfPrecision::Fp16 ? "fp16" : "fp32";
+                    r.precision = p == BrdfPrecision::fp16 ? "fp16" : "fp32";
                     r.spp = spp;
                     (void)harness.sphere(args.size, m.brdf, spp, p);  // warm-up (pipeline, caches)
                     std::vector<double> ms;

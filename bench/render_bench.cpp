@@ -27,7 +27,7 @@ namespace {
 using namespace mf::render;
 
 struct Args {
-    DeviceKind device = DeviceKind::Auto;
+    DeviceKind device = DeviceKind::automatic;
     std::vector<uint32_t> sizes{512, 2048};
     int frames = 0;  // 0: 50 on a GPU, 8 on a CPU device
     int warmup = 3;
@@ -146,20 +146,20 @@ struct Config {
     std::string name, what;
     bool textures = false, normal_map = false, environment = false;
     int point_lights = 0;
-    Brdf brdf = Brdf::Standard;
-    PixelFormat output = PixelFormat::Rgba8;
+    Brdf brdf = Brdf::standard;
+    PixelFormat output = PixelFormat::rgba8;
 };
 
 std::vector<Config> configs() {
     return {
-        {"base", "constant material, 1 directional light, standard BRDF", false, false, false, 0, Brdf::Standard, PixelFormat::Rgba8},
-        {"exr", "base, linear float output (copy instead of encode)", false, false, false, 0, Brdf::Standard, PixelFormat::Rgba32F},
-        {"textures", "base + albedo/ORM textures (2048², trilinear)", true, false, false, 0, Brdf::Standard, PixelFormat::Rgba8},
-        {"normal_map", "textures + normal map", true, true, false, 0, Brdf::Standard, PixelFormat::Rgba8},
-        {"lights8", "base + 7 point lights (8 in all)", false, false, false, 7, Brdf::Standard, PixelFormat::Rgba8},
-        {"accurate", "base, accurate BRDF (correlated Smith + energy compensation)", false, false, false, 0, Brdf::Accurate, PixelFormat::Rgba8},
-        {"ibl", "base + environment (split-sum IBL)", false, false, true, 0, Brdf::Standard, PixelFormat::Rgba8},
-        {"full", "textures + normal map + 8 lights + accurate + IBL", true, true, true, 7, Brdf::Accurate, PixelFormat::Rgba8},
+        {"base", "constant material, 1 directional light, standard BRDF", false, false, false, 0, Brdf::standard, PixelFormat::rgba8},
+        {"exr", "base, linear float output (copy instead of encode)", false, false, false, 0, Brdf::standard, PixelFormat::rgba32f},
+        {"textures", "base + albedo/ORM textures (2048², trilinear)", true, false, false, 0, Brdf::standard, PixelFormat::rgba8},
+        {"normal_map", "textures + normal map", true, true, false, 0, Brdf::standard, PixelFormat::rgba8},
+        {"lights8", "base + 7 point lights (8 in all)", false, false, false, 7, Brdf::standard, PixelFormat::rgba8},
+        {"accurate", "base, accurate BRDF (correlated Smith + energy compensation)", false, false, false, 0, Brdf::accurate, PixelFormat::rgba8},
+        {"ibl", "base + environment (split-sum IBL)", false, false, true, 0, Brdf::standard, PixelFormat::rgba8},
+        {"full", "textures + normal map + 8 lights + accurate + IBL", true, true, true, 7, Brdf::accurate, PixelFormat::rgba8},
     };
 }
 
@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
                 scene.brdf = c.brdf;
                 for (int i = 0; i < c.point_lights; ++i) {
                     Light l;
-                    l.type = LightType::Point;
+                    l.type = LightType::point;
                     const double a = 2 * std::numbers::pi * i / std::max(1, c.point_lights);
                     l.position = {float(3 * std::cos(a)), float(1.5 * std::sin(3 * a)), float(2 + std::sin(a))};
                     l.intensity = 8.f;

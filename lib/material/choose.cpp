@@ -7,6 +7,7 @@
 
 #include "material/classify.hpp"
 #include "material/discovery.hpp"
+#include "material/routing.hpp"
 #include "material/families.hpp"
 
 namespace mf {
@@ -81,7 +82,7 @@ std::string why_first(const Ranked& a, const Ranked& b, const ChoicePolicy& poli
     return "equal otherwise; first by name";
 }
 
-std::string why_provider(Role out, const Provider& a, const Provider& b) {
+std::string why_provider(Role out, const Route& a, const Route& b) {
     const auto name = [](Role r) { return std::string(role_name(r)); };
     if (a.from == out && traits(b.from).packed)
         return "a dedicated " + name(out) + " map beats the packed " + name(b.from) + " map";
@@ -203,19 +204,6 @@ std::string_view family_view(std::string_view name) {
 
 }  // namespace
 
-// Best first: a dedicated map, then packed inputs (Role order), then gloss. Packed roughness
-// beats gloss because it needs no inversion ("roughness beats gloss").
-std::vector<Provider> providers_of(Role out) {
-    std::vector<Provider> list{{out, -1, false}};
-    for (const Role packed : {Role::orm, Role::metallic_roughness, Role::ort}) {
-        const auto layout = packed_layout(packed);
-        for (int ch = 0; ch < 3; ++ch)
-            if (layout[static_cast<size_t>(ch)] == out) list.push_back({packed, ch, false});
-    }
-    if (out == Role::roughness) list.push_back({Role::gloss, -1, true});
-    return list;
-}
-
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
                           const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars) {
@@ -299,13 +287,13 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
     for (int i = 0; i < kOutputRoleCount; ++i) targets.push_back(static_cast<Role>(i));
     targets.push_back(Role::translucency);
     for (const Role target : targets) {
-        std::vector<Provider> available;
-        for (const auto& p : providers_of(target))
+        // Which of the chosen files feeds the role is routing's (material/routing): here only
+        // the choice among several is explained.
+        std::vector<Route> available;
+        for (const auto& p : route_candidates(target))
             if (chosen_file.count(p.from)) available.push_back(p);
-        if (available.empty()) continue;
-        const Provider& best = available.front();
-        out.sources.push_back({target, chosen_file[best.from], best.from, best.channel, best.invert});
         if (available.size() < 2) continue;
+        const Route& best = available.front();
         auto& a = ambiguities[target];
         const std::string& file = chosen_file[best.from];
         a.put_first(file);

@@ -139,24 +139,8 @@ struct RoleChoice {
     std::vector<Candidate> rejected;  // other candidates for the same role, best first
 };
 
-// Where an output role's values come from.
-struct RoleSource {
-    Role role;          // output role (albedo … opacity) or translucency
-    std::string file;   // chosen input file
-    Role from;          // the input role of that file (e.g. orm, gloss, roughness)
-    int channel = -1;   // -1: the whole map; 0/1/2: the R/G/B channel of a packed input
-    bool invert = false;  // gloss → roughness
-};
-
-// Where an output role may come from, best first: a dedicated map, then packed inputs (orm,
-// metallic_roughness, ort), then gloss (inverted) for roughness. discover_set applies it to the
-// chosen files; ingest applies it again over the files that actually decoded.
-struct Provider {
-    Role from = Role::albedo;
-    int channel = -1;  // -1: the whole map; 0/1/2: R/G/B of a packed input
-    bool invert = false;
-};
-std::vector<Provider> providers_of(Role out);
+// Which chosen file feeds each output role is routing's business (material/routing.hpp:
+// route_roles over the maps that could be read), decided there for ingest and validate alike.
 
 struct ChoicePolicy {
     NormalConvention preferred_normal = NormalConvention::gl;  // the preset's convention
@@ -166,7 +150,6 @@ struct ChoicePolicy {
 struct SetDiscovery {
     std::string convention;            // the family most maps follow ("generic" when mixed/none)
     std::vector<RoleChoice> choices;   // one per input role present, in Role order
-    std::vector<RoleSource> sources;   // one per output role that has a source, in Role order
     std::vector<Finding> findings;     // AMBIGUOUS_MAP, UNRECOGNIZED_FILE (info)
 };
 

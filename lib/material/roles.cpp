@@ -4,22 +4,23 @@
 
 namespace mf {
 namespace {
+//                                 role, name, output, color, channels, packed
 constexpr std::array<RoleTraits, kRoleCount> kTraits{{
-    {Role::albedo, "albedo", true, Encoding::srgb, 3, false},
-    {Role::normal, "normal", true, Encoding::data, 3, false},
-    {Role::roughness, "roughness", true, Encoding::data, 1, false},
-    {Role::metalness, "metalness", true, Encoding::data, 1, false},
-    {Role::occlusion, "occlusion", true, Encoding::data, 1, false},
-    {Role::height, "height", true, Encoding::data, 1, false},
-    {Role::emissive, "emissive", true, Encoding::srgb, 3, false},
-    {Role::opacity, "opacity", true, Encoding::data, 1, false},
-    {Role::gloss, "gloss", false, Encoding::data, 1, false},
-    {Role::specular, "specular", false, Encoding::data, 3, false},
-    {Role::orm, "orm", false, Encoding::data, 3, true},
-    {Role::metallic_roughness, "metallic_roughness", false, Encoding::data, 3, true},
-    {Role::ort, "ort", false, Encoding::data, 3, true},
-    {Role::cavity, "cavity", false, Encoding::data, 1, false},
-    {Role::translucency, "translucency", false, Encoding::data, 1, false},
+    {Role::albedo, "albedo", true, true, 3, false},
+    {Role::normal, "normal", true, false, 3, false},
+    {Role::roughness, "roughness", true, false, 1, false},
+    {Role::metalness, "metalness", true, false, 1, false},
+    {Role::occlusion, "occlusion", true, false, 1, false},
+    {Role::height, "height", true, false, 1, false},
+    {Role::emissive, "emissive", true, true, 3, false},
+    {Role::opacity, "opacity", true, false, 1, false},
+    {Role::gloss, "gloss", false, false, 1, false},
+    {Role::specular, "specular", false, false, 3, false},
+    {Role::orm, "orm", false, false, 3, true},
+    {Role::metallic_roughness, "metallic_roughness", false, false, 3, true},
+    {Role::ort, "ort", false, false, 3, true},
+    {Role::cavity, "cavity", false, false, 1, false},
+    {Role::translucency, "translucency", false, false, 1, false},
 }};
 }  // namespace
 

@@ -23,13 +23,12 @@ inline constexpr int kOutputRoleCount = 8;
 
 enum class NormalConvention { unknown, gl, dx };  // gl: +Y (green up), dx: -Y
 
-enum class Encoding { srgb, data };  // how 8/16-bit files of this role are encoded
 
 struct RoleTraits {
     Role role;
     std::string_view name;
     bool output;       // can appear in an output texture
-    Encoding encoding; // albedo and emissive are sRGB-encoded color; all else is data
+    bool color;        // albedo and emissive: color, sRGB-encoded in 8/16-bit files; all else is data
     int channels;      // 3 for color/normal/packed, 1 for scalars
     bool packed;       // an input that is split into several roles
 };
@@ -40,7 +39,7 @@ std::optional<Role> role_from_name(std::string_view name);
 std::string_view convention_name(NormalConvention c);  // "unknown" | "gl" | "dx"
 std::optional<NormalConvention> convention_from_name(std::string_view name);
 inline bool is_output_role(Role r) { return traits(r).output; }
-inline bool is_color_role(Role r) { return traits(r).encoding == Encoding::srgb; }
+inline bool is_color_role(Role r) { return traits(r).color; }
 
 // Channels of a packed input: which output role each of R, G, B holds (nullopt = not unpacked).
 std::array<std::optional<Role>, 3> packed_layout(Role packed);

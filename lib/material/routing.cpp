@@ -13,18 +13,18 @@ std::vector<Route> route_candidates(Role out) {
     return list;
 }
 
-Routes route_roles(const std::function<int(Role)>& channels, bool albedo_alpha) {
-    Routes routes;
-    for (int ri = 0; ri < kOutputRoleCount; ++ri) {
-        const Role out = static_cast<Role>(ri);
-        for (const Route& r : route_candidates(out)) {
-            const int n = channels(r.from);
-            if (n > 0 && n > r.channel) {
-                routes.emplace(out, r);
-                break;
-            }
-        }
+std::optional<Route> route_of(Role out, const std::function<int(Role)>& channels, const Unused& unused) {
+    for (const Route& r : route_candidates(out)) {
+        const int n = channels(r.from);
+        if (n > 0 && n > r.channel && !(unused && unused(out, r.from))) return r;
     }
+    return std::nullopt;
+}
+
+Routes route_roles(const std::function<int(Role)>& channels, bool albedo_alpha, const Unused& unused) {
+    Routes routes;
+    for (int ri = 0; ri < kOutputRoleCount; ++ri)
+        if (const auto r = route_of(static_cast<Role>(ri), channels, unused)) routes.emplace(static_cast<Role>(ri), *r);
     if (albedo_alpha && !routes.count(Role::opacity)) {
         const auto albedo = routes.find(Role::albedo);
         const int n = albedo != routes.end() && albedo->second.from == Role::albedo ? channels(Role::albedo) : 0;

@@ -9,6 +9,7 @@
 #pragma once
 #include <functional>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "material/roles.hpp"
@@ -27,9 +28,16 @@ using Routes = std::map<Role, Route>;  // output role -> its route
 // The albedo-alpha route of opacity is not listed: it depends on the albedo's channels.
 std::vector<Route> route_candidates(Role out);
 
+// The route of `out` (any role a packed input can hold, translucency included), nullopt when
+// none of its candidates can be read; `channels` as below.
+// `unused(out, from)`: the input of role `from` must not feed `out` (a glTF material whose
+// metallicFactor is 0 does not use its texture's metalness channel).
+using Unused = std::function<bool(Role out, Role from)>;
+std::optional<Route> route_of(Role out, const std::function<int(Role)>& channels, const Unused& unused = {});
+
 // The route of every output role that has one. `channels(r)` is the channel count of the input
 // of role r that can be read, 0 when there is none. `albedo_alpha`: whether an albedo with an
 // alpha channel (grey+alpha or RGBA: 2 or 4 channels) provides opacity when no opacity map exists.
-Routes route_roles(const std::function<int(Role)>& channels, bool albedo_alpha = true);
+Routes route_roles(const std::function<int(Role)>& channels, bool albedo_alpha = true, const Unused& unused = {});
 
 }  // namespace mf

@@ -46,7 +46,7 @@ std::optional<render::Texture> read_texture(const std::filesystem::path& file, s
     t.channels = static_cast<uint32_t>(std::min(nch, 4));
     const size_t texels = size_t{t.width} * t.height;
     if (d.is_codes()) {
-        t.type = render::TexelType::U8;
+        t.type = render::TexelType::u8;
         if (nch <= 4) {
             copy_samples(d.codes.pixels, t);
         } else {
@@ -62,13 +62,13 @@ std::optional<render::Texture> read_texture(const std::filesystem::path& file, s
     if (info.bit_depth == 16 && !info.is_float) {
         // 16-bit integer files stay 16-bit: OpenImageIO's float is k / 65535, so rounding gives k
         // back exactly, and the renderer uploads them as UNORM16 as stored.
-        t.type = render::TexelType::U16;
+        t.type = render::TexelType::u16;
         std::vector<uint16_t> px(texels * t.channels);
         each_sample([&](size_t i, float v) { px[i] = quantize_unorm(v, 65535.f); });
         copy_samples(px, t);
         return t;
     }
-    t.type = render::TexelType::F32;
+    t.type = render::TexelType::f32;
     std::vector<float> px(texels * t.channels);
     each_sample([&](size_t i, float v) { px[i] = v; });
     copy_samples(px, t);

@@ -15,9 +15,9 @@ using nlohmann::json;
 
 float default_shape_size(render::ShapeType t) {
     switch (t) {
-        case render::ShapeType::Sphere: return 1.f;
-        case render::ShapeType::Cube: return 1.2f;
-        case render::ShapeType::Plane: return 2.f;
+        case render::ShapeType::sphere: return 1.f;
+        case render::ShapeType::cube: return 1.2f;
+        case render::ShapeType::plane: return 2.f;
     }
     return 1.f;
 }
@@ -131,7 +131,7 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
             sc.shape.type = *shape;
         }
         sc.shape.size = default_shape_size(sc.shape.type);
-        const json* size = find(*sh, sc.shape.type == render::ShapeType::Sphere ? "radius" : "size");
+        const json* size = find(*sh, sc.shape.type == render::ShapeType::sphere ? "radius" : "size");
         if (!size) size = find(*sh, "size");
         if (!size) size = find(*sh, "radius");
         if (size) {
@@ -155,12 +155,12 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
             if (t && !t->is_string()) fail(w + ".type", "expected \"directional\" or \"point\"");
             const std::string type = t ? t->get<std::string>() : "directional";
             if (type == "directional") {
-                light.type = render::LightType::Directional;
+                light.type = render::LightType::directional;
                 if (const json* d = find(l, "direction")) light.direction = vec3(*d, w + ".direction");
                 const auto& d = light.direction;
                 if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-12f) fail(w + ".direction", "zero length");
             } else if (type == "point") {
-                light.type = render::LightType::Point;
+                light.type = render::LightType::point;
                 const json* p = find(l, "position");
                 if (!p) fail(w, "a point light needs a position");
                 light.position = vec3(*p, w + ".position");
@@ -214,8 +214,8 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
         const std::string w = name + ": output";
         check_keys(*o, w, {"transfer", "exposure"});
         if (const json* t = find(*o, "transfer")) {
-            if (*t == "srgb") out.output.transfer = render::Transfer::Srgb;
-            else if (*t == "linear") out.output.transfer = render::Transfer::Linear;
+            if (*t == "srgb") out.output.transfer = render::Transfer::srgb;
+            else if (*t == "linear") out.output.transfer = render::Transfer::linear;
             else fail(w + ".transfer", "expected \"srgb\" or \"linear\"");
         }
         if (const json* e = find(*o, "exposure")) {
@@ -250,9 +250,9 @@ std::optional<SceneFile> read_scene_file(const std::filesystem::path& file, std:
 }
 
 std::optional<render::ShapeType> parse_shape(std::string_view name) {
-    if (name == "sphere") return render::ShapeType::Sphere;
-    if (name == "cube") return render::ShapeType::Cube;
-    if (name == "plane") return render::ShapeType::Plane;
+    if (name == "sphere") return render::ShapeType::sphere;
+    if (name == "cube") return render::ShapeType::cube;
+    if (name == "plane") return render::ShapeType::plane;
     return std::nullopt;
 }
 
@@ -271,7 +271,7 @@ std::optional<render::Light> parse_light_spec(const std::string& spec, std::stri
     if (parts.size() < 2 || parts.size() > 4) return std::nullopt;
     render::Light l;
     if (parts[0] == "dir" || parts[0] == "directional") {
-        l.type = render::LightType::Directional;
+        l.type = render::LightType::directional;
         if (!triple(parts[1], l.direction)) return std::nullopt;
         const auto& d = l.direction;
         if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-12f) {
@@ -279,7 +279,7 @@ std::optional<render::Light> parse_light_spec(const std::string& spec, std::stri
             return std::nullopt;
         }
     } else if (parts[0] == "point") {
-        l.type = render::LightType::Point;
+        l.type = render::LightType::point;
         l.intensity = 10.f;
         if (!triple(parts[1], l.position)) return std::nullopt;
     } else {

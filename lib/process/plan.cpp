@@ -1,8 +1,10 @@
 #include "process/plan.hpp"
 
 #include <algorithm>
+#include <fstream>
 #include <set>
 
+#include "core/files.hpp"
 #include "core/parallel.hpp"
 #include "process/missing.hpp"
 #include "validate/validate.hpp"
@@ -25,6 +27,47 @@ struct Files {
 Finding make_finding(std::string_view code, Severity s, Role role, std::string file, std::string msg,
                      nlohmann::json figures = nlohmann::json::object()) {
     return {std::string(code), s, std::string(role_name(role)), std::move(file), std::move(msg), std::move(figures)};
+}
+
+// The set's glTF and Megascans JSON sidecars, read for the roles they state (at most
+// kSidecarMaxBytes each: a .glb's JSON chunk comes first; a larger .gltf or .json is left to the
+// names, with the reason).
+std::vector<SidecarRoles> read_sidecars(Files& files) {
+    std::vector<SidecarRoles> out;
+    for (const std::string& f : files.src.files) {
+        if (!is_sidecar_name(f)) continue;
+        const InputFile& in = files.open(f);
+        const bool glb = in.extension() == "glb";
+        std::string text, error;
+        if (in.bytes) {
+            if (in.bytes->size() > kSidecarMaxBytes && !glb) error = "larger than 8 MiB";
+            else text.assign(in.bytes->begin(), in.bytes->begin() + static_cast<std::ptrdiff_t>(std::min(in.bytes->size(), kSidecarMaxBytes)));
+        } else if (!in.open_error.empty()) {
+            error = in.open_error;
+        } else if (const auto why = not_a_regular_file(in.path)) {
+            error = *why;
+        } else {
+            std::error_code ec;
+            const auto size = std::filesystem::file_size(in.path, ec);
+            if (ec) error = ec.message();
+            else if (size > kSidecarMaxBytes && !glb) error = "larger than 8 MiB";
+            else {
+                std::ifstream stream(in.path, std::ios::binary);
+                text.resize(std::min<uintmax_t>(size, kSidecarMaxBytes));
+                stream.read(text.data(), static_cast<std::streamsize>(text.size()));
+                text.resize(static_cast<size_t>(stream.gcount()));
+            }
+        }
+        if (!error.empty()) {
+            SidecarRoles failed;
+            failed.source = f;
+            failed.error = error;
+            out.push_back(std::move(failed));
+            continue;
+        }
+        out.push_back(sidecar_roles(f, text));
+    }
+    return out;
 }
 
 // Estimated peak bytes of a set: its decoded maps (8-bit files as codes, others as float) plus
@@ -78,6 +121,7 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
             } else {
                 o.map = validate::make_map_input(role, in, c->file, c->match.normal, err);
             }
+            if (o.map) o.map->unused = c->match.unused;
             if (o.map) {
                 o.used = c;
                 return;
@@ -97,6 +141,29 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
         if (mode == PlanMode::decode) plan.decoded.emplace(outcomes[i].used->file, std::move(outcomes[i].decoded));
         maps.push_back(std::move(*outcomes[i].map));
     }
+    // The candidates not used are still files of the set a user ships: the rules of a map alone
+    // judge them too (streamed from the file in both modes), so a defect in a WebP copy beside
+    // its JPEG original is reported. Those that cannot be read were reported above or are now.
+    for (size_t i = 0; i < orders.size(); ++i) {
+        const Role role = d.choices[i].role;
+        bool past_used = outcomes[i].used == nullptr;
+        for (const Candidate* c : orders[i]) {
+            if (!past_used) {
+                past_used = c == outcomes[i].used;
+                continue;
+            }
+            if (!outcomes[i].used) break;  // all failed: each was reported
+            std::string err;
+            auto m = validate::make_map_input(role, files.opened.at(c->file), c->file, c->match.normal, err);
+            if (!m) {
+                plan.findings.push_back(make_finding(code::unreadable_file, Severity::error, role, c->file,
+                                                     err + "; the file is skipped"));
+                continue;
+            }
+            m->alternate = true;
+            maps.push_back(std::move(*m));
+        }
+    }
 }
 
 // Serves decoded maps to the rules band by band, as mf::read_bands would read them: codes are
@@ -106,10 +173,7 @@ validate::BandReader memory_reader(std::map<std::string, const DecodedMap*> by_d
                                                 std::string& error,
                                                 const std::function<void(int, int, const float*)>& fn) {
         const auto it = by_display.find(in.display);
-        if (it == by_display.end()) {
-            error = in.display + ": not decoded";
-            return false;
-        }
+        if (it == by_display.end()) return read_bands(in, band_rows, info, error, fn);  // an alternate
         const Decoded& d = it->second->img;
         info = it->second->info;
         if (!d.is_codes()) {
@@ -148,10 +212,16 @@ manifest::NormalFacts normal_facts(const Candidate& c, const std::optional<valid
 // Routes over the maps that were read; the albedo's alpha is the opacity only when some texel
 // is below opaque (codes 254 and below read under 0.999).
 void route(SetPlan& plan, const validate::SetValidation& checked) {
-    plan.routes = route_roles([&](Role r) {
-        const auto it = plan.inputs.find(r);
-        return it == plan.inputs.end() ? 0 : std::max(0, it->second.header.channels);
-    });
+    plan.routes = route_roles(
+        [&](Role r) {
+            const auto it = plan.inputs.find(r);
+            return it == plan.inputs.end() ? 0 : std::max(0, it->second.header.channels);
+        },
+        true,
+        [&](Role out, Role from) {
+            const auto& u = plan.inputs.at(from).match.unused;
+            return std::find(u.begin(), u.end(), out) != u.end();
+        });
     const auto op = plan.routes.find(Role::opacity);
     if (op == plan.routes.end() || !op->second.from_alpha) return;
     if (!checked.albedo_alpha_min || !(*checked.albedo_alpha_min < 0.999)) {
@@ -236,7 +306,8 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
         if (!info) return std::nullopt;
         return HeaderInfo{info->width, info->height, info->channels, info->bit_depth, info->is_float};
     };
-    const SetDiscovery d = discover_set(src.files, header, ChoicePolicy{preset.normal_convention, preset.max_size});
+    const SetDiscovery d =
+        discover_set(src.files, header, ChoicePolicy{preset.normal_convention, preset.max_size}, read_sidecars(files));
     plan.convention = d.convention;
     plan.findings = d.findings;
     plan.footprint = estimated_bytes(d);

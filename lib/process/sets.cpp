@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "core/files.hpp"
 #include "material/discovery.hpp"
 
 namespace mf {
@@ -95,6 +96,23 @@ void scan_zip(const fs::path& zip, std::vector<MaterialSource>& out, std::vector
         failures.push_back({zip.string(), std::string(code::unrecognized_file), zip.string() + ": the archive holds no recognizable material maps"});
 }
 
+// Whether a glTF or Megascans sidecar in the folder names one of its images: then its maps are
+// the set's whatever their names say (file names need no role tag), and the folder is one set.
+bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& files) {
+    for (const std::string& f : files) {
+        if (!is_sidecar_name(f)) continue;
+        std::error_code ec;
+        if (!fs::is_regular_file(dir / f, ec) || fs::file_size(dir / f, ec) > kSidecarMaxBytes) continue;
+        std::vector<unsigned char> bytes;
+        std::string error;
+        if (!read_file(dir / f, bytes, error)) continue;
+        const SidecarRoles roles = sidecar_roles(f, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        for (const SidecarMap& m : roles.maps)
+            if (std::binary_search(files.begin(), files.end(), m.file)) return true;
+    }
+    return false;
+}
+
 void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vector<InputFailure>& failures) {
     std::vector<std::string> files;
     std::error_code ec;
@@ -121,6 +139,13 @@ void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vec
     MaterialSource proto;
     proto.root = dir;
     proto.display = dir.string();
+    if (sidecar_names_a_map(dir, files)) {  // the sidecar defines the set: one material, the folder's
+        MaterialSource s = proto;
+        s.name = dir.filename().string();
+        s.files = files;
+        out.push_back(std::move(s));
+        return;
+    }
     add_groups(dir.filename().string(), files, proto, out);
 }
 

@@ -101,7 +101,7 @@ struct BrdfHarness::Impl {
     }
 
     VkPipeline pipeline(BrdfPrecision p, int mode) {
-        const int pi = p == BrdfPrecision::Fp16 ? 1 : 0;
+        const int pi = p == BrdfPrecision::fp16 ? 1 : 0;
         if (pi == 1 && !d.shader_float16) throw Error(d.info.name + " lacks shaderFloat16");
         Unique<VkPipeline>& slot = pipelines[pi][mode];
         if (slot) return slot;

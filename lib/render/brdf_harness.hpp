@@ -21,7 +21,7 @@ struct BrdfInput {
 };
 static_assert(sizeof(BrdfInput) == 64);
 
-enum class BrdfPrecision { Fp32, Fp16 };
+enum class BrdfPrecision { fp32, fp16 };
 
 class BrdfHarness {
 public:
@@ -32,13 +32,13 @@ public:
     BrdfHarness(const BrdfHarness&) = delete;
     BrdfHarness& operator=(const BrdfHarness&) = delete;
 
-    // Whether the device can run BrdfPrecision::Fp16 (the shaderFloat16 feature).
+    // Whether the device can run BrdfPrecision::fp16 (the shaderFloat16 feature).
     bool supports_fp16() const;
 
     // Radiance of each input under Standard, Accurate and UnnormalizedDiffuse (in that order): 3 RGB
     // triples per input. gpu_ms (optional): GPU time of the dispatch from timestamp queries.
     std::vector<std::array<float, 3>> evaluate(const std::vector<BrdfInput>& inputs,
-                                               BrdfPrecision precision = BrdfPrecision::Fp32,
+                                               BrdfPrecision precision = BrdfPrecision::fp32,
                                                double* gpu_ms = nullptr);
 
     // The benchmark's sphere (bench/accuracy/knobs_brdf.cpp's scene) at size × size pixels,

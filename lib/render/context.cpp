@@ -11,9 +11,9 @@
 namespace mf::render {
 
 std::optional<DeviceKind> parse_device_kind(std::string_view s) {
-    if (s == "auto") return DeviceKind::Auto;
-    if (s == "gpu") return DeviceKind::Gpu;
-    if (s == "cpu") return DeviceKind::Cpu;
+    if (s == "auto") return DeviceKind::automatic;
+    if (s == "gpu") return DeviceKind::gpu;
+    if (s == "cpu") return DeviceKind::cpu;
     return std::nullopt;
 }
 
@@ -286,7 +286,7 @@ void Context::Impl::pick_device(DeviceKind kind) {
         seen += std::string(seen.empty() ? "" : ", ") + p.deviceName;
         if (p.apiVersion < VK_API_VERSION_1_3) continue;
         const bool is_cpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-        if ((kind == DeviceKind::Gpu && is_cpu) || (kind == DeviceKind::Cpu && !is_cpu)) continue;
+        if ((kind == DeviceKind::gpu && is_cpu) || (kind == DeviceKind::cpu && !is_cpu)) continue;
         uint32_t qn = 0;
         f.vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, nullptr);
         std::vector<VkQueueFamilyProperties> q(qn);
@@ -300,10 +300,10 @@ void Context::Impl::pick_device(DeviceKind kind) {
         }
     }
     if (usable.empty()) {
-        if (kind == DeviceKind::Gpu)
+        if (kind == DeviceKind::gpu)
             throw NoDeviceError("no Vulkan 1.3 GPU found (devices: " + seen +
                                 "); install the GPU's Vulkan driver, or use --device cpu");
-        if (kind == DeviceKind::Cpu)
+        if (kind == DeviceKind::cpu)
             throw NoDeviceError("no CPU Vulkan device (lavapipe) found (devices: " + seen +
                                 "): install mesa-vulkan-drivers");
         throw NoDeviceError("no Vulkan 1.3 device with graphics and compute found (devices: " +

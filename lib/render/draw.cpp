@@ -82,14 +82,14 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     d.fn.vkCmdEndRendering(cmd);
     s.end_pass();
 
-    if (output.format == PixelFormat::Rgba8) {
+    if (output.format == PixelFormat::rgba8) {
         image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
         s.begin_pass("encode");
         d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_pipeline);
         d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_layout, 0, 1, &r.encode_set, 0, nullptr);
-        const gpu::EncodeParams params{{w, h}, output.exposure, output.transfer == Transfer::Srgb ? 1u : 0u};
+        const gpu::EncodeParams params{{w, h}, output.exposure, output.transfer == Transfer::srgb ? 1u : 0u};
         d.fn.vkCmdPushConstants(cmd, r.encode_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
         d.fn.vkCmdDispatch(cmd, tile_groups(w), tile_groups(h), 1);
         s.end_pass();
@@ -116,7 +116,7 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     frame.width = w;
     frame.height = h;
     const size_t n = size_t{w} * h * 4;
-    if (output.format == PixelFormat::Rgba8) {
+    if (output.format == PixelFormat::rgba8) {
         frame.rgba8.resize(n);
         std::memcpy(frame.rgba8.data(), r.readback.mapped, n);
     } else {

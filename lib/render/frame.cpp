@@ -121,9 +121,9 @@ void Renderer::Impl::write_frame(const Material& m) {
     size_t slot = 0;
     for (int pass = 0; pass < 2; ++pass)
         for (const Light& l : scene.lights) {
-            if ((pass == 0) != (l.type == LightType::Directional)) continue;
+            if ((pass == 0) != (l.type == LightType::directional)) continue;
             gpu::LightData& dst = f.lights[slot++];
-            if (l.type == LightType::Directional) {
+            if (l.type == LightType::directional) {
                 const D3 dir = normalized(d3(l.direction));
                 put(dst.position, {-dir[0], -dir[1], -dir[2]}, 0.0);
             } else {

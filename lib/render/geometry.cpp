@@ -122,9 +122,9 @@ Mesh make_cube(float edge) {
 
 Mesh make_shape(const Shape& shape) {
     switch (shape.type) {
-        case ShapeType::Sphere: return make_sphere(shape.size);
-        case ShapeType::Cube: return make_cube(shape.size);
-        case ShapeType::Plane: return make_plane(shape.size);
+        case ShapeType::sphere: return make_sphere(shape.size);
+        case ShapeType::cube: return make_cube(shape.size);
+        case ShapeType::plane: return make_plane(shape.size);
     }
     return make_sphere(shape.size);
 }

@@ -218,7 +218,7 @@ void record_brdf_lut(Recording& rec) {
     rec.pipeline_layouts.push_back(r.make_pipeline_layout({set_layout}, 0, 0));
     const VkPipelineLayout layout = rec.pipeline_layouts.back();
     gpu::LutSpecialization values;
-    values.correlated = r.scene.brdf == Brdf::Accurate ? 1u : 0u;
+    values.correlated = r.scene.brdf == Brdf::accurate ? 1u : 0u;
     values.samples = kLutSamples;
     const VkSpecializationInfo spec = spec_info(kLutEntries, values);
     rec.pipelines.push_back(f32 ? r.make_compute_pipeline(kBrdfLutComp, sizeof(kBrdfLutComp), layout, &spec)
@@ -339,7 +339,7 @@ void record_environment(Recording& rec, const Environment& env) {
 }  // namespace
 
 void Renderer::Impl::build_environment() {
-    const bool need_lut = scene.environment || scene.brdf == Brdf::Accurate;
+    const bool need_lut = scene.environment || scene.brdf == Brdf::accurate;
     if (!need_lut) return;
     Recording rec(*this);
     record_brdf_lut(rec);

@@ -38,7 +38,7 @@ Mesh make_shape(const Shape& shape);
 
 // How a texture's mips are averaged: color in linear light (sRGB decoded, averaged, encoded),
 // normals as renormalized vectors, data as plain averages.
-enum class MipKind { Color, Normal, Data };
+enum class MipKind { color, normal, data };
 
 struct TextureLevel {
     uint32_t width = 0, height = 0;

@@ -154,10 +154,10 @@ void Renderer::Impl::create_layouts() {
 
 ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     ShadeSpecialization c{};
-    for (const Light& l : scene.lights) ++(l.type == LightType::Directional ? c.num_directional : c.num_point);
+    for (const Light& l : scene.lights) ++(l.type == LightType::directional ? c.num_directional : c.num_point);
     const bool env = static_cast<bool>(scene.environment);
     c.brdf_model = brdf_model_id(scene.brdf);
-    c.analytic_sphere = flag(scene.shape.type == ShapeType::Sphere);
+    c.analytic_sphere = flag(scene.shape.type == ShapeType::sphere);
     c.has_env = flag(env);
     c.albedo_tex = m.albedo.texture;
     c.emissive_tex = m.emissive.texture;

@@ -46,7 +46,7 @@ public:
 // ---------------------------------------------------------------------------------------------
 // Device
 
-enum class DeviceKind { Auto, Gpu, Cpu };  // auto: a real GPU if any, else lavapipe (CPU)
+enum class DeviceKind { automatic, gpu, cpu };  // automatic: a real GPU if any, else lavapipe (CPU)
 std::optional<DeviceKind> parse_device_kind(std::string_view s);  // "auto" | "gpu" | "cpu"
 
 // Collects validation-layer and loader messages of severity warning or error. Shared so that it
@@ -63,7 +63,7 @@ private:
 };
 
 struct ContextOptions {
-    DeviceKind device = DeviceKind::Auto;
+    DeviceKind device = DeviceKind::automatic;
     // Enables VK_LAYER_KHRONOS_validation with synchronization validation and a debug messenger
     // that feeds `log` (required when validation is on).
     bool validation = false;
@@ -110,17 +110,17 @@ struct Camera {
     float yfov_deg = 35.f;
 };
 
-enum class ShapeType { Sphere, Cube, Plane };
+enum class ShapeType { sphere, cube, plane };
 struct Shape {
-    ShapeType type = ShapeType::Sphere;
+    ShapeType type = ShapeType::sphere;
     // Sphere: radius (the UV sphere of three.js SphereGeometry(r, 128, 64), shaded on the exact
     // sphere). Cube: edge length (turned to show three faces). Plane: side of a square facing +Z.
     float size = 1.f;
 };
 
-enum class LightType { Directional, Point };
+enum class LightType { directional, point };
 struct Light {
-    LightType type = LightType::Directional;
+    LightType type = LightType::directional;
     Vec3 direction{0.57735027f, -0.57735027f, -0.57735027f};  // the way the light travels
     Vec3 position{0.f, 0.f, 0.f};
     Vec3 color{1.f, 1.f, 1.f};
@@ -139,13 +139,13 @@ struct Environment {
 enum class Brdf {
     // GGX D, Schlick F with F0 = lerp(0.04, albedo, metalness), Schlick-GGX visibility with
     // k = (r+1)²/8, Lambert diffuse albedo/π × (1 − F)(1 − metalness)
-    Standard,
+    standard,
     // height-correlated Smith visibility + multiple-scattering energy compensation
-    Accurate,
+    accurate,
     // Standard with Lambert's diffuse lacking its 1/π (albedo · N·L): diffuse π times too strong
     // against the specular lobe, for comparison with engines that do this. CLI value
     // "assignment".
-    UnnormalizedDiffuse,
+    unnormalized_diffuse,
 };
 std::optional<Brdf> parse_brdf(std::string_view s);  // "standard" | "accurate" | "assignment"
 
@@ -158,16 +158,16 @@ struct Scene {
     Vec3 background{0.f, 0.f, 0.f};  // linear
     std::vector<Light> lights{Light{}};
     std::shared_ptr<const Environment> environment;  // null: no image-based lighting
-    Brdf brdf = Brdf::Standard;
+    Brdf brdf = Brdf::standard;
 };
 
 // ---------------------------------------------------------------------------------------------
 // Material: textures as decoded from their files plus, per role, where its value comes from.
 
-enum class TexelType : uint8_t { U8, U16, F32 };
+enum class TexelType : uint8_t { u8, u16, f32 };
 struct Texture {
     uint32_t width = 0, height = 0, channels = 0;  // channels 1..4; 1: gray, 2: gray+alpha
-    TexelType type = TexelType::U8;
+    TexelType type = TexelType::u8;
     std::vector<uint8_t> data;  // width*height*channels samples of `type`, native byte order
     // RGB hold sRGB-encoded color (albedo, emissive): 8-bit ones are uploaded as an _SRGB format
     // and decoded by the sampler; alpha is always linear.
@@ -210,20 +210,20 @@ void check_material(const Material& m);
 // ---------------------------------------------------------------------------------------------
 // Rendering
 
-enum class Transfer { Srgb, Linear };
-enum class PixelFormat { Rgba8, Rgba32F };
+enum class Transfer { srgb, linear };
+enum class PixelFormat { rgba8, rgba32f };
 struct OutputOptions {
-    PixelFormat format = PixelFormat::Rgba8;
+    PixelFormat format = PixelFormat::rgba8;
     // Rgba8 only: linear radiance × exposure, encoded once with `transfer` (exact IEC 61966-2-1
     // curve for sRGB), rounded to nearest. Rgba32F is the linear radiance itself.
-    Transfer transfer = Transfer::Srgb;
+    Transfer transfer = Transfer::srgb;
     float exposure = 1.f;
 };
 
 struct Frame {
     uint32_t width = 0, height = 0;
-    std::vector<uint8_t> rgba8;    // PixelFormat::Rgba8
-    std::vector<float> rgba32f;    // PixelFormat::Rgba32F
+    std::vector<uint8_t> rgba8;    // PixelFormat::rgba8
+    std::vector<float> rgba32f;    // PixelFormat::rgba32f
 };
 
 struct PassTime {

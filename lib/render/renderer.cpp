@@ -11,17 +11,17 @@ namespace mf::render {
 using namespace detail;
 
 std::optional<Brdf> parse_brdf(std::string_view s) {
-    if (s == "standard") return Brdf::Standard;
-    if (s == "accurate") return Brdf::Accurate;
-    if (s == "assignment") return Brdf::UnnormalizedDiffuse;
+    if (s == "standard") return Brdf::standard;
+    if (s == "accurate") return Brdf::accurate;
+    if (s == "assignment") return Brdf::unnormalized_diffuse;
     return std::nullopt;
 }
 
 int32_t detail::brdf_model_id(Brdf b) {
     switch (b) {
-        case Brdf::Standard: return gpu::kBrdfStandard;
-        case Brdf::Accurate: return gpu::kBrdfAccurate;
-        case Brdf::UnnormalizedDiffuse: return gpu::kBrdfUnnormalizedDiffuse;
+        case Brdf::standard: return gpu::kBrdfStandard;
+        case Brdf::accurate: return gpu::kBrdfAccurate;
+        case Brdf::unnormalized_diffuse: return gpu::kBrdfUnnormalizedDiffuse;
     }
     throw Error("unknown BRDF model");
 }

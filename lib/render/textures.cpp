@@ -52,13 +52,13 @@ FloatLevel to_rgba(const Texture& t) {
     const size_t n = size_t{t.width} * t.height;
     auto sample = [&](size_t i) -> float {
         switch (t.type) {
-            case TexelType::U8: return t.data[i] / 255.f;
-            case TexelType::U16: {
+            case TexelType::u8: return t.data[i] / 255.f;
+            case TexelType::u16: {
                 uint16_t v;
                 std::memcpy(&v, t.data.data() + 2 * i, 2);
                 return v / 65535.f;
             }
-            case TexelType::F32: {
+            case TexelType::f32: {
                 float v;
                 std::memcpy(&v, t.data.data() + 4 * i, 4);
                 return std::isfinite(v) ? v : 0.f;  // NaN/Inf texels would poison every mip above
@@ -131,10 +131,10 @@ void to_domain(FloatLevel& l, MipKind kind, bool srgb, bool eight_bit) {
     for (size_t p = 0; p < n; ++p) {
         float* c = &l.rgba[4 * p];
         for (int i = 0; i < 3; ++i) {
-            if (kind == MipKind::Color && srgb)
+            if (kind == MipKind::color && srgb)
                 c[i] = eight_bit ? decode[static_cast<size_t>(std::lround(c[i] * 255.f))]
                                  : static_cast<float>(mf::srgb_to_linear(double{c[i]}));
-            if (kind == MipKind::Normal) c[i] = c[i] * 2.f - 1.f;
+            if (kind == MipKind::normal) c[i] = c[i] * 2.f - 1.f;
         }
     }
 }
@@ -158,8 +158,8 @@ void renormalize(FloatLevel& l) {
 // Back from the averaging domain to stored values (sRGB-encoded where the format decodes).
 float from_domain(float v, int channel, MipKind kind, bool encode_srgb) {
     if (channel < 3) {
-        if (kind == MipKind::Normal) return v * 0.5f + 0.5f;
-        if (kind == MipKind::Color && encode_srgb)
+        if (kind == MipKind::normal) return v * 0.5f + 0.5f;
+        if (kind == MipKind::color && encode_srgb)
             return static_cast<float>(mf::linear_to_srgb(double{std::clamp(v, 0.f, 1.f)}));
     }
     return v;
@@ -199,7 +199,7 @@ void store(const FloatLevel& l, Storage s, MipKind kind, bool encode_srgb, Textu
 }  // namespace
 
 PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind) {
-    const size_t bytes = t.type == TexelType::U8 ? 1 : t.type == TexelType::U16 ? 2 : 4;
+    const size_t bytes = t.type == TexelType::u8 ? 1 : t.type == TexelType::u16 ? 2 : 4;
     if (t.width == 0 || t.height == 0 || t.channels < 1 || t.channels > 4 ||
         t.data.size() != size_t{t.width} * t.height * t.channels * bytes)
         throw Error("texture data does not match its size, channels and type");
@@ -216,16 +216,16 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
     // ContextOptions::precise_cpu_textures: on lavapipe 8-bit texels go up as 16-bit linear
     // UNORM (data × 257 exactly; color decoded here with the exact curve), filtered in float.
     const bool promote = d.precise_textures && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter);
-    const bool srgb_color = t.srgb && kind == MipKind::Color;
-    if (t.type == TexelType::U8 && !promote) {
+    const bool srgb_color = t.srgb && kind == MipKind::color;
+    if (t.type == TexelType::u8 && !promote) {
         storage = Storage::U8;
         encode_srgb = srgb_color;
         out.format = encode_srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-    } else if (!srgb_color && (t.type == TexelType::U8 ||  // promoted: `promote` checked the format
-                               (t.type == TexelType::U16 && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter)))) {
+    } else if (!srgb_color && (t.type == TexelType::u8 ||  // promoted: `promote` checked the format
+                               (t.type == TexelType::u16 && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter)))) {
         storage = Storage::U16;
         out.format = VK_FORMAT_R16G16B16A16_UNORM;
-    } else if ((t.type == TexelType::U8 || t.type == TexelType::F32) &&
+    } else if ((t.type == TexelType::u8 || t.type == TexelType::f32) &&
                d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, kFilter)) {
         // U8 here is promoted color, decoded: float keeps the darkest codes exact (16-bit UNORM
         // would round 1/255 of sRGB, 3.0e-4 linear, by half a per cent)
@@ -236,10 +236,10 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
     }
 
     FloatLevel level = to_rgba(t);
-    to_domain(level, kind, t.srgb, t.type == TexelType::U8);  // level 0 itself is stored as read (no renormalization)
+    to_domain(level, kind, t.srgb, t.type == TexelType::u8);  // level 0 itself is stored as read (no renormalization)
     for (;;) {
         TextureLevel stored;
-        if (out.levels.empty() && storage == Storage::U8 && t.channels == 4 && kind != MipKind::Normal) {
+        if (out.levels.empty() && storage == Storage::U8 && t.channels == 4 && kind != MipKind::normal) {
             // Level 0 of an 8-bit RGBA texture goes up exactly as read.
             stored.width = t.width;
             stored.height = t.height;
@@ -250,7 +250,7 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
         out.levels.push_back(std::move(stored));
         if (level.width == 1 && level.height == 1) break;
         level = downsample(level);
-        if (kind == MipKind::Normal) renormalize(level);
+        if (kind == MipKind::normal) renormalize(level);
     }
     return out;
 }

@@ -139,9 +139,9 @@ GpuMaterial Renderer::upload(const Material& material) {
     for (size_t i = 0; i < material.textures.size(); ++i) {
         if (!used[i]) continue;
         const Texture& t = material.textures[i];
-        const MipKind kind = static_cast<int>(i) == material.normal.texture ? MipKind::Normal
-                             : t.srgb                                        ? MipKind::Color
-                                                                             : MipKind::Data;
+        const MipKind kind = static_cast<int>(i) == material.normal.texture ? MipKind::normal
+                             : t.srgb                                        ? MipKind::color
+                                                                             : MipKind::data;
         m.textures[i] = r.upload_texture(prepare_texture(d, t, kind), s.cmd(), staging);
     }
     s.finish(r.load_times);

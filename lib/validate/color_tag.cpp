@@ -114,7 +114,10 @@ ColorTagInfo read_color_tag(const InputFile& in) {
     const std::string fmt = input->format_name();
     input->close();
     if (cs.empty()) return {};
-    if ((fmt == "openexr" && lower(cs) == "linear") || (fmt == "jpeg" && lower(cs) == "srgb")) return {};
+    // Readers that state a color space for every file (EXR: linear; JPEG and WebP: sRGB, the
+    // format's assumption, not a tag the file carries) say nothing about this file.
+    if ((fmt == "openexr" && lower(cs) == "linear") || ((fmt == "jpeg" || fmt == "webp") && lower(cs) == "srgb"))
+        return {};
     return {classify_name(cs), "oiio:ColorSpace", cs};
 }
 

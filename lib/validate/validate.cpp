@@ -31,7 +31,7 @@ struct Source {
 // The first map of input role `r` whose header could be read, -1 when none.
 int first_readable(const std::vector<MapInput>& maps, const std::vector<bool>& readable, Role r) {
     for (size_t i = 0; i < maps.size(); ++i)
-        if (readable[i] && maps[i].role == r) return static_cast<int>(i);
+        if (readable[i] && !maps[i].alternate && maps[i].role == r) return static_cast<int>(i);
     return -1;
 }
 
@@ -39,9 +39,11 @@ int first_readable(const std::vector<MapInput>& maps, const std::vector<bool>& r
 // largest), so the message names the odd ones out.
 void resolution_findings(const std::vector<MapInput>& maps, const std::vector<bool>& readable,
                          std::vector<Finding>& out) {
+    // Alternates are never resampled into the set: their sizes do not count.
+    auto counted = [&](size_t i) { return readable[i] && !maps[i].alternate; };
     std::map<std::pair<int, int>, int> counts;
     for (size_t i = 0; i < maps.size(); ++i)
-        if (readable[i]) ++counts[{maps[i].info.width, maps[i].info.height}];
+        if (counted(i)) ++counts[{maps[i].info.width, maps[i].info.height}];
     if (counts.size() < 2) return;
     std::pair<int, int> ref{0, 0};
     int best = -1;
@@ -52,9 +54,9 @@ void resolution_findings(const std::vector<MapInput>& maps, const std::vector<bo
         }
     nlohmann::json sizes = nlohmann::json::object();
     for (size_t i = 0; i < maps.size(); ++i)
-        if (readable[i]) sizes[display_name(maps[i])] = {maps[i].info.width, maps[i].info.height};
+        if (counted(i)) sizes[display_name(maps[i])] = {maps[i].info.width, maps[i].info.height};
     for (size_t i = 0; i < maps.size(); ++i) {
-        if (!readable[i]) continue;
+        if (!counted(i)) continue;
         const auto& m = maps[i];
         if (m.info.width == ref.first && m.info.height == ref.second) continue;
         Finding f;
@@ -87,132 +89,163 @@ std::optional<MapInput> make_map_input(Role role, InputFile file, std::string na
     return m;
 }
 
-SetValidation validate_set(const std::vector<MapInput>& input_maps, const RuleConfig& cfg,
-                           const ValidateOptions& opt) {
-    SetValidation result;
+namespace {
+
+// One validate_set call, stage by stage: headers -> sources -> readers -> the joint passes
+// (albedo, normal) -> per-map findings -> configuration and order.
+struct SetRun {
+    std::vector<MapInput> maps;
+    const RuleConfig& cfg;
+    const ValidateOptions& opt;
+    const Thresholds& t;
+    std::vector<bool> readable;
+    std::vector<std::string> read_errors;
+    Source albedo, metal, opacity, normal, height;
+    std::vector<std::unique_ptr<MapStats>> stats;
+    std::vector<std::unique_ptr<BandStream>> streams;
     std::vector<Finding> found;
-    std::vector<MapInput> maps = input_maps;
-    const BandReader reader = opt.reader ? opt.reader : BandReader(&mf::read_bands);
-    const int band_rows = std::max(1, opt.band_rows);
-    const Thresholds& t = cfg.thresholds;
+    SetValidation result;
+
+    SetRun(const std::vector<MapInput>& m, const RuleConfig& c, const ValidateOptions& o)
+        : maps(m), cfg(c), opt(o), t(c.thresholds), readable(m.size(), true), read_errors(m.size()),
+          stats(m.size()), streams(m.size()) {}
+
+    const ImageInfo& info(const Source& s) const { return maps[static_cast<size_t>(s.map)].info; }
+    bool albedo_pass() const { return albedo.map >= 0 && info(albedo).channels >= 3; }
+    bool normal_pass() const { return normal.map >= 0 && info(normal).channels >= 2; }
+    const float* row_of(const Source& s, int r) const {
+        return s.map >= 0 && streams[static_cast<size_t>(s.map)] ? streams[static_cast<size_t>(s.map)]->row(r) : nullptr;
+    }
 
     // Header facts first (cheap); a map whose header fails is reported and left out.
-    std::vector<bool> readable(maps.size(), true);
-    std::vector<std::string> read_errors(maps.size());
-    for (size_t i = 0; i < maps.size(); ++i) {
-        if (maps[i].info.width > 0) continue;
-        std::string err;
-        if (auto info = read_info(maps[i].file, err)) maps[i].info = *info;
-        else {
-            readable[i] = false;
-            read_errors[i] = err;
+    void read_headers() {
+        for (size_t i = 0; i < maps.size(); ++i) {
+            if (maps[i].info.width > 0) continue;
+            std::string err;
+            if (auto hd = read_info(maps[i].file, err)) maps[i].info = *hd;
+            else {
+                readable[i] = false;
+                read_errors[i] = err;
+            }
         }
     }
 
     // Which maps feed the joint statistics: the routes ingest uses (material/routing).
-    const Routes routes = route_roles([&](Role r) {
-        const int i = first_readable(maps, readable, r);
-        return i < 0 ? 0 : maps[static_cast<size_t>(i)].info.channels;
-    });
-    auto source_of = [&](Role out) {
-        const auto it = routes.find(out);
-        if (it == routes.end()) return Source{};
-        return Source{first_readable(maps, readable, it->second.from), std::max(0, it->second.channel)};
-    };
-    const Source albedo = source_of(Role::albedo);
-    const Source metal = source_of(Role::metalness);
-    const Source opacity = source_of(Role::opacity);
-    const Source normal = source_of(Role::normal);
-    const Source height = source_of(Role::height);
-    const bool albedo_pass = albedo.map >= 0 && maps[albedo.map].info.channels >= 3;
-    const bool normal_pass = normal.map >= 0 && maps[normal.map].info.channels >= 2;
-
-    std::vector<bool> lockstep(maps.size(), false);
-    if (albedo_pass)
-        for (const Source& s : {albedo, metal, opacity})
-            if (s.map >= 0) lockstep[s.map] = true;
-    if (normal_pass)
-        for (const Source& s : {normal, height})
-            if (s.map >= 0) lockstep[s.map] = true;
-
-    // Start every reader; per-map statistics run on the reader threads.
-    std::vector<std::unique_ptr<MapStats>> stats(maps.size());
-    std::vector<std::unique_ptr<BandStream>> streams(maps.size());
-    for (size_t i = 0; i < maps.size(); ++i) {
-        if (!readable[i]) continue;
-        stats[i] = std::make_unique<MapStats>(maps[i], maps[i].info, t);
-        stats[i]->opacity_channel = opacity.map == static_cast<int>(i) ? opacity.channel : -1;  // OPACITY_ALL_TRANSPARENT
-        MapStats* s = stats[i].get();
-        const ImageInfo expected = maps[i].info;
-        streams[i] = std::make_unique<BandStream>(
-            reader, maps[i].file, band_rows, expected.width * expected.channels,
-            [s](int y0, int rows, const float* px) { s->add_band(y0, rows, px); }, lockstep[i]);
+    void choose_sources() {
+        const Routes routes = route_roles(
+            [&](Role r) {
+                const int i = first_readable(maps, readable, r);
+                return i < 0 ? 0 : maps[static_cast<size_t>(i)].info.channels;
+            },
+            true,
+            [&](Role out, Role from) {
+                const auto& u = maps[static_cast<size_t>(first_readable(maps, readable, from))].unused;
+                return std::find(u.begin(), u.end(), out) != u.end();
+            });
+        auto source_of = [&](Role out) {
+            const auto it = routes.find(out);
+            if (it == routes.end()) return Source{};
+            return Source{first_readable(maps, readable, it->second.from), std::max(0, it->second.channel)};
+        };
+        albedo = source_of(Role::albedo);
+        metal = source_of(Role::metalness);
+        opacity = source_of(Role::opacity);
+        normal = source_of(Role::normal);
+        height = source_of(Role::height);
     }
-    auto row_of = [&](const Source& s, int r) -> const float* {
-        return s.map >= 0 && streams[s.map] ? streams[s.map]->row(r) : nullptr;
-    };
+
+    // Every reader starts; per-map statistics run on the reader threads. The maps a joint pass
+    // needs are read in lockstep with it.
+    void start_readers() {
+        std::vector<bool> lockstep(maps.size(), false);
+        if (albedo_pass())
+            for (const Source& s : {albedo, metal, opacity})
+                if (s.map >= 0) lockstep[static_cast<size_t>(s.map)] = true;
+        if (normal_pass())
+            for (const Source& s : {normal, height})
+                if (s.map >= 0) lockstep[static_cast<size_t>(s.map)] = true;
+        const BandReader reader = opt.reader ? opt.reader : BandReader(&mf::read_bands);
+        const int band_rows = std::max(1, opt.band_rows);
+        for (size_t i = 0; i < maps.size(); ++i) {
+            if (!readable[i]) continue;
+            stats[i] = std::make_unique<MapStats>(maps[i], maps[i].info, t);
+            // OPACITY_ALL_TRANSPARENT looks at the map (and channel) that is the set's opacity.
+            stats[i]->opacity_channel = opacity.map == static_cast<int>(i) ? opacity.channel : -1;
+            MapStats* st = stats[i].get();
+            const ImageInfo expected = maps[i].info;
+            streams[i] = std::make_unique<BandStream>(
+                reader, maps[i].file, band_rows, expected.width * expected.channels,
+                [st](int y0, int rows, const float* px) { st->add_band(y0, rows, px); }, lockstep[i]);
+        }
+    }
 
     // Pass 1: albedo on its own grid with metalness and opacity resampled onto it.
-    if (albedo_pass) {
-        const ImageInfo& ai = maps[albedo.map].info;
-        detail::AlbedoStats acc(t, maps[albedo.map].info.is_float);
+    void albedo_stats() {
+        const ImageInfo& ai = info(albedo);
+        detail::AlbedoStats acc(t, ai.is_float);
         std::vector<int> mx, ox;
         auto xmap = [&](const Source& s, std::vector<int>& v) {
             if (s.map < 0) return;
-            v.resize(ai.width);
-            for (int x = 0; x < ai.width; ++x) v[x] = nearest(x, ai.width, maps[s.map].info.width);
+            v.resize(static_cast<size_t>(ai.width));
+            for (int x = 0; x < ai.width; ++x) v[static_cast<size_t>(x)] = nearest(x, ai.width, info(s).width);
         };
         xmap(metal, mx);
         xmap(opacity, ox);
-        const int mc = metal.map >= 0 ? maps[metal.map].info.channels : 0;
-        const int oc = opacity.map >= 0 ? maps[opacity.map].info.channels : 0;
+        const int mc = metal.map >= 0 ? info(metal).channels : 0;
+        const int oc = opacity.map >= 0 ? info(opacity).channels : 0;
         for (int y = 0; y < ai.height; ++y) {
             const float* a = row_of(albedo, y);
             if (!a) break;
-            const float* m = metal.map >= 0 ? row_of(metal, nearest(y, ai.height, maps[metal.map].info.height)) : nullptr;
+            const float* m = metal.map >= 0 ? row_of(metal, nearest(y, ai.height, info(metal).height)) : nullptr;
             const float* o = opacity.map == albedo.map ? a
-                             : opacity.map >= 0 ? row_of(opacity, nearest(y, ai.height, maps[opacity.map].info.height))
-                                                : nullptr;
+                             : opacity.map >= 0       ? row_of(opacity, nearest(y, ai.height, info(opacity).height))
+                                                      : nullptr;
             for (int x = 0; x < ai.width; ++x) {
                 if (o) {
-                    const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3]
-                                                               : o[ox[x] * oc + opacity.channel];
+                    const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3] : o[ox[x] * oc + opacity.channel];
                     if (!(ov >= t.opacity_visible)) continue;
                 }
                 const float mv = m ? m[mx[x] * mc + metal.channel] : 0.f;
                 acc.add(a + x * ai.channels, mv);
             }
         }
-        acc.findings(display_name(maps[albedo.map]), metal.map >= 0, opacity.map >= 0, found);
+        acc.findings(display_name(maps[static_cast<size_t>(albedo.map)]), metal.map >= 0, opacity.map >= 0, found);
     }
 
-    // Pass 2: normal with height resampled onto the normal's grid.
-    if (normal_pass) {
-        const ImageInfo& ni = maps[normal.map].info;
+    // Pass 2: normal with height resampled onto the normal's grid -> the convention verdict.
+    void normal_stats() {
+        const ImageInfo& ni = info(normal);
         const bool wh = height.map >= 0;
         NormalConventionDetector det(ni.width, wh, opt.detector);
-        std::vector<float> xyz(static_cast<size_t>(ni.width) * 3), hrow(wh ? ni.width : 0);
+        std::vector<float> xyz(static_cast<size_t>(ni.width) * 3), hrow(wh ? static_cast<size_t>(ni.width) : 0);
         std::vector<int> hx;
         if (wh) {
-            hx.resize(ni.width);
-            for (int x = 0; x < ni.width; ++x) hx[x] = nearest(x, ni.width, maps[height.map].info.width);
+            hx.resize(static_cast<size_t>(ni.width));
+            for (int x = 0; x < ni.width; ++x) hx[static_cast<size_t>(x)] = nearest(x, ni.width, info(height).width);
         }
-        const int hc = wh ? maps[height.map].info.channels : 0;
+        const int hc = wh ? info(height).channels : 0;
         for (int y = 0; y < ni.height; ++y) {
             const float* n = row_of(normal, y);
             if (!n) break;
             // The reader thread decided the decoding on the first band, before this row.
-            const bool is_signed = stats[normal.map]->normal_signed == 1;
+            const bool is_signed = stats[static_cast<size_t>(normal.map)]->normal_signed == 1;
             decode_normal_row(n, ni.channels, ni.width, is_signed, xyz.data());
-            const float* h = wh ? row_of(height, nearest(y, ni.height, maps[height.map].info.height)) : nullptr;
+            const float* h = wh ? row_of(height, nearest(y, ni.height, info(height).height)) : nullptr;
             if (h)
-                for (int x = 0; x < ni.width; ++x) hrow[x] = h[hx[x] * hc + height.channel];
+                for (int x = 0; x < ni.width; ++x) hrow[static_cast<size_t>(x)] = h[hx[static_cast<size_t>(x)] * hc + height.channel];
             det.add_row(xyz.data(), h ? hrow.data() : nullptr);
         }
+        convention_findings(det.verdict());
+    }
+
+    // NORMAL_CONVENTION_MISMATCH (the name and the content disagree) and _UNKNOWN (neither
+    // decides; a flat map has no convention to decide), emitted here only.
+    void convention_findings(const NormalVerdict& verdict) {
+        const MapInput& m = maps[static_cast<size_t>(normal.map)];
         NormalCheck nc;
-        nc.file = display_name(maps[normal.map]);
-        nc.name = maps[normal.map].name_convention;
-        nc.content = det.verdict();
+        nc.file = display_name(m);
+        nc.name = m.name_convention;
+        nc.content = verdict;
         const double need = t.normal_convention_min_confidence;
         const bool decided = nc.content.convention != NormalConvention::unknown && nc.content.confidence >= need;
         if (nc.name != NormalConvention::unknown) {
@@ -229,85 +262,96 @@ SetValidation validate_set(const std::vector<MapInput>& input_maps, const RuleCo
         fig["confidence"] = nc.content.confidence;
         fig["method"] = nc.content.method;
         fig["min_confidence"] = need;
-        if (nc.name != NormalConvention::unknown && decided && nc.content.convention != nc.name) {
+        const std::string percent = std::to_string(static_cast<int>(std::lround(nc.content.confidence * 100)));
+        auto emit = [&](std::string_view code, std::string message) {
             Finding f;
-            f.code = std::string(code::normal_convention_mismatch);
+            f.code = std::string(code);
             f.role = "normal";
             f.file = nc.file;
-            f.message = nc.file + ": the name says " + std::string(convention_name(nc.name)) +
-                        " but the content says " + std::string(convention_name(nc.content.convention)) +
-                        " (confidence " + std::to_string(static_cast<int>(std::lround(nc.content.confidence * 100))) +
-                        " %, " + nc.content.method + " test); check the green channel before trusting the name";
+            f.message = std::move(message);
             f.figures = fig;
             found.push_back(std::move(f));
-        } else if (nc.name == NormalConvention::unknown && !decided && !nc.content.flat) {  // flat: GL = DX
-            Finding f;
-            f.code = std::string(code::normal_convention_unknown);
-            f.role = "normal";
-            f.file = nc.file;
-            f.message = nc.file + ": neither the name nor the content decides GL or DX (content confidence " +
-                        std::to_string(static_cast<int>(std::lround(nc.content.confidence * 100))) +
-                        " %); rename it with a _gl/_dx suffix or state the convention in the preset";
-            f.figures = fig;
-            found.push_back(std::move(f));
-        }
+        };
+        if (nc.name != NormalConvention::unknown && decided && nc.content.convention != nc.name)
+            emit(code::normal_convention_mismatch,
+                 nc.file + ": the name says " + std::string(convention_name(nc.name)) + " but the content says " +
+                     std::string(convention_name(nc.content.convention)) + " (confidence " + percent + " %, " +
+                     nc.content.method + " test); check the green channel before trusting the name");
+        else if (nc.name == NormalConvention::unknown && !decided && !nc.content.flat)  // flat: GL = DX
+            emit(code::normal_convention_unknown,
+                 nc.file + ": neither the name nor the content decides GL or DX (content confidence " + percent +
+                     " %); assumed OpenGL (+Y): check the preview, or rename it with a _gl/_dx suffix");
         result.normal = std::move(nc);
     }
 
-    // Let every reader finish (maps outside the joint passes have been running freely).
-    for (size_t i = 0; i < maps.size(); ++i) {
-        if (!streams[i]) continue;
-        streams[i]->finish();
-        if (!streams[i]->ok()) {
-            readable[i] = false;
-            read_errors[i] = streams[i]->error();
+    // Every reader finishes (maps outside the joint passes have been running freely), then each
+    // map's own findings, or why it could not be read.
+    void map_findings() {
+        for (size_t i = 0; i < maps.size(); ++i) {
+            if (!streams[i]) continue;
+            streams[i]->finish();
+            if (!streams[i]->ok()) {
+                readable[i] = false;
+                read_errors[i] = streams[i]->error();
+            }
+        }
+        // The albedo's alpha: the plan keeps it as the opacity only when some texel is below opaque.
+        if (opacity.map >= 0 && opacity.map == albedo.map && readable[static_cast<size_t>(albedo.map)])
+            result.albedo_alpha_min =
+                stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
+        for (size_t i = 0; i < maps.size(); ++i) {
+            if (!readable[i]) {
+                Finding f;
+                f.code = std::string(code::unreadable_file);
+                f.role = std::string(role_name(maps[i].role));
+                f.file = display_name(maps[i]);
+                f.message = read_errors[i].empty() ? f.file + ": could not be read" : read_errors[i];
+                found.push_back(std::move(f));
+                continue;
+            }
+            stats[i]->findings(found);
+        }
+        resolution_findings(maps, readable, found);
+        // A map that is not a normal map has no green convention: NORMAL_INVALID says it all.
+        if (result.normal) {
+            const std::string nf = result.normal->file;
+            const bool invalid = std::any_of(found.begin(), found.end(),
+                                             [&](const Finding& f) { return f.code == code::normal_invalid && f.file == nf; });
+            if (invalid)
+                std::erase_if(found, [&](const Finding& f) {
+                    return f.file == nf &&
+                           (f.code == code::normal_convention_mismatch || f.code == code::normal_convention_unknown);
+                });
         }
     }
 
-    // The albedo's alpha: the plan keeps it as the opacity only when some texel is below opaque.
-    if (opacity.map >= 0 && opacity.map == albedo.map && readable[static_cast<size_t>(albedo.map)])
-        result.albedo_alpha_min = stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
-
-    for (size_t i = 0; i < maps.size(); ++i) {
-        if (!readable[i]) {
-            Finding f;
-            f.code = std::string(code::unreadable_file);
-            f.role = std::string(role_name(maps[i].role));
-            f.file = display_name(maps[i]);
-            f.message = read_errors[i].empty() ? f.file + ": could not be read" : read_errors[i];
-            found.push_back(std::move(f));
-            continue;
-        }
-        stats[i]->findings(found);
+    // Severities, disabled codes and suppressions; then the stable order (the rule catalog's).
+    SetValidation finish() {
+        for (auto& f : found) f.severity = cfg.severity_of(f.code);
+        result.suppressed = apply_config(found, opt.material, cfg);
+        const auto& cat = rule_catalog();
+        auto rank = [&](const Finding& f) {
+            for (size_t i = 0; i < cat.size(); ++i)
+                if (cat[i].code == f.code) return i;
+            return cat.size();
+        };
+        std::stable_sort(found.begin(), found.end(), [&](const Finding& a, const Finding& b) { return rank(a) < rank(b); });
+        result.findings = std::move(found);
+        return std::move(result);
     }
-    resolution_findings(maps, readable, found);
-    // A map that is not a normal map has no green convention: NORMAL_INVALID says it all.
-    if (result.normal) {
-        const std::string nf = result.normal->file;
-        const bool invalid = std::any_of(found.begin(), found.end(), [&](const Finding& f) {
-            return f.code == code::normal_invalid && f.file == nf;
-        });
-        if (invalid)
-            std::erase_if(found, [&](const Finding& f) {
-                return f.file == nf && (f.code == code::normal_convention_mismatch ||
-                                        f.code == code::normal_convention_unknown);
-            });
-    }
+};
 
-    // Severities, disabled codes and suppressions; then the stable order.
-    for (auto& f : found) f.severity = cfg.severity_of(f.code);
-    result.suppressed = apply_config(found, opt.material, cfg);
-    const auto& cat = rule_catalog();
-    auto rank = [&](const Finding& f) {
-        for (size_t i = 0; i < cat.size(); ++i)
-            if (cat[i].code == f.code) return i;
-        return cat.size();
-    };
-    std::stable_sort(found.begin(), found.end(), [&](const Finding& a, const Finding& b) {
-        return rank(a) < rank(b);
-    });
-    result.findings = std::move(found);
-    return result;
+}  // namespace
+
+SetValidation validate_set(const std::vector<MapInput>& maps, const RuleConfig& cfg, const ValidateOptions& opt) {
+    SetRun run(maps, cfg, opt);
+    run.read_headers();
+    run.choose_sources();
+    run.start_readers();
+    if (run.albedo_pass()) run.albedo_stats();
+    if (run.normal_pass()) run.normal_stats();
+    run.map_findings();
+    return run.finish();
 }
 
 }  // namespace mf::validate

@@ -36,6 +36,10 @@ struct MapInput {
     ImageInfo info;            // header facts; width 0: read with mf::read_info
     ColorTagInfo color_tag;    // from read_color_tag(file); none: no tag check
     NormalConvention name_convention = NormalConvention::unknown;  // what the file name says
+    std::vector<Role> unused;  // output roles this map must not feed (routing's `unused`)
+    // Another candidate for a role whose chosen map comes first (a WebP copy beside the JPEG
+    // original): checked by the rules of a map alone, never routed, never a joint statistic.
+    bool alternate = false;
 };
 
 // Builds a MapInput reading the header and the color tag (the usual way to make one).

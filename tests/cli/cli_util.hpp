@@ -33,7 +33,7 @@ inline RunResult run_env(const std::string& env, const std::string& args) {
 
 inline RunResult run(const std::string& args) { return run_env("", args); }
 
-inline std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+inline std::string q(const fs::path& p) { return std::string("'").append(p.string()).append("'"); }
 
 inline fs::path samples() { return fs::path(MATFORGE_SOURCE_DIR) / "sample_materials"; }
 

@@ -56,7 +56,7 @@ inline RunResult run(const std::string& args) {
     return r;
 }
 
-inline std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+inline std::string q(const fs::path& p) { return std::string("'").append(p.string()).append("'"); }
 
 // A fresh, empty folder under the system's temporary folder (the corpus is read-only).
 inline fs::path temp_dir(const std::string& name) {

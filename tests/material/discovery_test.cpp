@@ -1,5 +1,6 @@
 // Discovery tables: realistic file names of each family → roles, conventions, choices, findings.
 #include "material/discovery.hpp"
+#include "material/routing.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -339,11 +340,34 @@ std::vector<std::string> choice_roles(const SetDiscovery& d) {
     return out;
 }
 
-// "role<-file[channel]" (or "~" for inverted) per source, in order.
+// "role<-file[channel]" (or "~" for inverted) per routed role, in order: routing
+// (material/routing) over the chosen files, a file's channels from its header, else its role's.
+std::vector<Role> routed_roles() {
+    std::vector<Role> roles;
+    for (int i = 0; i < kOutputRoleCount; ++i) roles.push_back(static_cast<Role>(i));
+    roles.push_back(Role::translucency);
+    return roles;
+}
+std::vector<std::pair<Role, Route>> routes(const SetDiscovery& d) {
+    auto channels = [&](Role r) {
+        for (const auto& c : d.choices)
+            if (c.role == r) return c.chosen.header.channels > 0 ? c.chosen.header.channels : traits(r).channels;
+        return 0;
+    };
+    std::vector<std::pair<Role, Route>> out;
+    for (const Role r : routed_roles())
+        if (const auto route = route_of(r, channels)) out.emplace_back(r, *route);
+    return out;
+}
+std::string chosen_file(const SetDiscovery& d, Role r) {
+    for (const auto& c : d.choices)
+        if (c.role == r) return c.chosen.file;
+    return "";
+}
 std::vector<std::string> sources(const SetDiscovery& d) {
     std::vector<std::string> out;
-    for (const auto& s : d.sources) {
-        std::string e = std::string(role_name(s.role)) + "<-" + (s.invert ? "~" : "") + s.file;
+    for (const auto& [role, s] : routes(d)) {
+        std::string e = std::string(role_name(role)) + "<-" + (s.invert ? "~" : "") + chosen_file(d, s.from);
         // Appended piece by piece: GCC 12 at -O3 reports `"[" + std::string` as an overlapping
         // memcpy (a false -Wrestrict).
         if (s.channel >= 0) e.append("[").append(1, "RGB"[s.channel]).append("]");
@@ -482,7 +506,7 @@ TEST(DiscoverSet, TexturesComLegacy) {
                                         "roughness<-~Concrete0012_GLOSS_2K.jpg(gloss)",
                                         "occlusion<-Concrete0012_AO_2K.jpg(occlusion)",
                                         "height<-Concrete0012_DISP16_2K.tif(height)"));
-    EXPECT_TRUE(d.sources[2].invert);
+    EXPECT_TRUE(routes(d)[2].second.invert);
     EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP albedo Concrete0012_COL_VAR1_2K.jpg",
                                              "AMBIGUOUS_MAP normal Concrete0012_NRM16_2K.tif",
                                              "AMBIGUOUS_MAP height Concrete0012_DISP16_2K.tif",
@@ -532,7 +556,7 @@ TEST(DiscoverSet, MegascansOrtBlueIsTranslucencyNeverMetalness) {
                                         "occlusion<-plant_tbdpec3r_2K_ORT.png[R](ort)",
                                         "opacity<-plant_tbdpec3r_2K_Opacity.jpg(opacity)",
                                         "translucency<-plant_tbdpec3r_2K_ORT.png[B](ort)"));
-    for (const auto& s : d.sources) EXPECT_NE(s.role, Role::metalness);
+    for (const auto& [role, s] : routes(d)) EXPECT_NE(role, Role::metalness);
     EXPECT_TRUE(d.findings.empty());
 }
 
@@ -612,7 +636,7 @@ TEST(DiscoverSet, MixedNamesAreGeneric) {
     const auto none = discover_set({"readme.txt", "preview.jpg"}, kNoHeaders, policy());
     EXPECT_EQ(none.convention, "generic");
     EXPECT_TRUE(none.choices.empty());
-    EXPECT_TRUE(none.sources.empty());
+    EXPECT_TRUE(routes(none).empty());
     EXPECT_THAT(finding_keys(none), ElementsAre("UNRECOGNIZED_FILE  preview.jpg",
                                                 "UNRECOGNIZED_FILE  readme.txt"));
 }

@@ -22,9 +22,9 @@ std::vector<std::string> describe(const SidecarRoles& s) {
     std::vector<std::string> out;
     for (const auto& m : s.maps) {
         std::string e = m.file + " " + std::string(role_name(m.match.role));
-        if (m.match.normal != NC::unknown) e += " " + std::string(convention_name(m.match.normal));
+        if (m.match.normal != NC::unknown) e.append(" ").append(convention_name(m.match.normal));
         if (m.match.opacity_in_alpha) e += " A=opacity";
-        for (const Role r : m.match.unused) e += " unused:" + std::string(role_name(r));
+        for (const Role r : m.match.unused) e.append(" unused:").append(role_name(r));
         e += " " + m.match.rule;
         out.push_back(e);
     }

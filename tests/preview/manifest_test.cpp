@@ -303,7 +303,7 @@ TEST_F(PresetInvariance, EveryShippedPresetPreviewsTheSameImage) {
     render::Scene scene;
     scene.width = scene.height = 96;
     render::Light point;
-    point.type = render::LightType::Point;
+    point.type = render::LightType::point;
     point.position = {2.5f, -0.5f, 1.5f};
     point.color = {0.3f, 0.5f, 1.0f};
     point.intensity = 10.f;

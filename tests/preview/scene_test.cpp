@@ -14,11 +14,11 @@ TEST(SceneFile, DefaultsMakeAPlainCallUseful) {
     const SceneFile s = default_scene();
     EXPECT_EQ(s.scene.width, 512u);
     ASSERT_EQ(s.scene.lights.size(), 1u);  // one white directional key light
-    EXPECT_EQ(s.scene.lights[0].type, render::LightType::Directional);
-    EXPECT_EQ(s.scene.shape.type, render::ShapeType::Sphere);
+    EXPECT_EQ(s.scene.lights[0].type, render::LightType::directional);
+    EXPECT_EQ(s.scene.shape.type, render::ShapeType::sphere);
     EXPECT_EQ(s.scene.background, (render::Vec3{0, 0, 0}));
     EXPECT_FALSE(s.scene.environment);
-    EXPECT_EQ(s.output.transfer, render::Transfer::Srgb);
+    EXPECT_EQ(s.output.transfer, render::Transfer::srgb);
 }
 
 TEST(SceneFile, ReadsTheSpecExample) {
@@ -44,7 +44,7 @@ TEST(SceneFile, ReadsTheSpecExample) {
     EXPECT_EQ(s.scene.height, 256u);
     EXPECT_FLOAT_EQ(s.scene.shape.size, 1.5f);
     ASSERT_EQ(s.scene.lights.size(), 2u);
-    EXPECT_EQ(s.scene.lights[1].type, render::LightType::Point);
+    EXPECT_EQ(s.scene.lights[1].type, render::LightType::point);
     EXPECT_FLOAT_EQ(s.scene.lights[1].intensity, 10.f);
     EXPECT_EQ(s.environment, std::filesystem::path("/scenes/studio.hdr"));
     EXPECT_FLOAT_EQ(s.environment_intensity, 0.5f);
@@ -54,7 +54,7 @@ TEST(SceneFile, ReadsTheSpecExample) {
     EXPECT_EQ(s.material->roughness_map->file, std::filesystem::path("/scenes/mr.png"));
     EXPECT_EQ(s.material->roughness_map->channel, render::Channel::G);
     EXPECT_EQ(s.material->normal_convention, NormalConvention::dx);
-    EXPECT_EQ(s.output.transfer, render::Transfer::Linear);
+    EXPECT_EQ(s.output.transfer, render::Transfer::linear);
     EXPECT_FLOAT_EQ(s.output.exposure, 2.f);
 }
 
@@ -63,8 +63,8 @@ TEST(SceneFile, ShapesTakeTheirOwnDefaultSize) {
     const auto parsed = parse_scene(json::parse(R"({"shape": {"type": "cube"}})"), ".", "t", error);
     ASSERT_TRUE(parsed) << error;
     const SceneFile& s = *parsed;
-    EXPECT_EQ(s.scene.shape.type, render::ShapeType::Cube);
-    EXPECT_FLOAT_EQ(s.scene.shape.size, default_shape_size(render::ShapeType::Cube));
+    EXPECT_EQ(s.scene.shape.type, render::ShapeType::cube);
+    EXPECT_FLOAT_EQ(s.scene.shape.size, default_shape_size(render::ShapeType::cube));
     EXPECT_FALSE(s.shape_size_given);
 }
 
@@ -126,11 +126,11 @@ TEST(LightSpec, DirectionalAndPoint) {
     std::string err;
     auto d = parse_light_spec("dir:0,-1,0", err);
     ASSERT_TRUE(d) << err;
-    EXPECT_EQ(d->type, render::LightType::Directional);
+    EXPECT_EQ(d->type, render::LightType::directional);
     EXPECT_FLOAT_EQ(d->intensity, 3.f);
     auto p = parse_light_spec("point:1,2,3:25:0.5,0.5,1", err);
     ASSERT_TRUE(p) << err;
-    EXPECT_EQ(p->type, render::LightType::Point);
+    EXPECT_EQ(p->type, render::LightType::point);
     EXPECT_EQ(p->position, (render::Vec3{1, 2, 3}));
     EXPECT_FLOAT_EQ(p->intensity, 25.f);
     EXPECT_EQ(p->color, (render::Vec3{0.5f, 0.5f, 1}));

@@ -70,7 +70,7 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
                             in.push_back({{n.x, n.y, n.z, r}, {v.x, v.y, v.z, m.metalness}, {l.x, l.y, l.z, e},
                                           {m.albedo[0], m.albedo[1], m.albedo[2], 0.f}});
     double ms = 0.0;
-    const auto out = harness.evaluate(in, mf::render::BrdfPrecision::Fp32, &ms);
+    const auto out = harness.evaluate(in, mf::render::BrdfPrecision::fp32, &ms);
     ASSERT_EQ(out.size(), in.size() * 3);
 
     const Model models[] = {Model::standard, Model::accurate, Model::unnormalized_diffuse};

@@ -54,7 +54,7 @@ protected:
 };
 
 TEST_P(MipTest, ColorIsAveragedInLinearLight) {
-    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, true), MipKind::Color);
+    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, true), MipKind::color);
     ASSERT_EQ(p.levels.size(), 2u);
     double v = texel(p, 1, 0);
     if (p.format == VK_FORMAT_R8G8B8A8_SRGB) {
@@ -75,11 +75,11 @@ TEST_P(MipTest, FloatColorIsDecodedExactlyNegativesMirrored) {
     t.width = 2;
     t.height = 1;
     t.channels = 3;
-    t.type = render::TexelType::F32;
+    t.type = render::TexelType::f32;
     t.srgb = true;
     t.data.resize(sizeof values);
     std::memcpy(t.data.data(), values, sizeof values);
-    const PreparedTexture p = prepare(t, MipKind::Color);
+    const PreparedTexture p = prepare(t, MipKind::color);
     ASSERT_EQ(p.format, VK_FORMAT_R32G32B32A32_SFLOAT);
     for (int c = 0; c < 3; ++c)
         EXPECT_EQ(texel(p, 0, c), static_cast<float>(mf::srgb_to_linear(double{values[c]}))) << c;
@@ -90,7 +90,7 @@ TEST_P(MipTest, FloatColorIsDecodedExactlyNegativesMirrored) {
 
 TEST_P(MipTest, NormalsAreRenormalized) {
     // +X and +Z average to (0.5, 0, 0.5), renormalized to (0.707, 0, 0.707): code 218, not 191.
-    const PreparedTexture p = prepare(gray_row({255, 128, 128, 128, 128, 255}, 2, 1, 3, false), MipKind::Normal);
+    const PreparedTexture p = prepare(gray_row({255, 128, 128, 128, 128, 255}, 2, 1, 3, false), MipKind::normal);
     ASSERT_EQ(p.levels.size(), 2u);
     const double x = texel(p, 1, 0) * 2 - 1, y = texel(p, 1, 1) * 2 - 1, z = texel(p, 1, 2) * 2 - 1;
     EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 1.0, 1e-2);
@@ -99,20 +99,20 @@ TEST_P(MipTest, NormalsAreRenormalized) {
 }
 
 TEST_P(MipTest, DataIsAveragedAsStored) {
-    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, false), MipKind::Data);
+    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, false), MipKind::data);
     EXPECT_NEAR(texel(p, 1, 0), 0.5, 2.5e-3);
 }
 
 TEST_P(MipTest, OddSizesUseAreaWeights) {
     std::vector<uint8_t> v;
     for (uint8_t i = 0; i < 9; ++i) v.push_back(static_cast<uint8_t>(i * 30));
-    const PreparedTexture p = prepare(gray_row(v, 3, 3, 1, false), MipKind::Data);
+    const PreparedTexture p = prepare(gray_row(v, 3, 3, 1, false), MipKind::data);
     ASSERT_EQ(p.levels.size(), 2u);  // 3×3 → 1×1
     EXPECT_NEAR(texel(p, 1, 0), 120 / 255.0, 2.5e-3);
 }
 
 TEST_P(MipTest, ChainGoesDownToOneTexel) {
-    const PreparedTexture p = prepare(gray_row(std::vector<uint8_t>(5 * 3, 7), 5, 3, 1, false), MipKind::Data);
+    const PreparedTexture p = prepare(gray_row(std::vector<uint8_t>(5 * 3, 7), 5, 3, 1, false), MipKind::data);
     ASSERT_EQ(p.levels.size(), 3u);  // 5×3, 2×1, 1×1
     EXPECT_EQ(p.levels[1].width, 2u);
     EXPECT_EQ(p.levels[1].height, 1u);
@@ -128,7 +128,7 @@ TEST_F(VariantTest, OnlyWhatTheMaterialAndSceneCallForIsCompiledIn) {
     render::Scene s;
     s.width = s.height = 16;
     s.lights.resize(3);
-    s.lights[2].type = render::LightType::Point;
+    s.lights[2].type = render::LightType::point;
     s.lights[2].position = {2, 2, 2};
     render::Renderer r(context(), s);
 
@@ -167,7 +167,7 @@ TEST_F(VariantTest, BadMaterialsAreRejected) {
 TEST(Device, GpuRequestWithoutGpuNamesTheWayOut) {
     use_lavapipe_only();
     render::ContextOptions o;
-    o.device = render::DeviceKind::Gpu;
+    o.device = render::DeviceKind::gpu;
     try {
         render::Context c(o);
         EXPECT_FALSE(c.info().cpu);  // a machine with a GPU: it was found
@@ -177,9 +177,9 @@ TEST(Device, GpuRequestWithoutGpuNamesTheWayOut) {
 }
 
 TEST(Device, ParsesItsOptions) {
-    EXPECT_EQ(render::parse_device_kind("gpu"), render::DeviceKind::Gpu);
+    EXPECT_EQ(render::parse_device_kind("gpu"), render::DeviceKind::gpu);
     EXPECT_EQ(render::parse_device_kind("GPU"), std::nullopt);
-    EXPECT_EQ(render::parse_brdf("accurate"), render::Brdf::Accurate);
+    EXPECT_EQ(render::parse_brdf("accurate"), render::Brdf::accurate);
 }
 
 }  // namespace

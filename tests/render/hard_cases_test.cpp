@@ -45,7 +45,7 @@ protected:
         render::Renderer r(context(), s);
         const render::GpuMaterial gm = r.upload(m);
         render::OutputOptions o;
-        o.format = render::PixelFormat::Rgba32F;
+        o.format = render::PixelFormat::rgba32f;
         return r.render(gm, o);
     }
     static size_t nonfinite(const render::Frame& f) {
@@ -122,7 +122,7 @@ TEST_F(HardCaseTest, PointLightOnTheSurfaceStaysFinite) {
     // The light sits on the sphere where the centre ray meets it: d → 0 (a zero-length
     // vector); E = I/d² is skipped below d² = 1e-12 and huge but finite above.
     Light l;
-    l.type = LightType::Point;
+    l.type = LightType::point;
     l.position = {0.f, 0.f, 1.f};
     l.intensity = 1.f;
     for (float roughness : {0.f, 0.5f}) {
@@ -136,7 +136,7 @@ TEST_F(HardCaseTest, NonFiniteTexelsAreNeutralized) {
     render::Texture t;
     t.width = t.height = 2;
     t.channels = 1;
-    t.type = render::TexelType::F32;
+    t.type = render::TexelType::f32;
     const float bad[4] = {NAN, INFINITY, -INFINITY, 0.5f};
     t.data.resize(sizeof bad);
     std::memcpy(t.data.data(), bad, sizeof bad);

@@ -48,7 +48,7 @@ protected:
     std::pair<float, float> sphere_range(render::Renderer& r, const Material& m) {
         const render::GpuMaterial gm = r.upload(m);
         render::OutputOptions o;
-        o.format = render::PixelFormat::Rgba32F;
+        o.format = render::PixelFormat::rgba32f;
         const render::Frame f = r.render(gm, o);
         float lo = 1e9f, hi = -1e9f;
         const uint32_t c = f.width / 2;
@@ -66,7 +66,7 @@ protected:
 
 TEST_F(IblTest, WhiteDielectricInAWhiteFurnaceIsWhite) {
     // Whatever the specular lobe reflects, the diffuse lobe gets the rest: exactly 1.
-    render::Renderer r(context(), furnace(render::Brdf::Standard));
+    render::Renderer r(context(), furnace(render::Brdf::standard));
     for (float roughness : {0.f, 0.5f, 1.f}) {
         const auto [lo, hi] = sphere_range(r, white(roughness, 0.f));
         EXPECT_NEAR(lo, 1.f, 2e-3f) << roughness;
@@ -77,8 +77,8 @@ TEST_F(IblTest, WhiteDielectricInAWhiteFurnaceIsWhite) {
 TEST_F(IblTest, MultipleScatteringKeepsAWhiteMetalWhite) {
     // Single scattering loses up to half the energy of a rough metal; the accurate BRDF's
     // compensation (Fdez-Agüera 2019) gives it back. The standard one does lose it.
-    render::Renderer accurate(context(), furnace(render::Brdf::Accurate));
-    render::Renderer standard(context(), furnace(render::Brdf::Standard));
+    render::Renderer accurate(context(), furnace(render::Brdf::accurate));
+    render::Renderer standard(context(), furnace(render::Brdf::standard));
     for (float roughness : {0.2f, 0.6f, 1.f}) {
         const auto [lo, hi] = sphere_range(accurate, white(roughness, 1.f));
         EXPECT_NEAR(lo, 1.f, 3e-3f) << roughness;
@@ -90,12 +90,12 @@ TEST_F(IblTest, MultipleScatteringKeepsAWhiteMetalWhite) {
 }
 
 TEST_F(IblTest, SkyAboveLightsTheTopOfTheSphere) {
-    Scene s = furnace(render::Brdf::Standard);
+    Scene s = furnace(render::Brdf::standard);
     s.environment = environment(64, 32, [](float, float v) { return v < 0.5f ? 2.f : 0.1f; });
     render::Renderer r(context(), s);
     const render::GpuMaterial gm = r.upload(white(0.8f, 0.f));
     render::OutputOptions o;
-    o.format = render::PixelFormat::Rgba32F;
+    o.format = render::PixelFormat::rgba32f;
     const render::Frame f = r.render(gm, o);
     const float top = f.rgba32f[(size_t{12} * 48 + 24) * 4], bottom = f.rgba32f[(size_t{36} * 48 + 24) * 4];
     EXPECT_GT(top, 2 * bottom);  // n.y = ±0.61 there: about 1.6 against 0.5 for a Lambertian sphere
@@ -114,11 +114,11 @@ TEST_F(IblTest, EnvironmentPassesRunOnlyWhenOneIsGiven) {
     EXPECT_EQ(a.upload(white(0.5f, 0.f)).variant().find("env"), std::string::npos);
 
     Scene accurate = plain;
-    accurate.brdf = render::Brdf::Accurate;
+    accurate.brdf = render::Brdf::accurate;
     render::Renderer b(context(), accurate);
     EXPECT_EQ(names(b.load_times()), "brdf_lut ");
 
-    render::Renderer c(context(), furnace(render::Brdf::Standard));
+    render::Renderer c(context(), furnace(render::Brdf::standard));
     EXPECT_EQ(names(c.load_times()), "brdf_lut env_upload env_cube env_prefilter env_irradiance ");
     EXPECT_NE(c.upload(white(0.5f, 0.f)).variant().find(" env "), std::string::npos);
 }

@@ -39,9 +39,9 @@ cpubrdf::V3<double> to_oracle(V3 a) { return {a.x, a.y, a.z}; }
 
 cpubrdf::Model model_of(render::Brdf b) {
     switch (b) {
-        case render::Brdf::Standard: return cpubrdf::Model::standard;
-        case render::Brdf::Accurate: return cpubrdf::Model::accurate;
-        case render::Brdf::UnnormalizedDiffuse: return cpubrdf::Model::unnormalized_diffuse;
+        case render::Brdf::standard: return cpubrdf::Model::standard;
+        case render::Brdf::accurate: return cpubrdf::Model::accurate;
+        case render::Brdf::unnormalized_diffuse: return cpubrdf::Model::unnormalized_diffuse;
     }
     throw std::invalid_argument("reference: unknown BRDF");
 }
@@ -74,7 +74,7 @@ RGB shade(const Scene& scene, const Surface& s, V3 p, V3 v) {
         V3 l;
         std::array<double, 3> E{};
         for (size_t i = 0; i < 3; ++i) E[i] = double{light.color[i]} * light.intensity;
-        if (light.type == render::LightType::Directional) {
+        if (light.type == render::LightType::directional) {
             l = normalize(v3(light.direction)) * -1.0;
         } else {
             const V3 d = v3(light.position) - p;
@@ -107,14 +107,14 @@ double texel(const Texture& t, int x, int y, int c) {
     const size_t i = base + size_t(src);
     double v = 0;
     switch (t.type) {
-        case TexelType::U8: v = t.data[i] / 255.0; break;
-        case TexelType::U16: {
+        case TexelType::u8: v = t.data[i] / 255.0; break;
+        case TexelType::u16: {
             uint16_t q;
             std::memcpy(&q, t.data.data() + 2 * i, 2);
             v = q / 65535.0;
             break;
         }
-        case TexelType::F32: {
+        case TexelType::f32: {
             float f;
             std::memcpy(&f, t.data.data() + 4 * i, 4);
             v = f;
@@ -228,7 +228,7 @@ bool ReferenceImage::silhouette(uint32_t x, uint32_t y) const {
 }
 
 ReferenceImage render_reference(const Scene& scene, const Material& m) {
-    if (scene.shape.type != render::ShapeType::Sphere) throw std::invalid_argument("reference: spheres only");
+    if (scene.shape.type != render::ShapeType::sphere) throw std::invalid_argument("reference: spheres only");
     if (scene.environment) throw std::invalid_argument("reference: no environment lighting");
     const Camera cam = make_camera(scene);
     const double radius = scene.shape.size;

@@ -27,7 +27,7 @@ Scene test_scene(Brdf brdf) {
     key.intensity = 3.f;
     s.lights.push_back(key);
     render::Light point;
-    point.type = render::LightType::Point;
+    point.type = render::LightType::point;
     point.position = {2.5f, -0.5f, 1.5f};
     point.color = {0.3f, 0.5f, 1.0f};
     point.intensity = 10.f;
@@ -101,7 +101,7 @@ protected:
         const render::Frame f8 = renderer.render(gm);
         dump(f8, m.name + "_" + std::to_string(int(scene.brdf)));
         render::OutputOptions lin;
-        lin.format = render::PixelFormat::Rgba32F;
+        lin.format = render::PixelFormat::rgba32f;
         const render::Frame f32 = renderer.render(gm, lin);
         const ReferenceImage ref = render_reference(scene, m);
         const Errors e = compare(f8, f32, ref, skip_minified);
@@ -124,7 +124,7 @@ const Material kConstants[] = {
 
 TEST_F(ReferenceTest, ConstantSpheresStandard) {
     for (const Material& m : kConstants) {
-        const Errors e = run(test_scene(Brdf::Standard), m);
+        const Errors e = run(test_scene(Brdf::standard), m);
         EXPECT_LE(e.max_code, 1) << m.name;
         EXPECT_LE(e.max_rel, 1e-3) << m.name;
         EXPECT_GT(e.compared, 8000u);
@@ -134,7 +134,7 @@ TEST_F(ReferenceTest, ConstantSpheresStandard) {
 // Lambert without its 1/π: the diffuse lobe π times stronger, the specular one unchanged.
 TEST_F(ReferenceTest, ConstantSpheresUnnormalizedDiffuse) {
     for (const Material& m : {kConstants[0], kConstants[3]}) {
-        const Errors e = run(test_scene(Brdf::UnnormalizedDiffuse), m);
+        const Errors e = run(test_scene(Brdf::unnormalized_diffuse), m);
         EXPECT_LE(e.max_code, 1) << m.name;
         EXPECT_LE(e.max_rel, 1e-3) << m.name;
     }
@@ -151,7 +151,7 @@ namespace {
 // storage are the error budget here.
 TEST_F(ReferenceTest, ConstantSpheresAccurate) {
     for (const Material& m : {kConstants[0], kConstants[1], kConstants[2], kConstants[4]}) {
-        const Errors e = run(test_scene(Brdf::Accurate), m);
+        const Errors e = run(test_scene(Brdf::accurate), m);
         EXPECT_LE(e.max_code, 1) << m.name;
         EXPECT_LE(e.max_rel, 1e-3) << m.name;
     }

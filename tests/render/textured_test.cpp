@@ -119,7 +119,7 @@ Scene scene() {
     key.direction = {0.57735027f, -0.57735027f, -0.57735027f};
     key.intensity = 3.f;
     render::Light point;
-    point.type = render::LightType::Point;
+    point.type = render::LightType::point;
     point.position = {2.5f, -0.5f, 1.5f};
     point.color = {0.3f, 0.5f, 1.0f};
     point.intensity = 10.f;
@@ -141,7 +141,7 @@ Result compare_with_reference(render::Context& context, const Material& m, const
     const render::GpuMaterial gm = renderer.upload(m);
     const render::Frame f8 = renderer.render(gm);
     render::OutputOptions lin;
-    lin.format = render::PixelFormat::Rgba32F;
+    lin.format = render::PixelFormat::rgba32f;
     const render::Frame f32 = renderer.render(gm, lin);
     const ReferenceImage ref = render_reference(sc, m);
     Result res;

@@ -36,7 +36,7 @@ protected:
         use_lavapipe_only();
         log_ = std::make_shared<render::MessageLog>();
         render::ContextOptions opt;
-        opt.device = render::DeviceKind::Cpu;  // CI has no GPU; results must not depend on one
+        opt.device = render::DeviceKind::cpu;  // CI has no GPU; results must not depend on one
         opt.validation = true;
         opt.log = log_;
         configure(opt);

@@ -39,7 +39,7 @@ inline constexpr double kMinNoV = 1e-4;         // brdf.glsl: keeps 1/(N·V) fin
 enum class Model {
     standard,
     accurate,
-    unnormalized_diffuse,  // standard without Lambert's 1/π (render::Brdf::UnnormalizedDiffuse)
+    unnormalized_diffuse,  // standard without Lambert's 1/π (render::Brdf::unnormalized_diffuse)
 };
 
 template <class T>

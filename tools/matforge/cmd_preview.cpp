@@ -178,7 +178,7 @@ ExitCode run_preview(const PreviewArgs& a) {
                     written = preview::write_png(out, scene.width, scene.height, rgba8, error);
                 } else {
                     render::OutputOptions lin;
-                    lin.format = render::PixelFormat::Rgba32F;
+                    lin.format = render::PixelFormat::rgba32f;
                     written = preview::write_exr(out, scene.width, scene.height, renderer.render(gm, lin).rgba32f, error);
                 }
                 if (!written) {
