@@ -14,6 +14,7 @@ packages=(
   libglvnd0 libglx0 libgl1 libegl1 libopengl0
   clang-14 clang-tidy-14 libclang-rt-14-dev  # CI: scripts/tidy.sh, scripts/fuzz.sh (libFuzzer)
   python3 python3-jsonschema  # tests: scripts/check-schemas.py (manifest and report schemas)
+  slurm-wlm munge  # tests: scripts/cluster-demo.sh (sharded ingest on a one-node Slurm cluster)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -19,9 +19,6 @@ namespace OCIO = OCIO_NAMESPACE;
 namespace mf::bench {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-
 // ------------------------------------------------------------------------------------------
 // Transfer curve. Decoding takes 8-bit sRGB codes (what albedo files hold) to linear float;
 // encoding takes linear float to sRGB. Reference: IEC 61966-2-1 in double (srgb.hpp).

@@ -65,6 +65,7 @@ public:
         proc->apply(desc);
     }
 
+    std::string cache_id() const override { return std::string(config_->getCacheID()) + "|" + linear_ + "|" + srgb_; }
     std::string description() const override {
         return origin_ + " (linear: " + linear_ + ", sRGB: " + srgb_ + ")";
     }

@@ -33,6 +33,9 @@ public:
 
     // Where the config came from ("built-in" or the $OCIO path) and the spaces used.
     virtual std::string description() const = 0;
+    // Identifies the config's content (OpenColorIO's cache id) and the spaces used: part of
+    // every action key, so another config misses the cache.
+    virtual std::string cache_id() const = 0;
 };
 
 }  // namespace mf

@@ -2,12 +2,19 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <memory>
+#include <utility>
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace mf {
@@ -42,21 +49,39 @@ std::optional<std::string> not_a_regular_file(const fs::path& path) {
 }
 
 bool read_file(const fs::path& path, std::vector<unsigned char>& bytes, std::string& error) {
-    // Checked before opening: opening a FIFO blocks until a writer comes, a device may never end.
+    // Checked before opening (a FIFO blocks open() until a writer comes, a device may never end),
+    // and again on the descriptor, opened non-blocking: a FIFO swapped in between cannot hang us.
     if (const auto why = not_a_regular_file(path)) {
         error = path.string() + ": " + *why;
         return false;
     }
-    std::ifstream f(path, std::ios::binary);
-    if (!f) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
         error = path.string() + ": cannot open (" + std::strerror(errno) + ")";
         return false;
     }
-    bytes.assign(std::istreambuf_iterator<char>(f), {});
-    if (f.bad()) {
-        error = path.string() + ": read error";
+    struct stat st{};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
+        error = path.string() + ": not a regular file";
         return false;
     }
+    bytes.clear();
+    bytes.reserve(static_cast<size_t>(std::max<off_t>(0, st.st_size)));
+    unsigned char buf[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const int e = errno;
+            ::close(fd);
+            error = path.string() + ": read error (" + std::strerror(e) + ")";
+            return false;
+        }
+        if (n == 0) break;
+        bytes.insert(bytes.end(), buf, buf + n);
+    }
+    ::close(fd);
     return true;
 }
 
@@ -83,6 +108,101 @@ bool write_all(int fd, std::span<const unsigned char> bytes) {
 }
 }  // namespace
 
+std::string temp_name(const std::string& final_name) {
+    static std::atomic<unsigned> counter{0};
+    // Appended, not `"." + name`: GCC 12 at -O3 takes that prepend into a temporary string for
+    // an overlapping memcpy (a false -Wrestrict, a known bug of that release).
+    std::string name = ".";
+    name.append(final_name).append(kTempMarker);
+    name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
+    return name;
+}
+
+std::optional<long> temp_owner(std::string_view name) {
+    const size_t at = name.rfind(kTempMarker);
+    if (name.size() < 2 || name.front() != '.' || at == std::string_view::npos || at < 2) return std::nullopt;
+    const std::string_view tail = name.substr(at + std::strlen(kTempMarker));  // "<pid>-<counter>"
+    const size_t dash = tail.find('-');
+    auto digits = [](std::string_view d) {
+        return !d.empty() && d.size() <= 18 && std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (dash == std::string_view::npos || !digits(tail.substr(0, dash)) || !digits(tail.substr(dash + 1)))
+        return std::nullopt;
+    return std::stol(std::string(tail.substr(0, dash)));
+}
+
+namespace {
+bool process_alive(long pid) {
+    if (pid <= 0 || pid > std::numeric_limits<pid_t>::max()) return false;
+    return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;  // EPERM: alive, another user's
+}
+
+std::string errno_text(int e) {
+    if (e == ENAMETOOLONG) return "the name is longer than the file system allows (255 bytes per name)";
+    return std::strerror(e);
+}
+
+// Whether the regular file `name` in folder `dfd` holds exactly `bytes` (never follows a link).
+bool same_content_at(int dfd, const char* name, std::span<const unsigned char> bytes) {
+    const int fd = ::openat(dfd, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return false;
+    struct stat st{};
+    bool same = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) == bytes.size();
+    std::vector<unsigned char> buf(size_t{1} << 16);
+    for (size_t done = 0; same && done < bytes.size();) {
+        const ssize_t n = ::read(fd, buf.data(), std::min(buf.size(), bytes.size() - done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            same = false;
+            break;
+        }
+        same = std::equal(buf.begin(), buf.begin() + n, bytes.begin() + static_cast<std::ptrdiff_t>(done));
+        done += static_cast<size_t>(n);
+    }
+    ::close(fd);
+    return same;
+}
+
+// A folder descriptor closed on scope exit.
+struct Fd {
+    int fd = -1;
+    explicit Fd(int f) : fd(f) {}
+    ~Fd() {
+        if (fd >= 0) ::close(fd);
+    }
+    Fd(const Fd&) = delete;
+    Fd& operator=(const Fd&) = delete;
+};
+
+// Writes `bytes` as `name` in folder `dfd` by a temporary beside it and renameat. `shown` names the
+// destination in messages.
+bool write_at(int dfd, const std::string& name, std::span<const unsigned char> bytes, const std::string& shown,
+              std::string& error) {
+    const std::string tmp = temp_name(name);
+    const int fd = ::openat(dfd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        error = shown + ": cannot write (" + errno_text(errno) + ")";
+        return false;
+    }
+    const bool ok = write_all(fd, bytes) && ::fsync(fd) == 0;
+    const int saved = errno;
+    ::close(fd);
+    if (!ok) {
+        ::unlinkat(dfd, tmp.c_str(), 0);
+        error = shown + ": cannot write (" + errno_text(saved) + ")";
+        return false;
+    }
+    if (::renameat(dfd, tmp.c_str(), dfd, name.c_str()) != 0) {
+        const int e = errno;
+        ::unlinkat(dfd, tmp.c_str(), 0);
+        error = shown + ": cannot rename into place (" + (e == EISDIR || e == ENOTEMPTY || e == EEXIST ? "a folder of that name is in the way" : errno_text(e)) + ")";
+        return false;
+    }
+    ::fsync(dfd);  // make the rename itself durable
+    return true;
+}
+}  // namespace
+
 bool write_file_atomic(const fs::path& dest, std::span<const unsigned char> bytes, std::string& error) {
     std::error_code ec;
     const fs::path dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
@@ -92,39 +212,69 @@ bool write_file_atomic(const fs::path& dest, std::span<const unsigned char> byte
         return false;
     }
     if (same_content(dest, bytes)) return true;
-    static std::atomic<unsigned> counter{0};
-    // Appended, not `"." + name`: GCC 12 at -O3 takes that prepend into a temporary string for
-    // an overlapping memcpy (a false -Wrestrict, a known bug of that release).
-    std::string name = ".";
-    name.append(dest.filename().string()).append(kTempMarker);
-    name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
-    const fs::path tmp = dir / name;
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        error = dest.string() + ": cannot write (" + std::strerror(errno) + ")";
+    const Fd dfd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    if (dfd.fd < 0) {
+        error = dest.string() + ": cannot write (" + errno_text(errno) + ")";
         return false;
     }
-    const bool ok = write_all(fd, bytes) && ::fsync(fd) == 0;
-    const int saved = errno;
-    ::close(fd);
-    if (!ok) {
-        fs::remove(tmp, ec);
-        error = dest.string() + ": cannot write (" + std::strerror(saved) + ")";
+    return write_at(dfd.fd, dest.filename().string(), bytes, dest.string(), error);
+}
+
+bool write_file_under(const fs::path& root, const std::string& rel, std::span<const unsigned char> bytes,
+                      std::string& error, const std::function<std::string(bool exists)>& before_write) {
+    const fs::path r = fs::path(rel).lexically_normal();
+    std::vector<std::string> parts;
+    for (const auto& p : r) parts.push_back(p.string());
+    if (r.is_absolute() || parts.empty() || parts.front() == ".." || parts.back().empty() || parts.back() == "." ||
+        std::find(parts.begin(), parts.end(), "..") != parts.end()) {
+        error = rel + ": the path leaves the output folder";
         return false;
     }
-    if (::rename(tmp.c_str(), dest.c_str()) != 0) {
-        const int e = errno;
-        fs::remove(tmp, ec);
-        error = dest.string() + ": cannot rename into place (" + std::strerror(e) + ")";
+    auto dfd = std::make_unique<Fd>(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    if (dfd->fd < 0) {
+        error = root.string() + ": cannot open the output folder (" + errno_text(errno) + ")";
         return false;
     }
-    // Make the rename itself durable.
-    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {
-        ::fsync(dfd);
-        ::close(dfd);
+    std::string walked;
+    for (size_t i = 0; i + 1 < parts.size(); ++i) {
+        walked += (walked.empty() ? "" : "/") + parts[i];
+        if (::mkdirat(dfd->fd, parts[i].c_str(), 0755) != 0 && errno != EEXIST) {
+            error = rel + ": cannot create the folder " + walked + " (" + errno_text(errno) + ")";
+            return false;
+        }
+        const int next = ::openat(dfd->fd, parts[i].c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        if (next < 0) {
+            const int e = errno;
+            struct stat st{};
+            const bool link = ::fstatat(dfd->fd, parts[i].c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISLNK(st.st_mode);
+            error = rel + ": " + walked +
+                    (link ? " is a symbolic link; matforge never writes through links in the output folder (remove it)"
+                          : e == ENOTDIR ? " is a file where a folder must be" : " cannot be opened (" + errno_text(e) + ")");
+            return false;
+        }
+        dfd = std::make_unique<Fd>(next);
     }
-    return true;
+    const std::string& name = parts.back();
+    struct stat st{};
+    bool exists = false;
+    if (::fstatat(dfd->fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            error = rel + ": cannot write (a folder of that name is in the way)";
+            return false;
+        }
+        if (S_ISREG(st.st_mode) && same_content_at(dfd->fd, name.c_str(), bytes)) return true;
+        exists = true;
+    } else if (errno != ENOENT) {
+        error = rel + ": cannot write (" + errno_text(errno) + ")";
+        return false;
+    }
+    if (before_write) {
+        if (std::string why = before_write(exists); !why.empty()) {
+            error = rel + ": " + why;
+            return false;
+        }
+    }
+    return write_at(dfd->fd, name, bytes, rel, error);
 }
 
 int remove_stale_temps(const fs::path& dir) {
@@ -132,11 +282,59 @@ int remove_stale_temps(const fs::path& dir) {
     int removed = 0;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
-        if (name.find(kTempMarker) != std::string::npos && it->is_regular_file(ec)) {
-            if (fs::remove(it->path(), ec)) ++removed;
-        }
+        const auto owner = temp_owner(name);
+        std::error_code fec;
+        if (!owner || process_alive(*owner) || !it->is_regular_file(fec) || it->is_symlink(fec)) continue;
+        if (fs::remove(it->path(), fec)) ++removed;
     }
     return removed;
+}
+
+std::optional<FolderLock> FolderLock::acquire(const fs::path& dir, const std::string& name, std::string& error) {
+    const fs::path file = dir / name;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+        if (fd < 0) {
+            error = file.string() + ": cannot create the lock file (" + errno_text(errno) + ")";
+            return std::nullopt;
+        }
+        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            const int e = errno;
+            std::string pid(32, '\0');
+            const ssize_t n = ::pread(fd, pid.data(), pid.size(), 0);
+            pid.resize(n > 0 ? static_cast<size_t>(n) : 0);
+            while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+            ::close(fd);
+            if (e != EWOULDBLOCK) {
+                error = file.string() + ": cannot lock (" + errno_text(e) + ")";
+                return std::nullopt;
+            }
+            error = "another matforge" + (pid.empty() ? std::string() : " (pid " + pid + ")") + " is writing in " +
+                    dir.string() + "; wait for it to finish or choose another output folder";
+            return std::nullopt;
+        }
+        // The holder before us removes the file when it is done: a lock on a removed file locks
+        // nothing, so the path must still name the file we locked.
+        struct stat a{}, b{};
+        if (::fstat(fd, &a) == 0 && ::lstat(file.c_str(), &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
+            const std::string pid = std::to_string(::getpid()) + "\n";
+            if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) < 0) {
+                // The pid is only for the message of a second writer; the lock holds without it.
+            }
+            return FolderLock(fd, file);
+        }
+        ::close(fd);
+    }
+    error = file.string() + ": cannot take the lock (the file keeps being replaced)";
+    return std::nullopt;
+}
+
+FolderLock::FolderLock(FolderLock&& o) noexcept : fd_(std::exchange(o.fd_, -1)), file_(std::move(o.file_)) {}
+
+FolderLock::~FolderLock() {
+    if (fd_ < 0) return;
+    ::unlink(file_.c_str());  // while still holding it: a waiter that opened it retries (see acquire)
+    ::close(fd_);
 }
 
 }  // namespace mf

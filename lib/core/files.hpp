@@ -2,9 +2,11 @@
 // interrupted run never leaves a half-written file under a final name).
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mf {
@@ -17,10 +19,46 @@ std::string sha256_hex(std::span<const unsigned char> bytes);
 bool write_file_atomic(const std::filesystem::path& dest, std::span<const unsigned char> bytes,
                        std::string& error);
 
-// The substring every temporary file of ours carries; remove_stale_temps() deletes such files
-// left by a killed run in `dir` (not recursive). Returns how many were removed.
+// The substring every temporary file of ours carries. A temporary is named exactly
+// "." + <final name> + kTempMarker + <pid> + "-" + <counter>: temp_name() makes one, temp_owner()
+// recognizes one (the writer's pid; nullopt for any other name, e.g. a user's "a.matforge-tmp-b").
 inline constexpr const char* kTempMarker = ".matforge-tmp-";
+std::string temp_name(const std::string& final_name);
+std::optional<long> temp_owner(std::string_view name);
+// Removes, in `dir` (not recursive), our temporaries whose writer process no longer exists: a
+// killed run's, never a running one's (another set of this run, another shard) nor a user's
+// file. Returns how many were removed.
 int remove_stale_temps(const std::filesystem::path& dir);
+
+// Writes root/rel atomically (as write_file_atomic) without following a symbolic link anywhere
+// below `root`: each folder of `rel` is created when missing and opened with O_NOFOLLOW, the
+// temporary is created with O_EXCL in the final folder and renamed over the final name there (a
+// link at the final name is replaced, never written through). `rel` is relative, without "..".
+// `before_write(exists)` is called once the destination is known to need writing (absent, or
+// holding other bytes: exists = true) and may refuse with a reason (then nothing is written and
+// `error` is "rel: reason"). Identical bytes leave the file untouched. False + `error` on failure.
+bool write_file_under(const std::filesystem::path& root, const std::string& rel, std::span<const unsigned char> bytes,
+                      std::string& error, const std::function<std::string(bool exists)>& before_write = {});
+
+// An exclusive lock on a folder: flock(2) on the file `name` inside it, held until destroyed
+// (then the file is removed). The lock file holds the holder's pid, so a second writer can say
+// who is there: acquire() returns nullopt + `error` "another matforge (pid N) is writing in DIR"
+// without waiting. A lock whose holder died is free again (the kernel drops it with the process).
+class FolderLock {
+public:
+    static std::optional<FolderLock> acquire(const std::filesystem::path& dir, const std::string& name,
+                                             std::string& error);
+    FolderLock(FolderLock&& o) noexcept;
+    FolderLock& operator=(FolderLock&&) = delete;
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+    ~FolderLock();
+
+private:
+    FolderLock(int fd, std::filesystem::path file) : fd_(fd), file_(std::move(file)) {}
+    int fd_ = -1;
+    std::filesystem::path file_;
+};
 
 // The whole file. Only a regular file is opened (a FIFO would block, a device never end): every
 // reader of the project (JSON documents, sidecars) comes through here or through lib/image.

@@ -43,6 +43,7 @@ inline constexpr std::string_view input_not_found = "INPUT_NOT_FOUND";
 inline constexpr std::string_view unsafe_path = "UNSAFE_PATH";  // an archive entry naming a path outside it
 inline constexpr std::string_view normal_not_unit_length = "NORMAL_NOT_UNIT_LENGTH";  // valid map, renormalized on ingest
 inline constexpr std::string_view normal_gamma_encoded = "NORMAL_GAMMA_ENCODED";  // normal map stored sRGB-encoded
+inline constexpr std::string_view normal_z_reconstructed = "NORMAL_Z_RECONSTRUCTED";  // two-channel (BC5-style) normal map
 inline constexpr std::string_view opacity_all_transparent = "OPACITY_ALL_TRANSPARENT";  // the material would be invisible
 }  // namespace code
 

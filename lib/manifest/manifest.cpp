@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <limits>
+#include <map>
+#include <tuple>
 
 #include "core/json.hpp"
 
@@ -324,6 +326,60 @@ std::optional<Manifest> read_manifest(const std::string& path, std::string& erro
     auto m = manifest_from_json(*j, error);
     if (!m) error = path + ": " + error;
     return m;
+}
+
+std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
+                              std::string& error) {
+    if (parts.empty()) {
+        error = "no manifest to merge";
+        return std::nullopt;
+    }
+    auto name = [&](size_t i) { return i < names.size() ? names[i] : "manifest " + std::to_string(i + 1); };
+    Manifest out;
+    out.manifest_version = parts[0].manifest_version;
+    out.generator = parts[0].generator;
+    out.preset = parts[0].preset;
+    out.normal_convention = parts[0].normal_convention;
+    std::map<std::string, size_t> owner;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        const Manifest& p = parts[i];
+        auto differs = [&](const std::string& what, const std::string& a, const std::string& b) {
+            error = name(0) + " and " + name(i) + " are not parts of one run: " + what + " \"" + a + "\" vs \"" + b + "\"";
+        };
+        if (p.manifest_version != out.manifest_version) {
+            differs("manifest_version", std::to_string(out.manifest_version), std::to_string(p.manifest_version));
+            return std::nullopt;
+        }
+        if (p.generator != out.generator) {
+            differs("generator", out.generator, p.generator);
+            return std::nullopt;
+        }
+        if (p.preset != out.preset) {
+            differs("preset", out.preset, p.preset);
+            return std::nullopt;
+        }
+        if (p.normal_convention != out.normal_convention) {
+            differs("normal_convention", std::string(convention_name(out.normal_convention)),
+                    std::string(convention_name(p.normal_convention)));
+            return std::nullopt;
+        }
+        for (const Material& m : p.materials) {
+            const auto [it, fresh] = owner.emplace(m.name, i);
+            if (!fresh) {
+                error = "material \"" + m.name + "\" is in both " + name(it->second) + " and " + name(i);
+                return std::nullopt;
+            }
+            out.materials.push_back(m);
+        }
+        out.failures.insert(out.failures.end(), p.failures.begin(), p.failures.end());
+    }
+    std::sort(out.materials.begin(), out.materials.end(), [](const Material& a, const Material& b) { return a.name < b.name; });
+    auto key = [](const InputFailure& f) { return std::tie(f.source, f.code, f.message); };
+    std::sort(out.failures.begin(), out.failures.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
+    out.failures.erase(std::unique(out.failures.begin(), out.failures.end(),
+                                   [&](const auto& a, const auto& b) { return key(a) == key(b); }),
+                       out.failures.end());
+    return out;
 }
 
 std::array<size_t, 3> count_findings(const Manifest& m) {

@@ -102,6 +102,15 @@ std::optional<Manifest> manifest_from_json(const nlohmann::json& j, std::string&
 // Reads and parses a manifest file (the error names the file).
 std::optional<Manifest> read_manifest(const std::string& path, std::string& error);
 
+// The manifest of one run from the manifests of its shards (`matforge ingest --shard I/N`):
+// materials and failures merged in the order one unsharded run writes them (materials by name,
+// failures by source; a failure every shard reports is kept once), so the result is the same
+// bytes as the unsharded run's manifest. nullopt + `error` naming the inputs when they do not
+// belong to one run: different manifest versions, generators, presets or normal conventions,
+// or one material in two shards. `names[i]` names parts[i] in messages.
+std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
+                              std::string& error);
+
 // Findings of every material by severity: [info, warning, error].
 std::array<size_t, 3> count_findings(const Manifest& m);
 

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <set>
 #include <thread>
+#include <tuple>
 
 #include "core/files.hpp"
 #include "core/json.hpp"
@@ -12,6 +13,7 @@
 #include "core/version.hpp"
 #include "pack/pack.hpp"
 #include "process/plan.hpp"
+#include "process/work.hpp"
 
 namespace mf {
 namespace fs = std::filesystem;
@@ -48,6 +50,17 @@ std::vector<manifest::Channel> manifest_channels(const std::vector<ChannelSpec>&
     return out;
 }
 
+template <class T>
+BasicImage<T> first_two_channels(const BasicImage<T>& src) {
+    BasicImage<T> out(src.width, src.height, 2);
+    const size_t n = static_cast<size_t>(src.width) * src.height;
+    for (size_t p = 0; p < n; ++p) {
+        out.pixels[2 * p] = src.pixels[p * static_cast<size_t>(src.channels)];
+        out.pixels[2 * p + 1] = src.pixels[p * static_cast<size_t>(src.channels) + 1];
+    }
+    return out;
+}
+
 // Canonical planes per output role from the plan's routes (pack/pack.hpp's conventions). A
 // decoded map is freed after its last plane is made: peak memory is one set's maps.
 Planes make_planes(SetPlan& plan) {
@@ -65,6 +78,11 @@ Planes make_planes(SetPlan& plan) {
             else plane.image = last_use && img.floats.channels == 3 ? std::move(img.floats) : to_rgb(img.floats);
             plane.encoding = l.info.is_float ? ColorEncoding::linear : ColorEncoding::srgb;
         } else if (out == Role::normal) {
+            // An empty blue is dropped: the two-channel path rebuilds Z from X and Y.
+            if (plan.normal_z_rebuilt && img.channels() >= 3) {
+                if (img.is_codes()) img.codes = first_two_channels(img.codes);
+                else img.floats = first_two_channels(img.floats);
+            }
             if (img.is_codes()) {  // decoded when packed (pack_output8) or resampled (fit_plane)
                 plane.codes = last_use ? std::move(img.codes) : img.codes;
                 plane.codes_convention = plan.normal_from();
@@ -92,19 +110,8 @@ Planes make_planes(SetPlan& plan) {
 // would leave the other threads idle while it runs alone. Sizes come from the file system (a
 // set inside a .zip counts its archive's size); results keep input order whatever this says.
 std::vector<size_t> largest_first(const std::vector<MaterialSource>& sets) {
-    std::vector<uintmax_t> bytes(sets.size(), 0);
-    for (size_t i = 0; i < sets.size(); ++i) {
-        std::error_code ec;
-        if (sets[i].is_zip) {
-            const uintmax_t b = fs::file_size(sets[i].root, ec);
-            bytes[i] = ec ? 0 : b;
-            continue;
-        }
-        for (const auto& f : sets[i].files) {
-            const uintmax_t b = fs::file_size(sets[i].root / f, ec);
-            if (!ec) bytes[i] += b;
-        }
-    }
+    std::vector<uint64_t> bytes;
+    for (const auto& s : sets) bytes.push_back(set_bytes(s));
     std::vector<size_t> order(sets.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return bytes[a] > bytes[b]; });
@@ -224,7 +231,16 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         return result;
     }
     std::vector<InputFailure> source_failures;
-    const auto sets = find_material_sets(inputs, opt_.out_dir, source_failures);
+    std::vector<MaterialSource> sets = find_material_sets(inputs, opt_.out_dir, source_failures);
+    if (opt_.shard) {  // this shard's sets only (process/work: stable, balanced by size)
+        std::vector<uint64_t> bytes;
+        for (const auto& s : sets) bytes.push_back(set_bytes(s));
+        const std::vector<int> shard = assign_shards(sets, bytes, opt_.shard->second);
+        std::vector<MaterialSource> mine;
+        for (size_t i = 0; i < sets.size(); ++i)
+            if (shard[i] == opt_.shard->first) mine.push_back(std::move(sets[i]));
+        sets = std::move(mine);
+    }
 
     std::vector<MaterialResult> results(sets.size());
     MemoryBudget budget(opt_.memory_budget);
@@ -261,11 +277,14 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         m.failures.push_back(std::move(f));
     }
     std::sort(m.materials.begin(), m.materials.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-    std::sort(m.failures.begin(), m.failures.end(), [](const auto& a, const auto& b) { return a.source < b.source; });
+    // By source, then code and message: a total order, the one `matforge merge` writes too.
+    std::sort(m.failures.begin(), m.failures.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.source, a.code, a.message) < std::tie(b.source, b.code, b.message);
+    });
 
     const std::string text = json_text(manifest::to_json(m));  // never throws on non-UTF-8 names
     std::string err;
-    if (!write_file_atomic(opt_.out_dir / "manifest.json",
+    if (!write_file_atomic(opt_.out_dir / opt_.manifest_name,
                            std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), err))
         result.error = err;
     remove_stale_temps(opt_.out_dir);

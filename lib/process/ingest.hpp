@@ -33,6 +33,11 @@ struct IngestOptions {
     // Cap on the estimated decoded bytes of the sets in flight (0 = no cap). A set larger than
     // the cap runs alone.
     uint64_t memory_budget = uint64_t{1} << 30;
+    // --shard I/N: only the sets process/work's assign_shards gives shard I of N, and the
+    // manifest is written as `manifest_name` (the shards of one run share the output folder;
+    // `matforge merge` joins their manifests).
+    std::optional<std::pair<int, int>> shard;
+    std::string manifest_name = "manifest.json";
     // Called after each set (from worker threads, serialized): done count, total, name, result.
     std::function<void(size_t done, size_t total, const std::string& name, const MaterialResult& result)> progress;
 };

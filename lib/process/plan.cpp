@@ -338,6 +338,7 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
     files.opened.clear();  // read (decode mode) or streamed (stream mode): free zip bytes early
 
     route(plan, checked);
+    plan.normal_z_rebuilt = checked.normal_z_rebuilt;
     if (const auto n = plan.routes.find(Role::normal); n != plan.routes.end())
         plan.normal = normal_facts(plan.inputs.at(n->second.from), checked.normal);
     conversion_findings(plan, preset.normal_convention);

@@ -50,6 +50,7 @@ struct SetPlan {
     int width = 0, height = 0;             // the set's output size (largest routed map, within max_size)
     std::vector<manifest::Constant> constants;  // generated for roles the outputs need
     std::vector<Finding> findings;         // in emission order; config applied
+    bool normal_z_rebuilt = false;         // the normal map's blue is empty: Z from X and Y
     bool partial = false;                  // some map could not be read
     std::optional<std::string> failure;    // nothing could be read: the set is an input failure
     uint64_t footprint = 0;                // estimated decoded bytes (decode mode)

@@ -86,6 +86,22 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         for (long long i = 0; i < n * channels && !neg; ++i) neg = px[i] < -1e-3f;
         normal_signed = neg ? 1 : 0;
     }
+    if (is_normal() && channels >= 3 && normal_z < 0 && n > 0) {
+        // Blue holding one value (within an 8-bit code; JPEG moves it a few) while X and Y vary,
+        // or one value far from "up": no tangent map stores that, a two-channel export does.
+        float bmin = px[2], bmax = px[2], xmin = px[0], xmax = px[0], ymin = px[1], ymax = px[1];
+        for (long long i = 0; i < n; ++i) {
+            const float* p = px + static_cast<size_t>(i) * static_cast<size_t>(channels);
+            bmin = std::min(bmin, p[2]), bmax = std::max(bmax, p[2]);
+            xmin = std::min(xmin, p[0]), xmax = std::max(xmax, p[0]);
+            ymin = std::min(ymin, p[1]), ymax = std::max(ymax, p[1]);
+        }
+        const float tol = is_jpeg ? 4.f / 255.f : 1.f / 255.f;
+        const bool blue_constant = bmax - bmin <= tol;
+        const bool xy_vary = xmax - xmin > 4.f / 255.f || ymax - ymin > 4.f / 255.f;
+        const float up = normal_signed == 1 ? 1.f : 1.f - 0.5f / 255.f;  // z = +1 stored
+        normal_z = blue_constant && (xy_vary || bmax < up - 0.1f) ? 1 : 0;
+    }
     // Per-channel min/max/sum, channel by channel so the accumulators live in registers (the
     // pixel-major form kept them in the member arrays, one store-to-load chain per sample).
     if (code_scale > 0.f) {
@@ -207,7 +223,7 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
 void MapStats::normal_band(long long n, const float* px) {
     const bool is_signed = normal_signed == 1;
     const auto nc = static_cast<size_t>(channels);
-    const bool rgb = channels >= 3;
+    const bool rgb = channels >= 3 && normal_z != 1;  // else z is rebuilt from x and y
     const auto len_tol = static_cast<float>(t.normal_length_tolerance), z_eps = static_cast<float>(t.normal_z_epsilon);
     const auto gtol = static_cast<float>(is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance);
     const float a = is_signed ? 1.f : 2.f, b = is_signed ? 0.f : -1.f;  // n = a c + b
@@ -221,7 +237,7 @@ void MapStats::normal_band(long long n, const float* px) {
         const float z = rgb ? a * p[2] + b : std::sqrt(std::max(0.f, 1.f - xy));
         const float len = rgb ? std::sqrt(xy + z * z) : std::max(1.f, std::sqrt(xy));
         const bool ok = std::isfinite(len);
-        if (rgb) {
+        if (channels >= 3) {
             const float d = std::max(std::max(std::abs(p[0] - p[1]), std::abs(p[0] - p[2])), std::abs(p[1] - p[2]));
             grey += d <= gtol ? 1 : 0;
         }
@@ -443,6 +459,14 @@ void MapStats::findings(std::vector<Finding>& out) const {
                  {"below_cutoff_share", ratio(opacity_below_cutoff, pixels)}, {"cutoff", t.opacity_visible},
                  {"max", max[oc]}, {"channel", channel_letter(oc)}, {"max_share", t.opacity_max_invisible_share}});
         }
+    }
+    // NORMAL_Z_RECONSTRUCTED
+    if (is_normal() && rebuilds_z()) {
+        const std::string what = channels == 2 ? "two channels (X, Y)"
+                                               : "a blue channel holding one value (B = " + fmt(max[2]) + ")";
+        add(code::normal_z_reconstructed, role,
+            file + ": stored with " + what + ", as BC5 exports leave it: Z is reconstructed as sqrt(1 - x² - y²)",
+            {{"channels", channels}, {"blue_min", channels >= 3 ? min[2] : 0.0}, {"blue_max", channels >= 3 ? max[2] : 0.0}});
     }
     // NORMAL_INVALID, NORMAL_GAMMA_ENCODED, NORMAL_NOT_UNIT_LENGTH
     if (is_normal()) {

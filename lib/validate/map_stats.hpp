@@ -60,6 +60,11 @@ struct MapStats {
     long long metal_dielectric = 0, metal_metal = 0, metal_between = 0;
     // Normal maps (the means of x and y come from the channel sums above).
     int normal_signed = -1;  // -1 undecided, 0 n = 2c − 1, 1 stored signed (float files)
+    // Whether Z is rebuilt from X and Y: a two-channel map, or three channels whose blue holds
+    // one value while X and Y vary (BC5 exports leave B empty). Decided on the first band (-1
+    // undecided, 0 stored, 1 rebuilt); blue_min/blue_max over the whole map confirm it.
+    int normal_z = -1;
+    bool rebuilds_z() const { return channels == 2 || normal_z == 1; }
     long long normal_bad_length = 0, normal_negative_z = 0, normal_upward = 0, normal_gray = 0, normal_srgb_upward = 0;
     double normal_sum_length = 0, normal_sum_z = 0, normal_sum_xx = 0, normal_sum_yy = 0;
     double normal_srgb_sum_x = 0, normal_srgb_sum_y = 0, normal_srgb_sum_length = 0;

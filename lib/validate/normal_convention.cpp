@@ -49,13 +49,13 @@ NormalConvention sign_convention(double r) {
 
 }  // namespace
 
-void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz) {
+void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz, bool rebuild_z) {
     for (int x = 0; x < width; ++x) {
         const float* s = src + static_cast<size_t>(x) * channels;
         auto dec = [&](float c) { return signed_values ? c : 2.f * c - 1.f; };
         float nx = dec(s[0]);
         float ny = channels > 1 ? dec(s[1]) : 0.f;
-        float nz = channels > 2 ? dec(s[2]) : std::sqrt(std::max(0.f, 1.f - nx * nx - ny * ny));
+        float nz = channels > 2 && !rebuild_z ? dec(s[2]) : std::sqrt(std::max(0.f, 1.f - nx * nx - ny * ny));
         xyz[3 * x] = nx;
         xyz[3 * x + 1] = ny;
         xyz[3 * x + 2] = nz;

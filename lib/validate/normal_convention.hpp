@@ -50,7 +50,10 @@ struct NormalVerdict {
 // Decodes one row of a normal map to unit-free (x, y, z) triples. `channels`: 2 (z rebuilt as
 // sqrt(1 − x² − y²), as BC5/two-channel maps), ≥ 3 (RGB, extra channels ignored). `signed_values`:
 // the file already stores −1…1 (some float maps); otherwise n = 2c − 1.
-void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz);
+// `rebuild_z`: Z from X and Y (sqrt(1 - x² - y²)) whatever a third channel holds (a two-channel,
+// BC5-style map whose blue is empty); with 2 channels it always is.
+void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz,
+                       bool rebuild_z = false);
 
 // Streaming detector: feed decoded rows top to bottom (and the height row of the same grid, or
 // nullptr when there is no height map). Memory: a few rows per pyramid level.

@@ -95,6 +95,7 @@ const std::vector<RuleInfo>& rule_catalog() {
         {code::normal_invalid, Severity::error, "Not a tangent-space normal map (height, color or object-space map; one channel)", "normal_invalid"},
         {code::normal_gamma_encoded, Severity::error, "Normal map stored sRGB/gamma-encoded (X/Y centred near 0.74, not 0.5)", "normal_gamma_encoded"},
         {code::normal_not_unit_length, Severity::info, "Normal vectors not unit length (renormalized on ingest)", "normal_not_unit_length"},
+        {code::normal_z_reconstructed, Severity::info, "Two-channel normal map: Z reconstructed from X and Y", "normal_z_reconstructed"},
         {code::normal_convention_mismatch, Severity::warning, "Normal map content contradicts the GL/DX convention its name states", "normal_convention_mismatch"},
         {code::normal_convention_unknown, Severity::warning, "Neither name nor content decides GL vs DX", "normal_convention_unknown"},
         // info: maps are read by role, so a tag never changes what ingest makes of the pixels.

@@ -228,8 +228,8 @@ struct SetRun {
             const float* n = row_of(normal, y);
             if (!n) break;
             // The reader thread decided the decoding on the first band, before this row.
-            const bool is_signed = stats[static_cast<size_t>(normal.map)]->normal_signed == 1;
-            decode_normal_row(n, ni.channels, ni.width, is_signed, xyz.data());
+            const MapStats& ns = *stats[static_cast<size_t>(normal.map)];
+            decode_normal_row(n, ni.channels, ni.width, ns.normal_signed == 1, xyz.data(), ns.rebuilds_z());
             const float* h = wh ? row_of(height, nearest(y, ni.height, info(height).height)) : nullptr;
             if (h)
                 for (int x = 0; x < ni.width; ++x) hrow[static_cast<size_t>(x)] = h[hx[static_cast<size_t>(x)] * hc + height.channel];
@@ -295,6 +295,8 @@ struct SetRun {
                 read_errors[i] = streams[i]->error();
             }
         }
+        if (normal.map >= 0 && readable[static_cast<size_t>(normal.map)])
+            result.normal_z_rebuilt = stats[static_cast<size_t>(normal.map)]->rebuilds_z();
         // The albedo's alpha: the plan keeps it as the opacity only when some texel is below opaque.
         if (opacity.map >= 0 && opacity.map == albedo.map && readable[static_cast<size_t>(albedo.map)])
             result.albedo_alpha_min =

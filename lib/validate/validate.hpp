@@ -75,6 +75,9 @@ struct SetValidation {
     // The smallest finite value of the albedo's alpha channel, when the albedo has one and no
     // opacity map exists (routing's opacity-from-alpha); nullopt otherwise.
     std::optional<double> albedo_alpha_min;
+    // The routed normal map stores X and Y only (two channels, or an empty blue): ingest
+    // rebuilds Z from them, as the rules did (NORMAL_Z_RECONSTRUCTED).
+    bool normal_z_rebuilt = false;
     int suppressed = 0;  // findings removed by "ignore"/"suppress"/"off"
 };
 

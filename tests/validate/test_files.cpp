@@ -129,8 +129,8 @@ TEST(ColorTag, PngChunks) {
 TEST(ValidateFiles, EightKSetInBoundedMemory) {
     // 8192² albedo + metalness + normal + height generated band by band by the reader itself:
     // nothing holds a whole map, so the peak memory measures the validator alone.
-    const int W = 8192, H = 8192;
-    auto gen = [W, H](const mf::InputFile& in, int band_rows, mf::ImageInfo& info, std::string&,
+    constexpr int W = 8192, H = 8192;
+    auto gen = [](const mf::InputFile& in, int band_rows, mf::ImageInfo& info, std::string&,
                       const std::function<void(int, int, const float*)>& fn) {
         const bool normal = in.display == "N.png";
         const int c = normal || in.display == "A.png" ? 3 : 1;

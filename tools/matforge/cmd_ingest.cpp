@@ -8,6 +8,7 @@
 #include "options.hpp"
 #include "process/ingest.hpp"
 #include "process/validate_batch.hpp"
+#include "process/work.hpp"
 #include "summary.hpp"
 
 namespace mf::cli {
@@ -15,7 +16,7 @@ namespace {
 
 struct IngestArgs {
     std::vector<std::string> inputs;
-    std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file;
+    std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file, shard;
     int jobs = 0;
     bool quiet = false;
 };
@@ -34,6 +35,12 @@ ExitCode run_ingest(const IngestArgs& a) {
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
     if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
+    if (!a.shard.empty()) {
+        opt.shard = parse_shard(a.shard);
+        if (!opt.shard) return fail("ingest", "--shard must be I/N with 0 <= I < N, not \"" + a.shard + "\"");
+        opt.manifest_name = "manifest.shard-" + std::to_string(opt.shard->first) + "-of-" +
+                            std::to_string(opt.shard->second) + ".json";
+    }
     const bool tty = ::isatty(STDERR_FILENO) && !a.quiet;
     if (tty) {
         opt.progress = [](size_t done, size_t total, const std::string& name, const MaterialResult& r) {
@@ -51,7 +58,7 @@ ExitCode run_ingest(const IngestArgs& a) {
         say("ingest", std::to_string(r.manifest.materials.size()) + " materials, " +
                           std::to_string(r.manifest.failures.size()) + " failed; findings: " + std::to_string(counts[2]) +
                           " error, " + std::to_string(counts[1]) + " warning, " + std::to_string(counts[0]) +
-                          " info; manifest: " + (std::filesystem::path(a.out_dir) / "manifest.json").string());
+                          " info; manifest: " + (std::filesystem::path(a.out_dir) / opt.manifest_name).string());
         print_attention("ingest", r.manifest);
     }
     return verdict_exit(validate::run_fails(summarize(r.manifest), fail_on_of(a.fail_on)));
@@ -74,6 +81,9 @@ const Register reg{{"ingest", 10,
                             ->check(CLI::IsMember({"gl", "dx"}));
                         sub.add_option("--rules", a->rules_file,
                                        "JSON rule configuration for the checks ingest runs (docs/rules.md)");
+                        sub.add_option("--shard", a->shard,
+                                       "I/N: process only shard I of N (sets assigned by size, as `matforge plan --shards N` "
+                                       "lists them); writes manifest.shard-I-of-N.json for `matforge merge`");
                         add_fail_on(sub, a->fail_on);
                         sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
                         return [a] { return run_ingest(*a); };

@@ -1,0 +1,112 @@
+#include "process/work.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <numeric>
+#include <openssl/evp.h>
+
+#include "core/files.hpp"
+#include "core/json.hpp"
+#include "core/version.hpp"
+
+namespace mf {
+namespace {
+
+// Incremental SHA-256 (OpenSSL's EVP interface): the key hashes the files' digests in order.
+class Hasher {
+public:
+    Hasher() : ctx_(EVP_MD_CTX_new()) { EVP_DigestInit_ex(ctx_, EVP_sha256(), nullptr); }
+    ~Hasher() { EVP_MD_CTX_free(ctx_); }
+    Hasher(const Hasher&) = delete;
+    Hasher& operator=(const Hasher&) = delete;
+    void add(std::string_view s) {
+        EVP_DigestUpdate(ctx_, s.data(), s.size());
+        EVP_DigestUpdate(ctx_, "\n", 1);  // field separator: ("ab","c") never hashes as ("a","bc")
+    }
+    std::string hex() {
+        unsigned char md[EVP_MAX_MD_SIZE];
+        unsigned int n = 0;
+        EVP_DigestFinal_ex(ctx_, md, &n);
+        static const char* digits = "0123456789abcdef";
+        std::string out;
+        for (unsigned int i = 0; i < n; ++i) out += {digits[md[i] >> 4], digits[md[i] & 15]};
+        return out;
+    }
+
+private:
+    EVP_MD_CTX* ctx_;
+};
+
+}  // namespace
+
+std::string context_digest(const Preset& preset, const validate::RuleConfig& rules, const ColorContext& color) {
+    Hasher h;
+    h.add(kGenerator);
+    h.add(preset.source_json.dump());  // sorted keys: the same preset, the same text
+    h.add(std::string(convention_name(preset.normal_convention)));  // --normal-convention overrides
+    h.add(validate::describe(rules).dump());
+    h.add(color.cache_id());
+    return h.hex();
+}
+
+std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error) {
+    Hasher h;
+    h.add(context);
+    for (const std::string& f : set.files) {  // sorted by find_material_sets
+        std::vector<unsigned char> bytes;
+        const InputFile in = set.open(f);
+        if (in.bytes) bytes = *in.bytes;
+        else if (!in.open_error.empty()) {
+            error = in.display + ": " + in.open_error;
+            return std::nullopt;
+        } else if (!read_file(in.path, bytes, error)) {
+            return std::nullopt;
+        }
+        h.add(f);
+        h.add(sha256_hex(bytes));
+    }
+    return h.hex();
+}
+
+uint64_t set_bytes(const MaterialSource& set) {
+    uint64_t total = 0;
+    std::error_code ec;
+    if (set.is_zip) {
+        const auto b = std::filesystem::file_size(set.root, ec);
+        return ec ? 0 : b;
+    }
+    for (const auto& f : set.files) {
+        const auto b = std::filesystem::file_size(set.root / f, ec);
+        if (!ec) total += b;
+    }
+    return total;
+}
+
+std::vector<int> assign_shards(const std::vector<MaterialSource>& sets, const std::vector<uint64_t>& bytes, int n) {
+    std::vector<size_t> order(sets.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return bytes[a] != bytes[b] ? bytes[a] > bytes[b] : sets[a].name < sets[b].name;
+    });
+    std::vector<uint64_t> load(static_cast<size_t>(std::max(1, n)), 0);
+    std::vector<int> shard(sets.size(), 0);
+    for (size_t i : order) {
+        const auto lightest = std::min_element(load.begin(), load.end()) - load.begin();
+        shard[i] = static_cast<int>(lightest);
+        load[static_cast<size_t>(lightest)] += std::max<uint64_t>(bytes[i], 1);
+    }
+    return shard;
+}
+
+std::optional<std::pair<int, int>> parse_shard(const std::string& spec) {
+    const auto slash = spec.find('/');
+    if (slash == std::string::npos || slash == 0 || slash + 1 == spec.size()) return std::nullopt;
+    const std::string a = spec.substr(0, slash), b = spec.substr(slash + 1);
+    auto digits = [](const std::string& s) { return s.size() <= 6 && std::all_of(s.begin(), s.end(), ::isdigit); };
+    if (!digits(a) || !digits(b)) return std::nullopt;
+    const int i = std::stoi(a), n = std::stoi(b);
+    if (n < 1 || i >= n) return std::nullopt;
+    return std::pair{i, n};
+}
+
+}  // namespace mf

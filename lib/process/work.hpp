@@ -1,0 +1,37 @@
+// The deterministic work list of a library: every set, its size and its action key, and a
+// stable assignment of sets to shards balanced by size (`matforge plan`, `ingest --shard I/N`).
+//
+// The action key is a SHA-256 over everything that decides a set's outputs: matforge's version,
+// the resolved preset, the rules configuration, the OpenColorIO config, and the name and bytes
+// of every file of the set (content, never time stamps). Equal keys, equal outputs.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "color/color.hpp"
+#include "preset/preset.hpp"
+#include "process/sets.hpp"
+#include "validate/rules.hpp"
+
+namespace mf {
+
+// The part of every key that does not depend on the set (hex SHA-256).
+std::string context_digest(const Preset& preset, const validate::RuleConfig& rules, const ColorContext& color);
+
+// The set's action key, or nullopt + `error` when one of its files cannot be read.
+std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error);
+
+// The bytes of the set's files (a set inside a .zip counts its entries' sizes as stored).
+uint64_t set_bytes(const MaterialSource& set);
+
+// shard[i] in [0, n) for set i: longest processing time first (largest set to the lightest
+// shard; ties by name, then by lower shard), so shards differ by at most one set's size and the
+// same library always splits the same way.
+std::vector<int> assign_shards(const std::vector<MaterialSource>& sets, const std::vector<uint64_t>& bytes, int n);
+
+// "I/N" -> {I, N} with 0 <= I < N; nullopt when malformed.
+std::optional<std::pair<int, int>> parse_shard(const std::string& spec);
+
+}  // namespace mf
