@@ -15,7 +15,13 @@ packages=(
   clang-14 clang-tidy-14 libclang-rt-14-dev  # CI: scripts/tidy.sh, scripts/fuzz.sh (libFuzzer)
   python3 python3-jsonschema  # tests: scripts/check-schemas.py (manifest and report schemas)
   slurm-wlm munge  # tests: scripts/cluster-demo.sh (sharded ingest on a one-node Slurm cluster)
+  libsquish-dev libastcenc-dev libzstd-dev  # lib/texture: BC1-BC5, ASTC, KTX2 zstd
+  libnvtt-bin astcenc  # bench/texture: the peer tools (nvcompress, astcenc)
+  chromium  # tests/report: headless browser check of matforge report
 )
+# tests/texture run the npm checkers (scripts/npm-checkers.sh); a Node.js that bundles npm
+# (NodeSource's) conflicts with Debian's npm package.
+command -v npm >/dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -93,7 +93,7 @@ say "cluster up in $((SECONDS - t0)) s: $(sinfo -h -o '%n %c CPUs %T')"
 # The job array (one task per shard) and the merge, which runs only if every shard succeeded.
 out=$work/out
 array=$(sbatch --parsable --array=0-$((shards - 1)) --cpus-per-task=1 --output="$work/slurm/log/shard-%a.log" \
-    --wrap="exec '$matforge' ingest '$input' -o '$out' --jobs 1 -q --shard \$SLURM_ARRAY_TASK_ID/$shards")
+    --wrap="exec '$matforge' ingest '$input' -o '$out' --cache '$work/cache' --jobs 1 -q --shard \$SLURM_ARRAY_TASK_ID/$shards")
 merge=$(sbatch --parsable --dependency=afterok:"$array" --output="$work/slurm/log/merge.log" \
     --wrap="exec '$matforge' merge '$out'/manifest.shard-*-of-$shards.json -o '$out/manifest.json'")
 say "submitted array job $array ($shards shards) and merge job $merge (afterok)"
@@ -109,7 +109,8 @@ if [[ ! -s $out/manifest.json ]]; then
 fi
 
 # The same input in one process: the merged manifest and every output must be the same bytes.
-"$matforge" ingest "$input" -o "$work/single" -q
+# --no-cache: computed from the sources, not restored from what the shards stored.
+"$matforge" ingest "$input" -o "$work/single" -q --no-cache
 if ! cmp -s "$out/manifest.json" "$work/single/manifest.json"; then
     say "the merged manifest differs from the single run's"
     diff "$out/manifest.json" "$work/single/manifest.json" | head -20 >&2

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the main job on sample_materials/:
+# Installs what is missing, builds, and runs the main job on sample_materials/ (four real CC0
+# sets, sample_materials/SOURCES.md):
 #   ingest (glTF preset)  -> out/<material>/..., out/manifest.json
 #   validate              -> out/validate.json (JSON report; text summary on the terminal)
 #   preview               -> out/preview/<material>.png and out/contact_sheet.png

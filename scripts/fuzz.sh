@@ -24,8 +24,10 @@ for exe in "$build"/tests/fuzz/fuzz_*; do
   work=$build/corpus/$name
   rm -rf "$work" && mkdir -p "$work"
   echo "fuzz: $name for ${secs}s" >&2
-  # -rss_limit_mb bounds a parser's memory; ASan's own leak check runs at exit.
-  if ! ASAN_OPTIONS=detect_leaks=1 "$exe" "$work" "$seeds" -max_total_time="$secs" -rss_limit_mb=2048 \
+  # -rss_limit_mb bounds a parser's memory; ASan's own leak check runs at exit. -max_len lets
+  # inputs nest past the stack's limit: each JSON target's corpus holds a 100,000-level seed
+  # (deep-nesting.json, 200 KB; a recursive reader overflows an 8 MB stack well before that).
+  if ! ASAN_OPTIONS=detect_leaks=1 "$exe" "$work" "$seeds" -max_total_time="$secs" -rss_limit_mb=2048 -max_len=262144 \
        -timeout=10 -print_final_stats=1 -artifact_prefix="$build/artifacts/$name-" 2>"$build/$name.log"; then
     echo "fuzz: $name FAILED (log: $build/$name.log)" >&2
     tail -40 "$build/$name.log" >&2

@@ -8,6 +8,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 t0=$SECONDS
 "$root/scripts/bootstrap.sh" "$root/build"
+"$root/scripts/npm-checkers.sh" "$root/build/npm"  # glTF-Validator and ktx-parse for tests/texture
 echo "test: release build $((SECONDS - t0)) s" >&2
 t0=$SECONDS
 ctest --test-dir "$root/build" --output-on-failure -j"$(nproc)" --timeout 900

@@ -1,5 +1,7 @@
 #include "core/text.hpp"
 
+#include <cctype>
+
 namespace mf {
 
 namespace {
@@ -51,6 +53,22 @@ std::string utf8_or_replacement(std::string_view s) {
         } else {
             out.append("\xEF\xBF\xBD");  // U+FFFD for the maximal subpart (at least the lead)
             i += p.valid > 0 ? p.valid : 1;
+        }
+    }
+    return out;
+}
+
+std::string percent_encode_path(std::string_view path) {
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    std::string out;
+    for (const char ch : path) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
+            out += ch;
+        } else {
+            out += '%';
+            out += kHex[c >> 4];
+            out += kHex[c & 15];
         }
     }
     return out;

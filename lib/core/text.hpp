@@ -10,4 +10,9 @@ namespace mf {
 // XML and JSON writers call it so a Latin-1 file name cannot make the whole report unreadable.
 std::string utf8_or_replacement(std::string_view s);
 
+// A relative path as a URI reference (RFC 3986): unreserved characters and '/' kept, every
+// other byte percent-encoded (upper-case hex). glTF's image URIs and the report's links use it,
+// so a name with spaces, '#', '%' or non-ASCII bytes resolves to the file on disk.
+std::string percent_encode_path(std::string_view path);
+
 }  // namespace mf

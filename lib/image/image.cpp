@@ -36,6 +36,7 @@ struct TempFile {
 
 // An open reader plus whatever keeps its bytes alive.
 struct Reader {
+    std::shared_ptr<const std::vector<unsigned char>> owned;  // a PNG stripped of bulky metadata
     std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
     std::unique_ptr<TempFile> temp;
     std::unique_ptr<OIIO::ImageInput> in;
@@ -69,6 +70,54 @@ std::string sniff_format(const unsigned char* b, size_t n) {
     if (starts({'D', 'D', 'S', ' '})) return "dds";
     if (starts({'G', 'I', 'F', '8'})) return "gif";
     return {};
+}
+
+// PNG metadata matforge does not use can be huge (a 200 MB tEXt chunk: OpenImageIO keeps every
+// text chunk as an attribute, ~1 GB at peak). Ancillary chunks (lower-case first letter) larger
+// than this are dropped before the decoder sees the file; pixels, palette and transparency are
+// critical or small and always kept.
+constexpr uint32_t kMaxPngMetadataChunk = 1u << 20;
+
+uint32_t be32(const unsigned char* p) {
+    return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
+}
+
+// Reads `n` bytes at `at` from the file or the memory image; false past the end.
+using ReadAt = std::function<bool(uint64_t at, size_t n, unsigned char* out)>;
+
+// The PNG without its oversized ancillary chunks, or nullptr when it has none (or is not a
+// well-formed chunk sequence: the decoder then reports the file as it is).
+std::shared_ptr<std::vector<unsigned char>> png_without_bulky_metadata(uint64_t size, const ReadAt& read) {
+    struct Chunk {
+        uint64_t at;
+        uint64_t bytes;
+        bool drop;
+    };
+    std::vector<Chunk> chunks;
+    bool any = false;
+    uint64_t at = 8;
+    unsigned char head[8];
+    while (at + 12 <= size) {
+        if (!read(at, 8, head)) return nullptr;
+        const uint64_t len = be32(head);
+        if (at + 12 + len > size) return nullptr;
+        const bool ancillary = head[4] >= 'a' && head[4] <= 'z';
+        const bool drop = ancillary && len > kMaxPngMetadataChunk;
+        any = any || drop;
+        chunks.push_back({at, 12 + len, drop});
+        at += 12 + len;
+        if (std::equal(head + 4, head + 8, "IEND")) break;
+    }
+    if (!any) return nullptr;
+    auto out = std::make_shared<std::vector<unsigned char>>(8);
+    if (!read(0, 8, out->data())) return nullptr;
+    for (const Chunk& c : chunks) {
+        if (c.drop) continue;
+        const size_t start = out->size();
+        out->resize(start + static_cast<size_t>(c.bytes));
+        if (!read(c.at, static_cast<size_t>(c.bytes), out->data() + start)) return nullptr;
+    }
+    return out;
 }
 
 // Opens `name` with the reader of `format` (a format name, or a file name whose extension picks
@@ -126,7 +175,21 @@ bool open_reader(const InputFile& in, Reader& r, std::string& error) {
         f.read(reinterpret_cast<char*>(head.data()), head.size());
         const std::string format = sniff_format(head.data(), static_cast<size_t>(f.gcount()));
         std::string why;
-        r.in = open_with(format.empty() ? name : format, name, config, nullptr, why);
+        if (format == "png") {
+            const uint64_t size = fs::file_size(in.path, ec);
+            r.owned = png_without_bulky_metadata(size, [&](uint64_t at, size_t n, unsigned char* out) {
+                f.clear();
+                f.seekg(static_cast<std::streamoff>(at));
+                f.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n));
+                return static_cast<size_t>(f.gcount()) == n;
+            });
+        }
+        if (r.owned) {
+            r.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(r.owned->data(), r.owned->size());
+            r.in = open_with(format, name, config, r.proxy.get(), why);
+        } else {
+            r.in = open_with(format.empty() ? name : format, name, config, nullptr, why);
+        }
         if (!r.in) {
             error = in.display + ": " + why;
             return false;
@@ -142,16 +205,22 @@ bool open_reader(const InputFile& in, Reader& r, std::string& error) {
         }
         std::string format = sniff_format(in.bytes->data(), in.bytes->size());
         if (format.empty()) format = name;  // no signature: the extension decides
+        if (format == "png")
+            r.owned = png_without_bulky_metadata(in.bytes->size(), [&](uint64_t at, size_t n, unsigned char* out) {
+                if (at + n > in.bytes->size()) return false;
+                std::copy_n(in.bytes->data() + at, n, out);
+                return true;
+            });
+        const std::vector<unsigned char>& data = r.owned ? *r.owned : *in.bytes;
         auto probe = OIIO::ImageInput::create(format, false);
         std::string why;
         if (probe && probe->supports("ioproxy")) {
-            r.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(in.bytes->data(), in.bytes->size());
+            r.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(data.data(), data.size());
             r.in = open_with(format, name, config, r.proxy.get(), why);
         } else {
             r.temp = std::make_unique<TempFile>(in.extension());
             std::ofstream(r.temp->path, std::ios::binary)
-                .write(reinterpret_cast<const char*>(in.bytes->data()),
-                       static_cast<std::streamsize>(in.bytes->size()));
+                .write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
             r.in = open_with(format, r.temp->path.string(), config, nullptr, why);
         }
         if (!r.in) {
@@ -178,6 +247,44 @@ ImageInfo info_of(const OIIO::ImageInput& in) {
         default: info.bit_depth = static_cast<int>(s.format.size() * 8); break;
     }
     return info;
+}
+
+// What the header says beyond the size: a deep image is refused (samples per pixel vary: there
+// is no one value per texel), several images in one file and an orientation tag become notes.
+// Leaves the reader on the first image.
+bool inspect(OIIO::ImageInput& r, const InputFile& in, ImageInfo& info, std::string& error) {
+    if (r.spec().deep) {
+        error = in.display + ": a deep " + info.format + " image (a varying number of samples per pixel), which matforge "
+                "does not read; flatten it first (oiiotool " + fs::path(in.display).filename().string() +
+                " --flatten -o flat.exr)";
+        return false;
+    }
+    const std::string part = r.spec().get_string_attribute("oiio:subimagename");
+    int count = 1;
+    while (count < 1000 && r.seek_subimage(count, 0)) ++count;
+    if (!r.seek_subimage(0, 0)) {  // back to the first image, the one every reader uses
+        error = in.display + ": " + oiio_error_text(r.geterror());
+        return false;
+    }
+    if (count > 1) {
+        const bool exr = info.format == "openexr";
+        info.notes.emplace_back(
+            "MULTIPART_IMAGE",
+            in.display + ": holds " + (count == 1000 ? "1000 or more" : std::to_string(count)) + (exr ? " parts" : " images (pages)") +
+                "; the first" + (part.empty() ? std::string() : " ('" + part + "')") + " is used, the others are ignored");
+    }
+    const int orientation = r.spec().get_int_attribute("Orientation", 1);
+    if (orientation != 1) {
+        static constexpr const char* kMeaning[] = {"", "", "mirrored left-right", "rotated 180°", "mirrored top-bottom",
+                                                   "transposed", "rotated 90° clockwise", "transversed",
+                                                   "rotated 90° counter-clockwise"};
+        info.notes.emplace_back(
+            "ORIENTATION_IGNORED",
+            in.display + ": its EXIF/TIFF orientation is " + std::to_string(orientation) +
+                (orientation >= 2 && orientation <= 8 ? std::string(" (") + kMeaning[orientation] + ")" : std::string()) +
+                ", which is not applied: the map is used as stored, so that every map of the set lines up pixel for pixel");
+    }
+    return true;
 }
 
 bool check_dimensions(const InputFile& in, const ImageInfo& info, std::string& error) {
@@ -210,7 +317,7 @@ std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error)
     Reader r;
     if (!open_reader(in, r, error)) return std::nullopt;
     ImageInfo info = info_of(*r.in);
-    if (!check_dimensions(in, info, error)) return std::nullopt;
+    if (!check_dimensions(in, info, error) || !inspect(*r.in, in, info, error)) return std::nullopt;
     return info;
 }
 
@@ -220,7 +327,7 @@ bool read_image_impl(const InputFile& in, Decoded& out, ImageInfo& info, std::st
     Reader r;
     if (!open_reader(in, r, error)) return false;
     info = info_of(*r.in);
-    if (!check_dimensions(in, info, error)) return false;
+    if (!check_dimensions(in, info, error) || !inspect(*r.in, in, info, error)) return false;
     const bool codes = keep_codes && !info.is_float && info.bit_depth == 8;
     bool ok = false;
     if (codes) {
@@ -244,7 +351,7 @@ bool read_bands_impl(const InputFile& in, int band_rows, ImageInfo& info, std::s
     Reader r;
     if (!open_reader(in, r, error)) return false;
     info = info_of(*r.in);
-    if (!check_dimensions(in, info, error)) return false;
+    if (!check_dimensions(in, info, error) || !inspect(*r.in, in, info, error)) return false;
     band_rows = std::max(1, band_rows);
     std::vector<float> band(static_cast<size_t>(info.width) * info.channels * band_rows);
     for (int y0 = 0; y0 < info.height; y0 += band_rows) {

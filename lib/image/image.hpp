@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mf {
@@ -66,6 +67,10 @@ struct ImageInfo {
     int bit_depth = 0;      // 8, 16, 32 (float), 16 for half
     bool is_float = false;  // half or float samples (EXR, HDR, float TIFF)
     std::string format;     // OpenImageIO format name ("png", "openexr", …)
+    // What reading the file decided that its user should know, as (finding code, message naming
+    // the file): MULTIPART_IMAGE (the first of several images is read), ORIENTATION_IGNORED (an
+    // EXIF/TIFF orientation is not applied: maps of a set must line up pixel for pixel).
+    std::vector<std::pair<std::string, std::string>> notes;
 };
 
 // Largest image matforge agrees to decode (decompression-bomb guard): 16384² pixels, 8 channels.

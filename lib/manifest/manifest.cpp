@@ -143,6 +143,33 @@ Output output_of(const json& j, const std::string& where) {
     o.bit_depth = int_of(j, "bit_depth", where);
     o.format = string_of(j, "format", where, false);
     o.sha256 = string_of(j, "sha256", where, false);
+    o.block_format = string_of(j, "block_format", where, false);
+    o.gpu_format = string_of(j, "gpu_format", where, false);
+    o.supercompression = string_of(j, "supercompression", where, false);
+    if (const json* z = member(j, "normal_z")) {
+        if (*z != "reconstructed") fail(where, "\"normal_z\" must be \"reconstructed\"");
+        o.normal_z_reconstructed = true;
+    }
+    if (const json* levels = member(j, "levels")) {
+        if (!levels->is_array()) fail(where, "\"levels\" is not an array");
+        for (size_t i = 0; i < levels->size(); ++i) {
+            const std::string at = where + ": levels[" + std::to_string(i) + "]";
+            const json& l = object_of((*levels)[i], at);
+            LevelError e;
+            e.width = int_of(l, "width", at, 1);
+            e.height = int_of(l, "height", at, 1);
+            auto number = [&](const char* key, double hi) -> std::optional<double> {
+                const json* v = member(l, key);
+                if (!v) return std::nullopt;
+                if (!json_float(*v, 0.0, hi)) fail(at, std::string("\"") + key + "\" is not a number in 0.." + std::to_string(static_cast<int>(hi)));
+                return v->get<double>();
+            };
+            e.psnr_db = number("psnr_db", 100.0);
+            e.mean_angle_deg = number("mean_angle_deg", 180.0);
+            e.max_angle_deg = number("max_angle_deg", 180.0);
+            o.levels.push_back(e);
+        }
+    }
     return o;
 }
 
@@ -180,6 +207,15 @@ Material material_of(const json& j, const std::string& at) {
     if (const json* o = member(j, "outputs")) {
         if (!o->is_array()) fail(where, "\"outputs\" is not an array");
         for (size_t i = 0; i < o->size(); ++i) m.outputs.push_back(output_of((*o)[i], where + ": outputs[" + std::to_string(i) + "]"));
+    }
+    if (const json* files = member(j, "material_files")) {
+        if (!files->is_array()) fail(where, "\"material_files\" is not an array");
+        for (size_t i = 0; i < files->size(); ++i) {
+            const std::string fat = where + ": material_files[" + std::to_string(i) + "]";
+            const json& f = object_of((*files)[i], fat);
+            m.material_files.push_back({string_of(f, "file", fat, true), string_of(f, "format", fat, true),
+                                        string_of(f, "sha256", fat, false)});
+        }
     }
     if (const json* f = member(j, "findings")) {
         if (!f->is_array()) fail(where, "\"findings\" is not an array");
@@ -250,6 +286,21 @@ json to_json(const Output& o) {
     j["bit_depth"] = o.bit_depth;
     j["format"] = o.format;
     j["sha256"] = o.sha256;
+    if (!o.block_format.empty()) j["block_format"] = o.block_format;
+    if (!o.gpu_format.empty()) j["gpu_format"] = o.gpu_format;
+    if (!o.supercompression.empty()) j["supercompression"] = o.supercompression;
+    if (o.normal_z_reconstructed) j["normal_z"] = "reconstructed";
+    if (!o.levels.empty()) {
+        json levels = json::array();
+        for (const LevelError& e : o.levels) {
+            json l = {{"width", e.width}, {"height", e.height}};
+            if (e.psnr_db) l["psnr_db"] = *e.psnr_db;
+            if (e.mean_angle_deg) l["mean_angle_deg"] = *e.mean_angle_deg;
+            if (e.max_angle_deg) l["max_angle_deg"] = *e.max_angle_deg;
+            levels.push_back(std::move(l));
+        }
+        j["levels"] = std::move(levels);
+    }
     return j;
 }
 
@@ -265,6 +316,12 @@ json to_json(const Material& m) {
     json outputs = json::array();
     for (const Output& o : m.outputs) outputs.push_back(to_json(o));
     j["outputs"] = std::move(outputs);
+    if (!m.material_files.empty()) {
+        json files = json::array();
+        for (const MaterialFile& f : m.material_files)
+            files.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
+        j["material_files"] = std::move(files);
+    }
     json findings = json::array();
     for (const Finding& f : m.findings) findings.push_back(mf::to_json(f));
     j["findings"] = std::move(findings);
@@ -283,6 +340,11 @@ json to_json(const Manifest& m) {
     json failures = json::array();
     for (const InputFailure& f : m.failures) failures.push_back(mf::to_json(f));
     j["failures"] = std::move(failures);
+    if (!m.library.empty()) {
+        json files = json::array();
+        for (const MaterialFile& f : m.library) files.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
+        j["library"] = std::move(files);
+    }
     return j;
 }
 
@@ -305,6 +367,14 @@ std::optional<Manifest> manifest_from_json(const json& j, std::string& error) {
         if (!mats || !mats->is_array()) fail("manifest", "no \"materials\" array");
         for (size_t i = 0; i < mats->size(); ++i)
             m.materials.push_back(material_of((*mats)[i], "materials[" + std::to_string(i) + "]"));
+        if (const json* files = member(j, "library")) {
+            if (!files->is_array()) fail("manifest", "\"library\" is not an array");
+            for (size_t i = 0; i < files->size(); ++i) {
+                const std::string at = "library[" + std::to_string(i) + "]";
+                const json& f = object_of((*files)[i], at);
+                m.library.push_back({string_of(f, "file", at, true), string_of(f, "format", at, true), string_of(f, "sha256", at, false)});
+            }
+        }
         if (const json* f = member(j, "failures")) {
             if (!f->is_array()) fail("manifest", "\"failures\" is not an array");
             for (size_t i = 0; i < f->size(); ++i) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/findings.hpp"
+#include "material/channel.hpp"
 #include "material/roles.hpp"
 
 namespace mf::manifest {
@@ -41,12 +42,14 @@ struct Input {
 };
 
 // One entry of Output::channels: what a channel (or the RGB triple) holds.
-struct Channel {
-    enum class Kind { role, smoothness, constant, unused };
-    std::string key;  // "RGB", "R", "G", "B", "A"
-    Kind kind = Kind::unused;
-    Role role = Role::albedo;  // kind == role
-    float value = 0.f;         // kind == constant
+using Channel = mf::Channel;
+
+// One mip level of a block-compressed output: its size and the error of the decoded level
+// against the level it encodes (PSNR over the stored channels; angles for normals).
+struct LevelError {
+    int width = 0, height = 0;
+    std::optional<double> psnr_db;                       // color and data; 100 = identical
+    std::optional<double> mean_angle_deg, max_angle_deg;  // normals
 };
 
 struct Output {
@@ -56,6 +59,19 @@ struct Output {
     std::optional<NormalConvention> normal_convention;  // textures holding a normal
     int width = 0, height = 0, bit_depth = 0;
     std::string format, sha256;
+    // Block-compressed outputs (format dds | ktx2) only:
+    std::string block_format;       // "bc1", "bc5", "astc-6x6", ...
+    std::string gpu_format;         // the container's format name (DXGI_FORMAT_BC1_UNORM_SRGB, VK_FORMAT_...)
+    std::string supercompression;   // "zstd" when the KTX2 levels are supercompressed
+    bool normal_z_reconstructed = false;  // a normal stored as X, Y only (BC5): Z = sqrt(1 - x² - y²)
+    std::vector<LevelError> levels;  // every mip level, largest first
+};
+
+// A file describing the material for an engine or viewer (the glTF of a set and its buffer).
+struct MaterialFile {
+    std::string file;    // relative to the manifest's folder
+    std::string format;  // "gltf" | "bin"
+    std::string sha256;
 };
 
 // A value ingest generated for a role the set has no map of (scalar, or RGB for a color).
@@ -75,6 +91,7 @@ struct Material {
     std::vector<Input> inputs;          // in role order
     std::vector<Constant> constants;    // in role order
     std::vector<Output> outputs;        // in preset order
+    std::vector<MaterialFile> material_files;  // preset material_file (glTF + buffer)
     std::vector<Finding> findings;
 };
 
@@ -85,6 +102,7 @@ struct Manifest {
     NormalConvention normal_convention = NormalConvention::gl;
     std::vector<Material> materials;    // sorted by name
     std::vector<InputFailure> failures; // sorted by source
+    std::vector<MaterialFile> library;  // library.gltf + library.bin (preset material_file gltf)
 };
 
 std::string_view status_name(Status s);  // "ok" | "partial"

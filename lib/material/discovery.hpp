@@ -39,7 +39,7 @@
 
 namespace mf {
 
-// Naming conventions a set can follow (shared/spec/interface.md "convention").
+// Naming conventions a set can follow (docs/interface.md "Words": convention).
 // "ambientcg" "polyhaven" "texturescom" "megascans" "substance" "gltf" "generic"
 struct NameMatch {
     Role role = Role::albedo;

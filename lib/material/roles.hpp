@@ -6,7 +6,7 @@
 
 namespace mf {
 
-// Output roles first; input-only roles after `opacity` (see shared/spec/interface.md "Words").
+// Output roles first; input-only roles after `opacity` (docs/interface.md "Words").
 enum class Role {
     albedo, normal, roughness, metalness, occlusion, height, emissive, opacity,
     // input-only

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/json.hpp"
+#include "preset/texture_fields.hpp"
 
 namespace mf {
 namespace {
@@ -156,8 +157,8 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
         if (!nc || *nc == NormalConvention::unknown) return fail(error, "normal_convention must be gl or dx");
         p.normal_convention = *nc;
         p.format = j.value("format", "png");
-        if (p.format != "png" && p.format != "exr" && p.format != "tif" && p.format != "tga")
-            return fail(error, "format must be png, exr, tif or tga");
+        if (p.format != "png" && p.format != "exr" && p.format != "tif" && p.format != "tga" && !is_block_container(p.format))
+            return fail(error, "format must be png, exr, tif, tga, dds or ktx2");
         const auto max_size = int_field(j, "max_size", 0, 0, 65536);
         const auto constant_size = int_field(j, "constant_size", 2, 1, 64);
         if (!max_size || !constant_size)
@@ -168,6 +169,9 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
         if (p.file_pattern.find("{suffix}") == std::string::npos || p.file_pattern.find("..") != std::string::npos ||
             (!p.file_pattern.empty() && p.file_pattern.front() == '/'))
             return fail(error, "file_pattern must contain {suffix} and stay inside the output folder");
+        // Without {material} every material's outputs would land in the same files.
+        if (p.file_pattern.find("{material}") == std::string::npos)
+            return fail(error, "file_pattern must contain {material}: without it every material writes the same files");
         static const nlohmann::json kEmpty = nlohmann::json::object();
         const nlohmann::json& defaults = j.contains("defaults") ? j.at("defaults") : kEmpty;
         const nlohmann::json& missing = j.contains("missing_severity") ? j.at("missing_severity") : kEmpty;
@@ -201,7 +205,19 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
             p.outputs.push_back(std::move(spec));
         }
         if (p.outputs.empty()) return fail(error, "outputs must not be empty");
+        // Two outputs of one material must not be one file (compared without case: a
+        // case-insensitive file system makes "BC" and "bc" one name).
+        std::map<std::string, std::string> paths;
+        for (const auto& o : p.outputs) {
+            std::string path = p.output_path("material", o);
+            std::transform(path.begin(), path.end(), path.begin(),
+                           [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+            if (auto [it, fresh] = paths.emplace(path, o.suffix); !fresh)
+                return fail(error, "outputs: suffix '" + o.suffix + "' names the file of suffix '" + it->second +
+                                       "' (" + p.output_path("material", o) + "): every output needs a suffix of its own");
+        }
         p.validate = j.value("validate", nlohmann::json::object());
+        if (!parse_texture_fields(j, p, error)) return false;  // mips, block formats, material files
     } catch (const nlohmann::json::exception& e) {
         return fail(error, std::string("malformed preset: ") + e.what());
     }
@@ -215,8 +231,8 @@ std::optional<Preset> load_preset(const std::string& name_or_path, std::string& 
         j = nlohmann::json::parse(*text);
         origin = "preset '" + name_or_path + "'";
     } else {
-        std::ifstream f(name_or_path);
-        if (!f) {
+        std::error_code ec;
+        if (!std::filesystem::exists(std::filesystem::symlink_status(name_or_path, ec))) {
             auto names = shipped_presets();
             std::string list;
             for (auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -224,11 +240,10 @@ std::optional<Preset> load_preset(const std::string& name_or_path, std::string& 
             return std::nullopt;
         }
         origin = name_or_path;
-        j = nlohmann::json::parse(f, nullptr, false);
-        if (j.is_discarded()) {
-            error = name_or_path + ": not valid JSON";
-            return std::nullopt;
-        }
+        // Depth-limited, and never opens a FIFO or a device: the error names the file.
+        auto parsed = read_json_file(name_or_path, error);
+        if (!parsed) return std::nullopt;
+        j = std::move(*parsed);
     }
     Preset p;
     if (!parse_preset(j, p, error)) {

@@ -8,17 +8,13 @@
 #include <vector>
 
 #include "core/findings.hpp"
+#include "material/channel.hpp"
 #include "material/roles.hpp"
 
 namespace mf {
 
-// What one channel (or the RGB triple) of an output holds.
-struct ChannelSpec {
-    enum class Kind { role, smoothness, constant, unused };
-    std::string key;   // "RGB", "R", "G", "B", "A"
-    Kind kind = Kind::unused;
-    Role role = Role::albedo;  // kind == role
-    float value = 0.f;         // kind == constant
+// What one channel (or the RGB triple) of an output holds, as the preset asks for it.
+struct ChannelSpec : Channel {
     bool optional = false;     // dropped when its role has no map (key must be the last one)
 };
 
@@ -28,6 +24,11 @@ struct OutputSpec {
     int bit_depth = 8;   // 8 | 16 (png, tif); 16 = half, 32 = float (exr)
     bool always = true;  // false: written only when one of its roles has a map
     std::vector<ChannelSpec> channels;  // in file channel order (RGB counts as three)
+    // Block-compressed containers (format dds | ktx2; lib/preset/texture_fields.cpp checks them).
+    std::string block_format;        // "bc1", "bc3", "bc4", "bc5", "astc-6x6", ...
+    std::string block_format_alpha;  // used instead when the written output has 4 channels
+    std::string effort;              // per output; "" = the preset's
+    std::optional<double> min_psnr_db, max_mean_angle_deg;  // error bounds of the decoded levels
     int channel_count() const;
     std::vector<Role> roles() const;    // the roles it reads (roughness for smoothness)
 };
@@ -44,12 +45,24 @@ struct Preset {
     std::map<Role, float> defaults;             // scalar roles
     std::map<Role, Severity> missing_severity;  // roles whose absence is reported
     std::vector<OutputSpec> outputs;
+    // Block-compressed containers and material files (lib/preset/texture_fields.cpp).
+    bool mips = false;                   // full mip chains (dds, ktx2)
+    std::string mip_filter = "kaiser";   // "box" | "kaiser"
+    std::string effort = "normal";       // "fast" | "normal" | "thorough"
+    std::string supercompression = "none";  // ktx2: "none" | "zstd"
+    int zstd_level = 19;
+    bool toksvig = false;        // roughness mips widened by the normal mips' spread
+    float alpha_cutoff = 0.5f;   // alpha test of opacity (coverage kept per mip; glTF alphaCutoff)
+    std::string material_file;   // "" | "gltf": a material file per set and library.gltf
     nlohmann::json validate = nlohmann::json::object();  // rule overrides for validate
     nlohmann::json source_json;                          // as loaded
 
     float default_value(Role r) const;
     std::string output_path(const std::string& material, const OutputSpec& o) const;
 };
+
+// The block-compressed formats ("dds", "ktx2"): outputs carry mip levels of GPU blocks.
+bool is_block_container(const std::string& format);
 
 // Parses a preset document; false + `error` naming the field on any problem.
 bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error);

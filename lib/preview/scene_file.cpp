@@ -120,6 +120,15 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
             sc.camera.yfov_deg = number(*v, w + ".yfov_deg");
             if (!(sc.camera.yfov_deg > 0.f && sc.camera.yfov_deg < 180.f)) fail(w + ".yfov_deg", "must be in (0, 180)");
         }
+        // A camera at its target looks nowhere; an up along the view has no "up" to keep.
+        const render::Vec3 p = sc.camera.position, t = sc.camera.target, u = sc.camera.up;
+        const float d[3] = {t[0] - p[0], t[1] - p[1], t[2] - p[2]};
+        const float dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+        if (!(dd > 0.f)) fail(w, "position and target are the same point: the camera has no direction to look in");
+        if (!(uu > 0.f)) fail(w + ".up", "must not be [0, 0, 0]");
+        const float cx = d[1] * u[2] - d[2] * u[1], cy = d[2] * u[0] - d[0] * u[2], cz = d[0] * u[1] - d[1] * u[0];
+        if (!(cx * cx + cy * cy + cz * cz > 1e-12f * dd * uu))
+            fail(w + ".up", "is parallel to the direction from position to target: choose an up that is not");
     }
     if (const json* sh = find(j, "shape")) {
         const std::string w = name + ": shape";

@@ -8,10 +8,16 @@
 #include <tuple>
 
 #include "core/files.hpp"
+#include "core/interrupt.hpp"
 #include "core/json.hpp"
 #include "core/parallel.hpp"
 #include "core/version.hpp"
 #include "pack/pack.hpp"
+#include "process/cache.hpp"
+#include "preset/texture_fields.hpp"
+#include "texture/texture.hpp"
+#include "process/material_file.hpp"
+#include "process/output_dir.hpp"
 #include "process/plan.hpp"
 #include "process/work.hpp"
 
@@ -32,22 +38,9 @@ std::string source_of(const MaterialSource& s, const fs::path& out_dir) {
     return relative_to(s.root, out_dir) + (s.is_zip && !s.zip_folder.empty() ? "/" + s.zip_folder : "");
 }
 
+// The channels as written: what the preset asked for, without its "optional" flag.
 std::vector<manifest::Channel> manifest_channels(const std::vector<ChannelSpec>& channels) {
-    std::vector<manifest::Channel> out;
-    for (const auto& c : channels) {
-        manifest::Channel m;
-        m.key = c.key;
-        m.role = c.role;
-        m.value = c.value;
-        switch (c.kind) {
-            case ChannelSpec::Kind::role: m.kind = manifest::Channel::Kind::role; break;
-            case ChannelSpec::Kind::smoothness: m.kind = manifest::Channel::Kind::smoothness; break;
-            case ChannelSpec::Kind::constant: m.kind = manifest::Channel::Kind::constant; break;
-            case ChannelSpec::Kind::unused: m.kind = manifest::Channel::Kind::unused; break;
-        }
-        out.push_back(std::move(m));
-    }
-    return out;
+    return {channels.begin(), channels.end()};
 }
 
 template <class T>
@@ -111,6 +104,7 @@ Planes make_planes(SetPlan& plan) {
 // set inside a .zip counts its archive's size); results keep input order whatever this says.
 std::vector<size_t> largest_first(const std::vector<MaterialSource>& sets) {
     std::vector<uint64_t> bytes;
+    bytes.reserve(sets.size());
     for (const auto& s : sets) bytes.push_back(set_bytes(s));
     std::vector<size_t> order(sets.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -126,7 +120,54 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
     if (opt_.normal_override) preset_.normal_convention = *opt_.normal_override;
 }
 
+struct Ingestor::CacheLog {
+    std::mutex mutex;
+    std::atomic<size_t> hits{0}, misses{0};
+    std::atomic<bool> off{false};  // after a store failed: the cache is off for the rest of the run
+    std::vector<std::string> problems;
+    void problem(std::string p) {
+        std::lock_guard<std::mutex> lock(mutex);
+        problems.push_back(std::move(p));
+    }
+};
+
 MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget) const {
+    // Sets whose outputs another set claimed first are computed (the refusals are this run's).
+    const bool cacheable = cache_ && !cache_log_->off && !refused_.count(src.name);
+    std::string key_error;
+    const std::optional<std::string> key =
+        cacheable ? action_key(src, context_, key_error,
+                               [&](const InputFile& in, std::string& e) { return cache_->digest(in, e); })
+                  : std::nullopt;
+    if (key) {
+        std::vector<std::string> corrupt;
+        auto hit = cache_->restore(*key, src.name, opt_.out_dir, [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+            return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
+        }, corrupt);
+        for (auto& c : corrupt) cache_log_->problem(src.display + ": " + c + "; the set was computed again");
+        if (hit) {
+            ++cache_log_->hits;
+            MaterialResult res;
+            res.entry = std::move(hit->entry);
+            res.entry.source = source_of(src, opt_.out_dir);
+            if (src.is_zip) res.entry.archive = relative_to(src.root, opt_.out_dir);
+            return res;
+        }
+    }
+    MaterialResult res = compute(src, budget);
+    if (!key) return res;
+    ++cache_log_->misses;
+    // Only complete results are kept: a set with an output that could not be written, or one
+    // stopped by a signal, is computed again next time.
+    const bool complete = !res.failure && res.entry.status == manifest::Status::ok && !stop_requested();
+    std::string error;
+    if (complete && !cache_log_->off && !cache_->store(*key, res.entry, opt_.out_dir, error) && !cache_log_->off.exchange(true))
+        cache_log_->problem(cache_->dir().string() + ": cannot store results (" + error +
+                            "); the cache is off for the rest of this run");
+    return res;
+}
+
+MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget) const {
     struct InFlight {  // counts this set as running until it returns or throws
         std::atomic<int>& n;
         explicit InFlight(std::atomic<int>& c) : n(c) { ++n; }
@@ -150,6 +191,7 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     struct Written {
         std::optional<manifest::Output> entry;  // set when written
         std::optional<Finding> failure;
+        std::vector<Finding> notes;  // block-compressed outputs: resized top level, error over the bound
     };
     std::vector<const OutputSpec*> wanted;
     for (const auto& o : preset_.outputs)
@@ -158,24 +200,39 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     auto write_output = [&](const OutputSpec& o) -> Written {
         auto failed = [](std::string msg) {
             return Written{std::nullopt, Finding{std::string(code::output_write_failed), Severity::error, "", "",
-                                                 std::move(msg), {}}};
+                                                 std::move(msg), {}}, {}};
         };
         const std::string rel = preset_.output_path(src.name, o);
         const fs::path rel_path = fs::path(rel).lexically_normal();
         if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..")
             return failed("output path '" + rel + "' leaves the output folder; skipped");
+        if (const auto m = refused_.find(src.name); m != refused_.end())
+            if (const auto why = m->second.find(o.suffix); why != m->second.end()) return failed(why->second + "; not written");
+        if (stop_requested()) return failed(rel + ": not written (interrupted)");
         const auto roles = o.roles();
         const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
         const Size size = any_map ? Size{w, h} : Size{preset_.constant_size, preset_.constant_size};
-        // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
-        std::optional<Image8> packed8 = pack_output8(o, planes, preset_, size, *color_);
-        const EncodeOptions enc{preset_.format, o.bit_depth};
         std::vector<unsigned char> bytes;
         std::string err;
-        const bool encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
-                                     : encode_image(pack_output(o, planes, preset_, size, *color_), enc, bytes, err);
-        packed8.reset();
-        if (!encoded || !write_file_atomic(opt_.out_dir / rel_path, bytes, err)) return failed(rel + ": " + err);
+        bool encoded = false;
+        std::optional<texture::EncodedOutput> gpu;  // dds, ktx2: the mip levels in GPU blocks (lib/texture)
+        if (is_block_container(preset_.format)) {
+            gpu.emplace();
+            encoded = texture::encode_output(o, planes, size, {&preset_, color_.get(), std::string(kGenerator), 1}, *gpu, err);
+            bytes = std::move(gpu->bytes);
+        } else {
+            // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
+            std::optional<Image8> packed8 = pack_output8(o, planes, preset_, size, *color_);
+            const EncodeOptions enc{preset_.format, o.bit_depth};
+            encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
+                              : encode_image(pack_output(o, planes, preset_, size, *color_), enc, bytes, err);
+        }
+        // Written under the output folder without following links; through the run's folder
+        // (journal, files that are not ours refused) when run() set one.
+        const std::string file = rel_path.generic_string();
+        if (!encoded) return failed(rel + ": " + err);
+        if (!(folder_ ? folder_->write(file, bytes, err) : write_file_under(opt_.out_dir, file, bytes, err)))
+            return failed(err.rfind(file, 0) == 0 ? err : rel + ": " + err);
         manifest::Output e;
         e.file = rel_path.generic_string();
         e.srgb = o.srgb;
@@ -187,7 +244,15 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
         e.bit_depth = o.bit_depth;
         e.format = preset_.format;
         e.sha256 = sha256_hex(bytes);
-        return Written{std::move(e), std::nullopt};
+        if (!gpu) return Written{std::move(e), std::nullopt, {}};
+        e.width = gpu->width;
+        e.height = gpu->height;
+        e.block_format = gpu->block_format;
+        e.gpu_format = gpu->gpu_format;
+        e.supercompression = gpu->supercompression;
+        e.normal_z_reconstructed = gpu->normal_xy;
+        e.levels = std::move(gpu->levels);
+        return Written{std::move(e), std::nullopt, std::move(gpu->findings)};
     };
     // The outputs of a large set are packed and encoded on two threads (each output on one:
     // deflate is serial) when a worker is idle, so a 4K set running alone (at the end of a batch,
@@ -197,11 +262,32 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     parallel_for(wanted.size(), plan.footprint > (uint64_t{64} << 20) && idle_worker ? 2 : 1, [&](size_t i) {
         try {
             written[i] = write_output(*wanted[i]);
-        } catch (const std::exception& e) {  // parallel_for's fn must not throw (bad_alloc)
+        } catch (const std::bad_alloc&) {  // parallel_for's fn must not throw
+            written[i].failure = Finding{std::string(code::output_write_failed), Severity::error, "", "",
+                                         preset_.output_path(src.name, *wanted[i]) +
+                                             ": out of memory while packing or encoding it (" + std::to_string(w) + "x" +
+                                             std::to_string(h) + "); run with fewer --jobs, or set the preset's max_size",
+                                         {}};
+        } catch (const std::exception& e) {
             written[i].failure = Finding{std::string(code::output_write_failed), Severity::error, "", "",
                                          preset_.output_path(src.name, *wanted[i]) + ": " + e.what(), {}};
         }
     });
+    // GPUs and engines import at most 16384 pixels a side (Vulkan's and D3D12's image limit on
+    // most devices, Unreal's and Unity's largest texture): a larger output is written, and said so.
+    constexpr int kEngineMaxSide = 16384;
+    for (const auto& r : written)
+        if (r.entry && std::max(r.entry->width, r.entry->height) > kEngineMaxSide) {
+            plan.findings.push_back({std::string(code::output_too_large), Severity::warning, "", "",
+                                     r.entry->file + " is " + std::to_string(r.entry->width) + "x" +
+                                         std::to_string(r.entry->height) + ": wider or taller than " +
+                                         std::to_string(kEngineMaxSide) +
+                                         " pixels, which engines and GPUs do not import; downsample the source or set "
+                                         "the preset's max_size",
+                                     {{"size", {r.entry->width, r.entry->height}}, {"limit", kEngineMaxSide}}});
+            validate::apply_config(plan.findings, src.name, opt_.rules);
+            break;
+        }
 
     manifest::Material& m = res.entry;
     for (auto& r : written) {  // preset order, whatever finished first
@@ -210,7 +296,9 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
             plan.findings.push_back(std::move(*r.failure));
             plan.partial = true;
         }
+        for (auto& f : r.notes) plan.findings.push_back(std::move(f));
     }
+    validate::apply_config(plan.findings, src.name, opt_.rules);  // the encoder's findings too
     m.name = src.name;
     m.source = source_of(src, opt_.out_dir);
     if (src.is_zip) m.archive = relative_to(src.root, opt_.out_dir);
@@ -219,21 +307,41 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     m.inputs = manifest_inputs(plan);
     m.constants = std::move(plan.constants);
     m.findings = std::move(plan.findings);
+    write_material_files(preset_, planes, [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+        return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
+    }, m);
     return res;
 }
 
 IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     IngestResult result;
     std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(opt_.out_dir, ec)) && !fs::exists(opt_.out_dir, ec)) {
+        result.error = opt_.out_dir.string() + ": a symbolic link to " + fs::read_symlink(opt_.out_dir, ec).string() +
+                       ", which does not exist; create its target or choose another output folder";
+        return result;
+    }
     fs::create_directories(opt_.out_dir, ec);
     if (ec || !fs::is_directory(opt_.out_dir, ec)) {
         result.error = opt_.out_dir.string() + ": cannot create the output folder (" + ec.message() + ")";
         return result;
     }
     std::vector<InputFailure> source_failures;
-    std::vector<MaterialSource> sets = find_material_sets(inputs, opt_.out_dir, source_failures);
+    std::string conflict;
+    std::vector<MaterialSource> sets = find_material_sets(inputs, opt_.out_dir, source_failures, &conflict);
+    if (!conflict.empty()) {
+        result.error = conflict;
+        result.usage_error = true;
+        return result;
+    }
+    // The folder is ours from here to the end (lock, journal): process/output_dir.hpp.
+    std::unique_ptr<OutputFolder> folder =
+        OutputFolder::open({opt_.out_dir, opt_.manifest_name, opt_.force}, result.error, result.usage_error);
+    if (!folder) return result;
+    remove_stale_temps(opt_.out_dir);  // a killed run's, never a running one's
     if (opt_.shard) {  // this shard's sets only (process/work: stable, balanced by size)
         std::vector<uint64_t> bytes;
+        bytes.reserve(sets.size());
         for (const auto& s : sets) bytes.push_back(set_bytes(s));
         const std::vector<int> shard = assign_shards(sets, bytes, opt_.shard->second);
         std::vector<MaterialSource> mine;
@@ -242,6 +350,42 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         sets = std::move(mine);
     }
 
+    // Every output path is claimed before any set runs, in set order: two outputs that would be
+    // one file (a preset pattern that leaves names equal, names that differ in case only) are
+    // refused the same way every run, and none is written twice.
+    refused_.clear();
+    for (const std::string& own : {opt_.manifest_name, folder->lock_name(), folder->journal_name()}) folder->claim(own, "");
+    for (const auto& set : sets)
+        for (const auto& o : preset_.outputs) {
+            const std::string rel = preset_.output_path(set.name, o);
+            if (std::string why = folder->claim(rel, set.name); !why.empty()) refused_[set.name][o.suffix] = rel + ": " + why;
+        }
+    if (!folder->begin(result.error)) return result;
+    folder_ = folder.get();
+    // The cache never fails a run: one that cannot be opened is a problem reported, then off.
+    std::optional<Cache> cache;
+    CacheLog cache_log;
+    if (opt_.cache_dir) {
+        std::string error;
+        cache = Cache::open(*opt_.cache_dir, error);
+        if (cache) {
+            cache_ = &*cache;
+            cache_log_ = &cache_log;
+            context_ = context_digest(preset_, opt_.rules, *color_);
+        } else {
+            result.cache_problems.push_back(error + "; running without the cache");
+        }
+    }
+    struct Reset {  // process() outside run() writes without a folder or a cache
+        const Ingestor& self;
+        ~Reset() {
+            self.folder_ = nullptr;
+            self.refused_.clear();
+            self.cache_ = nullptr;
+            self.cache_log_ = nullptr;
+        }
+    } reset{*this};
+
     std::vector<MaterialResult> results(sets.size());
     MemoryBudget budget(opt_.memory_budget);
     std::mutex progress_mutex;
@@ -249,9 +393,14 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     const std::vector<size_t> order = largest_first(sets);
     parallel_for(sets.size(), opt_.jobs, [&](size_t k) {
         const size_t i = order[k];
+        if (stop_requested()) return;  // a signal asked to stop: no new set starts
         try {
             results[i] = process(sets[i], opt_.memory_budget ? &budget : nullptr);
-        } catch (const std::exception& e) {  // a bug or exhaustion in one set must not stop the others
+        } catch (const std::bad_alloc&) {  // exhaustion in one set must not stop the others
+            results[i] = MaterialResult{};
+            results[i].failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
+                                                   "fewer --jobs, or set the preset's max_size";
+        } catch (const std::exception& e) {  // nor a bug
             results[i] = MaterialResult{};
             results[i].failure = sets[i].display + ": internal error: " + e.what();
         }
@@ -282,11 +431,27 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         return std::tie(a.source, a.code, a.message) < std::tie(b.source, b.code, b.message);
     });
 
+    result.cache_hits = cache_log.hits;
+    result.cache_misses = cache_log.misses;
+    for (auto& p : cache_log.problems) result.cache_problems.push_back(std::move(p));
+    if (stop_requested()) {  // stopped: the journal stays, no manifest (the next run finishes the job)
+        result.interrupted = true;
+        return result;
+    }
+    // library.gltf: every material of the run in one file (not per shard: a shard sees its part).
+    if (!opt_.shard && !write_library(m, opt_.out_dir, [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+            return folder->write(rel, b, e);
+        }, result.error))
+        return result;
     const std::string text = json_text(manifest::to_json(m));  // never throws on non-UTF-8 names
+    std::set<std::string> produced;
+    for (const auto& mat : m.materials) {
+        for (const auto& o : mat.outputs) produced.insert(o.file);
+        for (const auto& f : mat.material_files) produced.insert(f.file);
+    }
+    for (const auto& f : m.library) produced.insert(f.file);
     std::string err;
-    if (!write_file_atomic(opt_.out_dir / opt_.manifest_name,
-                           std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), err))
-        result.error = err;
+    if (!folder->finish(text, produced, result.notes, err)) result.error = err;
     remove_stale_temps(opt_.out_dir);
     return result;
 }

@@ -4,6 +4,7 @@
 #pragma once
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <atomic>
 #include <optional>
@@ -38,6 +39,13 @@ struct IngestOptions {
     // `matforge merge` joins their manifests).
     std::optional<std::pair<int, int>> shard;
     std::string manifest_name = "manifest.json";
+    // --force: replace a manifest.json matforge did not write, and files in the way of outputs
+    // that no earlier run of ours wrote (process/output_dir.hpp).
+    bool force = false;
+    // The result cache (process/cache.hpp): an unchanged set (same file contents, preset, rules,
+    // OCIO config, matforge version) is restored from it instead of decoded and encoded again.
+    // nullopt: no cache (--no-cache).
+    std::optional<std::filesystem::path> cache_dir;
     // Called after each set (from worker threads, serialized): done count, total, name, result.
     std::function<void(size_t done, size_t total, const std::string& name, const MaterialResult& result)> progress;
 };
@@ -45,7 +53,17 @@ struct IngestOptions {
 struct IngestResult {
     manifest::Manifest manifest;
     std::string error;  // batch-level error (output folder unusable); empty when fine
+    bool usage_error = false;   // `error` is about the choice of output folder (exit 2)
+    bool interrupted = false;   // stopped by a signal (core/interrupt.hpp): no manifest written
+    std::vector<std::string> notes;  // outputs of earlier runs removed or kept (output_dir.hpp)
+    // Sets restored from the cache, sets computed, and what went wrong with the cache (a corrupt
+    // blob, a full disk: the cache turned itself off), one line each.
+    size_t cache_hits = 0, cache_misses = 0;
+    std::vector<std::string> cache_problems;
 };
+
+class OutputFolder;
+class Cache;
 
 class Ingestor {
 public:
@@ -64,6 +82,17 @@ private:
     // Sets inside process() now: a large set with a worker left idle (the batch's tail, or a
     // single set) encodes its outputs on two threads; with every worker busy, one.
     mutable std::atomic<int> in_flight_{0};
+    // Set by run() for the sets it processes: the folder (lock, journal, ownership of files) and
+    // the outputs whose paths another output claimed first (material -> suffix -> why).
+    mutable OutputFolder* folder_ = nullptr;
+    mutable std::map<std::string, std::map<std::string, std::string>> refused_;
+    // Set by run() when a cache is in use: the cache, the digest of everything but the set's
+    // files (process/work.hpp context_digest), and what it did.
+    mutable Cache* cache_ = nullptr;
+    mutable std::string context_;
+    struct CacheLog;
+    mutable CacheLog* cache_log_ = nullptr;
+    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget) const;
 };
 
 }  // namespace mf

@@ -137,6 +137,8 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
                                                  err + "; the file is skipped"));
         }
         if (!outcomes[i].used) continue;
+        for (const auto& [c, msg] : outcomes[i].map->info.notes)  // MULTIPART_IMAGE, ORIENTATION_IGNORED
+            plan.findings.push_back(make_finding(c, Severity::warning, role, outcomes[i].used->file, msg));
         plan.inputs.emplace(role, *outcomes[i].used);
         if (mode == PlanMode::decode) plan.decoded.emplace(outcomes[i].used->file, std::move(outcomes[i].decoded));
         maps.push_back(std::move(*outcomes[i].map));
@@ -266,14 +268,109 @@ void conversion_findings(SetPlan& plan, NormalConvention target) {
     }
 }
 
-// One size for the set: the largest routed map, within the preset's limit.
-void decide_size(SetPlan& plan, const Preset& preset) {
-    int w = 0, h = 0;
+// One size for the set. The routed maps' shapes are compared, not their widths and heights
+// apart: an N×1 albedo beside a 1×N roughness must not become an N×N set (N² pixels resampled
+// from N). Maps whose aspect ratios are within 2x of each other share a shape; the set takes the
+// shape most maps have (ties: the largest map's, then role order) at the size of the largest map
+// of that shape, so the set never holds more pixels than its largest file (the per-file pixel
+// budget bounds the set). A map of another shape is not stretched: ASPECT_MISMATCH (error) names
+// it and both sizes, and its roles take the preset's constants. Maps of at most 4x4 pixels hold
+// a constant in all but name and fit any shape. limit_size() then applies the preset's max_size.
+void decide_size(SetPlan& plan) {
+    struct Map {
+        Role role;
+        int w, h;
+    };
+    std::vector<Map> maps;
     for (const auto& [out, r] : plan.routes) {
         const HeaderInfo& hd = plan.inputs.at(r.from).header;
-        w = std::max(w, hd.width);
-        h = std::max(h, hd.height);
+        // A copy: clang 14 cannot capture a structured binding.
+        if (std::none_of(maps.begin(), maps.end(), [from = r.from](const Map& m) { return m.role == from; }))
+            maps.push_back({r.from, std::max(1, hd.width), std::max(1, hd.height)});
     }
+    std::sort(maps.begin(), maps.end(), [](const Map& a, const Map& b) { return a.role < b.role; });
+    auto pixels = [](const Map& m) { return int64_t{m.w} * m.h; };
+    auto tiny = [](const Map& m) { return std::max(m.w, m.h) <= 4; };
+    // Within 2x: w1/h1 <= 2 w2/h2 and w2/h2 <= 2 w1/h1, in integers.
+    auto fits = [](int w1, int h1, int w2, int h2) {
+        return int64_t{w1} * h2 <= 2 * int64_t{w2} * h1 && int64_t{w2} * h1 <= 2 * int64_t{w1} * h2;
+    };
+    const Map* shape = nullptr;
+    int best = -1;
+    for (const Map& m : maps) {
+        if (tiny(m)) continue;
+        int n = 0;
+        for (const Map& o : maps) n += tiny(o) || fits(m.w, m.h, o.w, o.h);
+        if (n > best || (n == best && pixels(m) > pixels(*shape))) {
+            best = n;
+            shape = &m;
+        }
+    }
+    int w = 0, h = 0;
+    const Map* largest = nullptr;
+    for (const Map& m : maps)
+        if ((!shape || tiny(m) || fits(shape->w, shape->h, m.w, m.h)) && (!largest || pixels(m) > pixels(*largest)))
+            largest = &m;
+    if (largest) {
+        w = largest->w;
+        h = largest->h;
+    }
+    std::set<std::string> refused;  // files left out for their shape
+    for (const Map& m : maps) {
+        if (tiny(m) || fits(w, h, m.w, m.h)) continue;
+        const Candidate& c = plan.inputs.at(m.role);
+        refused.insert(c.file);
+        const std::string file = c.file;
+        plan.findings.push_back({std::string(code::aspect_mismatch), Severity::error, std::string(role_name(m.role)), file,
+                                 file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + ", a shape more than 2x off the set's " +
+                                     std::to_string(w) + "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
+                                     "); it is not stretched to fit and not used",
+                                 {{"size", {m.w, m.h}}, {"set_size", {w, h}}}});
+        for (auto it = plan.routes.begin(); it != plan.routes.end();)
+            it = it->second.from == m.role ? plan.routes.erase(it) : std::next(it);
+        plan.inputs.erase(m.role);
+        if (std::none_of(plan.inputs.begin(), plan.inputs.end(), [&](const auto& i) { return i.second.file == file; }))
+            plan.decoded.erase(file);
+    }
+    // RESOLUTION_MISMATCH (validate) compared every map, the refused ones too: a finding about a
+    // refused map, or one measuring a kept map against a refused map's size ("… are 1xN; it will
+    // be resampled"), no longer says what happens. The latter is said again against the set's size.
+    if (!refused.empty()) {
+        std::set<std::pair<int, int>> refused_sizes;
+        for (const Map& m : maps)
+            if (!tiny(m) && !fits(w, h, m.w, m.h)) refused_sizes.insert({m.w, m.h});
+        std::set<std::string> restate;  // kept files whose finding is dropped
+        auto stale = [&](const Finding& f) {
+            if (f.code != code::resolution_mismatch) return false;
+            if (refused.count(f.file)) return true;
+            const auto& g = f.figures;
+            if (!g.is_object() || !g.contains("reference_width") || !g.contains("reference_height")) return false;
+            const auto& rw = g["reference_width"];
+            const auto& rh = g["reference_height"];
+            if (!rw.is_number_integer() || !rh.is_number_integer() || !refused_sizes.count({rw.get<int>(), rh.get<int>()}))
+                return false;
+            restate.insert(f.file);
+            return true;
+        };
+        plan.findings.erase(std::remove_if(plan.findings.begin(), plan.findings.end(), stale), plan.findings.end());
+        for (const Map& m : maps) {
+            const auto in = plan.inputs.find(m.role);
+            if (in == plan.inputs.end() || !restate.count(in->second.file) || (m.w == w && m.h == h)) continue;
+            const std::string& file = in->second.file;
+            plan.findings.push_back({std::string(code::resolution_mismatch), Severity::warning, std::string(role_name(m.role)), file,
+                                     file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " +
+                                         std::to_string(w) + "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
+                                         "); it will be resampled",
+                                     {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}}});
+        }
+    }
+    plan.width = w;
+    plan.height = h;
+}
+
+// The set's size within the preset's max_size (RESIZED).
+void limit_size(SetPlan& plan, const Preset& preset) {
+    int w = plan.width, h = plan.height;
     if (preset.max_size > 0 && std::max(w, h) > preset.max_size) {
         const int ow = w, oh = h;
         const double k = static_cast<double>(preset.max_size) / std::max(w, h);
@@ -310,6 +407,7 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
         discover_set(src.files, header, ChoicePolicy{preset.normal_convention, preset.max_size}, read_sidecars(files));
     plan.convention = d.convention;
     plan.findings = d.findings;
+    plan.findings.insert(plan.findings.end(), src.findings.begin(), src.findings.end());  // NAMES_MERGED, …
     plan.footprint = estimated_bytes(d);
     if (opt.mode == PlanMode::decode) plan.lease = std::make_unique<BudgetLease>(opt.budget, plan.footprint);
 
@@ -338,11 +436,12 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
     files.opened.clear();  // read (decode mode) or streamed (stream mode): free zip bytes early
 
     route(plan, checked);
+    decide_size(plan);  // first: a map it leaves out (ASPECT_MISMATCH) is converted by nothing
     plan.normal_z_rebuilt = checked.normal_z_rebuilt;
     if (const auto n = plan.routes.find(Role::normal); n != plan.routes.end())
         plan.normal = normal_facts(plan.inputs.at(n->second.from), checked.normal);
     conversion_findings(plan, preset.normal_convention);
-    decide_size(plan, preset);
+    limit_size(plan, preset);
 
     // Missing roles: constants where an output needs them, reported per the preset.
     std::set<Role> available;

@@ -2,63 +2,156 @@
 
 #include <zip.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <functional>
+#include <list>
 #include <map>
+#include <mutex>
 #include <set>
 
 #include "core/files.hpp"
+#include "core/json.hpp"
 #include "material/discovery.hpp"
 
 namespace mf {
 namespace fs = std::filesystem;
+
+// ---- the archive, opened once
+
+class ZipArchive {
+public:
+    struct Entry {
+        zip_uint64_t index = 0;
+        bool symlink = false;  // stored as a Unix symbolic link: its data is the target's name
+        int copies = 1;        // entries of this name (the first is used)
+    };
+
+    explicit ZipArchive(fs::path path) : path_(std::move(path)) {}
+    ~ZipArchive() {
+        std::lock_guard reg(registry_mutex());
+        auto& open = registry();
+        open.remove(this);
+        if (z_) zip_discard(z_);
+    }
+    ZipArchive(const ZipArchive&) = delete;
+    ZipArchive& operator=(const ZipArchive&) = delete;
+
+    const fs::path& path() const { return path_; }
+    std::map<std::string, Entry> entries;  // by name, filled by scan (not changed afterwards)
+
+    // Opens the archive (or reuses the handle); `error` names libzip's reason.
+    bool with_handle(std::string& error, const std::function<void(zip_t*)>& fn) {
+        std::lock_guard lock(mutex_);
+        if (!z_) {
+            int err = 0;
+            z_ = zip_open(path_.c_str(), ZIP_RDONLY, &err);
+            if (!z_) {
+                zip_error_t ze;
+                zip_error_init_with_code(&ze, err);
+                error = zip_error_strerror(&ze);
+                zip_error_fini(&ze);
+                return false;
+            }
+            remember_open();
+        }
+        fn(z_);
+        return true;
+    }
+
+private:
+    // At most kMaxOpen archives hold a descriptor at once (a library of 10,000 zips would run out
+    // of them): opening one more closes the least recently opened one not in use.
+    static constexpr size_t kMaxOpen = 32;
+    static std::mutex& registry_mutex() {
+        static std::mutex m;
+        return m;
+    }
+    static std::list<ZipArchive*>& registry() {
+        static std::list<ZipArchive*> open;
+        return open;
+    }
+    void remember_open() {  // mutex_ held
+        std::lock_guard reg(registry_mutex());
+        auto& open = registry();
+        open.push_back(this);
+        for (auto it = open.begin(); open.size() > kMaxOpen && it != open.end();) {
+            ZipArchive* a = *it;
+            // try_lock: never waits on another archive while holding our own lock (no deadlock).
+            if (a != this && a->mutex_.try_lock()) {
+                zip_discard(a->z_);
+                a->z_ = nullptr;
+                a->mutex_.unlock();
+                it = open.erase(it);
+            } else {
+                ++it;
+            }
+        }
+    }
+
+    fs::path path_;
+    std::mutex mutex_;
+    zip_t* z_ = nullptr;
+};
+
 namespace {
 
 bool hidden(const std::string& name) { return name.empty() || name[0] == '.' || name == "__MACOSX"; }
 
-// Folder -> its files, for a zip archive's entries. Entries named to climb out of the archive
-// ("../x", "/abs/x") go to `unsafe`.
-std::map<std::string, std::vector<std::string>> zip_folders(const fs::path& zip_path, std::string& error,
-                                                            std::vector<std::string>& unsafe) {
-    std::map<std::string, std::vector<std::string>> folders;
-    int err = 0;
-    zip_t* z = zip_open(zip_path.c_str(), ZIP_RDONLY, &err);
-    if (!z) {
-        zip_error_t ze;
-        zip_error_init_with_code(&ze, err);
-        error = zip_error_strerror(&ze);
-        zip_error_fini(&ze);
-        return folders;
-    }
-    const zip_int64_t n = zip_get_num_entries(z, 0);
-    for (zip_int64_t i = 0; i < n; ++i) {
-        const char* raw = zip_get_name(z, static_cast<zip_uint64_t>(i), ZIP_FL_ENC_GUESS);
-        if (!raw) continue;
-        const std::string name = raw;
-        if (name.empty() || name.back() == '/') continue;
-        // Entries are only ever read into memory, so "../" names cannot escape anywhere, but
-        // they are no part of a material set either: reported (a crafted archive), then skipped.
-        bool escapes = name.front() == '/', skip = false;
-        size_t start = 0;
-        for (size_t p = 0; p <= name.size(); ++p) {
-            if (p == name.size() || name[p] == '/') {
-                const std::string part = name.substr(start, p - start);
-                if (part == "..") escapes = true;
-                else if (hidden(part)) skip = true;
-                start = p + 1;
-            }
-        }
-        if (escapes) unsafe.push_back(name);
-        if (escapes || skip) continue;
-        const auto slash = name.rfind('/');
-        const std::string folder = slash == std::string::npos ? "" : name.substr(0, slash);
-        folders[folder].push_back(slash == std::string::npos ? name : name.substr(slash + 1));
-    }
-    zip_close(z);
-    return folders;
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
 }
 
-void add_groups(const std::string& fallback, const std::vector<std::string>& files,
-                const MaterialSource& proto, std::vector<MaterialSource>& out) {
+// The real path of a folder or archive, to read each once however many inputs reach it.
+fs::path real_path(const fs::path& p) {
+    std::error_code ec;
+    fs::path r = fs::canonical(p, ec);
+    return ec ? fs::absolute(p, ec).lexically_normal() : r;
+}
+
+// Image formats matforge does not read: a file named like a map in one of them is not silently
+// nothing ("Wood_Color.gif").
+bool unread_image_format(const std::string& file) {
+    static const std::set<std::string> kExt{"gif", "jp2", "j2k", "j2c", "jpx", "jpf", "ppm", "pgm", "pbm", "pnm",
+                                            "pam", "pfm", "heic", "heif", "avif", "jxl", "ico", "sgi", "rgb", "iff",
+                                            "pcx", "ktx", "ktx2", "astc", "pvr", "basis", "dpx", "cin", "fits"};
+    const auto dot = file.rfind('.');
+    if (dot == std::string::npos || dot == 0 || !kExt.count(lower(file.substr(dot + 1)))) return false;
+    return classify_name(file.substr(0, dot) + ".png").has_value();
+}
+
+struct Scan {
+    const fs::path& exclude;
+    std::vector<MaterialSource>& out;
+    std::vector<InputFailure>& failures;
+    std::string* output_conflict;
+    std::map<fs::path, std::vector<size_t>> seen;  // real path of a folder/archive -> its sets
+    std::string input;                             // the input being walked, for DUPLICATE_INPUT
+    size_t reached_again = 0;                      // folders and archives met a second time
+};
+
+// A folder or archive already read: its sets are noted, not found again.
+bool already_seen(Scan& scan, const fs::path& p) {
+    const auto it = scan.seen.find(real_path(p));
+    if (it == scan.seen.end()) return false;
+    ++scan.reached_again;
+    for (size_t i : it->second) {
+        MaterialSource& s = scan.out[i];
+        const std::string msg = s.display + " is also reached through the input " + scan.input +
+                                "; it is read once (overlapping inputs)";
+        const bool known = std::any_of(s.findings.begin(), s.findings.end(),
+                                       [&](const Finding& f) { return f.message == msg; });
+        if (!known)
+            s.findings.push_back({std::string(code::duplicate_input), Severity::info, "", "", msg,
+                                  {{"input", scan.input}}});
+    }
+    return true;
+}
+
+void add_groups(const std::string& fallback, const std::vector<std::string>& files, const MaterialSource& proto,
+                std::vector<MaterialSource>& out) {
     for (auto& g : group_files(files, fallback)) {
         const bool any_role = std::any_of(g.files.begin(), g.files.end(),
                                           [](const std::string& f) { return classify_name(f).has_value(); });
@@ -67,33 +160,105 @@ void add_groups(const std::string& fallback, const std::vector<std::string>& fil
         s.name = g.name.empty() ? fallback : g.name;
         s.files = g.files;
         std::sort(s.files.begin(), s.files.end());
+        if (g.merge) {
+            // Spellings that differ only in resolution/format tags are one material at several
+            // sizes (info); a difference of case or separators may be two materials (warning).
+            nlohmann::json figures{{"spellings", g.merge->spellings}, {"files", g.merge->files}};
+            s.findings.push_back({std::string(code::names_merged),
+                                  g.merge->spelling_differs ? Severity::warning : Severity::info, "",
+                                  g.merge->files.empty() ? "" : g.merge->files.front(), g.merge->message,
+                                  std::move(figures)});
+        }
         out.push_back(std::move(s));
     }
 }
 
-void scan_zip(const fs::path& zip, std::vector<MaterialSource>& out, std::vector<InputFailure>& failures) {
+// Folder -> its files, for a zip archive's entries (recorded in `zip.entries`). Entries named to
+// climb out of the archive ("../x", "/abs/x") go to `unsafe`.
+std::map<std::string, std::vector<std::string>> zip_folders(ZipArchive& zip, std::string& error,
+                                                            std::vector<std::string>& unsafe) {
+    std::map<std::string, std::vector<std::string>> folders;
+    zip.with_handle(error, [&](zip_t* z) {
+        const zip_int64_t n = zip_get_num_entries(z, 0);
+        for (zip_int64_t i = 0; i < n; ++i) {
+            const auto index = static_cast<zip_uint64_t>(i);
+            const char* raw = zip_get_name(z, index, ZIP_FL_ENC_GUESS);
+            if (!raw) continue;
+            const std::string name = raw;
+            if (name.empty() || name.back() == '/') continue;
+            // Entries are only ever read into memory, so "../" names cannot escape anywhere, but
+            // they are no part of a material set either: reported (a crafted archive), then skipped.
+            bool escapes = name.front() == '/', skip = false;
+            size_t start = 0;
+            for (size_t p = 0; p <= name.size(); ++p) {
+                if (p == name.size() || name[p] == '/') {
+                    const std::string part = name.substr(start, p - start);
+                    if (part == "..") escapes = true;
+                    else if (hidden(part)) skip = true;
+                    start = p + 1;
+                }
+            }
+            if (escapes) unsafe.push_back(name);
+            if (escapes || skip) continue;
+            zip_uint8_t opsys = 0;
+            zip_uint32_t attributes = 0;
+            const bool link = zip_file_get_external_attributes(z, index, 0, &opsys, &attributes) == 0 &&
+                              opsys == ZIP_OPSYS_UNIX && ((attributes >> 16) & S_IFMT) == S_IFLNK;
+            auto [it, first] = zip.entries.try_emplace(name, ZipArchive::Entry{index, link, 1});
+            if (!first) {
+                ++it->second.copies;  // one name twice: the first entry is used, and said so
+                continue;
+            }
+            const auto slash = name.rfind('/');
+            const std::string folder = slash == std::string::npos ? "" : name.substr(0, slash);
+            folders[folder].push_back(slash == std::string::npos ? name : name.substr(slash + 1));
+        }
+    });
+    return folders;
+}
+
+void scan_zip(Scan& scan, const fs::path& zip_path) {
+    if (already_seen(scan, zip_path)) return;
+    auto zip = std::make_shared<ZipArchive>(zip_path);
     std::string error;
     std::vector<std::string> unsafe;
-    auto folders = zip_folders(zip, error, unsafe);
+    auto folders = zip_folders(*zip, error, unsafe);
+    const std::string shown = zip_path.string();
     if (!error.empty()) {
-        failures.push_back({zip.string(), std::string(code::unreadable_file), zip.string() + ": not a readable .zip (" + error + ")"});
+        scan.failures.push_back({shown, std::string(code::unreadable_file), shown + ": not a readable .zip (" + error + ")"});
+        scan.seen[real_path(zip_path)];
         return;
     }
     for (const auto& name : unsafe)
-        failures.push_back({zip.string(), std::string(code::unsafe_path),
-                            zip.string() + ": entry '" + name + "' points outside the archive; skipped"});
-    const size_t before = out.size();
+        scan.failures.push_back({shown, std::string(code::unsafe_path),
+                                 shown + ": entry '" + name + "' points outside the archive; skipped"});
+    const size_t before = scan.out.size();
     for (auto& [folder, files] : folders) {
         MaterialSource proto;
-        proto.root = zip;
+        proto.root = zip_path;
         proto.is_zip = true;
         proto.zip_folder = folder;
-        proto.display = zip.string() + (folder.empty() ? "" : "/" + folder);
-        const std::string fallback = folder.empty() ? zip.stem().string() : fs::path(folder).filename().string();
-        add_groups(fallback, files, proto, out);
+        proto.archive = zip;
+        proto.display = shown + (folder.empty() ? "" : "/" + folder);
+        const std::string fallback = folder.empty() ? zip_path.stem().string() : fs::path(folder).filename().string();
+        add_groups(fallback, files, proto, scan.out);
     }
-    if (out.size() == before)
-        failures.push_back({zip.string(), std::string(code::unrecognized_file), zip.string() + ": the archive holds no recognizable material maps"});
+    auto& mine = scan.seen[real_path(zip_path)];
+    for (size_t i = before; i < scan.out.size(); ++i) {
+        mine.push_back(i);
+        MaterialSource& s = scan.out[i];
+        for (const std::string& f : s.files) {
+            const std::string entry = s.zip_folder.empty() ? f : s.zip_folder + "/" + f;
+            const auto it = zip->entries.find(entry);
+            if (it == zip->entries.end() || it->second.copies < 2) continue;
+            s.findings.push_back({std::string(code::duplicate_entry), Severity::warning, "", f,
+                                  shown + ": " + std::to_string(it->second.copies) + " entries are named '" + entry +
+                                      "'; the first is used, the others are ignored",
+                                  {{"entries", it->second.copies}}});
+        }
+    }
+    if (scan.out.size() == before)
+        scan.failures.push_back({shown, std::string(code::unrecognized_file), shown + ": the archive holds no recognizable material maps"});
 }
 
 // Whether a glTF or Megascans sidecar in the folder names one of its images: then its maps are
@@ -113,8 +278,8 @@ bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& fi
     return false;
 }
 
-void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vector<InputFailure>& failures) {
-    std::vector<std::string> files;
+// The files of `dir` that are not folders (hidden ones left out), sorted; zips go to `zips`.
+bool list_folder(const fs::path& dir, std::vector<std::string>& files, std::vector<fs::path>* zips, std::string& error) {
     std::error_code ec;
     fs::directory_iterator it(dir, ec);
     for (fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
@@ -125,45 +290,104 @@ void scan_folder(const fs::path& dir, std::vector<MaterialSource>& out, std::vec
         if (fs::is_directory(st)) continue;          // walk() decides about folders
         // Everything else is a candidate file, also FIFOs, sockets and broken or looping links:
         // they get a coded error naming them when read (never opened, so a FIFO cannot hang us).
-        if (fs::is_regular_file(st) && name.size() > 4 && fs::path(name).extension() == ".zip")
-            scan_zip(it->path(), out, failures);
+        if (zips && fs::is_regular_file(st) && name.size() > 4 && lower(fs::path(name).extension().string()) == ".zip")
+            zips->push_back(it->path());
         else
             files.push_back(name);
     }
-    if (ec) {  // unreadable folder, path beyond PATH_MAX, I/O error: reported, not silently lost
-        failures.push_back({dir.string(), std::string(code::unreadable_file),
-                            dir.string() + ": cannot list the folder (" + ec.message() + ")"});
-        return;
+    if (ec) {
+        error = ec.message();
+        return false;
     }
     std::sort(files.begin(), files.end());
+    if (zips) std::sort(zips->begin(), zips->end());
+    return true;
+}
+
+void scan_folder(Scan& scan, const fs::path& dir) {
+    std::vector<std::string> files;
+    std::vector<fs::path> zips;
+    std::string error;
+    if (!list_folder(dir, files, &zips, error)) {  // unreadable, beyond PATH_MAX, I/O error: reported
+        scan.failures.push_back({dir.string(), std::string(code::unreadable_file),
+                                 dir.string() + ": cannot list the folder (" + error + ")"});
+        return;
+    }
+    for (const fs::path& z : zips) scan_zip(scan, z);
     MaterialSource proto;
     proto.root = dir;
     proto.display = dir.string();
+    const size_t before = scan.out.size();
     if (sidecar_names_a_map(dir, files)) {  // the sidecar defines the set: one material, the folder's
         MaterialSource s = proto;
         s.name = dir.filename().string();
         s.files = files;
-        out.push_back(std::move(s));
-        return;
+        scan.out.push_back(std::move(s));
+    } else {
+        add_groups(dir.filename().string(), files, proto, scan.out);
     }
-    add_groups(dir.filename().string(), files, proto, out);
+    auto& mine = scan.seen[real_path(dir)];
+    for (size_t i = before; i < scan.out.size(); ++i) mine.push_back(i);
+    if (scan.out.size() > before) return;
+    std::string unread;
+    for (const std::string& f : files)
+        if (unread_image_format(f)) unread += (unread.empty() ? "" : ", ") + f;
+    if (!unread.empty())
+        scan.failures.push_back({dir.string(), std::string(code::unrecognized_file),
+                                 dir.string() + ": " + unread + " name material maps in a format matforge does not read "
+                                 "(it reads PNG, JPEG, TIFF, EXR, HDR, TGA, BMP, WebP, DDS and PSD); no set is made of them"});
 }
 
-void walk(const fs::path& root, const fs::path& exclude, std::vector<MaterialSource>& out,
-          std::vector<InputFailure>& failures) {
-    scan_folder(root, out, failures);
+// Whether the output folder `dir` (met while walking an input) holds a set's maps of its own,
+// and no manifest or journal of ours says they are outputs of an earlier run.
+std::string set_in_output_folder(const fs::path& dir) {
+    std::vector<std::string> files;
+    std::string error;
+    if (!list_folder(dir, files, nullptr, error)) return {};
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string n = e.path().filename().string();
+        if (n.rfind(".manifest", 0) == 0 && n.size() > 8 && n.substr(n.size() - 8) == ".journal") return {};
+        if (n.rfind("manifest", 0) != 0 || e.path().extension() != ".json") continue;
+        std::string err;
+        const auto j = read_json_file(e.path(), err);
+        if (j && j->is_object() && j->contains("generator") && (*j)["generator"].is_string() &&
+            (*j)["generator"].get<std::string>().rfind("matforge", 0) == 0)
+            return {};
+    }
+    std::vector<MaterialSource> sets;
+    add_groups(dir.filename().string(), files, MaterialSource{}, sets);
+    if (sets.empty()) return {};
+    std::string first;
+    for (const auto& f : sets.front().files)
+        if (classify_name(f)) {
+            first = f;
+            break;
+        }
+    return "the output folder " + dir.string() + " is the folder of the material set '" + sets.front().name + "' (" +
+           first + " …): its outputs would be written among its sources and the set left out; choose an output folder "
+           "that holds no material";
+}
+
+void walk(Scan& scan, const fs::path& root) {
+    if (already_seen(scan, root)) return;
+    scan_folder(scan, root);
     std::vector<fs::path> subdirs;
     std::error_code ec;
     for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
         std::error_code fec;
         // Real folders only: a symlink to a folder could loop back to an ancestor.
         if (it->is_directory(fec) && !it->is_symlink(fec) && !hidden(it->path().filename().string())) {
-            if (!exclude.empty() && fs::equivalent(it->path(), exclude, fec)) continue;
+            if (!scan.exclude.empty() && fs::equivalent(it->path(), scan.exclude, fec)) {
+                if (scan.output_conflict && scan.output_conflict->empty())
+                    *scan.output_conflict = set_in_output_folder(it->path());
+                continue;
+            }
             subdirs.push_back(it->path());
         }
     }
     std::sort(subdirs.begin(), subdirs.end());
-    for (auto& d : subdirs) walk(d, exclude, out, failures);
+    for (auto& d : subdirs) walk(scan, d);
 }
 
 }  // namespace
@@ -172,9 +396,35 @@ std::string safe_name(const std::string& name) {
     std::string s;
     for (unsigned char c : name) s += (std::isalnum(c) || c == '_' || c == '-' || c == '.') ? static_cast<char>(c) : '_';
     while (!s.empty() && s.front() == '.') s.erase(0, 1);
-    if (s.size() > 96) s.resize(96);
+    if (s.size() > kMaxNameBytes) s.resize(kMaxNameBytes);
     if (s.empty()) s = "material";
     return s;
+}
+
+std::vector<std::string> unique_names(const std::vector<std::string>& wanted, const std::vector<std::string>& reserved) {
+    std::vector<std::string> names;
+    std::map<std::string, int> holders;  // lower-case safe name -> how many sets want it
+    for (const auto& w : wanted) {
+        names.push_back(safe_name(w));
+        ++holders[lower(names.back())];
+    }
+    std::set<std::string> taken(reserved.begin(), reserved.end());
+    // First come, first kept: the first set of each name keeps it, unless reserved.
+    std::vector<bool> kept(names.size(), false);
+    for (size_t i = 0; i < names.size(); ++i) kept[i] = !taken.count(lower(names[i])) && taken.insert(lower(names[i])).second;
+    for (size_t i = 0; i < names.size(); ++i) {
+        if (kept[i]) continue;
+        const std::string base = names[i];
+        for (int n = 2;; ++n) {
+            const std::string suffix = "_" + std::to_string(n);
+            std::string candidate = base.substr(0, std::min(base.size(), kMaxNameBytes - suffix.size())) + suffix;
+            // A name another set holds as its own is never handed out, even before that set's turn.
+            if (holders.count(lower(candidate)) || !taken.insert(lower(candidate)).second) continue;
+            names[i] = candidate;
+            break;
+        }
+    }
+    return names;
 }
 
 InputFile MaterialSource::open(const std::string& file) const {
@@ -187,46 +437,51 @@ InputFile MaterialSource::open(const std::string& file) const {
     const std::string entry = zip_folder.empty() ? file : zip_folder + "/" + file;
     in.display = root.string() + "/" + entry;
     auto bytes = std::make_shared<std::vector<unsigned char>>();
-    int err = 0;
-    zip_t* z = zip_open(root.c_str(), ZIP_RDONLY, &err);
-    if (!z) {
-        in.open_error = "cannot open the archive";
-    } else {
-        constexpr zip_uint64_t kMaxEntry = zip_uint64_t{1} << 31;  // 2 GiB cap on one entry
-        zip_stat_t st;
-        zip_file_t* f = nullptr;
-        if (zip_stat(z, entry.c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
-            in.open_error = "entry not found in the archive";
-        } else if (st.size > kMaxEntry) {
-            in.open_error = "entry declares " + std::to_string(st.size) + " bytes, more than the 2 GiB limit";
-        } else if (!(f = zip_fopen(z, entry.c_str(), 0))) {
-            in.open_error = std::string("cannot read the entry (") + zip_strerror(z) + ")";
-        } else {
-            // The declared size is the archive's claim, not a fact: read in chunks and grow, so a
-            // forged header cannot make us allocate what the data does not hold.
-            constexpr size_t kChunk = size_t{1} << 20;
-            size_t got = 0;
-            for (;;) {
-                bytes->resize(got + kChunk);
-                const zip_int64_t n = zip_fread(f, bytes->data() + got, kChunk);
-                if (n < 0) {
-                    in.open_error = std::string("corrupt entry (") + zip_file_strerror(f) + ")";
-                    break;
-                }
-                if (n == 0) break;
-                got += static_cast<size_t>(n);
-                if (got > kMaxEntry) {
-                    in.open_error = "entry inflates beyond the 2 GiB limit";
-                    break;
-                }
-            }
-            bytes->resize(got);
-            if (in.open_error.empty() && got != st.size)
-                in.open_error = "entry holds " + std::to_string(got) + " bytes, its header declares " +
-                                std::to_string(st.size);
-            zip_fclose(f);
-        }
-        zip_close(z);
+    const ZipArchive::Entry* e = nullptr;
+    if (archive)
+        if (const auto it = archive->entries.find(entry); it != archive->entries.end()) e = &it->second;
+    std::string error;
+    if (!e) {
+        in.open_error = "entry not found in the archive";
+    } else if (!archive->with_handle(error, [&](zip_t* z) {
+                   constexpr zip_uint64_t kMaxEntry = zip_uint64_t{1} << 31;  // 2 GiB cap on one entry
+                   zip_stat_t st;
+                   zip_file_t* f = nullptr;
+                   if (zip_stat_index(z, e->index, 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
+                       in.open_error = "entry not found in the archive";
+                   } else if (e->symlink) {
+                       in.open_error = "a symbolic link stored in the archive, not a file (links in archives are never followed)";
+                   } else if (st.size > kMaxEntry) {
+                       in.open_error = "entry declares " + std::to_string(st.size) + " bytes, more than the 2 GiB limit";
+                   } else if (!(f = zip_fopen_index(z, e->index, 0))) {
+                       in.open_error = std::string("cannot read the entry (") + zip_strerror(z) + ")";
+                   } else {
+                       // The declared size is the archive's claim, not a fact: read in chunks and
+                       // grow, so a forged header cannot make us allocate what the data does not hold.
+                       constexpr size_t kChunk = size_t{1} << 20;
+                       size_t got = 0;
+                       for (;;) {
+                           bytes->resize(got + kChunk);
+                           const zip_int64_t n = zip_fread(f, bytes->data() + got, kChunk);
+                           if (n < 0) {
+                               in.open_error = std::string("corrupt entry (") + zip_file_strerror(f) + ")";
+                               break;
+                           }
+                           if (n == 0) break;
+                           got += static_cast<size_t>(n);
+                           if (got > kMaxEntry) {
+                               in.open_error = "entry inflates beyond the 2 GiB limit";
+                               break;
+                           }
+                       }
+                       bytes->resize(got);
+                       if (in.open_error.empty() && got != st.size)
+                           in.open_error = "entry holds " + std::to_string(got) + " bytes, its header declares " +
+                                           std::to_string(st.size);
+                       zip_fclose(f);
+                   }
+               })) {
+        in.open_error = "cannot open the archive (" + error + ")";
     }
     if (!in.open_error.empty()) bytes->clear();
     in.bytes = std::move(bytes);
@@ -247,28 +502,35 @@ std::string output_overlaps_input(const fs::path& out_dir, const std::vector<fs:
 }
 
 std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inputs, const fs::path& exclude,
-                                               std::vector<InputFailure>& failures) {
+                                               std::vector<InputFailure>& failures, std::string* output_conflict) {
     std::vector<MaterialSource> sets;
+    Scan scan{exclude, sets, failures, output_conflict, {}, {}};
     for (const auto& in : inputs) {
+        scan.input = in.string();
+        const size_t sets_before = sets.size(), failures_before = failures.size(), again = scan.reached_again;
         std::error_code ec;
+        const bool seen_before = scan.seen.count(real_path(in)) > 0;
         if (fs::is_directory(in, ec)) {
-            walk(in, exclude, sets, failures);
-        } else if (fs::is_regular_file(in, ec) && in.extension() == ".zip") {
-            scan_zip(in, sets, failures);
+            walk(scan, in);
+        } else if (fs::is_regular_file(in, ec) && lower(in.extension().string()) == ".zip") {
+            scan_zip(scan, in);
         } else {
             failures.push_back({in.string(), std::string(code::input_not_found),
                                 in.string() + ": no such folder or .zip file"});
+            continue;
         }
+        // Nothing found is not a pass: an input without a set fails, naming it (as a zip does).
+        if (sets.size() == sets_before && failures.size() == failures_before && !seen_before &&
+            scan.reached_again == again && fs::is_directory(in, ec))
+            failures.push_back({in.string(), std::string(code::unrecognized_file),
+                                in.string() + ": no material set found (no file names a map role, e.g. _Color, "
+                                              "_Normal, _Roughness, in a format matforge reads)"});
     }
-    // Unique, filesystem-safe names; order of discovery (sorted paths) decides the suffixes.
-    std::map<std::string, int> seen;
-    for (auto& s : sets) {
-        std::string base = safe_name(s.name), name = base;
-        std::string lower = name;
-        std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (int n = ++seen[lower]; n > 1) name = base + "_" + std::to_string(n);
-        s.name = name;
-    }
+    std::vector<std::string> wanted;
+    wanted.reserve(sets.size());
+    for (const auto& s : sets) wanted.push_back(s.name);
+    const std::vector<std::string> names = unique_names(wanted);
+    for (size_t i = 0; i < sets.size(); ++i) sets[i].name = names[i];
     return sets;
 }
 

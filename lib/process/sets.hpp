@@ -2,6 +2,7 @@
 // holding several materials (split by file-name stem).
 #pragma once
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -10,23 +11,38 @@
 
 namespace mf {
 
+// One .zip, opened once and shared by every set it holds (reopening it per map re-parses the
+// central directory: quadratic in its entries). Thread-safe; defined in sets.cpp.
+class ZipArchive;
+
 struct MaterialSource {
-    std::string name;                 // unique in the batch, safe as a folder name
+    std::string name;                 // unique in the batch (case-insensitively), safe as a folder name
     std::filesystem::path root;       // the folder holding the files, or the .zip file
     std::string zip_folder;           // inside a .zip: the folder of the set ("" = top), '/'-separated
     bool is_zip = false;
     std::vector<std::string> files;   // relative to root (or to zip_folder), sorted
     std::string display;              // "path/to/set" or "path/to/x.zip/folder" for messages
+    std::shared_ptr<ZipArchive> archive;  // is_zip: the archive, opened once
+    // What finding the set decided that the user should know (NAMES_MERGED, DUPLICATE_ENTRY,
+    // DUPLICATE_INPUT); plan_set reports them with the set's other findings.
+    std::vector<Finding> findings;
 
     InputFile open(const std::string& file) const;  // zip entries are read into memory
 };
 
 // Every material set under `inputs`. Skips `exclude` (the output folder, when it lies inside an
 // input), hidden files and folders, __MACOSX, and does not follow symbolic links to folders
-// (no loops). Names are made unique by appending _2, _3 … in path order.
+// (no loops). A folder or archive reached twice (overlapping inputs, a link to a folder given as
+// an input) is read once (by real path), with DUPLICATE_INPUT on its sets. An input in which no
+// set is found, and a folder whose maps are only in formats matforge does not read, are
+// failures (UNRECOGNIZED_FILE) naming them. Names are made unique (case-insensitively) by
+// appending _2, _3 … in path order, skipping names other sets have.
+// `output_conflict` (when given): set to a message when `exclude` is itself the folder of a set
+// (it holds the set's maps): that set would be dropped and the outputs written among its sources.
 std::vector<MaterialSource> find_material_sets(const std::vector<std::filesystem::path>& inputs,
                                                const std::filesystem::path& exclude,
-                                               std::vector<InputFailure>& failures);
+                                               std::vector<InputFailure>& failures,
+                                               std::string* output_conflict = nullptr);
 
 // Non-empty (a message) when `out_dir` is one of `inputs` or holds one: outputs would then be
 // found as inputs by the next run. An output folder inside an input is fine (it is skipped).
@@ -34,6 +50,14 @@ std::string output_overlaps_input(const std::filesystem::path& out_dir,
                                   const std::vector<std::filesystem::path>& inputs);
 
 // A name safe as one path component: [A-Za-z0-9._-] kept, others '_', no leading dot, ≤ 96 bytes.
+inline constexpr size_t kMaxNameBytes = 96;
 std::string safe_name(const std::string& name);
+
+// The final names of sets named `wanted` (in order): safe_name() of each, unique compared
+// without case, never `reserved` (lower case, e.g. "manifest.json"). A name held by one set only
+// is kept; the second and later holders of a name get "_2", "_3" …, skipping every name another
+// set holds, cut so that the suffix fits in kMaxNameBytes.
+std::vector<std::string> unique_names(const std::vector<std::string>& wanted,
+                                      const std::vector<std::string>& reserved = {"manifest.json"});
 
 }  // namespace mf

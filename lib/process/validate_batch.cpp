@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <fstream>
 
+#include "core/interrupt.hpp"
+#include "core/json.hpp"
 #include "core/parallel.hpp"
 #include "process/plan.hpp"
 #include "process/sets.hpp"
@@ -43,17 +45,13 @@ std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const
         return std::nullopt;
     }
     if (rules_file.empty()) return cfg;
-    std::ifstream f(rules_file);
-    if (!f) {
-        error = rules_file + ": cannot open the rules file";
+    // Depth-limited, never a FIFO or a device; the error names the file.
+    const auto j = read_json_file(rules_file, error);
+    if (!j) {
+        error = "the rules file " + error;
         return std::nullopt;
     }
-    const auto j = nlohmann::json::parse(f, nullptr, false);
-    if (j.is_discarded()) {
-        error = rules_file + ": not valid JSON";
-        return std::nullopt;
-    }
-    auto layered = validate::RuleConfig::from_json(j, error, *cfg);
+    auto layered = validate::RuleConfig::from_json(*j, error, *cfg);
     if (!layered) error = rules_file + ": " + error;
     return layered;
 }
@@ -65,6 +63,7 @@ validate::Report validate_inputs(const std::vector<std::filesystem::path>& input
     const auto sets = find_material_sets(inputs, {}, source_failures);
     std::vector<SetOutcome> outcomes(sets.size());
     parallel_for(sets.size(), opt.jobs, [&](size_t i) {
+        if (stop_requested()) return;  // a signal asked to stop (the command reports it)
         try {
             outcomes[i] = validate_one(sets[i], preset, opt.rules);
         } catch (const std::exception& e) {

@@ -49,21 +49,29 @@ std::string context_digest(const Preset& preset, const validate::RuleConfig& rul
     return h.hex();
 }
 
-std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error) {
+std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error,
+                                      const Digest& digest) {
     Hasher h;
     h.add(context);
+    // What finding the set brought from how it was found (DUPLICATE_INPUT, NAMES_MERGED: they
+    // depend on the inputs given, not on the files) is part of its result, so of its key.
+    for (const Finding& f : set.findings) h.add(to_json(f).dump());
     for (const std::string& f : set.files) {  // sorted by find_material_sets
-        std::vector<unsigned char> bytes;
         const InputFile in = set.open(f);
-        if (in.bytes) bytes = *in.bytes;
-        else if (!in.open_error.empty()) {
+        std::optional<std::string> sha;
+        if (digest) {
+            sha = digest(in, error);
+        } else if (in.bytes) {
+            sha = sha256_hex(*in.bytes);
+        } else if (!in.open_error.empty()) {
             error = in.display + ": " + in.open_error;
-            return std::nullopt;
-        } else if (!read_file(in.path, bytes, error)) {
-            return std::nullopt;
+        } else {
+            std::vector<unsigned char> bytes;
+            if (read_file(in.path, bytes, error)) sha = sha256_hex(bytes);
         }
+        if (!sha) return std::nullopt;
         h.add(f);
-        h.add(sha256_hex(bytes));
+        h.add(*sha);
     }
     return h.hex();
 }

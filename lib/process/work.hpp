@@ -6,6 +6,7 @@
 // of every file of the set (content, never time stamps). Equal keys, equal outputs.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,8 +21,13 @@ namespace mf {
 // The part of every key that does not depend on the set (hex SHA-256).
 std::string context_digest(const Preset& preset, const validate::RuleConfig& rules, const ColorContext& color);
 
-// The set's action key, or nullopt + `error` when one of its files cannot be read.
-std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error);
+// The SHA-256 (hex) of an input file's bytes; nullopt + `error` when it cannot be read.
+using Digest = std::function<std::optional<std::string>(const InputFile&, std::string& error)>;
+
+// The set's action key, or nullopt + `error` when one of its files cannot be read. `digest`:
+// how a file's SHA-256 is had (a cache remembers them by stat); empty: read and hash.
+std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error,
+                                      const Digest& digest = {});
 
 // The bytes of the set's files (a set inside a .zip counts its entries' sizes as stored).
 uint64_t set_bytes(const MaterialSource& set);

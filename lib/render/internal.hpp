@@ -2,6 +2,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "render/vk.hpp"
@@ -47,7 +48,14 @@ struct TextureLevel {
 struct PreparedTexture {
     VkFormat format = VK_FORMAT_UNDEFINED;
     std::vector<TextureLevel> levels;  // level 0 first, down to 1×1
+    std::string note;  // set when the texture was reduced to fit the device (said to the user)
 };
+
+// Fits `t` within the device's maxImageDimension2D (a larger image crashes drivers: lavapipe
+// segfaults past 16384): a mip chain starts at its first level that fits; a single 32-bit float
+// level (an environment) is halved by 2x2 box averages until it fits. Sets t.note when it changed
+// anything; throws Error naming the size and the limit when it cannot.
+void fit_to_device(const Device& d, PreparedTexture& t, const std::string& what);
 
 // Converts to a 4-channel upload format the device can filter linearly and builds the mips.
 PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind);

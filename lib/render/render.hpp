@@ -272,6 +272,9 @@ public:
     const Scene& scene() const;
     const std::vector<PassTime>& load_times() const;  // upload and load-time passes, in order
     const std::vector<PassTime>& frame_times() const; // passes of the last render()
+    // Notes on what was changed to fit the device (a texture or environment larger than its
+    // maxImageDimension2D previewed downsampled), taken: each is returned once.
+    std::vector<std::string> take_notes();
 
     struct Impl;
 

@@ -3,6 +3,8 @@
 // file does what).
 #include <algorithm>
 
+#include <utility>
+
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 
@@ -124,5 +126,6 @@ Renderer::~Renderer() = default;
 const Scene& Renderer::scene() const { return impl_->scene; }
 const std::vector<PassTime>& Renderer::load_times() const { return impl_->load_times; }
 const std::vector<PassTime>& Renderer::frame_times() const { return impl_->frame_times; }
+std::vector<std::string> Renderer::take_notes() { return std::exchange(impl_->notes, {}); }
 
 }  // namespace mf::render

@@ -32,6 +32,9 @@ struct Renderer::Impl {
     detail::Device& d;
     Scene scene;
     std::vector<PassTime> load_times, frame_times;
+    // What was changed to fit the device (textures reduced to its size limit), for the user;
+    // upload_texture is const (it records into the caller's command buffer) but may add here.
+    mutable std::vector<std::string> notes;
 
     detail::Unique<VkCommandPool> command_pool;
     detail::Unique<VkQueryPool> queries;  // null without timestamp support
@@ -82,7 +85,7 @@ struct Renderer::Impl {
     void upload_mesh();
     void create_dummies();
     // Records into the caller's `cmd`; the staging buffers go to the caller's `staging`.
-    detail::Image upload_texture(const detail::PreparedTexture& t, VkCommandBuffer cmd,
+    detail::Image upload_texture(const detail::PreparedTexture& prepared, VkCommandBuffer cmd,
                                  std::vector<detail::Buffer>& staging) const;
 
     // frame.cpp

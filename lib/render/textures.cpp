@@ -237,9 +237,15 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
 
     FloatLevel level = to_rgba(t);
     to_domain(level, kind, t.srgb, t.type == TexelType::u8);  // level 0 itself is stored as read (no renormalization)
+    // Levels larger than the device takes are computed (the chain averages from them) but not
+    // stored: the texture starts at its first level that fits (fit_to_device says so).
+    const uint32_t limit = std::max(1u, d.properties.limits.maxImageDimension2D);
     for (;;) {
         TextureLevel stored;
-        if (out.levels.empty() && storage == Storage::U8 && t.channels == 4 && kind != MipKind::normal) {
+        if (std::max(level.width, level.height) > limit) {
+            stored.width = level.width;
+            stored.height = level.height;
+        } else if (out.levels.empty() && storage == Storage::U8 && t.channels == 4 && kind != MipKind::normal) {
             // Level 0 of an 8-bit RGBA texture goes up exactly as read.
             stored.width = t.width;
             stored.height = t.height;
@@ -252,7 +258,34 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
         level = downsample(level);
         if (kind == MipKind::normal) renormalize(level);
     }
+    fit_to_device(d, out, "texture");
     return out;
+}
+
+void fit_to_device(const Device& d, PreparedTexture& t, const std::string& what) {
+    const uint32_t limit = std::max(1u, d.properties.limits.maxImageDimension2D);
+    if (t.levels.empty() || std::max(t.levels[0].width, t.levels[0].height) <= limit) return;
+    const uint32_t w0 = t.levels[0].width, h0 = t.levels[0].height;
+    if (t.levels.size() > 1) {
+        size_t first = 0;
+        while (first + 1 < t.levels.size() && std::max(t.levels[first].width, t.levels[first].height) > limit) ++first;
+        t.levels.erase(t.levels.begin(), t.levels.begin() + static_cast<std::ptrdiff_t>(first));
+    } else if (t.format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+        FloatLevel l{w0, h0, std::vector<float>(t.levels[0].bytes.size() / 4)};
+        std::memcpy(l.rgba.data(), t.levels[0].bytes.data(), l.rgba.size() * 4);
+        while (std::max(l.width, l.height) > limit) l = downsample(l);
+        t.levels[0].width = l.width;
+        t.levels[0].height = l.height;
+        t.levels[0].bytes.resize(l.rgba.size() * 4);
+        std::memcpy(t.levels[0].bytes.data(), l.rgba.data(), t.levels[0].bytes.size());
+    }
+    const TextureLevel& top = t.levels[0];
+    if (std::max(top.width, top.height) > limit)
+        throw Error(what + " of " + std::to_string(w0) + "x" + std::to_string(h0) + " pixels is larger than this device's limit of " +
+                    std::to_string(limit) + " pixels per side (maxImageDimension2D)");
+    t.note = what + " of " + std::to_string(w0) + "x" + std::to_string(h0) + " pixels is larger than this device's limit of " +
+             std::to_string(limit) + " pixels per side (maxImageDimension2D): previewed downsampled to " +
+             std::to_string(top.width) + "x" + std::to_string(top.height);
 }
 
 }  // namespace mf::render::detail

@@ -1,6 +1,8 @@
 // To the device: buffers, the mesh, textures with their mip chains, the placeholders bound
 // where a variant samples nothing, and Renderer::upload (a material's textures and set).
+#include <algorithm>
 #include <cstring>
+#include <optional>
 
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
@@ -34,8 +36,18 @@ void Renderer::Impl::upload_mesh() {
     index_count = static_cast<uint32_t>(mesh.indices.size());
 }
 
-Image Renderer::Impl::upload_texture(const PreparedTexture& t, VkCommandBuffer cmd,
+Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandBuffer cmd,
                                      std::vector<Buffer>& staging) const {
+    // An image past the device's size limit is undefined behaviour in Vulkan (a crash on
+    // lavapipe): reduced to fit, or refused naming both sizes.
+    std::optional<PreparedTexture> fitted;
+    const uint32_t limit = d.properties.limits.maxImageDimension2D;
+    if (!prepared.levels.empty() && std::max(prepared.levels[0].width, prepared.levels[0].height) > limit) {
+        fitted = prepared;
+        fit_to_device(d, *fitted, prepared.levels.size() == 1 ? "the environment image" : "texture");
+    }
+    const PreparedTexture& t = fitted ? *fitted : prepared;
+    if (!t.note.empty()) notes.push_back(t.note);
     ImageDesc desc;
     desc.format = t.format;
     desc.width = t.levels[0].width;

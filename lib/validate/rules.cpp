@@ -59,6 +59,8 @@ const std::vector<Param>& params() {
     return p;
 }
 
+std::string json_number(double v) { return nlohmann::json(v).dump(); }
+
 std::optional<Severity> parse_severity(const nlohmann::json& v) {
     if (v.is_string()) return severity_from_name(v.get<std::string>());
     if (v.is_number_integer()) {
@@ -74,6 +76,19 @@ std::optional<Severity> parse_severity(const nlohmann::json& v) {
 }
 
 bool known_code(std::string_view c) { return find_rule(c) != nullptr; }
+
+// An input not read or an output not written is never a pass: no configuration switches these
+// off, lowers them or suppresses them (a "*" suppression leaves them too).
+bool protected_code(std::string_view c) { return c == code::unreadable_file || c == code::output_write_failed; }
+std::string protected_message(std::string_view c) {
+    return "rules: " + std::string(c) +
+           " cannot be switched off, lowered or suppressed: a file that was not read (or not written) always fails the run";
+}
+
+// Every threshold is a fraction in [0, 1] but the sRGB levels, in [0, 255].
+std::pair<double, double> threshold_range(std::string_view name) {
+    return name.find("srgb") != std::string_view::npos ? std::pair{0.0, 255.0} : std::pair{0.0, 1.0};
+}
 
 }  // namespace
 
@@ -107,6 +122,15 @@ const std::vector<RuleInfo>& rule_catalog() {
         {code::gloss_inverted, Severity::info, "A gloss map became roughness", "gloss_inverted"},
         {code::packed_input_unpacked, Severity::info, "A packed input was split into roles", "packed_input_unpacked"},
         {code::normal_convention_converted, Severity::info, "Green channel flipped to the preset's convention", "normal_convention_converted"},
+        {code::names_merged, Severity::warning, "Two spellings of a material name were grouped as one material (info when only tags differ)", "names_merged"},
+        {code::duplicate_input, Severity::info, "A folder or archive reached through two inputs was read once", "duplicate_input"},
+        {code::duplicate_entry, Severity::warning, "An archive holds two entries of one name; the first is used", "duplicate_entry"},
+        {code::multipart_image, Severity::warning, "A file holds several images (EXR parts, TIFF pages); the first is used", "multipart_image"},
+        {code::orientation_ignored, Severity::warning, "An EXIF/TIFF orientation is not applied: the map is used as stored", "orientation_ignored"},
+        {code::aspect_mismatch, Severity::error, "A map's aspect ratio is more than 2x off the set's: not stretched, not used", "aspect_mismatch"},
+        {code::output_too_large, Severity::warning, "An output is wider or taller than 16384 pixels, more than engines and GPUs import", "output_too_large"},
+        {code::encoding_error_exceeded, Severity::warning, "A block-compressed level decodes with more error than the preset's bound", "encoding_error_exceeded"},
+        {code::material_file_skipped, Severity::info, "The preset's glTF material file was not written: this run's normal maps are not glTF's +Y", "material_file_skipped"},
     };
     return c;
 }
@@ -192,6 +216,17 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                 return std::nullopt;
             }
             for (const auto& [c, rv] : val.items()) {
+                if (protected_code(c)) {
+                    bool raise_only = rv == "error" || rv == true || rv == "on" || rv.is_object();
+                    if (rv.is_object())
+                        for (const auto& [k, kv] : rv.items())
+                            raise_only = raise_only && ((k == "severity" && kv == "error") || (k == "enabled" && kv == true));
+                    if (!raise_only) {
+                        error = protected_message(c);
+                        return std::nullopt;
+                    }
+                    continue;
+                }
                 if (!known_code(c)) {
                     error = "rules: unknown finding code \"" + c + "\"";
                     return std::nullopt;
@@ -234,8 +269,10 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                             error = "rules: \"" + c + "\" has no threshold \"" + name + "\"";
                             return std::nullopt;
                         }
-                        if (!v.is_number()) {
-                            error = "rules: \"" + c + "\"." + name + " must be a number";
+                        const auto [lo, hi] = threshold_range(name);
+                        if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi)) {
+                            error = "rules: \"" + c + "\"." + name + " must be a number within " + json_number(lo) +
+                                    ".." + json_number(hi);
                             return std::nullopt;
                         }
                         cfg.thresholds.*(it->member) = v.get<double>();
@@ -249,6 +286,11 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
             }
             for (const auto& [c, v] : val.items()) {
                 auto s = parse_severity(v);
+                if (protected_code(c) && s != Severity::error) {
+                    error = protected_message(c);
+                    return std::nullopt;
+                }
+                if (protected_code(c)) continue;
                 if (!known_code(c) || !s) {
                     error = "rules: bad severityOverrides entry \"" + c + "\"";
                     return std::nullopt;
@@ -261,6 +303,10 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                 return std::nullopt;
             }
             for (const auto& v : val) {
+                if (v.is_string() && protected_code(v.get<std::string>())) {
+                    error = protected_message(v.get<std::string>());
+                    return std::nullopt;
+                }
                 if (!v.is_string() || !known_code(v.get<std::string>())) {
                     error = "rules: \"ignore\" holds an unknown finding code";
                     return std::nullopt;
@@ -279,6 +325,10 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                 }
                 Suppression s;
                 s.code = v.at("code").get<std::string>();
+                if (protected_code(s.code)) {
+                    error = protected_message(s.code);
+                    return std::nullopt;
+                }
                 if (s.code != "*" && !known_code(s.code)) {
                     error = "rules: \"suppress\" names unknown finding code \"" + s.code + "\"";
                     return std::nullopt;
@@ -306,6 +356,17 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
             return std::nullopt;
         }
     }
+    // Bounds that contradict each other would make a rule fire on everything or on nothing.
+    if (cfg.thresholds.albedo_min_srgb > cfg.thresholds.albedo_max_srgb) {
+        error = "rules: ALBEDO_TOO_DARK.min_srgb (" + json_number(cfg.thresholds.albedo_min_srgb) +
+                ") is above ALBEDO_TOO_BRIGHT.max_srgb (" + json_number(cfg.thresholds.albedo_max_srgb) + ")";
+        return std::nullopt;
+    }
+    if (cfg.thresholds.dielectric_max > cfg.thresholds.metal_min) {
+        error = "rules: dielectric_max (" + json_number(cfg.thresholds.dielectric_max) + ") is above metal_min (" +
+                json_number(cfg.thresholds.metal_min) + ")";
+        return std::nullopt;
+    }
     return cfg;
 }
 
@@ -330,6 +391,10 @@ int apply_config(std::vector<Finding>& findings, std::string_view material, cons
     std::vector<Finding> kept;
     kept.reserve(findings.size());
     for (auto& f : findings) {
+        if (protected_code(f.code)) {  // never removed nor lowered (from_json refuses to; "*" too)
+            kept.push_back(std::move(f));
+            continue;
+        }
         if (!cfg.enabled(f.code) || cfg.suppressed(material, f.code)) {
             ++removed;
             continue;

@@ -72,6 +72,51 @@ inline bool has_finding(const nlohmann::json& mat, const std::string& code, cons
     return false;
 }
 
+// The output folder of a manifest read by an `ingested()` helper (stored under "__out").
+inline fs::path out_of(const nlohmann::json& m) { return m["__out"].get<std::string>(); }
+
+inline mf::Image output_pixels(const nlohmann::json& m, const nlohmann::json& o) {
+    return read_pixels(out_of(m) / o["file"].get<std::string>());
+}
+
+// Every material of `m` is ok with outputs, and every output is on disk with the recorded
+// sha256 and size.
+inline void expect_outputs_as_recorded(const nlohmann::json& m) {
+    EXPECT_TRUE(m["failures"].empty()) << m["failures"].dump(1);
+    for (const auto& mat : m["materials"]) {
+        EXPECT_EQ(mat["status"], "ok") << mat["name"];
+        EXPECT_FALSE(mat["outputs"].empty());
+        for (const auto& o : mat["outputs"]) {
+            std::vector<unsigned char> bytes;
+            std::string err;
+            ASSERT_TRUE(mf::read_file(out_of(m) / o["file"].get<std::string>(), bytes, err)) << err;
+            EXPECT_EQ(mf::sha256_hex(bytes), o["sha256"]) << o["file"];
+            const auto img = output_pixels(m, o);
+            EXPECT_EQ(img.width, o["width"]);
+            EXPECT_EQ(img.height, o["height"]);
+        }
+    }
+}
+
+// `dx` is `gl` with green mirrored (255 - g) and red kept, within the one code renormalization
+// may move.
+inline void expect_green_mirrored(const mf::Image& gl, const mf::Image& dx) {
+    ASSERT_EQ(gl.pixels.size(), dx.pixels.size());
+    int worst = 0;
+    for (int y = 0; y < gl.height; ++y)
+        for (int x = 0; x < gl.width; ++x) {
+            worst = std::max(worst, std::abs(code8(gl.at(x, y, 1)) - (255 - code8(dx.at(x, y, 1)))));
+            ASSERT_NEAR(code8(gl.at(x, y, 0)), code8(dx.at(x, y, 0)), 1);
+        }
+    EXPECT_LE(worst, 1) << "green flipped (255 - g, renormalization may move one code)";
+}
+
+// The bytes of a file ("" when it cannot be read): byte-identity checks.
+inline std::string bytes_of(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(f), {}};
+}
+
 inline void write_text(const fs::path& p, const std::string& s) {
     fs::create_directories(p.parent_path());
     std::ofstream(p, std::ios::binary) << s;

@@ -58,7 +58,7 @@ TEST(IngestErrors, CorruptFilesAreReportedAndOtherSetsComplete) {
 
 TEST(IngestErrors, SourcesAreNeverModified) {
     const fs::path in = temp_dir("in"), out = temp_dir("out");
-    fs::copy(samples() / "MarbleTiles0017", in / "MarbleTiles0017");
+    fs::copy(samples() / "flat_two_sets", in / "flat_two_sets");
     std::map<std::string, std::string> before;
     for (auto& e : fs::recursive_directory_iterator(in)) {
         std::vector<unsigned char> b;
@@ -77,7 +77,7 @@ TEST(IngestErrors, SourcesAreNeverModified) {
 
 TEST(IngestErrors, OutputInsideInputIsNotIngested) {
     const fs::path in = temp_dir("in");
-    fs::copy(samples() / "Bricks076_1K-PNG", in / "Bricks076_1K-PNG");
+    fs::copy(samples() / "Metal_Damaged_001_SD", in / "Metal_Damaged_001_SD");
     for (int i = 0; i < 2; ++i) {
         const auto r = run("ingest " + q(in) + " -o " + q(in / "out"));
         ASSERT_EQ(r.code, 0) << r.output;
@@ -107,7 +107,7 @@ TEST(IngestErrors, UsageErrorsExitTwo) {
 
 TEST(IngestErrors, MissingInputIsAFailureNotACrash) {
     const fs::path out = temp_dir("out");
-    const auto r = run("ingest /nonexistent/folder " + q(samples() / "WalnutInlay") + " -o " + q(out));
+    const auto r = run("ingest /nonexistent/folder " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out));
     EXPECT_EQ(r.code, 1);
     const auto m = read_json(out / "manifest.json");
     EXPECT_EQ(m["materials"].size(), 1u);
@@ -119,9 +119,19 @@ TEST(IngestErrors, UserPresetFile) {
     const fs::path out = temp_dir("out");
     write_text(out / "mine.json", R"({"name": "mine", "normal_convention": "dx", "file_pattern": "{material}_{suffix}.{ext}",
       "outputs": [{"suffix": "rm", "channels": {"R": "roughness", "G": "metalness"}}]})");
-    const auto r = run("ingest " + q(samples() / "WalnutInlay") + " -o " + q(out / "o") + " --preset " + q(out / "mine.json"));
+    const fs::path set = samples() / "Metal_Damaged_001_SD";
+    const auto r = run("ingest " + q(set) + " -o " + q(out / "o") + " --preset " + q(out / "mine.json"));
     ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_TRUE(fs::exists(out / "o" / "WalnutInlay_rm.png"));
-    const auto img = read_pixels(out / "o" / "WalnutInlay_rm.png");
+    EXPECT_TRUE(fs::exists(out / "o" / "Metal_Damaged_001_rm.png"));
+    const auto img = read_pixels(out / "o" / "Metal_Damaged_001_rm.png");
     EXPECT_EQ(img.channels, 2);
+    // The user's layout, channel by channel: R roughness, G metalness (the set's own maps).
+    const auto rough = read_pixels(set / "Metal_Damaged_001_roughness.jpg");
+    const auto metal = read_pixels(set / "Metal_Damaged_001_metallic.jpg");
+    ASSERT_EQ(img.width, rough.width);
+    for (int y = 0; y < img.height; y += 5)
+        for (int x = 0; x < img.width; x += 5) {
+            ASSERT_EQ(code8(img.at(x, y, 0)), code8(rough.at(x, y, 0)));
+            ASSERT_EQ(code8(img.at(x, y, 1)), code8(metal.at(x, y, 0)));
+        }
 }

@@ -8,19 +8,20 @@ using namespace mft;
 
 TEST(PreviewCli, EveryPresetPreviewsTheSameImage) {
     const fs::path work = temp_dir("presets");
-    // WalnutInlay: glTF metallicRoughness, occlusion, emissive and a GL normal map; rendered
-    // under an environment too would use occlusion, so a key light and a fill light suffice to
-    // exercise albedo, normal (both conventions), roughness (also as smoothness) and metalness.
+    // Metal_Damaged_001 (a real 3dtextures.me set): albedo, a GL normal map, roughness and a
+    // graded metalness map, occlusion and height. Rendered under an environment it would use
+    // occlusion too, so a key light and a fill light suffice to exercise albedo, normal (both
+    // conventions), roughness (also as smoothness) and metalness.
     const std::vector<std::string> presets{"gltf", "unreal", "unity-hdrp", "unity-urp", "godot", "separate"};
     std::map<std::string, mf::Image> images;
     for (const auto& p : presets) {
         const fs::path out = work / p;
-        auto r = run("ingest " + q(samples() / "WalnutInlay") + " -o " + q(out) + " --preset " + p);
+        auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out) + " --preset " + p);
         ASSERT_EQ(r.code, 0) << p << ": " << r.output;
         r = run("preview " + q(out / "manifest.json") + " -o " + q(out / "preview") +
                 " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12");
         ASSERT_EQ(r.code, 0) << p << ": " << r.output;
-        images[p] = read_pixels(out / "preview" / "WalnutInlay.png");
+        images[p] = read_pixels(out / "preview" / "Metal_Damaged_001.png");
     }
     const mf::Image& ref = images["gltf"];
     ASSERT_EQ(ref.width, 96);
@@ -44,11 +45,25 @@ TEST(PreviewCli, ContactSheetAndMissingManifest) {
                        " --size 48 --device cpu --contact-sheet " + q(work / "sheet.png"));
     ASSERT_EQ(r.code, 0) << r.output;
     const auto manifest = read_json(work / "manifest.json");  // a named object: the loop borrows it
-    for (const auto& m : manifest["materials"])
-        EXPECT_TRUE(fs::exists(work / "p" / (m["name"].get<std::string>() + ".png"))) << m["name"];
+    ASSERT_EQ(manifest["materials"].size(), 4u);
+    // Four tiles: two columns, two rows of 48 px tiles with a 16 px label under each, 8 px gaps.
     const auto sheet = read_pixels(work / "sheet.png");
-    EXPECT_GT(sheet.width, 3 * 48);
-    EXPECT_GT(sheet.height, 3 * 48);
+    EXPECT_EQ(sheet.width, 2 * 48 + 3 * 8);
+    EXPECT_EQ(sheet.height, 2 * (48 + 16) + 3 * 8);
+    // Each material's own preview is its tile, in manifest order.
+    for (size_t i = 0; i < manifest["materials"].size(); ++i) {
+        const std::string name = manifest["materials"][i]["name"];
+        ASSERT_TRUE(fs::exists(work / "p" / (name + ".png"))) << name;
+        const auto tile = read_pixels(work / "p" / (name + ".png"));
+        ASSERT_EQ(tile.width, 48) << name;
+        const int x0 = 8 + static_cast<int>(i % 2) * (48 + 8), y0 = 8 + static_cast<int>(i / 2) * (48 + 16 + 8);
+        int worst = 0;
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 48; ++x)
+                for (int c = 0; c < 3; ++c)
+                    worst = std::max(worst, std::abs(code8(sheet.at(x0 + x, y0 + y, c)) - code8(tile.at(x, y, c))));
+        EXPECT_EQ(worst, 0) << name << " is not tile " << i;
+    }
     EXPECT_EQ(run("preview " + q(work / "nope.json") + " -o " + q(work / "x")).code, 2);
 }
 

@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "core/files.hpp"
 #include "core/findings.hpp"
 
@@ -62,9 +64,16 @@ TEST(AtomicWrite, UnwritableDestinationGivesErrorNamingIt) {
 
 TEST(AtomicWrite, StaleTempsAreRemoved) {
     const fs::path d = fresh_dir("stale");
-    std::ofstream(d / (std::string(".x.png") + mf::kTempMarker + "1-2")) << "partial";
+    // 99999999 is above Linux's largest pid_max (2^22), so no process owns that temp; pid 1 would
+    // be alive on a CI machine (init) and not in every container.
+    const fs::path dead = d / (std::string(".x.png") + mf::kTempMarker + "99999999-2");
+    const fs::path live = d / (std::string(".y.png") + mf::kTempMarker + std::to_string(::getpid()) + "-3");
+    std::ofstream(dead) << "partial";
+    std::ofstream(live) << "being written";
     std::ofstream(d / "keep.png") << "k";
     EXPECT_EQ(mf::remove_stale_temps(d), 1);
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_TRUE(fs::exists(live));
     EXPECT_TRUE(fs::exists(d / "keep.png"));
     fs::remove_all(d);
 }

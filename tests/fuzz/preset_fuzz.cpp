@@ -4,17 +4,20 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "core/json.hpp"
 #include "preset/preset.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    const auto j = nlohmann::json::parse(data, data + size, nullptr, false);
-    if (j.is_discarded()) return 0;
-    mf::Preset p;
+    // As load_preset reads a file: depth-limited (core/json.hpp).
     std::string error;
-    if (!mf::parse_preset(j, p, error)) {
+    const auto j = mf::parse_json(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.json", error);
+    if (!j) return 0;
+    mf::Preset p;
+    if (!mf::parse_preset(*j, p, error)) {
         if (error.empty()) __builtin_trap();
         return 0;
     }
+    (void)p.source_json.dump();  // `presets show` prints it: a deep document must not overflow the stack
     for (const auto& o : p.outputs) {
         if (o.channel_count() < 1 || o.channel_count() > 4) __builtin_trap();
         (void)o.roles();

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -41,6 +42,76 @@ inline Proc spawn(const std::vector<std::string>& argv, double deadline_s = 120,
 }
 
 inline std::string bin() { return MATFORGE_BIN; }
+
+// A matforge run in the background, for what spawn() cannot do: signal it (SIGINT, SIGSTOP)
+// while it works, or run a second one beside it. wait() reaps it (a deadline: a hang is killed
+// and reported).
+class Background {
+public:
+    explicit Background(const std::vector<std::string>& argv) {
+        char log_name[] = "/tmp/matforge-test-log-XXXXXX";
+        log_fd_ = ::mkstemp(log_name);
+        ::unlink(log_name);
+        std::vector<char*> args;
+        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        pid_ = ::fork();
+        if (pid_ == 0) {
+            ::dup2(log_fd_, STDOUT_FILENO);
+            ::dup2(log_fd_, STDERR_FILENO);
+            ::execvp(args[0], args.data());
+            ::_exit(127);
+        }
+    }
+    ~Background() {
+        if (!reaped_ && pid_ > 0) {
+            ::kill(pid_, SIGKILL);
+            ::waitpid(pid_, nullptr, 0);
+        }
+        if (log_fd_ >= 0) ::close(log_fd_);
+    }
+    Background(const Background&) = delete;
+    Background& operator=(const Background&) = delete;
+
+    pid_t pid() const { return pid_; }
+    void signal(int sig) const { ::kill(pid_, sig); }
+    // Polls `ready` every 2 ms for at most `max_s` seconds; false when it never became true.
+    template <class F>
+    static bool until(F&& ready, double max_s = 60) {
+        const auto t0 = std::chrono::steady_clock::now();
+        while (!ready()) {
+            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > max_s) return false;
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        return true;
+    }
+    Proc wait(double deadline_s = 120) {
+        Proc p;
+        int status = 0;
+        const auto t0 = std::chrono::steady_clock::now();
+        for (;;) {
+            const pid_t r = ::waitpid(pid_, &status, WNOHANG);
+            if (r == pid_) break;
+            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > deadline_s && !p.hung) {
+                ::kill(pid_, SIGKILL);
+                p.hung = true;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        reaped_ = true;
+        if (WIFEXITED(status)) p.code = WEXITSTATUS(status);
+        if (WIFSIGNALED(status)) p.signal = WTERMSIG(status);
+        ::lseek(log_fd_, 0, SEEK_SET);
+        std::array<char, 4096> buf{};
+        for (ssize_t n; (n = ::read(log_fd_, buf.data(), buf.size())) > 0;) p.output.append(buf.data(), static_cast<size_t>(n));
+        return p;
+    }
+
+private:
+    pid_t pid_ = -1;
+    int log_fd_ = -1;
+    bool reaped_ = false;
+};
 
 // A fresh, empty folder per test (ctest runs tests in parallel, one process each).
 inline fs::path temp_dir(const std::string& name) {
@@ -80,11 +151,16 @@ inline std::map<std::string, std::string> tree_hashes(const fs::path& dir) {
     return h;
 }
 
+// Temporaries matforge left under `dir`: names of exactly its temporary form (mf::temp_owner),
+// except those of this test process itself (a test may plant a "live writer's" temporary). A
+// user's file that merely contains the marker ("holiday.matforge-tmp-photo.jpg") is not one.
 inline std::vector<std::string> temp_files_under(const fs::path& dir) {
     std::vector<std::string> found;
     std::error_code ec;
-    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-        if (it->path().filename().string().find(mf::kTempMarker) != std::string::npos) found.push_back(it->path().string());
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const auto owner = mf::temp_owner(it->path().filename().string());
+        if (owner && *owner != ::getpid()) found.push_back(it->path().string());
+    }
     return found;
 }
 

@@ -60,7 +60,8 @@ int code(const mf::Image& img, int x, int c) { return mf::quantize(img.at(x, 0, 
 
 TEST(Presets, AllShippedParse) {
     const auto names = mf::shipped_presets();
-    EXPECT_EQ(names, (std::vector<std::string>{"gltf", "godot", "separate", "unity-hdrp", "unity-urp", "unreal"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"d3d11", "gltf", "godot", "separate", "unity-hdrp", "unity-urp", "unreal",
+                                               "vulkan-ktx2", "vulkan-ktx2-astc"}));
     for (const auto& n : names) {
         std::string err;
         auto p = mf::load_preset(n, err);

@@ -134,7 +134,7 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
                       const std::function<void(int, int, const float*)>& fn) {
         const bool normal = in.display == "N.png";
         const int c = normal || in.display == "A.png" ? 3 : 1;
-        info = {W, H, c, 8, false, "memory"};
+        info = {W, H, c, 8, false, "memory", {}};
         std::vector<float> band(static_cast<size_t>(W) * c * band_rows);
         for (int y0 = 0; y0 < H; y0 += band_rows) {
             const int rows = std::min(band_rows, H - y0);
@@ -158,7 +158,7 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
         m.role = role;
         m.name = name;
         m.file.display = name;
-        m.info = {W, H, (role == Role::albedo || role == Role::normal) ? 3 : 1, 8, false, "memory"};
+        m.info = {W, H, (role == Role::albedo || role == Role::normal) ? 3 : 1, 8, false, "memory", {}};
         maps.push_back(m);
     }
     mv::ValidateOptions opt;

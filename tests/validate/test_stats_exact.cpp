@@ -48,7 +48,7 @@ TEST(StatsExact, AlbedoCodeEqualsBinarySearchAtEveryEdgeAndBetween) {
 md::MapStats stats_for(int bit_depth, bool is_float, int channels) {
     mv::MapInput in;
     in.role = mf::Role::roughness;
-    in.info = {4, 1, channels, bit_depth, is_float, "png"};
+    in.info = {4, 1, channels, bit_depth, is_float, "png", {}};
     return md::MapStats(in, in.info, mv::Thresholds{});
 }
 

@@ -9,6 +9,7 @@
 #include "process/ingest.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
+#include "stop.hpp"
 #include "summary.hpp"
 
 namespace mf::cli {
@@ -16,9 +17,9 @@ namespace {
 
 struct IngestArgs {
     std::vector<std::string> inputs;
-    std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file, shard;
+    std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file, shard, cache;
     int jobs = 0;
-    bool quiet = false;
+    bool quiet = false, force = false, no_cache = false;
 };
 
 ExitCode run_ingest(const IngestArgs& a) {
@@ -34,6 +35,8 @@ ExitCode run_ingest(const IngestArgs& a) {
     opt.out_dir = a.out_dir;
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
+    opt.force = a.force;
+    if (!a.no_cache) opt.cache_dir = cache_folder(a.cache);
     if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
     if (!a.shard.empty()) {
         opt.shard = parse_shard(a.shard);
@@ -50,8 +53,21 @@ ExitCode run_ingest(const IngestArgs& a) {
     }
     Ingestor ingestor(std::move(*preset), color, opt);
     std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+    install_stop_handlers();
     const IngestResult r = ingestor.run(inputs);
-    if (!r.error.empty()) return fail("ingest", r.error, ExitCode::findings);
+    if (r.interrupted)
+        return interrupted("ingest", "stopped before the end; " + (std::filesystem::path(a.out_dir) / opt.manifest_name).string() +
+                                         " is not written until a run completes (run the command again to finish)");
+    if (!r.error.empty()) return fail("ingest", r.error, r.usage_error ? ExitCode::usage : ExitCode::findings);
+    if (!a.quiet)
+        for (const auto& n : r.notes) say("ingest", "note: " + n);
+    for (const auto& p : r.cache_problems) say("ingest", "warning: cache: " + p);
+    if (!a.quiet && opt.cache_dir && r.cache_hits + r.cache_misses > 0)
+        say("ingest", "cache: " + std::to_string(r.cache_hits) + " sets restored, " + std::to_string(r.cache_misses) +
+                          " computed (" + opt.cache_dir->string() + ")");
+    std::vector<std::string> names;
+    for (const auto& m : r.manifest.materials) names.push_back(m.name);
+    report_unmatched_suppressions("ingest", opt.rules, names);
     for (const auto& f : r.manifest.failures) say("ingest", f.code + ": " + f.message);
     if (!a.quiet) {
         const auto counts = manifest::count_findings(r.manifest);
@@ -86,6 +102,13 @@ const Register reg{{"ingest", 10,
                                        "lists them); writes manifest.shard-I-of-N.json for `matforge merge`");
                         add_fail_on(sub, a->fail_on);
                         sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
+                        auto* cache = sub.add_option("--cache", a->cache,
+                                                     "result cache folder (default $MATFORGE_CACHE, else $XDG_CACHE_HOME/matforge, else "
+                                                     "~/.cache/matforge): unchanged sets are restored, not recomputed");
+                        sub.add_flag("--no-cache", a->no_cache, "compute every set; read and write no cache")->excludes(cache);
+                        sub.add_flag("--force", a->force,
+                                     "replace a manifest.json matforge did not write, and files in the way of outputs "
+                                     "that no earlier run wrote (refused without it)");
                         return [a] { return run_ingest(*a); };
                     },
                     "convert material sets to engine-ready textures and a manifest.json"}};

@@ -157,6 +157,7 @@ ExitCode run_preview(const PreviewArgs& a) {
             say("preview", context.info().name + (context.info().cpu ? " (CPU)" : "") + ", " + std::to_string(scene.width) +
                                "x" + std::to_string(scene.height) + ", " + std::to_string(jobs->size()) + " material(s)");
         render::Renderer renderer(context, scene);
+        for (const std::string& n : renderer.take_notes()) say("preview", "note: " + n);
         for (size_t i = 0; i < jobs->size(); ++i) {
             const Job& job = (*jobs)[i];
             std::vector<std::string> notes;
@@ -170,6 +171,7 @@ ExitCode run_preview(const PreviewArgs& a) {
             }
             try {
                 const render::GpuMaterial gm = renderer.upload(*m);
+                for (const std::string& n : renderer.take_notes()) say("preview", job.name + ": note: " + n);
                 const std::filesystem::path out = std::filesystem::path(a.out) / (job.stem + "." + a.format);
                 std::vector<uint8_t> rgba8;
                 if (a.format == "png" || !a.contact_sheet.empty()) rgba8 = renderer.render(gm, sf->output).rgba8;

@@ -7,6 +7,7 @@
 #include "core/files.hpp"
 #include "options.hpp"
 #include "process/validate_batch.hpp"
+#include "stop.hpp"
 
 namespace mf::cli {
 namespace {
@@ -26,8 +27,13 @@ ExitCode run_validate(const ValidateArgs& a) {
     ValidateBatchOptions opt;
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
+    install_stop_handlers();
     const validate::Report report =
         validate_inputs(std::vector<std::filesystem::path>(a.inputs.begin(), a.inputs.end()), *preset, opt);
+    if (stop_requested()) return interrupted("validate", "stopped before the end; no report is written");
+    std::vector<std::string> names;
+    for (const auto& m : report.materials) names.push_back(m.name);
+    report_unmatched_suppressions("validate", opt.rules, names);
     const auto fail_on = fail_on_of(a.fail_on);
     std::string text;
     if (a.report == "json") text = validate::write_json(report);

@@ -1,0 +1,288 @@
+#include "gltf/gltf.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include "core/files.hpp"
+#include "core/json.hpp"
+#include "core/text.hpp"
+#include "core/version.hpp"
+
+namespace mf::gltf {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kSegments = 64, kRings = 32;
+constexpr float kRadius = 0.5f;
+constexpr int kVertices = (kSegments + 1) * (kRings + 1);
+// Triangles: two per quad except one at each pole row (no degenerate triangles).
+constexpr int kIndices = 3 * (2 * kSegments * kRings - 2 * kSegments);
+
+// glTF constants.
+constexpr int kFloat = 5126, kUnsignedShort = 5123;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+constexpr int kLinear = 9729, kLinearMipmapLinear = 9987;
+
+struct Layout {  // byte offsets in the buffer
+    size_t position = 0, normal = 0, tangent = 0, texcoord = 0, indices = 0, total = 0;
+    std::array<float, 3> min{}, max{};
+};
+
+Layout make_layout() {
+    Layout l;
+    l.normal = l.position + size_t{kVertices} * 12;
+    l.tangent = l.normal + size_t{kVertices} * 12;
+    l.texcoord = l.tangent + size_t{kVertices} * 16;
+    l.indices = l.texcoord + size_t{kVertices} * 8;
+    l.total = l.indices + size_t{kIndices} * 2;
+    l.total = (l.total + 3) / 4 * 4;
+    return l;
+}
+
+struct Sphere {
+    Layout layout;
+    std::vector<uint8_t> bytes;
+};
+
+// u = i / segments around (+X at the front, so the texture is not mirrored seen from +Z),
+// v = j / rings from the north pole (glTF's texture origin is the image's top-left).
+const Sphere& sphere() {
+    static const Sphere s = [] {
+        Sphere out;
+        out.layout = make_layout();
+        const Layout& l = out.layout;
+        out.bytes.assign(l.total, 0);
+        auto put = [&](size_t at, float v) { std::memcpy(out.bytes.data() + at, &v, 4); };
+        std::array<float, 3> lo{1e9f, 1e9f, 1e9f}, hi{-1e9f, -1e9f, -1e9f};
+        for (int j = 0; j <= kRings; ++j)
+            for (int i = 0; i <= kSegments; ++i) {
+                const size_t k = static_cast<size_t>(j) * (kSegments + 1) + static_cast<size_t>(i);
+                const double u = static_cast<double>(i) / kSegments, v = static_cast<double>(j) / kRings;
+                const double phi = 2.0 * std::numbers::pi * u, theta = std::numbers::pi * v;
+                // Exact zeros at the poles and the seam keep the normals' lengths exactly 1.
+                const double st = (j == 0 || j == kRings) ? 0.0 : std::sin(theta);
+                const double ct = j == 0 ? 1.0 : j == kRings ? -1.0 : std::cos(theta);
+                const std::array<double, 3> n{st * std::sin(phi), ct, st * std::cos(phi)};
+                const std::array<double, 3> t{std::cos(phi), 0.0, -std::sin(phi)};  // d(position)/du, normalized
+                for (size_t c = 0; c < 3; ++c) {
+                    const auto p = static_cast<float>(kRadius * n[c]);
+                    put(l.position + k * 12 + c * 4, p);
+                    put(l.normal + k * 12 + c * 4, static_cast<float>(n[c]));
+                    put(l.tangent + k * 16 + c * 4, static_cast<float>(t[c]));
+                    lo[c] = std::min(lo[c], p);
+                    hi[c] = std::max(hi[c], p);
+                }
+                put(l.tangent + k * 16 + 12, 1.f);
+                put(l.texcoord + k * 8, static_cast<float>(u));
+                put(l.texcoord + k * 8 + 4, static_cast<float>(v));
+            }
+        out.layout.min = lo;
+        out.layout.max = hi;
+        size_t at = l.indices;
+        auto index = [&](int i, int j) {
+            const auto v = static_cast<uint16_t>(j * (kSegments + 1) + i);
+            std::memcpy(out.bytes.data() + at, &v, 2);
+            at += 2;
+        };
+        for (int j = 0; j < kRings; ++j)
+            for (int i = 0; i < kSegments; ++i) {
+                // a = (i, j) b = (i+1, j) c = (i, j+1) d = (i+1, j+1): a-c-d and a-d-b are
+                // counter-clockwise seen from outside. On the top row a and b are both the north
+                // pole (a-d-b would be degenerate), on the bottom row c and d the south pole.
+                if (j != kRings - 1) index(i, j), index(i, j + 1), index(i + 1, j + 1);
+                if (j != 0) index(i, j), index(i + 1, j + 1), index(i + 1, j);
+            }
+        return out;
+    }();
+    return s;
+}
+
+// Buffer views and accessors of the sphere (buffer 0), appended to `doc`; returns the mesh
+// primitive's attributes and indices.
+json add_sphere(json& doc, const std::string& bin_uri) {
+    const Layout& l = sphere().layout;
+    doc["buffers"] = json::array({{{"uri", uri_of(bin_uri)}, {"byteLength", l.total}}});
+    auto view = [&](size_t offset, size_t length, int target) {
+        doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"target", target}});
+        return doc["bufferViews"].size() - 1;
+    };
+    auto accessor = [&](size_t v, int component, size_t count, const char* type) {
+        doc["accessors"].push_back({{"bufferView", v}, {"componentType", component}, {"count", count}, {"type", type}});
+        return doc["accessors"].size() - 1;
+    };
+    const auto nv = static_cast<size_t>(kVertices);
+    const size_t pos = accessor(view(l.position, nv * 12, kArrayBuffer), kFloat, nv, "VEC3");
+    doc["accessors"][pos]["min"] = {l.min[0], l.min[1], l.min[2]};
+    doc["accessors"][pos]["max"] = {l.max[0], l.max[1], l.max[2]};
+    const size_t nrm = accessor(view(l.normal, nv * 12, kArrayBuffer), kFloat, nv, "VEC3");
+    const size_t tan = accessor(view(l.tangent, nv * 16, kArrayBuffer), kFloat, nv, "VEC4");
+    const size_t uv = accessor(view(l.texcoord, nv * 8, kArrayBuffer), kFloat, nv, "VEC2");
+    const size_t idx = accessor(view(l.indices, size_t{kIndices} * 2, kElementArrayBuffer), kUnsignedShort,
+                                static_cast<size_t>(kIndices), "SCALAR");
+    return {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TANGENT", tan}, {"TEXCOORD_0", uv}}}, {"indices", idx}};
+}
+
+bool holds(const manifest::Output& o, const std::string& key, Role role) {
+    return std::any_of(o.channels.begin(), o.channels.end(), [&](const manifest::Channel& c) {
+        return c.key == key && c.kind == manifest::Channel::Kind::role && c.role == role;
+    });
+}
+
+bool has_constant(const manifest::Material& m, Role r) {
+    return std::any_of(m.constants.begin(), m.constants.end(), [&](const manifest::Constant& c) { return c.role == r; });
+}
+
+std::string text_of(const json& doc) { return json_text(doc); }
+
+}  // namespace
+
+const std::vector<uint8_t>& sphere_buffer() { return sphere().bytes; }
+
+std::string uri_of(const std::string& relative_path) {
+    return percent_encode_path(relative_path);
+}
+
+bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri,
+                   const MaterialOptions& opt, Files& out, std::string& error) {
+    const fs::path base = fs::path(gltf_file).parent_path();
+    json doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", std::string(kGenerator)}};
+    doc["samplers"] = json::array({{{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}}});
+    doc["images"] = json::array();
+    doc["textures"] = json::array();
+    // One texture per output file, in the manifest's (preset's) order.
+    auto texture_of = [&](const manifest::Output& o) {
+        const std::string uri = uri_of(fs::path(o.file).lexically_relative(base).generic_string());
+        for (size_t i = 0; i < doc["images"].size(); ++i)
+            if (doc["images"][i]["uri"] == uri) return i;
+        doc["images"].push_back({{"uri", uri}});
+        doc["textures"].push_back({{"sampler", 0}, {"source", doc["images"].size() - 1}});
+        return doc["textures"].size() - 1;
+    };
+    json mat = {{"name", m.name}};
+    json pbr = json::object();
+    bool base_color = false, mr = false;
+    for (const manifest::Output& o : m.outputs) {
+        if (o.format != "png") {
+            error = o.file + ": glTF textures are PNG or JPEG, not " + o.format;
+            return false;
+        }
+        if (holds(o, "RGB", Role::albedo) && o.srgb) {
+            pbr["baseColorTexture"] = {{"index", texture_of(o)}};
+            base_color = true;
+            if (holds(o, "A", Role::opacity) && opt.alpha_mode != AlphaMode::opaque) {
+                mat["alphaMode"] = opt.alpha_mode == AlphaMode::mask ? "MASK" : "BLEND";
+                if (opt.alpha_mode == AlphaMode::mask) mat["alphaCutoff"] = opt.alpha_cutoff;
+                mat["doubleSided"] = true;  // seen through, the far side shows
+            }
+        }
+        if (holds(o, "G", Role::roughness) && holds(o, "B", Role::metalness) && !o.srgb) {
+            pbr["metallicRoughnessTexture"] = {{"index", texture_of(o)}};
+            mr = true;
+        }
+        // An occlusion the set has no map of is a constant 1: nothing to reference.
+        if (holds(o, "R", Role::occlusion) && !o.srgb && !has_constant(m, Role::occlusion))
+            mat["occlusionTexture"] = {{"index", texture_of(o)}};
+        if (holds(o, "RGB", Role::normal)) {
+            if (o.normal_convention && *o.normal_convention != NormalConvention::gl) {
+                error = o.file + ": glTF normal textures are +Y (gl); this one is " +
+                        std::string(convention_name(*o.normal_convention)) + " (--normal-convention)";
+                return false;
+            }
+            mat["normalTexture"] = {{"index", texture_of(o)}};
+        }
+        if (holds(o, "RGB", Role::emissive) && o.srgb) {
+            mat["emissiveTexture"] = {{"index", texture_of(o)}};
+            mat["emissiveFactor"] = {1.0, 1.0, 1.0};  // the default 0 would switch the texture off
+            if (opt.emissive_strength > 1.f) {
+                mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", opt.emissive_strength}};
+                doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
+            }
+        }
+    }
+    if (!base_color || !mr) {
+        error = m.name + ": no " + std::string(base_color ? "metallicRoughness (G roughness, B metalness)" : "base color (sRGB RGB albedo)") +
+                " output to reference";
+        return false;
+    }
+    mat["pbrMetallicRoughness"] = std::move(pbr);
+    doc["materials"] = json::array({std::move(mat)});
+    json primitive = add_sphere(doc, bin_uri);
+    primitive["material"] = 0;
+    doc["meshes"] = json::array({{{"name", m.name}, {"primitives", json::array({std::move(primitive)})}}});
+    doc["nodes"] = json::array({{{"name", m.name}, {"mesh", 0}}});
+    doc["scenes"] = json::array({{{"name", m.name}, {"nodes", {0}}}});
+    doc["scene"] = 0;
+    out.gltf = text_of(doc);
+    out.bin = sphere_buffer();
+    return true;
+}
+
+bool library_gltf(const manifest::Manifest& m, const fs::path& out_dir, Files& out, std::string& error) {
+    json doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", std::string(kGenerator)}};
+    const json primitive = add_sphere(doc, "library.bin");
+    doc["samplers"] = json::array({{{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}}});
+    doc["images"] = doc["textures"] = doc["materials"] = doc["meshes"] = doc["nodes"] = json::array();
+    std::vector<const manifest::Material*> mats;
+    for (const auto& mat : m.materials)
+        if (std::any_of(mat.material_files.begin(), mat.material_files.end(), [](const auto& f) { return f.format == "gltf"; }))
+            mats.push_back(&mat);
+    const auto side = static_cast<size_t>(std::ceil(std::sqrt(static_cast<double>(mats.size()))));
+    bool emissive_strength = false;
+    for (size_t i = 0; i < mats.size(); ++i) {
+        const manifest::Material& mat = *mats[i];
+        const auto file = std::find_if(mat.material_files.begin(), mat.material_files.end(), [](const auto& f) { return f.format == "gltf"; });
+        const fs::path gltf_path = out_dir / file->file;
+        const auto one = read_json_file(gltf_path, error);
+        if (!one) return false;
+        try {
+            // The material's images move from its folder's URIs to the root's.
+            const fs::path base = fs::path(file->file).parent_path();
+            const size_t first_texture = doc["textures"].size();
+            for (const auto& img : one->at("images")) {
+                const std::string uri = img.at("uri").get<std::string>();
+                doc["images"].push_back({{"uri", uri_of((base / uri).lexically_normal().generic_string())}});
+            }
+            const size_t first_image = doc["images"].size() - one->at("images").size();
+            for (const auto& t : one->at("textures"))
+                doc["textures"].push_back({{"sampler", 0}, {"source", first_image + t.at("source").get<size_t>()}});
+            json material = one->at("materials").at(0);
+            for (auto& [slot, v] : material.items())
+                if (v.is_object() && v.contains("index")) v["index"] = first_texture + v["index"].get<size_t>();
+            for (auto& [slot, v] : material["pbrMetallicRoughness"].items())
+                if (v.is_object() && v.contains("index")) v["index"] = first_texture + v["index"].get<size_t>();
+            if (material.contains("extensions")) emissive_strength = true;
+            doc["materials"].push_back(std::move(material));
+        } catch (const json::exception& e) {
+            error = gltf_path.string() + ": not a material file of ours (" + e.what() + ")";
+            return false;
+        }
+        json p = primitive;
+        p["material"] = i;
+        doc["meshes"].push_back({{"name", mat.name}, {"primitives", json::array({std::move(p)})}});
+        const auto column = i % side, row = i / side;  // the grid cell of material i
+        const double x = 1.25 * static_cast<double>(column), y = -1.25 * static_cast<double>(row);
+        doc["nodes"].push_back({{"name", mat.name}, {"mesh", i}, {"translation", {x, y, 0.0}}});
+    }
+    if (emissive_strength) doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
+    json nodes = json::array();
+    for (size_t i = 0; i < mats.size(); ++i) nodes.push_back(i);
+    doc["scenes"] = json::array({{{"name", "library"}, {"nodes", std::move(nodes)}}});
+    doc["scene"] = 0;
+    // glTF requires non-empty arrays where present.
+    for (const char* k : {"images", "textures", "materials", "meshes", "nodes"})
+        if (doc[k].empty()) doc.erase(k);
+    if (!doc.contains("images")) doc.erase("samplers");
+    out.gltf = text_of(doc);
+    out.bin = sphere_buffer();
+    return true;
+}
+
+}  // namespace mf::gltf

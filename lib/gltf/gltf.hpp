@@ -1,0 +1,62 @@
+// glTF 2.0 material files: a set's textures as a pbrMetallicRoughness material on a UV sphere
+// (<material>/<material>.gltf + .bin), and library.gltf with every material of a run on its own
+// node of a grid. Built from the manifest entry (which output holds which role), so a reader of
+// the manifest could rebuild them.
+//
+// Conventions of this module (decided once here):
+//  - the mesh is a UV sphere of radius 0.5 m (64 segments, 32 rings) with normals, tangents
+//    (w = +1: the bitangent cross(N, T) points to the image's top, glTF's +Y normal-map
+//    convention) and texture coordinates, counter-clockwise front faces, no degenerate
+//    triangles at the poles. A sphere, not a plane: it shows the material under every angle of
+//    light and view at once (the roughness and metalness response, the normal map's relief on
+//    both flanks), as matforge's own preview does; tangents are written so no viewer has to
+//    generate them (MikkTSpace on the poles' fan is where viewers disagree);
+//  - URIs are relative to the .gltf file and percent-encoded (RFC 3986, '/' kept);
+//  - texture slots follow glTF 2.0 section 3.9: base color (sRGB RGB, A = alpha),
+//    metallicRoughness (G roughness, B metalness), occlusion (R), normal (+Y), emissive (sRGB,
+//    emissiveFactor 1); factors left at their defaults of 1 (the textures carry the values);
+//  - JSON text is deterministic (sorted keys, 2-space indent): same inputs, same bytes.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "manifest/manifest.hpp"
+
+namespace mf::gltf {
+
+enum class AlphaMode { opaque, mask, blend };
+
+struct MaterialOptions {
+    AlphaMode alpha_mode = AlphaMode::opaque;  // with an opacity in the base color's alpha
+    float alpha_cutoff = 0.5f;                 // MASK
+    // KHR_materials_emissive_strength, written only when > 1 (an emissive texture scaled down
+    // to fit [0, 1] by this factor).
+    float emissive_strength = 1.f;
+};
+
+struct Files {
+    std::string gltf;           // JSON text
+    std::vector<uint8_t> bin;   // the mesh buffer
+};
+
+// The mesh buffer (positions, normals, tangents, texture coordinates, 16-bit indices) shared by
+// every file: the same bytes for each material.
+const std::vector<uint8_t>& sphere_buffer();
+
+// The .gltf of `m` written at `gltf_file` (relative to the manifest's folder), referencing its
+// buffer as `bin_uri` beside it. False + `error` when the outputs do not fit glTF's slots.
+bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri,
+                   const MaterialOptions& opt, Files& out, std::string& error);
+
+// library.gltf at the root of `out_dir` (its buffer `library.bin`): every material of `m` that
+// has a .gltf (material_files), read back from that file, on a node of a square grid, 1.25 m
+// apart, named after the material. Materials in name order.
+bool library_gltf(const manifest::Manifest& m, const std::filesystem::path& out_dir, Files& out, std::string& error);
+
+// A relative path as a URI reference (RFC 3986 percent-encoding, '/' kept).
+std::string uri_of(const std::string& relative_path);
+
+}  // namespace mf::gltf

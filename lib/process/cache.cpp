@@ -1,0 +1,281 @@
+#include "process/cache.hpp"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/files.hpp"
+#include "core/json.hpp"
+
+namespace mf {
+namespace fs = std::filesystem;
+namespace {
+
+std::span<const unsigned char> as_bytes(const std::string& s) {
+    return {reinterpret_cast<const unsigned char*>(s.data()), s.size()};
+}
+
+std::string sha_of(const std::string& s) { return sha256_hex(as_bytes(s)); }
+
+bool is_sha(const std::string& s) {
+    return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
+
+// What a file's digest is remembered by. ctime cannot be set by a user: any write to the file
+// moves it, so a record that still matches describes the same bytes.
+std::string stat_line(const fs::path& file) {
+    struct stat st {};
+    if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return {};
+    std::ostringstream o;
+    o << st.st_dev << ' ' << st.st_ino << ' ' << st.st_size << ' ' << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec << ' '
+      << st.st_ctim.tv_sec << '.' << st.st_ctim.tv_nsec;
+    return o.str();
+}
+
+std::optional<std::string> read_text(const fs::path& p) {
+    std::vector<unsigned char> bytes;
+    std::string error;
+    if (!read_file(p, bytes, error)) return std::nullopt;
+    return std::string(bytes.begin(), bytes.end());
+}
+
+// A digest hint (stat/): written aside and renamed, but not fsynced. A hint lost to a crash
+// costs one re-hash; it is only trusted while the file's stat still matches.
+void write_hint(const fs::path& file, const std::string& text) {
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    const fs::path aside = file.parent_path() / temp_name(file.filename().string());
+    {
+        std::ofstream o(aside, std::ios::binary | std::ios::trunc);
+        o << text;
+        if (!o.flush()) {
+            fs::remove(aside, ec);
+            return;
+        }
+    }
+    fs::rename(aside, file, ec);
+    if (ec) fs::remove(aside, ec);
+}
+
+// The digest of `file`, remembered under `stat_file` ("<stat line>\n<sha>"): hashed only when
+// the file's stat changed since.
+std::optional<std::string> remembered_digest(const fs::path& file, const fs::path& stat_file, std::string& error) {
+    const std::string now = stat_line(file);
+    if (!now.empty())
+        if (const auto rec = read_text(stat_file)) {
+            const auto nl = rec->find('\n');
+            if (nl != std::string::npos && rec->substr(0, nl) == now && is_sha(rec->substr(nl + 1))) return rec->substr(nl + 1);
+        }
+    std::vector<unsigned char> bytes;
+    if (!read_file(file, bytes, error)) return std::nullopt;
+    const std::string sha = sha256_hex(bytes);
+    // Written only when the stat did not move while we read (else the next run hashes again).
+    if (!now.empty() && stat_line(file) == now) {
+        write_hint(stat_file, now + "\n" + sha);
+    }
+    return sha;
+}
+
+// The files a set's entry lists: its outputs and its material files (glTF + bin).
+struct FileRef {
+    std::string file, sha256;
+};
+std::vector<FileRef> files_of(const manifest::Material& m) {
+    std::vector<FileRef> out;
+    for (const auto& o : m.outputs) out.push_back({o.file, o.sha256});
+    for (const auto& f : m.material_files) out.push_back({f.file, f.sha256});
+    return out;
+}
+
+// `blob` as a hard link to `file` (no second copy), put aside and renamed into place; a copy of
+// `bytes` where links are not possible (another file system, a file system without links).
+bool link_or_write(const fs::path& file, const fs::path& blob, std::span<const unsigned char> bytes, std::string& error) {
+    std::error_code ec;
+    fs::create_directories(blob.parent_path(), ec);
+    const fs::path aside = blob.parent_path() / temp_name(blob.filename().string());
+    fs::create_hard_link(file, aside, ec);
+    if (!ec) {
+        fs::rename(aside, blob, ec);
+        if (!ec) return true;
+        fs::remove(aside, ec);
+    }
+    return write_file_atomic(blob, bytes, error);
+}
+
+}  // namespace
+
+std::optional<Cache> Cache::open(const fs::path& dir, std::string& error) {
+    std::error_code ec;
+    for (const char* sub : {"cas", "ac", "stat"}) {
+        fs::create_directories(dir / sub, ec);
+        if (ec) {
+            error = (dir / sub).string() + ": cannot create the cache folder (" + ec.message() + ")";
+            return std::nullopt;
+        }
+    }
+    const fs::path probe = dir / "version";
+    if (!write_file_atomic(probe, as_bytes("matforge cache 1\n"), error)) return std::nullopt;
+    return Cache(fs::absolute(dir, ec));
+}
+
+fs::path Cache::blob_path(const std::string& sha) const { return dir_ / "cas" / sha.substr(0, 2) / sha; }
+fs::path Cache::record_path(const std::string& key, const std::string& name) const {
+    const std::string id = sha_of(key + "\n" + name);
+    return dir_ / "ac" / id.substr(0, 2) / (id + ".json");
+}
+fs::path Cache::stat_path(const fs::path& file) const {
+    std::error_code ec;
+    const std::string id = sha_of(fs::absolute(file, ec).lexically_normal().string());
+    return dir_ / "stat" / id.substr(0, 2) / id;
+}
+
+std::optional<std::string> Cache::digest(const InputFile& in, std::string& error) const {
+    if (in.bytes) return sha256_hex(*in.bytes);  // a zip entry: already in memory
+    if (!in.open_error.empty()) {
+        error = in.display + ": " + in.open_error;
+        return std::nullopt;
+    }
+    return remembered_digest(in.path, stat_path(in.path), error);
+}
+
+std::optional<Cache::Hit> Cache::restore(const std::string& key, const std::string& name, const fs::path& out_dir,
+                                         const Write& write, std::vector<std::string>& corrupt) const {
+    const fs::path rec = record_path(key, name);
+    std::string error;
+    const auto j = read_json_file(rec, error);
+    if (!j) return std::nullopt;
+    const auto mj = j->find("entry");
+    if (!j->is_object() || j->value("key", "") != key || mj == j->end()) return std::nullopt;
+    nlohmann::json wrapped{{"manifest_version", manifest::kVersion}, {"materials", nlohmann::json::array({*mj})}};
+    auto m = manifest::manifest_from_json(wrapped, error);
+    if (!m || m->materials.size() != 1 || m->materials[0].name != name) return std::nullopt;
+    Hit hit{std::move(m->materials[0])};
+    // Every blob is read and checked before the first file is written: a miss half-way would
+    // leave a set with some outputs of the cached run and the rest to recompute.
+    const std::vector<FileRef> files = files_of(hit.entry);
+    std::vector<std::pair<const FileRef*, std::vector<unsigned char>>> todo;
+    for (const FileRef& f : files) {
+        const fs::path dest = out_dir / f.file;
+        // Already in place (the stat of what this cache last wrote or read there): nothing to do.
+        std::string ignored;
+        if (const auto have = remembered_digest(dest, stat_path(dest), ignored); have && *have == f.sha256) continue;
+        std::vector<unsigned char> bytes;
+        const fs::path blob = blob_path(f.sha256);
+        if (!is_sha(f.sha256) || !read_file(blob, bytes, error)) return std::nullopt;  // evicted: a miss
+        if (sha256_hex(bytes) != f.sha256) {
+            corrupt.push_back(blob.string() + ": its content does not hash to its name (truncated or altered); removed");
+            std::error_code ec;
+            fs::remove(blob, ec);
+            return std::nullopt;
+        }
+        todo.emplace_back(&f, std::move(bytes));
+    }
+    for (const auto& [f, bytes] : todo) {
+        if (!write(f->file, bytes, error)) return std::nullopt;  // the caller recomputes and reports
+        const fs::path dest = out_dir / f->file;
+        const std::string now = stat_line(dest);
+        if (!now.empty()) write_hint(stat_path(dest), now + "\n" + f->sha256);
+    }
+    // Used now: least recently used eviction keeps it.
+    std::error_code ec;
+    fs::last_write_time(rec, fs::file_time_type::clock::now(), ec);
+    return hit;
+}
+
+bool Cache::store(const std::string& key, const manifest::Material& entry, const fs::path& out_dir,
+                  std::string& error) const {
+    for (const FileRef& f : files_of(entry)) {
+        const fs::path blob = blob_path(f.sha256);
+        std::error_code ec;
+        if (!is_sha(f.sha256)) {
+            error = f.file + ": no sha256 recorded; not cached";
+            return false;
+        }
+        if (fs::is_regular_file(blob, ec)) continue;  // content-addressed: the same bytes
+        std::vector<unsigned char> bytes;
+        if (!read_file(out_dir / f.file, bytes, error)) return false;
+        if (sha256_hex(bytes) != f.sha256) {
+            error = (out_dir / f.file).string() + ": changed since it was written; not cached";
+            return false;
+        }
+        if (!link_or_write(out_dir / f.file, blob, bytes, error)) return false;
+    }
+    // What is in the output folder now is these bytes: the next restore checks their stat only.
+    for (const FileRef& f : files_of(entry)) {
+        const fs::path dest = out_dir / f.file;
+        const std::string now = stat_line(dest);
+        if (!now.empty()) write_hint(stat_path(dest), now + "\n" + f.sha256);
+    }
+    manifest::Material stored = entry;
+    stored.source.clear();  // the caller's: relative to its output folder
+    stored.archive.reset();
+    const nlohmann::json rec{{"cache_version", 1}, {"key", key}, {"entry", manifest::to_json(stored)}};
+    return write_file_atomic(record_path(key, entry.name), as_bytes(json_text(rec)), error);
+}
+
+Cache::Stats Cache::stats() const {
+    Stats s;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+        if (!it->is_regular_file(ec)) continue;
+        const auto size = it->file_size(ec);
+        const std::string top = it->path().lexically_relative(dir_).begin()->string();
+        if (top == "cas") ++s.blobs, s.blob_bytes += size;
+        else if (top == "ac") ++s.records, s.other_bytes += size;
+        else s.other_bytes += size;
+    }
+    return s;
+}
+
+Cache::Stats Cache::prune(uint64_t max_bytes, std::chrono::seconds grace) const {
+    struct Record {
+        fs::path path;
+        fs::file_time_type used;
+        std::vector<std::string> blobs;
+    };
+    std::vector<Record> records;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(dir_ / "ac", ec), end; !ec && it != end; it.increment(ec)) {
+        if (!it->is_regular_file(ec)) continue;
+        Record r{it->path(), it->last_write_time(ec), {}};
+        std::string error;
+        if (const auto j = read_json_file(r.path, error); j && j->contains("entry"))
+            for (const auto& o : (*j)["entry"].value("outputs", nlohmann::json::array()))
+                if (o.is_object() && o.value("sha256", "").size() == 64) r.blobs.push_back(o["sha256"]);
+        records.push_back(std::move(r));
+    }
+    std::sort(records.begin(), records.end(), [](const Record& a, const Record& b) { return a.used > b.used; });
+    std::map<std::string, uint64_t> blob_size;
+    for (fs::recursive_directory_iterator it(dir_ / "cas", ec), end; !ec && it != end; it.increment(ec))
+        if (it->is_regular_file(ec)) blob_size[it->path().filename().string()] = it->file_size(ec);
+    Stats removed;
+    std::set<std::string> kept;
+    uint64_t used = 0;
+    for (const Record& r : records) {
+        uint64_t extra = 0;
+        for (const auto& b : r.blobs)
+            if (!kept.count(b) && blob_size.count(b)) extra += blob_size[b];
+        if (used + extra > max_bytes) {
+            fs::remove(r.path, ec);
+            ++removed.records;
+            continue;
+        }
+        used += extra;
+        kept.insert(r.blobs.begin(), r.blobs.end());
+    }
+    const auto young = fs::file_time_type::clock::now() - grace;
+    for (const auto& [sha, size] : blob_size) {
+        if (kept.count(sha)) continue;
+        const fs::path p = blob_path(sha);
+        if (fs::last_write_time(p, ec) > young) continue;
+        if (fs::remove(p, ec)) ++removed.blobs, removed.blob_bytes += size;
+    }
+    return removed;
+}
+
+}  // namespace mf

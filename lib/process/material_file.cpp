@@ -1,0 +1,69 @@
+#include "process/material_file.hpp"
+
+#include <algorithm>
+
+#include "core/files.hpp"
+#include "gltf/gltf.hpp"
+#include "texture/texture.hpp"
+
+namespace mf {
+namespace {
+
+std::span<const unsigned char> bytes_of(const std::string& s) {
+    return {reinterpret_cast<const unsigned char*>(s.data()), s.size()};
+}
+
+bool write_pair(const gltf::Files& files, const std::string& gltf_rel, const std::string& bin_rel, const WriteFile& write,
+                std::vector<manifest::MaterialFile>& recorded, std::string& error) {
+    // The buffer first: a .gltf is never there without the buffer it names.
+    if (!write(bin_rel, files.bin, error) || !write(gltf_rel, bytes_of(files.gltf), error)) return false;
+    recorded.push_back({gltf_rel, "gltf", sha256_hex(bytes_of(files.gltf))});
+    recorded.push_back({bin_rel, "bin", sha256_hex(files.bin)});
+    return true;
+}
+
+}  // namespace
+
+void write_material_files(const Preset& preset, const Planes& planes, const WriteFile& write, manifest::Material& m) {
+    if (preset.material_file != "gltf") return;
+    const std::string gltf_rel = m.name + "/" + m.name + ".gltf", bin_rel = m.name + "/" + m.name + ".bin";
+    // --normal-convention dx: the PNGs as asked, but no glTF (its normal textures are +Y).
+    for (const auto& o : m.outputs)
+        if (o.normal_convention && *o.normal_convention != NormalConvention::gl) {
+            m.findings.push_back({std::string(code::material_file_skipped), Severity::info, "normal", "",
+                                  gltf_rel + " not written: glTF normal textures are +Y (gl) and this run writes " +
+                                      std::string(convention_name(*o.normal_convention)) + " normals (--normal-convention)",
+                                  {{"normal_convention", std::string(convention_name(*o.normal_convention))}}});
+            return;
+        }
+    gltf::MaterialOptions opt;
+    opt.alpha_cutoff = preset.alpha_cutoff;
+    if (const auto it = planes.find(Role::opacity); it != planes.end()) {
+        switch (texture::classify_opacity(plane_floats(Role::opacity, it->second))) {
+            case texture::AlphaUse::opaque: opt.alpha_mode = gltf::AlphaMode::opaque; break;
+            case texture::AlphaUse::cutout: opt.alpha_mode = gltf::AlphaMode::mask; break;
+            case texture::AlphaUse::blend: opt.alpha_mode = gltf::AlphaMode::blend; break;
+        }
+    }
+    gltf::Files files;
+    std::string error;
+    if (!gltf::material_gltf(m, gltf_rel, m.name + ".bin", opt, files, error) ||
+        !write_pair(files, gltf_rel, bin_rel, write, m.material_files, error)) {
+        m.findings.push_back({std::string(code::output_write_failed), Severity::error, "", "", gltf_rel + ": " + error, {}});
+        m.status = manifest::Status::partial;
+    }
+}
+
+bool write_library(manifest::Manifest& m, const std::filesystem::path& out_dir, const WriteFile& write, std::string& error) {
+    const bool any = std::any_of(m.materials.begin(), m.materials.end(), [](const auto& mat) { return !mat.material_files.empty(); });
+    if (!any) return true;
+    gltf::Files files;
+    if (!gltf::library_gltf(m, out_dir, files, error)) return false;
+    if (!write_pair(files, "library.gltf", "library.bin", write, m.library, error)) {
+        error = "library.gltf: " + error;
+        return false;
+    }
+    return true;
+}
+
+}  // namespace mf

@@ -1,0 +1,291 @@
+#include "process/output_dir.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/json.hpp"
+
+namespace mf {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kJournalHeader = "matforge journal 1";
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+// A path a manifest or journal may name: relative, inside the folder. Anything else (a crafted
+// "../x" or "/etc/x") is never touched.
+std::optional<std::string> inside(const std::string& rel) {
+    const fs::path p = fs::path(rel).lexically_normal();
+    if (rel.empty() || p.is_absolute() || p.empty() || p == ".") return std::nullopt;
+    for (const auto& part : p)
+        if (part == "..") return std::nullopt;
+    return p.generic_string();
+}
+
+bool is_ours(const nlohmann::json& j) {
+    return j.is_object() && j.contains("generator") && j["generator"].is_string() &&
+           j["generator"].get<std::string>().rfind("matforge", 0) == 0;
+}
+
+// materials[].outputs[] of a manifest: file -> sha256 (leniently: a later version's manifest too).
+void manifest_outputs(const nlohmann::json& j, std::map<std::string, std::string>& out) {
+    auto add = [&](const nlohmann::json& list) {  // [{file, sha256}, ...]
+        if (!list.is_array()) return;
+        for (const auto& o : list) {
+            if (!o.is_object() || !o.contains("file") || !o["file"].is_string()) continue;
+            const auto rel = inside(o["file"].get<std::string>());
+            if (!rel) continue;
+            out[*rel] = o.contains("sha256") && o["sha256"].is_string() ? o["sha256"].get<std::string>() : "";
+        }
+    };
+    // Material files (the .gltf of a set and its buffer, library.gltf) are outputs too.
+    if (j.contains("library")) add(j["library"]);
+    if (!j.contains("materials") || !j["materials"].is_array()) return;
+    for (const auto& m : j["materials"]) {
+        if (!m.is_object()) continue;
+        if (m.contains("outputs")) add(m["outputs"]);
+        if (m.contains("material_files")) add(m["material_files"]);
+    }
+}
+
+// A journal's files: "prev" lines keep the sha256 the manifest listed, "wrote" lines (files a
+// stopped run replaced) have none. A torn last line (a crash mid-append) is skipped.
+void journal_files(const fs::path& file, std::map<std::string, std::string>& out) {
+    std::vector<unsigned char> bytes;
+    std::string error;
+    if (!read_file(file, bytes, error)) return;
+    const std::string text(bytes.begin(), bytes.end());
+    if (text.rfind(kJournalHeader, 0) != 0) return;
+    std::set<std::string> rewritten;
+    size_t start = 0;
+    while (start < text.size()) {
+        size_t end = text.find('\n', start);
+        if (end == std::string::npos) break;  // no newline: torn
+        const auto line = parse_json(std::string_view(text).substr(start, end - start), file.string(), error);
+        start = end + 1;
+        if (!line || !line->is_object()) continue;
+        for (const char* key : {"prev", "wrote"}) {
+            if (!line->contains(key) || !(*line)[key].is_string()) continue;
+            const auto rel = inside((*line)[key].get<std::string>());
+            if (!rel) continue;
+            if (std::string(key) == "wrote") rewritten.insert(*rel);
+            const std::string sha = line->contains("sha256") && (*line)["sha256"].is_string() ? (*line)["sha256"].get<std::string>() : "";
+            out.emplace(*rel, sha);
+        }
+    }
+    for (const auto& r : rewritten) out[r] = "";  // replaced since the manifest listed it
+}
+
+// Opens the folder holding `rel` under `root` without following links; -1 when any part of the
+// way is missing or a link. `leaf` gets the last component.
+int open_parent(const fs::path& root, const std::string& rel, std::string& leaf, std::vector<std::string>* parts_out = nullptr) {
+    std::vector<std::string> parts;
+    for (const auto& p : fs::path(rel)) parts.push_back(p.string());
+    if (parts.empty()) return -1;
+    int fd = ::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    for (size_t i = 0; fd >= 0 && i + 1 < parts.size(); ++i) {
+        const int next = ::openat(fd, parts[i].c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        ::close(fd);
+        fd = next;
+    }
+    leaf = parts.back();
+    if (parts_out) *parts_out = std::move(parts);
+    return fd;
+}
+
+// sha256 of the regular file `leaf` in `dfd` (never through a link); nullopt when not one.
+std::optional<std::string> file_sha(int dfd, const std::string& leaf) {
+    const int fd = ::openat(dfd, leaf.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return std::nullopt;
+    struct stat st{};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
+        return std::nullopt;
+    }
+    std::vector<unsigned char> bytes;
+    std::vector<unsigned char> buf(size_t{1} << 16);
+    for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;) bytes.insert(bytes.end(), buf.begin(), buf.begin() + n);
+    ::close(fd);
+    return sha256_hex(bytes);
+}
+
+}  // namespace
+
+std::unique_ptr<OutputFolder> OutputFolder::open(const Options& opt, std::string& error, bool& usage) {
+    usage = false;
+    std::unique_ptr<OutputFolder> f(new OutputFolder(opt));
+    auto lock = FolderLock::acquire(opt.dir, f->lock_name(), error);
+    if (!lock) return nullptr;
+    f->lock_.emplace(std::move(*lock));
+    const fs::path manifest = opt.dir / opt.manifest_name;
+    std::error_code ec;
+    const fs::file_status st = fs::symlink_status(manifest, ec);
+    if (fs::exists(st)) {
+        std::string why;
+        std::optional<nlohmann::json> j;
+        if (fs::is_symlink(st)) why = "it is a symbolic link";
+        else if (!fs::is_regular_file(st)) why = "it is not a regular file";
+        else if (!(j = read_json_file(manifest, why))) why = "it is not a manifest: " + why;
+        else if (!is_ours(*j))
+            why = std::string("its generator is ") +
+                  (j->is_object() && j->contains("generator") ? (*j)["generator"].dump() : std::string("not stated"));
+        if (!why.empty() && !opt.force) {
+            error = manifest.string() + " was not written by matforge (" + why +
+                    "); it is not replaced: choose another output folder, or pass --force to replace it";
+            usage = true;
+            return nullptr;
+        }
+        if (why.empty()) manifest_outputs(*j, f->previous_);
+    }
+    journal_files(opt.dir / f->journal_name(), f->previous_);
+    f->others_ = f->listed_elsewhere();
+    return f;
+}
+
+std::set<std::string> OutputFolder::listed_elsewhere() const {
+    std::map<std::string, std::string> files;
+    std::error_code ec;
+    for (fs::directory_iterator it(opt_.dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string n = it->path().filename().string();
+        if (n == opt_.manifest_name || n == journal_name()) continue;
+        std::error_code fec;
+        if (!it->is_regular_file(fec) || it->is_symlink(fec)) continue;
+        if (n.rfind("manifest", 0) == 0 && it->path().extension() == ".json") {
+            std::string err;
+            if (const auto j = read_json_file(it->path(), err); j && is_ours(*j)) manifest_outputs(*j, files);
+        } else if (n.size() > 8 && n.front() == '.' && n.substr(n.size() - 8) == ".journal") {
+            journal_files(it->path(), files);
+        }
+    }
+    std::set<std::string> out;
+    for (const auto& [rel, sha] : files) out.insert(rel);
+    return out;
+}
+
+OutputFolder::~OutputFolder() {
+    if (journal_fd_ >= 0) ::close(journal_fd_);
+}
+
+bool OutputFolder::ours(const std::string& rel) const { return previous_.count(rel) > 0 || others_.count(rel) > 0; }
+
+bool OutputFolder::begin(std::string& error) {
+    std::string text = std::string(kJournalHeader) + "\n";  // then one JSON object per line
+    for (const auto& [rel, sha] : previous_)
+        text += nlohmann::json{{"prev", rel}, {"sha256", sha}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    if (!write_file_under(opt_.dir, journal_name(), std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()),
+                          error))
+        return false;
+    journal_fd_ = ::open((opt_.dir / journal_name()).c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
+    if (journal_fd_ < 0) {
+        error = (opt_.dir / journal_name()).string() + ": cannot open (" + std::strerror(errno) + ")";
+        return false;
+    }
+    // From here on no manifest describes the folder until finish() writes the new one.
+    const fs::path manifest = opt_.dir / opt_.manifest_name;
+    if (::unlink(manifest.c_str()) != 0 && errno != ENOENT) {
+        error = manifest.string() + ": cannot remove the previous manifest (" + std::strerror(errno) + ")";
+        return false;
+    }
+    if (const int dfd = ::open(opt_.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
+        ::fsync(dfd);
+        ::close(dfd);
+    }
+    return true;
+}
+
+std::string OutputFolder::claim(const std::string& rel, const std::string& owner) {
+    const auto r = inside(rel);
+    if (!r) return "the path leaves the output folder";
+    const std::string key = lower(*r);
+    auto held = [&](const std::string& by) { return by == owner ? std::string("another output of this material") : "material '" + by + "'"; };
+    if (const auto it = claimed_files_.find(key); it != claimed_files_.end())
+        return "the file is also an output of " + held(it->second) + " (output names differ only in letter case, or a pattern leaves them equal)";
+    if (const auto it = claimed_dirs_.find(key); it != claimed_dirs_.end())
+        return "a folder of that name holds outputs of " + held(it->second);
+    std::vector<std::string> ancestors;
+    for (fs::path p = fs::path(key).parent_path(); !p.empty(); p = p.parent_path()) ancestors.push_back(p.generic_string());
+    for (const auto& a : ancestors)
+        if (const auto it = claimed_files_.find(a); it != claimed_files_.end())
+            return "its folder " + a + " is the file " + (it->second.empty() ? std::string("of matforge's own") : "of " + held(it->second));
+    claimed_files_.emplace(key, owner);
+    for (const auto& a : ancestors) claimed_dirs_.emplace(a, owner);
+    return {};
+}
+
+bool OutputFolder::write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
+    return write_file_under(opt_.dir, rel, bytes, error, [&](bool exists) -> std::string {
+        if (exists && !opt_.force && !ours(rel))
+            return "a file matforge did not write is in the way (no earlier manifest of this folder lists it); "
+                   "move it away, or pass --force to replace it";
+        // Journaled before it is replaced: a run stopped after the rename still knows the file is ours.
+        const std::string line = nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+        std::lock_guard lock(journal_mutex_);
+        if (journal_fd_ >= 0 && (::write(journal_fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()) ||
+                                 ::fdatasync(journal_fd_) != 0))
+            return std::string("cannot record it in the journal (") + std::strerror(errno) + ")";
+        return {};
+    });
+}
+
+bool OutputFolder::finish(const std::string& manifest_text, const std::set<std::string>& produced,
+                          std::vector<std::string>& notes, std::string& error) {
+    if (!write_file_under(opt_.dir, opt_.manifest_name,
+                          std::span(reinterpret_cast<const unsigned char*>(manifest_text.data()), manifest_text.size()), error)) {
+        error = (opt_.dir / opt_.manifest_name).string() + ": " + error.substr(error.find(": ") == std::string::npos ? 0 : error.find(": ") + 2);
+        return false;
+    }
+    // Outputs of earlier runs this one does not produce: removed when unchanged since we wrote
+    // them, kept (and said so) when someone changed them. Files other manifests list are theirs.
+    const std::set<std::string> elsewhere = listed_elsewhere();
+    for (const auto& [rel, sha] : previous_) {
+        if (produced.count(rel) || elsewhere.count(rel) || rel == opt_.manifest_name) continue;
+        std::string leaf;
+        std::vector<std::string> parts;
+        const int dfd = open_parent(opt_.dir, rel, leaf, &parts);
+        if (dfd < 0) continue;
+        const auto now = file_sha(dfd, leaf);
+        if (!now) {
+            ::close(dfd);
+            continue;
+        }
+        if (!sha.empty() && *now != sha) {
+            notes.push_back("kept " + rel + ": an earlier run wrote it, this one does not, and it has changed since; remove it by hand if it is not needed");
+            ::close(dfd);
+            continue;
+        }
+        if (::unlinkat(dfd, leaf.c_str(), 0) == 0) notes.push_back("removed " + rel + ": an earlier run's output that this run does not produce");
+        ::close(dfd);
+        // Its folders, when now empty (rmdir fails on any other).
+        for (size_t n = parts.size() - 1; n > 0; --n) {
+            std::string folder;
+            for (size_t i = 0; i < n; ++i) folder += (i ? "/" : "") + parts[i];
+            std::string last;
+            const int parent = open_parent(opt_.dir, folder, last);
+            if (parent < 0) break;
+            const bool removed = ::unlinkat(parent, last.c_str(), AT_REMOVEDIR) == 0;
+            ::close(parent);
+            if (!removed) break;
+        }
+    }
+    ::unlink((opt_.dir / journal_name()).c_str());
+    if (journal_fd_ >= 0) {
+        ::close(journal_fd_);
+        journal_fd_ = -1;
+    }
+    if (const int dfd = ::open(opt_.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
+        ::fsync(dfd);
+        ::close(dfd);
+    }
+    return true;
+}
+
+}  // namespace mf

@@ -1,0 +1,82 @@
+// The output folder of one ingest run: who may write there (a lock), which files in it are
+// matforge's (the previous manifest, a stopped run's journal), which paths this run's outputs
+// claim, and the manifest swapped in at the end.
+//
+// A run, in order: open() takes `.<manifest>.lock` (flock; a second run refuses at once, naming
+// the holder's pid) and refuses a manifest that matforge did not write (unless force); begin()
+// writes the journal `.<manifest>.journal` (every file an earlier run of ours left) and removes
+// the previous manifest, so a run stopped from then on (SIGKILL, power loss, SIGINT) leaves no
+// manifest describing files it has replaced; write() refuses files that are not ours (unless
+// force), never follows a link, and journals each file before it is renamed into place;
+// finish() writes the new manifest, removes the outputs of earlier runs this one no longer
+// produces (reported in notes), then the journal, then the lock. A run that does not finish
+// leaves the journal: the next run reads it and knows those files are its own.
+//
+// The shards of one run (`ingest --shard I/N`) each write their own manifest, hence hold their
+// own lock and journal, and may share one folder at once; every matforge manifest and journal
+// in the folder counts when deciding whether a file is ours or stale.
+#pragma once
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/files.hpp"
+
+namespace mf {
+
+class OutputFolder {
+public:
+    struct Options {
+        std::filesystem::path dir;
+        std::string manifest_name = "manifest.json";
+        bool force = false;  // --force: replace a foreign manifest and files matforge did not write
+    };
+    // nullopt + `error`; `usage` true when the refusal is about the choice of folder (a foreign
+    // manifest: exit 2), false when the folder cannot be used now (locked, unwritable: exit 1).
+    static std::unique_ptr<OutputFolder> open(const Options& opt, std::string& error, bool& usage);
+    ~OutputFolder();
+    OutputFolder(const OutputFolder&) = delete;
+    OutputFolder& operator=(const OutputFolder&) = delete;
+
+    const std::filesystem::path& dir() const { return opt_.dir; }
+    std::string lock_name() const { return "." + opt_.manifest_name + ".lock"; }
+    std::string journal_name() const { return "." + opt_.manifest_name + ".journal"; }
+
+    // Before the first output: the journal, then the previous manifest removed.
+    bool begin(std::string& error);
+    // Reserves `rel` (a file path relative to the folder) for `owner`: "" when free, else why not
+    // (another output's file, or a folder of it, compared without case). Not thread-safe: claim
+    // every path before the sets run, in set order, so the same inputs give the same verdicts.
+    std::string claim(const std::string& rel, const std::string& owner);
+    // write_file_under(dir, rel): a file that is there and is not ours is refused (unless force).
+    // Thread-safe.
+    bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error);
+    // The new manifest, stale outputs removed (`produced`: every output file of this run), the
+    // journal removed. `notes`: one line per file removed or kept.
+    bool finish(const std::string& manifest_text, const std::set<std::string>& produced,
+                std::vector<std::string>& notes, std::string& error);
+
+private:
+    explicit OutputFolder(Options opt) : opt_(std::move(opt)) {}
+    bool ours(const std::string& rel) const;
+    // Paths other manifests and journals of ours in the folder list now (other shards).
+    std::set<std::string> listed_elsewhere() const;
+
+    Options opt_;
+    std::optional<FolderLock> lock_;
+    // Files earlier runs of ours left: path -> sha256 the manifest lists ("" from a journal).
+    std::map<std::string, std::string> previous_;
+    std::set<std::string> others_;  // listed by the folder's other manifests and journals
+    std::map<std::string, std::string> claimed_files_;  // lower-case path -> owner
+    std::map<std::string, std::string> claimed_dirs_;   // lower-case folder -> owner
+    std::mutex journal_mutex_;
+    int journal_fd_ = -1;
+};
+
+}  // namespace mf

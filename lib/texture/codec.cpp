@@ -1,0 +1,258 @@
+// Block codecs from Debian's libraries: libsquish (BC1, BC3, BC4, BC5) and astcenc (ASTC LDR).
+//
+// libsquish over libnvtt 2.0.8: squish compresses one 4x4 block at a time with no global state
+// (so levels and blocks can be spread over threads, and the mip chain is ours, filtered in
+// linear light), and its three colour fits map onto the effort levels. nvtt 2.0.8 wants to
+// build the mip chain itself, writes only the DX9 DDS header (no DX10 header, so no sRGB
+// formats) and exposes no decoder.
+//
+// The BC blocks are decoded here, not by squish: squish 1.15 expands 5/6-bit endpoints by bit
+// replication ((r << 3) | (r >> 2): 231 for r = 28, where the D3D and Khronos specs' r / 31 is
+// 230.3) and truncates the interpolants ((2 c0 + c1) / 3), so its decoded-back error is not
+// what a GPU or another reader shows (OpenImageIO 2.4 reads our DDS files up to 2 dB away from
+// squish's figure). decode_color / decode_alpha follow the specs: endpoints rounded to the
+// nearest 8-bit code, interpolants rounded, in the integer form of bcdec (which OpenImageIO 2.4
+// uses, so the recorded error is the one that reader sees, to the sample).
+#include <astcenc.h>
+#include <squish.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <memory>
+
+#include "texture/texture.hpp"
+
+namespace mf::texture {
+namespace {
+
+bool is_astc(const BlockFormatInfo& f) { return f.name.substr(0, 4) == "astc"; }
+
+int squish_flags(const BlockFormatInfo& f, Effort effort) {
+    int flags = f.name == "bc1" ? squish::kDxt1 : f.name == "bc3" ? squish::kDxt5 : f.name == "bc4" ? squish::kBc4 : squish::kBc5;
+    switch (effort) {
+        case Effort::fast: flags |= squish::kColourRangeFit; break;
+        case Effort::normal: flags |= squish::kColourClusterFit; break;
+        case Effort::thorough: flags |= squish::kColourIterativeClusterFit; break;
+    }
+    return flags;
+}
+
+// The 16 texels of block (bx, by) as RGBA codes; texels past the edge repeat the last row or
+// column (they are masked out of the fit, the values only fill the array).
+void gather_block(const Image8& img, int bx, int by, bool normal_xy, std::array<uint8_t, 64>& rgba, int& mask) {
+    mask = 0;
+    const auto c = static_cast<size_t>(img.channels);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            const int px = bx * 4 + x, py = by * 4 + y;
+            if (px < img.width && py < img.height) mask |= 1 << (y * 4 + x);
+            const uint8_t* s = &img.pixels[img.index(std::min(px, img.width - 1), std::min(py, img.height - 1))];
+            uint8_t* d = &rgba[static_cast<size_t>(y * 4 + x) * 4];
+            if (c == 1) {
+                d[0] = d[1] = d[2] = s[0];
+                d[3] = 255;
+            } else if (c == 2 || normal_xy) {
+                d[0] = s[0], d[1] = s[1], d[2] = 0, d[3] = 255;
+            } else {
+                d[0] = s[0], d[1] = s[1], d[2] = s[2];
+                d[3] = c == 4 ? s[3] : 255;
+            }
+        }
+}
+
+struct AstcContext {
+    astcenc_context* ctx = nullptr;
+    ~AstcContext() {
+        if (ctx) astcenc_context_free(ctx);
+    }
+    AstcContext() = default;
+    AstcContext(const AstcContext&) = delete;
+    AstcContext& operator=(const AstcContext&) = delete;
+};
+
+bool astc_context(const CodecOptions& opt, bool decompress_only, AstcContext& out, std::string& error) {
+    const float quality = opt.effort == Effort::fast ? ASTCENC_PRE_FAST : opt.effort == Effort::normal ? ASTCENC_PRE_MEDIUM
+                                                                                                          : ASTCENC_PRE_THOROUGH;
+    unsigned flags = decompress_only ? ASTCENC_FLG_DECOMPRESS_ONLY : 0u;
+    if (opt.mask) flags |= ASTCENC_FLG_MAP_MASK;
+    astcenc_config config{};
+    auto status = astcenc_config_init(opt.srgb ? ASTCENC_PRF_LDR_SRGB : ASTCENC_PRF_LDR,
+                                      static_cast<unsigned>(opt.format->block_width),
+                                      static_cast<unsigned>(opt.format->block_height), 1, quality, flags, &config);
+    if (status == ASTCENC_SUCCESS) status = astcenc_context_alloc(&config, 1, &out.ctx);
+    if (status != ASTCENC_SUCCESS) {
+        error = std::string("astcenc: ") + astcenc_get_error_string(status);
+        return false;
+    }
+    return true;
+}
+
+// A BC1 colour block (8 bytes) to 16 RGBA texels. `four_colors`: BC3's colour half, which has
+// no 3-colour + transparent mode.
+void decode_color(const uint8_t* in, bool four_colors, std::array<uint8_t, 64>& out) {
+    const auto c0 = static_cast<unsigned>(in[0] | in[1] << 8), c1 = static_cast<unsigned>(in[2] | in[3] << 8);
+    std::array<std::array<unsigned, 4>, 4> color{};
+    auto expand = [](unsigned c, std::array<unsigned, 4>& rgba) {
+        rgba[0] = (((c >> 11) & 31u) * 527u + 23u) >> 6;  // round(r * 255 / 31)
+        rgba[1] = (((c >> 5) & 63u) * 259u + 33u) >> 6;   // round(g * 255 / 63)
+        rgba[2] = ((c & 31u) * 527u + 23u) >> 6;
+        rgba[3] = 255;
+    };
+    expand(c0, color[0]);
+    expand(c1, color[1]);
+    const bool four = four_colors || c0 > c1;
+    for (size_t k = 0; k < 3; ++k) {
+        if (four) {
+            color[2][k] = (2 * color[0][k] + color[1][k] + 1) / 3;
+            color[3][k] = (color[0][k] + 2 * color[1][k] + 1) / 3;
+        } else {
+            color[2][k] = (color[0][k] + color[1][k] + 1) / 2;
+            color[3][k] = 0;
+        }
+    }
+    color[2][3] = 255;
+    color[3][3] = four ? 255 : 0;
+    const auto indices = static_cast<uint32_t>(in[4]) | static_cast<uint32_t>(in[5]) << 8 |
+                         static_cast<uint32_t>(in[6]) << 16 | static_cast<uint32_t>(in[7]) << 24;
+    for (size_t t = 0; t < 16; ++t) {
+        const auto& c = color[(indices >> (2 * t)) & 3u];
+        for (size_t k = 0; k < 4; ++k) out[t * 4 + k] = static_cast<uint8_t>(c[k]);
+    }
+}
+
+// A BC3 alpha / BC4 channel block (8 bytes) to 16 values.
+void decode_alpha(const uint8_t* in, std::array<uint8_t, 16>& out) {
+    std::array<unsigned, 8> v{in[0], in[1]};
+    if (v[0] > v[1]) {
+        for (unsigned i = 1; i < 7; ++i) v[i + 1] = ((7 - i) * v[0] + i * v[1] + 1) / 7;
+    } else {
+        for (unsigned i = 1; i < 5; ++i) v[i + 1] = ((5 - i) * v[0] + i * v[1] + 1) / 5;
+        v[6] = 0;
+        v[7] = 255;
+    }
+    uint64_t indices = 0;
+    for (size_t i = 0; i < 6; ++i) indices |= static_cast<uint64_t>(in[2 + i]) << (8 * i);
+    for (size_t t = 0; t < 16; ++t) out[t] = static_cast<uint8_t>(v[(indices >> (3 * t)) & 7u]);
+}
+
+Image8 to_rgba(const Image8& img) {
+    if (img.channels == 4) return img;
+    Image8 out(img.width, img.height, 4);
+    const size_t n = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
+    const auto c = static_cast<size_t>(img.channels);
+    for (size_t p = 0; p < n; ++p) {
+        const uint8_t* s = &img.pixels[p * c];
+        uint8_t* d = &out.pixels[p * 4];
+        d[0] = s[0];
+        d[1] = c >= 2 ? s[1] : s[0];
+        d[2] = c >= 3 ? s[2] : c == 1 ? s[0] : 0;
+        d[3] = 255;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::optional<Effort> effort_from_name(const std::string& name) {
+    if (name == "fast") return Effort::fast;
+    if (name == "normal") return Effort::normal;
+    if (name == "thorough") return Effort::thorough;
+    return std::nullopt;
+}
+
+size_t level_bytes(const BlockFormatInfo& f, int width, int height) {
+    const auto bx = static_cast<size_t>((width + f.block_width - 1) / f.block_width);
+    const auto by = static_cast<size_t>((height + f.block_height - 1) / f.block_height);
+    return bx * by * static_cast<size_t>(f.block_bytes);
+}
+
+bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint8_t>& blocks, std::string& error) {
+    const BlockFormatInfo& f = *opt.format;
+    blocks.assign(level_bytes(f, level.width, level.height), 0);
+    if (is_astc(f)) {
+        AstcContext ctx;
+        if (!astc_context(opt, false, ctx, error)) return false;
+        Image8 rgba = to_rgba(level);
+        void* slice = rgba.pixels.data();
+        astcenc_image image{static_cast<unsigned>(level.width), static_cast<unsigned>(level.height), 1, ASTCENC_TYPE_U8, &slice};
+        const astcenc_swizzle swz{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
+        const auto status = astcenc_compress_image(ctx.ctx, &image, &swz, blocks.data(), blocks.size(), 0);
+        if (status != ASTCENC_SUCCESS) {
+            error = std::string("astcenc: ") + astcenc_get_error_string(status);
+            return false;
+        }
+        return true;
+    }
+    const int flags = squish_flags(f, opt.effort);
+    const int bw = (level.width + 3) / 4, bh = (level.height + 3) / 4;
+    std::array<uint8_t, 64> rgba{};
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+            int mask = 0;
+            gather_block(level, bx, by, opt.normal_xy, rgba, mask);
+            uint8_t* out = &blocks[(static_cast<size_t>(by) * static_cast<size_t>(bw) + static_cast<size_t>(bx)) *
+                                   static_cast<size_t>(f.block_bytes)];
+            squish::CompressMasked(rgba.data(), mask, out, flags);
+        }
+    return true;
+}
+
+bool decode_level(std::span<const uint8_t> blocks, int width, int height, const CodecOptions& opt, Image8& rgba,
+                  std::string& error) {
+    const BlockFormatInfo& f = *opt.format;
+    if (blocks.size() < level_bytes(f, width, height)) {
+        error = "level of " + std::to_string(width) + "x" + std::to_string(height) + " " + std::string(f.name) + " has " +
+                std::to_string(blocks.size()) + " bytes, needs " + std::to_string(level_bytes(f, width, height));
+        return false;
+    }
+    rgba = Image8(width, height, 4);
+    if (is_astc(f)) {
+        AstcContext ctx;
+        if (!astc_context(opt, true, ctx, error)) return false;
+        void* slice = rgba.pixels.data();
+        astcenc_image image{static_cast<unsigned>(width), static_cast<unsigned>(height), 1, ASTCENC_TYPE_U8, &slice};
+        const astcenc_swizzle swz{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
+        const auto status = astcenc_decompress_image(ctx.ctx, blocks.data(), blocks.size(), &image, &swz, 0);
+        if (status != ASTCENC_SUCCESS) {
+            error = std::string("astcenc: ") + astcenc_get_error_string(status);
+            return false;
+        }
+        return true;
+    }
+    const int bw = (width + 3) / 4, bh = (height + 3) / 4;
+    std::array<uint8_t, 64> texels{};
+    std::array<uint8_t, 16> values{};
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+            const uint8_t* in = &blocks[(static_cast<size_t>(by) * static_cast<size_t>(bw) + static_cast<size_t>(bx)) *
+                                        static_cast<size_t>(f.block_bytes)];
+            if (f.name == "bc4" || f.name == "bc5") {
+                // One channel block per 8 bytes: R, then G for BC5.
+                for (size_t half = 0; half < (f.name == "bc5" ? 2u : 1u); ++half) {
+                    decode_alpha(in + 8 * half, values);
+                    for (size_t t = 0; t < 16; ++t) texels[t * 4 + half] = values[t];
+                }
+            } else if (f.name == "bc3") {
+                decode_color(in + 8, true, texels);
+                decode_alpha(in, values);
+                for (size_t t = 0; t < 16; ++t) texels[t * 4 + 3] = values[t];
+            } else {
+                decode_color(in, false, texels);
+            }
+            for (int y = 0; y < 4; ++y)
+                for (int x = 0; x < 4; ++x) {
+                    const int px = bx * 4 + x, py = by * 4 + y;
+                    if (px >= width || py >= height) continue;
+                    const uint8_t* s = &texels[static_cast<size_t>(y * 4 + x) * 4];
+                    uint8_t* d = &rgba.pixels[rgba.index(px, py)];
+                    std::memcpy(d, s, 4);
+                    // A GPU returns (r, 0, 0, 1) for BC4 and (r, g, 0, 1) for BC5.
+                    if (f.name == "bc4") d[1] = d[2] = 0, d[3] = 255;
+                    if (f.name == "bc5") d[2] = 0, d[3] = 255;
+                }
+        }
+    return true;
+}
+
+}  // namespace mf::texture

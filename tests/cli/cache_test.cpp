@@ -1,0 +1,168 @@
+// The ingest cache (lib/process/cache.hpp) through the binary: an unchanged set is restored with
+// the same bytes as a run without the cache, a changed file recomputes its set only, a corrupt
+// blob or an unusable cache never fails a run, and `matforge cache` reports and prunes it.
+#include <map>
+#include <regex>
+
+#include "cli_util.hpp"
+
+using namespace mft;
+using nlohmann::json;
+
+namespace {
+
+// Two real sets (3dtextures.me metal, ambientCG net) copied to `dir`.
+fs::path two_sets(const fs::path& dir) {
+    for (const char* s : {"Metal_Damaged_001_SD", "Net004A_1K-JPG"}) {
+        fs::create_directories(dir / "in" / s);
+        fs::copy(samples() / s, dir / "in" / s, fs::copy_options::recursive);
+    }
+    return dir / "in";
+}
+
+// "cache: R sets restored, C computed" from ingest's summary; {-1, -1} when absent.
+std::pair<int, int> cache_line(const std::string& output) {
+    std::smatch m;
+    if (!std::regex_search(output, m, std::regex(R"(cache: (\d+) sets restored, (\d+) computed)"))) return {-1, -1};
+    return {std::stoi(m[1]), std::stoi(m[2])};
+}
+
+// Every output file and material file of `manifest` (under its folder) with its bytes.
+std::map<std::string, std::string> files_of(const fs::path& out) {
+    std::map<std::string, std::string> f;
+    const json m = read_json(out / "manifest.json");
+    for (const auto& mat : m["materials"]) {
+        for (const auto& o : mat["outputs"]) f[o["file"]] = bytes_of(out / o["file"].get<std::string>());
+        for (const auto& o : mat["material_files"]) f[o["file"]] = bytes_of(out / o["file"].get<std::string>());
+    }
+    return f;
+}
+
+// ingest IN -o OUT with this test's own cache (ctest sets $MATFORGE_CACHE to the suite's shared
+// cache, whose records other tests' runs of the same samples would hit).
+RunResult ingest(const fs::path& in, const fs::path& out, const fs::path& cache, const std::string& extra = "") {
+    return run("ingest " + q(in) + " -o " + q(out) + " --cache " + q(cache) + extra);
+}
+
+}  // namespace
+
+TEST(Cache, WarmRunRestoresTheSameBytesAsARunWithoutIt) {
+    const fs::path work = temp_dir("warm");
+    const fs::path in = two_sets(work);
+    ASSERT_EQ(run("ingest " + q(in) + " -o " + q(work / "plain") + " --no-cache").code, 0);
+    EXPECT_FALSE(fs::exists(work / "plain/.matforge-cache")) << "--no-cache writes no cache";
+
+    const fs::path cache = work / "cache";
+    auto r = ingest(in, work / "out", cache);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(0, 2)) << r.output;
+    EXPECT_TRUE(fs::is_directory(cache / "cas"));
+    EXPECT_FALSE(fs::exists(work / "out/.matforge-cache")) << "the output folder holds what the manifest lists";
+    r = ingest(in, work / "out", cache);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
+    // Sibling folders: the same relative sources, so the same manifest bytes.
+    EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "plain/manifest.json"));
+    EXPECT_EQ(files_of(work / "out"), files_of(work / "plain"));
+
+    // An output deleted by hand is restored from its blob; the set is not recomputed.
+    fs::remove(work / "out/Net004A/Net004A_normal.png");
+    r = ingest(in, work / "out", cache);
+    EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
+    EXPECT_EQ(files_of(work / "out"), files_of(work / "plain"));
+
+    // A new output folder restores from a shared cache ($MATFORGE_CACHE): a CI job or a node.
+    r = run_env("MATFORGE_CACHE=" + q(cache), "ingest " + q(in) + " -o " + q(work / "other"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
+    EXPECT_EQ(bytes_of(work / "other/manifest.json"), bytes_of(work / "plain/manifest.json"));
+    // Without $MATFORGE_CACHE: $XDG_CACHE_HOME/matforge.
+    r = run_env("MATFORGE_CACHE= XDG_CACHE_HOME=" + q(work / "xdg"), "ingest " + q(in) + " -o " + q(work / "xdg-out"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::is_directory(work / "xdg/matforge/ac")) << r.output;
+}
+
+TEST(Cache, ChangedFileOrPresetRecomputesOnlyWhatItTouches) {
+    const fs::path work = temp_dir("change");
+    const fs::path in = two_sets(work);
+    const fs::path cache = work / "cache";
+    ASSERT_EQ(ingest(in, work / "out", cache).code, 0);
+    // Other pixels in one map of the metal (a valid JPEG of the same size): its set only.
+    fs::copy_file(in / "Metal_Damaged_001_SD/Metal_Damaged_001_ambientOcclusion.jpg",
+                  in / "Metal_Damaged_001_SD/Metal_Damaged_001_roughness.jpg", fs::copy_options::overwrite_existing);
+    auto r = ingest(in, work / "out", cache);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(1, 1)) << r.output;
+    ASSERT_EQ(run("ingest " + q(in) + " -o " + q(work / "plain") + " --no-cache").code, 0);
+    EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "plain/manifest.json"));
+    EXPECT_EQ(files_of(work / "out"), files_of(work / "plain"));
+    // A time stamp is not content: still restored.
+    fs::last_write_time(in / "Net004A_1K-JPG/Net004A_1K-JPG_Color.jpg", fs::file_time_type::clock::now());
+    r = ingest(in, work / "out", cache);
+    EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
+    // Another preset or normal convention is another action: every set computed.
+    r = ingest(in, work / "out", cache, " --normal-convention dx");
+    EXPECT_EQ(cache_line(r.output), std::make_pair(0, 2)) << r.output;
+}
+
+TEST(Cache, CorruptBlobIsRecomputedAndSaid) {
+    const fs::path work = temp_dir("corrupt");
+    const fs::path in = two_sets(work);
+    const fs::path cache = work / "shared-cache";
+    ASSERT_EQ(run("ingest " + q(in) + " -o " + q(work / "a") + " --cache " + q(cache)).code, 0);
+    ASSERT_EQ(run("ingest " + q(in) + " -o " + q(work / "plain") + " --no-cache").code, 0);
+    // Truncate the blob of the net's base color (blobs are named by their SHA-256).
+    const json m = read_json(work / "a/manifest.json");
+    std::string sha;
+    for (const auto& mat : m["materials"])
+        if (mat["name"] == "Net004A") sha = mat["outputs"][0]["sha256"];
+    ASSERT_EQ(sha.size(), 64u);
+    const fs::path blob = cache / "cas" / sha.substr(0, 2) / sha;
+    ASSERT_TRUE(fs::is_regular_file(blob));
+    // The blob may be a hard link to a's output: replace it, leaving a's file as it is.
+    fs::remove(blob);
+    write_text(blob, "truncated");
+    const auto r = run("ingest " + q(in) + " -o " + q(work / "b") + " --cache " + q(cache));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(1, 1)) << r.output;
+    EXPECT_NE(r.output.find("warning: cache:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(sha), std::string::npos) << "names the blob:\n" << r.output;
+    EXPECT_NE(r.output.find("computed again"), std::string::npos) << r.output;
+    EXPECT_EQ(bytes_of(work / "b/manifest.json"), bytes_of(work / "plain/manifest.json"));
+    EXPECT_EQ(files_of(work / "b"), files_of(work / "plain"));
+    EXPECT_EQ(bytes_of(work / "a/Net004A/Net004A_basecolor.png"), bytes_of(work / "plain/Net004A/Net004A_basecolor.png"));
+}
+
+TEST(Cache, UnusableCacheNeverFailsARun) {
+    const fs::path work = temp_dir("unusable");
+    const fs::path in = two_sets(work);
+    write_text(work / "not-a-folder", "x");
+    const auto r = run("ingest " + q(in) + " -o " + q(work / "out") + " --cache " + q(work / "not-a-folder"));
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("running without the cache"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find((work / "not-a-folder").string()), std::string::npos) << r.output;
+    ASSERT_EQ(run("ingest " + q(in) + " -o " + q(work / "plain") + " --no-cache").code, 0);
+    EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "plain/manifest.json"));
+    // --cache and --no-cache together is a usage error.
+    EXPECT_EQ(run("ingest " + q(in) + " -o " + q(work / "x") + " --cache " + q(work / "c") + " --no-cache").code, 2);
+}
+
+TEST(Cache, StatsAndPrune) {
+    const fs::path work = temp_dir("prune");
+    const fs::path in = two_sets(work);
+    const fs::path cache = work / "cache";
+    ASSERT_EQ(ingest(in, work / "out", cache).code, 0);
+    auto r = run("cache stats --cache " + q(cache));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("2 records"), std::string::npos) << r.output;
+    // Pruned to nothing: every record and blob goes (a zero grace so the fresh blobs go too) and
+    // the next run computes both sets again, with the same bytes.
+    r = run("cache prune --cache " + q(cache) + " --max-size 0 --grace 0");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = run("cache stats --cache " + q(cache));
+    EXPECT_NE(r.output.find("0 records, 0 blobs"), std::string::npos) << r.output;
+    const std::string before = bytes_of(work / "out/manifest.json");
+    r = ingest(in, work / "out", cache);
+    EXPECT_EQ(cache_line(r.output), std::make_pair(0, 2)) << r.output;
+    EXPECT_EQ(bytes_of(work / "out/manifest.json"), before);
+}

@@ -1,0 +1,148 @@
+// `matforge ingest --preset gltf`: a .gltf per set and library.gltf, checked by the Khronos
+// glTF-Validator (0 errors, 0 warnings) on sample_materials/ and the real-material corpus, and
+// their materials checked against the manifest (slots, alpha mode, URIs, hashes).
+#include <set>
+
+#include "texture_cli.hpp"
+
+using namespace mtt;
+
+namespace {
+
+struct Run {
+    fs::path out;
+    json manifest;
+};
+const Run& ingested(const std::string& what) {
+    static std::map<std::string, Run> cache;
+    if (auto it = cache.find(what); it != cache.end()) return it->second;
+    Run r;
+    r.out = fs::temp_directory_path() / ("matforge-texture-gltf-" + what + "-" + std::to_string(::getpid()));
+    fs::remove_all(r.out);
+    mf::testbin::register_test_dir(r.out);
+    EXPECT_TRUE(what != "corpus" || fs::is_directory(corpus())) << corpus() << ": the real-material corpus is missing";
+    r.manifest = ingest({what == "corpus" ? corpus() : samples()}, r.out, "gltf", {"--fail-on", "never"});
+    return cache[what] = r;
+}
+
+std::vector<fs::path> gltf_files(const fs::path& out) {
+    std::vector<fs::path> files;
+    for (const auto& e : fs::recursive_directory_iterator(out))
+        if (e.path().extension() == ".gltf") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+void expect_valid(const Run& r, size_t materials) {
+    const auto files = gltf_files(r.out);
+    ASSERT_EQ(files.size(), materials + 1) << "one per set and library.gltf";
+    const auto reports = node_checker("gltf_validate.mjs", files);
+    ASSERT_EQ(reports.size(), files.size());
+    for (const auto& rep : reports) {
+        EXPECT_EQ(rep["validator"], "2.0.0-dev.3.10");
+        EXPECT_EQ(rep["errors"], 0) << rep.dump(1);
+        EXPECT_EQ(rep["warnings"], 0) << rep.dump(1);
+        EXPECT_EQ(rep["infos"], 0) << rep.dump(1);
+        // The validator opened the buffer and every image (a missing one is an error).
+        size_t images = 0;
+        for (const auto& res : rep["resources"]) images += !res["image"].is_null();
+        EXPECT_GE(images, 2u) << rep["file"];
+    }
+}
+
+}  // namespace
+
+TEST(Gltf, SampleMaterialsPassTheValidator) {
+    const auto& r = ingested("samples");
+    ASSERT_EQ(r.manifest["materials"].size(), 4u);
+    expect_valid(r, 4);
+}
+
+TEST(Gltf, CorpusPassesTheValidator) {
+    const auto& r = ingested("corpus");
+    ASSERT_GE(r.manifest["materials"].size(), 15u);
+    expect_valid(r, r.manifest["materials"].size());
+}
+
+TEST(Gltf, MaterialsReferenceTheWrittenTexturesInTheirSlots) {
+    const auto& r = ingested("samples");
+    for (const auto& m : r.manifest["materials"]) {
+        const std::string name = m["name"];
+        ASSERT_EQ(m["material_files"].size(), 2u) << name;
+        EXPECT_EQ(m["material_files"][0]["file"], name + "/" + name + ".gltf");
+        EXPECT_EQ(m["material_files"][1]["file"], name + "/" + name + ".bin");
+        for (const auto& f : m["material_files"])
+            EXPECT_EQ(mf::sha256_hex(read_bytes(r.out / f["file"].get<std::string>())), f["sha256"]) << f["file"];
+        const json g = mf::testfiles::read_json(r.out / name / (name + ".gltf"));
+        EXPECT_EQ(g["asset"]["version"], "2.0");
+        EXPECT_EQ(g["buffers"][0]["uri"], name + ".bin");
+        const json& mat = g["materials"][0];
+        EXPECT_EQ(mat["name"], name);
+        auto uri_of_slot = [&](const json& slot) {
+            const size_t t = slot["index"];
+            return g["images"][g["textures"][t]["source"].get<size_t>()]["uri"].get<std::string>();
+        };
+        // Each slot names the file the manifest says holds that role, relative to the .gltf.
+        std::map<std::string, std::string> file_of;
+        for (const auto& o : m["outputs"]) {
+            const std::string f = fs::path(o["file"].get<std::string>()).filename().string();
+            for (const auto& [key, v] : o["channels"].items())
+                if (v.is_string()) file_of[key + ":" + v.get<std::string>()] = f;
+        }
+        EXPECT_EQ(uri_of_slot(mat["pbrMetallicRoughness"]["baseColorTexture"]), file_of["RGB:albedo"]) << name;
+        EXPECT_EQ(uri_of_slot(mat["pbrMetallicRoughness"]["metallicRoughnessTexture"]), file_of["G:roughness"]) << name;
+        EXPECT_EQ(file_of["G:roughness"], file_of["B:metalness"]);
+        EXPECT_EQ(uri_of_slot(mat["normalTexture"]), file_of["RGB:normal"]) << name;
+        // Factors stay at their defaults of 1: the textures carry the values.
+        EXPECT_FALSE(mat["pbrMetallicRoughness"].contains("metallicFactor"));
+        EXPECT_FALSE(mat["pbrMetallicRoughness"].contains("roughnessFactor"));
+        // Occlusion only where the set has an occlusion (AO map or packed ARM).
+        const bool occlusion = m["inputs"].contains("occlusion") || m["inputs"].contains("orm");
+        EXPECT_EQ(mat.contains("occlusionTexture"), occlusion) << name;
+        if (occlusion) {
+            EXPECT_EQ(uri_of_slot(mat["occlusionTexture"]), file_of["R:occlusion"]);
+        }
+        // Net004A's cut-out net is alpha-tested; the others are opaque.
+        if (name == "Net004A") {
+            EXPECT_EQ(mat["alphaMode"], "MASK");
+            EXPECT_EQ(mat["alphaCutoff"], 0.5);
+            EXPECT_EQ(mat["doubleSided"], true);
+        } else {
+            EXPECT_FALSE(mat.contains("alphaMode")) << name;
+        }
+        EXPECT_FALSE(mat.contains("emissiveTexture")) << name << ": no emissive map in the samples";
+        EXPECT_FALSE(g.contains("extensionsUsed")) << name << ": KHR_materials_emissive_strength only when needed";
+        EXPECT_EQ(g["meshes"][0]["primitives"][0]["attributes"].size(), 4u) << "POSITION NORMAL TANGENT TEXCOORD_0";
+    }
+}
+
+TEST(Gltf, LibraryHoldsEveryMaterialOnItsOwnNode) {
+    const auto& r = ingested("samples");
+    ASSERT_EQ(r.manifest["library"].size(), 2u);
+    EXPECT_EQ(r.manifest["library"][0]["file"], "library.gltf");
+    const json g = mf::testfiles::read_json(r.out / "library.gltf");
+    ASSERT_EQ(g["nodes"].size(), r.manifest["materials"].size());
+    ASSERT_EQ(g["materials"].size(), r.manifest["materials"].size());
+    std::set<std::pair<double, double>> places;
+    for (size_t i = 0; i < g["nodes"].size(); ++i) {
+        const json& n = g["nodes"][i];
+        EXPECT_EQ(n["name"], r.manifest["materials"][i]["name"]);
+        EXPECT_EQ(g["materials"][g["meshes"][n["mesh"].get<size_t>()]["primitives"][0]["material"].get<size_t>()]["name"], n["name"]);
+        places.insert({n["translation"][0].get<double>(), n["translation"][1].get<double>()});
+    }
+    EXPECT_EQ(places.size(), g["nodes"].size()) << "a grid: every node in its own place";
+    // URIs from the root: the material's folder, then the file.
+    for (const auto& img : g["images"]) EXPECT_TRUE(fs::exists(r.out / img["uri"].get<std::string>())) << img["uri"];
+    EXPECT_EQ(mf::sha256_hex(read_bytes(r.out / "library.gltf")), r.manifest["library"][0]["sha256"]);
+}
+
+TEST(Gltf, DxNormalsSkipTheGltfWithAFinding) {
+    const fs::path out = temp_dir("dx");
+    const json m = ingest({samples() / "Net004A_1K-JPG"}, out, "gltf", {"--normal-convention", "dx"});
+    EXPECT_FALSE(fs::exists(out / "Net004A" / "Net004A.gltf"));
+    EXPECT_FALSE(fs::exists(out / "library.gltf"));
+    bool skipped = false;
+    for (const auto& f : m["materials"][0]["findings"]) skipped |= f["code"] == "MATERIAL_FILE_SKIPPED";
+    EXPECT_TRUE(skipped);
+    EXPECT_FALSE(m["materials"][0].contains("material_files"));
+}

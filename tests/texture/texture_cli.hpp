@@ -1,0 +1,205 @@
+// Helpers of the tests that run matforge with the GPU-texture and glTF presets and read what it
+// wrote with independent readers: OpenImageIO (DDS), ktx-parse and glTF-Validator (npm, run by
+// node from the build tree; scripts/npm-checkers.sh installs them on first use).
+#pragma once
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "core/files.hpp"
+#include "image/image.hpp"
+#include "preset/texture_fields.hpp"
+#include "run_binary.hpp"
+#include "test_files.hpp"
+#include "texture/texture.hpp"
+
+namespace mtt {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+inline fs::path samples() { return fs::path(MATFORGE_SOURCE_DIR) / "sample_materials"; }
+inline fs::path corpus() { return fs::path(MATFORGE_CORPUS_DIR) / "real"; }
+
+struct Run {
+    int code = -1;
+    std::string output;
+};
+inline Run matforge(const std::vector<std::string>& args) {
+    std::vector<std::string> argv{MATFORGE_BIN};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const auto p = mf::testbin::spawn(argv, 600);
+    return {p.signal ? -1 : p.code, p.output};
+}
+
+// A fresh folder per test (the schema spool copies the manifests left in it).
+inline fs::path temp_dir(const std::string& name) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    fs::path d = fs::temp_directory_path() / ("matforge-texture-" + std::string(info->test_suite_name()) + "-" +
+                                              info->name() + "-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    mf::testbin::register_test_dir(d);
+    return d;
+}
+
+inline void write_text(const fs::path& p, const std::string& s) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << s;
+}
+
+inline std::vector<uint8_t> read_bytes(const fs::path& p) {
+    std::vector<uint8_t> b;
+    std::string err;
+    EXPECT_TRUE(mf::read_file(p, b, err)) << err;
+    return b;
+}
+
+// Runs `node SCRIPT NPM_DIR FILES...` (tests/texture/checkers) and parses one JSON line per file.
+inline std::vector<json> node_checker(const std::string& script, const std::vector<fs::path>& files) {
+    static const bool installed = [] {
+        const auto p = mf::testbin::spawn({std::string(MATFORGE_SOURCE_DIR) + "/scripts/npm-checkers.sh", MATFORGE_NPM_DIR}, 300);
+        EXPECT_EQ(p.code, 0) << "scripts/npm-checkers.sh: " << p.output;
+        return p.code == 0;
+    }();
+    if (!installed) return {};
+    std::vector<std::string> argv{"node", std::string(MATFORGE_SOURCE_DIR) + "/tests/texture/checkers/" + script, MATFORGE_NPM_DIR};
+    for (const auto& f : files) argv.push_back(f.string());
+    const auto p = mf::testbin::spawn(argv, 300);
+    EXPECT_EQ(p.code, 0) << p.output;
+    std::vector<json> out;
+    std::istringstream lines(p.output);
+    for (std::string line; std::getline(lines, line);)
+        if (!line.empty() && line[0] == '{') out.push_back(json::parse(line));
+    EXPECT_EQ(out.size(), files.size()) << p.output;
+    return out;
+}
+
+// An ingest of `inputs` with `preset` into `out` (must succeed), and its manifest.
+inline json ingest(const std::vector<fs::path>& inputs, const fs::path& out, const std::string& preset,
+                   const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args{"ingest"};
+    for (const auto& i : inputs) args.push_back(i.string());
+    args.insert(args.end(), {"-o", out.string(), "--preset", preset, "--quiet"});
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = matforge(args);
+    EXPECT_EQ(r.code, 0) << r.output;
+    return mf::testfiles::read_json(out / "manifest.json");
+}
+
+// The same outputs as a shipped GPU preset, as 8-bit PNGs without mips: what each texture's
+// level 0 encodes (ingest makes level 0 from exactly these codes).
+inline fs::path png_twin(const std::string& preset, const fs::path& dir) {
+    const auto r = matforge({"presets", "show", preset});
+    EXPECT_EQ(r.code, 0) << r.output;
+    json p = json::parse(r.output.substr(r.output.find('{')));
+    p["name"] = preset + "-png";
+    p["format"] = "png";
+    for (const char* k : {"mips", "mip_filter", "effort", "supercompression", "zstd_level", "toksvig", "material_file"}) p.erase(k);
+    for (auto& o : p["outputs"])
+        for (const char* k : {"block_format", "block_format_alpha", "effort", "min_psnr_db", "max_mean_angle_deg"}) o.erase(k);
+    const fs::path file = dir / (preset + "-png.json");
+    write_text(file, p.dump(2));
+    return file;
+}
+
+inline mf::Image8 read_codes(const fs::path& png) {
+    mf::Decoded d;
+    mf::ImageInfo info;
+    std::string err;
+    mf::InputFile in;
+    in.path = png;
+    in.display = png.string();
+    EXPECT_TRUE(mf::read_image(in, d, info, err)) << err;
+    EXPECT_TRUE(d.is_codes()) << png;
+    return d.codes;
+}
+
+// The mip chain a GPU output encodes, rebuilt from its PNG twin's level 0 and the manifest
+// entry's channels (as ingest builds it: texture/mips).
+inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Image8& level0, const std::string& filter) {
+    std::vector<mf::ChannelSpec> written;
+    for (const char* key : {"RGB", "R", "G", "B", "A"}) {
+        if (!output["channels"].contains(key)) continue;
+        mf::ChannelSpec c;
+        c.key = key;
+        const auto& v = output["channels"][key];
+        if (v.is_number()) {
+            c.kind = mf::ChannelSpec::Kind::constant;
+        } else {
+            c.kind = mf::ChannelSpec::Kind::role;
+            c.role = *mf::role_from_name(v.get<std::string>());
+        }
+        written.push_back(c);
+    }
+    bool cutout = false;
+    if (output["channels"].contains("A") && output["channels"]["A"] == "opacity") {
+        mf::Image a(level0.width, level0.height, 1);
+        for (size_t p = 0; p < a.pixels.size(); ++p) a.pixels[p] = level0.pixels[p * 4 + 3] / 255.f;
+        cutout = mf::texture::classify_opacity(a) == mf::texture::AlphaUse::cutout;
+    }
+    mf::texture::MipOptions o;
+    o.filter = filter == "box" ? mf::texture::MipFilter::box : mf::texture::MipFilter::kaiser;
+    return mf::texture::make_mips(level0, mf::texture::channel_kinds(written, output["color_space"] == "sRGB", cutout), o);
+}
+
+// Every mip level of a DDS through OpenImageIO. OpenImageIO 2.4 reads the DX10 header for BC4
+// to BC7 only; for BC1/BC3 it is handed the same blocks under the legacy FourCC header
+// (DXT1/DXT5), which carries everything but the sRGB flag (checked on our header separately).
+inline std::vector<mf::Image8> oiio_levels(const fs::path& dds, const fs::path& scratch) {
+    std::vector<uint8_t> b = read_bytes(dds);
+    fs::path path = dds;
+    uint32_t dxgi = 0;
+    std::memcpy(&dxgi, b.data() + 128, 4);
+    if (dxgi == 71 || dxgi == 72 || dxgi == 77 || dxgi == 78) {
+        const uint32_t fourcc = dxgi <= 72 ? 0x31545844u : 0x35545844u;  // "DXT1" / "DXT5"
+        std::memcpy(b.data() + 84, &fourcc, 4);
+        b.erase(b.begin() + 128, b.begin() + 148);
+        path = scratch / (dds.stem().string() + ".legacy.dds");
+        std::string err;
+        EXPECT_TRUE(mf::write_file_atomic(path, b, err)) << err;
+    }
+    std::vector<mf::Image8> levels;
+    auto in = OIIO::ImageInput::open(path.string());
+    EXPECT_TRUE(in) << OIIO::geterror();
+    if (!in) return levels;
+    for (int m = 0; in->seek_subimage(0, m); ++m) {
+        const OIIO::ImageSpec& s = in->spec();
+        mf::Image8 img(s.width, s.height, s.nchannels);
+        EXPECT_TRUE(in->read_image(0, m, 0, s.nchannels, OIIO::TypeDesc::UINT8, img.pixels.data())) << in->geterror();
+        levels.push_back(std::move(img));
+    }
+    return levels;
+}
+
+inline bool xy_only(const json& output) { return output.value("normal_z", "") == "reconstructed"; }
+inline bool is_normal(const json& output) { return output["channels"].contains("RGB") && output["channels"]["RGB"] == "normal"; }
+
+// Checks a decoded level against its reference and the manifest's recorded error.
+inline void expect_recorded_error(const json& output, size_t level, const mf::Image8& ref, const mf::Image8& decoded,
+                                  const std::string& who) {
+    const json& rec = output["levels"][level];
+    ASSERT_EQ(decoded.width, rec["width"].get<int>()) << who;
+    ASSERT_EQ(decoded.height, rec["height"].get<int>()) << who;
+    ASSERT_EQ(ref.width, decoded.width) << who;
+    if (is_normal(output)) {
+        const auto a = mf::texture::normal_angle_error(ref, decoded, xy_only(output));
+        EXPECT_NEAR(a.mean_deg, rec["mean_angle_deg"].get<double>(), 0.002) << who;
+        EXPECT_NEAR(a.max_deg, rec["max_angle_deg"].get<double>(), 0.002) << who;
+    } else {
+        const auto* f = mf::block_format_info(output["block_format"].get<std::string>());
+        const int channels = std::min(ref.channels, f->channels);
+        EXPECT_NEAR(mf::texture::psnr(ref, decoded, channels), rec["psnr_db"].get<double>(), 0.002) << who;
+    }
+}
+
+}  // namespace mtt

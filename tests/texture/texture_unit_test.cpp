@@ -1,0 +1,508 @@
+// Mip chains, block codecs, containers and preset fields of lib/texture, on images made here.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "color/srgb.hpp"
+#include "core/json.hpp"
+#include "gltf/gltf.hpp"
+#include "preset/preset.hpp"
+#include "preset/texture_fields.hpp"
+#include "texture/texture.hpp"
+
+namespace mt = mf::texture;
+using mf::Image8;
+
+namespace {
+
+Image8 make(int w, int h, int c, const std::function<std::array<uint8_t, 4>(int, int)>& f) {
+    Image8 img(w, h, c);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const auto v = f(x, y);
+            for (int k = 0; k < c; ++k) img.at(x, y, k) = v[static_cast<size_t>(k)];
+        }
+    return img;
+}
+
+uint8_t code(double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+
+const mf::BlockFormatInfo& fmt(const char* name) { return *mf::block_format_info(name); }
+
+// A smooth, textured image: what block codecs meet in material maps.
+Image8 smooth(int w, int h, int c) {
+    return make(w, h, c, [&](int x, int y) {
+        const double u = x / double(w), v = y / double(h);
+        return std::array<uint8_t, 4>{code(0.5 + 0.4 * std::sin(6.0 * u + 2 * v)), code(0.3 + 0.5 * u * v),
+                                      code(0.5 + 0.3 * std::cos(5.0 * v)), code(0.2 + 0.7 * u)};
+    });
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Mips
+
+TEST(Mips, ChainRunsToOnePixelAtEveryShape) {
+    EXPECT_EQ(mt::mip_count(1024, 1024), 11);
+    EXPECT_EQ(mt::mip_count(1024, 256), 11);
+    EXPECT_EQ(mt::mip_count(6, 5), 3);
+    EXPECT_EQ(mt::mip_count(1, 1), 1);
+    const auto chain = mt::make_mips(smooth(12, 5, 1), {mt::ChannelKind::data}, {});
+    ASSERT_EQ(chain.size(), 4u);
+    const std::vector<std::pair<int, int>> sizes{{12, 5}, {6, 2}, {3, 1}, {1, 1}};
+    for (size_t i = 0; i < chain.size(); ++i) {
+        EXPECT_EQ(chain[i].width, sizes[i].first) << i;
+        EXPECT_EQ(chain[i].height, sizes[i].second) << i;
+    }
+}
+
+TEST(Mips, ColorIsFilteredInLinearLight) {
+    // A 1-texel checker of sRGB black and white: its average light is 0.5 linear, sRGB code
+    // 188; averaging the encoded values would give 128 (the gamma error).
+    const Image8 checker = make(8, 8, 3, [](int x, int y) {
+        const uint8_t v = (x + y) % 2 ? 255 : 0;
+        return std::array<uint8_t, 4>{v, v, v, 0};
+    });
+    for (const auto filter : {mt::MipFilter::box, mt::MipFilter::kaiser}) {
+        mt::MipOptions o;
+        o.filter = filter;
+        const auto srgb = mt::make_mips(checker, std::vector<mt::ChannelKind>(3, mt::ChannelKind::srgb_color), o);
+        const auto data = mt::make_mips(checker, std::vector<mt::ChannelKind>(3, mt::ChannelKind::data), o);
+        EXPECT_NEAR(srgb[1].at(1, 1, 0), 188, 1);
+        EXPECT_NEAR(data[1].at(1, 1, 0), 128, 1);
+        EXPECT_NEAR(srgb.back().at(0, 0, 2), 188, 1);
+    }
+}
+
+TEST(Mips, ConstantsStayConstantAndBoxIsTheMean) {
+    const Image8 flat = make(16, 16, 2, [](int, int) { return std::array<uint8_t, 4>{77, 200, 0, 0}; });
+    for (const auto& level : mt::make_mips(flat, {mt::ChannelKind::data, mt::ChannelKind::data}, {}))
+        for (int y = 0; y < level.height; ++y)
+            for (int x = 0; x < level.width; ++x) {
+                ASSERT_EQ(level.at(x, y, 0), 77);
+                ASSERT_EQ(level.at(x, y, 1), 200);
+            }
+    const Image8 ramp = make(4, 2, 1, [](int x, int y) { return std::array<uint8_t, 4>{uint8_t(x * 40 + y * 20), 0, 0, 0}; });
+    mt::MipOptions box;
+    box.filter = mt::MipFilter::box;
+    const auto chain = mt::make_mips(ramp, {mt::ChannelKind::data}, box);
+    EXPECT_EQ(chain[1].at(0, 0), 30);   // (0 + 40 + 20 + 60) / 4
+    EXPECT_EQ(chain[1].at(1, 0), 110);  // (80 + 120 + 100 + 140) / 4
+}
+
+TEST(Mips, NormalsAreUnitAtEveryLevel) {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> n(0.0, 0.6);
+    const Image8 bumpy = make(64, 64, 3, [&](int, int) {
+        double x = n(rng), y = n(rng), z = 1.0;
+        const double len = std::sqrt(x * x + y * y + z * z);
+        return std::array<uint8_t, 4>{code(x / len * 0.5 + 0.5), code(y / len * 0.5 + 0.5), code(z / len * 0.5 + 0.5), 0};
+    });
+    const auto chain = mt::make_mips(bumpy, std::vector<mt::ChannelKind>(3, mt::ChannelKind::normal), {});
+    for (size_t l = 1; l < chain.size(); ++l)
+        for (int y = 0; y < chain[l].height; ++y)
+            for (int x = 0; x < chain[l].width; ++x) {
+                double len2 = 0;
+                for (int k = 0; k < 3; ++k) len2 += std::pow(chain[l].at(x, y, k) / 127.5 - 1.0, 2);
+                ASSERT_NEAR(std::sqrt(len2), 1.0, 0.012) << "level " << l;  // 8-bit quantization only
+            }
+}
+
+TEST(Mips, AlphaTestCoverageIsKept) {
+    // Foliage-like cutout: thin random strokes, 30 % covered. Plain filtering loses coverage
+    // at the alpha test (averages of 0 and 1 fall under 0.5); the scaled levels keep it.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Image8 alpha(256, 256, 1);
+    for (int s = 0; s < 260; ++s) {
+        const double x0 = u(rng) * 256, y0 = u(rng) * 256, a = u(rng) * 6.3;
+        for (int t = 0; t < 40; ++t) {
+            const int x = static_cast<int>(x0 + t * std::cos(a)) & 255, y = static_cast<int>(y0 + t * std::sin(a)) & 255;
+            alpha.at(x, y) = 255;
+        }
+    }
+    const double c0 = mt::alpha_coverage(alpha, 0, 0.5f);
+    ASSERT_GT(c0, 0.1);
+    const auto kept = mt::make_mips(alpha, {mt::ChannelKind::alpha_tested}, {});
+    const auto plain = mt::make_mips(alpha, {mt::ChannelKind::data}, {});
+    for (size_t l = 1; l + 3 < kept.size(); ++l) {  // down to 16x16
+        EXPECT_NEAR(mt::alpha_coverage(kept[l], 0, 0.5f), c0, 0.02) << "level " << l;
+    }
+    EXPECT_LT(mt::alpha_coverage(plain[3], 0, 0.5f), 0.6 * c0);  // what the scaling fixes
+}
+
+TEST(Mips, ToksvigWidensRoughnessWhereNormalsSpread) {
+    // Level-0 normals alternating between two tilted directions: the footprint's average is
+    // short, so the level's roughness grows; flat normals leave it alone.
+    const int w = 16;
+    mf::Image tilted(w, w, 3), flat(w, w, 3);
+    for (int y = 0; y < w; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float s = (x + y) % 2 ? 0.6f : -0.6f;
+            tilted.at(x, y, 0) = s, tilted.at(x, y, 1) = 0.f, tilted.at(x, y, 2) = 0.8f;
+            flat.at(x, y, 2) = 1.f;
+        }
+    const Image8 rough = make(w, w, 1, [](int, int) { return std::array<uint8_t, 4>{code(0.3), 0, 0, 0}; });
+    mt::MipOptions o;
+    o.filter = mt::MipFilter::box;
+    o.roughness_channel = 0;
+    o.normals = &tilted;
+    const auto widened = mt::make_mips(rough, {mt::ChannelKind::data}, o);
+    // |n| = 0.8: alpha^2 = 0.3^4 + 2 * 0.2 / 0.8 = 0.5081 -> r = 0.8443
+    EXPECT_NEAR(widened[1].at(0, 0) / 255.0, 0.8443, 0.003);
+    o.normals = &flat;
+    EXPECT_EQ(mt::make_mips(rough, {mt::ChannelKind::data}, o)[1].at(0, 0), code(0.3));
+}
+
+TEST(Mips, OpacityUseIsClassified) {
+    mf::Image a(10, 10, 1, 1.f);
+    EXPECT_EQ(mt::classify_opacity(a), mt::AlphaUse::opaque);
+    for (int i = 0; i < 40; ++i) a.pixels[static_cast<size_t>(i)] = 0.f;
+    EXPECT_EQ(mt::classify_opacity(a), mt::AlphaUse::cutout);
+    for (int i = 0; i < 40; ++i) a.pixels[static_cast<size_t>(i)] = 0.5f;
+    EXPECT_EQ(mt::classify_opacity(a), mt::AlphaUse::blend);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Codecs
+
+struct CodecCase {
+    const char* format;
+    int channels;
+    bool srgb;
+    double min_psnr;
+};
+
+class Codec : public ::testing::TestWithParam<CodecCase> {};
+
+TEST_P(Codec, RoundTripsSmoothContent) {
+    const CodecCase c = GetParam();
+    const Image8 img = smooth(64, 48, c.channels);
+    for (const auto effort : {mt::Effort::fast, mt::Effort::normal}) {
+        mt::CodecOptions o;
+        o.format = &fmt(c.format);
+        o.srgb = c.srgb;
+        o.effort = effort;
+        std::vector<uint8_t> blocks;
+        std::string err;
+        ASSERT_TRUE(mt::encode_level(img, o, blocks, err)) << err;
+        EXPECT_EQ(blocks.size(), mt::level_bytes(*o.format, 64, 48));
+        Image8 back;
+        ASSERT_TRUE(mt::decode_level(blocks, 64, 48, o, back, err)) << err;
+        EXPECT_GT(mt::psnr(img, back, std::min(c.channels, o.format->channels)), c.min_psnr) << c.format;
+        // A wrong channel order or a decoder of another format is far off.
+        EXPECT_LT(mt::psnr(img, back, std::min(c.channels, o.format->channels)), 100.0);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, Codec,
+                         ::testing::Values(CodecCase{"bc1", 3, true, 36}, CodecCase{"bc3", 4, true, 36},
+                                           CodecCase{"bc4", 1, false, 40}, CodecCase{"bc5", 2, false, 40},
+                                           CodecCase{"astc-4x4", 4, false, 40}, CodecCase{"astc-6x6", 3, true, 36},
+                                           CodecCase{"astc-8x8", 1, false, 34}),
+                         [](const ::testing::TestParamInfo<CodecCase>& param_info) {
+                             std::string n = param_info.param.format;
+                             std::replace(n.begin(), n.end(), '-', '_');
+                             return n;
+                         });
+
+TEST(Codec, Bc4AndBc5DecodeToTheRightChannels) {
+    // Flat blocks: exact values, R from X and G from Y, as a GPU returns them (B 0, A 1).
+    const Image8 xy = make(8, 4, 2, [](int, int) { return std::array<uint8_t, 4>{40, 210, 0, 0}; });
+    mt::CodecOptions o;
+    o.format = &fmt("bc5");
+    std::vector<uint8_t> blocks;
+    std::string err;
+    ASSERT_TRUE(mt::encode_level(xy, o, blocks, err)) << err;
+    Image8 back;
+    ASSERT_TRUE(mt::decode_level(blocks, 8, 4, o, back, err)) << err;
+    EXPECT_EQ(back.at(5, 2, 0), 40);
+    EXPECT_EQ(back.at(5, 2, 1), 210);
+    EXPECT_EQ(back.at(5, 2, 2), 0);
+    EXPECT_EQ(back.at(5, 2, 3), 255);
+    o.format = &fmt("bc4");
+    const Image8 r = make(5, 3, 1, [](int, int) { return std::array<uint8_t, 4>{123, 0, 0, 0}; });
+    ASSERT_TRUE(mt::encode_level(r, o, blocks, err)) << err;
+    ASSERT_TRUE(mt::decode_level(blocks, 5, 3, o, back, err)) << err;
+    EXPECT_EQ(back.width, 5);
+    EXPECT_EQ(back.at(4, 2, 0), 123);
+    EXPECT_EQ(back.at(4, 2, 1), 0);
+}
+
+TEST(Codec, BcDecodeRoundsAsTheSpecs) {
+    // Endpoints are r / 31 and g / 63 rounded to 8 bits (r = 28: 230, not the bit-replicated
+    // 231), interpolants rounded: 2/3 c0 + 1/3 c1 of g 69 and 8 is 49 (48.67), not 48.
+    // c0 = (28, 17, 20), c1 = (1, 2, 1); texels 0..3 take indices 0..3.
+    const std::array<uint8_t, 8> bc1{0x34, 0xE2, 0x41, 0x08, 0xE4, 0xE4, 0xE4, 0xE4};
+    mt::CodecOptions o;
+    o.format = &fmt("bc1");
+    Image8 back;
+    std::string err;
+    ASSERT_TRUE(mt::decode_level(bc1, 4, 4, o, back, err)) << err;
+    EXPECT_EQ(back.at(0, 0, 0), 230);
+    EXPECT_EQ(back.at(0, 0, 1), 69);
+    EXPECT_EQ(back.at(0, 0, 2), 165);
+    EXPECT_EQ(back.at(1, 0, 0), 8);
+    EXPECT_EQ(back.at(2, 0, 1), 49);   // (2 * 69 + 8 + 1) / 3
+    EXPECT_EQ(back.at(3, 0, 1), 28);   // (69 + 2 * 8 + 1) / 3
+    EXPECT_EQ(back.at(2, 0, 0), 156);  // (2 * 230 + 8 + 1) / 3 = 156.3
+    // BC4 of a0 = 8, a1 = 0: 6/7 a0 + 1/7 a1 (index 2, texel 1) is 7 (6.86; truncated 6),
+    // 1/7 a0 + 6/7 a1 (index 7, texel 15) is 1.
+    const std::array<uint8_t, 8> bc4{8, 0, 0x10, 0, 0, 0, 0, 0xE0};
+    o.format = &fmt("bc4");
+    ASSERT_TRUE(mt::decode_level(bc4, 4, 4, o, back, err)) << err;
+    EXPECT_EQ(back.at(0, 0, 0), 8);
+    EXPECT_EQ(back.at(1, 0, 0), 7);
+    EXPECT_EQ(back.at(2, 0, 0), 8);
+    EXPECT_EQ(back.at(3, 3, 0), 1);
+}
+
+TEST(Codec, NormalXyRebuildsZForTheAngle) {
+    // A tilted normal field in BC5 (X, Y only): the angle against the RGB source stays small;
+    // read as RGB with Z = 0 (the decoded B) it would be about 60 degrees off.
+    const Image8 n = make(16, 16, 3, [](int x, int) {
+        const double a = 0.02 * x, nx = std::sin(a), nz = std::cos(a);
+        return std::array<uint8_t, 4>{code(nx * 0.5 + 0.5), code(0.5), code(nz * 0.5 + 0.5), 0};
+    });
+    mt::CodecOptions o;
+    o.format = &fmt("bc5");
+    o.normal_xy = true;
+    std::vector<uint8_t> blocks;
+    std::string err;
+    ASSERT_TRUE(mt::encode_level(n, o, blocks, err)) << err;
+    Image8 back;
+    ASSERT_TRUE(mt::decode_level(blocks, 16, 16, o, back, err)) << err;
+    const auto a = mt::normal_angle_error(n, back, true);
+    EXPECT_LT(a.mean_deg, 1.0);
+    EXPECT_GT(mt::normal_angle_error(n, back, false).mean_deg, 40.0);
+}
+
+TEST(Metrics, PsnrAndAngles) {
+    const Image8 a = make(4, 4, 1, [](int, int) { return std::array<uint8_t, 4>{100, 0, 0, 0}; });
+    Image8 b = a;
+    EXPECT_EQ(mt::psnr(a, b, 1), 100.0);
+    b.at(0, 0) = 116;  // MSE 256/16 = 16: 10 log10(65025 / 16) = 36.09 dB
+    EXPECT_NEAR(mt::psnr(a, b, 1), 36.0896, 1e-3);
+    const Image8 up = make(2, 1, 3, [](int, int) { return std::array<uint8_t, 4>{128, 128, 255, 0}; });
+    const Image8 side = make(2, 1, 4, [](int, int) { return std::array<uint8_t, 4>{255, 128, 128, 255}; });
+    EXPECT_NEAR(mt::normal_angle_error(up, side, false).max_deg, 90.0, 0.5);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Containers
+
+namespace {
+
+mt::GpuTexture texture_of(const char* format, bool srgb, int w, int h) {
+    mt::GpuTexture t;
+    t.format = &fmt(format);
+    t.srgb = srgb;
+    for (int i = 0; i < mt::mip_count(w, h); ++i) {
+        const int lw = std::max(1, w >> i), lh = std::max(1, h >> i);
+        mt::Level l{lw, lh, std::vector<uint8_t>(mt::level_bytes(*t.format, lw, lh))};
+        for (size_t k = 0; k < l.data.size(); ++k) l.data[k] = static_cast<uint8_t>(k * 7 + static_cast<size_t>(i));
+        t.levels.push_back(std::move(l));
+    }
+    return t;
+}
+
+uint32_t u32(const std::vector<uint8_t>& b, size_t at) {
+    uint32_t v;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+}
+uint64_t u64(const std::vector<uint8_t>& b, size_t at) {
+    uint64_t v;
+    std::memcpy(&v, b.data() + at, 8);
+    return v;
+}
+
+}  // namespace
+
+TEST(Dds, HeaderFollowsTheProgrammingGuide) {
+    const mt::GpuTexture t = texture_of("bc1", true, 64, 32);
+    const auto b = mt::write_dds(t);
+    EXPECT_EQ(u32(b, 0), 0x20534444u);                // "DDS "
+    EXPECT_EQ(u32(b, 4), 124u);                       // dwSize
+    EXPECT_EQ(u32(b, 8), 0x1u | 0x2 | 0x4 | 0x1000 | 0x20000 | 0x80000);  // caps height width pixelformat mipmapcount linearsize
+    EXPECT_EQ(u32(b, 12), 32u);                       // height
+    EXPECT_EQ(u32(b, 16), 64u);                       // width
+    EXPECT_EQ(u32(b, 20), 64u / 4 * 32 / 4 * 8);      // linear size of level 0
+    EXPECT_EQ(u32(b, 28), 7u);                        // mip count
+    EXPECT_EQ(u32(b, 76), 32u);                       // pixel format size
+    EXPECT_EQ(u32(b, 80), 0x4u);                      // DDPF_FOURCC
+    EXPECT_EQ(u32(b, 84), 0x30315844u);               // "DX10"
+    EXPECT_EQ(u32(b, 108), 0x1000u | 0x8 | 0x400000);  // texture complex mipmap
+    EXPECT_EQ(u32(b, 128), 72u);                      // DXGI_FORMAT_BC1_UNORM_SRGB
+    EXPECT_EQ(u32(b, 132), 3u);                       // TEXTURE2D
+    EXPECT_EQ(u32(b, 140), 1u);                       // arraySize
+    size_t data = 0;
+    for (const auto& l : t.levels) data += l.data.size();
+    EXPECT_EQ(b.size(), 148 + data);
+    mt::GpuTexture back;
+    std::string err;
+    ASSERT_TRUE(mt::read_dds(b, back, err)) << err;
+    EXPECT_EQ(back.format->name, "bc1");
+    EXPECT_TRUE(back.srgb);
+    ASSERT_EQ(back.levels.size(), t.levels.size());
+    for (size_t i = 0; i < t.levels.size(); ++i) EXPECT_EQ(back.levels[i].data, t.levels[i].data) << i;
+    EXPECT_EQ(mt::dxgi_format_name(texture_of("bc5", false, 4, 4)), "DXGI_FORMAT_BC5_UNORM");
+    EXPECT_EQ(mt::dxgi_format(texture_of("bc4", false, 4, 4)), 80u);
+    EXPECT_EQ(mt::dxgi_format(texture_of("bc3", true, 4, 4)), 78u);
+}
+
+TEST(Ktx2, LevelsSmallestFirstAlignedAndZstdRoundTrips) {
+    for (const bool zstd : {false, true}) {
+        const mt::GpuTexture t = texture_of("bc3", true, 40, 24);
+        std::vector<uint8_t> b;
+        std::string err;
+        ASSERT_TRUE(mt::write_ktx2(t, {zstd, 19, "matforge test"}, b, err)) << err;
+        const uint8_t id[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+        EXPECT_EQ(std::memcmp(b.data(), id, 12), 0);
+        EXPECT_EQ(u32(b, 12), 138u);  // VK_FORMAT_BC3_SRGB_BLOCK
+        EXPECT_EQ(u32(b, 16), 1u);    // typeSize
+        EXPECT_EQ(u32(b, 40), 6u);    // levelCount: 40x24 .. 1x1
+        EXPECT_EQ(u32(b, 44), zstd ? 2u : 0u);
+        uint64_t previous_offset = ~uint64_t{0};
+        for (size_t i = 0; i < 6; ++i) {
+            const uint64_t off = u64(b, 80 + 24 * i), len = u64(b, 88 + 24 * i), raw = u64(b, 96 + 24 * i);
+            EXPECT_EQ(raw, t.levels[i].data.size());
+            if (!zstd) {
+                EXPECT_EQ(off % 16, 0u) << "level " << i << ": lcm(16, 4) alignment";
+                EXPECT_EQ(len, raw);
+            }
+            EXPECT_LT(off, previous_offset) << "level " << i << " is stored after level " << i + 1;
+            previous_offset = off;
+        }
+        mt::GpuTexture back;
+        ASSERT_TRUE(mt::read_ktx2(b, back, err)) << err;
+        ASSERT_EQ(back.levels.size(), 6u);
+        for (size_t i = 0; i < 6; ++i) EXPECT_EQ(back.levels[i].data, t.levels[i].data) << i;
+        EXPECT_TRUE(back.srgb);
+    }
+}
+
+TEST(Ktx2, ReadRefusesDamage) {
+    const mt::GpuTexture t = texture_of("bc4", false, 16, 16);
+    std::vector<uint8_t> b;
+    std::string err;
+    ASSERT_TRUE(mt::write_ktx2(t, {true, 3, "x"}, b, err)) << err;
+    mt::GpuTexture back;
+    std::vector<uint8_t> cut(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(b.size() - 3));
+    EXPECT_FALSE(mt::read_ktx2(cut, back, err));
+    std::vector<uint8_t> bad = b;
+    bad[0] = 'X';
+    EXPECT_FALSE(mt::read_ktx2(bad, back, err));
+    EXPECT_NE(err.find("KTX"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Preset fields: impossible requests are errors naming the field
+
+namespace {
+
+std::string preset_error(const std::string& format, const std::string& outputs, const std::string& extra = "") {
+    const std::string text = R"({"name": "t", "format": ")" + format + "\", " + extra + R"( "outputs": [)" + outputs + "]}";
+    std::string error;
+    const auto j = mf::parse_json(text, "preset", error);
+    EXPECT_TRUE(j) << error;
+    mf::Preset p;
+    return mf::parse_preset(*j, p, error) ? "" : error;
+}
+
+const std::string kAlbedo = R"({"suffix": "c", "color_space": "srgb", "channels": {"RGB": "albedo"})";
+
+}  // namespace
+
+TEST(PresetFields, ImpossibleFormatsNameTheField) {
+    EXPECT_EQ(preset_error("dds", kAlbedo + R"(, "block_format": "bc1"})", R"("mips": true,)"), "");
+    auto has = [](const std::string& error, const std::string& what) {
+        EXPECT_NE(error.find(what), std::string::npos) << error;
+    };
+    has(preset_error("dds", kAlbedo + R"(, "block_format": "bc5"})"), "outputs[0] ('c'): block_format: bc5 has no sRGB variant");
+    has(preset_error("ktx2", R"({"suffix": "c", "channels": {"RGB": "albedo"}, "block_format": "bc5"})"),
+        "outputs[0] ('c'): block_format: bc5 stores 2 channels; this output writes 3 (RGB albedo)");
+    has(preset_error("ktx2", kAlbedo + R"(, "block_format": "astc-hdr-6x6"})"),
+        "outputs[0] ('c'): block_format: astc-hdr-6x6 encodes float (HDR) samples; this output is 8-bit");
+    has(preset_error("dds", kAlbedo + R"(, "block_format": "astc-6x6"})"), "block_format: astc-6x6 has no DXGI format");
+    has(preset_error("dds", kAlbedo + R"(, "block_format": "bc9"})"), "block_format: unknown block format 'bc9'");
+    has(preset_error("dds", kAlbedo + "}"), "outputs[0] ('c'): block_format: required with format dds");
+    has(preset_error("png", kAlbedo + R"(, "block_format": "bc1"})"), "block_format: needs format dds or ktx2");
+    has(preset_error("png", kAlbedo + "}", R"("mips": true,)"), "mips: needs format dds or ktx2");
+    has(preset_error("ktx2", R"({"suffix": "r", "channels": {"R": "roughness", "G": "metalness"}, "block_format": "bc4"})"),
+        "block_format: bc4 stores 1 channel; this output writes 2 (R roughness, G metalness)");
+    has(preset_error("ktx2", R"({"suffix": "c", "color_space": "srgb", "channels": {"RGB": "albedo", "A": "opacity"}, "block_format": "bc1"})"),
+        "bc1 stores 3 channels; this output writes 4 (RGB albedo, A opacity): set block_format_alpha");
+    has(preset_error("dds", kAlbedo + R"(, "block_format": "bc1"})", R"("supercompression": "zstd",)"),
+        "supercompression: zstd is a KTX2 scheme");
+    has(preset_error("dds", kAlbedo + R"(, "block_format": "bc1"})", R"("constant_size": 2,)"), "constant_size");
+    has(preset_error("png", kAlbedo + "}", R"("material_file": "gltf",)"), "material_file gltf: metallicRoughnessTexture");
+    // BC5 takes the RGB normal (X, Y stored).
+    EXPECT_EQ(preset_error("ktx2", R"({"suffix": "n", "channels": {"RGB": "normal"}, "block_format": "bc5"})"), "");
+}
+
+TEST(PresetFields, ShippedGpuPresetsParse) {
+    for (const char* name : {"d3d11", "vulkan-ktx2", "vulkan-ktx2-astc", "gltf"}) {
+        std::string error;
+        const auto p = mf::load_preset(name, error);
+        ASSERT_TRUE(p) << error;
+        if (std::string(name) == "gltf") {
+            EXPECT_EQ(p->material_file, "gltf");
+            continue;
+        }
+        EXPECT_TRUE(p->mips) << name;
+        for (const auto& o : p->outputs) EXPECT_FALSE(o.block_format.empty()) << name << " " << o.suffix;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The glTF sphere
+
+TEST(GltfSphere, FacesOutwardWithUnitNormalsAndTangents) {
+    const auto& b = mf::gltf::sphere_buffer();
+    constexpr size_t kVertices = 65 * 33, kIndices = 3 * (2 * 64 * 32 - 2 * 64);
+    ASSERT_GE(b.size(), kVertices * 48 + kIndices * 2);
+    auto f = [&](size_t at) {
+        float v;
+        std::memcpy(&v, b.data() + at, 4);
+        return v;
+    };
+    const size_t pos = 0, nrm = kVertices * 12, tan = kVertices * 24, uv = kVertices * 40, idx = kVertices * 48;
+    for (size_t v = 0; v < kVertices; ++v) {
+        const float nx = f(nrm + v * 12), ny = f(nrm + v * 12 + 4), nz = f(nrm + v * 12 + 8);
+        const float tx = f(tan + v * 16), ty = f(tan + v * 16 + 4), tz = f(tan + v * 16 + 8);
+        ASSERT_NEAR(nx * nx + ny * ny + nz * nz, 1.f, 1e-5f);
+        ASSERT_NEAR(tx * tx + ty * ty + tz * tz, 1.f, 1e-5f);
+        ASSERT_NEAR(nx * tx + ny * ty + nz * tz, 0.f, 1e-5f);
+        ASSERT_EQ(f(tan + v * 16 + 12), 1.f);
+        ASSERT_NEAR(f(pos + v * 12 + 4), 0.5f * ny, 1e-6f);
+        ASSERT_GE(f(uv + v * 8), 0.f);
+    }
+    // Every triangle counter-clockwise seen from outside, none degenerate.
+    for (size_t t = 0; t < kIndices / 3; ++t) {
+        std::array<std::array<float, 3>, 3> p{};
+        for (size_t k = 0; k < 3; ++k) {
+            uint16_t i;
+            std::memcpy(&i, b.data() + idx + (3 * t + k) * 2, 2);
+            ASSERT_LT(i, kVertices);
+            for (size_t c = 0; c < 3; ++c) p[k][c] = f(pos + i * 12u + c * 4);
+        }
+        const std::array<float, 3> e1{p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+        const std::array<float, 3> e2{p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+        const std::array<float, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        const float out = n[0] * (p[0][0] + p[1][0] + p[2][0]) + n[1] * (p[0][1] + p[1][1] + p[2][1]) + n[2] * (p[0][2] + p[1][2] + p[2][2]);
+        ASSERT_GT(out, 0.f) << "triangle " << t;
+    }
+    // The front (+Z) texel to the right has larger u: the texture is not mirrored.
+    const size_t front = 16 * 65 + 0, right = 16 * 65 + 1;
+    EXPECT_NEAR(f(pos + front * 12 + 8), 0.5f, 1e-6f);
+    EXPECT_GT(f(pos + right * 12), f(pos + front * 12));
+    EXPECT_GT(f(uv + right * 8), f(uv + front * 8));
+}
+
+TEST(GltfUri, PercentEncodesAllButUnreservedAndSlash) {
+    EXPECT_EQ(mf::gltf::uri_of("a b/c%d_é.png"), "a%20b/c%25d_%C3%A9.png");
+}
