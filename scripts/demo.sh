@@ -5,6 +5,7 @@
 #   validate              -> out/validate.json (JSON report; text summary on the terminal)
 #   preview               -> out/preview/<material>.png and out/contact_sheet.png
 #                            (a GPU when there is one, else Mesa's lavapipe on the CPU)
+#   report                -> out/report/index.html (one static page: previews, maps, findings)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 out=${1:-$root/out}
@@ -14,4 +15,5 @@ mf="$root/build/tools/matforge/matforge"
 "$mf" validate "$root/sample_materials" --report json --report-file "$out/validate.json"
 "$mf" validate "$root/sample_materials" --report text | tail -n 1
 "$mf" preview "$out/manifest.json" -o "$out/preview" --contact-sheet "$out/contact_sheet.png"
-echo "demo: outputs + manifest.json, validate.json, preview/ and contact_sheet.png in $out"
+"$mf" report "$out/manifest.json" -o "$out/report" --previews "$out/preview"
+echo "demo: outputs + manifest.json, validate.json, preview/, contact_sheet.png and report/index.html in $out"
