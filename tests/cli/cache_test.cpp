@@ -76,10 +76,16 @@ TEST(Cache, WarmRunRestoresTheSameBytesAsARunWithoutIt) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
     EXPECT_EQ(bytes_of(work / "other/manifest.json"), bytes_of(work / "plain/manifest.json"));
-    // Without $MATFORGE_CACHE: $XDG_CACHE_HOME/matforge.
-    r = run_env("MATFORGE_CACHE= XDG_CACHE_HOME=" + q(work / "xdg"), "ingest " + q(in) + " -o " + q(work / "xdg-out"));
+    // Without --cache and $MATFORGE_CACHE: hidden beside the output folder (same file system,
+    // skipped by input walks), the output folder itself left to what the manifest lists.
+    r = run_env("MATFORGE_CACHE=", "ingest " + q(in) + " -o " + q(work / "mine/"));
     ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_TRUE(fs::is_directory(work / "xdg/matforge/ac")) << r.output;
+    EXPECT_TRUE(fs::is_directory(work / ".mine.matforge-cache/ac")) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(0, 2)) << r.output;
+    for (const auto& e : fs::directory_iterator(work / "mine"))
+        EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
+    // Its blobs are hard links to the outputs: no second copy on disk.
+    EXPECT_EQ(fs::hard_link_count(work / "mine/Net004A/Net004A_basecolor.png"), 2u);
 }
 
 TEST(Cache, ChangedFileOrPresetRecomputesOnlyWhatItTouches) {

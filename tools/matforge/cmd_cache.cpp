@@ -41,7 +41,9 @@ std::string mib(uint64_t b) { return std::to_string((b + (1u << 19)) >> 20) + " 
 
 ExitCode run_cache(const CacheArgs& a) {
     const auto folder = cache_folder(a.dir);
-    if (!folder) return fail("cache", "name the cache: --cache DIR or $MATFORGE_CACHE (no HOME to find ~/.cache/matforge)");
+    if (!folder)
+        return fail("cache", "name the cache: --cache DIR or $MATFORGE_CACHE (ingest's own default is .OUT.matforge-cache "
+                             "beside its output folder OUT)");
     const std::string dir = folder->string();
     std::string error;
     auto cache = Cache::open(dir, error);
@@ -66,7 +68,7 @@ const Register reg{{"cache", 45,
                         sub.add_option("action", a->action, "stats | prune")
                             ->check(CLI::IsMember({"stats", "prune"}))
                             ->capture_default_str();
-                        sub.add_option("--cache", a->dir, "the cache folder (default: ingest's: $MATFORGE_CACHE, else $XDG_CACHE_HOME/matforge, else ~/.cache/matforge)");
+                        sub.add_option("--cache", a->dir, "the cache folder (default: $MATFORGE_CACHE)");
                         sub.add_option("--max-size", a->max_size,
                                        "prune: keep the most recently used records within this size (K, M, G, T)")
                             ->capture_default_str();

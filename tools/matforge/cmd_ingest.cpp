@@ -36,7 +36,7 @@ ExitCode run_ingest(const IngestArgs& a) {
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
     opt.force = a.force;
-    if (!a.no_cache) opt.cache_dir = cache_folder(a.cache);
+    if (!a.no_cache) opt.cache_dir = cache_folder(a.cache, a.out_dir);
     if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
     if (!a.shard.empty()) {
         opt.shard = parse_shard(a.shard);
@@ -103,8 +103,8 @@ const Register reg{{"ingest", 10,
                         add_fail_on(sub, a->fail_on);
                         sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
                         auto* cache = sub.add_option("--cache", a->cache,
-                                                     "result cache folder (default $MATFORGE_CACHE, else $XDG_CACHE_HOME/matforge, else "
-                                                     "~/.cache/matforge): unchanged sets are restored, not recomputed");
+                                                     "result cache folder (default $MATFORGE_CACHE, else .OUT.matforge-cache beside the output "
+                                                     "folder): unchanged sets are restored, not recomputed");
                         sub.add_flag("--no-cache", a->no_cache, "compute every set; read and write no cache")->excludes(cache);
                         sub.add_flag("--force", a->force,
                                      "replace a manifest.json matforge did not write, and files in the way of outputs "

@@ -20,19 +20,17 @@ inline void add_fail_on(CLI::App& sub, std::string& fail_on) {
 }
 
 // The ingest cache's folder: `given` (--cache), else $MATFORGE_CACHE (one shared by runs,
-// shards, machines), else $XDG_CACHE_HOME/matforge, else ~/.cache/matforge (where ccache and
-// pip keep theirs: outside the output folder, which holds only what the manifest lists).
-// nullopt when none can be named (no HOME).
-inline std::optional<std::filesystem::path> cache_folder(const std::string& given) {
+// shards, machines), else `.<out>.matforge-cache` beside the output folder `out`: on the same
+// file system (blobs are hard links to the outputs, no second copy), outside the output folder
+// (which holds only what the manifest lists), and hidden, so a walk of an input folder that
+// holds the output skips it. nullopt when `out` is empty (the cache command without --cache).
+inline std::optional<std::filesystem::path> cache_folder(const std::string& given, const std::filesystem::path& out = {}) {
     if (!given.empty()) return std::filesystem::path(given);
-    auto env = [](const char* name) -> std::string {
-        const char* v = std::getenv(name);
-        return v ? v : "";
-    };
-    if (const std::string c = env("MATFORGE_CACHE"); !c.empty()) return std::filesystem::path(c);
-    if (const std::string x = env("XDG_CACHE_HOME"); !x.empty()) return std::filesystem::path(x) / "matforge";
-    if (const std::string h = env("HOME"); !h.empty()) return std::filesystem::path(h) / ".cache" / "matforge";
-    return std::nullopt;
+    if (const char* c = std::getenv("MATFORGE_CACHE"); c && *c) return std::filesystem::path(c);
+    if (out.empty()) return std::nullopt;
+    std::filesystem::path o = std::filesystem::absolute(out).lexically_normal();
+    if (!o.has_filename()) o = o.parent_path();  // "out/" names the folder out
+    return o.parent_path() / ("." + o.filename().string() + ".matforge-cache");
 }
 
 inline validate::FailOn fail_on_of(const std::string& name) {
