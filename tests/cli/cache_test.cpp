@@ -1,8 +1,8 @@
 // The ingest cache (lib/process/cache.hpp) through the binary: an unchanged set is restored with
 // the same bytes as a run without the cache, a changed file recomputes its set only, a corrupt
 // blob or an unusable cache never fails a run, and `matforge cache` reports and prunes it.
+#include <cstdio>
 #include <map>
-#include <regex>
 
 #include "cli_util.hpp"
 
@@ -22,9 +22,12 @@ fs::path two_sets(const fs::path& dir) {
 
 // "cache: R sets restored, C computed" from ingest's summary; {-1, -1} when absent.
 std::pair<int, int> cache_line(const std::string& output) {
-    std::smatch m;
-    if (!std::regex_search(output, m, std::regex(R"(cache: (\d+) sets restored, (\d+) computed)"))) return {-1, -1};
-    return {std::stoi(m[1]), std::stoi(m[2])};
+    // (No std::regex: GCC 12's <regex> trips -Wmaybe-uninitialized in the sanitizer build.)
+    int restored = -1, computed = -1;
+    for (size_t at = output.find("cache: "); at != std::string::npos; at = output.find("cache: ", at + 1))
+        if (std::sscanf(output.c_str() + at, "cache: %d sets restored, %d computed", &restored, &computed) == 2)
+            return {restored, computed};
+    return {-1, -1};
 }
 
 // Every output file and material file of `manifest` (under its folder) with its bytes.
