@@ -11,7 +11,8 @@ namespace {
 
 std::map<std::string, std::string> keys_of(const fs::path& plan) {
     std::map<std::string, std::string> k;
-    for (const auto& s : read_json(plan)["sets"]) k[s["name"]] = s["key"];
+    const json p = read_json(plan);  // not `read_json(plan)["sets"]` in the for: the temporary would die first
+    for (const auto& s : p["sets"]) k[s["name"]] = s["key"];
     return k;
 }
 
