@@ -71,7 +71,7 @@ for lib in lib tiny; do
 done
 
 pct() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f %%", 100 * a / b }'; }
-sets_lib=$(find "$work/lib" -mindepth 1 -maxdepth 1 -type d | wc -l)
+sets_lib=$(python3 -c 'import json, sys; print(len(json.load(open(sys.argv[1]))["materials"]))' "$work/lib-nc/manifest.json")
 {
   echo "# Ingest cache: what it saves"
   echo
