@@ -18,6 +18,7 @@ packages=(
   libsquish-dev libastcenc-dev libzstd-dev  # lib/texture: BC1-BC5, ASTC, KTX2 zstd
   libnvtt-bin astcenc  # bench/texture: the peer tools (nvcompress, astcenc)
   chromium  # tests/report: headless browser check of matforge report
+  strace  # tests/hostile: counts the archive opens of a 3,000-entry .zip
 )
 # tests/texture run the npm checkers (scripts/npm-checkers.sh); a Node.js that bundles npm
 # (NodeSource's) conflicts with Debian's npm package.
