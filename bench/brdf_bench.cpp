@@ -87,8 +87,8 @@ double reference_radiance(double sx, double sy) {
     const double r2 = sx * sx + sy * sy;
     if (r2 > 1.0) return 0.0;
     const double rough = sy > 0.45 ? 0.5 : sy > 0.2 ? 0.045 : sy > 0.0 ? 0.2 : 1.0;
-    const cb::Inputs<double> in{{sx, sy, std::sqrt(1.0 - r2)}, {0, 0, 1}, {0.0, 0.6, 0.8}, {0.9, 0.6, 0.3},
-                                rough, sx > 0.0 ? 1.0 : 0.0, 3.0};
+    const cb::Inputs<double> in{{sx, sy, std::sqrt(1.0 - r2)}, {0, 0, 1}, {0.0, 0.6, 0.8}, {0.9, 0.6, 0.3}, rough,
+                                sx > 0.0 ? 1.0 : 0.0,          3.0};
     return cb::shade(in, cb::Model::accurate)[1];
 }
 
@@ -140,15 +140,17 @@ int main(int argc, char** argv) {
         const int reps = args.reps ? args.reps : (info.cpu ? 5 : 20);
         BrdfHarness harness(context, energy_table());
         std::printf("device: %s (%s); shaderFloat16: %s; %u² px timed (median of %d), error at %u² px\n",
-                    info.name.c_str(), info.driver.c_str(), harness.supports_fp16() ? "yes" : "no", args.size,
-                    reps, args.ref_size);
+                    info.name.c_str(), info.driver.c_str(), harness.supports_fp16() ? "yes" : "no", args.size, reps,
+                    args.ref_size);
         const std::vector<double> ref = reference_image(args.ref_size);
 
         struct ModelName {
             Brdf brdf;
             const char* name;
         };
-        const ModelName models[] = {{Brdf::unnormalized_diffuse, "assignment"}, {Brdf::standard, "standard"}, {Brdf::accurate, "accurate"}};
+        const ModelName models[] = {{Brdf::unnormalized_diffuse, "assignment"},
+                                    {Brdf::standard, "standard"},
+                                    {Brdf::accurate, "accurate"}};
         std::vector<BrdfPrecision> precisions{BrdfPrecision::fp32};
         if (harness.supports_fp16()) precisions.push_back(BrdfPrecision::fp16);
 

@@ -152,14 +152,19 @@ struct Config {
 
 std::vector<Config> configs() {
     return {
-        {"base", "constant material, 1 directional light, standard BRDF", false, false, false, 0, Brdf::standard, PixelFormat::rgba8},
-        {"exr", "base, linear float output (copy instead of encode)", false, false, false, 0, Brdf::standard, PixelFormat::rgba32f},
-        {"textures", "base + albedo/ORM textures (2048², trilinear)", true, false, false, 0, Brdf::standard, PixelFormat::rgba8},
+        {"base", "constant material, 1 directional light, standard BRDF", false, false, false, 0, Brdf::standard,
+         PixelFormat::rgba8},
+        {"exr", "base, linear float output (copy instead of encode)", false, false, false, 0, Brdf::standard,
+         PixelFormat::rgba32f},
+        {"textures", "base + albedo/ORM textures (2048², trilinear)", true, false, false, 0, Brdf::standard,
+         PixelFormat::rgba8},
         {"normal_map", "textures + normal map", true, true, false, 0, Brdf::standard, PixelFormat::rgba8},
         {"lights8", "base + 7 point lights (8 in all)", false, false, false, 7, Brdf::standard, PixelFormat::rgba8},
-        {"accurate", "base, accurate BRDF (correlated Smith + energy compensation)", false, false, false, 0, Brdf::accurate, PixelFormat::rgba8},
+        {"accurate", "base, accurate BRDF (correlated Smith + energy compensation)", false, false, false, 0,
+         Brdf::accurate, PixelFormat::rgba8},
         {"ibl", "base + environment (split-sum IBL)", false, false, true, 0, Brdf::standard, PixelFormat::rgba8},
-        {"full", "textures + normal map + 8 lights + accurate + IBL", true, true, true, 7, Brdf::accurate, PixelFormat::rgba8},
+        {"full", "textures + normal map + 8 lights + accurate + IBL", true, true, true, 7, Brdf::accurate,
+         PixelFormat::rgba8},
     };
 }
 
@@ -188,7 +193,8 @@ int main(int argc, char** argv) {
         Context context(co);
         const DeviceInfo& info = context.info();
         if (!info.timestamps) {
-            std::fprintf(stderr, "render_bench: %s has no timestamp queries on its graphics queue\n", info.name.c_str());
+            std::fprintf(stderr, "render_bench: %s has no timestamp queries on its graphics queue\n",
+                         info.name.c_str());
             return 1;
         }
         const int frames = args.frames ? args.frames : (info.cpu ? 8 : 50);
@@ -212,7 +218,8 @@ int main(int argc, char** argv) {
         std::vector<Row> rows;
         std::printf("\n%-11s %6s  %-28s %10s %10s\n", "config", "size", "pass", "median ms", "min ms");
         for (const Config& c : configs()) {
-            if (!args.only.empty() && std::find(args.only.begin(), args.only.end(), c.name) == args.only.end()) continue;
+            if (!args.only.empty() && std::find(args.only.begin(), args.only.end(), c.name) == args.only.end())
+                continue;
             for (uint32_t size : args.sizes) {
                 Scene scene;
                 scene.width = scene.height = size;
@@ -239,11 +246,14 @@ int main(int argc, char** argv) {
                 const GpuMaterial gm = renderer.upload(m);
                 const double upload_wall = ms_since(t0);
                 auto emit = [&](const std::string& pass, const std::vector<double>& ms) {
-                    const Row r{c.name, size, pass, median(ms), *std::min_element(ms.begin(), ms.end()), int(ms.size())};
-                    std::printf("%-11s %6u  %-28s %10.3f %10.3f\n", r.config.c_str(), r.size, r.pass.c_str(), r.median_ms, r.min_ms);
+                    const Row r{c.name,        size, pass, median(ms), *std::min_element(ms.begin(), ms.end()),
+                                int(ms.size())};
+                    std::printf("%-11s %6u  %-28s %10.3f %10.3f\n", r.config.c_str(), r.size, r.pass.c_str(),
+                                r.median_ms, r.min_ms);
                     rows.push_back(r);
                 };
-                for (const PassTime& p : renderer.load_times()) emit("load: " + p.name.substr(0, p.name.find(' ')), {p.ms});
+                for (const PassTime& p : renderer.load_times())
+                    emit("load: " + p.name.substr(0, p.name.find(' ')), {p.ms});
                 // Host wall time: what a user waits for, CPU work (mips, pipeline compilation)
                 // included; on lavapipe also the only exact split, see docs/bench/README.md.
                 emit("load wall: scene (host)", {scene_wall});

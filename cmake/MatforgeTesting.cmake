@@ -17,7 +17,13 @@ function(matforge_test name)
   target_compile_definitions(test_${name} PRIVATE
     MATFORGE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     MATFORGE_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  set(_props ENVIRONMENT "MATFORGE_SOURCE_DIR=${PROJECT_SOURCE_DIR};MATFORGE_CACHE=${MATFORGE_TEST_CACHE}")
+  set(_env "MATFORGE_SOURCE_DIR=${PROJECT_SOURCE_DIR};MATFORGE_CACHE=${MATFORGE_TEST_CACHE}")
+  if(MATFORGE_SANITIZE)
+    # Third-party leaks only (scripts/lsan.supp says which and why), for the test and every
+    # matforge it runs, also when ctest is run by hand in the sanitizer build.
+    string(APPEND _env ";LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/scripts/lsan.supp:print_suppressions=0")
+  endif()
+  set(_props ENVIRONMENT "${_env}")
   if(T_RUNS_BINARY)
     target_compile_definitions(test_${name} PRIVATE MATFORGE_BIN="$<TARGET_FILE:matforge>"
       MATFORGE_GEN_SAMPLES="$<TARGET_FILE:gen_samples>" MATFORGE_SCHEMA_SPOOL="${MATFORGE_SCHEMA_SPOOL}")

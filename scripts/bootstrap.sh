@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs matforge's Debian packages when missing, then configures and builds.
 # Usage: scripts/bootstrap.sh [BUILD_DIR] [extra cmake args...]
+#        scripts/bootstrap.sh --packages-only   (install, do not build)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${1:-$root/build}
@@ -12,7 +13,7 @@ packages=(
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libzip-dev libssl-dev libxml2-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
   libglvnd0 libglx0 libgl1 libegl1 libopengl0
-  clang-14 clang-tidy-14 libclang-rt-14-dev  # CI: scripts/tidy.sh, scripts/fuzz.sh (libFuzzer)
+  clang-14 clang-tidy-14 clang-format-14 libclang-rt-14-dev  # CI: scripts/tidy.sh, scripts/format.sh --check, scripts/fuzz.sh (libFuzzer)
   python3 python3-jsonschema  # tests: scripts/check-schemas.py (manifest and report schemas)
   slurm-wlm munge  # tests: scripts/cluster-demo.sh (sharded ingest on a one-node Slurm cluster)
   libsquish-dev libastcenc-dev libzstd-dev  # lib/texture: BC1-BC5, ASTC, KTX2 zstd
@@ -36,6 +37,8 @@ if ((${#missing[@]})); then
   # --no-install-recommends keeps OpenCV, GDAL, ffmpeg and Qt out (OpenImageIO recommends them).
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+[[ $build == --packages-only ]] && exit 0
 
 # The project's own builds treat every C++ and shader warning as an error (a plain `cmake`
 # build does not); extra args after it may override.

@@ -30,26 +30,26 @@ inline uint32_t xorshift(uint32_t& s) {
 }
 
 struct Config {
-    bool quick = false;   // CI smoke: small inputs, short timings
+    bool quick = false;       // CI smoke: small inputs, short timings
     std::string ocio_config;  // path of ocio/config.ocio
 };
 
 struct Variant {
-    std::string knob;      // curve of the plot
-    std::string name;      // row of the table
-    std::string tag;       // short label on the plot
+    std::string knob;  // curve of the plot
+    std::string name;  // row of the table
+    std::string tag;   // short label on the plot
     // Errors: `codes` in 8-bit display/encoded code units (the plot's y), `linear` in linear
     // light or data units. NaN where not meaningful.
     double max_codes = 0, mean_codes = 0, max_linear = 0, mean_linear = 0;
-    std::string linear_unit;  // unit of max_linear / mean_linear ("linear", "% points", …)
-    std::string note;      // banding, bytes, non-finite counts, …
+    std::string linear_unit;     // unit of max_linear / mean_linear ("linear", "% points", …)
+    std::string note;            // banding, bytes, non-finite counts, …
     std::function<void()> work;  // what is timed (one call = one unit below)
-    double pixels = 1;     // pixels one call processes (for ns/px and ms/Mpx)
-    std::string unit;      // "ns/px" or "ms/map"
-    double map_pixels = 0; // for "ms/map": pixels of the named map (4K, 8K, 1K)
-    std::string map_name;  // "4K", "8K", "1K"
-    int iterations = 0;    // 0: let Google Benchmark decide (MinTime); >0: fixed
-    double time_s = 0;     // filled by the driver: seconds per call
+    double pixels = 1;           // pixels one call processes (for ns/px and ms/Mpx)
+    std::string unit;            // "ns/px" or "ms/map"
+    double map_pixels = 0;       // for "ms/map": pixels of the named map (4K, 8K, 1K)
+    std::string map_name;        // "4K", "8K", "1K"
+    int iterations = 0;          // 0: let Google Benchmark decide (MinTime); >0: fixed
+    double time_s = 0;           // filled by the driver: seconds per call
 };
 
 std::vector<Variant> transfer_variants(const Config& c);

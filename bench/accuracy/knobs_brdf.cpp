@@ -24,7 +24,8 @@ using cpubrdf::V3;
 // D3D11 standard multisample positions (in 1/16 pixel), the GPU's own patterns.
 const std::vector<std::array<int, 2>> kPattern1 = {{0, 0}};
 const std::vector<std::array<int, 2>> kPattern4 = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
-const std::vector<std::array<int, 2>> kPattern8 = {{1, -3}, {-1, 3}, {5, 1}, {-3, -5}, {-5, 5}, {-7, -1}, {3, 7}, {7, -7}};
+const std::vector<std::array<int, 2>> kPattern8 = {{1, -3}, {-1, 3},  {5, 1}, {-3, -5},
+                                                   {-5, 5}, {-7, -1}, {3, 7}, {7, -7}};
 
 struct SceneSample {
     bool hit;
@@ -71,9 +72,7 @@ std::vector<double> render(int size, Model m, const std::vector<std::array<int, 
     return img;
 }
 
-double display_code(double radiance) {
-    return linear_to_srgb(std::clamp(radiance, 0.0, 1.0)) * 255.0;
-}
+double display_code(double radiance) { return linear_to_srgb(std::clamp(radiance, 0.0, 1.0)) * 255.0; }
 
 }  // namespace
 
@@ -90,7 +89,9 @@ std::vector<Variant> brdf_variants(const Config& c) {
             double acc = 0;
             for (const auto& g : grid) {
                 const double px = x + 0.5 + g[0] / 32.0, py = y + 0.5 + g[1] / 32.0;
-                acc += radiance<double, cpubrdf::Exact>(sample_scene((px / size * 2 - 1) * 1.1, (1 - py / size * 2) * 1.1), Model::accurate);
+                acc += radiance<double, cpubrdf::Exact>(sample_scene((px / size * 2 - 1) * 1.1,
+                                                                     (1 - py / size * 2) * 1.1),
+                                                        Model::accurate);
             }
             ref[static_cast<size_t>(y) * size + x] = acc / static_cast<double>(grid.size());
         }
@@ -104,8 +105,11 @@ std::vector<Variant> brdf_variants(const Config& c) {
     };
     const Kind kinds[] = {{"BRDF: accurate fp32 (CPU)", "accurate, fp32", Model::accurate, false},
                           {"BRDF: accurate fp16 (CPU emul.)", "accurate, fp16 (emulated)", Model::accurate, true},
-                          {"BRDF: standard fp32 (CPU)", "standard (GGX, Schlick F, Schlick-GGX k = (r+1)^2/8), fp32", Model::standard, false},
-                          {"BRDF: Lambert x pi fp32 (CPU)", "--brdf assignment: Lambert without 1/pi (diffuse pi x too strong vs specular), fp32", Model::unnormalized_diffuse, false}};
+                          {"BRDF: standard fp32 (CPU)", "standard (GGX, Schlick F, Schlick-GGX k = (r+1)^2/8), fp32",
+                           Model::standard, false},
+                          {"BRDF: Lambert x pi fp32 (CPU)",
+                           "--brdf assignment: Lambert without 1/pi (diffuse pi x too strong vs specular), fp32",
+                           Model::unnormalized_diffuse, false}};
     for (const Kind& k : kinds) {
         for (int spp : {1, 4, 8}) {
             const auto& pattern = spp == 1 ? kPattern1 : spp == 4 ? kPattern4 : kPattern8;
@@ -130,7 +134,9 @@ std::vector<Variant> brdf_variants(const Config& c) {
             v.max_codes = max_c, v.mean_codes = sum_c / static_cast<double>(img.size());
             v.max_linear = max_l, v.mean_linear = sum_l / static_cast<double>(img.size());
             v.linear_unit = "radiance";
-            if (nonfinite) v.note = std::to_string(nonfinite) + " non-finite pixels (fp16 overflow: D past the half-float maximum)";
+            if (nonfinite)
+                v.note = std::to_string(nonfinite) +
+                         " non-finite pixels (fp16 overflow: D past the half-float maximum)";
             v.work = [run] { (void)run(); };
             v.pixels = static_cast<double>(size) * size;
             v.unit = "ns/px";

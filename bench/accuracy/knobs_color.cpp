@@ -25,11 +25,11 @@ namespace {
 
 struct TransferData {
     size_t pixels;
-    std::vector<uint8_t> codes;          // decode input, 3 per pixel
-    std::vector<float> codes_f;          // the same as code / 255
-    std::vector<float> linear_in;        // encode input
-    mutable std::vector<float> out;      // 3 per pixel
-    mutable std::vector<uint8_t> out8;   // LUT encoder output
+    std::vector<uint8_t> codes;         // decode input, 3 per pixel
+    std::vector<float> codes_f;         // the same as code / 255
+    std::vector<float> linear_in;       // encode input
+    mutable std::vector<float> out;     // 3 per pixel
+    mutable std::vector<uint8_t> out8;  // LUT encoder output
     std::array<float, 256> decode_lut{};
     std::array<uint8_t, 4096> encode_lut{};
     OCIO::ConstCPUProcessorRcPtr dec_lossless, dec_default, dec_u8_default, dec_u8_lossless;
@@ -124,52 +124,73 @@ std::vector<Variant> transfer_variants(const Config& c) {
         v.pixels = static_cast<double>(d->pixels), v.unit = "ns/px";
         v.linear_unit = "linear";
         v.work();  // once for the errors
-        if (decode) decode_errors(*d, v); else encode_errors(*d, v, u8_out);
+        if (decode) decode_errors(*d, v);
+        else encode_errors(*d, v, u8_out);
         if (!note.empty()) v.note = note + (v.note.empty() ? "" : "; " + v.note);
         out.push_back(std::move(v));
     };
     const size_t n = d->pixels * 3;
     const std::string dk = "transfer: decode sRGB->linear", ek = "transfer: encode linear->sRGB";
-    add(dk, "exact IEC 61966-2-1 (float)", "EXACT", [d, n] {
-        for (size_t i = 0; i < n; ++i) d->out[i] = srgb_to_linear(d->codes_f[i]);
-    }, true);
-    add(dk, "pow(x, 2.2) (gamma 2.2 approximation)", "POW 2.2", [d, n] {
-        for (size_t i = 0; i < n; ++i) d->out[i] = std::pow(d->codes_f[i], 2.2f);
-    }, true);
-    add(dk, "OCIO float, lossless optimization", "OCIO LOSSLESS", [d] {
-        ocio_apply_f32(d->dec_lossless, d->codes_f, d->out, d->pixels);
-    }, true, false, "matforge's processor");
-    add(dk, "OCIO float, default optimization", "OCIO DEFAULT", [d] {
-        ocio_apply_f32(d->dec_default, d->codes_f, d->out, d->pixels);
-    }, true);
-    add(dk, "OCIO uint8 in, default optimization", "OCIO U8 DEFAULT", [d] {
-        ocio_apply_u8(d->dec_u8_default, d->codes, d->out, d->pixels);
-    }, true, false, "bakes a LUT for 8-bit input");
-    add(dk, "OCIO uint8 in, lossless optimization", "OCIO U8 LOSSLESS", [d] {
-        ocio_apply_u8(d->dec_u8_lossless, d->codes, d->out, d->pixels);
-    }, true);
-    add(dk, "256-entry lookup table (uint8 in)", "LUT 8-BIT", [d, n] {
-        for (size_t i = 0; i < n; ++i) d->out[i] = d->decode_lut[d->codes[i]];
-    }, true);
+    add(
+        dk, "exact IEC 61966-2-1 (float)", "EXACT",
+        [d, n] {
+            for (size_t i = 0; i < n; ++i) d->out[i] = srgb_to_linear(d->codes_f[i]);
+        },
+        true);
+    add(
+        dk, "pow(x, 2.2) (gamma 2.2 approximation)", "POW 2.2",
+        [d, n] {
+            for (size_t i = 0; i < n; ++i) d->out[i] = std::pow(d->codes_f[i], 2.2f);
+        },
+        true);
+    add(
+        dk, "OCIO float, lossless optimization", "OCIO LOSSLESS",
+        [d] { ocio_apply_f32(d->dec_lossless, d->codes_f, d->out, d->pixels); }, true, false, "matforge's processor");
+    add(
+        dk, "OCIO float, default optimization", "OCIO DEFAULT",
+        [d] { ocio_apply_f32(d->dec_default, d->codes_f, d->out, d->pixels); }, true);
+    add(
+        dk, "OCIO uint8 in, default optimization", "OCIO U8 DEFAULT",
+        [d] { ocio_apply_u8(d->dec_u8_default, d->codes, d->out, d->pixels); }, true, false,
+        "bakes a LUT for 8-bit input");
+    add(
+        dk, "OCIO uint8 in, lossless optimization", "OCIO U8 LOSSLESS",
+        [d] { ocio_apply_u8(d->dec_u8_lossless, d->codes, d->out, d->pixels); }, true);
+    add(
+        dk, "256-entry lookup table (uint8 in)", "LUT 8-BIT",
+        [d, n] {
+            for (size_t i = 0; i < n; ++i) d->out[i] = d->decode_lut[d->codes[i]];
+        },
+        true);
 
-    add(ek, "exact IEC 61966-2-1 (float)", "EXACT", [d, n] {
-        for (size_t i = 0; i < n; ++i) d->out[i] = linear_to_srgb(d->linear_in[i]);
-    }, false);
-    add(ek, "pow(x, 1/2.2) (gamma 2.2 approximation)", "POW 1/2.2", [d, n] {
-        for (size_t i = 0; i < n; ++i) d->out[i] = std::pow(d->linear_in[i], 1.f / 2.2f);
-    }, false);
-    add(ek, "OCIO float, lossless optimization", "OCIO LOSSLESS", [d] {
-        ocio_apply_f32(d->enc_lossless, d->linear_in, d->out, d->pixels);
-    }, false, false, "matforge's processor");
-    add(ek, "OCIO float, default optimization", "OCIO DEFAULT", [d] {
-        ocio_apply_f32(d->enc_default, d->linear_in, d->out, d->pixels);
-    }, false);
-    add(ek, "4096-entry table to 8-bit codes", "LUT 12->8 BIT", [d, n] {
-        for (size_t i = 0; i < n; ++i) {
-            const float x = std::clamp(d->linear_in[i], 0.f, 1.f);
-            d->out8[i] = d->encode_lut[static_cast<size_t>(x * 4095.f + 0.5f)];
-        }
-    }, false, true, "output is a code: includes the <= 0.5-code rounding");
+    add(
+        ek, "exact IEC 61966-2-1 (float)", "EXACT",
+        [d, n] {
+            for (size_t i = 0; i < n; ++i) d->out[i] = linear_to_srgb(d->linear_in[i]);
+        },
+        false);
+    add(
+        ek, "pow(x, 1/2.2) (gamma 2.2 approximation)", "POW 1/2.2",
+        [d, n] {
+            for (size_t i = 0; i < n; ++i) d->out[i] = std::pow(d->linear_in[i], 1.f / 2.2f);
+        },
+        false);
+    add(
+        ek, "OCIO float, lossless optimization", "OCIO LOSSLESS",
+        [d] { ocio_apply_f32(d->enc_lossless, d->linear_in, d->out, d->pixels); }, false, false,
+        "matforge's processor");
+    add(
+        ek, "OCIO float, default optimization", "OCIO DEFAULT",
+        [d] { ocio_apply_f32(d->enc_default, d->linear_in, d->out, d->pixels); }, false);
+    add(
+        ek, "4096-entry table to 8-bit codes", "LUT 12->8 BIT",
+        [d, n] {
+            for (size_t i = 0; i < n; ++i) {
+                const float x = std::clamp(d->linear_in[i], 0.f, 1.f);
+                d->out8[i] = d->encode_lut[static_cast<size_t>(x * 4095.f + 0.5f)];
+            }
+        },
+        false, true, "output is a code: includes the <= 0.5-code rounding");
     return out;
 }
 
@@ -214,7 +235,8 @@ std::vector<Variant> quantize_variants(const Config& c) {
             const double pat = 0.5 + 0.5 * std::sin(12.0 * u + 3.0 * std::sin(9.0 * t));
             const double noise = (static_cast<double>(xorshift(s) & 0xffff) / 65535.0 - 0.5) * 0.01;
             for (int k = 0; k < 3; ++k)
-                albedo->at(x, y, k) = static_cast<float>(std::clamp(0.02 + 0.7 * u * (0.6 + 0.4 * pat) * (1.0 - 0.2 * k) + noise, 0.0, 1.0));
+                albedo->at(x, y, k) = static_cast<float>(
+                    std::clamp(0.02 + 0.7 * u * (0.6 + 0.4 * pat) * (1.0 - 0.2 * k) + noise, 0.0, 1.0));
             rough->at(x, y, 0) = static_cast<float>(std::clamp(0.1 + 0.8 * t * (0.7 + 0.3 * pat) + noise, 0.0, 1.0));
         }
     // A slow ramp: 4096 px from 0.18 to 0.22 (linear), where a mid-grey albedo or roughness band shows.
@@ -226,8 +248,10 @@ std::vector<Variant> quantize_variants(const Config& c) {
         const char* tag;
         EncodeOptions opt;
     };
-    const Fmt fmts[] = {{"8-bit PNG", "8-BIT", {"png", 8}}, {"16-bit PNG", "16-BIT", {"png", 16}},
-                        {"half EXR", "HALF", {"exr", 16}}, {"float EXR", "FLOAT", {"exr", 32}}};
+    const Fmt fmts[] = {{"8-bit PNG", "8-BIT", {"png", 8}},
+                        {"16-bit PNG", "16-BIT", {"png", 16}},
+                        {"half EXR", "HALF", {"exr", 16}},
+                        {"float EXR", "FLOAT", {"exr", 32}}};
     std::vector<Variant> out;
     for (bool is_albedo : {true, false}) {
         for (const Fmt& f : fmts) {
@@ -264,7 +288,8 @@ std::vector<Variant> quantize_variants(const Config& c) {
             v.max_codes = codes.max, v.mean_codes = codes.mean(), v.max_linear = lin.max, v.mean_linear = lin.mean();
             v.linear_unit = "linear";
             char buf[160];
-            std::snprintf(buf, sizeof buf, "%.2f bytes/px (%zu B per %dx%d); widest band %d px of a 4096-px 0.18-0.22 ramp",
+            std::snprintf(buf, sizeof buf,
+                          "%.2f bytes/px (%zu B per %dx%d); widest band %d px of a 4096-px 0.18-0.22 ramp",
                           static_cast<double>(bytes.size()) / (static_cast<double>(w) * w), bytes.size(), w, w, band);
             v.note = buf;
             const EncodeOptions opt = f.opt;
@@ -308,7 +333,8 @@ Figures figures(const StatsData& d, Visit&& visit) {
     visit([&](size_t i) {
         const uint8_t* p = &d.rgb[i * 3];
         const float y = 0.2126f * d.lin[p[0]] + 0.7152f * d.lin[p[1]] + 0.0722f * d.lin[p[2]];
-        const size_t code = static_cast<size_t>(std::upper_bound(d.edges.begin(), d.edges.end() - 1, y) - d.edges.begin());
+        const size_t code = static_cast<size_t>(std::upper_bound(d.edges.begin(), d.edges.end() - 1, y) -
+                                                d.edges.begin());
         ++hist[code];
     });
     Figures f;
@@ -335,7 +361,8 @@ std::vector<Variant> stats_variants(const Config& c) {
     const size_t n = static_cast<size_t>(d->size) * d->size;
     d->rgb.resize(n * 3);
     for (int k = 0; k < 256; ++k) d->lin[static_cast<size_t>(k)] = static_cast<float>(srgb_to_linear(k / 255.0));
-    for (int k = 0; k < 256; ++k) d->edges[static_cast<size_t>(k)] = static_cast<float>(srgb_to_linear(std::min(k + 0.5, 255.0) / 255.0));
+    for (int k = 0; k < 256; ++k)
+        d->edges[static_cast<size_t>(k)] = static_cast<float>(srgb_to_linear(std::min(k + 0.5, 255.0) / 255.0));
     // Content: a noisy brick wall (period 64 × 32) with 2-px light mortar every 16 px in x
     // (a pattern that a regular stride can alias with), a dark corner (soot), a bright patch.
     uint32_t s = 4242;
@@ -344,13 +371,15 @@ std::vector<Variant> stats_variants(const Config& c) {
             uint8_t* p = &d->rgb[(static_cast<size_t>(y) * d->size + x) * 3];
             const uint32_t r = xorshift(s);
             int base = 120 + static_cast<int>(r & 63) - 32 + ((x / 64 + y / 32) % 3) * 12;
-            if (x % 16 < 2) base = 236 + static_cast<int>((r >> 8) & 15);        // mortar: bright
+            if (x % 16 < 2) base = 236 + static_cast<int>((r >> 8) & 15);                          // mortar: bright
             if (x < d->size / 5 && y < d->size / 4) base = 18 + static_cast<int>((r >> 12) & 15);  // soot
             p[0] = static_cast<uint8_t>(std::clamp(base + 12, 0, 255));
             p[1] = static_cast<uint8_t>(std::clamp(base, 0, 255));
             p[2] = static_cast<uint8_t>(std::clamp(base - 16, 0, 255));
         }
-    const Figures full = figures(*d, [&](auto&& f) { for (size_t i = 0; i < n; ++i) f(i); });
+    const Figures full = figures(*d, [&](auto&& f) {
+        for (size_t i = 0; i < n; ++i) f(i);
+    });
 
     std::vector<Variant> out;
     auto add = [&](const std::string& name, const std::string& tag, std::function<Figures()> run) {
@@ -366,7 +395,8 @@ std::vector<Variant> stats_variants(const Config& c) {
         v.mean_linear = (e_pp[0] + e_pp[1]) / 2.0;
         v.linear_unit = "% points";
         char buf[200];
-        std::snprintf(buf, sizeof buf, "mean %.2f p5 %.0f p95 %.0f below30 %.2f%% above240 %.2f%% (full: %.2f %.0f %.0f %.2f%% %.2f%%)",
+        std::snprintf(buf, sizeof buf,
+                      "mean %.2f p5 %.0f p95 %.0f below30 %.2f%% above240 %.2f%% (full: %.2f %.0f %.0f %.2f%% %.2f%%)",
                       f.mean, f.p5, f.p95, f.below, f.above, full.mean, full.p5, full.p95, full.below, full.above);
         v.note = buf;
         v.work = [run] { (void)run(); };
@@ -378,7 +408,11 @@ std::vector<Variant> stats_variants(const Config& c) {
         out.push_back(std::move(v));
     };
     const int sz = d->size;
-    add("every pixel", "ALL", [d, n] { return figures(*d, [&](auto&& f) { for (size_t i = 0; i < n; ++i) f(i); }); });
+    add("every pixel", "ALL", [d, n] {
+        return figures(*d, [&](auto&& f) {
+            for (size_t i = 0; i < n; ++i) f(i);
+        });
+    });
     for (int stride : {2, 4, 16}) {
         const char* ord = stride == 2 ? "2nd" : stride == 4 ? "4th" : "16th";
         add(std::string("regular grid, every ") + ord + " pixel in x and y (1/" + std::to_string(stride * stride) + ")",

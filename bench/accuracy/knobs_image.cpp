@@ -20,7 +20,6 @@
 namespace mf::bench {
 namespace {
 
-
 // ------------------------------------------------------------------------------------------
 // Resampling. Source: an 8-bit sRGB albedo (values k/255) with the content that separates the
 // filters: 1-px black/white lines and checkers (where averaging encoded values darkens: the
@@ -43,13 +42,17 @@ Image make_resample_source(int w) {
                 c = {k, k * 0.8, k * 0.3};
             } else if (u < 0.5) {  // colour edges
                 const int cell = (x / 7 + y / 5) % 4;
-                const std::array<std::array<double, 3>, 4> pal = {{{0.9, 0.1, 0.1}, {0.1, 0.8, 0.2}, {0.1, 0.2, 0.9}, {0.95, 0.9, 0.2}}};
+                const std::array<std::array<double, 3>, 4> pal = {
+                    {{0.9, 0.1, 0.1}, {0.1, 0.8, 0.2}, {0.1, 0.2, 0.9}, {0.95, 0.9, 0.2}}};
                 c = pal[static_cast<size_t>(cell)];
             } else {  // smooth gradient with noise
                 const double n = static_cast<double>(xorshift(s) & 255) / 255.0 - 0.5;
                 c = {0.3 + 0.4 * u + 0.05 * n, 0.4 + 0.2 * v + 0.05 * n, 0.5 + 0.05 * n};
             }
-            for (int k = 0; k < 3; ++k) img.at(x, y, k) = static_cast<float>(std::lround(std::clamp(c[static_cast<size_t>(k)], 0.0, 1.0) * 255.0)) / 255.f;
+            for (int k = 0; k < 3; ++k)
+                img.at(x, y,
+                       k) = static_cast<float>(std::lround(std::clamp(c[static_cast<size_t>(k)], 0.0, 1.0) * 255.0)) /
+                            255.f;
         }
     return img;
 }
@@ -68,7 +71,10 @@ std::vector<double> reference_resample(const Image& srgb, int dw) {
     const int sw = srgb.width;
     const double scale = static_cast<double>(sw) / dw;
     const double support = 3.0 * std::max(1.0, scale);
-    struct Tap { int first; std::vector<double> w; };
+    struct Tap {
+        int first;
+        std::vector<double> w;
+    };
     std::vector<Tap> taps(static_cast<size_t>(dw));
     for (int i = 0; i < dw; ++i) {
         const double centre = (i + 0.5) * scale;  // in source pixel units
@@ -91,7 +97,8 @@ std::vector<double> reference_resample(const Image& srgb, int dw) {
             const Tap& t = taps[static_cast<size_t>(i)];
             for (int c = 0; c < 3; ++c) {
                 double acc = 0;
-                for (size_t k = 0; k < t.w.size(); ++k) acc += t.w[k] * lin[(static_cast<size_t>(y) * sw + t.first + k) * 3 + c];
+                for (size_t k = 0; k < t.w.size(); ++k)
+                    acc += t.w[k] * lin[(static_cast<size_t>(y) * sw + t.first + k) * 3 + c];
                 h[(static_cast<size_t>(y) * dw + i) * 3 + c] = acc;
             }
         }
@@ -139,7 +146,8 @@ std::vector<Variant> resample_variants(const Config& c) {
             const char* filter;
             int space;  // 0 sRGB values, 1 linear via OpenColorIO (matforge), 2 linear via 8-bit LUT
         };
-        const Way ways[] = {{"box", 0}, {"triangle", 0}, {"lanczos3", 0}, {"box", 1}, {"triangle", 1}, {"lanczos3", 1}, {"lanczos3", 2}};
+        const Way ways[] = {{"box", 0},      {"triangle", 0}, {"lanczos3", 0}, {"box", 1},
+                            {"triangle", 1}, {"lanczos3", 1}, {"lanczos3", 2}};
         for (const Way& way : ways) {
             const std::string filter = way.filter;
             auto run = [src, dw, filter, space = way.space, color, lut]() {
@@ -170,10 +178,15 @@ std::vector<Variant> resample_variants(const Config& c) {
                     }
             Variant v;
             v.knob = knob;
-            const char* space_name[] = {"in sRGB values", "in linear light (OCIO, as matforge)", "in linear light (8-bit LUT decode)"};
+            const char* space_name[] = {"in sRGB values", "in linear light (OCIO, as matforge)",
+                                        "in linear light (8-bit LUT decode)"};
             v.name = filter + " " + space_name[way.space] + (mip ? ", 4K->2K" : ", 4K->1536");
-            v.tag = std::string(filter == "lanczos3" ? "LANCZOS3" : filter == "triangle" ? "TRIANGLE" : "BOX") +
-                    (way.space == 0 ? " SRGB" : way.space == 1 ? " LIN" : " LIN LUT");
+            v.tag = std::string(filter == "lanczos3"   ? "LANCZOS3"
+                                : filter == "triangle" ? "TRIANGLE"
+                                                       : "BOX") +
+                    (way.space == 0   ? " SRGB"
+                     : way.space == 1 ? " LIN"
+                                      : " LIN LUT");
             v.max_codes = codes.max, v.mean_codes = codes.mean(), v.max_linear = lin.max, v.mean_linear = lin.mean();
             v.linear_unit = "linear";
             v.work = [run] { (void)run(); };
@@ -240,8 +253,8 @@ std::vector<Image> box_chain(const Image& level0, int levels) {
         for (int y = 0; y < m.height; ++y)
             for (int x = 0; x < m.width; ++x)
                 for (int k = 0; k < 3; ++k)
-                    m.at(x, y, k) = 0.25f * (p.at(2 * x, 2 * y, k) + p.at(2 * x + 1, 2 * y, k) + p.at(2 * x, 2 * y + 1, k) +
-                                             p.at(2 * x + 1, 2 * y + 1, k));
+                    m.at(x, y, k) = 0.25f * (p.at(2 * x, 2 * y, k) + p.at(2 * x + 1, 2 * y, k) +
+                                             p.at(2 * x, 2 * y + 1, k) + p.at(2 * x + 1, 2 * y + 1, k));
         chain.push_back(std::move(m));
     }
     return chain;
@@ -279,8 +292,8 @@ std::vector<Variant> normal_variants(const Config& c) {
     // Previewed value of each variant at `level`: shade the stored (decoded) normal, normalized
     // by the shader, with the stored roughness.
     struct Level {
-        Image normals;     // decoded as the shader reads them
-        Image roughness;   // empty: the base roughness
+        Image normals;    // decoded as the shader reads them
+        Image roughness;  // empty: the base roughness
     };
     auto evaluate = [&](const Level& L, Variant& v) {
         Acc codes, lin;
@@ -295,7 +308,11 @@ std::vector<Variant> normal_variants(const Config& c) {
         v.max_codes = codes.max, v.mean_codes = codes.mean(), v.max_linear = lin.max, v.mean_linear = lin.mean();
         v.linear_unit = "radiance";
     };
-    const int levels = [&] { int l = 0; while ((w >> (l + 1)) >= 1 && l < 10) ++l; return l; }();
+    const int levels = [&] {
+        int l = 0;
+        while ((w >> (l + 1)) >= 1 && l < 10) ++l;
+        return l;
+    }();
 
     // The preprocessing each variant needs for the full chain, with 8-bit storage (timed).
     auto build = [level0, levels](int mode) {
@@ -320,7 +337,8 @@ std::vector<Variant> normal_variants(const Config& c) {
             for (size_t i = 0; i < L.normals.pixels.size(); i += 3) {
                 float* p = &L.normals.pixels[i];
                 const float len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-                if (mode == 2) L.roughness.pixels[i / 3] = code8(static_cast<float>(toksvig_roughness(kBaseRoughness, len)));
+                if (mode == 2)
+                    L.roughness.pixels[i / 3] = code8(static_cast<float>(toksvig_roughness(kBaseRoughness, len)));
                 if (mode >= 1 && len > 1e-6f) p[0] /= len, p[1] /= len, p[2] /= len;
                 for (int k = 0; k < 3; ++k) p[k] = code8(p[k] * 0.5f + 0.5f) * 2.f - 1.f;
             }

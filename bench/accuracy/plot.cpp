@@ -86,7 +86,8 @@ void line(Image& img, int x0, int y0, int x1, int y1, std::array<float, 3> c, in
     const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
     int err = dx + dy, step = 0;
     while (true) {
-        if (dash == 0 || (step / dash) % 2 == 0) rect(img, x0 - w / 2, y0 - w / 2, x0 + (w - 1) / 2, y0 + (w - 1) / 2, c);
+        if (dash == 0 || (step / dash) % 2 == 0)
+            rect(img, x0 - w / 2, y0 - w / 2, x0 + (w - 1) / 2, y0 + (w - 1) / 2, c);
         ++step;
         if (x0 == x1 && y0 == y1) break;
         const int e2 = 2 * err;
@@ -133,7 +134,8 @@ void draw_text(Image& img, int x, int y, const std::string& text, std::array<flo
         for (int row = 0; row < 7; ++row)
             for (int col = 0; col < 5; ++col)
                 if (it->second[static_cast<size_t>(row)] & (0x10 >> col))
-                    rect(img, x + col * scale, y + row * scale, x + col * scale + scale - 1, y + row * scale + scale - 1, color);
+                    rect(img, x + col * scale, y + row * scale, x + col * scale + scale - 1,
+                         y + row * scale + scale - 1, color);
         x += 6 * scale;
     }
 }
@@ -156,7 +158,9 @@ Image draw_plot(const PlotSpec& spec, const std::vector<PlotSeries>& series) {
     const int dx0 = static_cast<int>(std::floor(std::log10(xmin))), dx1 = static_cast<int>(std::ceil(std::log10(xmax)));
     const int dy0 = static_cast<int>(std::floor(std::log10(ymin))), dy1 = static_cast<int>(std::ceil(std::log10(ymax)));
     const int nx = std::max(1, dx1 - dx0), ny = std::max(1, dy1 - dy0);
-    auto px = [&](double x) { return left + static_cast<int>(std::lround((std::log10(x) - dx0) / nx * (right - left))); };
+    auto px = [&](double x) {
+        return left + static_cast<int>(std::lround((std::log10(x) - dx0) / nx * (right - left)));
+    };
     auto py = [&](double y) {
         y = std::max(y, spec.y_floor);
         return bottom - static_cast<int>(std::lround((std::log10(y) - dy0) / ny * (bottom - top)));

@@ -166,7 +166,8 @@ int main(int argc, char** argv) {
             if (c) per += '/';
             per += std::to_string(k.max_per_channel[static_cast<size_t>(c)]);
         }
-        const double share = k.codes ? 100.0 * static_cast<double>(k.differing_codes) / static_cast<double>(k.codes) : 0.0;
+        const double share = k.codes ? 100.0 * static_cast<double>(k.differing_codes) / static_cast<double>(k.codes)
+                                     : 0.0;
         std::printf("%-10s %5d  %8d  %-16s  %8.4f%% of codes  %s\n", kind.c_str(), k.files, std::max(k.worst, 0),
                     per.c_str(), share, k.worst_file.c_str());
     }

@@ -5,10 +5,10 @@
 // For each set of <library-dir>/library.tsv (written by make_library), OpenImageIO reads every
 // input file in its native pixel type and writes what matforge's gltf preset writes — three
 // 8-bit PNGs per set (basecolor RGB, normal RGB, orm RGB) at the set's size, with matforge's
-// PNG settings (Paeth filter, zlib RLE) — with no processing: no float conversion, no color management, no normal decode,
-// no validation. The only work is the byte interleave that puts AO/roughness/metalness into one
-// RGB buffer, so the PNG encoder compresses real content rather than a constant.
-// Sets run in parallel on --jobs threads, as matforge's --jobs.
+// PNG settings (Paeth filter, zlib RLE) — with no processing: no float conversion, no color management, no normal
+// decode, no validation. The only work is the byte interleave that puts AO/roughness/metalness into one RGB buffer, so
+// the PNG encoder compresses real content rather than a constant. Sets run in parallel on --jobs threads, as matforge's
+// --jobs.
 //
 // --durable writes each output aside, fsyncs and renames it, as matforge does (its contract: a
 // killed run leaves no partial file); plain mode is OpenImageIO writing to the final path.
@@ -99,8 +99,7 @@ bool write_png(const fs::path& p, int w, int h, int ch, const unsigned char* dat
     }
     const fs::path target = durable ? fs::path(p.string() + ".tmp") : p;
     auto out = OIIO::ImageOutput::create("png");  // by format: the aside name ends in .tmp
-    if (!out || !out->open(target.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, data) ||
-        !out->close()) {
+    if (!out || !out->open(target.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, data) || !out->close()) {
         err = p.string() + ": " + (out ? out->geterror() : OIIO::geterror());
         return false;
     }
@@ -127,8 +126,8 @@ const unsigned char* plane8(const Pixels& px) {
     return px.spec.format == OIIO::TypeDesc::UINT8 ? px.data.data() : nullptr;
 }
 
-bool run_set(const fs::path& lib, const fs::path& out, const Row& r, const Options& opt, std::atomic<uint64_t>& bytes_read,
-             std::string& err) {
+bool run_set(const fs::path& lib, const fs::path& out, const Row& r, const Options& opt,
+             std::atomic<uint64_t>& bytes_read, std::string& err) {
     const fs::path d = lib / "sets" / r.dir;
     // Every input of the set, native type, as matforge decodes every chosen map (height too).
     Pixels albedo, normal, ao, rough, metal, arm, height;

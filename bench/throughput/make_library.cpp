@@ -99,12 +99,12 @@ struct Recipe {
 
 // Cycled by a global set index, so every size gets a mix and the 1K sets hold every recipe.
 constexpr Recipe kRecipes[] = {
-    {Family::ambientcg_jpg, false, true, true, true},    // the full ambientCG download
+    {Family::ambientcg_jpg, false, true, true, true},  // the full ambientCG download
     {Family::ambientcg_jpg, false, false, true, true},
-    {Family::ambientcg_png, false, false, true, true},   // PNG-only, 16-bit displacement
-    {Family::ambientcg_jpg, true, false, true, false},   // DX normal: flipped for glTF
-    {Family::ambientcg_jpg, false, true, false, true},   // no AO: occlusion 1
-    {Family::polyhaven, false, false, true, true},       // _arm_ packed input
+    {Family::ambientcg_png, false, false, true, true},  // PNG-only, 16-bit displacement
+    {Family::ambientcg_jpg, true, false, true, false},  // DX normal: flipped for glTF
+    {Family::ambientcg_jpg, false, true, false, true},  // no AO: occlusion 1
+    {Family::polyhaven, false, false, true, true},      // _arm_ packed input
     {Family::ambientcg_jpg, false, false, true, false},
     {Family::ambientcg_png, true, true, true, false},
     {Family::ambientcg_jpg, true, false, false, true},
@@ -112,10 +112,10 @@ constexpr Recipe kRecipes[] = {
 };
 constexpr size_t kRecipeCount = std::size(kRecipes);
 
-constexpr const char* kWords[] = {"Bricks", "Concrete", "Ground", "Metal", "Planks", "Rock",
-                                  "Tiles", "Fabric", "Leather", "Marble", "Asphalt", "Gravel"};
-constexpr const char* kPhWords[] = {"rock_wall", "brick_floor", "forest_ground", "rusty_metal", "wood_planks",
-                                    "cobblestone", "painted_plaster", "sandstone"};
+constexpr const char* kWords[] = {"Bricks", "Concrete", "Ground",  "Metal",  "Planks",  "Rock",
+                                  "Tiles",  "Fabric",   "Leather", "Marble", "Asphalt", "Gravel"};
+constexpr const char* kPhWords[] = {"rock_wall",   "brick_floor", "forest_ground",   "rusty_metal",
+                                    "wood_planks", "cobblestone", "painted_plaster", "sandstone"};
 
 struct SetJob {
     int index;  // global, decides recipe, name and seed
@@ -124,8 +124,8 @@ struct SetJob {
 
 // What library.tsv says about one set ("-" where a role has no file).
 struct Row {
-    std::string name, dir, albedo, normal, normal_conv = "gl", ao = "-", roughness = "-", metalness = "-",
-                                                      arm = "-", height = "-";
+    std::string name, dir, albedo, normal, normal_conv = "gl", ao = "-", roughness = "-", metalness = "-", arm = "-",
+                                           height = "-";
     int size = 0;
 };
 
@@ -271,11 +271,13 @@ bool make_set(const fs::path& root, const SetJob& job, Row& row, std::string& er
     }
     if (row.height != "-") {
         if (row.height.ends_with(".exr")) {
-            if (!write_image(d / row.height, n, n, 1, TypeDesc::HALF, TypeDesc::FLOAT, height.data(), err)) return false;
+            if (!write_image(d / row.height, n, n, 1, TypeDesc::HALF, TypeDesc::FLOAT, height.data(), err))
+                return false;
         } else {
             std::vector<uint16_t> h16(px);
             for (size_t i = 0; i < px; ++i) h16[i] = static_cast<uint16_t>(std::lround(height[i] * 65535.f));
-            if (!write_image(d / row.height, n, n, 1, TypeDesc::UINT16, TypeDesc::UINT16, h16.data(), err)) return false;
+            if (!write_image(d / row.height, n, n, 1, TypeDesc::UINT16, TypeDesc::UINT16, h16.data(), err))
+                return false;
         }
     }
     return true;

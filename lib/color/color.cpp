@@ -17,8 +17,7 @@ namespace {
 class OcioContext final : public ColorContext {
 public:
     OcioContext(OCIO::ConstConfigRcPtr config, std::string origin, std::string linear, std::string srgb)
-        : config_(std::move(config)), origin_(std::move(origin)), linear_(std::move(linear)),
-          srgb_(std::move(srgb)) {
+        : config_(std::move(config)), origin_(std::move(origin)), linear_(std::move(linear)), srgb_(std::move(srgb)) {
         // Lossless optimization: the default bakes a LUT for 8-bit inputs; we run float inputs
         // and want the analytic curve (error vs speed is measured in bench/).
         to_linear_ = config_->getProcessor(srgb_.c_str(), linear_.c_str())
@@ -65,10 +64,11 @@ public:
         proc->apply(desc);
     }
 
-    std::string cache_id() const override { return std::string(config_->getCacheID()) + "|" + linear_ + "|" + srgb_; }
-    std::string description() const override {
-        return origin_ + " (linear: " + linear_ + ", sRGB: " + srgb_ + ")";
+    std::string cache_id() const override {
+        return std::string("OpenColorIO ") + OCIO::GetVersion() + "|" + config_->getCacheID() + "|" + linear_ + "|" +
+               srgb_;
     }
+    std::string description() const override { return origin_ + " (linear: " + linear_ + ", sRGB: " + srgb_ + ")"; }
 
 private:
     OCIO::ConstConfigRcPtr config_;
@@ -79,8 +79,8 @@ private:
 
 // The sRGB texture space in a user's config: our alias, then names common configs use.
 std::string find_srgb_space(const OCIO::ConstConfigRcPtr& config) {
-    for (const char* name : {"srgb_texture", "sRGB - Texture", "Utility - sRGB - Texture",
-                             "sRGB Encoded Rec.709 (sRGB)", "sRGB"}) {
+    for (const char* name :
+         {"srgb_texture", "sRGB - Texture", "Utility - sRGB - Texture", "sRGB Encoded Rec.709 (sRGB)", "sRGB"}) {
         if (config->getColorSpace(name)) return name;
     }
     return {};

@@ -44,7 +44,10 @@ std::optional<std::string> not_a_regular_file(const fs::path& path) {
     }
     if (fs::is_regular_file(st)) return std::nullopt;
     return std::string("not a regular file (") +
-           (fs::is_directory(st) ? "a folder" : fs::is_fifo(st) ? "a FIFO" : fs::is_socket(st) ? "a socket" : "a device or special file") +
+           (fs::is_directory(st) ? "a folder"
+            : fs::is_fifo(st)    ? "a FIFO"
+            : fs::is_socket(st)  ? "a socket"
+                                 : "a device or special file") +
            ")";
 }
 
@@ -60,7 +63,7 @@ bool read_file(const fs::path& path, std::vector<unsigned char>& bytes, std::str
         error = path.string() + ": cannot open (" + std::strerror(errno) + ")";
         return false;
     }
-    struct stat st{};
+    struct stat st {};
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         ::close(fd);
         error = path.string() + ": not a regular file";
@@ -124,7 +127,8 @@ std::optional<long> temp_owner(std::string_view name) {
     const std::string_view tail = name.substr(at + std::strlen(kTempMarker));  // "<pid>-<counter>"
     const size_t dash = tail.find('-');
     auto digits = [](std::string_view d) {
-        return !d.empty() && d.size() <= 18 && std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
+        return !d.empty() && d.size() <= 18 &&
+               std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
     };
     if (dash == std::string_view::npos || !digits(tail.substr(0, dash)) || !digits(tail.substr(dash + 1)))
         return std::nullopt;
@@ -146,7 +150,7 @@ std::string errno_text(int e) {
 bool same_content_at(int dfd, const char* name, std::span<const unsigned char> bytes) {
     const int fd = ::openat(dfd, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) return false;
-    struct stat st{};
+    struct stat st {};
     bool same = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) == bytes.size();
     std::vector<unsigned char> buf(size_t{1} << 16);
     for (size_t done = 0; same && done < bytes.size();) {
@@ -195,7 +199,9 @@ bool write_at(int dfd, const std::string& name, std::span<const unsigned char> b
     if (::renameat(dfd, tmp.c_str(), dfd, name.c_str()) != 0) {
         const int e = errno;
         ::unlinkat(dfd, tmp.c_str(), 0);
-        error = shown + ": cannot rename into place (" + (e == EISDIR || e == ENOTEMPTY || e == EEXIST ? "a folder of that name is in the way" : errno_text(e)) + ")";
+        error = shown + ": cannot rename into place (" +
+                (e == EISDIR || e == ENOTEMPTY || e == EEXIST ? "a folder of that name is in the way" : errno_text(e)) +
+                ")";
         return false;
     }
     ::fsync(dfd);  // make the rename itself durable
@@ -245,17 +251,19 @@ bool write_file_under(const fs::path& root, const std::string& rel, std::span<co
         const int next = ::openat(dfd->fd, parts[i].c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
         if (next < 0) {
             const int e = errno;
-            struct stat st{};
-            const bool link = ::fstatat(dfd->fd, parts[i].c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISLNK(st.st_mode);
+            struct stat st {};
+            const bool link = ::fstatat(dfd->fd, parts[i].c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+                              S_ISLNK(st.st_mode);
             error = rel + ": " + walked +
                     (link ? " is a symbolic link; matforge never writes through links in the output folder (remove it)"
-                          : e == ENOTDIR ? " is a file where a folder must be" : " cannot be opened (" + errno_text(e) + ")");
+                     : e == ENOTDIR ? " is a file where a folder must be"
+                                    : " cannot be opened (" + errno_text(e) + ")");
             return false;
         }
         dfd = std::make_unique<Fd>(next);
     }
     const std::string& name = parts.back();
-    struct stat st{};
+    struct stat st {};
     bool exists = false;
     if (::fstatat(dfd->fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) {
         if (S_ISDIR(st.st_mode)) {
@@ -315,7 +323,8 @@ std::optional<FolderLock> FolderLock::acquire(const fs::path& dir, const std::st
         }
         // The holder before us removes the file when it is done: a lock on a removed file locks
         // nothing, so the path must still name the file we locked.
-        struct stat a{}, b{};
+        struct stat a {
+        }, b{};
         if (::fstat(fd, &a) == 0 && ::lstat(file.c_str(), &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
             const std::string pid = std::to_string(::getpid()) + "\n";
             if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) < 0) {

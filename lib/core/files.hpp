@@ -16,8 +16,7 @@ std::string sha256_hex(std::span<const unsigned char> bytes);
 // Writes `bytes` to `dest` atomically: a temporary file beside it (named by temp_marker()),
 // fsync, rename over `dest`, fsync of the folder. Creates missing parent folders. When `dest`
 // already holds exactly these bytes it is left untouched. False + `error` on failure.
-bool write_file_atomic(const std::filesystem::path& dest, std::span<const unsigned char> bytes,
-                       std::string& error);
+bool write_file_atomic(const std::filesystem::path& dest, std::span<const unsigned char> bytes, std::string& error);
 
 // The substring every temporary file of ours carries. A temporary is named exactly
 // "." + <final name> + kTempMarker + <pid> + "-" + <counter>: temp_name() makes one, temp_owner()

@@ -33,8 +33,7 @@ nlohmann::json to_json(const Finding& f) {
 
 namespace {
 // A string member: `fallback` when absent, nullopt (and `error`) when of another type.
-std::optional<std::string> string_member(const nlohmann::json& j, const char* key, std::string& error,
-                                         bool required) {
+std::optional<std::string> string_member(const nlohmann::json& j, const char* key, std::string& error, bool required) {
     const auto it = j.find(key);
     if (it == j.end()) {
         if (required) error = std::string("no \"") + key + "\"";

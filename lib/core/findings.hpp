@@ -41,28 +41,34 @@ inline constexpr std::string_view output_write_failed = "OUTPUT_WRITE_FAILED";
 inline constexpr std::string_view resized = "RESIZED";
 inline constexpr std::string_view input_not_found = "INPUT_NOT_FOUND";
 inline constexpr std::string_view unsafe_path = "UNSAFE_PATH";  // an archive entry naming a path outside it
-inline constexpr std::string_view normal_not_unit_length = "NORMAL_NOT_UNIT_LENGTH";  // valid map, renormalized on ingest
+inline constexpr std::string_view normal_not_unit_length =
+    "NORMAL_NOT_UNIT_LENGTH";                                                     // valid map, renormalized on ingest
 inline constexpr std::string_view normal_gamma_encoded = "NORMAL_GAMMA_ENCODED";  // normal map stored sRGB-encoded
-inline constexpr std::string_view normal_z_reconstructed = "NORMAL_Z_RECONSTRUCTED";  // two-channel (BC5-style) normal map
-inline constexpr std::string_view opacity_all_transparent = "OPACITY_ALL_TRANSPARENT";  // the material would be invisible
+inline constexpr std::string_view normal_z_reconstructed =
+    "NORMAL_Z_RECONSTRUCTED";  // two-channel (BC5-style) normal map
+inline constexpr std::string_view opacity_all_transparent =
+    "OPACITY_ALL_TRANSPARENT";  // the material would be invisible
 // Choices matforge makes that a user should know of (hardening, round two)
-inline constexpr std::string_view names_merged = "NAMES_MERGED";  // two file-name spellings made one material
+inline constexpr std::string_view names_merged = "NAMES_MERGED";        // two file-name spellings made one material
 inline constexpr std::string_view duplicate_input = "DUPLICATE_INPUT";  // a set reached through two inputs, read once
 inline constexpr std::string_view duplicate_entry = "DUPLICATE_ENTRY";  // an archive holds one name twice
 inline constexpr std::string_view multipart_image = "MULTIPART_IMAGE";  // a file with several images: the first is used
 inline constexpr std::string_view orientation_ignored = "ORIENTATION_IGNORED";  // EXIF/TIFF orientation not applied
-inline constexpr std::string_view aspect_mismatch = "ASPECT_MISMATCH";  // a map's shape does not fit the set's: not used
+inline constexpr std::string_view aspect_mismatch =
+    "ASPECT_MISMATCH";  // a map's shape does not fit the set's: not used
 inline constexpr std::string_view output_too_large = "OUTPUT_TOO_LARGE";  // wider or taller than engines import
-inline constexpr std::string_view encoding_error_exceeded = "ENCODING_ERROR_EXCEEDED";  // a decoded block-compressed level over the preset's bound
-inline constexpr std::string_view material_file_skipped = "MATERIAL_FILE_SKIPPED";  // the preset's glTF not written (dx normals)
+inline constexpr std::string_view encoding_error_exceeded =
+    "ENCODING_ERROR_EXCEEDED";  // a decoded block-compressed level over the preset's bound
+inline constexpr std::string_view material_file_skipped =
+    "MATERIAL_FILE_SKIPPED";  // the preset's glTF not written (dx normals)
 }  // namespace code
 
 struct Finding {
     std::string code;
     Severity severity = Severity::info;
-    std::string role;     // empty when no role applies
-    std::string file;     // input file (relative to the set's source) when one applies
-    std::string message;  // a sentence a person can act on
+    std::string role;                                   // empty when no role applies
+    std::string file;                                   // input file (relative to the set's source) when one applies
+    std::string message;                                // a sentence a person can act on
     nlohmann::json figures = nlohmann::json::object();  // measured values behind the finding
 };
 

@@ -71,7 +71,8 @@ std::optional<nlohmann::json> parse_json(std::string_view text, const std::strin
 std::optional<nlohmann::json> read_json_file(const std::filesystem::path& file, std::string& error) {
     std::vector<unsigned char> bytes;
     if (!read_file(file, bytes, error)) return std::nullopt;
-    return parse_json(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file.string(), error);
+    return parse_json(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file.string(),
+                      error);
 }
 
 }  // namespace mf

@@ -109,7 +109,8 @@ json add_sphere(json& doc, const std::string& bin_uri) {
     const Layout& l = sphere().layout;
     doc["buffers"] = json::array({{{"uri", uri_of(bin_uri)}, {"byteLength", l.total}}});
     auto view = [&](size_t offset, size_t length, int target) {
-        doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"target", target}});
+        doc["bufferViews"].push_back(
+            {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"target", target}});
         return doc["bufferViews"].size() - 1;
     };
     auto accessor = [&](size_t v, int component, size_t count, const char* type) {
@@ -125,7 +126,8 @@ json add_sphere(json& doc, const std::string& bin_uri) {
     const size_t uv = accessor(view(l.texcoord, nv * 8, kArrayBuffer), kFloat, nv, "VEC2");
     const size_t idx = accessor(view(l.indices, size_t{kIndices} * 2, kElementArrayBuffer), kUnsignedShort,
                                 static_cast<size_t>(kIndices), "SCALAR");
-    return {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TANGENT", tan}, {"TEXCOORD_0", uv}}}, {"indices", idx}};
+    return {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TANGENT", tan}, {"TEXCOORD_0", uv}}},
+            {"indices", idx}};
 }
 
 bool holds(const manifest::Output& o, const std::string& key, Role role) {
@@ -135,7 +137,8 @@ bool holds(const manifest::Output& o, const std::string& key, Role role) {
 }
 
 bool has_constant(const manifest::Material& m, Role r) {
-    return std::any_of(m.constants.begin(), m.constants.end(), [&](const manifest::Constant& c) { return c.role == r; });
+    return std::any_of(m.constants.begin(), m.constants.end(),
+                       [&](const manifest::Constant& c) { return c.role == r; });
 }
 
 std::string text_of(const json& doc) { return json_text(doc); }
@@ -144,9 +147,7 @@ std::string text_of(const json& doc) { return json_text(doc); }
 
 const std::vector<uint8_t>& sphere_buffer() { return sphere().bytes; }
 
-std::string uri_of(const std::string& relative_path) {
-    return percent_encode_path(relative_path);
-}
+std::string uri_of(const std::string& relative_path) { return percent_encode_path(relative_path); }
 
 bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri,
                    const MaterialOptions& opt, Files& out, std::string& error) {
@@ -207,7 +208,9 @@ bool material_gltf(const manifest::Material& m, const std::string& gltf_file, co
         }
     }
     if (!base_color || !mr) {
-        error = m.name + ": no " + std::string(base_color ? "metallicRoughness (G roughness, B metalness)" : "base color (sRGB RGB albedo)") +
+        error = m.name + ": no " +
+                std::string(base_color ? "metallicRoughness (G roughness, B metalness)"
+                                       : "base color (sRGB RGB albedo)") +
                 " output to reference";
         return false;
     }
@@ -232,13 +235,15 @@ bool library_gltf(const manifest::Manifest& m, const fs::path& out_dir, Files& o
     doc["images"] = doc["textures"] = doc["materials"] = doc["meshes"] = doc["nodes"] = json::array();
     std::vector<const manifest::Material*> mats;
     for (const auto& mat : m.materials)
-        if (std::any_of(mat.material_files.begin(), mat.material_files.end(), [](const auto& f) { return f.format == "gltf"; }))
+        if (std::any_of(mat.material_files.begin(), mat.material_files.end(),
+                        [](const auto& f) { return f.format == "gltf"; }))
             mats.push_back(&mat);
     const auto side = static_cast<size_t>(std::ceil(std::sqrt(static_cast<double>(mats.size()))));
     bool emissive_strength = false;
     for (size_t i = 0; i < mats.size(); ++i) {
         const manifest::Material& mat = *mats[i];
-        const auto file = std::find_if(mat.material_files.begin(), mat.material_files.end(), [](const auto& f) { return f.format == "gltf"; });
+        const auto file = std::find_if(mat.material_files.begin(), mat.material_files.end(),
+                                       [](const auto& f) { return f.format == "gltf"; });
         const fs::path gltf_path = out_dir / file->file;
         const auto one = read_json_file(gltf_path, error);
         if (!one) return false;

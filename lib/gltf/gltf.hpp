@@ -38,8 +38,8 @@ struct MaterialOptions {
 };
 
 struct Files {
-    std::string gltf;           // JSON text
-    std::vector<uint8_t> bin;   // the mesh buffer
+    std::string gltf;          // JSON text
+    std::vector<uint8_t> bin;  // the mesh buffer
 };
 
 // The mesh buffer (positions, normals, tangents, texture coordinates, 16-bit indices) shared by

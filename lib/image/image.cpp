@@ -61,7 +61,8 @@ std::string sniff_format(const unsigned char* b, size_t n) {
     if (starts({0x89, 'P', 'N', 'G'})) return "png";
     if (starts({0xFF, 0xD8, 0xFF})) return "jpeg";
     if (starts({0x76, 0x2F, 0x31, 0x01})) return "openexr";
-    if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42}) || starts({'I', 'I', 43, 0}) || starts({'M', 'M', 0, 43}))
+    if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42}) || starts({'I', 'I', 43, 0}) ||
+        starts({'M', 'M', 0, 43}))
         return "tiff";
     if (starts({'B', 'M'})) return "bmp";
     if (starts({'#', '?'})) return "hdr";
@@ -239,11 +240,22 @@ ImageInfo info_of(const OIIO::ImageInput& in) {
     info.channels = s.nchannels;
     info.format = in.format_name();
     switch (s.format.basetype) {
-        case OIIO::TypeDesc::UINT8: case OIIO::TypeDesc::INT8: info.bit_depth = 8; break;
-        case OIIO::TypeDesc::UINT16: case OIIO::TypeDesc::INT16: info.bit_depth = 16; break;
-        case OIIO::TypeDesc::HALF: info.bit_depth = 16; info.is_float = true; break;
-        case OIIO::TypeDesc::FLOAT: info.bit_depth = 32; info.is_float = true; break;
-        case OIIO::TypeDesc::DOUBLE: info.bit_depth = 64; info.is_float = true; break;
+        case OIIO::TypeDesc::UINT8:
+        case OIIO::TypeDesc::INT8: info.bit_depth = 8; break;
+        case OIIO::TypeDesc::UINT16:
+        case OIIO::TypeDesc::INT16: info.bit_depth = 16; break;
+        case OIIO::TypeDesc::HALF:
+            info.bit_depth = 16;
+            info.is_float = true;
+            break;
+        case OIIO::TypeDesc::FLOAT:
+            info.bit_depth = 32;
+            info.is_float = true;
+            break;
+        case OIIO::TypeDesc::DOUBLE:
+            info.bit_depth = 64;
+            info.is_float = true;
+            break;
         default: info.bit_depth = static_cast<int>(s.format.size() * 8); break;
     }
     return info;
@@ -254,9 +266,10 @@ ImageInfo info_of(const OIIO::ImageInput& in) {
 // Leaves the reader on the first image.
 bool inspect(OIIO::ImageInput& r, const InputFile& in, ImageInfo& info, std::string& error) {
     if (r.spec().deep) {
-        error = in.display + ": a deep " + info.format + " image (a varying number of samples per pixel), which matforge "
-                "does not read; flatten it first (oiiotool " + fs::path(in.display).filename().string() +
-                " --flatten -o flat.exr)";
+        error = in.display + ": a deep " + info.format +
+                " image (a varying number of samples per pixel), which matforge "
+                "does not read; flatten it first (oiiotool " +
+                fs::path(in.display).filename().string() + " --flatten -o flat.exr)";
         return false;
     }
     const std::string part = r.spec().get_string_attribute("oiio:subimagename");
@@ -268,20 +281,28 @@ bool inspect(OIIO::ImageInput& r, const InputFile& in, ImageInfo& info, std::str
     }
     if (count > 1) {
         const bool exr = info.format == "openexr";
-        info.notes.emplace_back(
-            "MULTIPART_IMAGE",
-            in.display + ": holds " + (count == 1000 ? "1000 or more" : std::to_string(count)) + (exr ? " parts" : " images (pages)") +
-                "; the first" + (part.empty() ? std::string() : " ('" + part + "')") + " is used, the others are ignored");
+        info.notes.emplace_back("MULTIPART_IMAGE", in.display + ": holds " +
+                                                       (count == 1000 ? "1000 or more" : std::to_string(count)) +
+                                                       (exr ? " parts" : " images (pages)") + "; the first" +
+                                                       (part.empty() ? std::string() : " ('" + part + "')") +
+                                                       " is used, the others are ignored");
     }
     const int orientation = r.spec().get_int_attribute("Orientation", 1);
     if (orientation != 1) {
-        static constexpr const char* kMeaning[] = {"", "", "mirrored left-right", "rotated 180°", "mirrored top-bottom",
-                                                   "transposed", "rotated 90° clockwise", "transversed",
+        static constexpr const char* kMeaning[] = {"",
+                                                   "",
+                                                   "mirrored left-right",
+                                                   "rotated 180°",
+                                                   "mirrored top-bottom",
+                                                   "transposed",
+                                                   "rotated 90° clockwise",
+                                                   "transversed",
                                                    "rotated 90° counter-clockwise"};
         info.notes.emplace_back(
             "ORIENTATION_IGNORED",
             in.display + ": its EXIF/TIFF orientation is " + std::to_string(orientation) +
-                (orientation >= 2 && orientation <= 8 ? std::string(" (") + kMeaning[orientation] + ")" : std::string()) +
+                (orientation >= 2 && orientation <= 8 ? std::string(" (") + kMeaning[orientation] + ")"
+                                                      : std::string()) +
                 ", which is not applied: the map is used as stored, so that every map of the set lines up pixel for pixel");
     }
     return true;
@@ -294,9 +315,8 @@ bool check_dimensions(const InputFile& in, const ImageInfo& info, std::string& e
         return false;
     }
     if (int64_t{info.width} * info.height > kMaxPixels || info.channels > kMaxChannels) {
-        error = in.display + ": declared size " + std::to_string(info.width) + "x" +
-                std::to_string(info.height) + "x" + std::to_string(info.channels) +
-                " exceeds the limit of 16384x16384 pixels and 8 channels";
+        error = in.display + ": declared size " + std::to_string(info.width) + "x" + std::to_string(info.height) + "x" +
+                std::to_string(info.channels) + " exceeds the limit of 16384x16384 pixels and 8 channels";
         return false;
     }
     return true;
@@ -356,8 +376,7 @@ bool read_bands_impl(const InputFile& in, int band_rows, ImageInfo& info, std::s
     std::vector<float> band(static_cast<size_t>(info.width) * info.channels * band_rows);
     for (int y0 = 0; y0 < info.height; y0 += band_rows) {
         const int rows = std::min(band_rows, info.height - y0);
-        if (!r.in->read_scanlines(0, 0, y0, y0 + rows, 0, 0, info.channels, OIIO::TypeDesc::FLOAT,
-                                  band.data())) {
+        if (!r.in->read_scanlines(0, 0, y0, y0 + rows, 0, 0, info.channels, OIIO::TypeDesc::FLOAT, band.data())) {
             error = in.display + ": " + oiio_error_text(r.in->geterror());
             return false;
         }
@@ -450,8 +469,8 @@ OIIO::ImageSpec output_spec(int width, int height, int channels, const EncodeOpt
 }
 
 // Writes `data` (of `memtype`) with `spec` in opt.format to bytes.
-bool write_encoded(const OIIO::ImageSpec& spec, const OIIO::TypeDesc& memtype, const void* data, const EncodeOptions& opt,
-                   std::vector<unsigned char>& bytes, std::string& error) {
+bool write_encoded(const OIIO::ImageSpec& spec, const OIIO::TypeDesc& memtype, const void* data,
+                   const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error) {
     const std::string name = "output." + opt.format;
     auto out = OIIO::ImageOutput::create(name);
     if (!out) {
@@ -478,8 +497,7 @@ bool write_encoded(const OIIO::ImageSpec& spec, const OIIO::TypeDesc& memtype, c
 }
 }  // namespace
 
-bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
-                  std::string& error) {
+bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error) {
     bytes.clear();
     const bool is_float = opt.format == "exr";
     const OIIO::TypeDesc type = is_float ? (opt.bit_depth == 32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF)
@@ -497,8 +515,7 @@ bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsign
     return write_encoded(spec, type, q8.data(), opt, bytes, error);
 }
 
-bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
-                  std::string& error) {
+bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error) {
     bytes.clear();
     if (opt.format == "exr" || opt.bit_depth != 8) {
         error = "8-bit codes cannot be written as " + std::to_string(opt.bit_depth) + "-bit " + opt.format;
@@ -507,5 +524,8 @@ bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsig
     const OIIO::ImageSpec spec = output_spec(img.width, img.height, img.channels, opt, OIIO::TypeDesc::UINT8);
     return write_encoded(spec, OIIO::TypeDesc::UINT8, img.pixels.data(), opt, bytes, error);
 }
+
+// The library loaded at run time (an upgraded libOpenImageIO without a rebuild counts too).
+std::string image_library_version() { return "OpenImageIO " + std::to_string(OIIO::openimageio_version()); }
 
 }  // namespace mf

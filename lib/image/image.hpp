@@ -32,9 +32,7 @@ struct BasicImage {
     BasicImage(int w, int h, int c, T fill = T{})
         : width(w), height(h), channels(c), pixels(static_cast<size_t>(w) * h * c, fill) {}
     bool empty() const { return pixels.empty(); }
-    size_t index(int x, int y, int c = 0) const {
-        return (static_cast<size_t>(y) * width + x) * channels + c;
-    }
+    size_t index(int x, int y, int c = 0) const { return (static_cast<size_t>(y) * width + x) * channels + c; }
     T& at(int x, int y, int c = 0) { return pixels[index(x, y, c)]; }
     T at(int x, int y, int c = 0) const { return pixels[index(x, y, c)]; }
 };
@@ -55,11 +53,11 @@ void to_float(const uint8_t* codes, size_t n, float* out, const float* table = n
 
 // A readable input: a file on disk, or bytes held in memory (an entry of a .zip).
 struct InputFile {
-    std::string display;                                   // name used in messages
-    std::filesystem::path path;                            // set for files on disk
+    std::string display;                                      // name used in messages
+    std::filesystem::path path;                               // set for files on disk
     std::shared_ptr<const std::vector<unsigned char>> bytes;  // set for in-memory entries
-    std::string open_error;  // why an in-memory entry could not be read (then bytes is empty)
-    std::string extension() const;                         // lower case, without the dot
+    std::string open_error;         // why an in-memory entry could not be read (then bytes is empty)
+    std::string extension() const;  // lower case, without the dot
 };
 
 struct ImageInfo {
@@ -107,13 +105,15 @@ struct EncodeOptions {
 
 // Encodes `img` (values already in the output encoding, [0,1] for integer formats) to bytes,
 // deterministically (no timestamps). Rounds to nearest code. Returns false and sets `error`.
-bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
-                  std::string& error);
+// OpenImageIO's version (its readers decode every input, its PNG/TIFF/EXR writers encode the
+// outputs), for the ingest cache's action key.
+std::string image_library_version();
+
+bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error);
 
 // Encodes 8-bit codes as they are (an 8-bit integer format: png, tif, tga). Returns false and
 // sets `error` for any other format or depth.
-bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes,
-                  std::string& error);
+bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error);
 
 // The quantization of every integer output: round half up of clamp(v, 0, 1) * maxv, NaN -> 0.
 // Branch-free: the cast truncates a non-negative value, which is floor, so loops vectorize with

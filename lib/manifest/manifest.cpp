@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <functional>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -40,7 +41,9 @@ int int_of(const json& o, const char* key, const std::string& where, int lo = 0,
     const json* v = member(o, key);
     if (!v) return 0;
     const auto i = json_int(*v, lo, hi);
-    if (!i) fail(where, std::string("\"") + key + "\" is not an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+    if (!i)
+        fail(where,
+             std::string("\"") + key + "\" is not an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
     return *i;
 }
 
@@ -110,8 +113,10 @@ Output output_of(const json& j, const std::string& where) {
     if (o.file.empty()) fail(where, "\"file\" is empty");
     // Written as "sRGB" / "linear"; read in any case (presets and hand-made manifests say "srgb").
     std::string cs = string_of(j, "color_space", where, false, "linear");
-    std::transform(cs.begin(), cs.end(), cs.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (cs != "srgb" && cs != "linear") fail(where, "\"color_space\" must be \"sRGB\" or \"linear\", not \"" + cs + "\"");
+    std::transform(cs.begin(), cs.end(), cs.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (cs != "srgb" && cs != "linear")
+        fail(where, "\"color_space\" must be \"sRGB\" or \"linear\", not \"" + cs + "\"");
     o.srgb = cs == "srgb";
     if (const json* ch = member(j, "channels")) {
         for (const auto& [key, value] : object_of(*ch, where + ": channels").items()) {
@@ -161,7 +166,9 @@ Output output_of(const json& j, const std::string& where) {
             auto number = [&](const char* key, double hi) -> std::optional<double> {
                 const json* v = member(l, key);
                 if (!v) return std::nullopt;
-                if (!json_float(*v, 0.0, hi)) fail(at, std::string("\"") + key + "\" is not a number in 0.." + std::to_string(static_cast<int>(hi)));
+                if (!json_float(*v, 0.0, hi))
+                    fail(at,
+                         std::string("\"") + key + "\" is not a number in 0.." + std::to_string(static_cast<int>(hi)));
                 return v->get<double>();
             };
             e.psnr_db = number("psnr_db", 100.0);
@@ -203,10 +210,12 @@ Material material_of(const json& j, const std::string& at) {
             m.constants.push_back(std::move(k));
         }
     }
-    std::sort(m.constants.begin(), m.constants.end(), [](const Constant& a, const Constant& b) { return a.role < b.role; });
+    std::sort(m.constants.begin(), m.constants.end(),
+              [](const Constant& a, const Constant& b) { return a.role < b.role; });
     if (const json* o = member(j, "outputs")) {
         if (!o->is_array()) fail(where, "\"outputs\" is not an array");
-        for (size_t i = 0; i < o->size(); ++i) m.outputs.push_back(output_of((*o)[i], where + ": outputs[" + std::to_string(i) + "]"));
+        for (size_t i = 0; i < o->size(); ++i)
+            m.outputs.push_back(output_of((*o)[i], where + ": outputs[" + std::to_string(i) + "]"));
     }
     if (const json* files = member(j, "material_files")) {
         if (!files->is_array()) fail(where, "\"material_files\" is not an array");
@@ -342,9 +351,11 @@ json to_json(const Manifest& m) {
     j["failures"] = std::move(failures);
     if (!m.library.empty()) {
         json files = json::array();
-        for (const MaterialFile& f : m.library) files.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
+        for (const MaterialFile& f : m.library)
+            files.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
         j["library"] = std::move(files);
     }
+    if (m.shard) j["shard"] = {{"index", m.shard->index}, {"count", m.shard->count}, {"context", m.shard->context}};
     return j;
 }
 
@@ -372,8 +383,19 @@ std::optional<Manifest> manifest_from_json(const json& j, std::string& error) {
             for (size_t i = 0; i < files->size(); ++i) {
                 const std::string at = "library[" + std::to_string(i) + "]";
                 const json& f = object_of((*files)[i], at);
-                m.library.push_back({string_of(f, "file", at, true), string_of(f, "format", at, true), string_of(f, "sha256", at, false)});
+                m.library.push_back({string_of(f, "file", at, true), string_of(f, "format", at, true),
+                                     string_of(f, "sha256", at, false)});
             }
+        }
+        if (const json* sj = member(j, "shard")) {
+            const json& o = object_of(*sj, "shard");
+            const json* c = member(o, "count");
+            const json* i = member(o, "index");
+            const int count = c ? json_int(*c, 1, 100000).value_or(0) : 0;
+            const int index = i && count > 0 ? json_int(*i, 0, count - 1).value_or(-1) : -1;
+            if (count == 0 || index < 0)
+                fail("shard", "\"index\" and \"count\" must be integers, 0 <= index < count <= 100000");
+            m.shard = Manifest::Shard{index, count, string_of(o, "context", "shard", true)};
         }
         if (const json* f = member(j, "failures")) {
             if (!f->is_array()) fail("manifest", "\"failures\" is not an array");
@@ -398,13 +420,82 @@ std::optional<Manifest> read_manifest(const std::string& path, std::string& erro
     return m;
 }
 
+namespace {
+
+// merge(), stage 1: the parts were written by one run's configuration (the more specific
+// differences first: they make the clearer message).
+bool same_run(const std::vector<Manifest>& parts, const std::function<std::string(size_t)>& name, std::string& error) {
+    const Manifest& p0 = parts[0];
+    for (size_t i = 1; i < parts.size(); ++i) {
+        const Manifest& p = parts[i];
+        auto differs = [&](const std::string& what, const std::string& a, const std::string& b) {
+            error = name(0) + " and " + name(i) + " are not parts of one run: " + what + " \"" + a + "\" vs \"" + b +
+                    "\"";
+            return false;
+        };
+        if (p.manifest_version != p0.manifest_version)
+            return differs("manifest_version", std::to_string(p0.manifest_version), std::to_string(p.manifest_version));
+        if (p.generator != p0.generator) return differs("generator", p0.generator, p.generator);
+        if (p.preset != p0.preset) return differs("preset", p0.preset, p.preset);
+        if (p.normal_convention != p0.normal_convention)
+            return differs("normal_convention", std::string(convention_name(p0.normal_convention)),
+                           std::string(convention_name(p.normal_convention)));
+        if (p.shard && p0.shard && p.shard->count != p0.shard->count)
+            return differs("shard count", std::to_string(p0.shard->count), std::to_string(p.shard->count));
+        if (p.shard && p0.shard && p.shard->context != p0.shard->context) {
+            error =
+                name(0) + " and " + name(i) +
+                " are not parts of one run: made with other preset content, rules, OpenColorIO config or library versions";
+            return false;
+        }
+    }
+    return true;
+}
+
+// merge(), stage 2: every part is a shard, each index of the N-way run exactly once (a missing
+// shard would give a manifest that silently lacks its sets).
+bool every_shard_once(const std::vector<Manifest>& parts, const std::function<std::string(size_t)>& name,
+                      std::string& error) {
+    std::vector<int> seen;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        const auto& s = parts[i].shard;
+        if (!s) {
+            error = name(i) + " is not the manifest of a shard (ingest --shard I/N writes manifest.shard-I-of-N.json)";
+            return false;
+        }
+        if (seen.empty()) seen.assign(static_cast<size_t>(s->count), -1);
+        int& at = seen[static_cast<size_t>(s->index)];
+        if (at >= 0) {
+            error = "shard " + std::to_string(s->index) + " of " + std::to_string(s->count) +
+                    " is given twice: " + name(static_cast<size_t>(at)) + " and " + name(i);
+            return false;
+        }
+        at = static_cast<int>(i);
+    }
+    std::string missing;
+    for (size_t k = 0; k < seen.size(); ++k)
+        if (seen[k] < 0) missing += (missing.empty() ? "" : ", ") + std::to_string(k);
+    if (!missing.empty()) {
+        error = "shard(s) " + missing + " of " + std::to_string(seen.size()) +
+                " missing: the merged manifest would lack their sets (give every manifest.shard-I-of-N.json)";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
                               std::string& error) {
     if (parts.empty()) {
         error = "no manifest to merge";
         return std::nullopt;
     }
-    auto name = [&](size_t i) { return i < names.size() ? names[i] : "manifest " + std::to_string(i + 1); };
+    const std::function<std::string(size_t)> name = [&](size_t i) {
+        return i < names.size() ? names[i] : "manifest " + std::to_string(i + 1);
+    };
+    if (!same_run(parts, name, error) || !every_shard_once(parts, name, error)) return std::nullopt;
+    // Stage 3: the sets, in the order one unsharded run writes them (no `shard` member).
     Manifest out;
     out.manifest_version = parts[0].manifest_version;
     out.generator = parts[0].generator;
@@ -412,28 +503,7 @@ std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vec
     out.normal_convention = parts[0].normal_convention;
     std::map<std::string, size_t> owner;
     for (size_t i = 0; i < parts.size(); ++i) {
-        const Manifest& p = parts[i];
-        auto differs = [&](const std::string& what, const std::string& a, const std::string& b) {
-            error = name(0) + " and " + name(i) + " are not parts of one run: " + what + " \"" + a + "\" vs \"" + b + "\"";
-        };
-        if (p.manifest_version != out.manifest_version) {
-            differs("manifest_version", std::to_string(out.manifest_version), std::to_string(p.manifest_version));
-            return std::nullopt;
-        }
-        if (p.generator != out.generator) {
-            differs("generator", out.generator, p.generator);
-            return std::nullopt;
-        }
-        if (p.preset != out.preset) {
-            differs("preset", out.preset, p.preset);
-            return std::nullopt;
-        }
-        if (p.normal_convention != out.normal_convention) {
-            differs("normal_convention", std::string(convention_name(out.normal_convention)),
-                    std::string(convention_name(p.normal_convention)));
-            return std::nullopt;
-        }
-        for (const Material& m : p.materials) {
+        for (const Material& m : parts[i].materials) {
             const auto [it, fresh] = owner.emplace(m.name, i);
             if (!fresh) {
                 error = "material \"" + m.name + "\" is in both " + name(it->second) + " and " + name(i);
@@ -441,9 +511,10 @@ std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vec
             }
             out.materials.push_back(m);
         }
-        out.failures.insert(out.failures.end(), p.failures.begin(), p.failures.end());
+        out.failures.insert(out.failures.end(), parts[i].failures.begin(), parts[i].failures.end());
     }
-    std::sort(out.materials.begin(), out.materials.end(), [](const Material& a, const Material& b) { return a.name < b.name; });
+    std::sort(out.materials.begin(), out.materials.end(),
+              [](const Material& a, const Material& b) { return a.name < b.name; });
     auto key = [](const InputFailure& f) { return std::tie(f.source, f.code, f.message); };
     std::sort(out.failures.begin(), out.failures.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
     out.failures.erase(std::unique(out.failures.begin(), out.failures.end(),

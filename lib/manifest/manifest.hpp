@@ -26,9 +26,9 @@ inline constexpr int kVersion = 1;
 // How an input normal map's green convention was decided.
 struct NormalFacts {
     NormalConvention convention = NormalConvention::unknown;
-    std::string source;                 // "name" | "content" | "" (undecided)
-    std::optional<double> confidence;   // with source "content"
-    std::string method;                 // with source "content": the test that decided ("height+curl", "curl")
+    std::string source;                // "name" | "content" | "" (undecided)
+    std::optional<double> confidence;  // with source "content"
+    std::string method;                // with source "content": the test that decided ("height+curl", "curl")
 };
 
 struct Input {
@@ -48,23 +48,23 @@ using Channel = mf::Channel;
 // against the level it encodes (PSNR over the stored channels; angles for normals).
 struct LevelError {
     int width = 0, height = 0;
-    std::optional<double> psnr_db;                       // color and data; 100 = identical
+    std::optional<double> psnr_db;                        // color and data; 100 = identical
     std::optional<double> mean_angle_deg, max_angle_deg;  // normals
 };
 
 struct Output {
-    std::string file;  // relative to the manifest's folder
+    std::string file;   // relative to the manifest's folder
     bool srgb = false;  // "color_space": "sRGB" (color channels encoded) or "linear"
     std::vector<Channel> channels;
     std::optional<NormalConvention> normal_convention;  // textures holding a normal
     int width = 0, height = 0, bit_depth = 0;
     std::string format, sha256;
     // Block-compressed outputs (format dds | ktx2) only:
-    std::string block_format;       // "bc1", "bc5", "astc-6x6", ...
-    std::string gpu_format;         // the container's format name (DXGI_FORMAT_BC1_UNORM_SRGB, VK_FORMAT_...)
-    std::string supercompression;   // "zstd" when the KTX2 levels are supercompressed
+    std::string block_format;             // "bc1", "bc5", "astc-6x6", ...
+    std::string gpu_format;               // the container's format name (DXGI_FORMAT_BC1_UNORM_SRGB, VK_FORMAT_...)
+    std::string supercompression;         // "zstd" when the KTX2 levels are supercompressed
     bool normal_z_reconstructed = false;  // a normal stored as X, Y only (BC5): Z = sqrt(1 - x² - y²)
-    std::vector<LevelError> levels;  // every mip level, largest first
+    std::vector<LevelError> levels;       // every mip level, largest first
 };
 
 // A file describing the material for an engine or viewer (the glTF of a set and its buffer).
@@ -84,13 +84,13 @@ enum class Status { ok, partial };  // partial: some map could not be read or wr
 
 struct Material {
     std::string name;
-    std::string source;                 // relative to the manifest's folder
-    std::optional<std::string> archive; // the .zip holding the set
-    std::string convention;             // naming family
+    std::string source;                  // relative to the manifest's folder
+    std::optional<std::string> archive;  // the .zip holding the set
+    std::string convention;              // naming family
     Status status = Status::ok;
-    std::vector<Input> inputs;          // in role order
-    std::vector<Constant> constants;    // in role order
-    std::vector<Output> outputs;        // in preset order
+    std::vector<Input> inputs;                 // in role order
+    std::vector<Constant> constants;           // in role order
+    std::vector<Output> outputs;               // in preset order
     std::vector<MaterialFile> material_files;  // preset material_file (glTF + buffer)
     std::vector<Finding> findings;
 };
@@ -100,16 +100,25 @@ struct Manifest {
     std::string generator;
     std::string preset;
     NormalConvention normal_convention = NormalConvention::gl;
-    std::vector<Material> materials;    // sorted by name
-    std::vector<InputFailure> failures; // sorted by source
-    std::vector<MaterialFile> library;  // library.gltf + library.bin (preset material_file gltf)
+    std::vector<Material> materials;     // sorted by name
+    std::vector<InputFailure> failures;  // sorted by source
+    std::vector<MaterialFile> library;   // library.gltf + library.bin (preset material_file gltf)
+    // Only in the manifest of one shard (`ingest --shard I/N`): which part of which run it is.
+    // `context` is the digest of everything but the inputs that decides the outputs (preset
+    // content, rules, OpenColorIO config, versions): shards of one run have the same. `merge`
+    // checks the parts against it and writes no `shard`.
+    struct Shard {
+        int index = 0, count = 1;
+        std::string context;
+    };
+    std::optional<Shard> shard;
 };
 
 std::string_view status_name(Status s);  // "ok" | "partial"
 
 nlohmann::json to_json(const Input& in);
-nlohmann::json to_json(const std::vector<Input>& inputs);         // {role: input, ...}
-nlohmann::json to_json(const std::vector<Constant>& constants);   // {role: number or [r, g, b], ...}
+nlohmann::json to_json(const std::vector<Input>& inputs);        // {role: input, ...}
+nlohmann::json to_json(const std::vector<Constant>& constants);  // {role: number or [r, g, b], ...}
 nlohmann::json to_json(const Output& out);
 nlohmann::json to_json(const Material& m);
 nlohmann::json to_json(const Manifest& m);
@@ -124,8 +133,9 @@ std::optional<Manifest> read_manifest(const std::string& path, std::string& erro
 // materials and failures merged in the order one unsharded run writes them (materials by name,
 // failures by source; a failure every shard reports is kept once), so the result is the same
 // bytes as the unsharded run's manifest. nullopt + `error` naming the inputs when they do not
-// belong to one run: different manifest versions, generators, presets or normal conventions,
-// or one material in two shards. `names[i]` names parts[i] in messages.
+// make one run: different manifest versions, generators, presets, normal conventions or
+// contexts, a part that is not a shard, a shard missing or given twice, or one material in two
+// shards. `names[i]` names parts[i] in messages.
 std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
                               std::string& error);
 

@@ -9,7 +9,7 @@ namespace mf {
 
 struct Channel {
     enum class Kind { role, smoothness, constant, unused };
-    std::string key;           // "RGB", "R", "G", "B", "A"
+    std::string key;  // "RGB", "R", "G", "B", "A"
     Kind kind = Kind::unused;
     Role role = Role::albedo;  // kind == role (and smoothness: roughness, stored as 1 - roughness)
     float value = 0.f;         // kind == constant

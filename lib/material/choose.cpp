@@ -7,8 +7,8 @@
 
 #include "material/classify.hpp"
 #include "material/discovery.hpp"
-#include "material/routing.hpp"
 #include "material/families.hpp"
+#include "material/routing.hpp"
 
 namespace mf {
 namespace {
@@ -20,8 +20,8 @@ using naming::RoleTag;
 // Lossless first, then lossy; the order of the header's contract (exr tif png tga bmp webp jpg),
 // with the other readable formats placed by how much they lose.
 int format_rank(std::string_view file) {
-    static constexpr std::array<std::string_view, 12> kOrder{
-        "exr", "tif", "tiff", "png", "tga", "bmp", "psd", "hdr", "webp", "jpg", "jpeg", "dds"};
+    static constexpr std::array<std::string_view, 12> kOrder{"exr", "tif", "tiff", "png", "tga",  "bmp",
+                                                             "psd", "hdr", "webp", "jpg", "jpeg", "dds"};
     const auto ext = lower_copy(extension_of(file));
     const auto it = std::find(kOrder.begin(), kOrder.end(), ext);
     int rank = static_cast<int>(it - kOrder.begin());
@@ -67,13 +67,12 @@ std::string why_first(const Ranked& a, const Ranked& b, const ChoicePolicy& poli
     if (a.normal_rank != b.normal_rank)
         return a.normal_rank == 0 ? "its normal convention (" + conv(a) + ") is the preset's"
                                   : "its name states a normal convention (" + conv(a) + ")";
-    if (a.over_limit != b.over_limit)
-        return "it fits the size limit of " + std::to_string(policy.max_size) + " px";
+    if (a.over_limit != b.over_limit) return "it fits the size limit of " + std::to_string(policy.max_size) + " px";
     if (a.size != b.size)
-        return a.over_limit ? "it is the smallest above the size limit (" + std::to_string(a.size) +
-                                  " px vs " + std::to_string(b.size) + " px)"
-                            : "it is the largest (" + std::to_string(a.size) + " px vs " +
-                                  std::to_string(b.size) + " px)";
+        return a.over_limit
+                   ? "it is the smallest above the size limit (" + std::to_string(a.size) + " px vs " +
+                         std::to_string(b.size) + " px)"
+                   : "it is the largest (" + std::to_string(a.size) + " px vs " + std::to_string(b.size) + " px)";
     if (a.format != b.format)
         return "its format (" + lower_copy(extension_of(a.cand.file)) + ") ranks above " +
                lower_copy(extension_of(b.cand.file)) + " (lossless first)";
@@ -99,8 +98,7 @@ struct Ambiguity {
     std::vector<std::string> reasons;
 
     void add(const std::string& file) {
-        if (std::find(candidates.begin(), candidates.end(), file) == candidates.end())
-            candidates.push_back(file);
+        if (std::find(candidates.begin(), candidates.end(), file) == candidates.end()) candidates.push_back(file);
     }
     void put_first(const std::string& file) {
         std::erase(candidates, file);
@@ -229,8 +227,8 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
         if (const auto sc = sidecar_files.find(file); sc != sidecar_files.end()) {
             if (used_sidecars.count(file)) continue;  // read for its roles: recognized
             const auto& err = sc->second->error;
-            unrecognized.push_back(unrecognized_finding(
-                file, err.empty() ? "sidecar naming no map of this set" : "sidecar not read (" + err + ")"));
+            unrecognized.push_back(unrecognized_finding(file, err.empty() ? "sidecar naming no map of this set"
+                                                                          : "sidecar not read (" + err + ")"));
             continue;
         }
         if (!is_image_file(file)) {

@@ -16,14 +16,13 @@ namespace {
 // Anywhere in the name, as a token prefix ("Preview1", "thumbnails").
 constexpr std::array<std::string_view, 2> kClutterPrefix{"preview", "thumb"};
 // Anywhere in the name, as a whole token ("icon" but not "Iconic").
-constexpr std::array<std::string_view, 5> kClutterAnywhere{"swatch", "swatches", "screenshot", "icon",
-                                                           "thumbs"};
+constexpr std::array<std::string_view, 5> kClutterAnywhere{"swatch", "swatches", "screenshot", "icon", "thumbs"};
 constexpr std::array<std::string_view, 2> kMaskAnywhere{"idmap", "matid"};
 // A billboard map of a Megascans plant, also "Billboards" folders' files.
 constexpr std::array<std::string_view, 2> kBillboard{"billboard", "billboards"};
 // Only as the last word, where a role tag would stand: these are also ordinary words
 // ("Sphere_Tiles_Color" is a map of a material called "Sphere Tiles").
-constexpr std::array<std::string_view, 7> kClutterLast{"render", "renders", "sphere", "cube",
+constexpr std::array<std::string_view, 7> kClutterLast{"render", "renders", "sphere",  "cube",
                                                        "flat",   "plane",   "cylinder"};
 constexpr std::array<std::string_view, 2> kMaskLast{"id", "mask"};
 constexpr std::array<std::string_view, 1> kPlaceholderLast{"black"};
@@ -78,8 +77,7 @@ bool need_met(Need need, const std::vector<Token>& tokens, size_t first_token, s
     switch (need) {
         case Need::none: return true;
         case Need::unreal_texture:
-            return tokens.front().text == "T" && first_token > 0 &&
-                   tokens[first_token - 1].kind == Kind::resolution;
+            return tokens.front().text == "T" && first_token > 0 && tokens[first_token - 1].kind == Kind::resolution;
         case Need::res_after: return last_token + 1 < tokens.size() && tokens[last_token + 1].kind == Kind::resolution;
     }
     return false;

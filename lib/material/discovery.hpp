@@ -43,8 +43,8 @@ namespace mf {
 // "ambientcg" "polyhaven" "texturescom" "megascans" "substance" "gltf" "generic"
 struct NameMatch {
     Role role = Role::albedo;
-    std::string family;  // the convention whose rule matched
-    std::string rule;    // human-readable rule id, e.g. "ambientcg:_NormalGL"
+    std::string family;                                   // the convention whose rule matched
+    std::string rule;                                     // human-readable rule id, e.g. "ambientcg:_NormalGL"
     NormalConvention normal = NormalConvention::unknown;  // what the name says, if anything
     // The map's alpha channel is opacity: Megascans "_B-O" (base color + opacity), a glTF
     // baseColorTexture of a material with alphaMode MASK or BLEND.
@@ -144,13 +144,13 @@ struct RoleChoice {
 
 struct ChoicePolicy {
     NormalConvention preferred_normal = NormalConvention::gl;  // the preset's convention
-    int max_size = 0;  // preset size limit; 0 = none
+    int max_size = 0;                                          // preset size limit; 0 = none
 };
 
 struct SetDiscovery {
-    std::string convention;            // the family most maps follow ("generic" when mixed/none)
-    std::vector<RoleChoice> choices;   // one per input role present, in Role order
-    std::vector<Finding> findings;     // AMBIGUOUS_MAP, UNRECOGNIZED_FILE (info)
+    std::string convention;           // the family most maps follow ("generic" when mixed/none)
+    std::vector<RoleChoice> choices;  // one per input role present, in Role order
+    std::vector<Finding> findings;    // AMBIGUOUS_MAP, UNRECOGNIZED_FILE (info)
 };
 
 // Classify the files of one set, choose one file per input role deterministically, and resolve
@@ -165,8 +165,7 @@ struct SetDiscovery {
 // least one file of the set is not reported, one that named none is UNRECOGNIZED_FILE.
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
-                          const ChoicePolicy& policy,
-                          const std::vector<SidecarRoles>& sidecars = {});
+                          const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars = {});
 
 // ---------------------------------------------------------------------------------------------
 // Grouping a flat folder into materials
@@ -175,9 +174,9 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
 struct StemMerge {
     std::vector<std::string> spellings;  // the name part as written (tags included), byte order
     std::vector<std::string> files;      // the first file of each spelling
-    bool tags_differ = false;      // resolution/format tags differ ("Metal_1K" / "Metal_2K-PNG")
-    bool spelling_differs = false;  // letter case or separators differ ("Wood" / "WOOD")
-    std::string message;           // one sentence, ready for a finding
+    bool tags_differ = false;            // resolution/format tags differ ("Metal_1K" / "Metal_2K-PNG")
+    bool spelling_differs = false;       // letter case or separators differ ("Wood" / "WOOD")
+    std::string message;                 // one sentence, ready for a finding
 };
 
 // Split one folder's files into material groups by material_stem (case-insensitive, separators
@@ -192,7 +191,6 @@ struct FileGroup {
     std::vector<std::string> files;
     std::optional<StemMerge> merge;
 };
-std::vector<FileGroup> group_files(const std::vector<std::string>& files,
-                                   const std::string& fallback_name);
+std::vector<FileGroup> group_files(const std::vector<std::string>& files, const std::string& fallback_name);
 
 }  // namespace mf

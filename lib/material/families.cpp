@@ -110,8 +110,7 @@ constexpr Rule kGltf[] = {
     {"base color", albedo, kU, Case::lower_initial, true, "baseColor"},
     {"metallic roughness", metallic_roughness, kU, Case::lower_initial, true, "metallicRoughness"},
     {"metal roughness", metallic_roughness, kU, Case::lower_initial, true, "metalRoughness"},
-    {"occlusion roughness metallic", orm, kU, Case::lower_initial, true,
-     "occlusionRoughnessMetallic"},
+    {"occlusion roughness metallic", orm, kU, Case::lower_initial, true, "occlusionRoughnessMetallic"},
     {"occlusion", occlusion, kU, Case::lower_initial, false, "occlusion"},
     {"emissive", emissive, kU, Case::lower_initial, false, "emissive"},
     {"normal", normal, kU, Case::lower_initial, false, "normal"},
@@ -188,8 +187,7 @@ constexpr Rule kGeneric[] = {
 const std::array<Family, 7> kFamilies{{
     {"ambientcg", kAmbientCG, [](const Layout& l) { return l.res_format_pair; }},
     {"polyhaven", kPolyHaven, [](const Layout& l) { return l.res_after; }},
-    {"texturescom", kTexturesCom,
-     [](const Layout& l) { return l.res_after || l.poliigon_prefix; }},
+    {"texturescom", kTexturesCom, [](const Layout& l) { return l.res_after || l.poliigon_prefix; }},
     {"megascans", kMegascans, [](const Layout& l) { return l.res_before; }},
     {"substance", kSubstance, [](const Layout& l) { return l.no_resolution; }},
     {"gltf", kGltf, [](const Layout& l) { return l.no_resolution; }},
@@ -197,4 +195,3 @@ const std::array<Family, 7> kFamilies{{
 }};
 
 }  // namespace mf::naming
-

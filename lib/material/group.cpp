@@ -13,10 +13,10 @@ using naming::Kind;
 
 // How one file spells its material's name.
 struct Spelling {
-    std::string text;                      // as written, tags included ("Metal_1K")
-    std::string words;                     // material_stem ("Metal")
-    std::vector<std::string> tags;         // lower-case tags in the name part ("1k")
-    std::vector<std::string> separators;   // between consecutive words with no tag between
+    std::string text;                     // as written, tags included ("Metal_1K")
+    std::string words;                    // material_stem ("Metal")
+    std::vector<std::string> tags;        // lower-case tags in the name part ("1k")
+    std::vector<std::string> separators;  // between consecutive words with no tag between
 };
 
 Spelling spelling_of(std::string_view file, const naming::NameAnalysis& a) {

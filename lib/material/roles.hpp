@@ -8,7 +8,14 @@ namespace mf {
 
 // Output roles first; input-only roles after `opacity` (docs/interface.md "Words").
 enum class Role {
-    albedo, normal, roughness, metalness, occlusion, height, emissive, opacity,
+    albedo,
+    normal,
+    roughness,
+    metalness,
+    occlusion,
+    height,
+    emissive,
+    opacity,
     // input-only
     gloss,               // inverted into roughness
     specular,            // kept in the manifest, reported, not packed
@@ -23,14 +30,13 @@ inline constexpr int kOutputRoleCount = 8;
 
 enum class NormalConvention { unknown, gl, dx };  // gl: +Y (green up), dx: -Y
 
-
 struct RoleTraits {
     Role role;
     std::string_view name;
-    bool output;       // can appear in an output texture
-    bool color;        // albedo and emissive: color, sRGB-encoded in 8/16-bit files; all else is data
-    int channels;      // 3 for color/normal/packed, 1 for scalars
-    bool packed;       // an input that is split into several roles
+    bool output;   // can appear in an output texture
+    bool color;    // albedo and emissive: color, sRGB-encoded in 8/16-bit files; all else is data
+    int channels;  // 3 for color/normal/packed, 1 for scalars
+    bool packed;   // an input that is split into several roles
 };
 
 const RoleTraits& traits(Role r);

@@ -88,21 +88,18 @@ int resolution_pixels(std::string_view low) {
 
 namespace {
 
-constexpr std::array<std::string_view, 18> kFormatTags{
-    "png", "jpg", "jpeg", "exr", "tif", "tiff", "tga", "hdr", "bmp", "webp",
-    "psd", "dds", "8bit", "16bit", "32bit", "8b", "16b", "32b"};
+constexpr std::array<std::string_view, 18> kFormatTags{"png",  "jpg",   "jpeg",  "exr",  "tif", "tiff",
+                                                       "tga",  "hdr",   "bmp",   "webp", "psd", "dds",
+                                                       "8bit", "16bit", "32bit", "8b",   "16b", "32b"};
 
 void classify_kind(Token& t) {
     t.kind = Kind::word;
     t.pixels = 0;
     if (t.camel || t.glued_next) return;  // part of a camel-case word
     t.pixels = resolution_pixels(t.low);
-    if (t.pixels > 0)
-        t.kind = Kind::resolution;
-    else if (contains(kFormatTags, t.low))
-        t.kind = Kind::format;
-    else if (t.low == "16" || t.low == "32")
-        t.kind = Kind::depth;
+    if (t.pixels > 0) t.kind = Kind::resolution;
+    else if (contains(kFormatTags, t.low)) t.kind = Kind::format;
+    else if (t.low == "16" || t.low == "32") t.kind = Kind::depth;
 }
 
 // "OpenGL" and "DirectX" split into two camel tokens; glue them back so that the API names are
@@ -111,8 +108,7 @@ void merge_api_names(std::vector<Token>& tokens) {
     for (size_t i = 0; i + 1 < tokens.size(); ++i) {
         auto& a = tokens[i];
         const auto& b = tokens[i + 1];
-        if (!b.camel || !((a.low == "open" && b.low == "gl") || (a.low == "direct" && b.low == "x")))
-            continue;
+        if (!b.camel || !((a.low == "open" && b.low == "gl") || (a.low == "direct" && b.low == "x"))) continue;
         a.text += b.text;
         a.low += b.low;
         a.end = b.end;

@@ -41,12 +41,12 @@ enum class Kind {
 };
 
 struct Token {
-    std::string text;    // original spelling
-    std::string low;     // lower case, used for matching
-    bool camel = false;  // glued to the previous token by a camel-case boundary (no separator)
+    std::string text;         // original spelling
+    std::string low;          // lower case, used for matching
+    bool camel = false;       // glued to the previous token by a camel-case boundary (no separator)
     bool glued_next = false;  // the next token is glued to this one by a camel-case boundary
     Kind kind = Kind::word;
-    int pixels = 0;            // resolution tags only
+    int pixels = 0;             // resolution tags only
     size_t begin = 0, end = 0;  // byte range in the stem
 };
 

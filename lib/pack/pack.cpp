@@ -26,8 +26,7 @@ BasicImage<T> to_rgb_t(const BasicImage<T>& src) {
     BasicImage<T> out(src.width, src.height, 3);
     const size_t n = static_cast<size_t>(src.width) * src.height;
     for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c)
-            out.pixels[i * 3 + c] = src.pixels[i * src.channels + (src.channels >= 3 ? c : 0)];
+        for (int c = 0; c < 3; ++c) out.pixels[i * 3 + c] = src.pixels[i * src.channels + (src.channels >= 3 ? c : 0)];
     return out;
 }
 
@@ -424,7 +423,8 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
                 encode_block(b, to);
                 for (size_t i = 0; i < m; ++i) {
                     T* px = &out.pixels[(i0 + i) * nch + dst];
-                    if constexpr (kCodes) px[0] = quantize8(b.x[i]), px[1] = quantize8(b.y[i]), px[2] = quantize8(b.z[i]);
+                    if constexpr (kCodes)
+                        px[0] = quantize8(b.x[i]), px[1] = quantize8(b.y[i]), px[2] = quantize8(b.z[i]);
                     else px[0] = b.x[i], px[1] = b.y[i], px[2] = b.z[i];
                 }
             }
@@ -458,11 +458,13 @@ std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, co
     if (o.bit_depth != 8 || preset.format == "exr") return std::nullopt;  // 8-bit integer formats only
     for (const auto& c : effective_channels(o, planes)) {
         const auto it = planes.find(c.role);
-        if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused || it == planes.end()) continue;
+        if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused || it == planes.end())
+            continue;
         const RolePlane& p = it->second;
         if (!p.is_codes() || p.width() != size.width || p.height() != size.height) return std::nullopt;
         // Color codes are sRGB-encoded: only an sRGB output takes them as they are.
-        if (c.key == "RGB" && c.role != Role::normal && p.encoding != (o.srgb ? ColorEncoding::srgb : ColorEncoding::linear))
+        if (c.key == "RGB" && c.role != Role::normal &&
+            p.encoding != (o.srgb ? ColorEncoding::srgb : ColorEncoding::linear))
             return std::nullopt;
     }
     return pack_walk<uint8_t>(o, planes, preset, size, color);

@@ -69,7 +69,9 @@ void fit_plane(Role role, RolePlane& plane, int w, int h, const ColorContext& co
 
 // The size of an output: the largest of its map-backed roles, scaled so neither side exceeds
 // max_size (0 = no limit); constant_size² when no role has a map.
-struct Size { int width = 0, height = 0; };
+struct Size {
+    int width = 0, height = 0;
+};
 Size output_size(const OutputSpec& o, const Planes& planes, const Preset& preset);
 
 // Whether the output is written at all (always, or a role of it has a map).

@@ -33,12 +33,14 @@ bool parse_channel(const std::string& key, const nlohmann::json& v, ChannelSpec&
     c.key = key;
     if (v.is_number()) {
         const auto value = json_float(v, kValueMin, kValueMax);
-        if (!value) return fail(error, "channel " + key + ": constant must be a finite number within the half-float range");
+        if (!value)
+            return fail(error, "channel " + key + ": constant must be a finite number within the half-float range");
         c.kind = ChannelSpec::Kind::constant;
         c.value = *value;
         return true;
     }
-    if (!v.is_string()) return fail(error, "channel " + key + ": expected a role name, \"smoothness\", \"unused\" or a number");
+    if (!v.is_string())
+        return fail(error, "channel " + key + ": expected a role name, \"smoothness\", \"unused\" or a number");
     const std::string s = v.get<std::string>();
     if (s == "smoothness") {
         c.kind = ChannelSpec::Kind::smoothness;
@@ -70,7 +72,8 @@ bool parse_output(const nlohmann::json& j, OutputSpec& o, std::string& error) {
     if (cs != "srgb" && cs != "linear") return fail(error, where + "color_space must be srgb or linear");
     o.srgb = cs == "srgb";
     const auto depth = int_field(j, "bit_depth", 8, 8, 32);
-    if (!depth || (*depth != 8 && *depth != 16 && *depth != 32)) return fail(error, where + "bit_depth must be 8, 16 or 32");
+    if (!depth || (*depth != 8 && *depth != 16 && *depth != 32))
+        return fail(error, where + "bit_depth must be 8, 16 or 32");
     o.bit_depth = *depth;
     const std::string when = j.value("when", "always");
     if (when != "always" && when != "if-present") return fail(error, where + "when must be always or if-present");
@@ -128,8 +131,10 @@ std::vector<Role> OutputSpec::roles() const {
 float Preset::default_value(Role r) const {
     if (auto it = defaults.find(r); it != defaults.end()) return it->second;
     switch (r) {
-        case Role::occlusion: case Role::opacity: return 1.f;
-        case Role::roughness: case Role::height: return 0.5f;
+        case Role::occlusion:
+        case Role::opacity: return 1.f;
+        case Role::roughness:
+        case Role::height: return 0.5f;
         default: return 0.f;
     }
 }
@@ -137,7 +142,8 @@ float Preset::default_value(Role r) const {
 std::string Preset::output_path(const std::string& material, const OutputSpec& o) const {
     std::string s = file_pattern;
     auto replace_all = [&s](const std::string& from, const std::string& to) {
-        for (size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) s.replace(p, from.size(), to);
+        for (size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+            s.replace(p, from.size(), to);
     };
     replace_all("{material}", material);
     replace_all("{suffix}", o.suffix);
@@ -157,7 +163,8 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
         if (!nc || *nc == NormalConvention::unknown) return fail(error, "normal_convention must be gl or dx");
         p.normal_convention = *nc;
         p.format = j.value("format", "png");
-        if (p.format != "png" && p.format != "exr" && p.format != "tif" && p.format != "tga" && !is_block_container(p.format))
+        if (p.format != "png" && p.format != "exr" && p.format != "tif" && p.format != "tga" &&
+            !is_block_container(p.format))
             return fail(error, "format must be png, exr, tif, tga, dds or ktx2");
         const auto max_size = int_field(j, "max_size", 0, 0, 65536);
         const auto constant_size = int_field(j, "constant_size", 2, 1, 64);
@@ -214,7 +221,8 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
                            [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
             if (auto [it, fresh] = paths.emplace(path, o.suffix); !fresh)
                 return fail(error, "outputs: suffix '" + o.suffix + "' names the file of suffix '" + it->second +
-                                       "' (" + p.output_path("material", o) + "): every output needs a suffix of its own");
+                                       "' (" + p.output_path("material", o) +
+                                       "): every output needs a suffix of its own");
         }
         p.validate = j.value("validate", nlohmann::json::object());
         if (!parse_texture_fields(j, p, error)) return false;  // mips, block formats, material files

@@ -15,22 +15,22 @@ namespace mf {
 
 // What one channel (or the RGB triple) of an output holds, as the preset asks for it.
 struct ChannelSpec : Channel {
-    bool optional = false;     // dropped when its role has no map (key must be the last one)
+    bool optional = false;  // dropped when its role has no map (key must be the last one)
 };
 
 struct OutputSpec {
     std::string suffix;
-    bool srgb = false;   // color channels sRGB-encoded
-    int bit_depth = 8;   // 8 | 16 (png, tif); 16 = half, 32 = float (exr)
-    bool always = true;  // false: written only when one of its roles has a map
+    bool srgb = false;                  // color channels sRGB-encoded
+    int bit_depth = 8;                  // 8 | 16 (png, tif); 16 = half, 32 = float (exr)
+    bool always = true;                 // false: written only when one of its roles has a map
     std::vector<ChannelSpec> channels;  // in file channel order (RGB counts as three)
     // Block-compressed containers (format dds | ktx2; lib/preset/texture_fields.cpp checks them).
-    std::string block_format;        // "bc1", "bc3", "bc4", "bc5", "astc-6x6", ...
-    std::string block_format_alpha;  // used instead when the written output has 4 channels
-    std::string effort;              // per output; "" = the preset's
+    std::string block_format;                               // "bc1", "bc3", "bc4", "bc5", "astc-6x6", ...
+    std::string block_format_alpha;                         // used instead when the written output has 4 channels
+    std::string effort;                                     // per output; "" = the preset's
     std::optional<double> min_psnr_db, max_mean_angle_deg;  // error bounds of the decoded levels
     int channel_count() const;
-    std::vector<Role> roles() const;    // the roles it reads (roughness for smoothness)
+    std::vector<Role> roles() const;  // the roles it reads (roughness for smoothness)
 };
 
 struct Preset {
@@ -46,14 +46,14 @@ struct Preset {
     std::map<Role, Severity> missing_severity;  // roles whose absence is reported
     std::vector<OutputSpec> outputs;
     // Block-compressed containers and material files (lib/preset/texture_fields.cpp).
-    bool mips = false;                   // full mip chains (dds, ktx2)
-    std::string mip_filter = "kaiser";   // "box" | "kaiser"
-    std::string effort = "normal";       // "fast" | "normal" | "thorough"
+    bool mips = false;                      // full mip chains (dds, ktx2)
+    std::string mip_filter = "kaiser";      // "box" | "kaiser"
+    std::string effort = "normal";          // "fast" | "normal" | "thorough"
     std::string supercompression = "none";  // ktx2: "none" | "zstd"
     int zstd_level = 19;
-    bool toksvig = false;        // roughness mips widened by the normal mips' spread
-    float alpha_cutoff = 0.5f;   // alpha test of opacity (coverage kept per mip; glTF alphaCutoff)
-    std::string material_file;   // "" | "gltf": a material file per set and library.gltf
+    bool toksvig = false;       // roughness mips widened by the normal mips' spread
+    float alpha_cutoff = 0.5f;  // alpha test of opacity (coverage kept per mip; glTF alphaCutoff)
+    std::string material_file;  // "" | "gltf": a material file per set and library.gltf
     nlohmann::json validate = nlohmann::json::object();  // rule overrides for validate
     nlohmann::json source_json;                          // as loaded
 

@@ -75,14 +75,20 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
         const BlockFormatInfo* f = block_format_info(*name);
         if (!f) return fail(error, field + ": unknown block format '" + *name + "' (" + block_format_names() + ")");
         if (p.format == "dds" && !f->in_dds)
-            return fail(error, field + ": " + *name + " has no DXGI format; DDS carries bc1, bc3, bc4 and bc5 (ASTC goes in ktx2)");
+            return fail(error, field + ": " + *name +
+                                   " has no DXGI format; DDS carries bc1, bc3, bc4 and bc5 (ASTC goes in ktx2)");
         if (f->hdr && o.bit_depth == 8)
-            return fail(error, field + ": " + *name + " encodes float (HDR) samples; this output is 8-bit (bit_depth 8)");
-        if (f->hdr) return fail(error, field + ": " + *name + ": ASTC HDR outputs are not supported (8-bit LDR block formats only)");
+            return fail(error,
+                        field + ": " + *name + " encodes float (HDR) samples; this output is 8-bit (bit_depth 8)");
+        if (f->hdr)
+            return fail(error,
+                        field + ": " + *name + ": ASTC HDR outputs are not supported (8-bit LDR block formats only)");
         if (o.bit_depth != 8)
-            return fail(error, field + ": block formats store 8-bit samples; bit_depth must be 8, not " + std::to_string(o.bit_depth));
+            return fail(error, field + ": block formats store 8-bit samples; bit_depth must be 8, not " +
+                                   std::to_string(o.bit_depth));
         if (o.srgb && !f->has_srgb)
-            return fail(error, field + ": " + *name + " has no sRGB variant; use it for linear data (color_space linear) or pick bc1/bc3");
+            return fail(error, field + ": " + *name +
+                                   " has no sRGB variant; use it for linear data (color_space linear) or pick bc1/bc3");
     }
     for (int n : written_counts(o)) {
         const std::string& name = block_format_for(o, n);
@@ -90,12 +96,14 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
         const BlockFormatInfo* f = block_format_info(name);
         // BC5 stores a normal's X and Y; the engine rebuilds Z (the only 3-channel output it takes).
         const bool xy_normal = f->name == "bc5" && n == 3 && is_rgb_normal(o);
-        const bool fits = xy_normal || (n <= f->channels && (f->name != "bc4" || n == 1) && (f->name != "bc5" || n == 2));
+        const bool fits = xy_normal ||
+                          (n <= f->channels && (f->name != "bc4" || n == 1) && (f->name != "bc5" || n == 2));
         if (!fits)
-            return fail(error, field + ": " + name + " stores " + std::to_string(f->channels) + " channel" +
-                                   (f->channels == 1 ? "" : "s") + "; this output writes " + std::to_string(n) + " (" +
-                                   layout(o, n) + ")" +
-                                   (n == 4 && o.block_format_alpha.empty() ? ": set block_format_alpha (bc3) for it" : ""));
+            return fail(error,
+                        field + ": " + name + " stores " + std::to_string(f->channels) + " channel" +
+                            (f->channels == 1 ? "" : "s") + "; this output writes " + std::to_string(n) + " (" +
+                            layout(o, n) + ")" +
+                            (n == 4 && o.block_format_alpha.empty() ? ": set block_format_alpha (bc3) for it" : ""));
     }
     if (!o.block_format_alpha.empty() && written_counts(o).back() != 4)
         return fail(error, where + "block_format_alpha: this output never writes 4 channels");
@@ -171,7 +179,8 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
     p.mip_filter = j.value("mip_filter", p.mip_filter);
     if (!one_of(p.mip_filter, {"box", "kaiser"})) return fail(error, "mip_filter must be box or kaiser");
     p.effort = j.value("effort", p.effort);
-    if (!one_of(p.effort, {"fast", "normal", "thorough"})) return fail(error, "effort must be fast, normal or thorough");
+    if (!one_of(p.effort, {"fast", "normal", "thorough"}))
+        return fail(error, "effort must be fast, normal or thorough");
     p.supercompression = j.value("supercompression", p.supercompression);
     if (!one_of(p.supercompression, {"none", "zstd"})) return fail(error, "supercompression must be none or zstd");
     if (p.supercompression == "zstd" && p.format != "ktx2")
@@ -183,13 +192,15 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
     }
     if (j.contains("alpha_cutoff")) {
         const auto cut = json_float(j.at("alpha_cutoff"), 0.0, 1.0);
-        if (!cut || *cut <= 0.f || *cut >= 1.f) return fail(error, "alpha_cutoff must be a number between 0 and 1 (exclusive)");
+        if (!cut || *cut <= 0.f || *cut >= 1.f)
+            return fail(error, "alpha_cutoff must be a number between 0 and 1 (exclusive)");
         p.alpha_cutoff = *cut;
     }
     p.material_file = j.value("material_file", std::string());
     if (p.material_file == "none") p.material_file.clear();
     if (!p.material_file.empty() && p.material_file != "gltf") return fail(error, "material_file must be gltf or none");
-    if (p.format == "dds" && !j.contains("constant_size")) p.constant_size = 4;  // the smallest BC texture D3D11 creates
+    if (p.format == "dds" && !j.contains("constant_size"))
+        p.constant_size = 4;  // the smallest BC texture D3D11 creates
     if (container && p.constant_size % 4 != 0 && p.format == "dds")
         return fail(error, "constant_size: Direct3D 11 creates BC textures whose top level is a multiple of 4; use 4");
 
@@ -207,17 +218,23 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
             if (!oj.contains(key)) continue;
             const bool psnr = std::string_view(key) == "min_psnr_db";
             const auto v = json_float(oj.at(key), 0.0, psnr ? 100.0 : 90.0);
-            if (!v) return fail(error, where + key + (psnr ? " must be a number of dB within 0..100" : " must be degrees within 0..90"));
+            if (!v)
+                return fail(error,
+                            where + key +
+                                (psnr ? " must be a number of dB within 0..100" : " must be degrees within 0..90"));
             (psnr ? o.min_psnr_db : o.max_mean_angle_deg) = *v;
-            if (!container) return fail(error, where + key + ": error bounds apply to block-compressed outputs (dds, ktx2)");
+            if (!container)
+                return fail(error, where + key + ": error bounds apply to block-compressed outputs (dds, ktx2)");
         }
         if (!container) {
             if (!o.block_format.empty() || !o.block_format_alpha.empty())
-                return fail(error, where + "block_format: needs format dds or ktx2 (this preset writes " + p.format + ")");
+                return fail(error,
+                            where + "block_format: needs format dds or ktx2 (this preset writes " + p.format + ")");
             continue;
         }
         if (o.block_format.empty())
-            return fail(error, where + "block_format: required with format " + p.format + " (" + block_format_names() + ")");
+            return fail(error,
+                        where + "block_format: required with format " + p.format + " (" + block_format_names() + ")");
         if (!check_block_format(p, o, where, error)) return false;
     }
     return p.material_file != "gltf" || check_gltf_layout(p, error);

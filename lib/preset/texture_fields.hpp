@@ -13,12 +13,12 @@ namespace mf {
 
 // What a block format stores. The codecs and containers that use it live in lib/texture.
 struct BlockFormatInfo {
-    std::string_view name;        // as presets spell it: "bc1", "astc-6x6", ...
+    std::string_view name;  // as presets spell it: "bc1", "astc-6x6", ...
     int block_width, block_height, block_bytes;
-    int channels;                 // channels it carries (bc1: RGB, bc3: RGBA, bc4: R, bc5: RG)
-    bool has_srgb;                // an sRGB variant exists (the sampler decodes before filtering)
-    bool in_dds;                  // DXGI has it (DirectX reads it from a DDS)
-    bool hdr;                     // ASTC HDR profile: float samples only
+    int channels;   // channels it carries (bc1: RGB, bc3: RGBA, bc4: R, bc5: RG)
+    bool has_srgb;  // an sRGB variant exists (the sampler decodes before filtering)
+    bool in_dds;    // DXGI has it (DirectX reads it from a DDS)
+    bool hdr;       // ASTC HDR profile: float samples only
 };
 // nullopt-like: nullptr for an unknown name.
 const BlockFormatInfo* block_format_info(std::string_view name);

@@ -125,7 +125,8 @@ void draw_text(std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height, int
                 for (int sy = 0; sy < scale; ++sy)
                     for (int sx = 0; sx < scale; ++sx) {
                         const int px = gx + col * scale + sx, py = y + row * scale + sy;
-                        if (px < 0 || py < 0 || px >= static_cast<int>(width) || py >= static_cast<int>(height)) continue;
+                        if (px < 0 || py < 0 || px >= static_cast<int>(width) || py >= static_cast<int>(height))
+                            continue;
                         uint8_t* p = &rgba8[(static_cast<size_t>(py) * width + static_cast<size_t>(px)) * 4];
                         p[0] = color[0];
                         p[1] = color[1];

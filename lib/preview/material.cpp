@@ -78,15 +78,20 @@ std::optional<render::Material> load_material(const manifest::Material& mm, cons
             return std::nullopt;
         }
         if (!opt.allow_outside && !inside(o.file)) {
-            error = mm.name + ": output \"" + o.file + "\" lies outside the manifest's folder (allow it with --allow-outside)";
+            error = mm.name + ": output \"" + o.file +
+                    "\" lies outside the manifest's folder (allow it with --allow-outside)";
             return std::nullopt;
         }
-        auto t = read_texture(dir / o.file, error);
+        const std::filesystem::path file = dir / o.file;
+        auto t = is_gpu_texture_file(file) ? read_gpu_texture(file, opt.samples, notes, error) : read_texture(file, error);
         if (!t) return std::nullopt;
+        // A normal stored as X, Y only (BC5): the shader rebuilds Z.
+        if (index == m.normal.texture) m.normal.z_from_xy = o.normal_z_reconstructed;
         // Only RGB that hold color are sRGB-decoded; a data texture tagged sRGB is a mistake of
         // the producer (COLOR_SPACE_MISMATCH), decoding it would change the data.
         t->srgb = o.srgb && color_in_rgb;
-        if (o.srgb && !color_in_rgb) notes.push_back(mm.name + ": " + shown + " is tagged sRGB but holds data; read as linear");
+        if (o.srgb && !color_in_rgb)
+            notes.push_back(mm.name + ": " + shown + " is tagged sRGB but holds data; read as linear");
         m.textures.push_back(std::move(*t));
     }
     for (const manifest::Constant& c : mm.constants) {
@@ -134,8 +139,9 @@ bool apply_scene_material(const SceneMaterial& s, render::Material& m, std::stri
         m.normal.texture = normal;
         m.normal.green_down = s.normal_convention == NormalConvention::dx;
     }
-    for (const auto& [map, role] : {std::pair{&s.roughness_map, &m.roughness}, std::pair{&s.metalness_map, &m.metalness},
-                                    std::pair{&s.occlusion_map, &m.occlusion}, std::pair{&s.opacity_map, &m.opacity}}) {
+    for (const auto& [map, role] :
+         {std::pair{&s.roughness_map, &m.roughness}, std::pair{&s.metalness_map, &m.metalness},
+          std::pair{&s.occlusion_map, &m.occlusion}, std::pair{&s.opacity_map, &m.opacity}}) {
         if (!*map) continue;
         const int t = load((*map)->file, false);
         if (t < 0) return false;

@@ -12,6 +12,7 @@
 //    handed to the renderer as its codes, any other as float; the renderer decodes sRGB.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,17 +30,16 @@ struct SceneMaterial {
     std::optional<render::Vec3> albedo, emissive;
     std::optional<float> roughness, metalness;
     struct Map {
-        std::filesystem::path file;  // absolute (resolved against the scene file's folder)
+        std::filesystem::path file;              // absolute (resolved against the scene file's folder)
         std::optional<render::Channel> channel;  // "#R" … "#A"; none: RGB (or R for scalars)
     };
-    std::optional<Map> albedo_map, normal_map, roughness_map, metalness_map, occlusion_map,
-        emissive_map, opacity_map;
+    std::optional<Map> albedo_map, normal_map, roughness_map, metalness_map, occlusion_map, emissive_map, opacity_map;
     NormalConvention normal_convention = NormalConvention::gl;  // of normal_map
 };
 
 struct SceneFile {
-    render::Scene scene;            // defaults: 512², one white key light, sphere, black
-    render::OutputOptions output;   // transfer and exposure
+    render::Scene scene;           // defaults: 512², one white key light, sphere, black
+    render::OutputOptions output;  // transfer and exposure
     std::optional<SceneMaterial> material;
     std::optional<std::filesystem::path> environment;  // resolved path
     float environment_intensity = 1.f;
@@ -64,8 +64,12 @@ std::optional<render::Light> parse_light_spec(const std::string& spec, std::stri
 
 // ---- manifest materials
 
+// Whether the device samples a block format (render::Renderer::samples), for GPU texture files.
+using BlockSupport = std::function<bool(uint32_t vk_format)>;
+
 struct MaterialOptions {
     bool allow_outside = false;  // textures may lie outside the manifest's folder
+    BlockSupport samples;        // DDS/KTX2 blocks go up as written where this says yes
 };
 
 // The material's output textures, read, with their channels mapped to the renderer's slots.
@@ -82,6 +86,11 @@ bool apply_scene_material(const SceneMaterial& s, render::Material& m, std::stri
 // ---- image files (through lib/image and lib/core)
 
 std::optional<render::Texture> read_texture(const std::filesystem::path& file, std::string& error);
+// A .dds or .ktx2 file (what ingest's GPU presets write): its blocks and mip chain as written
+// where `samples` says the device takes the format, else level 0 decoded on the CPU (a note).
+bool is_gpu_texture_file(const std::filesystem::path& file);
+std::optional<render::Texture> read_gpu_texture(const std::filesystem::path& file, const BlockSupport& samples,
+                                                std::vector<std::string>& notes, std::string& error);
 std::optional<render::Environment> read_environment(const std::filesystem::path& file, float intensity,
                                                     std::string& error);
 // RGB of an RGBA frame, written atomically (aside, fsync, rename): an interrupted run leaves no
@@ -102,8 +111,8 @@ struct SheetTile {
 void compose_contact_sheet(const std::vector<SheetTile>& tiles, uint32_t& width, uint32_t& height,
                            std::vector<uint8_t>& rgba8);
 // Draws `text` with the built-in 5×7 font, `scale` pixels per font pixel, clipped to the image.
-void draw_text(std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height, int x, int y,
-               const std::string& text, int scale, const uint8_t color[3]);
+void draw_text(std::vector<uint8_t>& rgba8, uint32_t width, uint32_t height, int x, int y, const std::string& text,
+               int scale, const uint8_t color[3]);
 int text_width(const std::string& text, int scale);
 
 }  // namespace mf::preview

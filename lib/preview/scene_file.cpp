@@ -50,7 +50,8 @@ render::Vec3 vec3(const json& j, const std::string& where) {
 // A number within [lo, hi] (a roughness of -3 or a metalness of 7 is a mistake, not a value).
 float number_in(const json& j, const std::string& where, float lo, float hi) {
     const float v = number(j, where);
-    if (!(v >= lo && v <= hi)) fail(where, "must be within [" + json(lo).dump() + ", " + json(hi).dump() + "], got " + j.dump());
+    if (!(v >= lo && v <= hi))
+        fail(where, "must be within [" + json(lo).dump() + ", " + json(hi).dump() + "], got " + j.dump());
     return v;
 }
 
@@ -59,7 +60,8 @@ render::Vec3 color(const json& j, const std::string& where, float hi = std::nume
     const render::Vec3 c = vec3(j, where);
     for (float v : c)
         if (!(v >= 0.f && v <= hi))
-            fail(where, "components must be within [0, " + (hi < 1e30f ? json(hi).dump() : std::string("inf")) + "], got " + j.dump());
+            fail(where, "components must be within [0, " + (hi < 1e30f ? json(hi).dump() : std::string("inf")) +
+                            "], got " + j.dump());
     return c;
 }
 
@@ -103,8 +105,8 @@ SceneMaterial::Map map_ref(const json& j, const std::filesystem::path& base, con
 SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base, const std::string& name) {
     SceneFile out = default_scene();
     render::Scene& sc = out.scene;
-    check_keys(j, name, {"image", "camera", "shape", "background", "lights", "environment", "material",
-                         "output", "brdf"});
+    check_keys(j, name,
+               {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf"});
     if (const json* img = find(j, "image")) {
         check_keys(*img, name + ": image", {"width", "height"});
         if (const json* w = find(*img, "width")) sc.width = dimension(*w, name + ": image.width");
@@ -189,7 +191,8 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
         const json* f = find(*env, "file");
         if (!f || !f->is_string()) fail(w, "needs \"file\"");
         out.environment = base / f->get<std::string>();
-        if (const json* v = find(*env, "intensity")) out.environment_intensity = number_in(*v, w + ".intensity", 0.f, std::numeric_limits<float>::max());
+        if (const json* v = find(*env, "intensity"))
+            out.environment_intensity = number_in(*v, w + ".intensity", 0.f, std::numeric_limits<float>::max());
     }
     if (const json* m = find(j, "material")) {
         const std::string w = name + ": material";

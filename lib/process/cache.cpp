@@ -23,7 +23,8 @@ std::span<const unsigned char> as_bytes(const std::string& s) {
 std::string sha_of(const std::string& s) { return sha256_hex(as_bytes(s)); }
 
 bool is_sha(const std::string& s) {
-    return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+    return s.size() == 64 &&
+           std::all_of(s.begin(), s.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
 // What a file's digest is remembered by. ctime cannot be set by a user: any write to the file
@@ -32,8 +33,8 @@ std::string stat_line(const fs::path& file) {
     struct stat st {};
     if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return {};
     std::ostringstream o;
-    o << st.st_dev << ' ' << st.st_ino << ' ' << st.st_size << ' ' << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec << ' '
-      << st.st_ctim.tv_sec << '.' << st.st_ctim.tv_nsec;
+    o << st.st_dev << ' ' << st.st_ino << ' ' << st.st_size << ' ' << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec
+      << ' ' << st.st_ctim.tv_sec << '.' << st.st_ctim.tv_nsec;
     return o.str();
 }
 
@@ -69,7 +70,8 @@ std::optional<std::string> remembered_digest(const fs::path& file, const fs::pat
     if (!now.empty())
         if (const auto rec = read_text(stat_file)) {
             const auto nl = rec->find('\n');
-            if (nl != std::string::npos && rec->substr(0, nl) == now && is_sha(rec->substr(nl + 1))) return rec->substr(nl + 1);
+            if (nl != std::string::npos && rec->substr(0, nl) == now && is_sha(rec->substr(nl + 1)))
+                return rec->substr(nl + 1);
         }
     std::vector<unsigned char> bytes;
     if (!read_file(file, bytes, error)) return std::nullopt;
@@ -94,7 +96,8 @@ std::vector<FileRef> files_of(const manifest::Material& m) {
 
 // `blob` as a hard link to `file` (no second copy), put aside and renamed into place; a copy of
 // `bytes` where links are not possible (another file system, a file system without links).
-bool link_or_write(const fs::path& file, const fs::path& blob, std::span<const unsigned char> bytes, std::string& error) {
+bool link_or_write(const fs::path& file, const fs::path& blob, std::span<const unsigned char> bytes,
+                   std::string& error) {
     std::error_code ec;
     fs::create_directories(blob.parent_path(), ec);
     const fs::path aside = blob.parent_path() / temp_name(blob.filename().string());
@@ -105,6 +108,45 @@ bool link_or_write(const fs::path& file, const fs::path& blob, std::span<const u
         fs::remove(aside, ec);
     }
     return write_file_atomic(blob, bytes, error);
+}
+
+// Version 2 records carry the SHA-256 of their entry's JSON text (`entry_sha256`): a record cut
+// short or altered is detected like a blob, never trusted. Version 1 records (without it) miss.
+constexpr int kRecordVersion = 2;
+
+// The digest of a record's entry: its compact JSON text, invalid UTF-8 in names replaced as the
+// manifest writer does (a file name is any bytes; dump() would throw on them).
+std::string entry_digest(const nlohmann::json& entry) {
+    return sha_of(entry.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+}
+
+// The manifest entry an action record holds, checked: nullopt + `error` naming the problem when
+// it does not parse, is of another version, is for another key than `key` (when given), or does
+// not hash to its `entry_sha256`.
+std::optional<manifest::Material> read_record(const fs::path& rec, std::string& error,
+                                              const std::string* key = nullptr) {
+    const auto j = read_json_file(rec, error);
+    if (!j) return std::nullopt;
+    const auto mj = j->find("entry");
+    if (!j->is_object() || j->value("cache_version", 0) != kRecordVersion || mj == j->end() || !mj->is_object()) {
+        error = "not an action record of this cache version";
+        return std::nullopt;
+    }
+    if (key && j->value("key", "") != *key) {
+        error = "a record of another action key";
+        return std::nullopt;
+    }
+    if (j->value("entry_sha256", "") != entry_digest(*mj)) {
+        error = "its entry does not hash to its entry_sha256 (truncated or altered)";
+        return std::nullopt;
+    }
+    nlohmann::json wrapped{{"manifest_version", manifest::kVersion}, {"materials", nlohmann::json::array({*mj})}};
+    auto m = manifest::manifest_from_json(wrapped, error);
+    if (!m || m->materials.size() != 1) {
+        if (error.empty()) error = "its entry is not one manifest material";
+        return std::nullopt;
+    }
+    return std::move(m->materials[0]);
 }
 
 }  // namespace
@@ -146,15 +188,16 @@ std::optional<std::string> Cache::digest(const InputFile& in, std::string& error
 std::optional<Cache::Hit> Cache::restore(const std::string& key, const std::string& name, const fs::path& out_dir,
                                          const Write& write, std::vector<std::string>& corrupt) const {
     const fs::path rec = record_path(key, name);
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(rec, ec))) return std::nullopt;  // never stored, or evicted
     std::string error;
-    const auto j = read_json_file(rec, error);
-    if (!j) return std::nullopt;
-    const auto mj = j->find("entry");
-    if (!j->is_object() || j->value("key", "") != key || mj == j->end()) return std::nullopt;
-    nlohmann::json wrapped{{"manifest_version", manifest::kVersion}, {"materials", nlohmann::json::array({*mj})}};
-    auto m = manifest::manifest_from_json(wrapped, error);
-    if (!m || m->materials.size() != 1 || m->materials[0].name != name) return std::nullopt;
-    Hit hit{std::move(m->materials[0])};
+    auto entry = read_record(rec, error, &key);
+    if (!entry || entry->name != name) {
+        corrupt.push_back(rec.string() + ": " + (entry ? "a record of another material" : error) + "; removed");
+        fs::remove(rec, ec);
+        return std::nullopt;
+    }
+    Hit hit{std::move(*entry)};
     // Every blob is read and checked before the first file is written: a miss half-way would
     // leave a set with some outputs of the cached run and the rest to recompute.
     const std::vector<FileRef> files = files_of(hit.entry);
@@ -168,8 +211,8 @@ std::optional<Cache::Hit> Cache::restore(const std::string& key, const std::stri
         const fs::path blob = blob_path(f.sha256);
         if (!is_sha(f.sha256) || !read_file(blob, bytes, error)) return std::nullopt;  // evicted: a miss
         if (sha256_hex(bytes) != f.sha256) {
-            corrupt.push_back(blob.string() + ": its content does not hash to its name (truncated or altered); removed");
-            std::error_code ec;
+            corrupt.push_back(blob.string() +
+                              ": its content does not hash to its name (truncated or altered); removed");
             fs::remove(blob, ec);
             return std::nullopt;
         }
@@ -182,7 +225,6 @@ std::optional<Cache::Hit> Cache::restore(const std::string& key, const std::stri
         if (!now.empty()) write_hint(stat_path(dest), now + "\n" + f->sha256);
     }
     // Used now: least recently used eviction keeps it.
-    std::error_code ec;
     fs::last_write_time(rec, fs::file_time_type::clock::now(), ec);
     return hit;
 }
@@ -214,7 +256,11 @@ bool Cache::store(const std::string& key, const manifest::Material& entry, const
     manifest::Material stored = entry;
     stored.source.clear();  // the caller's: relative to its output folder
     stored.archive.reset();
-    const nlohmann::json rec{{"cache_version", 1}, {"key", key}, {"entry", manifest::to_json(stored)}};
+    const nlohmann::json ej = manifest::to_json(stored);
+    const nlohmann::json rec{{"cache_version", kRecordVersion},
+                             {"key", key},
+                             {"entry", ej},
+                             {"entry_sha256", entry_digest(ej)}};
     return write_file_atomic(record_path(key, entry.name), as_bytes(json_text(rec)), error);
 }
 
@@ -239,21 +285,25 @@ Cache::Stats Cache::prune(uint64_t max_bytes, std::chrono::seconds grace) const 
         std::vector<std::string> blobs;
     };
     std::vector<Record> records;
+    Stats removed;
     std::error_code ec;
     for (fs::recursive_directory_iterator it(dir_ / "ac", ec), end; !ec && it != end; it.increment(ec)) {
         if (!it->is_regular_file(ec)) continue;
         Record r{it->path(), it->last_write_time(ec), {}};
         std::string error;
-        if (const auto j = read_json_file(r.path, error); j && j->contains("entry"))
-            for (const auto& o : (*j)["entry"].value("outputs", nlohmann::json::array()))
-                if (o.is_object() && o.value("sha256", "").size() == 64) r.blobs.push_back(o["sha256"]);
+        const auto entry = read_record(r.path, error);
+        if (!entry) {  // unusable: restore() would remove it too
+            fs::remove(r.path, ec);
+            ++removed.records;
+            continue;
+        }
+        for (const FileRef& f : files_of(*entry)) r.blobs.push_back(f.sha256);  // outputs and material files
         records.push_back(std::move(r));
     }
     std::sort(records.begin(), records.end(), [](const Record& a, const Record& b) { return a.used > b.used; });
     std::map<std::string, uint64_t> blob_size;
     for (fs::recursive_directory_iterator it(dir_ / "cas", ec), end; !ec && it != end; it.increment(ec))
         if (it->is_regular_file(ec)) blob_size[it->path().filename().string()] = it->file_size(ec);
-    Stats removed;
     std::set<std::string> kept;
     uint64_t used = 0;
     for (const Record& r : records) {

@@ -13,13 +13,13 @@
 #include "core/parallel.hpp"
 #include "core/version.hpp"
 #include "pack/pack.hpp"
-#include "process/cache.hpp"
 #include "preset/texture_fields.hpp"
-#include "texture/texture.hpp"
+#include "process/cache.hpp"
 #include "process/material_file.hpp"
 #include "process/output_dir.hpp"
 #include "process/plan.hpp"
 #include "process/work.hpp"
+#include "texture/texture.hpp"
 
 namespace mf {
 namespace fs = std::filesystem;
@@ -67,7 +67,8 @@ Planes make_planes(SetPlan& plan) {
         RolePlane plane;
         Decoded& img = l.img;
         if (out == Role::albedo || out == Role::emissive) {
-            if (img.is_codes()) plane.codes = last_use && img.codes.channels == 3 ? std::move(img.codes) : to_rgb(img.codes);
+            if (img.is_codes())
+                plane.codes = last_use && img.codes.channels == 3 ? std::move(img.codes) : to_rgb(img.codes);
             else plane.image = last_use && img.floats.channels == 3 ? std::move(img.floats) : to_rgb(img.floats);
             plane.encoding = l.info.is_float ? ColorEncoding::linear : ColorEncoding::srgb;
         } else if (out == Role::normal) {
@@ -85,10 +86,12 @@ Planes make_planes(SetPlan& plan) {
         } else {
             const int ch = route.channel < 0 ? 0 : route.channel;
             if (img.is_codes()) {
-                plane.codes = last_use && img.codes.channels == 1 ? std::move(img.codes) : extract_channel(img.codes, ch);
+                plane.codes = last_use && img.codes.channels == 1 ? std::move(img.codes)
+                                                                  : extract_channel(img.codes, ch);
                 if (route.invert) invert(plane.codes);
             } else {
-                plane.image = last_use && img.floats.channels == 1 ? std::move(img.floats) : extract_channel(img.floats, ch);
+                plane.image = last_use && img.floats.channels == 1 ? std::move(img.floats)
+                                                                   : extract_channel(img.floats, ch);
                 if (route.invert) invert(plane.image);
             }
         }
@@ -135,15 +138,19 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     // Sets whose outputs another set claimed first are computed (the refusals are this run's).
     const bool cacheable = cache_ && !cache_log_->off && !refused_.count(src.name);
     std::string key_error;
-    const std::optional<std::string> key =
-        cacheable ? action_key(src, context_, key_error,
-                               [&](const InputFile& in, std::string& e) { return cache_->digest(in, e); })
-                  : std::nullopt;
+    const std::optional<std::string> key = cacheable ? action_key(src, context_, key_error,
+                                                                  [&](const InputFile& in, std::string& e) {
+                                                                      return cache_->digest(in, e);
+                                                                  })
+                                                     : std::nullopt;
     if (key) {
         std::vector<std::string> corrupt;
-        auto hit = cache_->restore(*key, src.name, opt_.out_dir, [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-            return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
-        }, corrupt);
+        auto hit = cache_->restore(
+            *key, src.name, opt_.out_dir,
+            [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+                return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
+            },
+            corrupt);
         for (auto& c : corrupt) cache_log_->problem(src.display + ": " + c + "; the set was computed again");
         if (hit) {
             ++cache_log_->hits;
@@ -161,7 +168,8 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     // stopped by a signal, is computed again next time.
     const bool complete = !res.failure && res.entry.status == manifest::Status::ok && !stop_requested();
     std::string error;
-    if (complete && !cache_log_->off && !cache_->store(*key, res.entry, opt_.out_dir, error) && !cache_log_->off.exchange(true))
+    if (complete && !cache_log_->off && !cache_->store(*key, res.entry, opt_.out_dir, error) &&
+        !cache_log_->off.exchange(true))
         cache_log_->problem(cache_->dir().string() + ": cannot store results (" + error +
                             "); the cache is off for the rest of this run");
     return res;
@@ -199,15 +207,17 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     std::vector<Written> written(wanted.size());
     auto write_output = [&](const OutputSpec& o) -> Written {
         auto failed = [](std::string msg) {
-            return Written{std::nullopt, Finding{std::string(code::output_write_failed), Severity::error, "", "",
-                                                 std::move(msg), {}}, {}};
+            return Written{std::nullopt,
+                           Finding{std::string(code::output_write_failed), Severity::error, "", "", std::move(msg), {}},
+                           {}};
         };
         const std::string rel = preset_.output_path(src.name, o);
         const fs::path rel_path = fs::path(rel).lexically_normal();
         if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..")
             return failed("output path '" + rel + "' leaves the output folder; skipped");
         if (const auto m = refused_.find(src.name); m != refused_.end())
-            if (const auto why = m->second.find(o.suffix); why != m->second.end()) return failed(why->second + "; not written");
+            if (const auto why = m->second.find(o.suffix); why != m->second.end())
+                return failed(why->second + "; not written");
         if (stop_requested()) return failed(rel + ": not written (interrupted)");
         const auto roles = o.roles();
         const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
@@ -218,7 +228,8 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         std::optional<texture::EncodedOutput> gpu;  // dds, ktx2: the mip levels in GPU blocks (lib/texture)
         if (is_block_container(preset_.format)) {
             gpu.emplace();
-            encoded = texture::encode_output(o, planes, size, {&preset_, color_.get(), std::string(kGenerator), 1}, *gpu, err);
+            encoded = texture::encode_output(o, planes, size, {&preset_, color_.get(), std::string(kGenerator), 1},
+                                             *gpu, err);
             bytes = std::move(gpu->bytes);
         } else {
             // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
@@ -263,14 +274,22 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         try {
             written[i] = write_output(*wanted[i]);
         } catch (const std::bad_alloc&) {  // parallel_for's fn must not throw
-            written[i].failure = Finding{std::string(code::output_write_failed), Severity::error, "", "",
+            written[i].failure = Finding{std::string(code::output_write_failed),
+                                         Severity::error,
+                                         "",
+                                         "",
                                          preset_.output_path(src.name, *wanted[i]) +
-                                             ": out of memory while packing or encoding it (" + std::to_string(w) + "x" +
-                                             std::to_string(h) + "); run with fewer --jobs, or set the preset's max_size",
+                                             ": out of memory while packing or encoding it (" + std::to_string(w) +
+                                             "x" + std::to_string(h) +
+                                             "); run with fewer --jobs, or set the preset's max_size",
                                          {}};
         } catch (const std::exception& e) {
-            written[i].failure = Finding{std::string(code::output_write_failed), Severity::error, "", "",
-                                         preset_.output_path(src.name, *wanted[i]) + ": " + e.what(), {}};
+            written[i].failure = Finding{std::string(code::output_write_failed),
+                                         Severity::error,
+                                         "",
+                                         "",
+                                         preset_.output_path(src.name, *wanted[i]) + ": " + e.what(),
+                                         {}};
         }
     });
     // GPUs and engines import at most 16384 pixels a side (Vulkan's and D3D12's image limit on
@@ -278,7 +297,10 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     constexpr int kEngineMaxSide = 16384;
     for (const auto& r : written)
         if (r.entry && std::max(r.entry->width, r.entry->height) > kEngineMaxSide) {
-            plan.findings.push_back({std::string(code::output_too_large), Severity::warning, "", "",
+            plan.findings.push_back({std::string(code::output_too_large),
+                                     Severity::warning,
+                                     "",
+                                     "",
                                      r.entry->file + " is " + std::to_string(r.entry->width) + "x" +
                                          std::to_string(r.entry->height) + ": wider or taller than " +
                                          std::to_string(kEngineMaxSide) +
@@ -307,9 +329,12 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     m.inputs = manifest_inputs(plan);
     m.constants = std::move(plan.constants);
     m.findings = std::move(plan.findings);
-    write_material_files(preset_, planes, [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-        return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
-    }, m);
+    write_material_files(
+        preset_, planes,
+        [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+            return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
+        },
+        m);
     return res;
 }
 
@@ -335,11 +360,11 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         return result;
     }
     // The folder is ours from here to the end (lock, journal): process/output_dir.hpp.
-    std::unique_ptr<OutputFolder> folder =
-        OutputFolder::open({opt_.out_dir, opt_.manifest_name, opt_.force}, result.error, result.usage_error);
+    std::unique_ptr<OutputFolder> folder = OutputFolder::open({opt_.out_dir, opt_.manifest_name, opt_.force},
+                                                              result.error, result.usage_error);
     if (!folder) return result;
     remove_stale_temps(opt_.out_dir);  // a killed run's, never a running one's
-    if (opt_.shard) {  // this shard's sets only (process/work: stable, balanced by size)
+    if (opt_.shard) {                  // this shard's sets only (process/work: stable, balanced by size)
         std::vector<uint64_t> bytes;
         bytes.reserve(sets.size());
         for (const auto& s : sets) bytes.push_back(set_bytes(s));
@@ -354,24 +379,26 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     // one file (a preset pattern that leaves names equal, names that differ in case only) are
     // refused the same way every run, and none is written twice.
     refused_.clear();
-    for (const std::string& own : {opt_.manifest_name, folder->lock_name(), folder->journal_name()}) folder->claim(own, "");
+    for (const std::string& own : {opt_.manifest_name, folder->lock_name(), folder->journal_name()})
+        folder->claim(own, "");
     for (const auto& set : sets)
         for (const auto& o : preset_.outputs) {
             const std::string rel = preset_.output_path(set.name, o);
-            if (std::string why = folder->claim(rel, set.name); !why.empty()) refused_[set.name][o.suffix] = rel + ": " + why;
+            if (std::string why = folder->claim(rel, set.name); !why.empty())
+                refused_[set.name][o.suffix] = rel + ": " + why;
         }
     if (!folder->begin(result.error)) return result;
     folder_ = folder.get();
     // The cache never fails a run: one that cannot be opened is a problem reported, then off.
     std::optional<Cache> cache;
     CacheLog cache_log;
+    context_ = context_digest(preset_, opt_.rules, *color_);  // the cache's keys and a shard's run
     if (opt_.cache_dir) {
         std::string error;
         cache = Cache::open(*opt_.cache_dir, error);
         if (cache) {
             cache_ = &*cache;
             cache_log_ = &cache_log;
-            context_ = context_digest(preset_, opt_.rules, *color_);
         } else {
             result.cache_problems.push_back(error + "; running without the cache");
         }
@@ -413,6 +440,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     m.generator = std::string(kGenerator);
     m.preset = preset_.name;
     m.normal_convention = preset_.normal_convention;
+    if (opt_.shard) m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, context_};
     for (size_t i = 0; i < sets.size(); ++i) {
         auto& r = results[i];
         if (r.failure) {
@@ -439,9 +467,12 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         return result;
     }
     // library.gltf: every material of the run in one file (not per shard: a shard sees its part).
-    if (!opt_.shard && !write_library(m, opt_.out_dir, [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-            return folder->write(rel, b, e);
-        }, result.error))
+    if (!opt_.shard && !write_library(
+                           m, opt_.out_dir,
+                           [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+                               return folder->write(rel, b, e);
+                           },
+                           result.error))
         return result;
     const std::string text = json_text(manifest::to_json(m));  // never throws on non-UTF-8 names
     std::set<std::string> produced;

@@ -2,11 +2,11 @@
 // Per set: plan_set (decode mode) -> canonical planes -> packed outputs written atomically ->
 // the set's manifest entry; the batch writes manifest.json last.
 #pragma once
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
-#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,15 +22,15 @@
 namespace mf {
 
 struct MaterialResult {
-    manifest::Material entry;           // one element of the manifest's "materials"
-    std::optional<std::string> failure; // nothing could be produced (goes to "failures")
+    manifest::Material entry;            // one element of the manifest's "materials"
+    std::optional<std::string> failure;  // nothing could be produced (goes to "failures")
 };
 
 struct IngestOptions {
     std::filesystem::path out_dir;
-    int jobs = 0;  // 0 = all cores
+    int jobs = 0;                                     // 0 = all cores
     std::optional<NormalConvention> normal_override;  // --normal-convention
-    validate::RuleConfig rules;  // validation thresholds, severities, suppressions
+    validate::RuleConfig rules;                       // validation thresholds, severities, suppressions
     // Cap on the estimated decoded bytes of the sets in flight (0 = no cap). A set larger than
     // the cap runs alone.
     uint64_t memory_budget = uint64_t{1} << 30;
@@ -52,9 +52,9 @@ struct IngestOptions {
 
 struct IngestResult {
     manifest::Manifest manifest;
-    std::string error;  // batch-level error (output folder unusable); empty when fine
-    bool usage_error = false;   // `error` is about the choice of output folder (exit 2)
-    bool interrupted = false;   // stopped by a signal (core/interrupt.hpp): no manifest written
+    std::string error;               // batch-level error (output folder unusable); empty when fine
+    bool usage_error = false;        // `error` is about the choice of output folder (exit 2)
+    bool interrupted = false;        // stopped by a signal (core/interrupt.hpp): no manifest written
     std::vector<std::string> notes;  // outputs of earlier runs removed or kept (output_dir.hpp)
     // Sets restored from the cache, sets computed, and what went wrong with the cache (a corrupt
     // blob, a full disk: the cache turned itself off), one line each.

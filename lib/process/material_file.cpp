@@ -13,8 +13,8 @@ std::span<const unsigned char> bytes_of(const std::string& s) {
     return {reinterpret_cast<const unsigned char*>(s.data()), s.size()};
 }
 
-bool write_pair(const gltf::Files& files, const std::string& gltf_rel, const std::string& bin_rel, const WriteFile& write,
-                std::vector<manifest::MaterialFile>& recorded, std::string& error) {
+bool write_pair(const gltf::Files& files, const std::string& gltf_rel, const std::string& bin_rel,
+                const WriteFile& write, std::vector<manifest::MaterialFile>& recorded, std::string& error) {
     // The buffer first: a .gltf is never there without the buffer it names.
     if (!write(bin_rel, files.bin, error) || !write(gltf_rel, bytes_of(files.gltf), error)) return false;
     recorded.push_back({gltf_rel, "gltf", sha256_hex(bytes_of(files.gltf))});
@@ -30,9 +30,13 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
     // --normal-convention dx: the PNGs as asked, but no glTF (its normal textures are +Y).
     for (const auto& o : m.outputs)
         if (o.normal_convention && *o.normal_convention != NormalConvention::gl) {
-            m.findings.push_back({std::string(code::material_file_skipped), Severity::info, "normal", "",
+            m.findings.push_back({std::string(code::material_file_skipped),
+                                  Severity::info,
+                                  "normal",
+                                  "",
                                   gltf_rel + " not written: glTF normal textures are +Y (gl) and this run writes " +
-                                      std::string(convention_name(*o.normal_convention)) + " normals (--normal-convention)",
+                                      std::string(convention_name(*o.normal_convention)) +
+                                      " normals (--normal-convention)",
                                   {{"normal_convention", std::string(convention_name(*o.normal_convention))}}});
             return;
         }
@@ -49,13 +53,16 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
     std::string error;
     if (!gltf::material_gltf(m, gltf_rel, m.name + ".bin", opt, files, error) ||
         !write_pair(files, gltf_rel, bin_rel, write, m.material_files, error)) {
-        m.findings.push_back({std::string(code::output_write_failed), Severity::error, "", "", gltf_rel + ": " + error, {}});
+        m.findings.push_back(
+            {std::string(code::output_write_failed), Severity::error, "", "", gltf_rel + ": " + error, {}});
         m.status = manifest::Status::partial;
     }
 }
 
-bool write_library(manifest::Manifest& m, const std::filesystem::path& out_dir, const WriteFile& write, std::string& error) {
-    const bool any = std::any_of(m.materials.begin(), m.materials.end(), [](const auto& mat) { return !mat.material_files.empty(); });
+bool write_library(manifest::Manifest& m, const std::filesystem::path& out_dir, const WriteFile& write,
+                   std::string& error) {
+    const bool any = std::any_of(m.materials.begin(), m.materials.end(),
+                                 [](const auto& mat) { return !mat.material_files.empty(); });
     if (!any) return true;
     gltf::Files files;
     if (!gltf::library_gltf(m, out_dir, files, error)) return false;

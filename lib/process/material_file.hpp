@@ -23,6 +23,7 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
 
 // library.gltf + library.bin at the folder's root from the materials' .gltf files (read back
 // from `out_dir`), recorded in m.library. Nothing when no material has a .gltf.
-bool write_library(manifest::Manifest& m, const std::filesystem::path& out_dir, const WriteFile& write, std::string& error);
+bool write_library(manifest::Manifest& m, const std::filesystem::path& out_dir, const WriteFile& write,
+                   std::string& error);
 
 }  // namespace mf

@@ -62,7 +62,9 @@ std::vector<Finding> missing_map_findings(const Preset& preset, const std::set<R
         const auto sev = preset.missing_severity.find(r);
         if (sev == preset.missing_severity.end()) continue;
         nlohmann::json figures = nlohmann::json::object();
-        if (made) figures["generated"] = made->value.size() == 1 ? nlohmann::json(made->value[0]) : nlohmann::json(made->value);
+        if (made)
+            figures["generated"] = made->value.size() == 1 ? nlohmann::json(made->value[0])
+                                                           : nlohmann::json(made->value);
         findings.push_back({std::string(code::missing_map), sev->second, rname, "", "no " + rname + " map; " + what,
                             std::move(figures)});
     }

@@ -78,7 +78,9 @@ void journal_files(const fs::path& file, std::map<std::string, std::string>& out
             const auto rel = inside((*line)[key].get<std::string>());
             if (!rel) continue;
             if (std::string(key) == "wrote") rewritten.insert(*rel);
-            const std::string sha = line->contains("sha256") && (*line)["sha256"].is_string() ? (*line)["sha256"].get<std::string>() : "";
+            const std::string sha = line->contains("sha256") && (*line)["sha256"].is_string()
+                                        ? (*line)["sha256"].get<std::string>()
+                                        : "";
             out.emplace(*rel, sha);
         }
     }
@@ -87,7 +89,8 @@ void journal_files(const fs::path& file, std::map<std::string, std::string>& out
 
 // Opens the folder holding `rel` under `root` without following links; -1 when any part of the
 // way is missing or a link. `leaf` gets the last component.
-int open_parent(const fs::path& root, const std::string& rel, std::string& leaf, std::vector<std::string>* parts_out = nullptr) {
+int open_parent(const fs::path& root, const std::string& rel, std::string& leaf,
+                std::vector<std::string>* parts_out = nullptr) {
     std::vector<std::string> parts;
     for (const auto& p : fs::path(rel)) parts.push_back(p.string());
     if (parts.empty()) return -1;
@@ -106,14 +109,15 @@ int open_parent(const fs::path& root, const std::string& rel, std::string& leaf,
 std::optional<std::string> file_sha(int dfd, const std::string& leaf) {
     const int fd = ::openat(dfd, leaf.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) return std::nullopt;
-    struct stat st{};
+    struct stat st {};
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         ::close(fd);
         return std::nullopt;
     }
     std::vector<unsigned char> bytes;
     std::vector<unsigned char> buf(size_t{1} << 16);
-    for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;) bytes.insert(bytes.end(), buf.begin(), buf.begin() + n);
+    for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;)
+        bytes.insert(bytes.end(), buf.begin(), buf.begin() + n);
     ::close(fd);
     return sha256_hex(bytes);
 }
@@ -180,9 +184,11 @@ bool OutputFolder::ours(const std::string& rel) const { return previous_.count(r
 bool OutputFolder::begin(std::string& error) {
     std::string text = std::string(kJournalHeader) + "\n";  // then one JSON object per line
     for (const auto& [rel, sha] : previous_)
-        text += nlohmann::json{{"prev", rel}, {"sha256", sha}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-    if (!write_file_under(opt_.dir, journal_name(), std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()),
-                          error))
+        text += nlohmann::json{{"prev", rel}, {"sha256", sha}}.dump(-1, ' ', false,
+                                                                    nlohmann::json::error_handler_t::replace) +
+                "\n";
+    if (!write_file_under(opt_.dir, journal_name(),
+                          std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
         return false;
     journal_fd_ = ::open((opt_.dir / journal_name()).c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
     if (journal_fd_ < 0) {
@@ -206,16 +212,21 @@ std::string OutputFolder::claim(const std::string& rel, const std::string& owner
     const auto r = inside(rel);
     if (!r) return "the path leaves the output folder";
     const std::string key = lower(*r);
-    auto held = [&](const std::string& by) { return by == owner ? std::string("another output of this material") : "material '" + by + "'"; };
+    auto held = [&](const std::string& by) {
+        return by == owner ? std::string("another output of this material") : "material '" + by + "'";
+    };
     if (const auto it = claimed_files_.find(key); it != claimed_files_.end())
-        return "the file is also an output of " + held(it->second) + " (output names differ only in letter case, or a pattern leaves them equal)";
+        return "the file is also an output of " + held(it->second) +
+               " (output names differ only in letter case, or a pattern leaves them equal)";
     if (const auto it = claimed_dirs_.find(key); it != claimed_dirs_.end())
         return "a folder of that name holds outputs of " + held(it->second);
     std::vector<std::string> ancestors;
-    for (fs::path p = fs::path(key).parent_path(); !p.empty(); p = p.parent_path()) ancestors.push_back(p.generic_string());
+    for (fs::path p = fs::path(key).parent_path(); !p.empty(); p = p.parent_path())
+        ancestors.push_back(p.generic_string());
     for (const auto& a : ancestors)
         if (const auto it = claimed_files_.find(a); it != claimed_files_.end())
-            return "its folder " + a + " is the file " + (it->second.empty() ? std::string("of matforge's own") : "of " + held(it->second));
+            return "its folder " + a + " is the file " +
+                   (it->second.empty() ? std::string("of matforge's own") : "of " + held(it->second));
     claimed_files_.emplace(key, owner);
     for (const auto& a : ancestors) claimed_dirs_.emplace(a, owner);
     return {};
@@ -227,7 +238,9 @@ bool OutputFolder::write(const std::string& rel, std::span<const unsigned char> 
             return "a file matforge did not write is in the way (no earlier manifest of this folder lists it); "
                    "move it away, or pass --force to replace it";
         // Journaled before it is replaced: a run stopped after the rename still knows the file is ours.
-        const std::string line = nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+        const std::string line = nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false,
+                                                                     nlohmann::json::error_handler_t::replace) +
+                                 "\n";
         std::lock_guard lock(journal_mutex_);
         if (journal_fd_ >= 0 && (::write(journal_fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()) ||
                                  ::fdatasync(journal_fd_) != 0))
@@ -239,8 +252,10 @@ bool OutputFolder::write(const std::string& rel, std::span<const unsigned char> 
 bool OutputFolder::finish(const std::string& manifest_text, const std::set<std::string>& produced,
                           std::vector<std::string>& notes, std::string& error) {
     if (!write_file_under(opt_.dir, opt_.manifest_name,
-                          std::span(reinterpret_cast<const unsigned char*>(manifest_text.data()), manifest_text.size()), error)) {
-        error = (opt_.dir / opt_.manifest_name).string() + ": " + error.substr(error.find(": ") == std::string::npos ? 0 : error.find(": ") + 2);
+                          std::span(reinterpret_cast<const unsigned char*>(manifest_text.data()), manifest_text.size()),
+                          error)) {
+        error = (opt_.dir / opt_.manifest_name).string() + ": " +
+                error.substr(error.find(": ") == std::string::npos ? 0 : error.find(": ") + 2);
         return false;
     }
     // Outputs of earlier runs this one does not produce: removed when unchanged since we wrote
@@ -258,11 +273,14 @@ bool OutputFolder::finish(const std::string& manifest_text, const std::set<std::
             continue;
         }
         if (!sha.empty() && *now != sha) {
-            notes.push_back("kept " + rel + ": an earlier run wrote it, this one does not, and it has changed since; remove it by hand if it is not needed");
+            notes.push_back(
+                "kept " + rel +
+                ": an earlier run wrote it, this one does not, and it has changed since; remove it by hand if it is not needed");
             ::close(dfd);
             continue;
         }
-        if (::unlinkat(dfd, leaf.c_str(), 0) == 0) notes.push_back("removed " + rel + ": an earlier run's output that this run does not produce");
+        if (::unlinkat(dfd, leaf.c_str(), 0) == 0)
+            notes.push_back("removed " + rel + ": an earlier run's output that this run does not produce");
         ::close(dfd);
         // Its folders, when now empty (rmdir fails on any other).
         for (size_t n = parts.size() - 1; n > 0; --n) {

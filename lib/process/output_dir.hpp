@@ -72,7 +72,7 @@ private:
     std::optional<FolderLock> lock_;
     // Files earlier runs of ours left: path -> sha256 the manifest lists ("" from a journal).
     std::map<std::string, std::string> previous_;
-    std::set<std::string> others_;  // listed by the folder's other manifests and journals
+    std::set<std::string> others_;                      // listed by the folder's other manifests and journals
     std::map<std::string, std::string> claimed_files_;  // lower-case path -> owner
     std::map<std::string, std::string> claimed_dirs_;   // lower-case folder -> owner
     std::mutex journal_mutex_;

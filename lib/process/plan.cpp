@@ -41,7 +41,10 @@ std::vector<SidecarRoles> read_sidecars(Files& files) {
         std::string text, error;
         if (in.bytes) {
             if (in.bytes->size() > kSidecarMaxBytes && !glb) error = "larger than 8 MiB";
-            else text.assign(in.bytes->begin(), in.bytes->begin() + static_cast<std::ptrdiff_t>(std::min(in.bytes->size(), kSidecarMaxBytes)));
+            else
+                text.assign(in.bytes->begin(),
+                            in.bytes->begin() +
+                                static_cast<std::ptrdiff_t>(std::min(in.bytes->size(), kSidecarMaxBytes)));
         } else if (!in.open_error.empty()) {
             error = in.open_error;
         } else if (const auto why = not_a_regular_file(in.path)) {
@@ -171,8 +174,7 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
 // Serves decoded maps to the rules band by band, as mf::read_bands would read them: codes are
 // converted one band at a time (the band stays in cache; the map is never held as floats).
 validate::BandReader memory_reader(std::map<std::string, const DecodedMap*> by_display) {
-    return [by_display = std::move(by_display)](const InputFile& in, int band_rows, ImageInfo& info,
-                                                std::string& error,
+    return [by_display = std::move(by_display)](const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
                                                 const std::function<void(int, int, const float*)>& fn) {
         const auto it = by_display.find(in.display);
         if (it == by_display.end()) return read_bands(in, band_rows, info, error, fn);  // an alternate
@@ -244,11 +246,11 @@ void conversion_findings(SetPlan& plan, NormalConvention target) {
         if (out == Role::normal) {
             const NormalConvention from = plan.normal_from();
             if (from != target)
-                plan.findings.push_back(make_finding(
-                    code::normal_convention_converted, Severity::info, out, c.file,
-                    "green channel flipped from " + std::string(convention_name(from)) + " to " +
-                        std::string(convention_name(target)) + " for the preset",
-                    {{"from", convention_name(from)}, {"to", convention_name(target)}}));
+                plan.findings.push_back(
+                    make_finding(code::normal_convention_converted, Severity::info, out, c.file,
+                                 "green channel flipped from " + std::string(convention_name(from)) + " to " +
+                                     std::string(convention_name(target)) + " for the preset",
+                                 {{"from", convention_name(from)}, {"to", convention_name(target)}}));
         }
         if (r.invert)
             plan.findings.push_back(make_finding(code::gloss_inverted, Severity::info, out, c.file,
@@ -321,9 +323,13 @@ void decide_size(SetPlan& plan) {
         const Candidate& c = plan.inputs.at(m.role);
         refused.insert(c.file);
         const std::string file = c.file;
-        plan.findings.push_back({std::string(code::aspect_mismatch), Severity::error, std::string(role_name(m.role)), file,
-                                 file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + ", a shape more than 2x off the set's " +
-                                     std::to_string(w) + "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
+        plan.findings.push_back({std::string(code::aspect_mismatch),
+                                 Severity::error,
+                                 std::string(role_name(m.role)),
+                                 file,
+                                 file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) +
+                                     ", a shape more than 2x off the set's " + std::to_string(w) + "x" +
+                                     std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
                                      "); it is not stretched to fit and not used",
                                  {{"size", {m.w, m.h}}, {"set_size", {w, h}}}});
         for (auto it = plan.routes.begin(); it != plan.routes.end();)
@@ -347,7 +353,8 @@ void decide_size(SetPlan& plan) {
             if (!g.is_object() || !g.contains("reference_width") || !g.contains("reference_height")) return false;
             const auto& rw = g["reference_width"];
             const auto& rh = g["reference_height"];
-            if (!rw.is_number_integer() || !rh.is_number_integer() || !refused_sizes.count({rw.get<int>(), rh.get<int>()}))
+            if (!rw.is_number_integer() || !rh.is_number_integer() ||
+                !refused_sizes.count({rw.get<int>(), rh.get<int>()}))
                 return false;
             restate.insert(f.file);
             return true;
@@ -357,11 +364,15 @@ void decide_size(SetPlan& plan) {
             const auto in = plan.inputs.find(m.role);
             if (in == plan.inputs.end() || !restate.count(in->second.file) || (m.w == w && m.h == h)) continue;
             const std::string& file = in->second.file;
-            plan.findings.push_back({std::string(code::resolution_mismatch), Severity::warning, std::string(role_name(m.role)), file,
-                                     file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " +
-                                         std::to_string(w) + "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
-                                         "); it will be resampled",
-                                     {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}}});
+            plan.findings.push_back(
+                {std::string(code::resolution_mismatch),
+                 Severity::warning,
+                 std::string(role_name(m.role)),
+                 file,
+                 file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " +
+                     std::to_string(w) + "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
+                     "); it will be resampled",
+                 {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}}});
         }
     }
     plan.width = w;
@@ -376,7 +387,10 @@ void limit_size(SetPlan& plan, const Preset& preset) {
         const double k = static_cast<double>(preset.max_size) / std::max(w, h);
         w = std::max(1, static_cast<int>(std::lround(w * k)));
         h = std::max(1, static_cast<int>(std::lround(h * k)));
-        plan.findings.push_back({std::string(code::resized), Severity::info, "", "",
+        plan.findings.push_back({std::string(code::resized),
+                                 Severity::info,
+                                 "",
+                                 "",
                                  "downsampled from " + std::to_string(ow) + "x" + std::to_string(oh) + " to " +
                                      std::to_string(w) + "x" + std::to_string(h) + " (preset max_size " +
                                      std::to_string(preset.max_size) + ")",
@@ -403,8 +417,8 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
         if (!info) return std::nullopt;
         return HeaderInfo{info->width, info->height, info->channels, info->bit_depth, info->is_float};
     };
-    const SetDiscovery d =
-        discover_set(src.files, header, ChoicePolicy{preset.normal_convention, preset.max_size}, read_sidecars(files));
+    const SetDiscovery d = discover_set(src.files, header, ChoicePolicy{preset.normal_convention, preset.max_size},
+                                        read_sidecars(files));
     plan.convention = d.convention;
     plan.findings = d.findings;
     plan.findings.insert(plan.findings.end(), src.findings.begin(), src.findings.end());  // NAMES_MERGED, …

@@ -42,19 +42,19 @@ struct DecodedMap {
 };
 
 struct SetPlan {
-    std::string convention;                // naming family most maps follow
-    std::map<Role, Candidate> inputs;      // input role -> the file that was read
-    Routes routes;                         // output role -> where its values come from
-    std::map<std::string, DecodedMap> decoded;  // decode mode: by file
+    std::string convention;                       // naming family most maps follow
+    std::map<Role, Candidate> inputs;             // input role -> the file that was read
+    Routes routes;                                // output role -> where its values come from
+    std::map<std::string, DecodedMap> decoded;    // decode mode: by file
     std::optional<manifest::NormalFacts> normal;  // the routed normal map's convention verdict
-    int width = 0, height = 0;             // the set's output size (largest routed map, within max_size)
-    std::vector<manifest::Constant> constants;  // generated for roles the outputs need
-    std::vector<Finding> findings;         // in emission order; config applied
-    bool normal_z_rebuilt = false;         // the normal map's blue is empty: Z from X and Y
-    bool partial = false;                  // some map could not be read
-    std::optional<std::string> failure;    // nothing could be read: the set is an input failure
-    uint64_t footprint = 0;                // estimated decoded bytes (decode mode)
-    std::unique_ptr<BudgetLease> lease;    // held until the plan is destroyed
+    int width = 0, height = 0;                    // the set's output size (largest routed map, within max_size)
+    std::vector<manifest::Constant> constants;    // generated for roles the outputs need
+    std::vector<Finding> findings;                // in emission order; config applied
+    bool normal_z_rebuilt = false;                // the normal map's blue is empty: Z from X and Y
+    bool partial = false;                         // some map could not be read
+    std::optional<std::string> failure;           // nothing could be read: the set is an input failure
+    uint64_t footprint = 0;                       // estimated decoded bytes (decode mode)
+    std::unique_ptr<BudgetLease> lease;           // held until the plan is destroyed
 
     // The normal convention the outputs are converted from: the verdict, gl when undecided.
     NormalConvention normal_from() const;

@@ -114,9 +114,9 @@ fs::path real_path(const fs::path& p) {
 // Image formats matforge does not read: a file named like a map in one of them is not silently
 // nothing ("Wood_Color.gif").
 bool unread_image_format(const std::string& file) {
-    static const std::set<std::string> kExt{"gif", "jp2", "j2k", "j2c", "jpx", "jpf", "ppm", "pgm", "pbm", "pnm",
-                                            "pam", "pfm", "heic", "heif", "avif", "jxl", "ico", "sgi", "rgb", "iff",
-                                            "pcx", "ktx", "ktx2", "astc", "pvr", "basis", "dpx", "cin", "fits"};
+    static const std::set<std::string> kExt{"gif", "jp2", "j2k",  "j2c",  "jpx",  "jpf",   "ppm", "pgm", "pbm", "pnm",
+                                            "pam", "pfm", "heic", "heif", "avif", "jxl",   "ico", "sgi", "rgb", "iff",
+                                            "pcx", "ktx", "ktx2", "astc", "pvr",  "basis", "dpx", "cin", "fits"};
     const auto dot = file.rfind('.');
     if (dot == std::string::npos || dot == 0 || !kExt.count(lower(file.substr(dot + 1)))) return false;
     return classify_name(file.substr(0, dot) + ".png").has_value();
@@ -144,8 +144,8 @@ bool already_seen(Scan& scan, const fs::path& p) {
         const bool known = std::any_of(s.findings.begin(), s.findings.end(),
                                        [&](const Finding& f) { return f.message == msg; });
         if (!known)
-            s.findings.push_back({std::string(code::duplicate_input), Severity::info, "", "", msg,
-                                  {{"input", scan.input}}});
+            s.findings.push_back(
+                {std::string(code::duplicate_input), Severity::info, "", "", msg, {{"input", scan.input}}});
     }
     return true;
 }
@@ -225,7 +225,8 @@ void scan_zip(Scan& scan, const fs::path& zip_path) {
     auto folders = zip_folders(*zip, error, unsafe);
     const std::string shown = zip_path.string();
     if (!error.empty()) {
-        scan.failures.push_back({shown, std::string(code::unreadable_file), shown + ": not a readable .zip (" + error + ")"});
+        scan.failures.push_back({shown, std::string(code::unreadable_file),
+                                 shown + ": not a readable .zip (" + error + ")"});
         scan.seen[real_path(zip_path)];
         return;
     }
@@ -251,14 +252,18 @@ void scan_zip(Scan& scan, const fs::path& zip_path) {
             const std::string entry = s.zip_folder.empty() ? f : s.zip_folder + "/" + f;
             const auto it = zip->entries.find(entry);
             if (it == zip->entries.end() || it->second.copies < 2) continue;
-            s.findings.push_back({std::string(code::duplicate_entry), Severity::warning, "", f,
+            s.findings.push_back({std::string(code::duplicate_entry),
+                                  Severity::warning,
+                                  "",
+                                  f,
                                   shown + ": " + std::to_string(it->second.copies) + " entries are named '" + entry +
                                       "'; the first is used, the others are ignored",
                                   {{"entries", it->second.copies}}});
         }
     }
     if (scan.out.size() == before)
-        scan.failures.push_back({shown, std::string(code::unrecognized_file), shown + ": the archive holds no recognizable material maps"});
+        scan.failures.push_back({shown, std::string(code::unrecognized_file),
+                                 shown + ": the archive holds no recognizable material maps"});
 }
 
 // Whether a glTF or Megascans sidecar in the folder names one of its images: then its maps are
@@ -271,7 +276,8 @@ bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& fi
         std::vector<unsigned char> bytes;
         std::string error;
         if (!read_file(dir / f, bytes, error)) continue;
-        const SidecarRoles roles = sidecar_roles(f, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        const SidecarRoles roles = sidecar_roles(f, std::string_view(reinterpret_cast<const char*>(bytes.data()),
+                                                                     bytes.size()));
         for (const SidecarMap& m : roles.maps)
             if (std::binary_search(files.begin(), files.end(), m.file)) return true;
     }
@@ -279,7 +285,8 @@ bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& fi
 }
 
 // The files of `dir` that are not folders (hidden ones left out), sorted; zips go to `zips`.
-bool list_folder(const fs::path& dir, std::vector<std::string>& files, std::vector<fs::path>* zips, std::string& error) {
+bool list_folder(const fs::path& dir, std::vector<std::string>& files, std::vector<fs::path>* zips,
+                 std::string& error) {
     std::error_code ec;
     fs::directory_iterator it(dir, ec);
     for (fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
@@ -292,8 +299,7 @@ bool list_folder(const fs::path& dir, std::vector<std::string>& files, std::vect
         // they get a coded error naming them when read (never opened, so a FIFO cannot hang us).
         if (zips && fs::is_regular_file(st) && name.size() > 4 && lower(fs::path(name).extension().string()) == ".zip")
             zips->push_back(it->path());
-        else
-            files.push_back(name);
+        else files.push_back(name);
     }
     if (ec) {
         error = ec.message();
@@ -333,9 +339,11 @@ void scan_folder(Scan& scan, const fs::path& dir) {
     for (const std::string& f : files)
         if (unread_image_format(f)) unread += (unread.empty() ? "" : ", ") + f;
     if (!unread.empty())
-        scan.failures.push_back({dir.string(), std::string(code::unrecognized_file),
-                                 dir.string() + ": " + unread + " name material maps in a format matforge does not read "
-                                 "(it reads PNG, JPEG, TIFF, EXR, HDR, TGA, BMP, WebP, DDS and PSD); no set is made of them"});
+        scan.failures.push_back(
+            {dir.string(), std::string(code::unrecognized_file),
+             dir.string() + ": " + unread +
+                 " name material maps in a format matforge does not read "
+                 "(it reads PNG, JPEG, TIFF, EXR, HDR, TGA, BMP, WebP, DDS and PSD); no set is made of them"});
 }
 
 // Whether the output folder `dir` (met while walking an input) holds a set's maps of its own,
@@ -365,7 +373,8 @@ std::string set_in_output_folder(const fs::path& dir) {
             break;
         }
     return "the output folder " + dir.string() + " is the folder of the material set '" + sets.front().name + "' (" +
-           first + " …): its outputs would be written among its sources and the set left out; choose an output folder "
+           first +
+           " …): its outputs would be written among its sources and the set left out; choose an output folder "
            "that holds no material";
 }
 
@@ -394,14 +403,16 @@ void walk(Scan& scan, const fs::path& root) {
 
 std::string safe_name(const std::string& name) {
     std::string s;
-    for (unsigned char c : name) s += (std::isalnum(c) || c == '_' || c == '-' || c == '.') ? static_cast<char>(c) : '_';
+    for (unsigned char c : name)
+        s += (std::isalnum(c) || c == '_' || c == '-' || c == '.') ? static_cast<char>(c) : '_';
     while (!s.empty() && s.front() == '.') s.erase(0, 1);
     if (s.size() > kMaxNameBytes) s.resize(kMaxNameBytes);
     if (s.empty()) s = "material";
     return s;
 }
 
-std::vector<std::string> unique_names(const std::vector<std::string>& wanted, const std::vector<std::string>& reserved) {
+std::vector<std::string> unique_names(const std::vector<std::string>& wanted,
+                                      const std::vector<std::string>& reserved) {
     std::vector<std::string> names;
     std::map<std::string, int> holders;  // lower-case safe name -> how many sets want it
     for (const auto& w : wanted) {
@@ -411,7 +422,8 @@ std::vector<std::string> unique_names(const std::vector<std::string>& wanted, co
     std::set<std::string> taken(reserved.begin(), reserved.end());
     // First come, first kept: the first set of each name keeps it, unless reserved.
     std::vector<bool> kept(names.size(), false);
-    for (size_t i = 0; i < names.size(); ++i) kept[i] = !taken.count(lower(names[i])) && taken.insert(lower(names[i])).second;
+    for (size_t i = 0; i < names.size(); ++i)
+        kept[i] = !taken.count(lower(names[i])) && taken.insert(lower(names[i])).second;
     for (size_t i = 0; i < names.size(); ++i) {
         if (kept[i]) continue;
         const std::string base = names[i];
@@ -450,9 +462,11 @@ InputFile MaterialSource::open(const std::string& file) const {
                    if (zip_stat_index(z, e->index, 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
                        in.open_error = "entry not found in the archive";
                    } else if (e->symlink) {
-                       in.open_error = "a symbolic link stored in the archive, not a file (links in archives are never followed)";
+                       in.open_error =
+                           "a symbolic link stored in the archive, not a file (links in archives are never followed)";
                    } else if (st.size > kMaxEntry) {
-                       in.open_error = "entry declares " + std::to_string(st.size) + " bytes, more than the 2 GiB limit";
+                       in.open_error = "entry declares " + std::to_string(st.size) +
+                                       " bytes, more than the 2 GiB limit";
                    } else if (!(f = zip_fopen_index(z, e->index, 0))) {
                        in.open_error = std::string("cannot read the entry (") + zip_strerror(z) + ")";
                    } else {

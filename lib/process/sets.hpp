@@ -16,12 +16,12 @@ namespace mf {
 class ZipArchive;
 
 struct MaterialSource {
-    std::string name;                 // unique in the batch (case-insensitively), safe as a folder name
-    std::filesystem::path root;       // the folder holding the files, or the .zip file
-    std::string zip_folder;           // inside a .zip: the folder of the set ("" = top), '/'-separated
+    std::string name;            // unique in the batch (case-insensitively), safe as a folder name
+    std::filesystem::path root;  // the folder holding the files, or the .zip file
+    std::string zip_folder;      // inside a .zip: the folder of the set ("" = top), '/'-separated
     bool is_zip = false;
-    std::vector<std::string> files;   // relative to root (or to zip_folder), sorted
-    std::string display;              // "path/to/set" or "path/to/x.zip/folder" for messages
+    std::vector<std::string> files;       // relative to root (or to zip_folder), sorted
+    std::string display;                  // "path/to/set" or "path/to/x.zip/folder" for messages
     std::shared_ptr<ZipArchive> archive;  // is_zip: the archive, opened once
     // What finding the set decided that the user should know (NAMES_MERGED, DUPLICATE_ENTRY,
     // DUPLICATE_INPUT); plan_set reports them with the set's other findings.

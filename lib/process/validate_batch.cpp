@@ -74,8 +74,7 @@ validate::Report validate_inputs(const std::vector<std::filesystem::path>& input
     for (size_t i = 0; i < sets.size(); ++i) {
         if (outcomes[i].failed)
             report.failures.push_back({sets[i].display, std::string(code::unreadable_file), outcomes[i].failure});
-        else
-            report.materials.push_back(std::move(outcomes[i].report));
+        else report.materials.push_back(std::move(outcomes[i].report));
     }
     for (auto& f : source_failures) report.failures.push_back(std::move(f));
     std::stable_sort(report.materials.begin(), report.materials.end(),

@@ -1,13 +1,15 @@
 #include "process/work.hpp"
 
+#include <openssl/evp.h>
 #include <algorithm>
 #include <cctype>
 #include <numeric>
-#include <openssl/evp.h>
 
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "core/version.hpp"
+#include "image/image.hpp"
+#include "texture/texture.hpp"
 
 namespace mf {
 namespace {
@@ -42,7 +44,9 @@ private:
 std::string context_digest(const Preset& preset, const validate::RuleConfig& rules, const ColorContext& color) {
     Hasher h;
     h.add(kGenerator);
-    h.add(preset.source_json.dump());  // sorted keys: the same preset, the same text
+    h.add(image_library_version());                                 // decodes every input, encodes PNG/TIFF/EXR outputs
+    h.add(texture::encoder_versions());                             // BCn, ASTC, zstd
+    h.add(preset.source_json.dump());                               // sorted keys: the same preset, the same text
     h.add(std::string(convention_name(preset.normal_convention)));  // --normal-convention overrides
     h.add(validate::describe(rules).dump());
     h.add(color.cache_id());

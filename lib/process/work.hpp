@@ -2,8 +2,9 @@
 // stable assignment of sets to shards balanced by size (`matforge plan`, `ingest --shard I/N`).
 //
 // The action key is a SHA-256 over everything that decides a set's outputs: matforge's version,
-// the resolved preset, the rules configuration, the OpenColorIO config, and the name and bytes
-// of every file of the set (content, never time stamps). Equal keys, equal outputs.
+// the versions of the libraries that decode and encode (OpenImageIO, OpenColorIO, libsquish,
+// astcenc, zstd), the resolved preset, the rules configuration, the OpenColorIO config, and the
+// name and bytes of every file of the set (content, never time stamps). Equal keys, equal outputs.
 #pragma once
 #include <cstdint>
 #include <functional>

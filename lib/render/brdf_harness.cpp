@@ -125,7 +125,8 @@ struct BrdfHarness::Impl {
 
     // Binds inputs/outputs, dispatches `count` invocations (timed), copies `out` to `readback`
     // when given. Returns GPU milliseconds.
-    double run(VkPipeline pipe, const Buffer& in, const Buffer& out, const Buffer* readback, const gpu::GridPush& push) {
+    double run(VkPipeline pipe, const Buffer& in, const Buffer& out, const Buffer* readback,
+               const gpu::GridPush& push) {
         VkDescriptorBufferInfo bi[3] = {{in.buffer, 0, VK_WHOLE_SIZE},
                                         {out.buffer, 0, VK_WHOLE_SIZE},
                                         {energy.buffer, 0, VK_WHOLE_SIZE}};
@@ -175,8 +176,8 @@ BrdfHarness::~BrdfHarness() = default;
 
 bool BrdfHarness::supports_fp16() const { return impl_->d.shader_float16; }
 
-std::vector<std::array<float, 3>> BrdfHarness::evaluate(const std::vector<BrdfInput>& inputs,
-                                                        BrdfPrecision precision, double* gpu_ms) {
+std::vector<std::array<float, 3>> BrdfHarness::evaluate(const std::vector<BrdfInput>& inputs, BrdfPrecision precision,
+                                                        double* gpu_ms) {
     Impl& m = *impl_;
     std::vector<std::array<float, 3>> result(inputs.size() * 3);
     if (inputs.empty()) return result;
@@ -203,7 +204,8 @@ double BrdfHarness::sphere(uint32_t size, Brdf model, uint32_t spp, BrdfPrecisio
     const VkDeviceSize bytes = VkDeviceSize{size} * size * 16;
     Buffer dummy = create_buffer(m.d, sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     // Device-local output: on a GPU the shading is timed against its own memory, as the preview's.
-    Buffer out = create_buffer(m.d, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    Buffer out = create_buffer(m.d, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               false);
     Buffer readback;
     if (rgb) readback = create_buffer(m.d, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     const gpu::GridPush push{size * size, size, spp, brdf_model_id(model)};

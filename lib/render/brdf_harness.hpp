@@ -38,14 +38,12 @@ public:
     // Radiance of each input under Standard, Accurate and UnnormalizedDiffuse (in that order): 3 RGB
     // triples per input. gpu_ms (optional): GPU time of the dispatch from timestamp queries.
     std::vector<std::array<float, 3>> evaluate(const std::vector<BrdfInput>& inputs,
-                                               BrdfPrecision precision = BrdfPrecision::fp32,
-                                               double* gpu_ms = nullptr);
+                                               BrdfPrecision precision = BrdfPrecision::fp32, double* gpu_ms = nullptr);
 
     // The benchmark's sphere (bench/accuracy/knobs_brdf.cpp's scene) at size × size pixels,
     // `spp` ∈ {1, 4, 8} samples per pixel. Returns GPU milliseconds of the shading dispatch; with
     // `rgb`, also reads the radiance back (rows top to bottom, 3 floats per pixel).
-    double sphere(uint32_t size, Brdf model, uint32_t spp, BrdfPrecision precision,
-                  std::vector<float>* rgb = nullptr);
+    double sphere(uint32_t size, Brdf model, uint32_t spp, BrdfPrecision precision, std::vector<float>* rgb = nullptr);
 
     struct Impl;
 

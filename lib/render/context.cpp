@@ -34,15 +34,26 @@ namespace detail {
 
 const char* result_name(VkResult r) {
     switch (r) {
-#define MF_CASE(x) case x: return #x;
-        MF_CASE(VK_SUCCESS) MF_CASE(VK_NOT_READY) MF_CASE(VK_TIMEOUT) MF_CASE(VK_INCOMPLETE)
-        MF_CASE(VK_ERROR_OUT_OF_HOST_MEMORY) MF_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
-        MF_CASE(VK_ERROR_INITIALIZATION_FAILED) MF_CASE(VK_ERROR_DEVICE_LOST)
-        MF_CASE(VK_ERROR_MEMORY_MAP_FAILED) MF_CASE(VK_ERROR_LAYER_NOT_PRESENT)
-        MF_CASE(VK_ERROR_EXTENSION_NOT_PRESENT) MF_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
-        MF_CASE(VK_ERROR_INCOMPATIBLE_DRIVER) MF_CASE(VK_ERROR_TOO_MANY_OBJECTS)
-        MF_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED) MF_CASE(VK_ERROR_FRAGMENTED_POOL)
-        MF_CASE(VK_ERROR_OUT_OF_POOL_MEMORY) MF_CASE(VK_ERROR_UNKNOWN)
+#define MF_CASE(x) \
+    case x: return #x;
+        MF_CASE(VK_SUCCESS)
+        MF_CASE(VK_NOT_READY)
+        MF_CASE(VK_TIMEOUT)
+        MF_CASE(VK_INCOMPLETE)
+        MF_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+        MF_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        MF_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        MF_CASE(VK_ERROR_DEVICE_LOST)
+        MF_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+        MF_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+        MF_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+        MF_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+        MF_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+        MF_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        MF_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        MF_CASE(VK_ERROR_FRAGMENTED_POOL)
+        MF_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+        MF_CASE(VK_ERROR_UNKNOWN)
 #undef MF_CASE
         default: return "VkResult(?)";
     }
@@ -50,18 +61,39 @@ const char* result_name(VkResult r) {
 
 void throw_vk_error(VkResult r, const char* expr, const char* file, int line) {
     std::ostringstream os;
-    os << "Vulkan call failed: " << expr << " returned " << result_name(r) << " ("
-       << static_cast<int>(r) << ") at " << file << ':' << line;
-    if (r == VK_ERROR_DEVICE_LOST || r == VK_ERROR_INITIALIZATION_FAILED)
-        throw NoDeviceError(os.str());
+    os << "Vulkan call failed: " << expr << " returned " << result_name(r) << " (" << static_cast<int>(r) << ") at "
+       << file << ':' << line;
+    if (r == VK_ERROR_DEVICE_LOST || r == VK_ERROR_INITIALIZATION_FAILED) throw NoDeviceError(os.str());
     throw Error(os.str());
 }
 
 uint32_t Device::memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const {
     for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
-        if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags)
-            return i;
+        if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags) return i;
     throw Error("no Vulkan memory type with the required properties");
+}
+
+VkDeviceMemory Device::allocate(const VkMemoryRequirements& req, uint32_t type, const std::string& what) const {
+    auto mb = [](VkDeviceSize b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MB"; };
+    const VkDeviceSize heap = memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size;
+    const std::string asked = what + " needs " + mb(req.size) + " of device memory";
+    if (max_allocation > 0 && req.size > max_allocation)
+        throw Error(asked + " in one allocation; " + info.name + " allows at most " + mb(max_allocation) +
+                    " (maxMemoryAllocationSize): use a smaller --size or smaller textures");
+    if (req.size > heap)
+        throw Error(asked + "; " + info.name + "'s memory heap holds " + mb(heap) +
+                    ": use a smaller --size or smaller textures");
+    auto ai = vk_struct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = type;
+    VkDeviceMemory m = VK_NULL_HANDLE;
+    const VkResult r = fn.vkAllocateMemory(device, &ai, nullptr, &m);
+    if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
+        throw Error(asked + ", and " + info.name + " is out of " +
+                    (r == VK_ERROR_OUT_OF_HOST_MEMORY ? "host" : "device") + " memory (its heap holds " + mb(heap) +
+                    "): use a smaller --size or smaller textures");
+    VK_CHECK(r);
+    return m;
 }
 
 bool Device::supports(VkFormat format, VkFormatFeatureFlags features) const {
@@ -93,9 +125,8 @@ PFN_vkGetInstanceProcAddr load_loader() {
         return h;
     }();
     if (!handle)
-        throw NoDeviceError(
-            "no Vulkan loader (libvulkan.so.1): install the libvulkan1 package, and "
-            "mesa-vulkan-drivers for the CPU renderer if the machine has no GPU driver");
+        throw NoDeviceError("no Vulkan loader (libvulkan.so.1): install the libvulkan1 package, and "
+                            "mesa-vulkan-drivers for the CPU renderer if the machine has no GPU driver");
     auto* gipa = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(handle, "vkGetInstanceProcAddr"));
     if (!gipa) throw NoDeviceError("libvulkan.so.1 has no vkGetInstanceProcAddr: reinstall libvulkan1");
     return gipa;
@@ -103,8 +134,7 @@ PFN_vkGetInstanceProcAddr load_loader() {
 
 VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                 VkDebugUtilsMessageTypeFlagsEXT,
-                                                const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                void* user) {
+                                                const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     auto* log = static_cast<MessageLog*>(user);
     std::string text = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error: " : "warning: ";
     if (data && data->pMessageIdName) text += std::string(data->pMessageIdName) + ": ";
@@ -114,11 +144,11 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagB
 }
 
 VkDebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log) {
-    auto ci = detail::vk_struct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
+    auto ci =
+        detail::vk_struct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
     ci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                          VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    ci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                     VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+    ci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     ci.pfnUserCallback = on_debug_message;
     ci.pUserData = log;
@@ -187,8 +217,7 @@ void Context::Impl::release() {
 void Context::Impl::create_instance(const ContextOptions& opt) {
     auto& f = dev.fn;
     f.vkGetInstanceProcAddr = detail::load_loader();
-#define MF_VK_LOAD(name) \
-    f.name = reinterpret_cast<PFN_##name>(f.vkGetInstanceProcAddr(nullptr, #name));
+#define MF_VK_LOAD(name) f.name = reinterpret_cast<PFN_##name>(f.vkGetInstanceProcAddr(nullptr, #name));
     MF_VK_GLOBAL_FUNCTIONS(MF_VK_LOAD)
 #undef MF_VK_LOAD
     if (!f.vkCreateInstance || !f.vkEnumerateInstanceVersion)
@@ -229,8 +258,7 @@ void Context::Impl::create_instance(const ContextOptions& opt) {
     app.apiVersion = VK_API_VERSION_1_3;
 
     // Synchronization validation catches missing barriers, which lavapipe would forgive.
-    const VkValidationFeatureEnableEXT enables[] = {
-        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
     auto features = detail::vk_struct<VkValidationFeaturesEXT>(VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT);
     features.enabledValidationFeatureCount = 1;
     features.pEnabledValidationFeatures = enables;
@@ -252,8 +280,7 @@ void Context::Impl::create_instance(const ContextOptions& opt) {
         throw NoDeviceError(std::string("no Vulkan driver found: ") + detail::kDriverHint);
     VK_CHECK(r);
 
-#define MF_VK_LOAD(name) \
-    f.name = reinterpret_cast<PFN_##name>(f.vkGetInstanceProcAddr(dev.instance, #name));
+#define MF_VK_LOAD(name) f.name = reinterpret_cast<PFN_##name>(f.vkGetInstanceProcAddr(dev.instance, #name));
     MF_VK_INSTANCE_FUNCTIONS(MF_VK_LOAD)
     if (opt.validation) {
         MF_VK_DEBUG_FUNCTIONS(MF_VK_LOAD)
@@ -306,8 +333,8 @@ void Context::Impl::pick_device(DeviceKind kind) {
         if (kind == DeviceKind::cpu)
             throw NoDeviceError("no CPU Vulkan device (lavapipe) found (devices: " + seen +
                                 "): install mesa-vulkan-drivers");
-        throw NoDeviceError("no Vulkan 1.3 device with graphics and compute found (devices: " +
-                            seen + "): " + detail::kDriverHint);
+        throw NoDeviceError("no Vulkan 1.3 device with graphics and compute found (devices: " + seen +
+                            "): " + detail::kDriverHint);
     }
     // stable_sort keeps the loader's order among equals (the driver's or the user's choice).
     std::stable_sort(usable.begin(), usable.end(), [](const Candidate& a, const Candidate& b) {
@@ -324,10 +351,15 @@ void Context::Impl::pick_device(DeviceKind kind) {
     std::vector<VkQueueFamilyProperties> q(qn);
     f.vkGetPhysicalDeviceQueueFamilyProperties(dev.physical, &qn, q.data());
 
-    auto p12 = detail::vk_struct<VkPhysicalDeviceVulkan12Properties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES);
+    auto p11 =
+        detail::vk_struct<VkPhysicalDeviceVulkan11Properties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES);
+    auto p12 =
+        detail::vk_struct<VkPhysicalDeviceVulkan12Properties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES);
     auto p2 = detail::vk_struct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
     p2.pNext = &p12;
+    p12.pNext = &p11;
     f.vkGetPhysicalDeviceProperties2(dev.physical, &p2);
+    dev.max_allocation = p11.maxMemoryAllocationSize;
     DeviceInfo& info = dev.info;
     info.name = c.props.deviceName;
     info.cpu = c.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
@@ -341,8 +373,10 @@ void Context::Impl::pick_device(DeviceKind kind) {
 
 void Context::Impl::create_device() {
     auto& f = dev.fn;
-    auto have12 = detail::vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
-    auto have13 = detail::vk_struct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
+    auto have12 =
+        detail::vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+    auto have13 =
+        detail::vk_struct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
     have13.pNext = &have12;
     auto have = detail::vk_struct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
     have.pNext = &have13;
@@ -351,12 +385,14 @@ void Context::Impl::create_device() {
         throw NoDeviceError(std::string(dev.info.name) +
                             " lacks dynamicRendering or synchronization2: update its driver");
 
-    auto want13 = detail::vk_struct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
+    auto want13 =
+        detail::vk_struct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
     want13.dynamicRendering = VK_TRUE;
     want13.synchronization2 = VK_TRUE;
     // Half-float arithmetic where the device has it: only the BRDF accuracy harness's fp16
     // variant (render/brdf_harness.hpp) uses it; the preview shades in fp32.
-    auto want12 = detail::vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+    auto want12 =
+        detail::vk_struct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
     want12.shaderFloat16 = have12.shaderFloat16;
     want13.pNext = &want12;
     dev.shader_float16 = have12.shaderFloat16 == VK_TRUE;
@@ -376,15 +412,16 @@ void Context::Impl::create_device() {
     ci.pQueueCreateInfos = &qi;
     VK_CHECK(f.vkCreateDevice(dev.physical, &ci, nullptr, &dev.device));
 
-#define MF_VK_LOAD(name)                                                               \
-    f.name = reinterpret_cast<PFN_##name>(f.vkGetDeviceProcAddr(dev.device, #name));   \
+#define MF_VK_LOAD(name)                                                             \
+    f.name = reinterpret_cast<PFN_##name>(f.vkGetDeviceProcAddr(dev.device, #name)); \
     if (!f.name) throw Error("Vulkan driver lacks " #name);
     MF_VK_DEVICE_FUNCTIONS(MF_VK_LOAD)
 #undef MF_VK_LOAD
     f.vkGetDeviceQueue(dev.device, dev.queue_family, 0, &dev.queue);
     // lavapipe's anisotropic filter moves magnified texels by up to half a per cent; a
     // software renderer gains little from it anyway.
-    dev.anisotropy = have.features.samplerAnisotropy && !dev.info.cpu ? dev.properties.limits.maxSamplerAnisotropy : 0.f;
+    dev.anisotropy = have.features.samplerAnisotropy && !dev.info.cpu ? dev.properties.limits.maxSamplerAnisotropy
+                                                                      : 0.f;
 }
 
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>(options)) {}

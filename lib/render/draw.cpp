@@ -10,6 +10,14 @@ namespace mf::render {
 using namespace detail;
 
 void Renderer::Impl::create_targets() {
+    try {
+        create_frame_resources();
+    } catch (const Error& e) {  // name the frame: its size is the user's --size or the scene's image
+        throw Error("the " + std::to_string(scene.width) + "x" + std::to_string(scene.height) + " frame: " + e.what());
+    }
+}
+
+void Renderer::Impl::create_frame_resources() {
     ImageDesc td;
     td.format = kTargetFormat;
     td.width = scene.width;
@@ -88,7 +96,8 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
         s.begin_pass("encode");
         d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_pipeline);
-        d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_layout, 0, 1, &r.encode_set, 0, nullptr);
+        d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_layout, 0, 1, &r.encode_set, 0,
+                                     nullptr);
         const gpu::EncodeParams params{{w, h}, output.exposure, output.transfer == Transfer::srgb ? 1u : 0u};
         d.fn.vkCmdPushConstants(cmd, r.encode_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
         d.fn.vkCmdDispatch(cmd, tile_groups(w), tile_groups(h), 1);
@@ -104,7 +113,8 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {w, h, 1};
-        d.fn.vkCmdCopyImageToBuffer(cmd, r.target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.readback.buffer, 1, &region);
+        d.fn.vkCmdCopyImageToBuffer(cmd, r.target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.readback.buffer, 1,
+                                    &region);
         s.end_pass();
         memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);

@@ -90,7 +90,8 @@ void Renderer::Impl::write_frame(const Material& m) {
     const double fy = 1.0 / tan_half;
     const double proj[4][4] = {{fy / aspect, 0, 0, 0},
                                {0, -fy, 0, 0},
-                               {0, 0, far_plane / (near_plane - far_plane), near_plane * far_plane / (near_plane - far_plane)},
+                               {0, 0, far_plane / (near_plane - far_plane),
+                                near_plane * far_plane / (near_plane - far_plane)},
                                {0, 0, -1, 0}};
     for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) {
@@ -129,8 +130,8 @@ void Renderer::Impl::write_frame(const Material& m) {
             } else {
                 put(dst.position, d3(l.position), 1.0);
             }
-            put(dst.irradiance, {double{l.color[0]} * l.intensity, double{l.color[1]} * l.intensity,
-                                 double{l.color[2]} * l.intensity});
+            put(dst.irradiance,
+                {double{l.color[0]} * l.intensity, double{l.color[1]} * l.intensity, double{l.color[2]} * l.intensity});
         }
     std::memcpy(uniforms.mapped, &f, sizeof f);
     flush(d, uniforms);

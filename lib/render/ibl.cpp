@@ -112,11 +112,16 @@ struct CubeStage {
 };
 
 const CubeStage kCubeStages[] = {
-    {"env_cube", Target::Cube, kCompute,
+    {"env_cube",
+     Target::Cube,
+     kCompute,
      {{Shader::EnvToCube, Source::Equirect, 0, 1, 0, false},
       {Shader::Downsample, Source::MipAbove, 1, 0, 0, false}}},  // 2×2 box per mip: radiance is linear
     {"env_prefilter", Target::Specular, kFragment, {{Shader::Prefilter, Source::Cube, 0, 0, kPrefilterSamples, true}}},
-    {"env_irradiance", Target::Irradiance, kFragment, {{Shader::Irradiance, Source::Cube, 0, 0, kIrradianceSamples, false}}},
+    {"env_irradiance",
+     Target::Irradiance,
+     kFragment,
+     {{Shader::Irradiance, Source::Cube, 0, 0, kIrradianceSamples, false}}},
 };
 
 // What the stages read and write.
@@ -126,7 +131,7 @@ struct CubeResources {
     VkPipelineLayout layout;
     VkSampler equirect_sampler;
     VkImageView equirect;
-    uint32_t face;           // the source cube's face size (IblParams::src_size)
+    uint32_t face;            // the source cube's face size (IblParams::src_size)
     const Image* targets[3];  // by Target
 };
 
@@ -206,14 +211,15 @@ void record_brdf_lut(Recording& rec) {
     VkCommandBuffer cmd = rec.s.cmd();
     ImageDesc ld;
     // fp32 where it can be filtered: half floats alone would put 2.4e-4 of rounding into E ≈ 1.
-    const bool f32 = d.supports(VK_FORMAT_R32G32B32A32_SFLOAT,
-                                VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
+    const bool f32 = d.supports(VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
+                                                                   VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
     ld.format = f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
     ld.width = ld.height = kLutSize;
     ld.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     r.brdf_lut = create_image(d, ld);
     rec.set_layouts.push_back(r.make_set_layout({{static_cast<uint32_t>(gpu::kBindingLut),
-                                                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}}));
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+                                                  nullptr}}));
     const VkDescriptorSetLayout set_layout = rec.set_layouts.back();
     rec.pipeline_layouts.push_back(r.make_pipeline_layout({set_layout}, 0, 0));
     const VkPipelineLayout layout = rec.pipeline_layouts.back();
@@ -241,8 +247,8 @@ void record_brdf_lut(Recording& rec) {
     d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
     d.fn.vkCmdDispatch(cmd, tile_groups(kLutSize), tile_groups(kLutSize), 1);
     rec.s.end_pass();
-    image_barrier(d, cmd, r.brdf_lut.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  kCompute, kWrite, kFragment, kSampled);
+    image_barrier(d, cmd, r.brdf_lut.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kCompute,
+                  kWrite, kFragment, kSampled);
 }
 
 // The equirectangular image as a sampled texture (fp32 where filterable, else half floats).
@@ -321,8 +327,8 @@ void record_environment(Recording& rec, const Environment& env) {
          VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
     }));
     res.set_layout = rec.set_layouts.back();
-    rec.pipeline_layouts.push_back(
-        r.make_pipeline_layout({res.set_layout}, sizeof(gpu::IblParams), VK_SHADER_STAGE_COMPUTE_BIT));
+    rec.pipeline_layouts.push_back(r.make_pipeline_layout({res.set_layout}, sizeof(gpu::IblParams),
+                                                          VK_SHADER_STAGE_COMPUTE_BIT));
     res.layout = rec.pipeline_layouts.back();
     const std::pair<const uint32_t*, size_t> code[] = {{kEnvToCubeComp, sizeof kEnvToCubeComp},
                                                        {kCubeDownsampleComp, sizeof kCubeDownsampleComp},

@@ -48,7 +48,7 @@ struct TextureLevel {
 struct PreparedTexture {
     VkFormat format = VK_FORMAT_UNDEFINED;
     std::vector<TextureLevel> levels;  // level 0 first, down to 1×1
-    std::string note;  // set when the texture was reduced to fit the device (said to the user)
+    std::string note;                  // set when the texture was reduced to fit the device (said to the user)
 };
 
 // Fits `t` within the device's maxImageDimension2D (a larger image crashes drivers: lavapipe
@@ -59,6 +59,18 @@ void fit_to_device(const Device& d, PreparedTexture& t, const std::string& what)
 
 // Converts to a 4-channel upload format the device can filter linearly and builds the mips.
 PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind);
+
+// A block-compressed format Texture::block_format may name: its UNORM and sRGB VkFormats (the
+// sRGB one VK_FORMAT_UNDEFINED where none exists) and block size. nullptr for any other value.
+struct BlockFormatDesc {
+    VkFormat unorm, srgb;
+    uint32_t block_width, block_height, block_bytes;
+};
+const BlockFormatDesc* block_format_desc(uint32_t vk_format);
+// Sampled, linearly filtered and a transfer destination: what a material texture needs.
+inline constexpr VkFormatFeatureFlags kSampledTextureFeatures = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                                                VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
+                                                                VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
 
 uint16_t float_to_half(float f);  // round to nearest even; overflow → infinity
 

@@ -49,6 +49,7 @@ constexpr VkSpecializationMapEntry kShadeEntries[] = {
     spec_entry(gpu::kSpecOpacityTex, offsetof(ShadeSpecialization, opacity_tex)),
     spec_entry(gpu::kSpecOpacityChannel, offsetof(ShadeSpecialization, opacity_channel)),
     spec_entry(gpu::kSpecOpacityInvert, offsetof(ShadeSpecialization, opacity_invert)),
+    spec_entry(gpu::kSpecNormalZFromXy, offsetof(ShadeSpecialization, normal_z_from_xy)),
 };
 static_assert(spec_entries_distinct(kShadeEntries), "an id or field mapped twice");
 
@@ -68,8 +69,9 @@ Unique<VkDescriptorSetLayout> Renderer::Impl::make_set_layout(
     return Unique<VkDescriptorSetLayout>(d, h);
 }
 
-Unique<VkPipelineLayout> Renderer::Impl::make_pipeline_layout(
-    const std::vector<VkDescriptorSetLayout>& sets, uint32_t push_bytes, VkShaderStageFlags push_stages) const {
+Unique<VkPipelineLayout> Renderer::Impl::make_pipeline_layout(const std::vector<VkDescriptorSetLayout>& sets,
+                                                              uint32_t push_bytes,
+                                                              VkShaderStageFlags push_stages) const {
     VkPushConstantRange range{push_stages, 0, push_bytes};
     auto ci = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     ci.setLayoutCount = static_cast<uint32_t>(sets.size());
@@ -81,8 +83,7 @@ Unique<VkPipelineLayout> Renderer::Impl::make_pipeline_layout(
     return Unique<VkPipelineLayout>(d, h);
 }
 
-Unique<VkPipeline> Renderer::Impl::make_compute_pipeline(const uint32_t* code, size_t bytes,
-                                                         VkPipelineLayout layout,
+Unique<VkPipeline> Renderer::Impl::make_compute_pipeline(const uint32_t* code, size_t bytes, VkPipelineLayout layout,
                                                          const VkSpecializationInfo* spec) const {
     Unique<VkShaderModule> module = create_shader(d, code, bytes);
     auto ci = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
@@ -163,6 +164,7 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     c.emissive_tex = m.emissive.texture;
     c.normal_tex = m.normal.texture;
     c.normal_green_down = flag(m.normal.green_down);
+    c.normal_z_from_xy = flag(m.normal.texture >= 0 && m.normal.z_from_xy);
     auto scalar = [](const ScalarRole& r, int32_t& tex, int32_t& channel, uint32_t& invert) {
         tex = r.texture;
         channel = static_cast<int32_t>(r.channel);
@@ -182,10 +184,11 @@ std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
     static const char* const brdf_names[] = {"standard", "accurate", "assignment"};  // CLI values
     static const char* const shape_names[] = {"sphere", "cube", "plane"};
     std::ostringstream os;
-    os << shape_names[static_cast<int>(scene.shape.type)] << ' ' << brdf_names[static_cast<int>(scene.brdf)]
-       << " dir" << c.num_directional << " point" << c.num_point << (c.has_env ? " env" : "")
+    os << shape_names[static_cast<int>(scene.shape.type)] << ' ' << brdf_names[static_cast<int>(scene.brdf)] << " dir"
+       << c.num_directional << " point" << c.num_point << (c.has_env ? " env" : "")
        << " albedo:" << role_text(c.albedo_tex)
        << " normal:" << (c.normal_tex >= 0 ? (c.normal_green_down ? "dx" : "gl") : "none")
+       << (c.normal_z_from_xy ? "+z" : "")
        << " roughness:" << role_text(c.roughness_tex) << " metalness:" << role_text(c.metalness_tex);
     if (c.emissive_tex >= 0) os << " emissive:tex";
     if (c.opacity_tex >= 0) os << " opacity:tex";
@@ -221,18 +224,21 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
         attribute(gpu::kLocationTangent, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)),
         attribute(gpu::kLocationUv, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)),
     };
-    auto vi = vk_struct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
+    auto vi =
+        vk_struct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
     vi.vertexBindingDescriptionCount = 1;
     vi.pVertexBindingDescriptions = &binding;
     vi.vertexAttributeDescriptionCount = 4;
     vi.pVertexAttributeDescriptions = attributes;
-    auto ia = vk_struct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
+    auto ia =
+        vk_struct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
     ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     auto vp = vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
     vp.viewportCount = 1;
     vp.scissorCount = 1;
     // The shapes are convex: culling back faces is all the visibility they need (no depth buffer).
-    auto rs = vk_struct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
+    auto rs =
+        vk_struct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
     rs.polygonMode = VK_POLYGON_MODE_FILL;
     rs.cullMode = VK_CULL_MODE_BACK_BIT;
     rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
@@ -240,8 +246,8 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     auto ms = vk_struct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
     ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineColorBlendAttachmentState blend{};
-    blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                           VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                           VK_COLOR_COMPONENT_A_BIT;
     auto cb = vk_struct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
     cb.attachmentCount = 1;
     cb.pAttachments = &blend;

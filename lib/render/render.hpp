@@ -46,7 +46,7 @@ public:
 // ---------------------------------------------------------------------------------------------
 // Device
 
-enum class DeviceKind { automatic, gpu, cpu };  // automatic: a real GPU if any, else lavapipe (CPU)
+enum class DeviceKind { automatic, gpu, cpu };                    // automatic: a real GPU if any, else lavapipe (CPU)
 std::optional<DeviceKind> parse_device_kind(std::string_view s);  // "auto" | "gpu" | "cpu"
 
 // Collects validation-layer and loader messages of severity warning or error. Shared so that it
@@ -76,11 +76,11 @@ struct ContextOptions {
 };
 
 struct DeviceInfo {
-    std::string name;         // "NVIDIA H200", "llvmpipe (LLVM 15.0.6, 256 bits)"
-    std::string driver;       // driver name and version text
-    bool cpu = false;         // a software rasterizer (lavapipe)
-    uint32_t api_version = 0; // VK_MAKE_API_VERSION of the device
-    bool timestamps = false;  // timestamp queries usable on the queue we render with
+    std::string name;          // "NVIDIA H200", "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string driver;        // driver name and version text
+    bool cpu = false;          // a software rasterizer (lavapipe)
+    uint32_t api_version = 0;  // VK_MAKE_API_VERSION of the device
+    bool timestamps = false;   // timestamp queries usable on the queue we render with
     double timestamp_period_ns = 1.0;
 };
 
@@ -172,6 +172,13 @@ struct Texture {
     // RGB hold sRGB-encoded color (albedo, emissive): 8-bit ones are uploaded as an _SRGB format
     // and decoded by the sampler; alpha is always linear.
     bool srgb = false;
+    // Block-compressed texels as a GPU texture file (DDS, KTX2) holds them: `block_format` is
+    // the VkFormat value of the blocks (a BCn or ASTC LDR format; its _SRGB variant is chosen
+    // from `srgb`) and `block_levels` every mip level's blocks, largest first, each level half
+    // the one before (at least 1). Uploaded as they are: the chain that was written is the one
+    // sampled. `data` and `type` are unused. Renderer::samples() says whether the device can.
+    uint32_t block_format = 0;
+    std::vector<std::vector<uint8_t>> block_levels;
 };
 
 enum class Channel : uint8_t { R = 0, G = 1, B = 2, A = 3 };
@@ -188,6 +195,7 @@ struct ColorRole {
 struct NormalRole {
     int texture = -1;         // tangent-space normal in RGB; < 0: no normal mapping
     bool green_down = false;  // DirectX convention (−Y); OpenGL (+Y) otherwise
+    bool z_from_xy = false;   // only X, Y stored (BC5): Z = sqrt(1 − x² − y²) in the shader
 };
 
 inline constexpr size_t kMaxTextures = gpu::kMaxTextures;
@@ -222,8 +230,8 @@ struct OutputOptions {
 
 struct Frame {
     uint32_t width = 0, height = 0;
-    std::vector<uint8_t> rgba8;    // PixelFormat::rgba8
-    std::vector<float> rgba32f;    // PixelFormat::rgba32f
+    std::vector<uint8_t> rgba8;  // PixelFormat::rgba8
+    std::vector<float> rgba32f;  // PixelFormat::rgba32f
 };
 
 struct PassTime {
@@ -269,9 +277,13 @@ public:
 
     Frame render(const GpuMaterial& material, const OutputOptions& output = {});
 
+    // Whether the device samples and filters textures of this block format (a VkFormat value,
+    // see Texture::block_format); where it does not, the caller decodes on the CPU.
+    bool samples(uint32_t block_format) const;
+
     const Scene& scene() const;
-    const std::vector<PassTime>& load_times() const;  // upload and load-time passes, in order
-    const std::vector<PassTime>& frame_times() const; // passes of the last render()
+    const std::vector<PassTime>& load_times() const;   // upload and load-time passes, in order
+    const std::vector<PassTime>& frame_times() const;  // passes of the last render()
     // Notes on what was changed to fit the device (a texture or environment larger than its
     // maxImageDimension2D previewed downsampled), taken: each is returned once.
     std::vector<std::string> take_notes();

@@ -33,13 +33,17 @@ void check_material(const Material& m) {
     if (m.textures.size() > kMaxTextures)
         throw Error("material '" + m.name + "' has more than " + std::to_string(kMaxTextures) + " textures");
     auto check_index = [&](int t, const char* role) {
-        if (t >= n) throw Error("material '" + m.name + "': " + role + " names texture " + std::to_string(t) + " of " + std::to_string(n));
+        if (t >= n)
+            throw Error("material '" + m.name + "': " + role + " names texture " + std::to_string(t) + " of " +
+                        std::to_string(n));
     };
     check_index(m.albedo.texture, "albedo");
     check_index(m.emissive.texture, "emissive");
     check_index(m.normal.texture, "normal");
-    const std::pair<const ScalarRole*, const char*> scalars[] = {
-        {&m.roughness, "roughness"}, {&m.metalness, "metalness"}, {&m.occlusion, "occlusion"}, {&m.opacity, "opacity"}};
+    const std::pair<const ScalarRole*, const char*> scalars[] = {{&m.roughness, "roughness"},
+                                                                 {&m.metalness, "metalness"},
+                                                                 {&m.occlusion, "occlusion"},
+                                                                 {&m.opacity, "opacity"}};
     for (auto [r, name] : scalars) {
         check_index(r->texture, name);
         // RGB of an sRGB texture are decoded by the sampler: only its alpha holds plain data.
@@ -62,8 +66,7 @@ const std::string& GpuMaterial::variant() const { return impl_->variant; }
 Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(std::move(s)) {
     if (scene.width == 0 || scene.height == 0 || scene.width > 16384 || scene.height > 16384)
         throw Error("image size must be 1..16384 pixels a side");
-    if (scene.lights.size() > kMaxLights)
-        throw Error("at most " + std::to_string(kMaxLights) + " lights");
+    if (scene.lights.size() > kMaxLights) throw Error("at most " + std::to_string(kMaxLights) + " lights");
     if (!d.supports(kTargetFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
         throw NoDeviceError(d.info.name + " cannot render to RGBA32F");
 
@@ -84,12 +87,12 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
     }
 
     create_samplers();
-    create_layouts();          // pipelines.cpp
-    create_targets();          // draw.cpp
-    upload_mesh();             // upload.cpp
-    create_dummies();          // upload.cpp
-    build_environment();       // ibl.cpp: BRDF table and environment maps, only when called for
-    write_frame_descriptors(); // frame.cpp
+    create_layouts();           // pipelines.cpp
+    create_targets();           // draw.cpp
+    upload_mesh();              // upload.cpp
+    create_dummies();           // upload.cpp
+    build_environment();        // ibl.cpp: BRDF table and environment maps, only when called for
+    write_frame_descriptors();  // frame.cpp
 }
 
 Renderer::Impl::~Impl() {
@@ -120,8 +123,7 @@ void Renderer::Impl::create_samplers() {
 
 // ---------------------------------------------------------------------------------------------
 
-Renderer::Renderer(Context& context, const Scene& scene)
-    : impl_(std::make_unique<Impl>(context, scene)) {}
+Renderer::Renderer(Context& context, const Scene& scene) : impl_(std::make_unique<Impl>(context, scene)) {}
 Renderer::~Renderer() = default;
 const Scene& Renderer::scene() const { return impl_->scene; }
 const std::vector<PassTime>& Renderer::load_times() const { return impl_->load_times; }

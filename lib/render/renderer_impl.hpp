@@ -18,7 +18,7 @@
 namespace mf::render {
 
 inline constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // linear radiance
-inline constexpr uint32_t kQueryCount = 16;  // two timestamps for each of up to 8 passes
+inline constexpr uint32_t kQueryCount = 16;                               // two timestamps for each of up to 8 passes
 
 // Descriptor needs of the image-based-lighting passes (ibl.cpp), reserved in the renderer's pool.
 inline constexpr uint32_t kIblSets = 24;
@@ -93,7 +93,8 @@ struct Renderer::Impl {
     void write_frame(const Material& m);
 
     // draw.cpp
-    void create_targets();
+    void create_targets();  // the frame's resources, an error naming the frame when they do not fit
+    void create_frame_resources();
 
     // ibl.cpp: the BRDF table and environment maps, only when the scene calls for them.
     void build_environment();

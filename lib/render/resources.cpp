@@ -1,5 +1,6 @@
 // Buffers, images, shader modules, barriers and one-shot submissions.
 #include <cstring>
+#include <string>
 
 #include "render/vk.hpp"
 
@@ -18,23 +19,20 @@ Buffer create_buffer(const Device& d, VkDeviceSize size, VkBufferUsageFlags usag
 
     VkMemoryRequirements req{};
     d.fn.vkGetBufferMemoryRequirements(d.device, h, &req);
-    auto ai = vk_struct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-    ai.allocationSize = req.size;
+    uint32_t type = 0;
     if (host_visible) {
         // Prefer cached memory for readbacks; coherent saves the flushes when available.
-        const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                           VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         try {
-            ai.memoryTypeIndex = d.memory_type(req.memoryTypeBits, want);
+            type = d.memory_type(req.memoryTypeBits, want);
             b.coherent = true;
         } catch (const Error&) {
-            ai.memoryTypeIndex = d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
+            type = d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
         }
     } else {
-        ai.memoryTypeIndex = d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        type = d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     }
-    VkDeviceMemory m = VK_NULL_HANDLE;
-    VK_CHECK(d.fn.vkAllocateMemory(d.device, &ai, nullptr, &m));
+    const VkDeviceMemory m = d.allocate(req, type, "a buffer");
     b.memory = Unique<VkDeviceMemory>(d, m);
     VK_CHECK(d.fn.vkBindBufferMemory(d.device, h, m, 0));
     if (host_visible) VK_CHECK(d.fn.vkMapMemory(d.device, m, 0, VK_WHOLE_SIZE, 0, &b.mapped));
@@ -78,24 +76,22 @@ Image create_image(const Device& d, const ImageDesc& desc) {
 
     VkMemoryRequirements req{};
     d.fn.vkGetImageMemoryRequirements(d.device, h, &req);
-    auto ai = vk_struct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory m = VK_NULL_HANDLE;
-    VK_CHECK(d.fn.vkAllocateMemory(d.device, &ai, nullptr, &m));
+    const VkDeviceMemory m = d.allocate(req, d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT),
+                                        "a " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                                            " image");
     img.memory = Unique<VkDeviceMemory>(d, m);
     VK_CHECK(d.fn.vkBindImageMemory(d.device, h, m, 0));
 
-    img.view = create_view(d, img, desc.cube ? VK_IMAGE_VIEW_TYPE_CUBE
-                                   : desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
-                                                     : VK_IMAGE_VIEW_TYPE_2D,
+    img.view = create_view(d, img,
+                           desc.cube         ? VK_IMAGE_VIEW_TYPE_CUBE
+                           : desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                             : VK_IMAGE_VIEW_TYPE_2D,
                            0, desc.mips, 0, desc.layers);
     return img;
 }
 
-Unique<VkImageView> create_view(const Device& d, const Image& img, VkImageViewType type,
-                                uint32_t base_mip, uint32_t mips, uint32_t base_layer,
-                                uint32_t layers) {
+Unique<VkImageView> create_view(const Device& d, const Image& img, VkImageViewType type, uint32_t base_mip,
+                                uint32_t mips, uint32_t base_layer, uint32_t layers) {
     auto vi = vk_struct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
     vi.image = img.image;
     vi.viewType = type;
@@ -115,10 +111,9 @@ Unique<VkShaderModule> create_shader(const Device& d, const uint32_t* words, siz
     return Unique<VkShaderModule>(d, m);
 }
 
-void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageLayout from,
-                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t base_mip,
-                   uint32_t mips) {
+void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                   VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
+                   VkAccessFlags2 dst_access, uint32_t base_mip, uint32_t mips) {
     auto b = vk_struct<VkImageMemoryBarrier2>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2);
     b.srcStageMask = src_stage;
     b.srcAccessMask = src_access;
@@ -136,9 +131,8 @@ void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageL
     d.fn.vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-void memory_barrier(const Device& d, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage,
-                    VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                    VkAccessFlags2 dst_access) {
+void memory_barrier(const Device& d, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
     auto b = vk_struct<VkMemoryBarrier2>(VK_STRUCTURE_TYPE_MEMORY_BARRIER_2);
     b.srcStageMask = src_stage;
     b.srcAccessMask = src_access;
@@ -198,10 +192,8 @@ void Submission::finish(std::vector<PassTime>& times) {
 
     std::vector<uint64_t> stamps(2 * names_.size(), 0);
     if (queries_ && !names_.empty())
-        VK_CHECK(d_.fn.vkGetQueryPoolResults(d_.device, queries_, 0,
-                                             static_cast<uint32_t>(stamps.size()),
-                                             stamps.size() * sizeof(uint64_t), stamps.data(),
-                                             sizeof(uint64_t),
+        VK_CHECK(d_.fn.vkGetQueryPoolResults(d_.device, queries_, 0, static_cast<uint32_t>(stamps.size()),
+                                             stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
                                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     for (size_t i = 0; i < names_.size(); ++i) {
         const auto ticks = static_cast<double>((stamps[2 * i + 1] - stamps[2 * i]) & d_.timestamp_mask);

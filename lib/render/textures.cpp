@@ -38,7 +38,6 @@ uint16_t float_to_half(float f) {
     return static_cast<uint16_t>(sign | h);
 }
 
-
 namespace {
 
 struct FloatLevel {
@@ -198,15 +197,62 @@ void store(const FloatLevel& l, Storage s, MipKind kind, bool encode_srgb, Textu
 
 }  // namespace
 
+const BlockFormatDesc* block_format_desc(uint32_t vk_format) {
+    static constexpr BlockFormatDesc kFormats[] = {
+        {VK_FORMAT_BC1_RGB_UNORM_BLOCK, VK_FORMAT_BC1_RGB_SRGB_BLOCK, 4, 4, 8},
+        {VK_FORMAT_BC1_RGBA_UNORM_BLOCK, VK_FORMAT_BC1_RGBA_SRGB_BLOCK, 4, 4, 8},
+        {VK_FORMAT_BC3_UNORM_BLOCK, VK_FORMAT_BC3_SRGB_BLOCK, 4, 4, 16},
+        {VK_FORMAT_BC4_UNORM_BLOCK, VK_FORMAT_UNDEFINED, 4, 4, 8},
+        {VK_FORMAT_BC5_UNORM_BLOCK, VK_FORMAT_UNDEFINED, 4, 4, 16},
+        {VK_FORMAT_ASTC_4x4_UNORM_BLOCK, VK_FORMAT_ASTC_4x4_SRGB_BLOCK, 4, 4, 16},
+        {VK_FORMAT_ASTC_5x5_UNORM_BLOCK, VK_FORMAT_ASTC_5x5_SRGB_BLOCK, 5, 5, 16},
+        {VK_FORMAT_ASTC_6x6_UNORM_BLOCK, VK_FORMAT_ASTC_6x6_SRGB_BLOCK, 6, 6, 16},
+        {VK_FORMAT_ASTC_8x8_UNORM_BLOCK, VK_FORMAT_ASTC_8x8_SRGB_BLOCK, 8, 8, 16},
+    };
+    for (const BlockFormatDesc& f : kFormats)
+        if (static_cast<uint32_t>(f.unorm) == vk_format || (f.srgb != VK_FORMAT_UNDEFINED && static_cast<uint32_t>(f.srgb) == vk_format))
+            return &f;
+    return nullptr;
+}
+
+namespace {
+
+// A block-compressed texture goes up as written: its own mip chain, no averaging here.
+PreparedTexture prepare_blocks(const Device& d, const Texture& t, MipKind kind) {
+    const BlockFormatDesc* f = block_format_desc(t.block_format);
+    if (!f) throw Error("texture block format " + std::to_string(t.block_format) + " is not one the preview reads");
+    PreparedTexture out;
+    out.format = t.srgb && kind == MipKind::color && f->srgb != VK_FORMAT_UNDEFINED ? f->srgb : f->unorm;
+    if (!d.supports(out.format, kSampledTextureFeatures))
+        throw Error("this device does not sample block format " + std::to_string(t.block_format) +
+                    " (decode it on the CPU: Renderer::samples says which it does)");
+    if (t.width == 0 || t.height == 0 || t.block_levels.empty()) throw Error("block-compressed texture without levels");
+    uint32_t w = t.width, h = t.height;
+    for (size_t i = 0; i < t.block_levels.size(); ++i) {
+        const size_t expected = size_t{(w + f->block_width - 1) / f->block_width} * ((h + f->block_height - 1) / f->block_height) *
+                                f->block_bytes;
+        if (t.block_levels[i].size() != expected)
+            throw Error("block-compressed level " + std::to_string(i) + " (" + std::to_string(w) + "x" + std::to_string(h) +
+                        ") holds " + std::to_string(t.block_levels[i].size()) + " bytes, not " + std::to_string(expected));
+        out.levels.push_back({w, h, t.block_levels[i]});
+        if (w == 1 && h == 1) break;
+        w = std::max(1u, w / 2);
+        h = std::max(1u, h / 2);
+    }
+    fit_to_device(d, out, "texture");
+    return out;
+}
+
+}  // namespace
+
 PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind) {
+    if (t.block_format != 0) return prepare_blocks(d, t, kind);
     const size_t bytes = t.type == TexelType::u8 ? 1 : t.type == TexelType::u16 ? 2 : 4;
     if (t.width == 0 || t.height == 0 || t.channels < 1 || t.channels > 4 ||
         t.data.size() != size_t{t.width} * t.height * t.channels * bytes)
         throw Error("texture data does not match its size, channels and type");
 
-    constexpr VkFormatFeatureFlags kFilter =
-        VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
-        VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+    constexpr VkFormatFeatureFlags kFilter = kSampledTextureFeatures;
     PreparedTexture out;
     Storage storage = Storage::F16;
     // 8-bit color keeps its sRGB encoding and lets the sampler decode it (before filtering, as
@@ -281,12 +327,13 @@ void fit_to_device(const Device& d, PreparedTexture& t, const std::string& what)
     }
     const TextureLevel& top = t.levels[0];
     if (std::max(top.width, top.height) > limit)
-        throw Error(what + " of " + std::to_string(w0) + "x" + std::to_string(h0) + " pixels is larger than this device's limit of " +
-                    std::to_string(limit) + " pixels per side (maxImageDimension2D)");
-    t.note = what + " of " + std::to_string(w0) + "x" + std::to_string(h0) + " pixels is larger than this device's limit of " +
-             std::to_string(limit) + " pixels per side (maxImageDimension2D): previewed downsampled to " +
-             std::to_string(top.width) + "x" + std::to_string(top.height);
+        throw Error(what + " of " + std::to_string(w0) + "x" + std::to_string(h0) +
+                    " pixels is larger than this device's limit of " + std::to_string(limit) +
+                    " pixels per side (maxImageDimension2D)");
+    t.note = what + " of " + std::to_string(w0) + "x" + std::to_string(h0) +
+             " pixels is larger than this device's limit of " + std::to_string(limit) +
+             " pixels per side (maxImageDimension2D): previewed downsampled to " + std::to_string(top.width) + "x" +
+             std::to_string(top.height);
 }
 
 }  // namespace mf::render::detail
-

@@ -76,9 +76,8 @@ Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandB
                   VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     d.fn.vkCmdCopyBufferToImage(cmd, buf.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                 static_cast<uint32_t>(regions.size()), regions.data());
-    image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_WRITE_BIT,
+    image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     staging.push_back(std::move(buf));
@@ -122,6 +121,13 @@ void Renderer::Impl::create_dummies() {
     s.finish(unused);
 }
 
+bool Renderer::samples(uint32_t block_format) const {
+    const BlockFormatDesc* f = block_format_desc(block_format);
+    const Device& d = impl_->d;
+    return f && d.supports(f->unorm, kSampledTextureFeatures) &&
+           (f->srgb == VK_FORMAT_UNDEFINED || d.supports(f->srgb, kSampledTextureFeatures));
+}
+
 GpuMaterial Renderer::upload(const Material& material) {
     check_material(material);
     Impl& r = *impl_;
@@ -152,8 +158,8 @@ GpuMaterial Renderer::upload(const Material& material) {
         if (!used[i]) continue;
         const Texture& t = material.textures[i];
         const MipKind kind = static_cast<int>(i) == material.normal.texture ? MipKind::normal
-                             : t.srgb                                        ? MipKind::color
-                                                                             : MipKind::data;
+                             : t.srgb                                       ? MipKind::color
+                                                                            : MipKind::data;
         m.textures[i] = r.upload_texture(prepare_texture(d, t, kind), s.cmd(), staging);
     }
     s.finish(r.load_times);

@@ -16,97 +16,97 @@ namespace mf::render::detail {
 static_assert(sizeof(void*) == 8, "non-dispatchable handles must be distinct types (64-bit)");
 
 // Entry points fetched with vkGetInstanceProcAddr(nullptr, …).
-#define MF_VK_GLOBAL_FUNCTIONS(X)            \
-    X(vkCreateInstance)                      \
-    X(vkEnumerateInstanceLayerProperties)    \
+#define MF_VK_GLOBAL_FUNCTIONS(X)             \
+    X(vkCreateInstance)                       \
+    X(vkEnumerateInstanceLayerProperties)     \
     X(vkEnumerateInstanceExtensionProperties) \
     X(vkEnumerateInstanceVersion)
 
 // Entry points fetched with vkGetInstanceProcAddr(instance, …).
-#define MF_VK_INSTANCE_FUNCTIONS(X)                \
-    X(vkDestroyInstance)                           \
-    X(vkEnumeratePhysicalDevices)                  \
-    X(vkGetPhysicalDeviceProperties)               \
-    X(vkGetPhysicalDeviceFeatures2)                \
-    X(vkGetPhysicalDeviceProperties2)              \
-    X(vkGetPhysicalDeviceQueueFamilyProperties)    \
-    X(vkGetPhysicalDeviceMemoryProperties)         \
-    X(vkGetPhysicalDeviceFormatProperties)         \
-    X(vkEnumerateDeviceExtensionProperties)        \
-    X(vkCreateDevice)                              \
+#define MF_VK_INSTANCE_FUNCTIONS(X)             \
+    X(vkDestroyInstance)                        \
+    X(vkEnumeratePhysicalDevices)               \
+    X(vkGetPhysicalDeviceProperties)            \
+    X(vkGetPhysicalDeviceFeatures2)             \
+    X(vkGetPhysicalDeviceProperties2)           \
+    X(vkGetPhysicalDeviceQueueFamilyProperties) \
+    X(vkGetPhysicalDeviceMemoryProperties)      \
+    X(vkGetPhysicalDeviceFormatProperties)      \
+    X(vkEnumerateDeviceExtensionProperties)     \
+    X(vkCreateDevice)                           \
     X(vkGetDeviceProcAddr)
 
-#define MF_VK_DEBUG_FUNCTIONS(X)        \
-    X(vkCreateDebugUtilsMessengerEXT)   \
+#define MF_VK_DEBUG_FUNCTIONS(X)      \
+    X(vkCreateDebugUtilsMessengerEXT) \
     X(vkDestroyDebugUtilsMessengerEXT)
 
 // Entry points fetched with vkGetDeviceProcAddr(device, …).
-#define MF_VK_DEVICE_FUNCTIONS(X)       \
-    X(vkDestroyDevice)                  \
-    X(vkGetDeviceQueue)                 \
-    X(vkQueueSubmit)                    \
-    X(vkDeviceWaitIdle)                 \
-    X(vkCreateCommandPool)              \
-    X(vkDestroyCommandPool)             \
-    X(vkAllocateCommandBuffers)         \
-    X(vkFreeCommandBuffers)             \
-    X(vkBeginCommandBuffer)             \
-    X(vkEndCommandBuffer)               \
-    X(vkResetCommandBuffer)             \
-    X(vkCreateFence)                    \
-    X(vkDestroyFence)                   \
-    X(vkWaitForFences)                  \
-    X(vkResetFences)                    \
-    X(vkCreateBuffer)                   \
-    X(vkDestroyBuffer)                  \
-    X(vkGetBufferMemoryRequirements)    \
-    X(vkAllocateMemory)                 \
-    X(vkFreeMemory)                     \
-    X(vkBindBufferMemory)               \
-    X(vkMapMemory)                      \
-    X(vkUnmapMemory)                    \
-    X(vkFlushMappedMemoryRanges)        \
-    X(vkInvalidateMappedMemoryRanges)   \
-    X(vkCreateImage)                    \
-    X(vkDestroyImage)                   \
-    X(vkGetImageMemoryRequirements)     \
-    X(vkBindImageMemory)                \
-    X(vkCreateImageView)                \
-    X(vkDestroyImageView)               \
-    X(vkCreateSampler)                  \
-    X(vkDestroySampler)                 \
-    X(vkCreateShaderModule)             \
-    X(vkDestroyShaderModule)            \
-    X(vkCreateDescriptorSetLayout)      \
-    X(vkDestroyDescriptorSetLayout)     \
-    X(vkCreatePipelineLayout)           \
-    X(vkDestroyPipelineLayout)          \
-    X(vkCreateGraphicsPipelines)        \
-    X(vkCreateComputePipelines)         \
-    X(vkDestroyPipeline)                \
-    X(vkCreateDescriptorPool)           \
-    X(vkDestroyDescriptorPool)          \
-    X(vkAllocateDescriptorSets)         \
-    X(vkUpdateDescriptorSets)           \
-    X(vkCreateQueryPool)                \
-    X(vkDestroyQueryPool)               \
-    X(vkGetQueryPoolResults)            \
-    X(vkCmdResetQueryPool)              \
-    X(vkCmdWriteTimestamp2)             \
-    X(vkCmdPipelineBarrier2)            \
-    X(vkCmdBeginRendering)              \
-    X(vkCmdEndRendering)                \
-    X(vkCmdBindPipeline)                \
-    X(vkCmdBindDescriptorSets)          \
-    X(vkCmdBindVertexBuffers)           \
-    X(vkCmdBindIndexBuffer)             \
-    X(vkCmdDrawIndexed)                 \
-    X(vkCmdDispatch)                    \
-    X(vkCmdCopyBuffer)                  \
-    X(vkCmdCopyBufferToImage)           \
-    X(vkCmdCopyImageToBuffer)           \
-    X(vkCmdPushConstants)               \
-    X(vkCmdSetViewport)                 \
+#define MF_VK_DEVICE_FUNCTIONS(X)     \
+    X(vkDestroyDevice)                \
+    X(vkGetDeviceQueue)               \
+    X(vkQueueSubmit)                  \
+    X(vkDeviceWaitIdle)               \
+    X(vkCreateCommandPool)            \
+    X(vkDestroyCommandPool)           \
+    X(vkAllocateCommandBuffers)       \
+    X(vkFreeCommandBuffers)           \
+    X(vkBeginCommandBuffer)           \
+    X(vkEndCommandBuffer)             \
+    X(vkResetCommandBuffer)           \
+    X(vkCreateFence)                  \
+    X(vkDestroyFence)                 \
+    X(vkWaitForFences)                \
+    X(vkResetFences)                  \
+    X(vkCreateBuffer)                 \
+    X(vkDestroyBuffer)                \
+    X(vkGetBufferMemoryRequirements)  \
+    X(vkAllocateMemory)               \
+    X(vkFreeMemory)                   \
+    X(vkBindBufferMemory)             \
+    X(vkMapMemory)                    \
+    X(vkUnmapMemory)                  \
+    X(vkFlushMappedMemoryRanges)      \
+    X(vkInvalidateMappedMemoryRanges) \
+    X(vkCreateImage)                  \
+    X(vkDestroyImage)                 \
+    X(vkGetImageMemoryRequirements)   \
+    X(vkBindImageMemory)              \
+    X(vkCreateImageView)              \
+    X(vkDestroyImageView)             \
+    X(vkCreateSampler)                \
+    X(vkDestroySampler)               \
+    X(vkCreateShaderModule)           \
+    X(vkDestroyShaderModule)          \
+    X(vkCreateDescriptorSetLayout)    \
+    X(vkDestroyDescriptorSetLayout)   \
+    X(vkCreatePipelineLayout)         \
+    X(vkDestroyPipelineLayout)        \
+    X(vkCreateGraphicsPipelines)      \
+    X(vkCreateComputePipelines)       \
+    X(vkDestroyPipeline)              \
+    X(vkCreateDescriptorPool)         \
+    X(vkDestroyDescriptorPool)        \
+    X(vkAllocateDescriptorSets)       \
+    X(vkUpdateDescriptorSets)         \
+    X(vkCreateQueryPool)              \
+    X(vkDestroyQueryPool)             \
+    X(vkGetQueryPoolResults)          \
+    X(vkCmdResetQueryPool)            \
+    X(vkCmdWriteTimestamp2)           \
+    X(vkCmdPipelineBarrier2)          \
+    X(vkCmdBeginRendering)            \
+    X(vkCmdEndRendering)              \
+    X(vkCmdBindPipeline)              \
+    X(vkCmdBindDescriptorSets)        \
+    X(vkCmdBindVertexBuffers)         \
+    X(vkCmdBindIndexBuffer)           \
+    X(vkCmdDrawIndexed)               \
+    X(vkCmdDispatch)                  \
+    X(vkCmdCopyBuffer)                \
+    X(vkCmdCopyBufferToImage)         \
+    X(vkCmdCopyImageToBuffer)         \
+    X(vkCmdPushConstants)             \
+    X(vkCmdSetViewport)               \
     X(vkCmdSetScissor)
 
 struct Functions {
@@ -123,10 +123,10 @@ const char* result_name(VkResult r);
 [[noreturn]] void throw_vk_error(VkResult r, const char* expr, const char* file, int line);
 
 // The one check: any result other than VK_SUCCESS throws mf::render::Error naming the call.
-#define VK_CHECK(expr)                                                                   \
-    do {                                                                                 \
-        const VkResult mf_vk_result_ = (expr);                                           \
-        if (mf_vk_result_ != VK_SUCCESS)                                                 \
+#define VK_CHECK(expr)                                                                      \
+    do {                                                                                    \
+        const VkResult mf_vk_result_ = (expr);                                              \
+        if (mf_vk_result_ != VK_SUCCESS)                                                    \
             ::mf::render::detail::throw_vk_error(mf_vk_result_, #expr, __FILE__, __LINE__); \
     } while (0)
 
@@ -151,11 +151,17 @@ struct Device {
     DeviceInfo info;
     uint64_t timestamp_mask = 0;  // valid bits of a timestamp (differences wrap there)
     float anisotropy = 0.f;
-    bool shader_float16 = false;  // VkPhysicalDeviceVulkan12Features::shaderFloat16 enabled
-    bool precise_textures = false;  // ContextOptions::precise_cpu_textures, on a CPU device  // max sampler anisotropy when the feature is enabled, else 0
+    bool shader_float16 = false;      // VkPhysicalDeviceVulkan12Features::shaderFloat16 enabled
+    bool precise_textures = false;    // ContextOptions::precise_cpu_textures, on a CPU device
+    VkDeviceSize max_allocation = 0;  // maxMemoryAllocationSize (Vulkan 1.1): the largest single allocation
 
     // A memory type index with all of `flags` among `type_bits`; throws when there is none.
     uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;
+    // Memory for `req` of memory type `type`, for `what` (named in the error): a request past the
+    // device's limits (one allocation, the heap) or one the device refuses for want of memory
+    // throws an Error that says how much was asked for and what the device has, never a bare
+    // VK_ERROR_OUT_OF_DEVICE_MEMORY.
+    VkDeviceMemory allocate(const VkMemoryRequirements& req, uint32_t type, const std::string& what) const;
     bool supports(VkFormat format, VkFormatFeatureFlags optimal_tiling_features) const;
 };
 
@@ -172,7 +178,9 @@ inline void destroy(const Device& d, VkSampler h) { d.fn.vkDestroySampler(d.devi
 inline void destroy(const Device& d, VkShaderModule h) { d.fn.vkDestroyShaderModule(d.device, h, nullptr); }
 inline void destroy(const Device& d, VkPipeline h) { d.fn.vkDestroyPipeline(d.device, h, nullptr); }
 inline void destroy(const Device& d, VkPipelineLayout h) { d.fn.vkDestroyPipelineLayout(d.device, h, nullptr); }
-inline void destroy(const Device& d, VkDescriptorSetLayout h) { d.fn.vkDestroyDescriptorSetLayout(d.device, h, nullptr); }
+inline void destroy(const Device& d, VkDescriptorSetLayout h) {
+    d.fn.vkDestroyDescriptorSetLayout(d.device, h, nullptr);
+}
 inline void destroy(const Device& d, VkDescriptorPool h) { d.fn.vkDestroyDescriptorPool(d.device, h, nullptr); }
 inline void destroy(const Device& d, VkQueryPool h) { d.fn.vkDestroyQueryPool(d.device, h, nullptr); }
 inline void destroy(const Device& d, VkFence h) { d.fn.vkDestroyFence(d.device, h, nullptr); }
@@ -237,20 +245,17 @@ struct Image {
     ImageDesc desc;
 };
 Image create_image(const Device& d, const ImageDesc& desc);
-Unique<VkImageView> create_view(const Device& d, const Image& img, VkImageViewType type,
-                                uint32_t base_mip, uint32_t mips, uint32_t base_layer,
-                                uint32_t layers);
+Unique<VkImageView> create_view(const Device& d, const Image& img, VkImageViewType type, uint32_t base_mip,
+                                uint32_t mips, uint32_t base_layer, uint32_t layers);
 
 Unique<VkShaderModule> create_shader(const Device& d, const uint32_t* words, size_t bytes);
 
 // Image layout transition of all mips and layers, with the given scopes (synchronization2).
-void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageLayout from,
-                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t base_mip = 0,
-                   uint32_t mips = VK_REMAINING_MIP_LEVELS);
-void memory_barrier(const Device& d, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage,
-                    VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                    VkAccessFlags2 dst_access);
+void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                   VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
+                   VkAccessFlags2 dst_access, uint32_t base_mip = 0, uint32_t mips = VK_REMAINING_MIP_LEVELS);
+void memory_barrier(const Device& d, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
 // Records into a fresh primary command buffer, submits, waits. With timestamps, `record` may
 // call Timer::begin/end around passes; their GPU times are appended to `times`.

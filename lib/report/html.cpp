@@ -88,8 +88,7 @@ std::string inline_html(std::string_view s) {
                 const std::string text = inline_html(s.substr(i + 1, close - i - 1));
                 if (const auto target = link_target(s.substr(close + 2, end - close - 2)))
                     out += "<a href=\"" + escape_valid(*target) + "\">" + text + "</a>";
-                else
-                    out += text;
+                else out += text;
                 i = end + 1;
                 continue;
             }
@@ -104,7 +103,8 @@ std::string inline_html(std::string_view s) {
 std::vector<std::string> table_cells(std::string_view line) {
     line = trim(line);
     if (starts_with(line, "|")) line.remove_prefix(1);
-    if (!line.empty() && line.back() == '|' && (line.size() < 2 || line[line.size() - 2] != '\\')) line.remove_suffix(1);
+    if (!line.empty() && line.back() == '|' && (line.size() < 2 || line[line.size() - 2] != '\\'))
+        line.remove_suffix(1);
     std::vector<std::string> cells;
     std::string cell;
     for (size_t i = 0; i < line.size(); ++i) {
@@ -153,9 +153,7 @@ int heading_level(std::string_view line) {
 
 std::string escape(std::string_view s) { return escape_valid(utf8_or_replacement(s)); }
 
-std::string url_path(std::string_view path) {
-    return percent_encode_path(path);
-}
+std::string url_path(std::string_view path) { return percent_encode_path(path); }
 
 std::string heading_slug(std::string_view heading) {
     std::string out;
@@ -205,8 +203,7 @@ std::string markdown_to_html(std::string_view markdown, const MarkdownOptions& o
             ++i;
         } else if (starts_with(t, "```")) {
             html += "<pre><code>";
-            for (++i; i < lines.size() && !starts_with(trim(lines[i]), "```"); ++i)
-                html += escape(lines[i]) + "\n";
+            for (++i; i < lines.size() && !starts_with(trim(lines[i]), "```"); ++i) html += escape(lines[i]) + "\n";
             html += "</code></pre>\n";
             ++i;
         } else if (starts_with(t, "|") && i + 1 < lines.size() && is_separator_row(lines[i + 1])) {

@@ -81,7 +81,8 @@ Image box_reduce(const Image& rgb, int max_size) {
         for (int ox = 0; ox < ow; ++ox) {
             const auto o = static_cast<size_t>(ox);
             for (size_t c = 0; c < 3; ++c)
-                out.at(ox, oy, static_cast<int>(c)) = static_cast<float>(acc[o * 3 + c] / static_cast<double>(count[o]));
+                out.at(ox, oy,
+                       static_cast<int>(c)) = static_cast<float>(acc[o * 3 + c] / static_cast<double>(count[o]));
         }
     }
     return out;

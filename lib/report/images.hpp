@@ -55,11 +55,11 @@ struct AlbedoStats {
 };
 
 // Overlay colours (display values), named so the page's legend says the same.
-inline constexpr float kTooDark[3] = {0.86f, 0.12f, 0.12f};    // red
-inline constexpr float kTooBright[3] = {0.16f, 0.32f, 0.92f};  // blue
-inline constexpr float kBlend[3] = {0.85f, 0.65f, 0.15f};      // amber, scaled by luminance
-inline constexpr float kBetween[3] = {0.90f, 0.10f, 0.80f};    // magenta: metalness strictly between the classes
-inline constexpr float kNearBinary[3] = {0.98f, 0.70f, 0.55f}; // peach: within a class but not exactly 0 or 1
+inline constexpr float kTooDark[3] = {0.86f, 0.12f, 0.12f};     // red
+inline constexpr float kTooBright[3] = {0.16f, 0.32f, 0.92f};   // blue
+inline constexpr float kBlend[3] = {0.85f, 0.65f, 0.15f};       // amber, scaled by luminance
+inline constexpr float kBetween[3] = {0.90f, 0.10f, 0.80f};     // magenta: metalness strictly between the classes
+inline constexpr float kNearBinary[3] = {0.98f, 0.70f, 0.55f};  // peach: within a class but not exactly 0 or 1
 
 // The albedo's false-colour overlay at its full size: red = darker than its class allows, blue =
 // brighter, grey (its luminance) = in range, amber = a blend (not judged), checkerboard = not

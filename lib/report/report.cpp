@@ -85,8 +85,14 @@ class MaterialJob {
 public:
     MaterialJob(const Options& o, const fs::path& manifest_dir, const manifest::Material& m, std::string stem,
                 size_t index, const manifest::Material* other, fs::path other_dir, std::string other_preset)
-        : opt_(o), dir_(manifest_dir), m_(m), stem_(std::move(stem)), index_(index), other_(other),
-          other_dir_(std::move(other_dir)), other_preset_(std::move(other_preset)) {}
+        : opt_(o),
+          dir_(manifest_dir),
+          m_(m),
+          stem_(std::move(stem)),
+          index_(index),
+          other_(other),
+          other_dir_(std::move(other_dir)),
+          other_preset_(std::move(other_preset)) {}
 
     void run() {
         if (opt_.previews) preview_ = preview_pic(*opt_.previews, "preview.png");
@@ -242,12 +248,14 @@ private:
                 continue;
             }
             const bool srgb = is_color_role(in.role) && in.color_space == "sRGB";
-            auto p = write_pic(thumbnail(image, opt_.thumb_size, srgb), "src-" + std::string(role_name(in.role)) + ".png");
+            auto p = write_pic(thumbnail(image, opt_.thumb_size, srgb),
+                               "src-" + std::string(role_name(in.role)) + ".png");
             source_pics_.push_back(p.value_or(Pic{}));
         }
     }
 
-    static Scalar scalar_of(const std::shared_ptr<Image>& plane, const manifest::Material& m, Role role, float fallback) {
+    static Scalar scalar_of(const std::shared_ptr<Image>& plane, const manifest::Material& m, Role role,
+                            float fallback) {
         Scalar s;
         s.constant = fallback;
         for (const manifest::Constant& c : m.constants)
@@ -269,7 +277,8 @@ private:
         if (metalness_ && !constant_metal) {
             const Scalar metal = scalar_of(metalness_, m_, Role::metalness, 0.f);
             const Image o = metalness_overlay(metal, metalness_->width, metalness_->height,
-                                              opt_.bounds.dielectric_metalness, opt_.bounds.metal_metalness, metal_stats_);
+                                              opt_.bounds.dielectric_metalness, opt_.bounds.metal_metalness,
+                                              metal_stats_);
             metal_pic_ = write_pic(thumbnail(o, opt_.thumb_size, false), "metalness.png");
         }
         albedo_.reset();
@@ -309,7 +318,9 @@ private:
         normal_html(h);
         findings_html(h);
         h += "</div>\n<div class=\"col\">\n";
-        if (preview_) h += "<figure class=\"preview\">" + img(*preview_, m_.name + " preview") + "<figcaption>preview</figcaption></figure>\n";
+        if (preview_)
+            h += "<figure class=\"preview\">" + img(*preview_, m_.name + " preview") +
+                 "<figcaption>preview</figcaption></figure>\n";
         outputs_html(h);
         h += "</div>\n</div>\n";
         checks_html(h);
@@ -402,8 +413,8 @@ private:
         // The evidence: every finding about the convention with its measured figures.
         for (const Finding& f : m_.findings) {
             if (f.code.rfind("NORMAL_CONVENTION", 0) != 0) continue;
-            h += "<div class=\"evidence\"><a href=\"" + rule_link(f.code) + "\">" + escape(f.code) + "</a>: " +
-                 escape(f.message) + figures_html(f.figures) + "</div>\n";
+            h += "<div class=\"evidence\"><a href=\"" + rule_link(f.code) + "\">" + escape(f.code) +
+                 "</a>: " + escape(f.message) + figures_html(f.figures) + "</div>\n";
         }
     }
 
@@ -445,9 +456,11 @@ private:
                  "<figcaption>albedo luminance: dielectric " + fixed(b.dielectric_min, 0) + "–" +
                  fixed(b.dielectric_max, 0) + " sRGB, metal " + fixed(b.metal_min, 0) + "–" + fixed(b.metal_max, 0) +
                  " sRGB<br><span class=\"key dark\"></span> too dark: " +
-                 percent(s.dielectric_dark + s.metal_dark, s.visible) + " <span class=\"key bright\"></span> too bright: " +
-                 percent(s.dielectric_bright + s.metal_bright, s.visible) + " <span class=\"key blend\"></span> blend (not judged): " +
-                 percent(s.blend, s.visible) + "<br>dielectric " + percent(s.dielectric, s.visible) + " (dark " +
+                 percent(s.dielectric_dark + s.metal_dark, s.visible) +
+                 " <span class=\"key bright\"></span> too bright: " +
+                 percent(s.dielectric_bright + s.metal_bright, s.visible) +
+                 " <span class=\"key blend\"></span> blend (not judged): " + percent(s.blend, s.visible) +
+                 "<br>dielectric " + percent(s.dielectric, s.visible) + " (dark " +
                  percent(s.dielectric_dark, s.dielectric) + ", bright " + percent(s.dielectric_bright, s.dielectric) +
                  "), metal " + percent(s.metal, s.visible) + " (dark " + percent(s.metal_dark, s.metal) + ")" +
                  (s.visible < s.pixels ? ", not visible " + percent(s.pixels - s.visible, s.pixels) : std::string()) +
@@ -470,7 +483,8 @@ private:
     }
 
     void before_after_html(std::string& h) const {
-        const bool any_source = std::any_of(source_pics_.begin(), source_pics_.end(), [](const Pic& p) { return !p.rel.empty(); });
+        const bool any_source = std::any_of(source_pics_.begin(), source_pics_.end(),
+                                            [](const Pic& p) { return !p.rel.empty(); });
         if (!any_source && !other_ && !m_.archive) return;
         h += "<details class=\"before-after\"><summary>Before / after</summary>\n";
         if (m_.archive) h += "<p class=\"meta\">the sources are entries of a .zip: not shown</p>\n";
@@ -486,10 +500,12 @@ private:
                     if (r) roles.push_back(*r);
             if (in.role == Role::gloss) roles.push_back(Role::roughness);
             for (size_t k = 0; k < m_.outputs.size(); ++k) {
-                const bool holds = std::any_of(m_.outputs[k].channels.begin(), m_.outputs[k].channels.end(), [&](const Channel& c) {
-                    return (c.kind == Channel::Kind::role || c.kind == Channel::Kind::smoothness) &&
-                           std::find(roles.begin(), roles.end(), c.role) != roles.end();
-                });
+                const bool holds = std::any_of(m_.outputs[k].channels.begin(), m_.outputs[k].channels.end(),
+                                               [&](const Channel& c) {
+                                                   return (c.kind == Channel::Kind::role ||
+                                                           c.kind == Channel::Kind::smoothness) &&
+                                                          std::find(roles.begin(), roles.end(), c.role) != roles.end();
+                                               });
                 if (!holds || out_pics_[k].main.rel.empty()) continue;
                 h += "<span class=\"arrow\">→</span><figure>" + img(out_pics_[k].main, m_.outputs[k].file) +
                      "<figcaption>output <code>" + escape(fs::path(m_.outputs[k].file).filename().string()) +
@@ -500,10 +516,12 @@ private:
         if (other_) {
             h += "<h4>" + escape(other_preset_) + " (--compare)</h4>\n<div class=\"pair\">";
             if (preview_ || compare_preview_) {
-                if (preview_) h += "<figure>" + img(*preview_, "preview") + "<figcaption>this report's preset</figcaption></figure>";
+                if (preview_)
+                    h += "<figure>" + img(*preview_, "preview") +
+                         "<figcaption>this report's preset</figcaption></figure>";
                 if (compare_preview_)
-                    h += "<figure>" + img(*compare_preview_, "compare preview") + "<figcaption>" + escape(other_preset_) +
-                         "</figcaption></figure>";
+                    h += "<figure>" + img(*compare_preview_, "compare preview") + "<figcaption>" +
+                         escape(other_preset_) + "</figcaption></figure>";
             }
             h += "</div>\n<div class=\"outputs\">";
             for (size_t k = 0; k < other_->outputs.size(); ++k) output_figure(h, other_->outputs[k], compare_pics_[k]);
@@ -715,11 +733,15 @@ bool write_report(const Options& opt, Result& result, std::string& error) {
          "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src 'self' file: data:; "
          "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-         "<title>matforge report — " + escape(opt.manifest.string()) + "</title>\n<style>\n" + kStyle +
-         "</style>\n</head>\n<body data-page-size=\"" + std::to_string(std::max(1, opt.page_size)) + "\">\n<header>\n<h1>matforge report</h1>\n<div class=\"meta\"><code>" +
-         escape(opt.manifest.string()) + "</code> · preset <b>" + escape(m->preset) + "</b> · normals " +
+         "<title>matforge report — " +
+         escape(opt.manifest.string()) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body data-page-size=\"" +
+         std::to_string(std::max(1, opt.page_size)) +
+         "\">\n<header>\n<h1>matforge report</h1>\n<div class=\"meta\"><code>" + escape(opt.manifest.string()) +
+         "</code> · preset <b>" + escape(m->preset) + "</b> · normals " +
          std::string(convention_name(m->normal_convention)) + " · " + escape(m->generator) +
-         (other ? " · compared with <code>" + escape(opt.compare->string()) + "</code> (preset " + escape(other->preset) + ")" : std::string()) +
+         (other ? " · compared with <code>" + escape(opt.compare->string()) + "</code> (preset " +
+                      escape(other->preset) + ")"
+                : std::string()) +
          "</div>\n<div class=\"summary\" id=\"summary\">" + std::to_string(m->materials.size()) + " materials · " +
          std::to_string(counts[2]) + " error · " + std::to_string(counts[1]) + " warning · " +
          std::to_string(counts[0]) + " info · " + std::to_string(m->failures.size()) +
@@ -745,9 +767,10 @@ bool write_report(const Options& opt, Result& result, std::string& error) {
     }
     h += "<h2 id=\"contact-sheet\">Contact sheet</h2>\n<div class=\"sheet\">\n";
     for (const auto& j : jobs) h += j->sheet_html;
-    h += "</div>\n<h2 id=\"materials\">Materials</h2>\n"
-         "<select id=\"filter\" hidden><option value=\"0\">all materials</option><option value=\"1\">with findings</option>"
-         "<option value=\"2\">with warnings or errors</option><option value=\"3\">with errors</option></select>\n";
+    h +=
+        "</div>\n<h2 id=\"materials\">Materials</h2>\n"
+        "<select id=\"filter\" hidden><option value=\"0\">all materials</option><option value=\"1\">with findings</option>"
+        "<option value=\"2\">with warnings or errors</option><option value=\"3\">with errors</option></select>\n";
     h += pager_html();
     for (const auto& j : jobs) h += j->card_html;
     h += pager_html();
@@ -758,7 +781,9 @@ bool write_report(const Options& opt, Result& result, std::string& error) {
         result.problems.insert(result.problems.end(), j->problems.begin(), j->problems.end());
     }
     result.index = opt.out / "index.html";
-    auto bytes = [](const std::string& s) { return std::span(reinterpret_cast<const unsigned char*>(s.data()), s.size()); };
+    auto bytes = [](const std::string& s) {
+        return std::span(reinterpret_cast<const unsigned char*>(s.data()), s.size());
+    };
     if (!write_file_atomic(result.index, bytes(h), error)) return false;
     const std::string rules = rules_page(codes);
     return write_file_atomic(opt.out / "rules.html", bytes(rules), error);

@@ -28,23 +28,23 @@
 namespace mf::report {
 
 struct Options {
-    std::filesystem::path manifest;  // manifest.json written by `matforge ingest`
-    std::filesystem::path out;       // the report's folder (index.html at its top)
+    std::filesystem::path manifest;                         // manifest.json written by `matforge ingest`
+    std::filesystem::path out;                              // the report's folder (index.html at its top)
     std::optional<std::filesystem::path> previews;          // `matforge preview` output: <name>.png
     std::optional<std::filesystem::path> compare;           // another preset's manifest of the same sets
     std::optional<std::filesystem::path> compare_previews;  // its previews
-    int thumb_size = 256;  // longest side of every picture written, pixels
-    int page_size = 50;    // cards per page (the script's paging)
-    int jobs = 0;          // materials in parallel; 0 = one per hardware thread
-    bool sources = true;   // thumbnails of the source maps (the "before" of before/after)
+    int thumb_size = 256;                                   // longest side of every picture written, pixels
+    int page_size = 50;                                     // cards per page (the script's paging)
+    int jobs = 0;                                           // materials in parallel; 0 = one per hardware thread
+    bool sources = true;         // thumbnails of the source maps (the "before" of before/after)
     bool allow_outside = false;  // read outputs that lie outside the manifest's folder
     AlbedoBounds bounds;
 };
 
 struct Result {
     size_t materials = 0, findings = 0, images = 0;  // images written (or already identical)
-    std::vector<std::string> problems;  // "material: what could not be shown"
-    std::filesystem::path index;        // out/index.html
+    std::vector<std::string> problems;               // "material: what could not be shown"
+    std::filesystem::path index;                     // out/index.html
 };
 
 // Writes the report. False + `error` when the manifest (or --compare's) cannot be read or

@@ -45,8 +45,9 @@ std::string rules_page(const std::set<std::string>& codes) {
         ids.insert(id);
         others += "<tr id=\"" + escape(id) + "\"><td><code>" + escape(code) + "</code></td><td>" +
                   (r ? std::string(severity_name(r->severity)) : std::string("—")) + "</td><td>" +
-                  (r ? escape(r->title) : std::string("reported by ingest or set finding; docs/interface.md, "
-                                                      "\"Finding codes\", says when")) +
+                  (r ? escape(r->title)
+                     : std::string("reported by ingest or set finding; docs/interface.md, "
+                                   "\"Finding codes\", says when")) +
                   "</td></tr>\n";
     };
     for (const auto& r : validate::rule_catalog()) add(std::string(r.code), &r);

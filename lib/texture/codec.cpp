@@ -15,6 +15,7 @@
 // uses, so the recorded error is the one that reader sees, to the sample).
 #include <astcenc.h>
 #include <squish.h>
+#include <zstd.h>
 
 #include <algorithm>
 #include <array>
@@ -29,7 +30,10 @@ namespace {
 bool is_astc(const BlockFormatInfo& f) { return f.name.substr(0, 4) == "astc"; }
 
 int squish_flags(const BlockFormatInfo& f, Effort effort) {
-    int flags = f.name == "bc1" ? squish::kDxt1 : f.name == "bc3" ? squish::kDxt5 : f.name == "bc4" ? squish::kBc4 : squish::kBc5;
+    int flags = f.name == "bc1"   ? squish::kDxt1
+                : f.name == "bc3" ? squish::kDxt5
+                : f.name == "bc4" ? squish::kBc4
+                                  : squish::kBc5;
     switch (effort) {
         case Effort::fast: flags |= squish::kColourRangeFit; break;
         case Effort::normal: flags |= squish::kColourClusterFit; break;
@@ -72,8 +76,9 @@ struct AstcContext {
 };
 
 bool astc_context(const CodecOptions& opt, bool decompress_only, AstcContext& out, std::string& error) {
-    const float quality = opt.effort == Effort::fast ? ASTCENC_PRE_FAST : opt.effort == Effort::normal ? ASTCENC_PRE_MEDIUM
-                                                                                                          : ASTCENC_PRE_THOROUGH;
+    const float quality = opt.effort == Effort::fast     ? ASTCENC_PRE_FAST
+                          : opt.effort == Effort::normal ? ASTCENC_PRE_MEDIUM
+                                                         : ASTCENC_PRE_THOROUGH;
     unsigned flags = decompress_only ? ASTCENC_FLG_DECOMPRESS_ONLY : 0u;
     if (opt.mask) flags |= ASTCENC_FLG_MAP_MASK;
     astcenc_config config{};
@@ -175,7 +180,8 @@ bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint
         if (!astc_context(opt, false, ctx, error)) return false;
         Image8 rgba = to_rgba(level);
         void* slice = rgba.pixels.data();
-        astcenc_image image{static_cast<unsigned>(level.width), static_cast<unsigned>(level.height), 1, ASTCENC_TYPE_U8, &slice};
+        astcenc_image image{static_cast<unsigned>(level.width), static_cast<unsigned>(level.height), 1, ASTCENC_TYPE_U8,
+                            &slice};
         const astcenc_swizzle swz{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
         const auto status = astcenc_compress_image(ctx.ctx, &image, &swz, blocks.data(), blocks.size(), 0);
         if (status != ASTCENC_SUCCESS) {
@@ -202,8 +208,9 @@ bool decode_level(std::span<const uint8_t> blocks, int width, int height, const 
                   std::string& error) {
     const BlockFormatInfo& f = *opt.format;
     if (blocks.size() < level_bytes(f, width, height)) {
-        error = "level of " + std::to_string(width) + "x" + std::to_string(height) + " " + std::string(f.name) + " has " +
-                std::to_string(blocks.size()) + " bytes, needs " + std::to_string(level_bytes(f, width, height));
+        error = "level of " + std::to_string(width) + "x" + std::to_string(height) + " " + std::string(f.name) +
+                " has " + std::to_string(blocks.size()) + " bytes, needs " +
+                std::to_string(level_bytes(f, width, height));
         return false;
     }
     rgba = Image8(width, height, 4);
@@ -253,6 +260,12 @@ bool decode_level(std::span<const uint8_t> blocks, int width, int height, const 
                 }
         }
     return true;
+}
+
+std::string encoder_versions() {
+    // libsquish and astcenc report no version at run time: the package versions CMake found.
+    return std::string("squish ") + MATFORGE_SQUISH_VERSION + ", astcenc " + MATFORGE_ASTCENC_VERSION + ", zstd " +
+           ZSTD_versionString();
 }
 
 }  // namespace mf::texture

@@ -8,7 +8,7 @@
 namespace mf::texture {
 namespace {
 
-constexpr uint32_t kMagic = 0x20534444;  // "DDS "
+constexpr uint32_t kMagic = 0x20534444;       // "DDS "
 constexpr uint32_t kFourccDx10 = 0x30315844;  // "DX10"
 constexpr uint32_t kCaps = 0x1, kHeight = 0x2, kWidth = 0x4, kPixelFormat = 0x1000, kMipCount = 0x20000,
                    kLinearSize = 0x80000;
@@ -129,8 +129,9 @@ bool read_dds(std::span<const uint8_t> b, GpuTexture& t, std::string& error) {
             error = "DDS truncated in level " + std::to_string(i);
             return false;
         }
-        t.levels.push_back({w, h, std::vector<uint8_t>(b.begin() + static_cast<std::ptrdiff_t>(at),
-                                                       b.begin() + static_cast<std::ptrdiff_t>(at + n))});
+        t.levels.push_back({w, h,
+                            std::vector<uint8_t>(b.begin() + static_cast<std::ptrdiff_t>(at),
+                                                 b.begin() + static_cast<std::ptrdiff_t>(at + n))});
         at += n;
         w = std::max(1, w / 2), h = std::max(1, h / 2);
     }

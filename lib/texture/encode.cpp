@@ -55,7 +55,8 @@ double psnr(const Image8& ref, const Image8& decoded, int channels) {
     double sum = 0.0;
     for (size_t p = 0; p < n; ++p)
         for (size_t k = 0; k < static_cast<size_t>(channels); ++k) {
-            const double d = static_cast<double>(ref.pixels[p * rc + k]) - static_cast<double>(decoded.pixels[p * dc + k]);
+            const double d = static_cast<double>(ref.pixels[p * rc + k]) -
+                             static_cast<double>(decoded.pixels[p * dc + k]);
             sum += d * d;
         }
     const double mse = sum / static_cast<double>(std::max<size_t>(1, n * static_cast<size_t>(channels)));
@@ -113,7 +114,10 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     // Direct3D 11 creates a BC texture only when its top level is a multiple of 4 wide and high.
     if (preset.format == "dds" && (level0.width % 4 || level0.height % 4)) {
         const int w4 = (level0.width + 3) / 4 * 4, h4 = (level0.height + 3) / 4 * 4;
-        out.findings.push_back({std::string(code::resized), Severity::info, "", "",
+        out.findings.push_back({std::string(code::resized),
+                                Severity::info,
+                                "",
+                                "",
                                 "output '" + o.suffix + "': " + std::to_string(level0.width) + "x" +
                                     std::to_string(level0.height) + " resampled to " + std::to_string(w4) + "x" +
                                     std::to_string(h4) + " (Direct3D 11 BC textures are multiples of 4)",
@@ -194,7 +198,10 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
         const bool psnr_low = e.psnr_db && o.min_psnr_db && *e.psnr_db < *o.min_psnr_db;
         const bool angle_high = e.mean_angle_deg && o.max_mean_angle_deg && *e.mean_angle_deg > *o.max_mean_angle_deg;
         if (!psnr_low && !angle_high) continue;
-        nlohmann::json figures = {{"block_format", std::string(f->name)}, {"level", i}, {"width", e.width}, {"height", e.height}};
+        nlohmann::json figures = {{"block_format", std::string(f->name)},
+                                  {"level", i},
+                                  {"width", e.width},
+                                  {"height", e.height}};
         std::string what;
         if (psnr_low) {
             figures["psnr_db"] = *e.psnr_db;
@@ -206,10 +213,13 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
             what = "mean angular error " + fixed(*e.mean_angle_deg, 2) + " degrees is above the preset's " +
                    fixed(*o.max_mean_angle_deg, 1);
         }
-        const std::string role = written.empty() || written[0].kind != ChannelSpec::Kind::role ? "" : std::string(role_name(written[0].role));
+        const std::string role = written.empty() || written[0].kind != ChannelSpec::Kind::role
+                                     ? ""
+                                     : std::string(role_name(written[0].role));
         out.findings.push_back({std::string(code::encoding_error_exceeded), Severity::warning, role, "",
-                                "output '" + o.suffix + "' level " + std::to_string(i) + " (" + std::to_string(e.width) + "x" +
-                                    std::to_string(e.height) + ", " + std::string(f->name) + "): " + what,
+                                "output '" + o.suffix + "' level " + std::to_string(i) + " (" +
+                                    std::to_string(e.width) + "x" + std::to_string(e.height) + ", " +
+                                    std::string(f->name) + "): " + what,
                                 figures});
         break;
     }

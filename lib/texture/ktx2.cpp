@@ -72,20 +72,21 @@ std::vector<uint8_t> make_dfd(const GpuTexture& t) {
     };
     uint32_t model = kModelAstc;
     std::vector<Sample> samples;
-    if (f.name == "bc1") model = kModelBc1a, samples = {{0, 0, 64}};  // BC1A_COLOR
+    if (f.name == "bc1") model = kModelBc1a, samples = {{0, 0, 64}};                    // BC1A_COLOR
     else if (f.name == "bc3") model = kModelBc3, samples = {{15, 0, 64}, {0, 64, 64}};  // BC3_ALPHA, BC3_COLOR
-    else if (f.name == "bc4") model = kModelBc4, samples = {{0, 0, 64}};  // BC4_DATA
-    else if (f.name == "bc5") model = kModelBc5, samples = {{0, 0, 64}, {1, 64, 64}};  // BC5_RED, BC5_GREEN
-    else samples = {{0, 0, 128}};  // ASTC_DATA
+    else if (f.name == "bc4") model = kModelBc4, samples = {{0, 0, 64}};                // BC4_DATA
+    else if (f.name == "bc5") model = kModelBc5, samples = {{0, 0, 64}, {1, 64, 64}};   // BC5_RED, BC5_GREEN
+    else samples = {{0, 0, 128}};                                                       // ASTC_DATA
     std::vector<uint8_t> d;
     const auto block_size = static_cast<uint32_t>(24 + 16 * samples.size());
-    put32(d, 4 + block_size);  // dfdTotalSize
-    put32(d, 0);               // vendorId KHRONOS (17 bits), descriptorType BASICFORMAT (15 bits)
+    put32(d, 4 + block_size);           // dfdTotalSize
+    put32(d, 0);                        // vendorId KHRONOS (17 bits), descriptorType BASICFORMAT (15 bits)
     put32(d, 2u | (block_size << 16));  // versionNumber 2 (KDF 1.3), descriptorBlockSize
-    put32(d, model | (kPrimariesBt709 << 8) | ((t.srgb ? kTransferSrgb : kTransferLinear) << 16) | (0u << 24));  // flags: straight alpha
+    put32(d, model | (kPrimariesBt709 << 8) | ((t.srgb ? kTransferSrgb : kTransferLinear) << 16) |
+                 (0u << 24));  // flags: straight alpha
     put32(d, static_cast<uint32_t>(f.block_width - 1) | (static_cast<uint32_t>(f.block_height - 1) << 8));
     put32(d, static_cast<uint32_t>(f.block_bytes));  // bytesPlane0 (kept when supercompressed)
-    put32(d, 0);                                      // bytesPlane4..7
+    put32(d, 0);                                     // bytesPlane4..7
     for (const Sample& s : samples) {
         const uint32_t channel = s.channel | (t.srgb && s.channel == 15 ? kQualifierLinear : 0u);
         put32(d, s.bit_offset | ((s.bits - 1) << 16) | (channel << 24));
@@ -190,7 +191,8 @@ bool read_ktx2(std::span<const uint8_t> b, GpuTexture& t, std::string& error) {
         return false;
     }
     const uint32_t format = get32(b, 12), width = get32(b, 20), height = get32(b, 24);
-    const uint32_t depth = get32(b, 28), layers = get32(b, 32), faces = get32(b, 36), levels = std::max(1u, get32(b, 40));
+    const uint32_t depth = get32(b, 28), layers = get32(b, 32), faces = get32(b, 36),
+                   levels = std::max(1u, get32(b, 40));
     const uint32_t scheme = get32(b, 44);
     t = GpuTexture{};
     for (const auto& v : kVk)
@@ -204,7 +206,8 @@ bool read_ktx2(std::span<const uint8_t> b, GpuTexture& t, std::string& error) {
     }
     if (depth != 0 || layers != 0 || faces != 1 || width == 0 || height == 0 || width > 65536 || height > 65536 ||
         levels > 17 || (scheme != kSchemeNone && scheme != kSchemeZstd)) {
-        error = "KTX2 is not a single 2D texture matforge reads (depth, layers, faces, size, levels or supercompression)";
+        error =
+            "KTX2 is not a single 2D texture matforge reads (depth, layers, faces, size, levels or supercompression)";
         return false;
     }
     if (b.size() < 80 + size_t{levels} * 24) {
@@ -226,7 +229,8 @@ bool read_ktx2(std::span<const uint8_t> b, GpuTexture& t, std::string& error) {
             l.data.resize(need);
             const size_t n = ZSTD_decompress(l.data.data(), need, p, length);
             if (ZSTD_isError(n) || n != need) {
-                error = "KTX2 level " + std::to_string(i) + ": zstd data does not inflate to " + std::to_string(need) + " bytes";
+                error = "KTX2 level " + std::to_string(i) + ": zstd data does not inflate to " + std::to_string(need) +
+                        " bytes";
                 return false;
             }
         } else {

@@ -66,7 +66,8 @@ Taps make_taps(int src, int dst, MipFilter filter) {
         // Kaiser-windowed sinc, half-width 3 destination texels, alpha 4.
         constexpr double kWidth = 3.0, kAlpha = 4.0;
         const double center = (i + 0.5) * scale;
-        const auto lo = static_cast<int>(std::floor(center - kWidth * scale)), hi = static_cast<int>(std::ceil(center + kWidth * scale));
+        const auto lo = static_cast<int>(std::floor(center - kWidth * scale)),
+                   hi = static_cast<int>(std::ceil(center + kWidth * scale));
         double sum = 0.0;
         std::vector<std::pair<int, double>> raw;
         for (int s = lo; s <= hi; ++s) {
@@ -108,8 +109,8 @@ Image filter_with(int w0, int h0, int c, Sample&& sample, int w, int h, MipFilte
 }
 
 Image filter_image(const Image& src, int w, int h, MipFilter filter) {
-    return filter_with(src.width, src.height, src.channels, [&](int x, int y, int k) { return src.at(x, y, k); }, w, h,
-                       filter);
+    return filter_with(
+        src.width, src.height, src.channels, [&](int x, int y, int k) { return src.at(x, y, k); }, w, h, filter);
 }
 
 // Per channel: code -> the filtering domain (sRGB color to linear light, normals to [-1, 1],
@@ -229,7 +230,8 @@ std::vector<Image8> make_mips(const Image8& level0, const std::vector<ChannelKin
     std::vector<float> alpha_scale(kinds.size(), 1.f);
     std::vector<double> coverage(kinds.size(), 0.0);
     for (size_t k = 0; k < kinds.size(); ++k)
-        if (kinds[k] == ChannelKind::alpha_tested) coverage[k] = alpha_coverage(level0, static_cast<int>(k), options.alpha_cutoff);
+        if (kinds[k] == ChannelKind::alpha_tested)
+            coverage[k] = alpha_coverage(level0, static_cast<int>(k), options.alpha_cutoff);
     const bool toksvig = options.roughness_channel >= 0 && options.normals && options.normals->width == level0.width &&
                          options.normals->height == level0.height;
     Image spread = toksvig ? *options.normals : Image{};  // unnormalized: its shortening is the spread
@@ -270,7 +272,8 @@ double alpha_coverage(const Image8& img, int channel, float cutoff) {
     const auto c = static_cast<size_t>(img.channels);
     const size_t n = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
     size_t above = 0;
-    for (size_t p = 0; p < n; ++p) above += static_cast<float>(img.pixels[p * c + static_cast<size_t>(channel)]) / 255.f >= cutoff;
+    for (size_t p = 0; p < n; ++p)
+        above += static_cast<float>(img.pixels[p * c + static_cast<size_t>(channel)]) / 255.f >= cutoff;
     return n ? static_cast<double>(above) / static_cast<double>(n) : 0.0;
 }
 

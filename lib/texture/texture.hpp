@@ -82,10 +82,10 @@ std::optional<Effort> effort_from_name(const std::string& name);
 
 struct CodecOptions {
     const BlockFormatInfo* format = nullptr;
-    bool srgb = false;        // sRGB variant (color weighting in the sRGB-encoded values)
+    bool srgb = false;  // sRGB variant (color weighting in the sRGB-encoded values)
     Effort effort = Effort::normal;
-    bool normal_xy = false;   // BC5 of a normal: X, Y stored, Z dropped
-    bool mask = false;        // channels are independent data (ASTC's mask-map error metric)
+    bool normal_xy = false;  // BC5 of a normal: X, Y stored, Z dropped
+    bool mask = false;       // channels are independent data (ASTC's mask-map error metric)
 };
 
 // A level of codes (1 to 4 channels) to blocks. 1-channel levels go to BC1/ASTC as grey.
@@ -105,11 +105,16 @@ struct Level {
 struct GpuTexture {
     const BlockFormatInfo* format = nullptr;
     bool srgb = false;
-    bool alpha = false;  // straight alpha present (bc3 with opacity)
+    bool alpha = false;         // straight alpha present (bc3 with opacity)
     std::vector<Level> levels;  // largest first
 };
 
 // DXGI_FORMAT_BC1_UNORM_SRGB, ...; VK_FORMAT_BC1_RGB_SRGB_BLOCK, ...
+// The versions of the encoders behind these outputs (libsquish, astcenc, zstd; Debian's package
+// versions where a library reports none), for the ingest cache's action key: an upgraded
+// encoder may write other blocks, so it must miss the cache.
+std::string encoder_versions();
+
 std::string dxgi_format_name(const GpuTexture& t);
 std::string vk_format_name(const GpuTexture& t);
 uint32_t dxgi_format(const GpuTexture& t);

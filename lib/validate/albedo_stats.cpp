@@ -1,8 +1,8 @@
 #include "validate/albedo_stats.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "validate/map_stats.hpp"
@@ -75,8 +75,9 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
     // Shares are of the visible albedo; with a metalness mask the share of the class is given too.
     auto amount = [&](const Class& c, long long count, const std::string& cls, const std::string& comparison) {
         if (!has_metal_mask)
-            return pct(ratio(count, visible_)) + " of the visible albedo (no metalness map: all taken as dielectric) is " +
-                   comparison + " (median " + fmt0(c.percentile(0.5)) + ")";
+            return pct(ratio(count, visible_)) +
+                   " of the visible albedo (no metalness map: all taken as dielectric) is " + comparison + " (median " +
+                   fmt0(c.percentile(0.5)) + ")";
         return pct(ratio(count, visible_)) + " of the visible albedo is " + cls + " and " + comparison + " (" +
                pct(ratio(count, c.n)) + " of the " + std::to_string(c.n) + " " + cls + " pixels; median " +
                fmt0(c.percentile(0.5)) + ")";
@@ -101,7 +102,8 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
         const double dark = ratio(m.below, visible_);
         if (dark > t_.metal_albedo_max_share)
             add(code::metal_albedo_too_dark,
-                file + ": " + amount(m, m.below, "metallic", "darker than " + fmt0(t_.metal_albedo_min_srgb) + " sRGB") +
+                file + ": " +
+                    amount(m, m.below, "metallic", "darker than " + fmt0(t_.metal_albedo_min_srgb) + " sRGB") +
                     "; raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
                     "or its metalness is wrong",
                 figures(m, m.below, t_.metal_albedo_min_srgb));

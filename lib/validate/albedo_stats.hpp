@@ -52,8 +52,7 @@ public:
         k += edges_[k] < y ? 1 : 0;
         return std::min<size_t>(k, 255);
     }
-    void findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask,
-                  std::vector<Finding>& out) const;
+    void findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask, std::vector<Finding>& out) const;
 
 private:
     struct Class {
@@ -74,9 +73,9 @@ private:
     Thresholds t_;
     bool linear_input_;
     float dark_lin_, bright_lin_, metal_dark_lin_;
-    std::array<float, 257> edges_{};  // linear luminance at sRGB code k + 0.5; [256] = +inf
+    std::array<float, 257> edges_{};                   // linear luminance at sRGB code k + 0.5; [256] = +inf
     std::array<uint16_t, kBuckets + 1> first_code_{};  // edges below b / 4096 (b = kBuckets: below 1)
-    const float* decode_;  // sRGB decode of every 16-bit code
+    const float* decode_;                              // sRGB decode of every 16-bit code
     Class dielectric_, metal_;
     // Every visible pixel, blends included: the shares a rule compares are of the visible
     // surface, so a few dark dielectric pixels in a mostly metal map (dirt in the cracks of a

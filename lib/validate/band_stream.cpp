@@ -36,9 +36,9 @@ void BandStream::run(const BandReader& reader, const InputFile& in, int band_row
         });
         if (shape_changed && ok) {
             ok = false;
-            err = in.display + ": the file changed while it was being validated (header " +
-                  std::to_string(info.width) + "x" + std::to_string(info.height) + "x" +
-                  std::to_string(info.channels) + " differs from the one read before)";
+            err = in.display + ": the file changed while it was being validated (header " + std::to_string(info.width) +
+                  "x" + std::to_string(info.height) + "x" + std::to_string(info.channels) +
+                  " differs from the one read before)";
         }
     } catch (const std::exception& e) {
         // A reader must not throw (image.hpp), but a thread must never let one escape.

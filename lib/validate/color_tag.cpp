@@ -51,7 +51,7 @@ ColorTagInfo png_color_tag(const unsigned char* d, size_t n) {
         const uint32_t len = be32(d + off);
         const std::string type(reinterpret_cast<const char*>(d + off + 4), 4);
         const unsigned char* data = d + off + 8;
-        if (len > n - off - 12) break;  // truncated: keep what was found
+        if (len > n - off - 12) break;                // truncated: keep what was found
         if (type == "IDAT" || type == "IEND") break;  // colour chunks precede image data
         if (type == "cICP" && len >= 4) {
             // ITU-T H.273 transfer characteristics: 13 = sRGB (IEC 61966-2-1), 8 = linear.
@@ -73,7 +73,7 @@ ColorTagInfo png_color_tag(const unsigned char* d, size_t n) {
             const double g = be32(data) / 100000.0;
             gama.source = "png:gAMA";
             gama.value = "gamma " + std::to_string(g > 0 ? 1.0 / g : 0.0);
-            gama.tag = std::abs(g - 1.0) < 0.02 ? ColorTag::linear
+            gama.tag = std::abs(g - 1.0) < 0.02         ? ColorTag::linear
                        : std::abs(g - 1.0 / 2.2) < 0.02 ? ColorTag::srgb
                                                         : ColorTag::other;
         }

@@ -1,8 +1,8 @@
 #include "validate/map_stats.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <utility>
 
@@ -27,12 +27,8 @@ const char* channel_letter(int c) {
 
 }  // namespace
 
-float srgb_to_linear(float v) {
-    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-float linear_to_srgb(float v) {
-    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
-}
+float srgb_to_linear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+float linear_to_srgb(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f; }
 
 const std::vector<float>& srgb_decode_table() {
     static const std::vector<float> lut = [] {
@@ -69,9 +65,7 @@ MapStats::MapStats(MapInput in, const ImageInfo& info, const Thresholds& th)
         code_scale = input.info.bit_depth == 8 ? 255.f : 65535.f;
 }
 
-bool MapStats::scalar_role() const {
-    return traits(input.role).channels == 1;
-}
+bool MapStats::scalar_role() const { return traits(input.role).channels == 1; }
 
 void MapStats::add_band(int /*y0*/, int rows, const float* px) {
     const long long n = static_cast<long long>(rows) * width;
@@ -276,10 +270,16 @@ void MapStats::normal_band(long long n, const float* px) {
 }
 
 nlohmann::json NormalSummary::figures() const {
-    nlohmann::json j{{"mean_x", mean_x}, {"mean_y", mean_y}, {"mean_z", mean_z},
-                     {"mean_length", mean_length}, {"std_x", std_x}, {"std_y", std_y},
-                     {"bad_length_share", bad_length_share}, {"negative_z_share", negative_z_share},
-                     {"upward_share", upward_share}, {"gray_share", gray_share}};
+    nlohmann::json j{{"mean_x", mean_x},
+                     {"mean_y", mean_y},
+                     {"mean_z", mean_z},
+                     {"mean_length", mean_length},
+                     {"std_x", std_x},
+                     {"std_y", std_y},
+                     {"bad_length_share", bad_length_share},
+                     {"negative_z_share", negative_z_share},
+                     {"upward_share", upward_share},
+                     {"gray_share", gray_share}};
     if (srgb_measured) {
         j["srgb_decoded_mean_x"] = srgb_mean_x;
         j["srgb_decoded_mean_y"] = srgb_mean_y;
@@ -312,17 +312,22 @@ NormalSummary MapStats::normal_summary() const {
         s.srgb_mean_length = normal_srgb_sum_length / np;
         s.srgb_upward_share = ratio(normal_srgb_upward, pixels);
         // Decoded, it must be a tangent-space map: X/Y centred, pointing up, length about 1.
-        s.gamma_encoded = s.mean_x > t.normal_gamma_min_stored_mean_xy && s.mean_y > t.normal_gamma_min_stored_mean_xy &&
-                          std::abs(s.srgb_mean_x) <= t.normal_max_mean_xy && std::abs(s.srgb_mean_y) <= t.normal_max_mean_xy &&
+        s.gamma_encoded = s.mean_x > t.normal_gamma_min_stored_mean_xy &&
+                          s.mean_y > t.normal_gamma_min_stored_mean_xy &&
+                          std::abs(s.srgb_mean_x) <= t.normal_max_mean_xy &&
+                          std::abs(s.srgb_mean_y) <= t.normal_max_mean_xy &&
                           s.srgb_upward_share >= t.normal_min_upward_share && s.gray_share <= t.normal_max_gray_share &&
-                          (channels < 3 || std::abs(s.srgb_mean_length - 1.0) <= t.normal_gamma_max_decoded_length_error);
+                          (channels < 3 ||
+                           std::abs(s.srgb_mean_length - 1.0) <= t.normal_gamma_max_decoded_length_error);
     }
     if (!s.gamma_encoded) {
         // Each test on its own names a kind of wrong map; the message lists every one that fails.
         if (s.upward_share < t.normal_min_upward_share)
-            s.invalid.push_back("only " + pct(s.upward_share) + " of the vectors lie within 45 degrees of +Z (a tangent-space map: most)");
+            s.invalid.push_back("only " + pct(s.upward_share) +
+                                " of the vectors lie within 45 degrees of +Z (a tangent-space map: most)");
         if (std::abs(s.mean_x) > t.normal_max_mean_xy || std::abs(s.mean_y) > t.normal_max_mean_xy)
-            s.invalid.push_back("X/Y average (" + fmt(s.mean_x) + ", " + fmt(s.mean_y) + "), not about 0 (codes about 128)");
+            s.invalid.push_back("X/Y average (" + fmt(s.mean_x) + ", " + fmt(s.mean_y) +
+                                "), not about 0 (codes about 128)");
         if (s.negative_z_share > t.normal_max_negative_z_share)
             s.invalid.push_back(pct(s.negative_z_share) + " point into the surface (Z < 0)");
         if (s.gray_share > t.normal_max_gray_share)
@@ -358,19 +363,20 @@ void MapStats::findings(std::vector<Finding>& out) const {
             file + ": " + std::to_string(nan) + " NaN and " + std::to_string(inf) +
                 " Inf values; re-export the map with finite values (they propagate through "
                 "filtering and mipmapping)",
-            {{"nan", nan}, {"inf", inf}, {"samples", samples},
-             {"share", ratio(nan + inf, samples)}});
+            {{"nan", nan}, {"inf", inf}, {"samples", samples}, {"share", ratio(nan + inf, samples)}});
     }
     // OUT_OF_RANGE_VALUES (float inputs only: integer files cannot leave [0, 1])
     const double oor = ratio(out_of_range_pixels, pixels);
     if (out_of_range_pixels > 0 && oor > t.out_of_range_max_share) {
         add(code::out_of_range_values, role,
-            file + ": " + pct(oor) + " of pixels hold " + role + " values outside [" +
-                (is_normal() ? "-1" : "0") + ", 1] (min " + fmt(*std::min_element(min.begin(), min.begin() + nc)) +
-                ", max " + fmt(*std::max_element(max.begin(), max.begin() + nc)) +
-                "); they will be clamped",
-            {{"pixels", out_of_range_pixels}, {"share", oor}, {"min", channel_array(min)},
-             {"max", channel_array(max)}, {"epsilon", t.range_epsilon}});
+            file + ": " + pct(oor) + " of pixels hold " + role + " values outside [" + (is_normal() ? "-1" : "0") +
+                ", 1] (min " + fmt(*std::min_element(min.begin(), min.begin() + nc)) + ", max " +
+                fmt(*std::max_element(max.begin(), max.begin() + nc)) + "); they will be clamped",
+            {{"pixels", out_of_range_pixels},
+             {"share", oor},
+             {"min", channel_array(min)},
+             {"max", channel_array(max)},
+             {"epsilon", t.range_epsilon}});
     }
     // NOT_GRAYSCALE
     if (scalar_role() && channels >= 3) {
@@ -378,13 +384,15 @@ void MapStats::findings(std::vector<Finding>& out) const {
         const double tol = is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance;
         if (share > t.grayscale_max_share) {
             add(code::not_grayscale, role,
-                file + ": " + role + " is a scalar map but its R, G and B differ by more than " +
-                    fmt(tol * 255, 0) + "/255 in " + pct(share) +
-                    " of pixels (largest difference " + fmt(gray_max_diff * 255, 0) +
+                file + ": " + role + " is a scalar map but its R, G and B differ by more than " + fmt(tol * 255, 0) +
+                    "/255 in " + pct(share) + " of pixels (largest difference " + fmt(gray_max_diff * 255, 0) +
                     "/255); matforge uses R — check that the file is not a packed or color map",
-                {{"share", share}, {"max_difference", gray_max_diff},
-                 {"mean_abs_rg", gray_sum_rg / static_cast<double>(pixels)}, {"mean_abs_rb", gray_sum_rb / static_cast<double>(pixels)},
-                 {"tolerance", tol}, {"jpeg", is_jpeg}});
+                {{"share", share},
+                 {"max_difference", gray_max_diff},
+                 {"mean_abs_rg", gray_sum_rg / static_cast<double>(pixels)},
+                 {"mean_abs_rb", gray_sum_rb / static_cast<double>(pixels)},
+                 {"tolerance", tol},
+                 {"jpeg", is_jpeg}});
         }
     }
     // CONSTANT_MAP: per channel group (packed inputs: per channel role)
@@ -416,16 +424,16 @@ void MapStats::findings(std::vector<Finding>& out) const {
             std::string where = file;
             if (traits(input.role).packed) where = "channel " + std::string(channel_letter(chs[0])) + " of " + file;
             std::string vtext;
-            for (size_t i = 0; i < value.size(); ++i)
-                vtext += (i ? ", " : "") + fmt(value[i].get<double>());
+            for (size_t i = 0; i < value.size(); ++i) vtext += (i ? ", " : "") + fmt(value[i].get<double>());
             add(code::constant_map, std::string(role_name(r)),
                 where + " holds one value (" + vtext + "); a constant or a 2x2 map does the same",
-                {{"value", value}, {"range", range}, {"tolerance", tol},
-                 {"channels", [&] {
-                      nlohmann::json a = nlohmann::json::array();
-                      for (int c : chs) a.push_back(channel_letter(c));
-                      return a;
-                  }()}});
+                {{"value", value}, {"range", range}, {"tolerance", tol}, {"channels", [&] {
+                                                                              nlohmann::json a =
+                                                                                  nlohmann::json::array();
+                                                                              for (int c : chs)
+                                                                                  a.push_back(channel_letter(c));
+                                                                              return a;
+                                                                          }()}});
         }
     }
     // METALNESS_NOT_BINARY
@@ -434,13 +442,16 @@ void MapStats::findings(std::vector<Finding>& out) const {
         const double share = ratio(metal_between, total);
         if (share > t.metalness_max_intermediate_share) {
             add(code::metalness_not_binary, "metalness",
-                (traits(input.role).packed ? "channel " + std::string(channel_letter(metal_channel)) + " of " : std::string()) +
-                    file + ": " + pct(share) + " of pixels have metalness between " +
-                    fmt(t.dielectric_max, 2) + " and " + fmt(t.metal_min, 2) +
+                (traits(input.role).packed ? "channel " + std::string(channel_letter(metal_channel)) + " of "
+                                           : std::string()) +
+                    file + ": " + pct(share) + " of pixels have metalness between " + fmt(t.dielectric_max, 2) +
+                    " and " + fmt(t.metal_min, 2) +
                     "; real surfaces are metal or not — use grey only for transitions (rust, dirt)",
-                {{"share_between", share}, {"share_dielectric", ratio(metal_dielectric, total)},
+                {{"share_between", share},
+                 {"share_dielectric", ratio(metal_dielectric, total)},
                  {"share_metal", ratio(metal_metal, total)},
-                 {"dielectric_max", t.dielectric_max}, {"metal_min", t.metal_min},
+                 {"dielectric_max", t.dielectric_max},
+                 {"metal_min", t.metal_min},
                  {"max_share", t.metalness_max_intermediate_share}});
         }
     }
@@ -453,11 +464,16 @@ void MapStats::findings(std::vector<Finding>& out) const {
             add(code::opacity_all_transparent, "opacity",
                 (alpha ? "the alpha of " + file + " (the set's opacity: it has no opacity map)" : file) + ": " +
                     pct(share) + " of pixels have opacity at most " + fmt(t.opacity_invisible_max, 2) + " (max " +
-                    fmt(max[oc]) + "): the whole material would be invisible — if the map stores transparency, "
+                    fmt(max[oc]) +
+                    "): the whole material would be invisible — if the map stores transparency, "
                     "invert it; if it is empty, remove it",
-                {{"invisible_share", share}, {"invisible_max", t.opacity_invisible_max},
-                 {"below_cutoff_share", ratio(opacity_below_cutoff, pixels)}, {"cutoff", t.opacity_visible},
-                 {"max", max[oc]}, {"channel", channel_letter(oc)}, {"max_share", t.opacity_max_invisible_share}});
+                {{"invisible_share", share},
+                 {"invisible_max", t.opacity_invisible_max},
+                 {"below_cutoff_share", ratio(opacity_below_cutoff, pixels)},
+                 {"cutoff", t.opacity_visible},
+                 {"max", max[oc]},
+                 {"channel", channel_letter(oc)},
+                 {"max_share", t.opacity_max_invisible_share}});
         }
     }
     // NORMAL_Z_RECONSTRUCTED
@@ -466,7 +482,9 @@ void MapStats::findings(std::vector<Finding>& out) const {
                                                : "a blue channel holding one value (B = " + fmt(max[2]) + ")";
         add(code::normal_z_reconstructed, role,
             file + ": stored with " + what + ", as BC5 exports leave it: Z is reconstructed as sqrt(1 - x² - y²)",
-            {{"channels", channels}, {"blue_min", channels >= 3 ? min[2] : 0.0}, {"blue_max", channels >= 3 ? max[2] : 0.0}});
+            {{"channels", channels},
+             {"blue_min", channels >= 3 ? min[2] : 0.0},
+             {"blue_max", channels >= 3 ? max[2] : 0.0}});
     }
     // NORMAL_INVALID, NORMAL_GAMMA_ENCODED, NORMAL_NOT_UNIT_LENGTH
     if (is_normal()) {
@@ -521,16 +539,17 @@ void MapStats::findings(std::vector<Finding>& out) const {
     // COLOR_SPACE_MISMATCH (tags)
     const ColorTag tag = input.color_tag.tag;
     const bool color = is_color_role(input.role);
-    nlohmann::json tagfig{{"tag", color_tag_name(tag)}, {"tag_source", input.color_tag.source},
+    nlohmann::json tagfig{{"tag", color_tag_name(tag)},
+                          {"tag_source", input.color_tag.source},
                           {"tag_value", input.color_tag.value}};
     if (!color && (tag == ColorTag::srgb || tag == ColorTag::other)) {
         // An ICC profile of any name on a data map is a color statement too.
         tagfig["expected"] = "linear";
         add(code::color_space_mismatch, role,
             file + ": " +
-                (tag == ColorTag::srgb ? "tagged sRGB (" + input.color_tag.source + ")"
-                                       : "carries a color profile (" + input.color_tag.source + " \"" +
-                                             input.color_tag.value + "\")") +
+                (tag == ColorTag::srgb
+                     ? "tagged sRGB (" + input.color_tag.source + ")"
+                     : "carries a color profile (" + input.color_tag.source + " \"" + input.color_tag.value + "\")") +
                 " but holds " + role +
                 " data; matforge reads it as data by its role and ignores the tag (other tools "
                 "that honour it would decode it as color: re-export it untagged or as linear/raw)",
@@ -538,8 +557,10 @@ void MapStats::findings(std::vector<Finding>& out) const {
     } else if (color && !input.info.is_float && tag == ColorTag::linear) {
         tagfig["expected"] = "srgb";
         add(code::color_space_mismatch, role,
-            file + ": an 8/16-bit " + role + " map is sRGB-encoded by convention but the file is "
-                   "tagged linear (" + input.color_tag.source + "); check how it was exported",
+            file + ": an 8/16-bit " + role +
+                " map is sRGB-encoded by convention but the file is "
+                "tagged linear (" +
+                input.color_tag.source + "); check how it was exported",
             tagfig);
     } else if (color && input.info.is_float && tag == ColorTag::srgb) {
         tagfig["expected"] = "linear";

@@ -10,9 +10,7 @@
 namespace mf::validate::detail {
 
 // a / b as a fraction (0 when b is 0).
-inline double ratio(long long a, long long b) {
-    return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
-}
+inline double ratio(long long a, long long b) { return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0.0; }
 
 // IEC 61966-2-1 sRGB transfer functions (exact piecewise curve).
 float srgb_to_linear(float v);

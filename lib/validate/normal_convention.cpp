@@ -146,8 +146,7 @@ struct NormalConventionDetector::Impl {
     }
 };
 
-NormalConventionDetector::NormalConventionDetector(int width, bool with_height,
-                                                   const DetectorOptions& opt)
+NormalConventionDetector::NormalConventionDetector(int width, bool with_height, const DetectorOptions& opt)
     : impl_(std::make_unique<Impl>(width, with_height, opt)) {}
 NormalConventionDetector::~NormalConventionDetector() = default;
 NormalConventionDetector::NormalConventionDetector(NormalConventionDetector&&) noexcept = default;
@@ -257,8 +256,8 @@ NormalVerdict NormalConventionDetector::verdict() const {
     return v;
 }
 
-NormalVerdict detect_normal_convention(const Image& normal, const Image* height,
-                                       const DetectorOptions& opt, bool signed_values) {
+NormalVerdict detect_normal_convention(const Image& normal, const Image* height, const DetectorOptions& opt,
+                                       bool signed_values) {
     const bool wh = height && !height->empty();
     NormalConventionDetector det(normal.width, wh, opt);
     std::vector<float> xyz(static_cast<size_t>(normal.width) * 3);
@@ -266,14 +265,11 @@ NormalVerdict detect_normal_convention(const Image& normal, const Image* height,
     std::vector<int> xmap(wh ? normal.width : 0);
     if (wh)
         for (int x = 0; x < normal.width; ++x)
-            xmap[x] = std::min(height->width - 1,
-                               static_cast<int>((x + 0.5) * height->width / normal.width));
+            xmap[x] = std::min(height->width - 1, static_cast<int>((x + 0.5) * height->width / normal.width));
     for (int y = 0; y < normal.height; ++y) {
-        decode_normal_row(&normal.pixels[normal.index(0, y)], normal.channels, normal.width,
-                          signed_values, xyz.data());
+        decode_normal_row(&normal.pixels[normal.index(0, y)], normal.channels, normal.width, signed_values, xyz.data());
         if (wh) {
-            const int hy = std::min(height->height - 1,
-                                    static_cast<int>((y + 0.5) * height->height / normal.height));
+            const int hy = std::min(height->height - 1, static_cast<int>((y + 0.5) * height->height / normal.height));
             for (int x = 0; x < normal.width; ++x) hrow[x] = height->at(xmap[x], hy, 0);
         }
         det.add_row(xyz.data(), wh ? hrow.data() : nullptr);

@@ -28,10 +28,10 @@
 namespace mf::validate {
 
 struct DetectorOptions {
-    int levels = 4;              // pyramid levels: blocks of 1, 2, 4, 8 pixels
-    long min_samples = 256;      // a level needs this many interior pixels to vote
+    int levels = 4;                // pyramid levels: blocks of 1, 2, 4, 8 pixels
+    long min_samples = 256;        // a level needs this many interior pixels to vote
     double min_confidence = 0.25;  // below this the verdict is `unknown`
-    double min_nz = 0.1;         // n_z is clamped to at least this before dividing
+    double min_nz = 0.1;           // n_z is clamped to at least this before dividing
     // Flat: the slopes p, q vary by at most this (standard deviation, in slope units) — a flat
     // or constant map, whose green convention changes nothing. 0.02 is ±2.5 codes of 8-bit noise;
     // the flattest vendor map measured (3dtextures.me Surface_Imperfection_001, 1K JPEG) has 0.081.
@@ -40,10 +40,10 @@ struct DetectorOptions {
 
 struct NormalVerdict {
     NormalConvention convention = NormalConvention::unknown;
-    double confidence = 0.0;          // of the direction the evidence leans to, even if unknown
+    double confidence = 0.0;  // of the direction the evidence leans to, even if unknown
     NormalConvention leaning = NormalConvention::unknown;
-    std::string method = "none";      // "height+curl", "curl", "none"
-    bool flat = false;                // no relief: the convention does not matter (see DetectorOptions)
+    std::string method = "none";  // "height+curl", "curl", "none"
+    bool flat = false;            // no relief: the convention does not matter (see DetectorOptions)
     nlohmann::json figures = nlohmann::json::object();
 };
 

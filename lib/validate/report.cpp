@@ -229,7 +229,8 @@ std::string write_junit(const Report& r, FailOn fail_on) {
         total_fail += fail;
         body += "  <testsuite name=\"" + xml_escape(m.name) + "\" tests=\"" + std::to_string(cases.size()) +
                 "\" failures=\"" + std::to_string(fail) + "\" errors=\"0\" skipped=\"0\">\n";
-        body += "    <properties>\n      <property name=\"source\" value=\"" + xml_escape(m.source) + "\"/>\n    </properties>\n";
+        body += "    <properties>\n      <property name=\"source\" value=\"" + xml_escape(m.source) +
+                "\"/>\n    </properties>\n";
         const std::string classname = "matforge.validate." + m.name;
         for (const auto& k : cases) {
             body += "    <testcase name=\"" + xml_escape(k.name) + "\" classname=\"" + xml_escape(classname) + "\"";
@@ -241,7 +242,8 @@ std::string write_junit(const Report& r, FailOn fail_on) {
             if (!k.failing.empty()) {
                 std::string text;
                 for (const Finding* f : k.failing)
-                    text += finding_line(*f) + (f->file.empty() ? "" : " (" + join_path(m.source, f->file) + ")") + "\n";
+                    text += finding_line(*f) + (f->file.empty() ? "" : " (" + join_path(m.source, f->file) + ")") +
+                            "\n";
                 body += "      <failure type=\"" + xml_escape(k.name) + "\" message=\"" +
                         xml_escape(k.failing.front()->message) + "\">" + xml_escape(text) + "</failure>\n";
             }
@@ -288,7 +290,9 @@ std::string uri_encode_path(std::string_view p) {
 std::string write_sarif(const Report& r) {
     // SARIF 2.1.0 (OASIS, 2020): §3.13 sarifLog, §3.19 tool, §3.49 reportingDescriptor,
     // §3.27 result, §3.28 location, §3.4 artifactLocation. Levels: error, warning, note.
-    auto level = [](Severity s) { return s == Severity::error ? "error" : s == Severity::warning ? "warning" : "note"; };
+    auto level = [](Severity s) {
+        return s == Severity::error ? "error" : s == Severity::warning ? "warning" : "note";
+    };
     std::vector<std::string> ids;
     for (const auto& rule : rule_catalog()) ids.emplace_back(rule.code);
     std::set<std::string> extra;
@@ -345,15 +349,20 @@ std::string write_sarif(const Report& r) {
             props.erase("file");
             props["material"] = m.name;
             props["role"] = role_name(in.role);
-            artifacts.push_back({{"location", location(join_path(m.source, in.file))[0]["physicalLocation"]["artifactLocation"]},
+            artifacts.push_back({{"location",
+                                  location(join_path(m.source, in.file))[0]["physicalLocation"]["artifactLocation"]},
                                  {"properties", props}});
         }
-        decided.push_back({{"material", m.name}, {"convention", m.convention}, {"constants", manifest::to_json(m.constants)}});
+        decided.push_back({{"material", m.name},
+                           {"convention", m.convention},
+                           {"constants", manifest::to_json(m.constants)}});
     }
-    nlohmann::json run{{"tool", {{"driver", {{"name", "matforge"},
-                                             {"semanticVersion", r.tool_version},
-                                             {"version", r.tool_version},
-                                             {"rules", rules}}}}},
+    nlohmann::json run{{"tool",
+                        {{"driver",
+                          {{"name", "matforge"},
+                           {"semanticVersion", r.tool_version},
+                           {"version", r.tool_version},
+                           {"rules", rules}}}}},
                        {"artifacts", artifacts},
                        {"properties", {{"materials", decided}}},
                        {"results", results}};

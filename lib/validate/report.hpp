@@ -25,9 +25,9 @@ bool fails(Severity s, FailOn f);
 
 struct MaterialReport {
     std::string name;
-    std::string source;                 // as given / relative to the report's folder
-    std::vector<Finding> findings;      // Finding::file is relative to `source`
-    std::vector<std::string> rules;     // codes evaluated (JUnit passes); empty: the validate rules
+    std::string source;              // as given / relative to the report's folder
+    std::vector<Finding> findings;   // Finding::file is relative to `source`
+    std::vector<std::string> rules;  // codes evaluated (JUnit passes); empty: the validate rules
     // What was decided, not only what is wrong: the naming family, each chosen file's role and
     // the rule that matched (with the normal map's convention verdict), and the constants
     // ingest generates for missing roles.
@@ -36,7 +36,7 @@ struct MaterialReport {
     std::vector<manifest::Constant> constants;
 };
 
-using mf::InputFailure;                  // an input that could not be processed at all
+using mf::InputFailure;  // an input that could not be processed at all
 
 struct Report {
     std::string tool_version{kVersion};
@@ -59,7 +59,7 @@ void add_material(Summary& s, const std::vector<Finding>& findings);
 // code that says so is the CLI's (tools/matforge/command.hpp).
 bool run_fails(const Summary& s, FailOn fail_on);
 
-nlohmann::json report_json(const Report& r);   // {"report_version": 1, ...}
+nlohmann::json report_json(const Report& r);  // {"report_version": 1, ...}
 std::string write_json(const Report& r);
 std::string write_text(const Report& r, FailOn fail_on);
 std::string write_junit(const Report& r, FailOn fail_on);

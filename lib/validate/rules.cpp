@@ -51,10 +51,8 @@ const std::vector<Param>& params() {
         {code::normal_gamma_encoded, "max_decoded_length_error", &Thresholds::normal_gamma_max_decoded_length_error},
         {code::opacity_all_transparent, "invisible_max", &Thresholds::opacity_invisible_max},
         {code::opacity_all_transparent, "max_share", &Thresholds::opacity_max_invisible_share},
-        {code::normal_convention_mismatch, "min_confidence",
-         &Thresholds::normal_convention_min_confidence},
-        {code::normal_convention_unknown, "min_confidence",
-         &Thresholds::normal_convention_min_confidence},
+        {code::normal_convention_mismatch, "min_confidence", &Thresholds::normal_convention_min_confidence},
+        {code::normal_convention_unknown, "min_confidence", &Thresholds::normal_convention_min_confidence},
     };
     return p;
 }
@@ -68,7 +66,8 @@ std::optional<Severity> parse_severity(const nlohmann::json& v) {
         switch (v.get<std::int64_t>()) {  // never narrowed before the range is known
             case 0: return Severity::error;
             case 1: return Severity::warning;
-            case 2: case 3: return Severity::info;
+            case 2:
+            case 3: return Severity::info;
             default: break;
         }
     }
@@ -96,41 +95,66 @@ const std::vector<RuleInfo>& rule_catalog() {
     // Order: set-level, per-file value checks, PBR plausibility, normal maps, tags, then the
     // codes other stages emit (listed so reports can describe them).
     static const std::vector<RuleInfo> c{
-        {code::unreadable_file, Severity::error, "File is corrupt, truncated, empty or not an image", "unreadable_file"},
+        {code::unreadable_file, Severity::error, "File is corrupt, truncated, empty or not an image",
+         "unreadable_file"},
         {code::resolution_mismatch, Severity::warning, "Maps of one set differ in size", "resolution_mismatch"},
         {code::nonfinite_values, Severity::error, "NaN or Inf values in a map", "nonfinite_values"},
-        {code::out_of_range_values, Severity::warning, "Float data outside [0, 1] where the role allows none", "out_of_range_values"},
+        {code::out_of_range_values, Severity::warning, "Float data outside [0, 1] where the role allows none",
+         "out_of_range_values"},
         {code::not_grayscale, Severity::warning, "Scalar map stored with differing channels", "not_grayscale"},
         {code::constant_map, Severity::info, "Map holds one value (replaceable by a constant)", "constant_map"},
-        {code::metalness_not_binary, Severity::warning, "Too much metalness strictly between 0 and 1", "metalness_not_binary"},
-        {code::albedo_too_dark, Severity::warning, "Dielectric albedo darker than any real material", "albedo_too_dark"},
-        {code::albedo_too_bright, Severity::warning, "Dielectric albedo brighter than any real material", "albedo_too_bright"},
-        {code::metal_albedo_too_dark, Severity::warning, "Metallic areas darker than any real metal", "metal_albedo_too_dark"},
-        {code::opacity_all_transparent, Severity::error, "Opacity makes the whole material invisible", "opacity_all_transparent"},
-        {code::normal_invalid, Severity::error, "Not a tangent-space normal map (height, color or object-space map; one channel)", "normal_invalid"},
-        {code::normal_gamma_encoded, Severity::error, "Normal map stored sRGB/gamma-encoded (X/Y centred near 0.74, not 0.5)", "normal_gamma_encoded"},
-        {code::normal_not_unit_length, Severity::info, "Normal vectors not unit length (renormalized on ingest)", "normal_not_unit_length"},
-        {code::normal_z_reconstructed, Severity::info, "Two-channel normal map: Z reconstructed from X and Y", "normal_z_reconstructed"},
-        {code::normal_convention_mismatch, Severity::warning, "Normal map content contradicts the GL/DX convention its name states", "normal_convention_mismatch"},
-        {code::normal_convention_unknown, Severity::warning, "Neither name nor content decides GL vs DX", "normal_convention_unknown"},
+        {code::metalness_not_binary, Severity::warning, "Too much metalness strictly between 0 and 1",
+         "metalness_not_binary"},
+        {code::albedo_too_dark, Severity::warning, "Dielectric albedo darker than any real material",
+         "albedo_too_dark"},
+        {code::albedo_too_bright, Severity::warning, "Dielectric albedo brighter than any real material",
+         "albedo_too_bright"},
+        {code::metal_albedo_too_dark, Severity::warning, "Metallic areas darker than any real metal",
+         "metal_albedo_too_dark"},
+        {code::opacity_all_transparent, Severity::error, "Opacity makes the whole material invisible",
+         "opacity_all_transparent"},
+        {code::normal_invalid, Severity::error,
+         "Not a tangent-space normal map (height, color or object-space map; one channel)", "normal_invalid"},
+        {code::normal_gamma_encoded, Severity::error,
+         "Normal map stored sRGB/gamma-encoded (X/Y centred near 0.74, not 0.5)", "normal_gamma_encoded"},
+        {code::normal_not_unit_length, Severity::info, "Normal vectors not unit length (renormalized on ingest)",
+         "normal_not_unit_length"},
+        {code::normal_z_reconstructed, Severity::info, "Two-channel normal map: Z reconstructed from X and Y",
+         "normal_z_reconstructed"},
+        {code::normal_convention_mismatch, Severity::warning,
+         "Normal map content contradicts the GL/DX convention its name states", "normal_convention_mismatch"},
+        {code::normal_convention_unknown, Severity::warning, "Neither name nor content decides GL vs DX",
+         "normal_convention_unknown"},
         // info: maps are read by role, so a tag never changes what ingest makes of the pixels.
-        {code::color_space_mismatch, Severity::info, "Data map tagged as color, or color map tagged as data (the tag is ignored)", "color_space_mismatch"},
+        {code::color_space_mismatch, Severity::info,
+         "Data map tagged as color, or color map tagged as data (the tag is ignored)", "color_space_mismatch"},
         // Emitted by discovery / ingest, not by validate_set().
         {code::missing_map, Severity::info, "A role the preset needs has no map", "missing_map"},
         {code::ambiguous_map, Severity::info, "Several files could be one role", "ambiguous_map"},
         {code::unrecognized_file, Severity::info, "An image in the set matches no role", "unrecognized_file"},
         {code::gloss_inverted, Severity::info, "A gloss map became roughness", "gloss_inverted"},
         {code::packed_input_unpacked, Severity::info, "A packed input was split into roles", "packed_input_unpacked"},
-        {code::normal_convention_converted, Severity::info, "Green channel flipped to the preset's convention", "normal_convention_converted"},
-        {code::names_merged, Severity::warning, "Two spellings of a material name were grouped as one material (info when only tags differ)", "names_merged"},
-        {code::duplicate_input, Severity::info, "A folder or archive reached through two inputs was read once", "duplicate_input"},
-        {code::duplicate_entry, Severity::warning, "An archive holds two entries of one name; the first is used", "duplicate_entry"},
-        {code::multipart_image, Severity::warning, "A file holds several images (EXR parts, TIFF pages); the first is used", "multipart_image"},
-        {code::orientation_ignored, Severity::warning, "An EXIF/TIFF orientation is not applied: the map is used as stored", "orientation_ignored"},
-        {code::aspect_mismatch, Severity::error, "A map's aspect ratio is more than 2x off the set's: not stretched, not used", "aspect_mismatch"},
-        {code::output_too_large, Severity::warning, "An output is wider or taller than 16384 pixels, more than engines and GPUs import", "output_too_large"},
-        {code::encoding_error_exceeded, Severity::warning, "A block-compressed level decodes with more error than the preset's bound", "encoding_error_exceeded"},
-        {code::material_file_skipped, Severity::info, "The preset's glTF material file was not written: this run's normal maps are not glTF's +Y", "material_file_skipped"},
+        {code::normal_convention_converted, Severity::info, "Green channel flipped to the preset's convention",
+         "normal_convention_converted"},
+        {code::names_merged, Severity::warning,
+         "Two spellings of a material name were grouped as one material (info when only tags differ)", "names_merged"},
+        {code::duplicate_input, Severity::info, "A folder or archive reached through two inputs was read once",
+         "duplicate_input"},
+        {code::duplicate_entry, Severity::warning, "An archive holds two entries of one name; the first is used",
+         "duplicate_entry"},
+        {code::multipart_image, Severity::warning,
+         "A file holds several images (EXR parts, TIFF pages); the first is used", "multipart_image"},
+        {code::orientation_ignored, Severity::warning,
+         "An EXIF/TIFF orientation is not applied: the map is used as stored", "orientation_ignored"},
+        {code::aspect_mismatch, Severity::error,
+         "A map's aspect ratio is more than 2x off the set's: not stretched, not used", "aspect_mismatch"},
+        {code::output_too_large, Severity::warning,
+         "An output is wider or taller than 16384 pixels, more than engines and GPUs import", "output_too_large"},
+        {code::encoding_error_exceeded, Severity::warning,
+         "A block-compressed level decodes with more error than the preset's bound", "encoding_error_exceeded"},
+        {code::material_file_skipped, Severity::info,
+         "The preset's glTF material file was not written: this run's normal maps are not glTF's +Y",
+         "material_file_skipped"},
     };
     return c;
 }
@@ -185,8 +209,7 @@ bool glob_match(std::string_view p, std::string_view t) {
     return pi == p.size();
 }
 
-std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::string& error,
-                                                const RuleConfig& base) {
+std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::string& error, const RuleConfig& base) {
     RuleConfig cfg = base;
     if (!j.is_object()) {
         error = "rules configuration must be a JSON object";
@@ -195,9 +218,7 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
     auto disable = [&cfg](const std::string& c) {
         if (cfg.enabled(c)) cfg.disabled.push_back(c);
     };
-    auto enable = [&cfg](const std::string& c) {
-        std::erase(cfg.disabled, c);
-    };
+    auto enable = [&cfg](const std::string& c) { std::erase(cfg.disabled, c); };
     // "preset" first: it resets the thresholds the rest of the object then adjusts.
     if (j.contains("preset")) {
         const auto& p = j.at("preset");
@@ -220,7 +241,8 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                     bool raise_only = rv == "error" || rv == true || rv == "on" || rv.is_object();
                     if (rv.is_object())
                         for (const auto& [k, kv] : rv.items())
-                            raise_only = raise_only && ((k == "severity" && kv == "error") || (k == "enabled" && kv == true));
+                            raise_only = raise_only &&
+                                         ((k == "severity" && kv == "error") || (k == "enabled" && kv == true));
                     if (!raise_only) {
                         error = protected_message(c);
                         return std::nullopt;
@@ -234,8 +256,10 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                 if (rv.is_string() || rv.is_boolean()) {
                     if (rv == "off" || rv == false) disable(c);
                     else if (rv == true || rv == "on") enable(c);
-                    else if (auto s = parse_severity(rv)) { cfg.severity[c] = *s; enable(c); }
-                    else {
+                    else if (auto s = parse_severity(rv)) {
+                        cfg.severity[c] = *s;
+                        enable(c);
+                    } else {
                         error = "rules: \"" + c + "\": expected \"off\", a severity or an object";
                         return std::nullopt;
                     }
@@ -258,7 +282,8 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                             error = "rules: \"" + c + "\".enabled must be true or false";
                             return std::nullopt;
                         }
-                        if (v.get<bool>()) enable(c); else disable(c);
+                        if (v.get<bool>()) enable(c);
+                        else disable(c);
                     } else {
                         // Init-captures: clang < 16 cannot capture the structured bindings c and name.
                         auto it = std::find_if(params().begin(), params().end(),
@@ -340,8 +365,7 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
                     }
                     s.material = v.at("material").get<std::string>();
                 }
-                if (v.contains("reason") && v.at("reason").is_string())
-                    s.reason = v.at("reason").get<std::string>();
+                if (v.contains("reason") && v.at("reason").is_string()) s.reason = v.at("reason").get<std::string>();
                 for (const auto& [k, unused] : v.items()) {
                     (void)unused;
                     if (k != "code" && k != "material" && k != "reason") {

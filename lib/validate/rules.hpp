@@ -23,9 +23,9 @@ namespace mf::validate {
 // One entry of the rule catalog.
 struct RuleInfo {
     std::string_view code;
-    Severity severity;            // default severity
-    std::string_view title;       // one line, used as SARIF shortDescription and JUnit text
-    std::string_view anchor;      // section of docs/rules.md
+    Severity severity;        // default severity
+    std::string_view title;   // one line, used as SARIF shortDescription and JUnit text
+    std::string_view anchor;  // section of docs/rules.md
 };
 
 // Every code validate_set() can emit, in a fixed order (the order findings are sorted by).

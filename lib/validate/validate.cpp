@@ -66,8 +66,10 @@ void resolution_findings(const std::vector<MapInput>& maps, const std::vector<bo
         f.message = f.file + " is " + std::to_string(m.info.width) + "x" + std::to_string(m.info.height) +
                     " but the other maps of the set are " + std::to_string(ref.first) + "x" +
                     std::to_string(ref.second) + "; it will be resampled";
-        f.figures = {{"width", m.info.width}, {"height", m.info.height},
-                     {"reference_width", ref.first}, {"reference_height", ref.second},
+        f.figures = {{"width", m.info.width},
+                     {"height", m.info.height},
+                     {"reference_width", ref.first},
+                     {"reference_height", ref.second},
                      {"sizes", sizes}};
         out.push_back(std::move(f));
     }
@@ -75,8 +77,8 @@ void resolution_findings(const std::vector<MapInput>& maps, const std::vector<bo
 
 }  // namespace
 
-std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name,
-                                       NormalConvention name_convention, std::string& error) {
+std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name, NormalConvention name_convention,
+                                       std::string& error) {
     MapInput m;
     m.role = role;
     m.name = std::move(name);
@@ -107,14 +109,21 @@ struct SetRun {
     SetValidation result;
 
     SetRun(const std::vector<MapInput>& m, const RuleConfig& c, const ValidateOptions& o)
-        : maps(m), cfg(c), opt(o), t(c.thresholds), readable(m.size(), true), read_errors(m.size()),
-          stats(m.size()), streams(m.size()) {}
+        : maps(m),
+          cfg(c),
+          opt(o),
+          t(c.thresholds),
+          readable(m.size(), true),
+          read_errors(m.size()),
+          stats(m.size()),
+          streams(m.size()) {}
 
     const ImageInfo& info(const Source& s) const { return maps[static_cast<size_t>(s.map)].info; }
     bool albedo_pass() const { return albedo.map >= 0 && info(albedo).channels >= 3; }
     bool normal_pass() const { return normal.map >= 0 && info(normal).channels >= 2; }
     const float* row_of(const Source& s, int r) const {
-        return s.map >= 0 && streams[static_cast<size_t>(s.map)] ? streams[static_cast<size_t>(s.map)]->row(r) : nullptr;
+        return s.map >= 0 && streams[static_cast<size_t>(s.map)] ? streams[static_cast<size_t>(s.map)]->row(r)
+                                                                 : nullptr;
     }
 
     // Header facts first (cheap); a map whose header fails is reported and left out.
@@ -198,11 +207,12 @@ struct SetRun {
             if (!a) break;
             const float* m = metal.map >= 0 ? row_of(metal, nearest(y, ai.height, info(metal).height)) : nullptr;
             const float* o = opacity.map == albedo.map ? a
-                             : opacity.map >= 0       ? row_of(opacity, nearest(y, ai.height, info(opacity).height))
-                                                      : nullptr;
+                             : opacity.map >= 0        ? row_of(opacity, nearest(y, ai.height, info(opacity).height))
+                                                       : nullptr;
             for (int x = 0; x < ai.width; ++x) {
                 if (o) {
-                    const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3] : o[ox[x] * oc + opacity.channel];
+                    const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3]
+                                                               : o[ox[x] * oc + opacity.channel];
                     if (!(ov >= t.opacity_visible)) continue;
                 }
                 const float mv = m ? m[mx[x] * mc + metal.channel] : 0.f;
@@ -232,7 +242,8 @@ struct SetRun {
             decode_normal_row(n, ni.channels, ni.width, ns.normal_signed == 1, xyz.data(), ns.rebuilds_z());
             const float* h = wh ? row_of(height, nearest(y, ni.height, info(height).height)) : nullptr;
             if (h)
-                for (int x = 0; x < ni.width; ++x) hrow[static_cast<size_t>(x)] = h[hx[static_cast<size_t>(x)] * hc + height.channel];
+                for (int x = 0; x < ni.width; ++x)
+                    hrow[static_cast<size_t>(x)] = h[hx[static_cast<size_t>(x)] * hc + height.channel];
             det.add_row(xyz.data(), h ? hrow.data() : nullptr);
         }
         convention_findings(det.verdict());
@@ -299,8 +310,7 @@ struct SetRun {
             result.normal_z_rebuilt = stats[static_cast<size_t>(normal.map)]->rebuilds_z();
         // The albedo's alpha: the plan keeps it as the opacity only when some texel is below opaque.
         if (opacity.map >= 0 && opacity.map == albedo.map && readable[static_cast<size_t>(albedo.map)])
-            result.albedo_alpha_min =
-                stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
+            result.albedo_alpha_min = stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
         for (size_t i = 0; i < maps.size(); ++i) {
             if (!readable[i]) {
                 Finding f;
@@ -317,8 +327,9 @@ struct SetRun {
         // A map that is not a normal map has no green convention: NORMAL_INVALID says it all.
         if (result.normal) {
             const std::string nf = result.normal->file;
-            const bool invalid = std::any_of(found.begin(), found.end(),
-                                             [&](const Finding& f) { return f.code == code::normal_invalid && f.file == nf; });
+            const bool invalid = std::any_of(found.begin(), found.end(), [&](const Finding& f) {
+                return f.code == code::normal_invalid && f.file == nf;
+            });
             if (invalid)
                 std::erase_if(found, [&](const Finding& f) {
                     return f.file == nf &&
@@ -337,7 +348,8 @@ struct SetRun {
                 if (cat[i].code == f.code) return i;
             return cat.size();
         };
-        std::stable_sort(found.begin(), found.end(), [&](const Finding& a, const Finding& b) { return rank(a) < rank(b); });
+        std::stable_sort(found.begin(), found.end(),
+                         [&](const Finding& a, const Finding& b) { return rank(a) < rank(b); });
         result.findings = std::move(found);
         return std::move(result);
     }

@@ -32,9 +32,9 @@ namespace mf::validate {
 struct MapInput {
     Role role = Role::albedo;  // input role (orm, gloss, … allowed)
     InputFile file;
-    std::string name;          // file as findings name it (relative to the set); empty: file.display
-    ImageInfo info;            // header facts; width 0: read with mf::read_info
-    ColorTagInfo color_tag;    // from read_color_tag(file); none: no tag check
+    std::string name;        // file as findings name it (relative to the set); empty: file.display
+    ImageInfo info;          // header facts; width 0: read with mf::read_info
+    ColorTagInfo color_tag;  // from read_color_tag(file); none: no tag check
     NormalConvention name_convention = NormalConvention::unknown;  // what the file name says
     std::vector<Role> unused;  // output roles this map must not feed (routing's `unused`)
     // Another candidate for a role whose chosen map comes first (a WebP copy beside the JPEG
@@ -44,15 +44,15 @@ struct MapInput {
 
 // Builds a MapInput reading the header and the color tag (the usual way to make one).
 // Returns nullopt and sets `error` when the header cannot be read.
-std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name,
-                                       NormalConvention name_convention, std::string& error);
+std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name, NormalConvention name_convention,
+                                       std::string& error);
 
 // mf::read_bands's signature: tests substitute in-memory images.
 using BandReader = std::function<bool(const InputFile&, int band_rows, ImageInfo&, std::string&,
                                       const std::function<void(int, int, const float*)>&)>;
 
 struct ValidateOptions {
-    std::string material;      // name the suppressions match
+    std::string material;  // name the suppressions match
     int band_rows = 64;
     BandReader reader;         // empty: mf::read_bands
     DetectorOptions detector;  // GL/DX detector settings
@@ -81,7 +81,6 @@ struct SetValidation {
     int suppressed = 0;  // findings removed by "ignore"/"suppress"/"off"
 };
 
-SetValidation validate_set(const std::vector<MapInput>& maps, const RuleConfig& cfg,
-                           const ValidateOptions& opt = {});
+SetValidation validate_set(const std::vector<MapInput>& maps, const RuleConfig& cfg, const ValidateOptions& opt = {});
 
 }  // namespace mf::validate

@@ -1,7 +1,9 @@
 // The ingest cache (lib/process/cache.hpp) through the binary: an unchanged set is restored with
 // the same bytes as a run without the cache, a changed file recomputes its set only, a corrupt
 // blob or an unusable cache never fails a run, and `matforge cache` reports and prunes it.
+#include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <map>
 
 #include "cli_util.hpp"
@@ -139,7 +141,56 @@ TEST(Cache, CorruptBlobIsRecomputedAndSaid) {
     EXPECT_NE(r.output.find("computed again"), std::string::npos) << r.output;
     EXPECT_EQ(bytes_of(work / "b/manifest.json"), bytes_of(work / "plain/manifest.json"));
     EXPECT_EQ(files_of(work / "b"), files_of(work / "plain"));
-    EXPECT_EQ(bytes_of(work / "a/Net004A/Net004A_basecolor.png"), bytes_of(work / "plain/Net004A/Net004A_basecolor.png"));
+    EXPECT_EQ(bytes_of(work / "a/Net004A/Net004A_basecolor.png"),
+              bytes_of(work / "plain/Net004A/Net004A_basecolor.png"));
+}
+
+// The action records are checked like the blobs: one cut short, one altered (still valid JSON)
+// and one of an older cache version are each reported, removed and their set computed again.
+TEST(Cache, CorruptRecordIsRecomputedAndSaid) {
+    const fs::path work = temp_dir("record");
+    const fs::path in = two_sets(work);
+    const fs::path cache = work / "cache";
+    ASSERT_EQ(run("ingest " + q(in) + " -o " + q(work / "plain") + " --no-cache").code, 0);
+    std::vector<fs::path> records;
+    auto find_records = [&] {
+        records.clear();
+        for (const auto& e : fs::recursive_directory_iterator(cache / "ac"))
+            if (e.is_regular_file()) records.push_back(e.path());
+        std::sort(records.begin(), records.end());
+    };
+    const std::vector<std::function<void(const fs::path&)>> damage{
+        [](const fs::path& rec) {  // cut short
+            const std::string text = bytes_of(rec);
+            std::ofstream(rec, std::ios::binary | std::ios::trunc) << text.substr(0, text.size() / 2);
+        },
+        [](const fs::path& rec) {  // altered: valid JSON whose entry no longer hashes to its digest
+            json j = read_json(rec);
+            j["entry"]["findings"] = json::array({{{"code", "TAMPERED"}, {"severity", "info"}, {"message", "x"}}});
+            std::ofstream(rec, std::ios::binary | std::ios::trunc) << j.dump();
+        },
+        [](const fs::path& rec) {  // a record of cache version 1 (no digest)
+            json j = read_json(rec);
+            j["cache_version"] = 1;
+            j.erase("entry_sha256");
+            std::ofstream(rec, std::ios::binary | std::ios::trunc) << j.dump();
+        }};
+    for (size_t d = 0; d < damage.size(); ++d) {
+        const fs::path out = work / ("out" + std::to_string(d));
+        ASSERT_EQ(run("ingest " + q(in) + " -o " + q(out) + " --cache " + q(cache)).code, 0);
+        find_records();
+        ASSERT_EQ(records.size(), 2u);
+        damage[d](records[0]);
+        fs::remove_all(out);
+        const auto r = run("ingest " + q(in) + " -o " + q(out) + " --cache " + q(cache));
+        ASSERT_EQ(r.code, 0) << r.output;
+        EXPECT_EQ(cache_line(r.output), std::make_pair(1, 1)) << "damage " << d << ":\n" << r.output;
+        EXPECT_NE(r.output.find(records[0].filename().string()), std::string::npos) << "names the record:\n"
+                                                                                    << r.output;
+        EXPECT_NE(r.output.find("computed again"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("TAMPERED"), std::string::npos) << r.output;
+        EXPECT_EQ(bytes_of(out / "manifest.json"), bytes_of(work / "plain/manifest.json")) << "damage " << d;
+    }
 }
 
 TEST(Cache, UnusableCacheNeverFailsARun) {
@@ -164,6 +215,12 @@ TEST(Cache, StatsAndPrune) {
     auto r = run("cache stats --cache " + q(cache));
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("2 records"), std::string::npos) << r.output;
+    // A prune whose limit holds everything keeps every record usable: the blobs of its outputs
+    // and of its material files (.gltf, .bin) alike, so the next run restores both sets.
+    r = run("cache prune --cache " + q(cache) + " --max-size 10G --grace 0");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = ingest(in, work / "again", cache);
+    EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
     // Pruned to nothing: every record and blob goes (a zero grace so the fresh blobs go too) and
     // the next run computes both sets again, with the same bytes.
     r = run("cache prune --cache " + q(cache) + " --max-size 0 --grace 0");

@@ -40,9 +40,8 @@ inline fs::path samples() { return fs::path(MATFORGE_SOURCE_DIR) / "sample_mater
 // A fresh, empty temporary folder per test.
 inline fs::path temp_dir(const std::string& name) {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path d = fs::temp_directory_path() /
-                 ("matforge-cli-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" + name + "-" +
-                  std::to_string(::getpid()));
+    fs::path d = fs::temp_directory_path() / ("matforge-cli-" + std::string(info->test_suite_name()) + "-" +
+                                              info->name() + "-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     mf::testbin::register_test_dir(d);
@@ -126,7 +125,9 @@ inline void write_text(const fs::path& p, const std::string& s) {
 inline void write_png(const fs::path& p, const mf::Image& img, int bits = 8) {
     std::vector<unsigned char> bytes;
     std::string err;
-    ASSERT_TRUE(mf::encode_image(img, {p.extension() == ".exr" ? "exr" : p.extension().string().substr(1), bits}, bytes, err)) << err;
+    ASSERT_TRUE(mf::encode_image(img, {p.extension() == ".exr" ? "exr" : p.extension().string().substr(1), bits}, bytes,
+                                 err))
+        << err;
     ASSERT_TRUE(mf::write_file_atomic(p, bytes, err)) << err;
 }
 

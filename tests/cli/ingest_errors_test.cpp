@@ -25,7 +25,8 @@ TEST(IngestErrors, CorruptFilesAreReportedAndOtherSetsComplete) {
     std::vector<unsigned char> png;
     std::string err;
     ASSERT_TRUE(mf::encode_image(gradient(16, 16, 3), {"png", 8}, png, err));
-    write_text(in / "Mixed" / "Mixed_NormalGL.png", std::string(png.begin(), png.begin() + static_cast<long>(png.size() / 2)));
+    write_text(in / "Mixed" / "Mixed_NormalGL.png",
+               std::string(png.begin(), png.begin() + static_cast<long>(png.size() / 2)));
     // A set where nothing is readable.
     write_text(in / "Dead" / "Dead_Color.png", "GIF89a garbage");
 
@@ -117,7 +118,8 @@ TEST(IngestErrors, MissingInputIsAFailureNotACrash) {
 
 TEST(IngestErrors, UserPresetFile) {
     const fs::path out = temp_dir("out");
-    write_text(out / "mine.json", R"({"name": "mine", "normal_convention": "dx", "file_pattern": "{material}_{suffix}.{ext}",
+    write_text(out / "mine.json",
+               R"({"name": "mine", "normal_convention": "dx", "file_pattern": "{material}_{suffix}.{ext}",
       "outputs": [{"suffix": "rm", "channels": {"R": "roughness", "G": "metalness"}}]})");
     const fs::path set = samples() / "Metal_Damaged_001_SD";
     const auto r = run("ingest " + q(set) + " -o " + q(out / "o") + " --preset " + q(out / "mine.json"));

@@ -33,7 +33,8 @@ const nlohmann::json& ingested(const std::string& preset) {
 struct CleanupOutputs : ::testing::Environment {
     void TearDown() override {
         for (const char* p : {"gltf", "unreal", "unity-hdrp", "unity-urp", "godot", "separate"})
-            fs::remove_all(fs::temp_directory_path() / ("matforge-cli-samples-" + std::string(p) + "-" + std::to_string(::getpid())));
+            fs::remove_all(fs::temp_directory_path() /
+                           ("matforge-cli-samples-" + std::string(p) + "-" + std::to_string(::getpid())));
     }
 };
 [[maybe_unused]] auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new CleanupOutputs);
@@ -136,7 +137,8 @@ TEST(IngestSamples, FlatFolderSplitsIntoItsTwoSets) {
         EXPECT_EQ(fs::path(source).filename(), "flat_two_sets") << source;
         ASSERT_FALSE(mat["inputs"].empty());
         for (const auto& [role, in] : mat["inputs"].items())
-            EXPECT_EQ(in["file"].get<std::string>().rfind(name + "_", 0), 0u) << name << " " << role << ": " << in["file"];
+            EXPECT_EQ(in["file"].get<std::string>().rfind(name + "_", 0), 0u)
+                << name << " " << role << ": " << in["file"];
         for (const auto& f : mat["findings"]) {
             if (f.contains("file")) {
                 EXPECT_EQ(f["file"].get<std::string>().rfind(name + "_", 0), 0u) << name << ": " << f;
@@ -178,7 +180,8 @@ TEST(IngestSamples, AmbientCgDxAloneIsFlippedToGl) {
     const fs::path work = temp_dir("dx");
     fs::create_directories(work / "in/Net004A_1K-JPG");
     for (const auto& e : fs::directory_iterator(samples() / "Net004A_1K-JPG"))
-        if (e.path().filename() != "Net004A_1K-JPG_NormalGL.jpg") fs::copy(e.path(), work / "in/Net004A_1K-JPG" / e.path().filename());
+        if (e.path().filename() != "Net004A_1K-JPG_NormalGL.jpg")
+            fs::copy(e.path(), work / "in/Net004A_1K-JPG" / e.path().filename());
     for (const char* preset : {"gltf", "unreal"}) {
         const auto r = run("ingest " + q(work / "in") + " -o " + q(work / preset) + " --preset " + preset);
         ASSERT_EQ(r.code, 0) << r.output;

@@ -26,7 +26,8 @@ TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
     for (const auto& s : plan["sets"]) ++per_shard[s["shard"].get<int>()];
     EXPECT_EQ(per_shard.size(), 3u) << plan.dump(2);
     for (int i = 0; i < 3; ++i) {
-        const auto r = run("ingest " + q(samples()) + " -o " + q(work / "out") + " -q --shard " + std::to_string(i) + "/3");
+        const auto r = run("ingest " + q(samples()) + " -o " + q(work / "out") + " -q --shard " + std::to_string(i) +
+                           "/3");
         ASSERT_EQ(r.code, 0) << r.output;
         // Each shard processed exactly the sets the plan gave it.
         const json part = read_json(work / "out" / ("manifest.shard-" + std::to_string(i) + "-of-3.json"));
@@ -38,8 +39,9 @@ TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
                 }
             }
     }
-    ASSERT_EQ(run("merge " + q(work / "out/manifest.shard-0-of-3.json") + " " + q(work / "out/manifest.shard-1-of-3.json") +
-                  " " + q(work / "out/manifest.shard-2-of-3.json") + " -o " + q(work / "out/manifest.json"))
+    ASSERT_EQ(run("merge " + q(work / "out/manifest.shard-0-of-3.json") + " " +
+                  q(work / "out/manifest.shard-1-of-3.json") + " " + q(work / "out/manifest.shard-2-of-3.json") +
+                  " -o " + q(work / "out/manifest.json"))
                   .code,
               0);
     ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work / "single") + " -q --no-cache").code, 0);
@@ -51,8 +53,9 @@ TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
     // A killed shard re-run completes its part: the same bytes again.
     fs::remove(work / "out/manifest.shard-1-of-3.json");
     ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work / "out") + " -q --shard 1/3").code, 0);
-    ASSERT_EQ(run("merge " + q(work / "out/manifest.shard-0-of-3.json") + " " + q(work / "out/manifest.shard-1-of-3.json") +
-                  " " + q(work / "out/manifest.shard-2-of-3.json") + " -o " + q(work / "out/manifest.json"))
+    ASSERT_EQ(run("merge " + q(work / "out/manifest.shard-0-of-3.json") + " " +
+                  q(work / "out/manifest.shard-1-of-3.json") + " " + q(work / "out/manifest.shard-2-of-3.json") +
+                  " -o " + q(work / "out/manifest.json"))
                   .code,
               0);
     EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "single/manifest.json"));
@@ -61,18 +64,39 @@ TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
 
 TEST(Shard, MergeRefusesPartsOfDifferentRuns) {
     const fs::path work = temp_dir("refuse");
-    ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "a") + " -q").code, 0);
-    ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "b") + " -q --preset unreal").code, 0);
-    auto r = run("merge " + q(work / "a/manifest.json") + " " + q(work / "b/manifest.json") + " -o " + q(work / "m.json"));
-    EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find("preset \"gltf\" vs \"unreal\""), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find((work / "b/manifest.json").string()), std::string::npos) << r.output;
-    // The same material in two parts is not one run either.
-    r = run("merge " + q(work / "a/manifest.json") + " " + q(work / "a/manifest.json") + " -o " + q(work / "m.json"));
-    EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find("is in both"), std::string::npos) << r.output;
-    EXPECT_FALSE(fs::exists(work / "m.json"));
-    EXPECT_EQ(run("ingest " + q(samples()) + " -o " + q(work / "c") + " --shard 3/3").code, 2);
+    const std::string in = q(samples());
+    auto shard = [&](const std::string& out, const std::string& which, const std::string& extra = "") {
+        const auto r = run("ingest " + in + " -o " + q(work / out) + " -q --shard " + which + extra);
+        EXPECT_EQ(r.code, 0) << r.output;
+        return q(work / out /
+                 ("manifest.shard-" + which.substr(0, which.find('/')) + "-of-" + which.substr(which.find('/') + 1) +
+                  ".json"));
+    };
+    auto refused = [&](const std::string& parts, const std::string& says) {
+        const auto r = run("merge " + parts + " -o " + q(work / "m.json"));
+        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(work / "m.json"));
+    };
+    const std::string a0 = shard("a", "0/2"), a1 = shard("a", "1/2");
+    // Another preset by name.
+    refused(a0 + " " + shard("b", "1/2", " --preset unreal"), "preset \"gltf\" vs \"unreal\"");
+    // The same preset name, other content (a preset file edited between shards).
+    const fs::path preset = work / "gltf.json";
+    { std::ofstream(preset) << run("presets show gltf").output; }
+    auto edited = read_json(preset);
+    edited["max_size"] = 1024;
+    std::ofstream(preset) << edited.dump();
+    refused(a0 + " " + shard("c", "1/2", " --preset " + q(preset)), "other preset content");
+    // A missing shard, a shard twice, a shard of another split, a manifest that is no shard.
+    refused(a0, "shard(s) 1 of 2 missing");
+    refused(a0 + " " + a0, "shard 0 of 2 is given twice");
+    refused(a0 + " " + shard("d", "1/3"), "shard count \"2\" vs \"3\"");
+    ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "e") + " -q").code, 0);
+    refused(a0 + " " + q(work / "e/manifest.json"), "is not the manifest of a shard");
+    // The right parts, in any order: merged.
+    EXPECT_EQ(run("merge " + a1 + " " + a0 + " -o " + q(work / "a/manifest.json")).code, 0);
+    EXPECT_EQ(run("ingest " + in + " -o " + q(work / "x") + " --shard 3/3").code, 2);
 }
 
 TEST(Shard, ActionKeysFollowContentAndConfigurationOnly) {
@@ -81,12 +105,14 @@ TEST(Shard, ActionKeysFollowContentAndConfigurationOnly) {
     ASSERT_EQ(run("plan " + q(work / "in") + " -o " + q(work / "p1.json")).code, 0);
     const auto k1 = keys_of(work / "p1.json");
     // A time stamp is not content: the same keys.
-    fs::last_write_time(work / "in/Metal_Damaged_001_SD/Metal_Damaged_001_basecolor.jpg", fs::file_time_type::clock::now());
+    fs::last_write_time(work / "in/Metal_Damaged_001_SD/Metal_Damaged_001_basecolor.jpg",
+                        fs::file_time_type::clock::now());
     ASSERT_EQ(run("plan " + q(work / "in") + " -o " + q(work / "p2.json")).code, 0);
     EXPECT_EQ(keys_of(work / "p2.json"), k1);
     // One byte of one file: that set's key only.
     {
-        std::fstream f(work / "in/Metal_Damaged_001_SD/Metal_Damaged_001_basecolor.jpg", std::ios::in | std::ios::out | std::ios::binary);
+        std::fstream f(work / "in/Metal_Damaged_001_SD/Metal_Damaged_001_basecolor.jpg",
+                       std::ios::in | std::ios::out | std::ios::binary);
         f.seekp(-1, std::ios::end);
         f.put('\x7f');
     }

@@ -107,8 +107,9 @@ TEST(SyntheticSets, NormalConventionOverrideReachesThePixels) {
     EXPECT_FALSE(has_finding(mat, "NORMAL_CONVENTION_CONVERTED")) << "DX in, DX out";
     const auto dx = read_pixels(out / (*n)["file"].get<std::string>());
     const auto& gl_manifest = ingested(kTiles, "gltf");
-    const auto gl = read_pixels(out_of(gl_manifest) / output_with(*material(gl_manifest, "Tiles101"), "RGB", "normal")
-                                                          ->at("file").get<std::string>());
+    const auto gl =
+        read_pixels(out_of(gl_manifest) /
+                    output_with(*material(gl_manifest, "Tiles101"), "RGB", "normal")->at("file").get<std::string>());
     ASSERT_EQ(dx.pixels.size(), gl.pixels.size());
     for (int y = 0; y < dx.height; y += 3)
         for (int x = 0; x < dx.width; x += 3) ASSERT_NEAR(code8(dx.at(x, y, 1)), 255 - code8(gl.at(x, y, 1)), 1);

@@ -13,7 +13,8 @@ mf::Image xy_normals(int size, float blue) {
     mf::Image img(size, size, blue < 0 ? 2 : 3);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
-            const float nx = 0.4f * std::sin(0.3f * static_cast<float>(x)), ny = 0.3f * std::cos(0.2f * static_cast<float>(y));
+            const float nx = 0.4f * std::sin(0.3f * static_cast<float>(x)),
+                        ny = 0.3f * std::cos(0.2f * static_cast<float>(y));
             img.at(x, y, 0) = 0.5f * nx + 0.5f;
             img.at(x, y, 1) = 0.5f * ny + 0.5f;
             if (blue >= 0) img.at(x, y, 2) = blue;

@@ -120,7 +120,8 @@ TEST(IngestContent, UnnamedGlNormalDecidedFromContent) {
     // height map) are OpenGL. glTF keeps it; Unreal gets it converted.
     const fs::path out = temp_dir("out");
     for (const char* preset : {"gltf", "unreal"}) {
-        const auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out / preset) + " --preset " + preset);
+        const auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out / preset) + " --preset " +
+                           preset);
         ASSERT_EQ(r.code, 0) << r.output;
     }
     const auto m = read_json(out / "gltf/manifest.json");

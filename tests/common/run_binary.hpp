@@ -26,11 +26,11 @@ namespace mf::testbin {
 namespace fs = std::filesystem;
 
 struct Proc {
-    int code = -1;        // exit status when it exited
-    int signal = 0;       // the signal that ended it, 0 when it exited
-    bool hung = false;    // killed at the deadline
-    std::string output;   // stdout + stderr
-    long maxrss_kb = 0;   // peak resident memory of the process
+    int code = -1;       // exit status when it exited
+    int signal = 0;      // the signal that ended it, 0 when it exited
+    bool hung = false;   // killed at the deadline
+    std::string output;  // stdout + stderr
+    long maxrss_kb = 0;  // peak resident memory of the process
 };
 
 // Runs argv[0] with argv (no shell: names with quotes or invalid UTF-8 pass through untouched).
@@ -75,7 +75,8 @@ inline Proc spawn(const std::vector<std::string>& argv, double deadline_s = 300,
     p.maxrss_kb = ru.ru_maxrss;
     ::lseek(log_fd, 0, SEEK_SET);
     std::array<char, 4096> buf{};
-    for (ssize_t n; (n = ::read(log_fd, buf.data(), buf.size())) > 0;) p.output.append(buf.data(), static_cast<size_t>(n));
+    for (ssize_t n; (n = ::read(log_fd, buf.data(), buf.size())) > 0;)
+        p.output.append(buf.data(), static_cast<size_t>(n));
     ::close(log_fd);
     return p;
 }
@@ -101,7 +102,8 @@ inline void register_test_dir(const fs::path& d) {
 inline void spool_text(const std::string& text, const std::string& label) {
 #ifdef MATFORGE_SCHEMA_SPOOL
     if (text.find("\"generator\": \"matforge ") == std::string::npos ||
-        (text.find("\"manifest_version\"") == std::string::npos && text.find("\"report_version\"") == std::string::npos))
+        (text.find("\"manifest_version\"") == std::string::npos &&
+         text.find("\"report_version\"") == std::string::npos))
         return;
     static std::atomic<int> n{0};
     std::error_code ec;

@@ -10,8 +10,9 @@ namespace {
 const std::string R = "\xEF\xBF\xBD";  // U+FFFD
 
 TEST(Utf8OrReplacement, ValidTextIsUnchanged) {
-    for (const std::string& s : std::initializer_list<std::string>{"", "plain ascii", "Caf\xC3\xA9", "\xE2\x82\xAC 20", "\xF0\x9F\x98\x80",
-                                "\xEF\xBF\xBD", "\xF4\x8F\xBF\xBF" /* U+10FFFF */, std::string("a\0b", 3)})
+    for (const std::string& s :
+         std::initializer_list<std::string>{"", "plain ascii", "Caf\xC3\xA9", "\xE2\x82\xAC 20", "\xF0\x9F\x98\x80",
+                                            "\xEF\xBF\xBD", "\xF4\x8F\xBF\xBF" /* U+10FFFF */, std::string("a\0b", 3)})
         EXPECT_EQ(mf::utf8_or_replacement(s), s);
 }
 
@@ -21,9 +22,9 @@ TEST(Utf8OrReplacement, Latin1ByteBecomesOneReplacement) {
 }
 
 TEST(Utf8OrReplacement, RejectsOverlongsSurrogatesAndBeyondUnicode) {
-    EXPECT_EQ(mf::utf8_or_replacement("\xC0\xAF"), R + R);          // overlong '/': C0 is never a lead
-    EXPECT_EQ(mf::utf8_or_replacement("\xE0\x80\xAF"), R + R + R);  // overlong 3-byte form
-    EXPECT_EQ(mf::utf8_or_replacement("\xED\xA0\x80"), R + R + R);  // surrogate U+D800
+    EXPECT_EQ(mf::utf8_or_replacement("\xC0\xAF"), R + R);                  // overlong '/': C0 is never a lead
+    EXPECT_EQ(mf::utf8_or_replacement("\xE0\x80\xAF"), R + R + R);          // overlong 3-byte form
+    EXPECT_EQ(mf::utf8_or_replacement("\xED\xA0\x80"), R + R + R);          // surrogate U+D800
     EXPECT_EQ(mf::utf8_or_replacement("\xF4\x90\x80\x80"), R + R + R + R);  // U+110000
 }
 

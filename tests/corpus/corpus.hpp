@@ -93,8 +93,7 @@ inline std::optional<std::string> code_of_problem(const std::string& problem) {
 // truth roles → the input roles matforge names in manifests and findings.
 inline bool role_matches(const std::string& truth_role, const std::string& role) {
     if (truth_role == "ao") return role == "occlusion";
-    if (truth_role == "packed")
-        return role == "orm" || role == "metallic_roughness" || role == "ort" || role == "arm";
+    if (truth_role == "packed") return role == "orm" || role == "metallic_roughness" || role == "ort" || role == "arm";
     return truth_role == role;
 }
 

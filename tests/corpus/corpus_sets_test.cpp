@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -12,15 +14,15 @@
 
 namespace {
 
-using nlohmann::json;
 using corpus::fs::path;
+using nlohmann::json;
 
 struct SetRun {
     std::string folder;  // as truth.json names it: real/<set>
     const json* truth = nullptr;
     corpus::RunResult validate_text;  // validate <set> --fail-on error
     int validate_json_code = -1;
-    json report;    // validate --report json
+    json report;  // validate --report json
     int ingest_code = -1;
     json manifest;  // ingest -o <tmp> --preset gltf
     std::string ingest_output;
@@ -127,7 +129,8 @@ TEST(RealCorpus, EveryTrueProblemKindHasACode) {
         for (const char* key : {"true_problems", "acceptable"})
             for (const auto& p : s.value(key, json::array()))
                 EXPECT_TRUE(corpus::code_of_problem(p.value("problem", "")))
-                    << s.at("folder") << ": no code for \"" << p.value("problem", "") << "\" (add it to problem_codes())";
+                    << s.at("folder") << ": no code for \"" << p.value("problem", "")
+                    << "\" (add it to problem_codes())";
 }
 
 void check_every_set_runs() {
@@ -135,7 +138,8 @@ void check_every_set_runs() {
         EXPECT_TRUE(r.report.contains("materials")) << r.folder << ": no JSON report";
         EXPECT_TRUE(r.manifest.contains("materials")) << r.folder << ": no manifest\n" << r.ingest_output;
         EXPECT_TRUE(r.ingest_code == 0 || r.ingest_code == 1) << r.folder << ": ingest exit " << r.ingest_code;
-        EXPECT_EQ(r.validate_json_code, r.validate_text.code) << r.folder << ": the report format changed the exit code";
+        EXPECT_EQ(r.validate_json_code, r.validate_text.code)
+            << r.folder << ": the report format changed the exit code";
     }
 }
 
@@ -146,8 +150,8 @@ void check_roles() {
             if (want == "ignore")
                 EXPECT_EQ(got, "ignore") << r.folder << "/" << file << ": truth says not a material map";
             else
-                EXPECT_TRUE(corpus::role_matches(want, got))
-                    << r.folder << "/" << file << ": truth role " << want << ", matforge " << (got.empty() ? "(none)" : got);
+                EXPECT_TRUE(corpus::role_matches(want, got)) << r.folder << "/" << file << ": truth role " << want
+                                                             << ", matforge " << (got.empty() ? "(none)" : got);
         }
 }
 
@@ -177,9 +181,9 @@ void check_no_false_error_or_warning() {
     for (const auto& r : runs())
         for (const auto& f : findings_of(r.report)) {
             if (!is_blocking(f.value("severity", ""))) continue;
-            EXPECT_TRUE(explained(*r.truth, f)) << r.folder << ": false " << f.value("severity", "") << " "
-                                                << f.value("code", "") << " on " << f.value("file", "") << ": "
-                                                << f.value("message", "");
+            EXPECT_TRUE(explained(*r.truth, f))
+                << r.folder << ": false " << f.value("severity", "") << " " << f.value("code", "") << " on "
+                << f.value("file", "") << ": " << f.value("message", "");
         }
 }
 
@@ -194,8 +198,8 @@ void check_true_problems_reported() {
             std::string seen;
             for (const auto& f : findings_of(r.report))
                 if (f.value("file", "") == file && f.value("code", "") == *c) seen = f.value("severity", "");
-            EXPECT_EQ(seen, sev) << r.folder << "/" << file << ": " << *c << " for \"" << p.at("problem").get<std::string>()
-                                 << "\"" << (seen.empty() ? " not reported" : "");
+            EXPECT_EQ(seen, sev) << r.folder << "/" << file << ": " << *c << " for \""
+                                 << p.at("problem").get<std::string>() << "\"" << (seen.empty() ? " not reported" : "");
         }
 }
 
@@ -236,7 +240,8 @@ void print_table() {
             if (want == "normal") {
                 const std::string c = found_convention(r, file);
                 if (!c.empty())
-                    normals += (normals.empty() ? "" : ",") + c + "/" + info.at("normal_convention").get<std::string>() +
+                    normals += (normals.empty() ? "" : ",") + c + "/" +
+                               info.at("normal_convention").get<std::string>() +
                                (c == info.at("normal_convention") ? "" : "!");
             }
         }
@@ -270,8 +275,7 @@ TEST(RealCorpus, EverySetAgreesWithTruth) {
         {"good sets have no error", check_good_sets_have_no_error},
         {"every error and warning is a true problem", check_no_false_error_or_warning},
         {"every true problem is reported at its severity", check_true_problems_reported},
-        {"--fail-on error passes good sets and names the error of the others",
-         check_fail_on_error},
+        {"--fail-on error passes good sets and names the error of the others", check_fail_on_error},
         {"summary table", print_table},
     };
     for (const auto& [what, check] : checks) {
@@ -281,3 +285,34 @@ TEST(RealCorpus, EverySetAgreesWithTruth) {
 }
 
 }  // namespace
+
+// The batch tells which sets need attention: on a terminal each set's progress line says
+// "errors" / "warnings" (never "ok" for a set with findings to act on), and the summary names
+// the sets with errors. Run under script(1) for a pseudo-terminal, over one defective and one
+// good set of the corpus.
+TEST(RealCorpus, BatchOutputNamesTheSetsThatNeedAttention) {
+    const path tmp = corpus::temp_dir("attention");
+    const path bad = corpus::dir() / "real/polyhaven_broken_wall_1k_jpg+webp";
+    const path good = corpus::dir() / "real/ambientcg_Net004A_1K-JPG";
+    const std::string cmd = std::string(MATFORGE_BIN) + " ingest " + corpus::q(bad) + " " + corpus::q(good) + " -o " +
+                            corpus::q(tmp / "out") + " --no-cache";
+    const std::string log = (tmp / "tty.log").string();
+    const int status =
+        std::system(("script -qec " + corpus::q(cmd) + " " + corpus::q(log) + " >/dev/null 2>&1").c_str());
+    ASSERT_NE(status, -1);
+    std::ifstream f(log);
+    const std::string out((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_NE(out.find("broken_wall errors"), std::string::npos) << out;
+    // The net's one warning is a true problem truth.json lists (albedo very dark: ALBEDO_TOO_DARK).
+    EXPECT_NE(out.find("Net004A warnings"), std::string::npos) << out;
+    EXPECT_EQ(out.find("Net004A ok"), std::string::npos) << out;
+    EXPECT_NE(out.find("sets with errors: broken_wall"), std::string::npos) << out;
+    EXPECT_NE(out.find("sets with warnings: Net004A"), std::string::npos) << out;
+    // Without a terminal: no progress lines, the same summary.
+    const auto r = corpus::run("ingest " + corpus::q(bad) + " " + corpus::q(good) + " -o " + corpus::q(tmp / "out2") +
+                               " --no-cache");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_EQ(r.output.find("broken_wall errors"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("sets with errors: broken_wall"), std::string::npos) << r.output;
+    std::filesystem::remove_all(tmp);
+}

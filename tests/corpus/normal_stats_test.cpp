@@ -196,13 +196,16 @@ void check_classification() {
                 "slope", "verdict");
     for (const auto& m : all) {
         const auto& s = m.s;
-        const std::string verdict = s.gamma_encoded ? "GAMMA" : !s.invalid.empty() ? "INVALID" : s.not_unit_length ? "short" : "ok";
+        const std::string verdict = s.gamma_encoded      ? "GAMMA"
+                                    : !s.invalid.empty() ? "INVALID"
+                                    : s.not_unit_length  ? "short"
+                                                         : "ok";
         const double slope = std::max(m.v.figures.value("slope_std_x", 0.0), m.v.figures.value("slope_std_y", 0.0));
-        std::printf("%-58s %-6s %+7.3f %+7.3f %+6.3f %6.3f %6.3f %6.3f %6.3f %6.3f | %+7.3f %+7.3f %6.3f | %+6.3f %6.3f %s\n",
-                    m.map->name.substr(0, 58).c_str(), m.map->population.c_str(), s.mean_x, s.mean_y, s.mean_z,
-                    s.upward_share, s.negative_z_share, s.gray_share, s.mean_length, s.bad_length_share,
-                    s.srgb_mean_x, s.srgb_mean_y, s.srgb_mean_length, m.v.figures.value("r_height_x", 0.0), slope,
-                    verdict.c_str());
+        std::printf(
+            "%-58s %-6s %+7.3f %+7.3f %+6.3f %6.3f %6.3f %6.3f %6.3f %6.3f | %+7.3f %+7.3f %6.3f | %+6.3f %6.3f %s\n",
+            m.map->name.substr(0, 58).c_str(), m.map->population.c_str(), s.mean_x, s.mean_y, s.mean_z, s.upward_share,
+            s.negative_z_share, s.gray_share, s.mean_length, s.bad_length_share, s.srgb_mean_x, s.srgb_mean_y,
+            s.srgb_mean_length, m.v.figures.value("r_height_x", 0.0), slope, verdict.c_str());
         if (m.map->population == "real") {
             ++real;
             EXPECT_TRUE(s.invalid.empty()) << m.map->name << ": " << s.figures().dump();
@@ -256,7 +259,8 @@ void check_margins() {
             mxy_wrong.add(mxy);
             negz_wrong.add(s.negative_z_share);
             grey_wrong.add(s.gray_share);
-            if (height && m.map->name.find("copy") == std::string::npos) hx_wrong.add(m.v.figures.value("r_height_x", 0.0));
+            if (height && m.map->name.find("copy") == std::string::npos)
+                hx_wrong.add(m.v.figures.value("r_height_x", 0.0));
             // Each map that is not a normal map fails some test by a margin of 1.5x.
             const bool clear = s.upward_share * 1.5 <= t.normal_min_upward_share || mxy >= 1.5 * t.normal_max_mean_xy ||
                                s.negative_z_share >= 1.5 * t.normal_max_negative_z_share ||
@@ -267,9 +271,9 @@ void check_margins() {
     std::printf("\nreal (20): upward %.3f..%.3f, max(|mean x|, |mean y|) %.3f..%.3f, negative z %.4f..%.4f, grey "
                 "%.4f..%.4f, mean length %.3f..%.3f, off by > 0.2 %.3f..%.3f, slope std %.3f..%.3f, "
                 "corr(p, dh/dx) %.3f..%.3f (with a height map), sRGB-decoded max |mean| %.3f..%.3f\n",
-                up_real.lo, up_real.hi, mxy_real.lo, mxy_real.hi, negz_real.lo, negz_real.hi, grey_real.lo, grey_real.hi,
-                len_real.lo, len_real.hi, bad_real.lo, bad_real.hi, slope_real.lo, slope_real.hi, hx_real.lo, hx_real.hi,
-                real_srgb.lo, real_srgb.hi);
+                up_real.lo, up_real.hi, mxy_real.lo, mxy_real.hi, negz_real.lo, negz_real.hi, grey_real.lo,
+                grey_real.hi, len_real.lo, len_real.hi, bad_real.lo, bad_real.hi, slope_real.lo, slope_real.hi,
+                hx_real.lo, hx_real.hi, real_srgb.lo, real_srgb.hi);
     std::printf("not normal maps: upward %.3f..%.3f, max |mean| %.3f..%.3f, negative z %.3f..%.3f, grey %.3f..%.3f, "
                 "corr(p, dh/dx) %.3f..%.3f (corpus maps with a height map)\n",
                 up_wrong.lo, up_wrong.hi, mxy_wrong.lo, mxy_wrong.hi, negz_wrong.lo, negz_wrong.hi, grey_wrong.lo,

@@ -28,7 +28,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (const auto& m : sidecars.back().maps) {
             const auto& f = m.file;
             if (f.empty() || f.front() == '/' || f.find('\\') != std::string::npos) __builtin_trap();
-            if (f == ".." || f.starts_with("../") || f.find("/../") != std::string::npos || f.ends_with("/..")) __builtin_trap();
+            if (f == ".." || f.starts_with("../") || f.find("/../") != std::string::npos || f.ends_with("/.."))
+                __builtin_trap();
             if (m.match.sidecar != name) __builtin_trap();
         }
         text += "\n" + name;  // the sidecar is a file of the set
@@ -68,8 +69,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const int s = 1 << (f.size() % 13);
         return mf::HeaderInfo{s, s, 1 + static_cast<int>(f.size() % 4), f.size() % 2 ? 8 : 16, f.size() % 5 == 0};
     };
-    const mf::SetDiscovery d =
-        mf::discover_set(files, header, mf::ChoicePolicy{mf::NormalConvention::gl, 2048}, sidecars);
+    const mf::SetDiscovery d = mf::discover_set(files, header, mf::ChoicePolicy{mf::NormalConvention::gl, 2048},
+                                                sidecars);
     for (const auto& c : d.choices) {
         if (!unique.count(c.chosen.file) || c.chosen.match.role != c.role) __builtin_trap();
         for (const auto& r : c.rejected)

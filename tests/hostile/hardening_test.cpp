@@ -29,7 +29,8 @@ void expect_manifest_true(const fs::path& out, const nlohmann::json& m) {
             const std::string file = o["file"];
             EXPECT_TRUE(seen.insert(file).second) << file << " is listed twice";
             ASSERT_TRUE(fs::is_regular_file(out / file)) << file;
-            EXPECT_EQ(mf::sha256_hex(read_bytes(out / file)), o["sha256"]) << file << ": the manifest's sha256 is not the file's";
+            EXPECT_EQ(mf::sha256_hex(read_bytes(out / file)), o["sha256"])
+                << file << ": the manifest's sha256 is not the file's";
         }
 }
 
@@ -123,8 +124,9 @@ TEST_F(Hostile, EnvironmentPastTheDeviceLimit) {
     const fs::path dir = temp_dir("env");
     write_bytes(dir / "wide.exr", encode(gradient(16400, 4, 3), "exr", 32));
     write_text(dir / "scene.json", R"({"material": {"albedo": [0.5, 0.5, 0.5]}})");
-    const Proc v = spawn({bin(), "preview", "--scene", (dir / "scene.json").string(), "--env", (dir / "wide.exr").string(),
-                          "-o", (dir / "prev").string(), "--device", "cpu", "--size", "32"},
+    const Proc v = spawn({bin(), "preview", "--scene", (dir / "scene.json").string(), "--env",
+                          (dir / "wide.exr").string(), "-o", (dir / "prev").string(), "--device", "cpu", "--size",
+                          "32"},
                          120);
     EXPECT_EQ(v.signal, 0) << "preview crashed\n" << v.output;
     EXPECT_EQ(v.code, 0) << v.output;
@@ -132,6 +134,26 @@ TEST_F(Hostile, EnvironmentPastTheDeviceLimit) {
               std::string::npos)
         << v.output;
     EXPECT_TRUE(fs::is_regular_file(dir / "prev" / "scene.png"));
+}
+
+// A frame larger than the device can hold (--size 16384: 4 GiB for the fp32 render target alone,
+// past lavapipe's 2 GiB maxMemoryAllocationSize) is an error naming the frame, what it needs and
+// what the device allows, before anything is allocated: never a bare VK_ERROR_OUT_OF_DEVICE_MEMORY.
+TEST_F(Hostile, PreviewSizePastTheDeviceMemory) {
+    const fs::path dir = temp_dir("size");
+    write_text(dir / "scene.json", R"({"material": {"albedo": [0.5, 0.5, 0.5]}})");
+    const Proc v = spawn({bin(), "preview", "--scene", (dir / "scene.json").string(), "-o", (dir / "prev").string(),
+                          "--device", "cpu", "--size", "16384"},
+                         120);
+    EXPECT_EQ(v.signal, 0) << "preview crashed\n" << v.output;
+    EXPECT_EQ(v.code, 1) << v.output;
+    EXPECT_NE(
+        v.output.find("matforge preview: the 16384x16384 frame: a 16384x16384 image needs 4096 MB of device memory"),
+        std::string::npos)
+        << v.output;
+    EXPECT_NE(v.output.find("use a smaller --size"), std::string::npos) << v.output;
+    EXPECT_EQ(v.output.find("VK_ERROR"), std::string::npos) << v.output;
+    EXPECT_FALSE(fs::exists(dir / "prev" / "scene.png"));
 }
 
 // ===== 2. deeply nested JSON: every reader refuses it, naming the file (exit 2)
@@ -143,13 +165,16 @@ TEST_F(Hostile, DeepJsonPreset) {
     std::string gltf = text_of(fs::path(MATFORGE_SOURCE_DIR) / "presets" / "gltf.json");
     gltf.erase(gltf.find_last_of('}'));
     write_text(preset, deep_json(gltf + ", \"x_deep\": ", 100000, "}"));
-    for (const auto& argv : std::vector<std::vector<std::string>>{{bin(), "presets", "show", preset.string()},
-                                                                  {bin(), "ingest", in.string(), "-o", out.string(), "--preset", preset.string()},
-                                                                  {bin(), "validate", in.string(), "--preset", preset.string()}}) {
+    for (const auto& argv :
+         std::vector<std::vector<std::string>>{{bin(), "presets", "show", preset.string()},
+                                               {bin(), "ingest", in.string(), "-o", out.string(), "--preset",
+                                                preset.string()},
+                                               {bin(), "validate", in.string(), "--preset", preset.string()}}) {
         const Proc p = spawn(argv, 60);
         EXPECT_EQ(p.signal, 0) << argv[1] << " crashed";
         EXPECT_EQ(p.code, 2) << argv[1] << "\n" << p.output;
-        EXPECT_NE(p.output.find(preset.string() + ": JSON nested deeper than 256 levels"), std::string::npos) << p.output;
+        EXPECT_NE(p.output.find(preset.string() + ": JSON nested deeper than 256 levels"), std::string::npos)
+            << p.output;
     }
     EXPECT_FALSE(fs::exists(out / "manifest.json"));
 }
@@ -162,7 +187,8 @@ TEST_F(Hostile, DeepJsonRules) {
         if (cmd == "ingest") argv.insert(argv.end(), {"-o", out.string()});
         const Proc p = spawn(argv, 60);
         EXPECT_EQ(p.code, 2) << cmd << "\n" << p.output;
-        EXPECT_NE(p.output.find(rules.string() + ": JSON nested deeper than 256 levels"), std::string::npos) << p.output;
+        EXPECT_NE(p.output.find(rules.string() + ": JSON nested deeper than 256 levels"), std::string::npos)
+            << p.output;
     }
 }
 
@@ -248,7 +274,8 @@ TEST(Resample, SeparableIsFastAndAgreesWithOpenImageIO) {
     OIIO::ImageBuf ref_buf(OIIO::ImageSpec(50, 40, 2, OIIO::TypeDesc::FLOAT), ref.pixels.data());
     ASSERT_TRUE(OIIO::ImageBufAlgo::resize(ref_buf, in_buf, "lanczos3", 0.f, OIIO::ROI::All(), 1));
     double worst = 0;
-    for (size_t i = 0; i < ref.pixels.size(); ++i) worst = std::max(worst, double(std::fabs(ours.pixels[i] - ref.pixels[i])));
+    for (size_t i = 0; i < ref.pixels.size(); ++i)
+        worst = std::max(worst, double(std::fabs(ours.pixels[i] - ref.pixels[i])));
     EXPECT_LT(worst, 2e-5);
     // Both axes scaled alike (within 4x): OpenImageIO's own result, bit for bit (earlier outputs).
     const mf::Image same = mf::resample(src, 74, 46);
@@ -274,7 +301,9 @@ TEST_F(Hostile, PreviewManifestNamingFifoOrDevice) {
     m["materials"].push_back(zero);
     write_text(out / "hand.json", m.dump(1));
     const fs::path prev = temp_dir("preview");
-    const Proc v = spawn({bin(), "preview", (out / "hand.json").string(), "-o", prev.string(), "--device", "cpu", "--size", "32"}, 60);
+    const Proc v = spawn({bin(), "preview", (out / "hand.json").string(), "-o", prev.string(), "--device", "cpu",
+                          "--size", "32"},
+                         60);
     ASSERT_FALSE(v.hung) << "the preview opened the FIFO\n" << v.output;
     EXPECT_EQ(v.code, 1) << v.output;
     EXPECT_NE(v.output.find("fifo.png: not a regular file (a FIFO)"), std::string::npos) << v.output;
@@ -291,7 +320,8 @@ TEST_F(Hostile, NamesFromFoldersAaA2AreUnique) {
     std::set<std::string> lower;
     for (const auto& m : manifest["materials"]) {
         std::string n = m["name"];
-        std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        std::transform(n.begin(), n.end(), n.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
         EXPECT_TRUE(lower.insert(n).second) << "two materials named " << n << "\n" << manifest.dump(1);
     }
     EXPECT_EQ(manifest["materials"].size(), 4u);
@@ -307,20 +337,23 @@ TEST_F(Hostile, NamesFromFoldersAaA2AreUnique) {
 TEST(UniqueNames, EveryRenamingPath) {
     const std::string l100(100, 'L');
     const std::vector<std::string> names = mf::unique_names({
-        "A", "a", "a_2",                      // case, and a suffix another set holds
-        "a b", "a_b",                         // characters made safe
-        ".hidden", "hidden",                  // leading dots
-        "", "material",                       // empty -> "material"
-        l100 + "x", l100 + "y",               // both cut at 96 bytes
-        "manifest.json", "Manifest.JSON",     // the manifest's own name is never a material's
+        "A", "a", "a_2",                   // case, and a suffix another set holds
+        "a b", "a_b",                      // characters made safe
+        ".hidden", "hidden",               // leading dots
+        "", "material",                    // empty -> "material"
+        l100 + "x", l100 + "y",            // both cut at 96 bytes
+        "manifest.json", "Manifest.JSON",  // the manifest's own name is never a material's
     });
     std::set<std::string> lower;
     for (const auto& n : names) {
         std::string k = n;
-        std::transform(k.begin(), k.end(), k.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        std::transform(k.begin(), k.end(), k.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
         EXPECT_TRUE(lower.insert(k).second) << n;
         EXPECT_LE(n.size(), mf::kMaxNameBytes) << n;
-        EXPECT_EQ(n.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-"), std::string::npos) << n;
+        EXPECT_EQ(n.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-"),
+                  std::string::npos)
+            << n;
         EXPECT_NE(n.front(), '.') << n;
     }
     EXPECT_EQ(lower.count("manifest.json"), 0u);
@@ -343,7 +376,8 @@ TEST_F(Hostile, PresetOutputsThatCollide) {
     const fs::path dir = temp_dir("presets");
     const std::string outputs = R"("outputs": [{"suffix": "c", "channels": {"RGB": "albedo"}}])";
     const std::vector<std::pair<std::string, std::string>> cases{
-        {R"({"name": "flat", "file_pattern": "all_{suffix}.{ext}", )" + outputs + "}", "file_pattern must contain {material}"},
+        {R"({"name": "flat", "file_pattern": "all_{suffix}.{ext}", )" + outputs + "}",
+         "file_pattern must contain {material}"},
         {R"({"name": "twice", "outputs": [{"suffix": "c", "channels": {"RGB": "albedo"}}, {"suffix": "c", "channels": {"R": "roughness"}}]})",
          "suffix 'c' names the file of suffix 'c'"},
         {R"({"name": "case", "outputs": [{"suffix": "BC", "channels": {"RGB": "albedo"}}, {"suffix": "bc", "channels": {"R": "roughness"}}]})",
@@ -370,7 +404,8 @@ TEST_F(Hostile, OutputPathClaimedTwiceAtRunTime) {
     const Proc p = ingest({"--preset", preset.string()});
     EXPECT_EQ(p.code, 1) << p.output;
     expect_manifest_true(out, manifest);
-    const auto* f = expect_finding("ab", "OUTPUT_WRITE_FAILED", "", "abc.png: the file is also an output of material 'a'");
+    const auto* f = expect_finding("ab", "OUTPUT_WRITE_FAILED", "",
+                                   "abc.png: the file is also an output of material 'a'");
     EXPECT_TRUE(f);
 }
 
@@ -378,7 +413,8 @@ TEST_F(Hostile, OutputPathClaimedTwiceAtRunTime) {
 
 TEST_F(Hostile, SecondIngestIntoOneFolderRefuses) {
     for (int s = 0; s < 4; ++s)
-        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"), encode(gradient(256, 256, 3)));
+        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"),
+                    encode(gradient(256, 256, 3)));
     fs::create_directories(out);
     // A temporary of a running writer (this test process) is never deleted by another run.
     const fs::path live = out / (".x.png" + std::string(mf::kTempMarker) + std::to_string(::getpid()) + "-7");
@@ -386,16 +422,19 @@ TEST_F(Hostile, SecondIngestIntoOneFolderRefuses) {
     Background first({bin(), "ingest", in.string(), "-o", out.string(), "--quiet", "--jobs", "1"});
     // The lock file holds the writer's pid once its flock is taken (it is created just before):
     // stopped between the two, the first would hold nothing.
-    ASSERT_TRUE(Background::until([&] {
-        std::error_code ec;
-        return fs::file_size(out / ".manifest.json.lock", ec) > 0 && !ec;
-    }, 60));
+    ASSERT_TRUE(Background::until(
+        [&] {
+            std::error_code ec;
+            return fs::file_size(out / ".manifest.json.lock", ec) > 0 && !ec;
+        },
+        60));
     first.signal(SIGSTOP);  // holds the lock while the second one tries
     const Proc second = spawn({bin(), "ingest", in.string(), "-o", out.string(), "--quiet"}, 60);
     first.signal(SIGCONT);
     const Proc p1 = first.wait();
     EXPECT_EQ(second.code, 1) << second.output;
-    EXPECT_NE(second.output.find("another matforge (pid " + std::to_string(first.pid()) + ") is writing in " + out.string()),
+    EXPECT_NE(second.output.find("another matforge (pid " + std::to_string(first.pid()) + ") is writing in " +
+                                 out.string()),
               std::string::npos)
         << second.output;
     EXPECT_EQ(p1.code, 0) << p1.output;
@@ -432,13 +471,15 @@ TEST_F(Hostile, ForeignFilesInTheOutputFolder) {
     write_text(out / marker, "a user's file");
     write_text(out / "Good" / marker, "another");
     write_text(out / "Good" / "Good_basecolor.png", "my own texture, not matforge's");
-    Proc p = ingest();
+    // An output that could not be written fails the run even with --fail-on never (exit 1).
+    Proc p = ingest({"--fail-on", "never"});
     EXPECT_EQ(p.code, 1) << p.output;
     EXPECT_EQ(text_of(out / "Good" / "Good_basecolor.png"), "my own texture, not matforge's");
     const auto* g = mat("Good");
     ASSERT_TRUE(g);
     EXPECT_EQ((*g)["status"], "partial");
-    expect_finding("Good", "OUTPUT_WRITE_FAILED", "", "Good/Good_basecolor.png: a file matforge did not write is in the way");
+    expect_finding("Good", "OUTPUT_WRITE_FAILED", "",
+                   "Good/Good_basecolor.png: a file matforge did not write is in the way");
     EXPECT_TRUE(fs::exists(out / marker));
     EXPECT_TRUE(fs::exists(out / "Good" / marker));
     // --force replaces it; a second run without --force is fine: the file is ours now.
@@ -456,7 +497,8 @@ TEST_F(Hostile, ForeignManifestIsNotReplaced) {
     write_text(out / "manifest.json", theirs);
     Proc p = ingest();
     EXPECT_EQ(p.code, 2) << p.output;
-    EXPECT_NE(p.output.find((out / "manifest.json").string() + " was not written by matforge (its generator is \"another tool 2.0\")"),
+    EXPECT_NE(p.output.find((out / "manifest.json").string() +
+                            " was not written by matforge (its generator is \"another tool 2.0\")"),
               std::string::npos)
         << p.output;
     EXPECT_EQ(text_of(out / "manifest.json"), theirs);
@@ -518,8 +560,9 @@ TEST_F(Hostile, NamesMerged) {
     ASSERT_TRUE(metal) << manifest.dump(1);
     bool info = false;
     for (const auto& f : (*metal)["findings"])
-        info = info || (f["code"] == "NAMES_MERGED" && f["severity"] == "info" &&
-                        f["message"].get<std::string>().find("they differ in resolution/format tags") != std::string::npos);
+        info = info ||
+               (f["code"] == "NAMES_MERGED" && f["severity"] == "info" &&
+                f["message"].get<std::string>().find("they differ in resolution/format tags") != std::string::npos);
     EXPECT_TRUE(info) << metal->dump(1);
 }
 
@@ -527,7 +570,8 @@ TEST_F(Hostile, NamesMerged) {
 
 TEST_F(Hostile, InterruptedBySignal) {
     for (int s = 0; s < 6; ++s)
-        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"), encode(gradient(512, 512, 3)));
+        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"),
+                    encode(gradient(512, 512, 3)));
     const fs::path ref = temp_dir("ref");
     ASSERT_EQ(spawn({bin(), "ingest", in.string(), "-o", ref.string(), "--quiet", "--jobs", "1"}).code, 0);
     const auto ref_tree = tree_hashes(ref);
@@ -539,7 +583,8 @@ TEST_F(Hostile, InterruptedBySignal) {
         const Proc p = run.wait();
         EXPECT_EQ(p.signal, 0) << "died of the signal instead of stopping";
         EXPECT_EQ(p.code, sig == SIGINT ? 130 : 143) << p.output;
-        EXPECT_NE(p.output.find(sig == SIGINT ? "interrupted (SIGINT)" : "interrupted (SIGTERM)"), std::string::npos) << p.output;
+        EXPECT_NE(p.output.find(sig == SIGINT ? "interrupted (SIGINT)" : "interrupted (SIGTERM)"), std::string::npos)
+            << p.output;
         EXPECT_TRUE(temp_files_under(out).empty());
         EXPECT_FALSE(fs::exists(out / "manifest.json")) << "no manifest for an unfinished run";
         ASSERT_EQ(spawn({bin(), "ingest", in.string(), "-o", out.string(), "--quiet"}).code, 0);
@@ -550,19 +595,23 @@ TEST_F(Hostile, InterruptedBySignal) {
 // A rerun killed after it replaced outputs must not leave the old manifest describing them.
 TEST_F(Hostile, KilledRerunLeavesNoStaleManifest) {
     for (int s = 0; s < 6; ++s)
-        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"), encode(gradient(512, 512, 3)));
+        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"),
+                    encode(gradient(512, 512, 3)));
     ASSERT_EQ(ingest({"--jobs", "1"}).code, 0);
     // Other sources: every output changes.
     for (int s = 0; s < 6; ++s)
-        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"), encode(gradient(512, 512, 3), "jpg"));
+        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"),
+                    encode(gradient(512, 512, 3), "jpg"));
     write_bytes(in / "Good" / "Good_Color.png", encode(gradient(16, 16, 3), "jpg"));
     const std::string old_sha = mf::sha256_hex(read_bytes(out / "Good" / "Good_basecolor.png"));
     Background run({bin(), "ingest", in.string(), "-o", out.string(), "--quiet", "--jobs", "1"});
-    ASSERT_TRUE(Background::until([&] {
-        std::error_code ec;
-        return fs::exists(out / "Good" / "Good_basecolor.png", ec) &&
-               mf::sha256_hex(read_bytes(out / "Good" / "Good_basecolor.png")) != old_sha;
-    }, 60));
+    ASSERT_TRUE(Background::until(
+        [&] {
+            std::error_code ec;
+            return fs::exists(out / "Good" / "Good_basecolor.png", ec) &&
+                   mf::sha256_hex(read_bytes(out / "Good" / "Good_basecolor.png")) != old_sha;
+        },
+        60));
     run.signal(SIGKILL);
     run.wait();
     if (fs::exists(out / "manifest.json")) expect_manifest_true(out, read_json(out / "manifest.json"));
@@ -616,8 +665,10 @@ TEST_F(Hostile, NothingFoundFails) {
         argv[2] = (in / "Gifs").string();
         p = spawn(argv, 60);
         EXPECT_EQ(p.code, 1) << cmd << "\n" << p.output;
-        EXPECT_NE(p.output.find("Gifs_Color.gif, Gifs_Normal.ppm, Gifs_Roughness.jp2 name material maps in a format matforge does not read"),
-                  std::string::npos)
+        EXPECT_NE(
+            p.output.find(
+                "Gifs_Color.gif, Gifs_Normal.ppm, Gifs_Roughness.jp2 name material maps in a format matforge does not read"),
+            std::string::npos)
             << p.output;
     }
     // Beside a good set, the unread folder is a failure naming it; the good set is done.
@@ -633,18 +684,21 @@ TEST_F(Hostile, RulesCannotSilenceUnreadableFiles) {
     write_bytes(in / "Hostile" / "Hostile_Color.png", encode(gradient(16, 16, 3)));
     write_text(in / "Hostile" / "Hostile_Roughness.png", "not a png");
     const fs::path rules = temp_dir("rules") / "r.json";
-    for (const std::string text : {R"({"rules": {"UNREADABLE_FILE": "off"}})", R"({"rules": {"UNREADABLE_FILE": "info"}})",
-                                   R"({"rules": {"UNREADABLE_FILE": {"enabled": false}}})", R"({"ignore": ["UNREADABLE_FILE"]})",
-                                   R"({"severityOverrides": {"UNREADABLE_FILE": 2}})",
-                                   R"({"suppress": [{"material": "*", "code": "UNREADABLE_FILE"}]})",
-                                   R"({"rules": {"OUTPUT_WRITE_FAILED": "off"}})"}) {
+    for (const std::string text :
+         {R"({"rules": {"UNREADABLE_FILE": "off"}})", R"({"rules": {"UNREADABLE_FILE": "info"}})",
+          R"({"rules": {"UNREADABLE_FILE": {"enabled": false}}})", R"({"ignore": ["UNREADABLE_FILE"]})",
+          R"({"severityOverrides": {"UNREADABLE_FILE": 2}})",
+          R"({"suppress": [{"material": "*", "code": "UNREADABLE_FILE"}]})",
+          R"({"rules": {"OUTPUT_WRITE_FAILED": "off"}})"}) {
         write_text(rules, text);
         const Proc p = ingest({"--rules", rules.string()});
         EXPECT_EQ(p.code, 2) << text << "\n" << p.output;
-        EXPECT_NE(p.output.find("cannot be switched off, lowered or suppressed"), std::string::npos) << text << "\n" << p.output;
+        EXPECT_NE(p.output.find("cannot be switched off, lowered or suppressed"), std::string::npos) << text << "\n"
+                                                                                                     << p.output;
     }
     // A suppression of every code of every material leaves it; --fail-on never still fails.
-    write_text(rules, R"({"suppress": [{"material": "*", "code": "*"}, {"material": "Nomatch*", "code": "CONSTANT_MAP"}]})");
+    write_text(rules,
+               R"({"suppress": [{"material": "*", "code": "*"}, {"material": "Nomatch*", "code": "CONSTANT_MAP"}]})");
     const Proc p = ingest({"--rules", rules.string(), "--fail-on", "never"});
     EXPECT_EQ(p.code, 1) << p.output;
     expect_finding("Hostile", "UNREADABLE_FILE", "Hostile_Roughness.png");
@@ -656,9 +710,12 @@ TEST_F(Hostile, RulesCannotSilenceUnreadableFiles) {
 TEST_F(Hostile, RuleThresholdsAreRangeChecked) {
     const fs::path rules = temp_dir("rules") / "r.json";
     for (const auto& [text, needle] : std::vector<std::pair<std::string, std::string>>{
-             {R"({"rules": {"ALBEDO_TOO_DARK": {"min_srgb": 300}}})", "\"ALBEDO_TOO_DARK\".min_srgb must be a number within 0.0..255.0"},
-             {R"({"rules": {"ALBEDO_TOO_BRIGHT": {"max_share": 1.5}}})", "\"ALBEDO_TOO_BRIGHT\".max_share must be a number within 0.0..1.0"},
-             {R"({"rules": {"NOT_GRAYSCALE": {"tolerance": -0.1}}})", "\"NOT_GRAYSCALE\".tolerance must be a number within"},
+             {R"({"rules": {"ALBEDO_TOO_DARK": {"min_srgb": 300}}})",
+              "\"ALBEDO_TOO_DARK\".min_srgb must be a number within 0.0..255.0"},
+             {R"({"rules": {"ALBEDO_TOO_BRIGHT": {"max_share": 1.5}}})",
+              "\"ALBEDO_TOO_BRIGHT\".max_share must be a number within 0.0..1.0"},
+             {R"({"rules": {"NOT_GRAYSCALE": {"tolerance": -0.1}}})",
+              "\"NOT_GRAYSCALE\".tolerance must be a number within"},
              {R"({"rules": {"ALBEDO_TOO_DARK": {"min_srgb": 250}, "ALBEDO_TOO_BRIGHT": {"max_srgb": 200}}})",
               "ALBEDO_TOO_DARK.min_srgb (250.0) is above ALBEDO_TOO_BRIGHT.max_srgb (200.0)"}}) {
         write_text(rules, text);
@@ -676,8 +733,9 @@ TEST_F(Hostile, PreviewManifestHostileValues) {
     const fs::path prev = temp_dir("preview");
     auto preview = [&](const nlohmann::json& m, std::vector<std::string> extra = {}) {
         write_text(out / "hand.json", m.dump(1));
-        std::vector<std::string> argv{bin(), "preview", (out / "hand.json").string(), "-o", prev.string(), "--device", "cpu",
-                                      "--size", "16"};
+        std::vector<std::string> argv{bin(), "preview",     (out / "hand.json").string(),
+                                      "-o",  prev.string(), "--device",
+                                      "cpu", "--size",      "16"};
         argv.insert(argv.end(), extra.begin(), extra.end());
         return spawn(argv, 60);
     };
@@ -713,7 +771,8 @@ TEST_F(Hostile, PreviewManifestHostileValues) {
              {R"({"camera": {"yfov_deg": 500}})", "camera.yfov_deg: must be in (0, 180)"},
              {R"({"image": {"width": 0}})", "image.width"},
              {R"({"lights": [{"type": "point", "position": [0, 0, 2], "intensity": -1}]})", "intensity"},
-             {R"({"camera": {"position": [1, 2, 3], "target": [1, 2, 3]}})", "camera: position and target are the same point"},
+             {R"({"camera": {"position": [1, 2, 3], "target": [1, 2, 3]}})",
+              "camera: position and target are the same point"},
              {R"({"camera": {"position": [0, 5, 0], "target": [0, 0, 0], "up": [0, 1, 0]}})",
               "camera.up: is parallel to the direction from position to target"}}) {
         write_text(prev / "scene.json", scene);
@@ -726,12 +785,14 @@ TEST_F(Hostile, PreviewManifestHostileValues) {
 // ===== 16. silent choices become findings
 
 TEST_F(Hostile, OverlappingInputsAreReadOnce) {
-    const Proc p = spawn({bin(), "ingest", in.string(), (in / "Good").string(), "-o", out.string(), "--quiet", "--fail-on", "never"});
+    const Proc p = spawn({bin(), "ingest", in.string(), (in / "Good").string(), "-o", out.string(), "--quiet",
+                          "--fail-on", "never"});
     ASSERT_EQ(p.code, 0) << p.output;
     manifest = read_json(out / "manifest.json");
     ASSERT_EQ(manifest["materials"].size(), 1u) << manifest.dump(1);
     expect_good_done();
-    const auto* f = expect_finding("Good", "DUPLICATE_INPUT", "", "also reached through the input " + (in / "Good").string());
+    const auto* f = expect_finding("Good", "DUPLICATE_INPUT", "",
+                                   "also reached through the input " + (in / "Good").string());
     EXPECT_TRUE(f);
 }
 
@@ -739,8 +800,10 @@ TEST_F(Hostile, DuplicateZipEntryName) {
     const fs::path z = in / "Dup.zip";
     // Two entries, then the second renamed to the first's name in both headers (libzip refuses to
     // write one name twice; archivers are not so careful).
-    write_zip(z, {{"Dup_Color.png", encode(gradient(8, 8, 3))}, {"Dup_Roughness.png", encode(gradient(8, 8, 1))},
-                  {"Dup_Roughnesz.png", encode(gradient(4, 4, 1))}},
+    write_zip(z,
+              {{"Dup_Color.png", encode(gradient(8, 8, 3))},
+               {"Dup_Roughness.png", encode(gradient(8, 8, 1))},
+               {"Dup_Roughnesz.png", encode(gradient(4, 4, 1))}},
               true);
     Bytes b = read_bytes(z);
     int patched = 0;
@@ -754,7 +817,8 @@ TEST_F(Hostile, DuplicateZipEntryName) {
     write_bytes(z, b);
     const Proc p = ingest({"--fail-on", "never"});
     EXPECT_EQ(p.code, 0) << p.output;
-    const auto* f = expect_finding("Dup", "DUPLICATE_ENTRY", "Dup_Roughness.png", "2 entries are named 'Dup_Roughness.png'; the first is used");
+    const auto* f = expect_finding("Dup", "DUPLICATE_ENTRY", "Dup_Roughness.png",
+                                   "2 entries are named 'Dup_Roughness.png'; the first is used");
     if (f) {
         EXPECT_EQ((*f)["severity"], "warning");
     }
@@ -768,7 +832,8 @@ TEST_F(Hostile, MultipartExrAndOrientation) {
     {
         auto o = OIIO::ImageOutput::create(exr.string());
         ASSERT_TRUE(o && o->supports("multiimage"));
-        OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(8, 8, 1, OIIO::TypeDesc::HALF), OIIO::ImageSpec(4, 4, 1, OIIO::TypeDesc::HALF)};
+        OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(8, 8, 1, OIIO::TypeDesc::HALF),
+                                    OIIO::ImageSpec(4, 4, 1, OIIO::TypeDesc::HALF)};
         specs[0].attribute("oiio:subimagename", "rough");
         specs[1].attribute("oiio:subimagename", "other");
         // The parts of one OpenEXR file share a display window (OpenEXR refuses conflicting
@@ -795,7 +860,8 @@ TEST_F(Hostile, MultipartExrAndOrientation) {
     const auto* o = odd_ok_run("Odd_Roughness.exr");
     ASSERT_TRUE(o);
     expect_finding("Odd", "MULTIPART_IMAGE", "Odd_Roughness.exr", "holds 2 parts; the first ('rough') is used");
-    expect_finding("Odd", "ORIENTATION_IGNORED", "Odd_Color.tif", "orientation is 6 (rotated 90° clockwise), which is not applied");
+    expect_finding("Odd", "ORIENTATION_IGNORED", "Odd_Color.tif",
+                   "orientation is 6 (rotated 90° clockwise), which is not applied");
     EXPECT_EQ((*o)["inputs"]["roughness"]["width"], 8);
 }
 
@@ -803,13 +869,16 @@ TEST_F(Hostile, MultipartExrAndOrientation) {
 
 TEST_F(Hostile, SymlinkZipEntry) {
     const fs::path z = in / "Linked.zip";
-    write_zip(z, {{"Linked_Color.png", encode(gradient(8, 8, 3))}, {"Linked_Roughness.png", Bytes{'/', 'e', 't', 'c'}}});
+    write_zip(z,
+              {{"Linked_Color.png", encode(gradient(8, 8, 3))}, {"Linked_Roughness.png", Bytes{'/', 'e', 't', 'c'}}});
     int err = 0;
     zip_t* a = zip_open(z.c_str(), 0, &err);
     ASSERT_TRUE(a);
     const zip_int64_t idx = zip_name_locate(a, "Linked_Roughness.png", 0);
     ASSERT_GE(idx, 0);
-    ASSERT_EQ(zip_file_set_external_attributes(a, static_cast<zip_uint64_t>(idx), 0, ZIP_OPSYS_UNIX, (S_IFLNK | 0777u) << 16), 0);
+    ASSERT_EQ(zip_file_set_external_attributes(a, static_cast<zip_uint64_t>(idx), 0, ZIP_OPSYS_UNIX,
+                                               (S_IFLNK | 0777u) << 16),
+              0);
     ASSERT_EQ(zip_close(a), 0);
     const Proc p = ingest();
     EXPECT_EQ(p.code, 1) << p.output;
@@ -828,15 +897,18 @@ TEST_F(Hostile, BrokenSymlinkAsOutputFolder) {
 
 TEST_F(Hostile, OutputNameTooLong) {
     const fs::path preset = temp_dir("preset") / "p.json";
-    write_text(preset, R"({"name": "long", "outputs": [{"suffix": ")" + std::string(250, 's') + R"(", "channels": {"RGB": "albedo"}}]})");
+    write_text(preset, R"({"name": "long", "outputs": [{"suffix": ")" + std::string(250, 's') +
+                           R"(", "channels": {"RGB": "albedo"}}]})");
     const Proc p = ingest({"--preset", preset.string()});
     EXPECT_EQ(p.code, 1) << p.output;
     const auto* g = mat("Good");
     ASSERT_TRUE(g);
     bool said = false;
     for (const auto& f : (*g)["findings"])
-        said = said || (f["code"] == "OUTPUT_WRITE_FAILED" &&
-                        f["message"].get<std::string>().find("longer than the file system allows (255 bytes per name)") != std::string::npos);
+        said = said ||
+               (f["code"] == "OUTPUT_WRITE_FAILED" &&
+                f["message"].get<std::string>().find("longer than the file system allows (255 bytes per name)") !=
+                    std::string::npos);
     EXPECT_TRUE(said) << g->dump(1);
 }
 
@@ -877,9 +949,9 @@ TEST_F(Hostile, ZipOfManyEntriesIsOpenedOnce) {
     const fs::path zips = temp_dir("zip");
     write_zip(zips / "many.zip", entries, true);
     const fs::path trace = zips / "open.trace";
-    const Proc p = spawn({"strace", "-f", "-qq", "-e", "trace=open,openat,openat2", "-o", trace.string(), bin(), "validate",
-                          (zips / "many.zip").string(), "--report", "json", "--report-file", (zips / "r.json").string(),
-                          "--fail-on", "never"},
+    const Proc p = spawn({"strace", "-f", "-qq", "-e", "trace=open,openat,openat2", "-o", trace.string(), bin(),
+                          "validate", (zips / "many.zip").string(), "--report", "json", "--report-file",
+                          (zips / "r.json").string(), "--fail-on", "never"},
                          300);
     ASSERT_EQ(p.code, 0) << p.output;
     std::ifstream f(trace);

@@ -148,7 +148,8 @@ inline Bytes valid_png() { return encode(gradient(16, 16, 1)); }
 
 // OpenImageIO writes what our encoder does not offer (float TIFF, many channels).
 inline Bytes oiio_file(const std::string& ext, int w, int h, int c, OIIO::TypeDesc type, const std::vector<float>& px) {
-    const fs::path tmp = fs::temp_directory_path() / ("matforge-hostile-oiio-" + std::to_string(::getpid()) + "." + ext);
+    const fs::path tmp = fs::temp_directory_path() /
+                         ("matforge-hostile-oiio-" + std::to_string(::getpid()) + "." + ext);
     auto o = OIIO::ImageOutput::create(tmp.string());
     EXPECT_TRUE(o);
     OIIO::ImageSpec spec(w, h, c, type);
@@ -189,6 +190,5 @@ inline bool can_mount_tmpfs() {
                          30);
     return p.code == 0;
 }
-
 
 }  // namespace mfh

@@ -46,19 +46,13 @@ TEST_F(Hostile, RandomBytesNamedTif) {
     bad_map("Hostile_Roughness.tif", b);
 }
 
-TEST_F(Hostile, PngHeaderWithZeroWidth) {
-    bad_map("Hostile_Roughness.png", make_png(0, 16, 8, 0, {}, {}, false));
-}
+TEST_F(Hostile, PngHeaderWithZeroWidth) { bad_map("Hostile_Roughness.png", make_png(0, 16, 8, 0, {}, {}, false)); }
 
 // ===== decompression bombs: refused from the header, before any pixel buffer exists
 
-TEST_F(Hostile, PngBomb100000Squared) {
-    bomb("Hostile_Roughness.png", make_png(100000, 100000, 8, 0, {}, {}, false));
-}
+TEST_F(Hostile, PngBomb100000Squared) { bomb("Hostile_Roughness.png", make_png(100000, 100000, 8, 0, {}, {}, false)); }
 
-TEST_F(Hostile, PngBombJustOverTheLimit) {
-    bomb("Hostile_Roughness.png", make_png(16385, 16384, 8, 0, {}, {}, false));
-}
+TEST_F(Hostile, PngBombJustOverTheLimit) { bomb("Hostile_Roughness.png", make_png(16385, 16384, 8, 0, {}, {}, false)); }
 
 TEST_F(Hostile, TiffBomb) { bomb("Hostile_Roughness.tif", make_tiff_bomb(100000, 100000)); }
 
@@ -73,7 +67,8 @@ TEST_F(Hostile, HdrBomb) {
 }
 
 TEST_F(Hostile, TooManyChannels) {
-    bomb("Hostile_Roughness.tif", oiio_file("tif", 4, 4, 9, OIIO::TypeDesc::UINT8, std::vector<float>(4 * 4 * 9, 0.5f)));
+    bomb("Hostile_Roughness.tif",
+         oiio_file("tif", 4, 4, 9, OIIO::TypeDesc::UINT8, std::vector<float>(4 * 4 * 9, 0.5f)));
 }
 
 TEST_F(Hostile, PngBombInsideZip) {
@@ -220,7 +215,8 @@ TEST_F(Hostile, GreyPngAlbedo) {
 }
 
 TEST_F(Hostile, FloatTiffAlbedo) {
-    const auto* o = odd_ok("Odd_Color.tif", oiio_file("tif", 4, 4, 3, OIIO::TypeDesc::FLOAT, std::vector<float>(48, 0.25f)));
+    const auto* o = odd_ok("Odd_Color.tif",
+                           oiio_file("tif", 4, 4, 3, OIIO::TypeDesc::FLOAT, std::vector<float>(48, 0.25f)));
     ASSERT_TRUE(o);
     EXPECT_EQ((*o)["inputs"]["albedo"]["bit_depth"], 32);
     EXPECT_EQ((*o)["inputs"]["albedo"]["color_space"], "linear");
@@ -462,7 +458,8 @@ TEST_F(Hostile, NameWithNewlineQuotesAndSpaces) {
     ASSERT_TRUE(o) << manifest.dump(1);
     const std::string safe = (*o)["name"];
     EXPECT_EQ(safe.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-"),
-              std::string::npos) << safe;
+              std::string::npos)
+        << safe;
     EXPECT_TRUE(fs::is_regular_file(out / safe / (safe + "_basecolor.png")));
     EXPECT_FALSE(fs::exists("pwned"));
 }
@@ -486,8 +483,8 @@ TEST_F(Hostile, PresetFilePatternEscapes) {
 TEST_F(Hostile, PresetSuffixEscapes) {
     for (const std::string suffix : {"../../../evil", "/../../evil", "a/b"}) {
         const fs::path preset = in.parent_path() / ("preset-" + std::to_string(::getpid()) + ".json");
-        write_text(preset, R"({"name": "evil", "outputs": [{"suffix": ")" + suffix +
-                               R"(", "channels": {"RGB": "albedo"}}]})");
+        write_text(preset,
+                   R"({"name": "evil", "outputs": [{"suffix": ")" + suffix + R"(", "channels": {"RGB": "albedo"}}]})");
         const Proc p = ingest({"--preset", preset.string()});
         fs::remove(preset);
         EXPECT_EQ(p.code, 2) << suffix << "\n" << p.output;

@@ -103,7 +103,8 @@ public:
         if (WIFSIGNALED(status)) p.signal = WTERMSIG(status);
         ::lseek(log_fd_, 0, SEEK_SET);
         std::array<char, 4096> buf{};
-        for (ssize_t n; (n = ::read(log_fd_, buf.data(), buf.size())) > 0;) p.output.append(buf.data(), static_cast<size_t>(n));
+        for (ssize_t n; (n = ::read(log_fd_, buf.data(), buf.size())) > 0;)
+            p.output.append(buf.data(), static_cast<size_t>(n));
         return p;
     }
 
@@ -127,7 +128,8 @@ inline fs::path temp_dir(const std::string& name) {
 
 inline void write_bytes(const fs::path& p, const Bytes& b) {
     fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+    std::ofstream(p, std::ios::binary)
+        .write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
 }
 inline void write_text(const fs::path& p, const std::string& s) { write_bytes(p, Bytes(s.begin(), s.end())); }
 
@@ -283,16 +285,16 @@ inline Bytes make_tiff_bomb(uint32_t w, uint32_t h) {
             put32le(t, value);
         }
     };
-    entry(256, 4, w);         // ImageWidth
-    entry(257, 4, h);         // ImageLength
-    entry(258, 3, 8);         // BitsPerSample
-    entry(259, 3, 1);         // Compression: none
-    entry(262, 3, 1);         // Photometric: min-is-black
-    entry(273, 4, data_at);   // StripOffsets
-    entry(277, 3, 1);         // SamplesPerPixel
-    entry(278, 4, h);         // RowsPerStrip
-    entry(279, 4, 16);        // StripByteCounts
-    put32le(t, 0);            // no next IFD
+    entry(256, 4, w);        // ImageWidth
+    entry(257, 4, h);        // ImageLength
+    entry(258, 3, 8);        // BitsPerSample
+    entry(259, 3, 1);        // Compression: none
+    entry(262, 3, 1);        // Photometric: min-is-black
+    entry(273, 4, data_at);  // StripOffsets
+    entry(277, 3, 1);        // SamplesPerPixel
+    entry(278, 4, h);        // RowsPerStrip
+    entry(279, 4, 16);       // StripByteCounts
+    put32le(t, 0);           // no next IFD
     t.insert(t.end(), 16, 0x80);
     return t;
 }

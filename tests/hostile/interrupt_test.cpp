@@ -73,8 +73,8 @@ TEST(Interrupt, KilledAtRandomPointsThenRerunIsIdentical) {
         Proc k;
         // A run can beat the reference's time (load varies): then the same point comes earlier.
         for (int attempt = 0; attempt < 5; ++attempt, delay *= 0.8) {
-            when = "kill " + std::to_string(i) + " at " + std::to_string(delay) + " s of " +
-                   std::to_string(duration) + " s";
+            when = "kill " + std::to_string(i) + " at " + std::to_string(delay) + " s of " + std::to_string(duration) +
+                   " s";
             fs::remove_all(work);
             k = spawn(ingest_args(in, work), 120, delay);
             ASSERT_FALSE(k.hung) << when;
@@ -85,7 +85,8 @@ TEST(Interrupt, KilledAtRandomPointsThenRerunIsIdentical) {
             const auto partial = tree_hashes(work);
             expect_only_complete_files(work, ref, when);
             size_t finals = 0;
-            for (const auto& [rel, h] : partial) finals += rel.find(mf::kTempMarker) == std::string::npos && !run_state(rel);
+            for (const auto& [rel, h] : partial)
+                finals += rel.find(mf::kTempMarker) == std::string::npos && !run_state(rel);
             if (finals > 0 && finals < ref.size()) ++mid_run;
         }
         const Proc again = spawn(ingest_args(in, work));

@@ -22,15 +22,31 @@ using ::testing::HasSubstr;
 
 TEST(IsImageFile, Table) {
     const std::vector<std::pair<std::string, bool>> table{
-        {"a.png", true},         {"a.jpg", true},          {"a.jpeg", true},
-        {"a.tga", true},         {"a.tif", true},          {"a.tiff", true},
-        {"a.exr", true},         {"a.hdr", true},          {"a.webp", true},
-        {"a.bmp", true},         {"a.dds", true},          {"a.psd", true},
-        {"WOOD_COL_2K.JPG", true}, {"sub/dir/x_Color.Png", true},
-        {"Bricks059_1K-PNG.usdc", false}, {"Bricks059_1K-PNG.mtlx", false},
-        {"readme.txt", false},   {"Bricks059.json", false}, {"scene.blend", false},
-        {".DS_Store", false},    {"Thumbs.db", false},     {"noext", false},
-        {"png", false},          {"textures.png/readme", false}, {"a.png.bak", false},
+        {"a.png", true},
+        {"a.jpg", true},
+        {"a.jpeg", true},
+        {"a.tga", true},
+        {"a.tif", true},
+        {"a.tiff", true},
+        {"a.exr", true},
+        {"a.hdr", true},
+        {"a.webp", true},
+        {"a.bmp", true},
+        {"a.dds", true},
+        {"a.psd", true},
+        {"WOOD_COL_2K.JPG", true},
+        {"sub/dir/x_Color.Png", true},
+        {"Bricks059_1K-PNG.usdc", false},
+        {"Bricks059_1K-PNG.mtlx", false},
+        {"readme.txt", false},
+        {"Bricks059.json", false},
+        {"scene.blend", false},
+        {".DS_Store", false},
+        {"Thumbs.db", false},
+        {"noext", false},
+        {"png", false},
+        {"textures.png/readme", false},
+        {"a.png.bak", false},
     };
     for (const auto& [file, expected] : table) EXPECT_EQ(is_image_file(file), expected) << file;
 }
@@ -95,8 +111,7 @@ TEST(ClassifyName, AmbientCG) {
         {"Bricks059_2K-JPG_NormalDX.jpg", Role::normal, "ambientcg", "ambientcg:_NormalDX", NC::dx},
         {"Bricks059_1K-PNG_Roughness.png", Role::roughness, "ambientcg", "ambientcg:_Roughness"},
         {"Metal032_4K-JPG_Metalness.jpg", Role::metalness, "ambientcg", "ambientcg:_Metalness"},
-        {"Bricks059_1K-PNG_AmbientOcclusion.png", Role::occlusion, "ambientcg",
-         "ambientcg:_AmbientOcclusion"},
+        {"Bricks059_1K-PNG_AmbientOcclusion.png", Role::occlusion, "ambientcg", "ambientcg:_AmbientOcclusion"},
         {"Bricks059_8K-PNG_Displacement.png", Role::height, "ambientcg", "ambientcg:_Displacement"},
         {"Leaves001_1K-PNG_Opacity.png", Role::opacity, "ambientcg", "ambientcg:_Opacity"},
         {"Lamp001_2K-PNG_Emission.png", Role::emissive, "ambientcg", "ambientcg:_Emission"},
@@ -134,15 +149,12 @@ TEST(ClassifyName, TexturesComAndPoliigon) {
         {"WoodFine0012_DISP16_3K.tif", Role::height, "texturescom", "texturescom:_DISP16"},
         {"WoodFine0012_AO_3K.jpg", Role::occlusion, "texturescom", "texturescom:_AO"},
         {"MetalPlate0012_METALNESS_2K.jpg", Role::metalness, "texturescom", "texturescom:_METALNESS"},
-        {"Poliigon_BrickWallReclaimed_8320_BaseColor.jpg", Role::albedo, "texturescom",
-         "texturescom:_BaseColor"},
+        {"Poliigon_BrickWallReclaimed_8320_BaseColor.jpg", Role::albedo, "texturescom", "texturescom:_BaseColor"},
         {"Poliigon_BrickWallReclaimed_8320_Roughness.jpg", Role::roughness, "texturescom", ""},
         {"Poliigon_BrickWallReclaimed_8320_Metallic.jpg", Role::metalness, "texturescom", ""},
-        {"Poliigon_BrickWallReclaimed_8320_NormalGL.png", Role::normal, "texturescom",
-         "texturescom:_NormalGL", NC::gl},
+        {"Poliigon_BrickWallReclaimed_8320_NormalGL.png", Role::normal, "texturescom", "texturescom:_NormalGL", NC::gl},
         {"Poliigon_BrickWallReclaimed_8320_Displacement.tiff", Role::height, "texturescom", ""},
-        {"Poliigon_BrickWallReclaimed_8320_AmbientOcclusion.jpg", Role::occlusion, "texturescom",
-         ""},
+        {"Poliigon_BrickWallReclaimed_8320_AmbientOcclusion.jpg", Role::occlusion, "texturescom", ""},
     });
 }
 
@@ -159,8 +171,7 @@ TEST(ClassifyName, Megascans) {
         {"rock_sfjmafua_4K_Displacement.exr", Role::height, "megascans", "megascans:_Displacement"},
         {"rock_sfjmafua_2K_AO.jpg", Role::occlusion, "megascans", "megascans:_AO"},
         {"plant_tbdpec3r_2K_Opacity.jpg", Role::opacity, "megascans", "megascans:_Opacity"},
-        {"plant_tbdpec3r_2K_Translucency.jpg", Role::translucency, "megascans",
-         "megascans:_Translucency"},
+        {"plant_tbdpec3r_2K_Translucency.jpg", Role::translucency, "megascans", "megascans:_Translucency"},
     });
 }
 
@@ -174,8 +185,7 @@ TEST(ClassifyName, Substance) {
         {"Chair_Emissive.png", Role::emissive, "substance", "substance:_Emissive"},
         {"Chair_Metallic.png", Role::metalness, "substance", "substance:_Metallic"},
         {"Chair_Roughness.png", Role::roughness, "substance", "substance:_Roughness"},
-        {"Chair_OcclusionRoughnessMetallic.png", Role::orm, "substance",
-         "substance:_OcclusionRoughnessMetallic"},
+        {"Chair_OcclusionRoughnessMetallic.png", Role::orm, "substance", "substance:_OcclusionRoughnessMetallic"},
         {"Chair_Mixed_AO.png", Role::occlusion, "substance", "substance:_Mixed_AO"},
     });
 }
@@ -184,8 +194,7 @@ TEST(ClassifyName, Gltf) {
     check_rows({
         {"DamagedHelmet_baseColor.png", Role::albedo, "gltf", "gltf:baseColor"},
         {"DamagedHelmet_metalRoughness.png", Role::metallic_roughness, "gltf", "gltf:metalRoughness"},
-        {"Material_metallicRoughness.png", Role::metallic_roughness, "gltf",
-         "gltf:metallicRoughness"},
+        {"Material_metallicRoughness.png", Role::metallic_roughness, "gltf", "gltf:metallicRoughness"},
         {"DamagedHelmet_occlusion.png", Role::occlusion, "gltf", "gltf:occlusion"},
         {"DamagedHelmet_emissive.png", Role::emissive, "gltf", "gltf:emissive"},
         {"DamagedHelmet_normal.png", Role::normal, "gltf", "gltf:normal"},
@@ -283,20 +292,13 @@ TEST(MaterialStem, Table) {
 
 TEST(ResolutionHint, Table) {
     const std::vector<std::pair<std::string, int>> table{
-        {"Bricks059_1K-PNG_Color.png", 1024},
-        {"rock_sfjmafua_2K_Albedo.jpg", 2048},
-        {"WoodFine0012_GLOSS_3K.jpg", 3072},
-        {"aerial_rocks_02_arm_4k.png", 4096},
-        {"brick_diff_8k.jpg", 8192},
-        {"Cliff_16K_Albedo.exr", 16384},
-        {"Wood_Color_1024.png", 1024},
-        {"Wood_Color_512.png", 512},
-        {"Wood_Color_2048px.png", 2048},
-        {"Wood_Color_4096x4096.png", 4096},
-        {"Bricks059_Color.png", 0},
-        {"brick_wall_001_diff.png", 0},  // catalogue numbers are not sizes
-        {"Metal_600_Color.png", 0},
-        {"Tiles059_Color.png", 0},
+        {"Bricks059_1K-PNG_Color.png", 1024}, {"rock_sfjmafua_2K_Albedo.jpg", 2048},
+        {"WoodFine0012_GLOSS_3K.jpg", 3072},  {"aerial_rocks_02_arm_4k.png", 4096},
+        {"brick_diff_8k.jpg", 8192},          {"Cliff_16K_Albedo.exr", 16384},
+        {"Wood_Color_1024.png", 1024},        {"Wood_Color_512.png", 512},
+        {"Wood_Color_2048px.png", 2048},      {"Wood_Color_4096x4096.png", 4096},
+        {"Bricks059_Color.png", 0},           {"brick_wall_001_diff.png", 0},  // catalogue numbers are not sizes
+        {"Metal_600_Color.png", 0},           {"Tiles059_Color.png", 0},
         {"Chair_Normal_DirectX.png", 0},
     };
     for (const auto& [file, px] : table) EXPECT_EQ(resolution_hint(file), px) << file;
@@ -396,10 +398,14 @@ void expect_all_info(const SetDiscovery& d) {
 
 TEST(DiscoverSet, AmbientCG) {
     const std::vector<std::string> files{
-        "Bricks059_1K-PNG_Color.png",         "Bricks059_1K-PNG_NormalGL.png",
-        "Bricks059_1K-PNG_NormalDX.png",      "Bricks059_1K-PNG_Roughness.png",
-        "Bricks059_1K-PNG_AmbientOcclusion.png", "Bricks059_1K-PNG_Displacement.png",
-        "Bricks059.png",                      "Bricks059_1K-PNG.usdc",
+        "Bricks059_1K-PNG_Color.png",
+        "Bricks059_1K-PNG_NormalGL.png",
+        "Bricks059_1K-PNG_NormalDX.png",
+        "Bricks059_1K-PNG_Roughness.png",
+        "Bricks059_1K-PNG_AmbientOcclusion.png",
+        "Bricks059_1K-PNG_Displacement.png",
+        "Bricks059.png",
+        "Bricks059_1K-PNG.usdc",
         "Bricks059_1K-PNG.mtlx",
     };
     const auto d = discover_set(files, kNoHeaders, policy(NC::gl));
@@ -415,10 +421,8 @@ TEST(DiscoverSet, AmbientCG) {
                                         "occlusion<-Bricks059_1K-PNG_AmbientOcclusion.png(occlusion)",
                                         "height<-Bricks059_1K-PNG_Displacement.png(height)"));
     EXPECT_THAT(finding_keys(d),
-                ElementsAre("AMBIGUOUS_MAP normal Bricks059_1K-PNG_NormalGL.png",
-                            "UNRECOGNIZED_FILE  Bricks059.png",
-                            "UNRECOGNIZED_FILE  Bricks059_1K-PNG.mtlx",
-                            "UNRECOGNIZED_FILE  Bricks059_1K-PNG.usdc"));
+                ElementsAre("AMBIGUOUS_MAP normal Bricks059_1K-PNG_NormalGL.png", "UNRECOGNIZED_FILE  Bricks059.png",
+                            "UNRECOGNIZED_FILE  Bricks059_1K-PNG.mtlx", "UNRECOGNIZED_FILE  Bricks059_1K-PNG.usdc"));
     expect_all_info(d);
     const auto* amb = finding(d, code::ambiguous_map, "normal");
     ASSERT_NE(amb, nullptr);
@@ -433,8 +437,8 @@ TEST(DiscoverSet, AmbientCG) {
 
 TEST(DiscoverSet, AmbientCGOlderNamesStillAmbientCG) {
     // Pre-2021 names: only _Color is distinctive, the rest is shared with other families.
-    const auto d = discover_set({"Bricks059_2K_Color.jpg", "Bricks059_2K_Normal.jpg",
-                                 "Bricks059_2K_Roughness.jpg", "Bricks059_2K_Displacement.jpg"},
+    const auto d = discover_set({"Bricks059_2K_Color.jpg", "Bricks059_2K_Normal.jpg", "Bricks059_2K_Roughness.jpg",
+                                 "Bricks059_2K_Displacement.jpg"},
                                 kNoHeaders, policy());
     EXPECT_EQ(d.convention, "ambientcg");
     EXPECT_EQ(choice(d, Role::normal)->chosen.match.normal, NC::unknown);
@@ -449,18 +453,16 @@ TEST(DiscoverSet, PolyHavenPackedAndDedicated) {
     };
     const auto d = discover_set(files, kNoHeaders, policy(NC::gl));
     EXPECT_EQ(d.convention, "polyhaven");
-    EXPECT_THAT(choice_roles(d),
-                ElementsAre("albedo", "normal", "roughness", "occlusion", "height", "orm"));
+    EXPECT_THAT(choice_roles(d), ElementsAre("albedo", "normal", "roughness", "occlusion", "height", "orm"));
     EXPECT_THAT(sources(d), ElementsAre("albedo<-brick_wall_001_diff_1k.jpg(albedo)",
                                         "normal<-brick_wall_001_nor_gl_1k.exr(normal)",
                                         "roughness<-brick_wall_001_rough_1k.exr(roughness)",
                                         "metalness<-brick_wall_001_arm_1k.exr[B](orm)",
                                         "occlusion<-brick_wall_001_ao_1k.jpg(occlusion)",
                                         "height<-brick_wall_001_disp_1k.png(height)"));
-    EXPECT_THAT(finding_keys(d),
-                ElementsAre("AMBIGUOUS_MAP normal brick_wall_001_nor_gl_1k.exr",
-                            "AMBIGUOUS_MAP roughness brick_wall_001_rough_1k.exr",
-                            "AMBIGUOUS_MAP occlusion brick_wall_001_ao_1k.jpg"));
+    EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP normal brick_wall_001_nor_gl_1k.exr",
+                                             "AMBIGUOUS_MAP roughness brick_wall_001_rough_1k.exr",
+                                             "AMBIGUOUS_MAP occlusion brick_wall_001_ao_1k.jpg"));
     const auto* r = finding(d, code::ambiguous_map, "roughness");
     ASSERT_NE(r, nullptr);
     EXPECT_THAT(r->message, HasSubstr("dedicated roughness map beats the packed orm"));
@@ -471,8 +473,7 @@ TEST(DiscoverSet, PolyHavenPackedAndDedicated) {
     // Preferring DX picks the other normal.
     const auto dx = discover_set(files, kNoHeaders, policy(NC::dx));
     EXPECT_EQ(chosen(dx, Role::normal), "brick_wall_001_nor_dx_1k.exr");
-    EXPECT_EQ(finding(dx, code::ambiguous_map, "normal")->figures.at("chosen"),
-              "brick_wall_001_nor_dx_1k.exr");
+    EXPECT_EQ(finding(dx, code::ambiguous_map, "normal")->figures.at("chosen"), "brick_wall_001_nor_dx_1k.exr");
 }
 
 TEST(DiscoverSet, PolyHavenArmOnlyFeedsThreeRoles) {
@@ -496,16 +497,15 @@ TEST(DiscoverSet, TexturesComLegacy) {
     };
     const auto d = discover_set(files, kNoHeaders, policy());
     EXPECT_EQ(d.convention, "texturescom");
-    EXPECT_THAT(choice_roles(d),
-                ElementsAre("albedo", "normal", "occlusion", "height", "gloss", "specular"));
+    EXPECT_THAT(choice_roles(d), ElementsAre("albedo", "normal", "occlusion", "height", "gloss", "specular"));
     EXPECT_EQ(chosen(d, Role::albedo), "Concrete0012_COL_VAR1_2K.jpg");
     EXPECT_EQ(chosen(d, Role::normal), "Concrete0012_NRM16_2K.tif");
     EXPECT_EQ(chosen(d, Role::height), "Concrete0012_DISP16_2K.tif");
-    EXPECT_THAT(sources(d), ElementsAre("albedo<-Concrete0012_COL_VAR1_2K.jpg(albedo)",
-                                        "normal<-Concrete0012_NRM16_2K.tif(normal)",
-                                        "roughness<-~Concrete0012_GLOSS_2K.jpg(gloss)",
-                                        "occlusion<-Concrete0012_AO_2K.jpg(occlusion)",
-                                        "height<-Concrete0012_DISP16_2K.tif(height)"));
+    EXPECT_THAT(sources(d),
+                ElementsAre("albedo<-Concrete0012_COL_VAR1_2K.jpg(albedo)", "normal<-Concrete0012_NRM16_2K.tif(normal)",
+                            "roughness<-~Concrete0012_GLOSS_2K.jpg(gloss)",
+                            "occlusion<-Concrete0012_AO_2K.jpg(occlusion)",
+                            "height<-Concrete0012_DISP16_2K.tif(height)"));
     EXPECT_TRUE(routes(d)[2].second.invert);
     EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP albedo Concrete0012_COL_VAR1_2K.jpg",
                                              "AMBIGUOUS_MAP normal Concrete0012_NRM16_2K.tif",
@@ -518,27 +518,25 @@ TEST(DiscoverSet, TexturesComLegacy) {
 
 TEST(DiscoverSet, MegascansRoughnessBeatsGloss) {
     const std::vector<std::string> files{
-        "rock_sfjmafua_2K_Albedo.jpg",       "rock_sfjmafua_2K_Normal.jpg",
-        "rock_sfjmafua_2K_Roughness.jpg",    "rock_sfjmafua_2K_Gloss.jpg",
-        "rock_sfjmafua_2K_Cavity.jpg",       "rock_sfjmafua_2K_Displacement.exr",
-        "rock_sfjmafua_2K_Bump.jpg",         "rock_sfjmafua_2K_AO.jpg",
-        "rock_sfjmafua_2K_Specular.jpg",     "rock_sfjmafua_Preview.png",
-        "rock_sfjmafua.json",
+        "rock_sfjmafua_2K_Albedo.jpg", "rock_sfjmafua_2K_Normal.jpg", "rock_sfjmafua_2K_Roughness.jpg",
+        "rock_sfjmafua_2K_Gloss.jpg",  "rock_sfjmafua_2K_Cavity.jpg", "rock_sfjmafua_2K_Displacement.exr",
+        "rock_sfjmafua_2K_Bump.jpg",   "rock_sfjmafua_2K_AO.jpg",     "rock_sfjmafua_2K_Specular.jpg",
+        "rock_sfjmafua_Preview.png",   "rock_sfjmafua.json",
     };
     const auto d = discover_set(files, kNoHeaders, policy());
     EXPECT_EQ(d.convention, "megascans");
-    EXPECT_THAT(choice_roles(d), ElementsAre("albedo", "normal", "roughness", "occlusion", "height",
-                                             "gloss", "specular", "cavity"));
+    EXPECT_THAT(choice_roles(d),
+                ElementsAre("albedo", "normal", "roughness", "occlusion", "height", "gloss", "specular", "cavity"));
     EXPECT_EQ(choice(d, Role::normal)->chosen.match.normal, NC::unknown);
     EXPECT_THAT(sources(d), ElementsAre("albedo<-rock_sfjmafua_2K_Albedo.jpg(albedo)",
                                         "normal<-rock_sfjmafua_2K_Normal.jpg(normal)",
                                         "roughness<-rock_sfjmafua_2K_Roughness.jpg(roughness)",
                                         "occlusion<-rock_sfjmafua_2K_AO.jpg(occlusion)",
                                         "height<-rock_sfjmafua_2K_Displacement.exr(height)"));
-    EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP roughness rock_sfjmafua_2K_Roughness.jpg",
-                                             "AMBIGUOUS_MAP height rock_sfjmafua_2K_Displacement.exr",
-                                             "UNRECOGNIZED_FILE  rock_sfjmafua.json",
-                                             "UNRECOGNIZED_FILE  rock_sfjmafua_Preview.png"));
+    EXPECT_THAT(finding_keys(d),
+                ElementsAre("AMBIGUOUS_MAP roughness rock_sfjmafua_2K_Roughness.jpg",
+                            "AMBIGUOUS_MAP height rock_sfjmafua_2K_Displacement.exr",
+                            "UNRECOGNIZED_FILE  rock_sfjmafua.json", "UNRECOGNIZED_FILE  rock_sfjmafua_Preview.png"));
     const auto* r = finding(d, code::ambiguous_map, "roughness");
     EXPECT_THAT(r->message, HasSubstr("roughness map beats a gloss map"));
     EXPECT_EQ(r->figures.at("candidates"),
@@ -561,12 +559,12 @@ TEST(DiscoverSet, MegascansOrtBlueIsTranslucencyNeverMetalness) {
 }
 
 TEST(DiscoverSet, MegascansDedicatedBeatsOrt) {
-    const auto d = discover_set({"plant_x_2K_ORT.png", "plant_x_2K_Roughness.jpg",
-                                 "plant_x_2K_Translucency.jpg", "plant_x_2K_Gloss.jpg"},
+    const auto d = discover_set({"plant_x_2K_ORT.png", "plant_x_2K_Roughness.jpg", "plant_x_2K_Translucency.jpg",
+                                 "plant_x_2K_Gloss.jpg"},
                                 kNoHeaders, policy());
-    EXPECT_THAT(sources(d), ElementsAre("roughness<-plant_x_2K_Roughness.jpg(roughness)",
-                                        "occlusion<-plant_x_2K_ORT.png[R](ort)",
-                                        "translucency<-plant_x_2K_Translucency.jpg(translucency)"));
+    EXPECT_THAT(sources(d),
+                ElementsAre("roughness<-plant_x_2K_Roughness.jpg(roughness)", "occlusion<-plant_x_2K_ORT.png[R](ort)",
+                            "translucency<-plant_x_2K_Translucency.jpg(translucency)"));
     EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP roughness plant_x_2K_Roughness.jpg",
                                              "AMBIGUOUS_MAP translucency plant_x_2K_Translucency.jpg"));
     EXPECT_EQ(finding(d, code::ambiguous_map, "roughness")->figures.at("candidates"),
@@ -575,39 +573,36 @@ TEST(DiscoverSet, MegascansDedicatedBeatsOrt) {
 
 TEST(DiscoverSet, PackedRoughnessBeatsGloss) {
     const auto d = discover_set({"plant_x_2K_ORT.png", "plant_x_2K_Gloss.jpg"}, kNoHeaders, policy());
-    EXPECT_THAT(sources(d), ElementsAre("roughness<-plant_x_2K_ORT.png[G](ort)",
-                                        "occlusion<-plant_x_2K_ORT.png[R](ort)",
-                                        "translucency<-plant_x_2K_ORT.png[B](ort)"));
+    EXPECT_THAT(sources(d),
+                ElementsAre("roughness<-plant_x_2K_ORT.png[G](ort)", "occlusion<-plant_x_2K_ORT.png[R](ort)",
+                            "translucency<-plant_x_2K_ORT.png[B](ort)"));
     EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP roughness plant_x_2K_ORT.png"));
 }
 
 TEST(DiscoverSet, SubstancePacked) {
     const auto d = discover_set({"Chair_BaseColor.png", "Chair_Normal_OpenGL.png",
-                                 "Chair_OcclusionRoughnessMetallic.png", "Chair_Height.png",
-                                 "Chair_Emissive.png", "Chair_Mixed_AO.png"},
+                                 "Chair_OcclusionRoughnessMetallic.png", "Chair_Height.png", "Chair_Emissive.png",
+                                 "Chair_Mixed_AO.png"},
                                 kNoHeaders, policy(NC::dx));
     EXPECT_EQ(d.convention, "substance");
     EXPECT_EQ(choice(d, Role::normal)->chosen.match.normal, NC::gl);
-    EXPECT_THAT(sources(d), ElementsAre("albedo<-Chair_BaseColor.png(albedo)",
-                                        "normal<-Chair_Normal_OpenGL.png(normal)",
-                                        "roughness<-Chair_OcclusionRoughnessMetallic.png[G](orm)",
-                                        "metalness<-Chair_OcclusionRoughnessMetallic.png[B](orm)",
-                                        "occlusion<-Chair_Mixed_AO.png(occlusion)",
-                                        "height<-Chair_Height.png(height)",
-                                        "emissive<-Chair_Emissive.png(emissive)"));
+    EXPECT_THAT(sources(d),
+                ElementsAre("albedo<-Chair_BaseColor.png(albedo)", "normal<-Chair_Normal_OpenGL.png(normal)",
+                            "roughness<-Chair_OcclusionRoughnessMetallic.png[G](orm)",
+                            "metalness<-Chair_OcclusionRoughnessMetallic.png[B](orm)",
+                            "occlusion<-Chair_Mixed_AO.png(occlusion)", "height<-Chair_Height.png(height)",
+                            "emissive<-Chair_Emissive.png(emissive)"));
     EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP occlusion Chair_Mixed_AO.png"));
 }
 
 TEST(DiscoverSet, SubstanceSeparateMapsBeatPoliigonOnLayout) {
     // Every name here is also a current Poliigon name; no resolution tag points to Substance.
-    const auto d = discover_set({"Chair_BaseColor.png", "Chair_Normal.png", "Chair_Roughness.png",
-                                 "Chair_Metallic.png", "Chair_Height.png"},
+    const auto d = discover_set({"Chair_BaseColor.png", "Chair_Normal.png", "Chair_Roughness.png", "Chair_Metallic.png",
+                                 "Chair_Height.png"},
                                 kNoHeaders, policy());
     EXPECT_EQ(d.convention, "substance");
-    const auto p = discover_set({"Poliigon_BrickWall_7612_BaseColor_2K.jpg",
-                                 "Poliigon_BrickWall_7612_Normal_2K.png",
-                                 "Poliigon_BrickWall_7612_Roughness_2K.jpg",
-                                 "Poliigon_BrickWall_7612_Metallic_2K.jpg"},
+    const auto p = discover_set({"Poliigon_BrickWall_7612_BaseColor_2K.jpg", "Poliigon_BrickWall_7612_Normal_2K.png",
+                                 "Poliigon_BrickWall_7612_Roughness_2K.jpg", "Poliigon_BrickWall_7612_Metallic_2K.jpg"},
                                 kNoHeaders, policy());
     EXPECT_EQ(p.convention, "texturescom");
 }
@@ -618,27 +613,25 @@ TEST(DiscoverSet, Gltf) {
                                  "DamagedHelmet_emissive.png", "DamagedHelmet.gltf"},
                                 kNoHeaders, policy());
     EXPECT_EQ(d.convention, "gltf");
-    EXPECT_THAT(sources(d), ElementsAre("albedo<-DamagedHelmet_baseColor.png(albedo)",
-                                        "normal<-DamagedHelmet_normal.png(normal)",
-                                        "roughness<-DamagedHelmet_metalRoughness.png[G](metallic_roughness)",
-                                        "metalness<-DamagedHelmet_metalRoughness.png[B](metallic_roughness)",
-                                        "occlusion<-DamagedHelmet_occlusion.png(occlusion)",
-                                        "emissive<-DamagedHelmet_emissive.png(emissive)"));
+    EXPECT_THAT(sources(d),
+                ElementsAre("albedo<-DamagedHelmet_baseColor.png(albedo)", "normal<-DamagedHelmet_normal.png(normal)",
+                            "roughness<-DamagedHelmet_metalRoughness.png[G](metallic_roughness)",
+                            "metalness<-DamagedHelmet_metalRoughness.png[B](metallic_roughness)",
+                            "occlusion<-DamagedHelmet_occlusion.png(occlusion)",
+                            "emissive<-DamagedHelmet_emissive.png(emissive)"));
     // metallicRoughness's R is unused, so occlusion had a single candidate.
     EXPECT_THAT(finding_keys(d), ElementsAre("UNRECOGNIZED_FILE  DamagedHelmet.gltf"));
 }
 
 TEST(DiscoverSet, MixedNamesAreGeneric) {
-    const auto d = discover_set({"wood_albedo.png", "wood_normal.png", "wood_rough.png"}, kNoHeaders,
-                                policy());
+    const auto d = discover_set({"wood_albedo.png", "wood_normal.png", "wood_rough.png"}, kNoHeaders, policy());
     EXPECT_EQ(d.convention, "generic");
     EXPECT_THAT(choice_roles(d), ElementsAre("albedo", "normal", "roughness"));
     const auto none = discover_set({"readme.txt", "preview.jpg"}, kNoHeaders, policy());
     EXPECT_EQ(none.convention, "generic");
     EXPECT_TRUE(none.choices.empty());
     EXPECT_TRUE(routes(none).empty());
-    EXPECT_THAT(finding_keys(none), ElementsAre("UNRECOGNIZED_FILE  preview.jpg",
-                                                "UNRECOGNIZED_FILE  readme.txt"));
+    EXPECT_THAT(finding_keys(none), ElementsAre("UNRECOGNIZED_FILE  preview.jpg", "UNRECOGNIZED_FILE  readme.txt"));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -664,45 +657,103 @@ TEST(DiscoverSet, ChoiceTable) {
     };
     const std::vector<ChoiceCase> table{
         {"two resolutions: the largest",
-         {"Bricks059_1K-PNG_Color.png", "Bricks059_2K-PNG_Color.png"}, {}, policy(), Role::albedo,
-         "Bricks059_2K-PNG_Color.png", "largest (2048 px vs 1024 px)"},
+         {"Bricks059_1K-PNG_Color.png", "Bricks059_2K-PNG_Color.png"},
+         {},
+         policy(),
+         Role::albedo,
+         "Bricks059_2K-PNG_Color.png",
+         "largest (2048 px vs 1024 px)"},
         {"two resolutions: the largest within the preset's limit",
-         {"Bricks059_1K-PNG_Color.png", "Bricks059_2K-PNG_Color.png"}, {}, policy(NC::gl, 1024),
-         Role::albedo, "Bricks059_1K-PNG_Color.png", "size limit of 1024"},
+         {"Bricks059_1K-PNG_Color.png", "Bricks059_2K-PNG_Color.png"},
+         {},
+         policy(NC::gl, 1024),
+         Role::albedo,
+         "Bricks059_1K-PNG_Color.png",
+         "size limit of 1024"},
         {"all above the limit: the smallest",
-         {"Cliff_4K_Albedo.jpg", "Cliff_8K_Albedo.jpg"}, {}, policy(NC::gl, 2048), Role::albedo,
-         "Cliff_4K_Albedo.jpg", "smallest above the size limit"},
+         {"Cliff_4K_Albedo.jpg", "Cliff_8K_Albedo.jpg"},
+         {},
+         policy(NC::gl, 2048),
+         Role::albedo,
+         "Cliff_4K_Albedo.jpg",
+         "smallest above the size limit"},
         {"header size beats the name and the format",
          {"Tiles_Albedo.png", "Tiles_Albedo.tga"},
-         {{"Tiles_Albedo.png", hdr(1024)}, {"Tiles_Albedo.tga", hdr(2048)}}, policy(), Role::albedo,
-         "Tiles_Albedo.tga", "largest (2048 px"},
+         {{"Tiles_Albedo.png", hdr(1024)}, {"Tiles_Albedo.tga", hdr(2048)}},
+         policy(),
+         Role::albedo,
+         "Tiles_Albedo.tga",
+         "largest (2048 px"},
         {"header size beats a misleading name hint",
          {"Tiles_2K_Albedo.jpg", "Tiles_1K_Albedo.jpg"},
-         {{"Tiles_2K_Albedo.jpg", hdr(512)}, {"Tiles_1K_Albedo.jpg", hdr(1024)}}, policy(),
-         Role::albedo, "Tiles_1K_Albedo.jpg", "largest"},
+         {{"Tiles_2K_Albedo.jpg", hdr(512)}, {"Tiles_1K_Albedo.jpg", hdr(1024)}},
+         policy(),
+         Role::albedo,
+         "Tiles_1K_Albedo.jpg",
+         "largest"},
         {"JPEG and PNG of one size: lossless",
-         {"Bricks059_1K-JPG_Color.jpg", "Bricks059_1K-PNG_Color.png"}, {}, policy(), Role::albedo,
-         "Bricks059_1K-PNG_Color.png", "png"},
-        {"EXR over PNG", {"brick_wall_001_rough_1k.png", "brick_wall_001_rough_1k.exr"}, {}, policy(),
-         Role::roughness, "brick_wall_001_rough_1k.exr", "exr"},
+         {"Bricks059_1K-JPG_Color.jpg", "Bricks059_1K-PNG_Color.png"},
+         {},
+         policy(),
+         Role::albedo,
+         "Bricks059_1K-PNG_Color.png",
+         "png"},
+        {"EXR over PNG",
+         {"brick_wall_001_rough_1k.png", "brick_wall_001_rough_1k.exr"},
+         {},
+         policy(),
+         Role::roughness,
+         "brick_wall_001_rough_1k.exr",
+         "exr"},
         {"higher bit depth from the header",
          {"Rock_Height.png", "Rock_Height_b.png"},
-         {{"Rock_Height.png", hdr(1024, 8)}, {"Rock_Height_b.png", hdr(1024, 16)}}, policy(),
-         Role::height, "Rock_Height_b.png", "bit depth (16 vs 8)"},
-        {"higher bit depth from the name", {"Rock_Height_8bit.png", "Rock_Height_16bit.png"}, {},
-         policy(), Role::height, "Rock_Height_16bit.png", "bit depth"},
-        {"GL and DX, preset gl", {"Bricks059_1K-PNG_NormalDX.png", "Bricks059_1K-PNG_NormalGL.png"},
-         {}, policy(NC::gl), Role::normal, "Bricks059_1K-PNG_NormalGL.png", "preset"},
-        {"GL and DX, preset dx", {"Bricks059_1K-PNG_NormalDX.png", "Bricks059_1K-PNG_NormalGL.png"},
-         {}, policy(NC::dx), Role::normal, "Bricks059_1K-PNG_NormalDX.png", "preset"},
+         {{"Rock_Height.png", hdr(1024, 8)}, {"Rock_Height_b.png", hdr(1024, 16)}},
+         policy(),
+         Role::height,
+         "Rock_Height_b.png",
+         "bit depth (16 vs 8)"},
+        {"higher bit depth from the name",
+         {"Rock_Height_8bit.png", "Rock_Height_16bit.png"},
+         {},
+         policy(),
+         Role::height,
+         "Rock_Height_16bit.png",
+         "bit depth"},
+        {"GL and DX, preset gl",
+         {"Bricks059_1K-PNG_NormalDX.png", "Bricks059_1K-PNG_NormalGL.png"},
+         {},
+         policy(NC::gl),
+         Role::normal,
+         "Bricks059_1K-PNG_NormalGL.png",
+         "preset"},
+        {"GL and DX, preset dx",
+         {"Bricks059_1K-PNG_NormalDX.png", "Bricks059_1K-PNG_NormalGL.png"},
+         {},
+         policy(NC::dx),
+         Role::normal,
+         "Bricks059_1K-PNG_NormalDX.png",
+         "preset"},
         {"convention beats size",
-         {"Bricks059_1K-PNG_NormalGL.png", "Bricks059_4K-PNG_NormalDX.png"}, {}, policy(NC::gl),
-         Role::normal, "Bricks059_1K-PNG_NormalGL.png", "preset"},
+         {"Bricks059_1K-PNG_NormalGL.png", "Bricks059_4K-PNG_NormalDX.png"},
+         {},
+         policy(NC::gl),
+         Role::normal,
+         "Bricks059_1K-PNG_NormalGL.png",
+         "preset"},
         {"a stated convention beats an unknown one",
-         {"Bricks059_1K-PNG_Normal.png", "Bricks059_1K-PNG_NormalGL.png"}, {}, policy(NC::dx),
-         Role::normal, "Bricks059_1K-PNG_NormalGL.png", "states a normal convention"},
-        {"all equal: byte-wise name", {"Concrete0012_COL_VAR2_2K.jpg", "Concrete0012_COL_VAR1_2K.jpg"},
-         {}, policy(), Role::albedo, "Concrete0012_COL_VAR1_2K.jpg", "by name"},
+         {"Bricks059_1K-PNG_Normal.png", "Bricks059_1K-PNG_NormalGL.png"},
+         {},
+         policy(NC::dx),
+         Role::normal,
+         "Bricks059_1K-PNG_NormalGL.png",
+         "states a normal convention"},
+        {"all equal: byte-wise name",
+         {"Concrete0012_COL_VAR2_2K.jpg", "Concrete0012_COL_VAR1_2K.jpg"},
+         {},
+         policy(),
+         Role::albedo,
+         "Concrete0012_COL_VAR1_2K.jpg",
+         "by name"},
     };
     for (const auto& c : table) {
         SCOPED_TRACE(c.name);
@@ -728,8 +779,7 @@ TEST(DiscoverSet, RejectedAreBestFirstAndHeadersReachTheChoice) {
     h.width = 2048;
     h.height = 1024;
     h.bit_depth = 16;
-    const auto d = discover_set({"W_1K_Albedo.jpg", "W_4K_Albedo.jpg", "W_2K_Albedo.jpg",
-                                 "W_2K_Albedo.png"},
+    const auto d = discover_set({"W_1K_Albedo.jpg", "W_4K_Albedo.jpg", "W_2K_Albedo.jpg", "W_2K_Albedo.png"},
                                 headers({{"W_2K_Albedo.png", h}}), policy());
     const auto* c = choice(d, Role::albedo);
     ASSERT_NE(c, nullptr);
@@ -744,9 +794,15 @@ TEST(DiscoverSet, RejectedAreBestFirstAndHeadersReachTheChoice) {
 
 TEST(DiscoverSet, DeterministicWhateverTheOrder) {
     std::vector<std::string> files{
-        "brick_wall_001_diff_1k.jpg",  "brick_wall_001_diff_2k.jpg",  "brick_wall_001_nor_gl_1k.exr",
-        "brick_wall_001_nor_dx_1k.exr", "brick_wall_001_rough_1k.exr", "brick_wall_001_arm_1k.exr",
-        "brick_wall_001_ao_1k.jpg",    "notes.txt",                   "preview.png",
+        "brick_wall_001_diff_1k.jpg",
+        "brick_wall_001_diff_2k.jpg",
+        "brick_wall_001_nor_gl_1k.exr",
+        "brick_wall_001_nor_dx_1k.exr",
+        "brick_wall_001_rough_1k.exr",
+        "brick_wall_001_arm_1k.exr",
+        "brick_wall_001_ao_1k.jpg",
+        "notes.txt",
+        "preview.png",
     };
     const auto reference = discover_set(files, kNoHeaders, policy());
     std::mt19937 rng(7);
@@ -767,8 +823,8 @@ TEST(DiscoverSet, NullHeaderFunctionIsAllowed) {
 }
 
 TEST(DiscoverSet, PathsInSubfolders) {
-    const auto d = discover_set({"textures/Bricks059_1K-PNG_Color.png",
-                                 "textures/Bricks059_1K-PNG_NormalGL.png", "Bricks059.png"},
+    const auto d = discover_set({"textures/Bricks059_1K-PNG_Color.png", "textures/Bricks059_1K-PNG_NormalGL.png",
+                                 "Bricks059.png"},
                                 kNoHeaders, policy());
     EXPECT_EQ(chosen(d, Role::albedo), "textures/Bricks059_1K-PNG_Color.png");
     EXPECT_EQ(chosen(d, Role::normal), "textures/Bricks059_1K-PNG_NormalGL.png");
@@ -786,28 +842,32 @@ std::vector<std::string> group_names(const std::vector<FileGroup>& groups) {
 
 TEST(GroupFiles, FlatFolderOfThreeAmbientCGMaterials) {
     const std::vector<std::string> files{
-        "Metal032_1K-PNG_Metalness.png", "Bricks059_1K-PNG_Color.png", "Ground037_1K-PNG_Color.png",
-        "Bricks059_1K-PNG_NormalGL.png", "Bricks059.png",              "Ground037_1K-PNG_Roughness.png",
-        "Metal032_1K-PNG_Color.png",     "Bricks059_1K-PNG.usdc",       "Ground037.png",
+        "Metal032_1K-PNG_Metalness.png",
+        "Bricks059_1K-PNG_Color.png",
+        "Ground037_1K-PNG_Color.png",
+        "Bricks059_1K-PNG_NormalGL.png",
+        "Bricks059.png",
+        "Ground037_1K-PNG_Roughness.png",
+        "Metal032_1K-PNG_Color.png",
+        "Bricks059_1K-PNG.usdc",
+        "Ground037.png",
         "preview.jpg",
     };
     const auto g = group_files(files, "in");
     EXPECT_THAT(group_names(g), ElementsAre("Bricks059", "Ground037", "Metal032"));
     ASSERT_EQ(g.size(), 3u);
     // The stray preview joins the first group; files are in byte order.
-    EXPECT_THAT(g[0].files, ElementsAre("Bricks059.png", "Bricks059_1K-PNG.usdc",
-                                        "Bricks059_1K-PNG_Color.png", "Bricks059_1K-PNG_NormalGL.png",
-                                        "preview.jpg"));
-    EXPECT_THAT(g[1].files, ElementsAre("Ground037.png", "Ground037_1K-PNG_Color.png",
-                                        "Ground037_1K-PNG_Roughness.png"));
+    EXPECT_THAT(g[0].files, ElementsAre("Bricks059.png", "Bricks059_1K-PNG.usdc", "Bricks059_1K-PNG_Color.png",
+                                        "Bricks059_1K-PNG_NormalGL.png", "preview.jpg"));
+    EXPECT_THAT(g[1].files,
+                ElementsAre("Ground037.png", "Ground037_1K-PNG_Color.png", "Ground037_1K-PNG_Roughness.png"));
     EXPECT_THAT(g[2].files, ElementsAre("Metal032_1K-PNG_Color.png", "Metal032_1K-PNG_Metalness.png"));
 }
 
 TEST(GroupFiles, PolyHavenTwoMaterialsWithSharedPrefix) {
     const auto g = group_files({"brick_wall_001_diff_1k.jpg", "brick_wall_001_nor_gl_1k.exr",
-                                "brick_wall_002_diff_1k.jpg", "brick_wall_002_rough_1k.jpg",
-                                "brick_wall_002.blend", "brick_wall_002_preview.png",
-                                "metal_plate_diff_1k.png", "metal_plate_metal_1k.png"},
+                                "brick_wall_002_diff_1k.jpg", "brick_wall_002_rough_1k.jpg", "brick_wall_002.blend",
+                                "brick_wall_002_preview.png", "metal_plate_diff_1k.png", "metal_plate_metal_1k.png"},
                                "x");
     EXPECT_THAT(group_names(g), ElementsAre("brick_wall_001", "brick_wall_002", "metal_plate"));
     EXPECT_THAT(g[1].files, ElementsAre("brick_wall_002.blend", "brick_wall_002_diff_1k.jpg",
@@ -833,8 +893,8 @@ TEST(GroupFiles, RoleOnlyNamesUseTheFallbackName) {
 }
 
 TEST(GroupFiles, StemsCompareWithoutCaseAndKeepTheFirstSpelling) {
-    const auto g = group_files({"Wood_Color.png", "wood_Normal.png", "WOOD_Roughness.png",
-                                "Wood-Planks_Color.png", "Wood_Planks_Roughness.png"},
+    const auto g = group_files({"Wood_Color.png", "wood_Normal.png", "WOOD_Roughness.png", "Wood-Planks_Color.png",
+                                "Wood_Planks_Roughness.png"},
                                "x");
     ASSERT_EQ(g.size(), 2u);
     EXPECT_EQ(g[0].name, "Wood");
@@ -845,9 +905,8 @@ TEST(GroupFiles, StemsCompareWithoutCaseAndKeepTheFirstSpelling) {
 
 TEST(GroupFiles, MegascansAndGltfMixed) {
     const auto g = group_files({"rock_sfjmafua_2K_Albedo.jpg", "rock_sfjmafua_2K_Normal.jpg",
-                                "rock_sfjmafua_Preview.png", "rock_sfjmafua.json",
-                                "DamagedHelmet_baseColor.png", "DamagedHelmet_normal.png",
-                                "DamagedHelmet.gltf"},
+                                "rock_sfjmafua_Preview.png", "rock_sfjmafua.json", "DamagedHelmet_baseColor.png",
+                                "DamagedHelmet_normal.png", "DamagedHelmet.gltf"},
                                "x");
     EXPECT_THAT(group_names(g), ElementsAre("DamagedHelmet", "rock_sfjmafua"));
     EXPECT_EQ(g[0].files.size(), 3u);

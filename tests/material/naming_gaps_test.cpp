@@ -63,7 +63,8 @@ TEST(NamingGaps, ThreeDTexturesClutterHasItsOwnReason) {
     EXPECT_THAT(roles_of(d), ElementsAre("albedo", "opacity"));
     EXPECT_EQ(chosen_file(d, Role::opacity), "Leaf_OpacityMask.png");  // "mask" after "opacity" is no clutter
     EXPECT_EQ(unrecognized_reason(d, "Crystal_003_BLACK.jpg"), "all-black placeholder (_black) with no PBR role");
-    EXPECT_EQ(unrecognized_reason(d, "Fabric_polyester_003_black.jpg"), "all-black placeholder (_black) with no PBR role");
+    EXPECT_EQ(unrecognized_reason(d, "Fabric_polyester_003_black.jpg"),
+              "all-black placeholder (_black) with no PBR role");
     EXPECT_EQ(unrecognized_reason(d, "Material_1639.jpg"), "preview render (Material_NNNN)");
     EXPECT_EQ(unrecognized_reason(d, "Ground_Wet_002_mask.jpg"), "ID or mask image with no PBR role");
     for (const auto& f : d.findings) EXPECT_EQ(f.severity, Severity::info) << f.message;
@@ -73,7 +74,8 @@ TEST(NamingGaps, ThreeDTexturesClutterHasItsOwnReason) {
         EXPECT_FALSE(classify_name(file).has_value()) << file;
     }
     // Ordinary words stay words away from the tag's place, and a material named "Material" is fine.
-    for (const std::string file : {"Black_Marble_2K_Albedo.jpg", "Mask_Factory_Color.png", "Material_001_BaseColor.png"})
+    for (const std::string file :
+         {"Black_Marble_2K_Albedo.jpg", "Mask_Factory_Color.png", "Material_001_BaseColor.png"})
         EXPECT_FALSE(is_clutter(file)) << file;
     EXPECT_EQ(material_stem("Material_001_BaseColor.png"), "Material_001");
     EXPECT_EQ(material_stem("Crystal_003_BLACK.jpg"), "Crystal_003");
@@ -99,9 +101,12 @@ TEST(NamingGaps, MegascansUnrealExportTags) {
 
 TEST(NamingGaps, MegascansPlantAtlasWithBillboards) {
     const std::vector<std::string> files{
-        "Textures/T_tbdpec3r_4K_B-O.png",          "Textures/T_tbdpec3r_4K_B.png",
-        "Textures/T_tbdpec3r_4K_N.png",            "Textures/T_tbdpec3r_4K_ORT.png",
-        "Textures/T_tbdpec3r_4K_Billboard_B-O.png", "Textures/T_tbdpec3r_4K_Billboard_N-T.png",
+        "Textures/T_tbdpec3r_4K_B-O.png",
+        "Textures/T_tbdpec3r_4K_B.png",
+        "Textures/T_tbdpec3r_4K_N.png",
+        "Textures/T_tbdpec3r_4K_ORT.png",
+        "Textures/T_tbdpec3r_4K_Billboard_B-O.png",
+        "Textures/T_tbdpec3r_4K_Billboard_N-T.png",
         "Textures/Billboard/Billboard_2K_Albedo.jpg",
     };
     const auto d = discover_set(files, nullptr, ChoicePolicy{});
@@ -172,7 +177,7 @@ TEST(NamingGaps, BareNumbersBeforeTheRoleTagBelongToTheName) {
         {"Metal_16_Color.png", "Metal_16"},
         {"Metal_32_Color.png", "Metal_32"},
         {"Metal_16_Roughness.png", "Metal_16"},
-        {"Rock_Height_16.png", "Rock"},       // after the tag: a bit-depth tag
+        {"Rock_Height_16.png", "Rock"},  // after the tag: a bit-depth tag
         {"Rock_Normal_32_2K.exr", "Rock"},
         {"Bricks_2048_Color.png", "Bricks"},  // a known resolution is a tag anywhere
         {"Bricks_2K_Color.png", "Bricks"},
@@ -235,8 +240,8 @@ TEST(GroupFilesMerge, ResolutionAndFormatVariantsAreReportedAsTags) {
     ASSERT_TRUE(g[0].merge.has_value());
     const auto& m = *g[0].merge;
     EXPECT_THAT(m.spellings, ElementsAre("Bricks059_1K-JPG", "Bricks059_1K-PNG", "Bricks059_2K-PNG"));
-    EXPECT_THAT(m.files, ElementsAre("Bricks059_1K-JPG_Color.jpg", "Bricks059_1K-PNG_Color.png",
-                                     "Bricks059_2K-PNG_Color.png"));
+    EXPECT_THAT(m.files,
+                ElementsAre("Bricks059_1K-JPG_Color.jpg", "Bricks059_1K-PNG_Color.png", "Bricks059_2K-PNG_Color.png"));
     EXPECT_TRUE(m.tags_differ);
     EXPECT_FALSE(m.spelling_differs);
     EXPECT_THAT(m.message, HasSubstr("3 spellings of a material name were grouped as 'Bricks059'"));
@@ -289,12 +294,13 @@ TEST(NamingGaps, LargerJpegOriginalBeatsSmallerWebp) {
         for (const int limit : {0, 2048}) {
             const auto d = discover_set(files, headers(h), ChoicePolicy{NC::gl, limit});
             EXPECT_THAT(roles_of(d), ElementsAre("albedo", "normal", "orm"));
-            for (const auto& [role, tag] : {std::pair{Role::albedo, "diff"}, std::pair{Role::normal, "nor_gl"},
-                                            std::pair{Role::orm, "arm"}}) {
+            for (const auto& [role, tag] :
+                 {std::pair{Role::albedo, "diff"}, std::pair{Role::normal, "nor_gl"}, std::pair{Role::orm, "arm"}}) {
                 EXPECT_EQ(chosen_file(d, role), c.set + "_" + tag + "_1k.jpg");
                 const auto* f = find_finding(d, code::ambiguous_map, role_name(role));
                 ASSERT_NE(f, nullptr);
-                EXPECT_THAT(f->message, HasSubstr("it is the largest (1024 px vs " + std::to_string(c.webp_size) + " px)"));
+                EXPECT_THAT(f->message,
+                            HasSubstr("it is the largest (1024 px vs " + std::to_string(c.webp_size) + " px)"));
             }
         }
         // Without headers the names are equal and WebP's format ranks first: the header decides.

@@ -69,9 +69,8 @@ TEST(SidecarRoles, GltfDamagedHelmet) {
 }
 
 TEST(SidecarRoles, DiscoverSetTakesTheGltfRolesAndStopsReportingIt) {
-    const std::vector<std::string> files{"DamagedHelmet.gltf",         "Default_AO.jpg",     "Default_albedo.jpg",
-                                         "Default_emissive.jpg",       "Default_normal.jpg",
-                                         "Default_metalRoughness.jpg"};
+    const std::vector<std::string> files{"DamagedHelmet.gltf",   "Default_AO.jpg",     "Default_albedo.jpg",
+                                         "Default_emissive.jpg", "Default_normal.jpg", "Default_metalRoughness.jpg"};
     const auto by_name = discover_set(files, nullptr, ChoicePolicy{});
     EXPECT_EQ(find_choice(by_name, Role::normal)->chosen.match.normal, NC::unknown);
     EXPECT_THAT(keys(by_name), ElementsAre("UNRECOGNIZED_FILE  DamagedHelmet.gltf"));
@@ -114,14 +113,15 @@ const std::string kNameless = R"({
 TEST(SidecarRoles, GltfNamelessTexturesUrisAndFactors) {
     const auto s = sidecar_roles("scene.gltf", kNameless);
     EXPECT_EQ(s.kind, SidecarKind::gltf);
-    EXPECT_THAT(describe(s),
-                ElementsAre("textures/tex_0.png albedo A=opacity gltf:materials[0].pbrMetallicRoughness.baseColorTexture",
-                            "textures/tex_2.png normal gl gltf:materials[0].normalTexture",
-                            "textures/tex 1.png orm unused:metalness "
-                            "gltf:materials[0].pbrMetallicRoughness.metallicRoughnessTexture+occlusionTexture",
-                            // emissiveFactor defaults to 0: the texture adds nothing. Material 2's
-                            // use of the same image as base color comes second: the first role wins.
-                            "textures/tex_3.png emissive unused:emissive gltf:materials[0].emissiveTexture"));
+    EXPECT_THAT(
+        describe(s),
+        ElementsAre("textures/tex_0.png albedo A=opacity gltf:materials[0].pbrMetallicRoughness.baseColorTexture",
+                    "textures/tex_2.png normal gl gltf:materials[0].normalTexture",
+                    "textures/tex 1.png orm unused:metalness "
+                    "gltf:materials[0].pbrMetallicRoughness.metallicRoughnessTexture+occlusionTexture",
+                    // emissiveFactor defaults to 0: the texture adds nothing. Material 2's
+                    // use of the same image as base color comes second: the first role wins.
+                    "textures/tex_3.png emissive unused:emissive gltf:materials[0].emissiveTexture"));
 
     const std::vector<std::string> files{"scene.gltf", "textures/tex 1.png", "textures/tex_0.png", "textures/tex_2.png",
                                          "textures/tex_3.png"};
@@ -162,10 +162,9 @@ TEST(SidecarRoles, GltfInASubfolderResolvesAgainstItsFolder) {
                     {"pbrMetallicRoughness": {"baseColorTexture": {"index": 3}}},
                     {"normalTexture": {"index": 4}},
                     {"normalTexture": {"index": 99}}, {"normalTexture": {"index": -1}}, {"normalTexture": 3}, 7]})");
-    EXPECT_THAT(describe(s),
-                ElementsAre("Textures/T_tbdpec3r_4K_B-O.png albedo A=opacity "
-                            "gltf:materials[0].pbrMetallicRoughness.baseColorTexture",
-                            "standard/N.png normal gl gltf:materials[4].normalTexture"));
+    EXPECT_THAT(describe(s), ElementsAre("Textures/T_tbdpec3r_4K_B-O.png albedo A=opacity "
+                                         "gltf:materials[0].pbrMetallicRoughness.baseColorTexture",
+                                         "standard/N.png normal gl gltf:materials[4].normalTexture"));
 }
 
 std::string glb(const std::string& json_text) {
@@ -270,13 +269,15 @@ TEST(SidecarRoles, PrecedenceAndMatchingByBaseName) {
         EXPECT_THAT(keys(d), IsEmpty());
     }
     // Two files share that base name: the folderless name matches neither.
-    const auto two = discover_set({"a/leaf_2K_X.png", "b/leaf_2K_X.png", "plant.json"}, nullptr, ChoicePolicy{}, {json});
+    const auto two = discover_set({"a/leaf_2K_X.png", "b/leaf_2K_X.png", "plant.json"}, nullptr, ChoicePolicy{},
+                                  {json});
     EXPECT_TRUE(two.choices.empty());
     EXPECT_EQ(unrecognized_reason(two, "plant.json"), "sidecar naming no map of this set");
 }
 
 TEST(SidecarRoles, BillboardsStayClutterWhateverTheSidecarSays) {
-    const auto s = sidecar_roles("x.gltf", R"({"images": [{"uri": "T_x_4K_Billboard_B-O.png"}, {"uri": "T_x_4K_B-O.png"}],
+    const auto s = sidecar_roles("x.gltf",
+                                 R"({"images": [{"uri": "T_x_4K_Billboard_B-O.png"}, {"uri": "T_x_4K_B-O.png"}],
       "textures": [{"source": 0}, {"source": 1}],
       "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}},
                     {"pbrMetallicRoughness": {"baseColorTexture": {"index": 1}}}]})");

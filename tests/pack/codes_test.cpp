@@ -23,7 +23,9 @@ mf::Image8 codes(int channels, uint8_t (*f)(int, int, int)) {
     return img;
 }
 
-uint8_t color_code(int x, int y, int c) { return static_cast<uint8_t>(c == 0 ? x : c == 1 ? y : (x * 7 + y * 3) & 255); }
+uint8_t color_code(int x, int y, int c) {
+    return static_cast<uint8_t>(c == 0 ? x : c == 1 ? y : (x * 7 + y * 3) & 255);
+}
 uint8_t scalar_code(int x, int y, int) { return static_cast<uint8_t>((x + y * 31) & 255); }
 uint8_t other_scalar_code(int x, int y, int) { return static_cast<uint8_t>((x * 13 + y) & 255); }
 // Normals: every (X, Y) pair, with Z over its whole range along the diagonal; alpha varied.
@@ -81,8 +83,8 @@ TEST(Codes, QuantizeGivesBackEveryCodeAndItsInverse) {
     for (int k = 0; k < 256; ++k) {
         const float v = unorm[static_cast<size_t>(k)];
         EXPECT_EQ(mf::quantize8(v), k);
-        EXPECT_EQ(mf::quantize8(1.f - v), 255 - k);           // gloss -> roughness
-        EXPECT_EQ(mf::quantize8(1.f - (1.f - v)), k);         // ... -> smoothness output
+        EXPECT_EQ(mf::quantize8(1.f - v), 255 - k);    // gloss -> roughness
+        EXPECT_EQ(mf::quantize8(1.f - (1.f - v)), k);  // ... -> smoothness output
         EXPECT_EQ(mf::quantize(v, 8), k);
     }
 }

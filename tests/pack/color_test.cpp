@@ -55,7 +55,9 @@ TEST(OcioColor, EncodeMatchesIecFormula) {
     }
     c->convert(rgb.data(), 1001, mf::ColorEncoding::linear, mf::ColorEncoding::srgb);
     for (int i = 0; i <= 1000; ++i)
-        EXPECT_NEAR(rgb[static_cast<size_t>(i) * 3], mf::linear_to_srgb(static_cast<double>(static_cast<float>(i) / 1000.f)), 1.2e-5) << i;
+        EXPECT_NEAR(rgb[static_cast<size_t>(i) * 3],
+                    mf::linear_to_srgb(static_cast<double>(static_cast<float>(i) / 1000.f)), 1.2e-5)
+            << i;
 }
 
 TEST(OcioColor, EightBitRoundTripIsExact) {

@@ -60,8 +60,8 @@ int code(const mf::Image& img, int x, int c) { return mf::quantize(img.at(x, 0, 
 
 TEST(Presets, AllShippedParse) {
     const auto names = mf::shipped_presets();
-    EXPECT_EQ(names, (std::vector<std::string>{"d3d11", "gltf", "godot", "separate", "unity-hdrp", "unity-urp", "unreal",
-                                               "vulkan-ktx2", "vulkan-ktx2-astc"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"d3d11", "gltf", "godot", "separate", "unity-hdrp", "unity-urp",
+                                               "unreal", "vulkan-ktx2", "vulkan-ktx2-astc"}));
     for (const auto& n : names) {
         std::string err;
         auto p = mf::load_preset(n, err);
@@ -82,21 +82,25 @@ TEST(Presets, RejectsBrokenDocuments) {
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"RGB":"roughness"}}]})"));
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":"wetness"}}]})"));
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":"roughness","B":"metalness"}}]})"));  // gap
-    EXPECT_TRUE(bad(R"({"name":"x","file_pattern":"../{suffix}.{ext}","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
-    EXPECT_TRUE(bad(R"({"name":"x","normal_convention":"up","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(bad(
+        R"({"name":"x","file_pattern":"../{suffix}.{ext}","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(
+        bad(R"({"name":"x","normal_convention":"up","outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
     // Numbers out of their field's range are errors, never narrowed (undefined behaviour the
     // preset fuzzer found with "preset_version": 1e100).
     const std::string ok_outputs = R"("outputs":[{"suffix":"a","channels":{"R":"roughness"}}])";
-    for (const std::string field : {R"("preset_version":1e100)", R"("preset_version":18446744073709551615)",
-                                    R"("preset_version":1.0)", R"("max_size":99999999999)", R"("max_size":-1)",
-                                    R"("constant_size":1e300)", R"("constant_size":0)"}) {
+    for (const std::string field :
+         {R"("preset_version":1e100)", R"("preset_version":18446744073709551615)", R"("preset_version":1.0)",
+          R"("max_size":99999999999)", R"("max_size":-1)", R"("constant_size":1e300)", R"("constant_size":0)"}) {
         EXPECT_TRUE(bad(("{\"name\":\"x\"," + field + "," + ok_outputs + "}").c_str())) << field;
     }
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","bit_depth":1e100,"channels":{"R":"roughness"}}]})"));
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","bit_depth":8.5,"channels":{"R":"roughness"}}]})"));
     EXPECT_TRUE(bad(R"({"name":"x","outputs":[{"suffix":"a","channels":{"R":1e300}}]})"));
-    EXPECT_TRUE(bad(R"({"name":"x","defaults":{"roughness":1e300},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
-    EXPECT_TRUE(bad(R"({"name":"x","defaults":{"albedo":[0.5,"red",0.5]},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(
+        bad(R"({"name":"x","defaults":{"roughness":1e300},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    EXPECT_TRUE(bad(
+        R"({"name":"x","defaults":{"albedo":[0.5,"red",0.5]},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
     EXPECT_FALSE(bad(("{\"name\":\"x\",\"preset_version\":1,\"max_size\":4096," + ok_outputs + "}").c_str())) << err;
     auto missing = mf::load_preset("no-such-preset", err);
     EXPECT_FALSE(missing);
@@ -158,7 +162,7 @@ TEST(PackNormals, GlAndDxEncodings) {
     const auto dx = pack("unreal", "N", make_planes());
     // texel 0: (0, .707, .707): GL green above 128, DX green below.
     EXPECT_EQ(code(gl.img, 0, 0), 128);
-    EXPECT_EQ(code(gl.img, 0, 1), mf::quantize(0.70710678f * 0.5f + 0.5f, 8));  // 218
+    EXPECT_EQ(code(gl.img, 0, 1), mf::quantize(0.70710678f * 0.5f + 0.5f, 8));   // 218
     EXPECT_EQ(code(dx.img, 0, 1), mf::quantize(-0.70710678f * 0.5f + 0.5f, 8));  // 37
     EXPECT_EQ(code(gl.img, 0, 2), code(dx.img, 0, 2));
     // texel 1: (-.707, 0, .707): red identical in both conventions.
@@ -175,9 +179,9 @@ TEST(PackUnreal, OrmMatchesGltfLayout) {
 TEST(PackUnityHdrp, MaskMap) {
     const auto p = pack("unity-hdrp", "MaskMap", make_planes());
     ASSERT_EQ(p.img.channels, 4);
-    EXPECT_EQ(code(p.img, 1, 0), 255);  // R metallic
-    EXPECT_EQ(code(p.img, 1, 1), 128);  // G occlusion
-    EXPECT_EQ(code(p.img, 0, 2), 255);  // B detail mask = 1
+    EXPECT_EQ(code(p.img, 1, 0), 255);       // R metallic
+    EXPECT_EQ(code(p.img, 1, 1), 128);       // G occlusion
+    EXPECT_EQ(code(p.img, 0, 2), 255);       // B detail mask = 1
     EXPECT_EQ(code(p.img, 0, 3), 255 - 64);  // A smoothness = 1 - roughness
     EXPECT_EQ(code(p.img, 1, 3), 255 - 191);
 }
@@ -223,7 +227,8 @@ TEST(Normals, DecodeFlipsDxAndRenormalizes) {
     mf::Image n;
     const double bad = mf::decode_normal(enc, mf::NormalConvention::dx, n);
     EXPECT_GT(n.at(0, 0, 1), 0.f);
-    EXPECT_NEAR(n.at(0, 0, 0) * n.at(0, 0, 0) + n.at(0, 0, 1) * n.at(0, 0, 1) + n.at(0, 0, 2) * n.at(0, 0, 2), 1.f, 1e-6f);
+    EXPECT_NEAR(n.at(0, 0, 0) * n.at(0, 0, 0) + n.at(0, 0, 1) * n.at(0, 0, 1) + n.at(0, 0, 2) * n.at(0, 0, 2), 1.f,
+                1e-6f);
     EXPECT_EQ(n.at(1, 0, 2), 1.f) << "zero-length -> flat";
     EXPECT_NEAR(n.at(2, 0, 0), std::sqrt(0.5f), 1e-6f);
     EXPECT_NEAR(bad, 2.0 / 3.0, 1e-9) << "zero vector and length 1.41 are both off";

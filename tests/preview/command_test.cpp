@@ -1,7 +1,6 @@
 // The contact sheet (the command end to end is tests/cli/preview_cli_test.cpp).
 #include <gtest/gtest.h>
 
-
 #include "preview/preview.hpp"
 
 namespace mf::preview {

@@ -161,14 +161,15 @@ TEST(Manifest, TexturesOutsideTheManifestFolderAreRefusedUnlessAllowed) {
     std::string error;
     EXPECT_FALSE(load_material(m.materials.at(0), dir / "sub", MaterialOptions{}, notes, error));
     EXPECT_NE(error.find("outside the manifest's folder"), std::string::npos) << error;
-    const auto allowed = load_material(m.materials.at(0), dir / "sub", MaterialOptions{true}, notes, error);
+    const auto allowed = load_material(m.materials.at(0), dir / "sub", MaterialOptions{true, {}}, notes, error);
     ASSERT_TRUE(allowed) << error;
     EXPECT_EQ(allowed->textures.size(), 1u);
 }
 
 TEST(Manifest, AnUnknownChannelRoleIsAnErrorNotAGreyDefault) {
     for (const char* channels : {R"({"RGB": "albedoo"})", R"({"Q": "roughness"})", R"({"R": true})"}) {
-        json m = json::parse(R"({"manifest_version": 1, "materials": [{"name": "m", "outputs": [{"file": "a.png"}]}]})");
+        json m =
+            json::parse(R"({"manifest_version": 1, "materials": [{"name": "m", "outputs": [{"file": "a.png"}]}]})");
         m["materials"][0]["outputs"][0]["channels"] = json::parse(channels);
         std::string error;
         EXPECT_FALSE(manifest::manifest_from_json(m, error)) << channels;
@@ -186,25 +187,27 @@ TEST(Manifest, BadManifestsAreErrorsNamingTheMember) {
     EXPECT_NE(error.find("/nonexistent/manifest.json"), std::string::npos) << error;
     // Wrong types anywhere are errors too, never a JSON type_error (found by the fuzzer: a
     // string among the materials).
-    for (const char* bad : {
-             R"({"manifest_version": 1, "materials": ["x/x.png", {"name": "x"}]})",
-             R"({"manifest_version": "1", "materials": []})",
-             R"({"manifest_version": 1e100, "materials": []})",
-             R"({"manifest_version": 1, "materials": [{"name": 7}]})",
-             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [3]}]})",
-             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": ["a"]}]}]})",
-             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "color_space": 1}]}]})",
-             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "normal_convention": {}}]}]})",
-             R"({"manifest_version": 1, "materials": [{"name": "x", "status": "fine"}]})",
-             R"({"manifest_version": 1, "materials": [{"name": "x", "findings": [{"code": "X", "severity": "fatal"}]}]})",
-         }) {
+    for (
+        const char* bad : {
+            R"({"manifest_version": 1, "materials": ["x/x.png", {"name": "x"}]})",
+            R"({"manifest_version": "1", "materials": []})",
+            R"({"manifest_version": 1e100, "materials": []})",
+            R"({"manifest_version": 1, "materials": [{"name": 7}]})",
+            R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [3]}]})",
+            R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": ["a"]}]}]})",
+            R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "color_space": 1}]}]})",
+            R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "normal_convention": {}}]}]})",
+            R"({"manifest_version": 1, "materials": [{"name": "x", "status": "fine"}]})",
+            R"({"manifest_version": 1, "materials": [{"name": "x", "findings": [{"code": "X", "severity": "fatal"}]}]})",
+        }) {
         error.clear();
         EXPECT_FALSE(manifest::manifest_from_json(json::parse(bad), error)) << "accepted: " << bad;
         EXPECT_FALSE(error.empty()) << bad;
     }
     // The same members with the right types parse.
     const auto ok = manifest::manifest_from_json(json::parse(R"({"manifest_version": 1, "materials": [{"name": "x",
-        "outputs": [{"file": "a.png", "color_space": "sRGB", "normal_convention": "gl"}]}]})"), error);
+        "outputs": [{"file": "a.png", "color_space": "sRGB", "normal_convention": "gl"}]}]})"),
+                                                 error);
     ASSERT_TRUE(ok) << error;
     EXPECT_TRUE(ok->materials.at(0).outputs.at(0).srgb);
     EXPECT_EQ(ok->materials[0].outputs[0].normal_convention, NormalConvention::gl);
@@ -285,12 +288,15 @@ fs::path ingest_like(const fs::path& preset_file, const Source& src, const fs::p
         }
         const std::string file = "Surface/Surface_" + o["suffix"].get<std::string>() + ".png";
         write_png8(dir / file, kW, kH, nch, px);
-        json out = {{"file", file}, {"color_space", o["color_space"]}, {"channels", channels},
-                    {"width", kW}, {"height", kH}, {"bit_depth", 8}};
+        json out = {{"file", file},         {"color_space", o["color_space"]},
+                    {"channels", channels}, {"width", kW},
+                    {"height", kH},         {"bit_depth", 8}};
         if (channels.contains("RGB") && channels["RGB"] == "normal") out["normal_convention"] = dx ? "dx" : "gl";
         outputs.push_back(out);
     }
-    const json manifest = {{"manifest_version", 1}, {"generator", "test"}, {"preset", name},
+    const json manifest = {{"manifest_version", 1},
+                           {"generator", "test"},
+                           {"preset", name},
                            {"materials", json::array({{{"name", "Surface"}, {"outputs", outputs}}})}};
     std::ofstream(dir / "manifest.json") << manifest.dump(2);
     return dir / "manifest.json";

@@ -134,7 +134,8 @@ TEST(LightSpec, DirectionalAndPoint) {
     EXPECT_EQ(p->position, (render::Vec3{1, 2, 3}));
     EXPECT_FLOAT_EQ(p->intensity, 25.f);
     EXPECT_EQ(p->color, (render::Vec3{0.5f, 0.5f, 1}));
-    for (const char* bad : {"dir", "dir:1,2", "spot:1,2,3", "dir:0,0,0", "point:1,2,3:-1", "point:1,2,3:x", "dir:1,2,3:1:1,1"})
+    for (const char* bad :
+         {"dir", "dir:1,2", "spot:1,2,3", "dir:0,0,0", "point:1,2,3:-1", "point:1,2,3:x", "dir:1,2,3:1:1,1"})
         EXPECT_FALSE(parse_light_spec(bad, err)) << bad;
 }
 

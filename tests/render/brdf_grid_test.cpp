@@ -31,7 +31,6 @@ std::vector<float> energy_table() {
     return e;
 }
 
-
 // 1 / |v̂ + l̂| (capped): how strongly rounding moves the half vector.
 double condition(V3<double> v, V3<double> l) {
     const double lv = std::sqrt(dot(v, v)), ll = std::sqrt(dot(l, l));
@@ -45,7 +44,9 @@ class BrdfShaderGrid : public mf::test::VulkanTest {};
 TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
     BrdfHarness harness(context(), energy_table());
     const auto dirs = hard_directions();
-    const std::vector<V3<float>> normals = {{0.f, 0.f, 1.f}, {0.6f, 0.f, 0.8f}, {0.f, 0.f, 0.f},
+    const std::vector<V3<float>> normals = {{0.f, 0.f, 1.f},
+                                            {0.6f, 0.f, 0.8f},
+                                            {0.f, 0.f, 0.f},
                                             {0.f, 0.f, 5.f}};  // unit, tilted, zero, unnormalized
     // Roughness 0 and 1, below and at the floor (0.045), and between.
     const std::vector<float> roughness = {0.f, 1e-4f, 0.045f, 0.1f, 0.3f, 0.6f, 1.f};
@@ -67,7 +68,9 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
                 for (float r : roughness)
                     for (const auto& m : materials)
                         for (float e : intensities)
-                            in.push_back({{n.x, n.y, n.z, r}, {v.x, v.y, v.z, m.metalness}, {l.x, l.y, l.z, e},
+                            in.push_back({{n.x, n.y, n.z, r},
+                                          {v.x, v.y, v.z, m.metalness},
+                                          {l.x, l.y, l.z, e},
                                           {m.albedo[0], m.albedo[1], m.albedo[2], 0.f}});
     double ms = 0.0;
     const auto out = harness.evaluate(in, mf::render::BrdfPrecision::fp32, &ms);
@@ -79,8 +82,8 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
     for (size_t i = 0; i < in.size(); ++i) {
         const BrdfInput& g = in[i];
         const V3<double> v{g.v[0], g.v[1], g.v[2]}, l{g.l[0], g.l[1], g.l[2]};
-        const Inputs<double> d{{g.n[0], g.n[1], g.n[2]}, v, l, {g.albedo[0], g.albedo[1], g.albedo[2]},
-                               g.n[3], g.v[3], g.l[3]};
+        const Inputs<double> d{
+            {g.n[0], g.n[1], g.n[2]}, v, l, {g.albedo[0], g.albedo[1], g.albedo[2]}, g.n[3], g.v[3], g.l[3]};
         const double e = g.l[3];
         const double cond = condition(v, l);
         for (size_t m = 0; m < 3; ++m) {
@@ -108,8 +111,9 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
                 const double bound = (2e-4 + 1e-6 * cond * cond) * rd[c] + 1e-5 * e;
                 if (err > bound && ++disagree <= 5)
                     std::printf("  outside: model %zu n (%g %g %g) v (%g %g %g) l (%g %g %g) r %g metal %g E %g: "
-                                "shader %.9g double %.9g\n", m, g.n[0], g.n[1], g.n[2], g.v[0], g.v[1], g.v[2],
-                                g.l[0], g.l[1], g.l[2], g.n[3], g.v[3], g.l[3], gpu, rd[c]);
+                                "shader %.9g double %.9g\n",
+                                m, g.n[0], g.n[1], g.n[2], g.v[0], g.v[1], g.v[2], g.l[0], g.l[1], g.l[2], g.n[3],
+                                g.v[3], g.l[3], gpu, rd[c]);
                 if (bound > 0.0) worst_ratio = std::max(worst_ratio, err / bound);
                 else if (err > 0.0) ++zero_mismatch;
                 if (cond < 4.0 && rd[c] > 1e-3 * e && e > 0.0) worst_rel[m] = std::max(worst_rel[m], err / rd[c]);
@@ -148,10 +152,12 @@ TEST_F(BrdfShaderGrid, WhiteFurnaceFromTheShader) {
                 const double u = (i + 0.5) / nu;
                 const double s = std::sqrt(u / (1.0 - u));
                 const double th = std::atan(alpha * s);
-                const double dth_du = alpha / (1.0 + alpha * alpha * s * s) * 0.5 / (std::sqrt(u) * std::pow(1.0 - u, 1.5));
+                const double dth_du = alpha / (1.0 + alpha * alpha * s * s) * 0.5 /
+                                      (std::sqrt(u) * std::pow(1.0 - u, 1.5));
                 for (int j = 0; j < nphi; ++j) {
                     const double phi = 2.0 * std::numbers::pi * (j + 0.5) / nphi;
-                    const double hx = std::sin(th) * std::cos(phi), hy = std::sin(th) * std::sin(phi), hz = std::cos(th);
+                    const double hx = std::sin(th) * std::cos(phi), hy = std::sin(th) * std::sin(phi),
+                                 hz = std::cos(th);
                     const double voh = sv * hx + mu * hz;
                     if (voh <= 0.0) continue;  // h seen from behind: not a reflection toward v
                     const double lx = 2 * voh * hx - sv, ly = 2 * voh * hy, lz = 2 * voh * hz - mu;
@@ -187,8 +193,8 @@ TEST_F(BrdfShaderGrid, WhiteFurnaceFromTheShader) {
             EXPECT_GE(e_acc, interior ? 0.95 : 0.9) << "roughness " << r << " N·V " << mu;
         }
     std::printf("shader furnace: standard max E %.6f, max |E - CPU quadrature| %.3g; accurate (compensated) "
-                "E in [%.4f, %.4f] inside the table, max %.4f at its edges\n", worst_std, worst_dev, worst_acc_lo,
-                worst_acc_hi, worst_acc_edge);
+                "E in [%.4f, %.4f] inside the table, max %.4f at its edges\n",
+                worst_std, worst_dev, worst_acc_lo, worst_acc_hi, worst_acc_edge);
 }
 
 }  // namespace

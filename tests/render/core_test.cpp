@@ -62,7 +62,7 @@ TEST_P(MipTest, ColorIsAveragedInLinearLight) {
         EXPECT_EQ(p.levels[1].bytes[0], 188);
         v = mf::srgb_to_linear(v);
     }
-    EXPECT_NEAR(v, 0.5, 4e-3);  // 188 decodes to 0.5029
+    EXPECT_NEAR(v, 0.5, 4e-3);               // 188 decodes to 0.5029
     EXPECT_NEAR(texel(p, 1, 3), 1.0, 1e-6);  // alpha is plain data
 }
 
@@ -134,8 +134,7 @@ TEST_F(VariantTest, OnlyWhatTheMaterialAndSceneCallForIsCompiledIn) {
 
     Material constant;
     const render::GpuMaterial a = r.upload(constant);
-    EXPECT_EQ(a.variant(),
-              "sphere standard dir2 point1 albedo:const normal:none roughness:const metalness:const");
+    EXPECT_EQ(a.variant(), "sphere standard dir2 point1 albedo:const normal:none roughness:const metalness:const");
 
     Material textured;
     Texture t = gray_row(std::vector<uint8_t>(4 * 4 * 3, 128), 4, 4, 3, false);

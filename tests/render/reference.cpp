@@ -16,8 +16,8 @@ namespace mf::test {
 using render::Channel;
 using render::Material;
 using render::Scene;
-using render::Texture;
 using render::TexelType;
+using render::Texture;
 
 namespace {
 
@@ -205,8 +205,8 @@ double specular_albedo_correlated(double NoV, double roughness) {
             table->resize(kEntries);
             for (int i = 0; i < kEntries; ++i) {
                 const double x = double(i) / (kEntries - 1);
-                (*table)[size_t(i)] =
-                    cpubrdf::specular_albedo(cpubrdf::Model::accurate, std::max(x * x, kMinNoV), r, 128, 128);
+                (*table)[size_t(i)] = cpubrdf::specular_albedo(cpubrdf::Model::accurate, std::max(x * x, kMinNoV), r,
+                                                               128, 128);
             }
         }
     }
@@ -264,8 +264,8 @@ ReferenceImage render_reference(const Scene& scene, const Material& m) {
                     fw = std::max(fw, double(tex.width));
                     fh = std::max(fh, double(tex.height));
                 }
-                footprint = std::max({std::abs(wrap(s1 - s)) * fw, std::abs(t1 - t) * fh,
-                                      std::abs(wrap(s2 - s)) * fw, std::abs(t2 - t) * fh});
+                footprint = std::max({std::abs(wrap(s1 - s)) * fw, std::abs(t1 - t) * fh, std::abs(wrap(s2 - s)) * fw,
+                                      std::abs(t2 - t) * fh});
             }
             px.minified = !m.textures.empty() && footprint > 0.7;
 

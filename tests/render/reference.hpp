@@ -10,8 +10,8 @@
 namespace mf::test {
 
 struct ReferencePixel {
-    bool hit = false;  // the primary ray meets the sphere
-    bool minified = false;  // textures are minified here (the GPU would use mips > 0)
+    bool hit = false;           // the primary ray meets the sphere
+    bool minified = false;      // textures are minified here (the GPU would use mips > 0)
     double rgb[3] = {0, 0, 0};  // linear radiance (before exposure), background where no hit
 };
 

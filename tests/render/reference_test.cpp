@@ -1,7 +1,7 @@
 // GPU images against the independent double-precision reference (reference.cpp).
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "color/srgb.hpp"
@@ -56,8 +56,7 @@ struct Errors {
 // 8-bit: every compared pixel within `code_tol` codes. Float: relative error, with a floor of
 // 1e-4 under the denominator so that pixels near the terminator (radiance → 0) are judged by
 // their absolute error.
-Errors compare(const render::Frame& f8, const render::Frame& f32, const ReferenceImage& ref,
-               bool skip_minified) {
+Errors compare(const render::Frame& f8, const render::Frame& f32, const ReferenceImage& ref, bool skip_minified) {
     Errors e;
     for (uint32_t y = 0; y < ref.height; ++y)
         for (uint32_t x = 0; x < ref.width; ++x) {
@@ -106,9 +105,9 @@ protected:
         const ReferenceImage ref = render_reference(scene, m);
         const Errors e = compare(f8, f32, ref, skip_minified);
         static const char* const brdf[] = {"standard", "accurate", "unnorm-diffuse"};
-        std::printf("  %-24s %-10s max |Δcode| %d  max rel %.2e  (%zu px compared, sphere and background; %zu excepted)\n",
-                    m.name.c_str(), brdf[int(scene.brdf)], e.max_code, e.max_rel,
-                    e.compared, e.excepted);
+        std::printf(
+            "  %-24s %-10s max |Δcode| %d  max rel %.2e  (%zu px compared, sphere and background; %zu excepted)\n",
+            m.name.c_str(), brdf[int(scene.brdf)], e.max_code, e.max_rel, e.compared, e.excepted);
         return e;
     }
 };

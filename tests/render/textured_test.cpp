@@ -158,12 +158,12 @@ Result compare_with_reference(render::Context& context, const Material& m, const
             for (int c = 0; c < 3; ++c) {
                 const int dc = std::abs(to_code(mf::linear_to_srgb(r.rgb[c])) - int(f8.rgba8[i + size_t(c)]));
                 res.max_code = std::max(res.max_code, dc);
-                res.max_rel = std::max(res.max_rel, std::abs(f32.rgba32f[i + size_t(c)] - r.rgb[c]) /
-                                                        std::max(r.rgb[c], 1e-4));
+                res.max_rel = std::max(res.max_rel,
+                                       std::abs(f32.rgba32f[i + size_t(c)] - r.rgb[c]) / std::max(r.rgb[c], 1e-4));
             }
         }
-    std::printf("  %s: max |Δcode| %d  max rel %.2e  (%zu sphere px compared, %zu excepted)\n", label,
-                res.max_code, res.max_rel, res.compared, res.excepted);
+    std::printf("  %s: max |Δcode| %d  max rel %.2e  (%zu sphere px compared, %zu excepted)\n", label, res.max_code,
+                res.max_rel, res.compared, res.excepted);
     return res;
 }
 

@@ -14,13 +14,15 @@ constexpr const char* kChromium = "/usr/bin/chromium";
 ::testing::AssertionResult browser_check(const SampleReport& r, const fs::path& shot, nlohmann::json& json) {
     if (!fs::exists(kChromium))
         return ::testing::AssertionFailure()
-               << kChromium << " is missing: tests/report needs headless Chromium (Debian package `chromium`; "
-                               "scripts/bootstrap.sh installs it, CI has it)";
-    const auto p = mf::testbin::spawn({"node", std::string(MATFORGE_SOURCE_DIR) + "/scripts/browser-check.mjs", "--page",
-                                       (r.report / "index.html").string(), "--manifest", r.manifest.string(),
+               << kChromium
+               << " is missing: tests/report needs headless Chromium (Debian package `chromium`; "
+                  "scripts/bootstrap.sh installs it, CI has it)";
+    const auto p = mf::testbin::spawn({"node", std::string(MATFORGE_SOURCE_DIR) + "/scripts/browser-check.mjs",
+                                       "--page", (r.report / "index.html").string(), "--manifest", r.manifest.string(),
                                        "--screenshot", shot.string(), "--timeout", "150"},
                                       200);
-    if (p.code == 127) return ::testing::AssertionFailure() << "cannot run node (Debian package `nodejs`):\n" << p.output;
+    if (p.code == 127)
+        return ::testing::AssertionFailure() << "cannot run node (Debian package `nodejs`):\n" << p.output;
     const size_t at = p.output.find("{\"");
     if (at == std::string::npos)
         return ::testing::AssertionFailure() << "browser-check printed no JSON (exit " << p.code << "):\n" << p.output;

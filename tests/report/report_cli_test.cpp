@@ -33,7 +33,8 @@ TEST_F(SampleReportTest, EveryMaterialHasItsCardAndEveryFindingItsRow) {
     const std::string html = read_text(r_.report / "index.html");
     ASSERT_EQ(manifest_["materials"].size(), 4u);
     size_t cards = 0;
-    for (size_t at = html.find("<section class=\"card"); at != std::string::npos; at = html.find("<section class=\"card", at + 1))
+    for (size_t at = html.find("<section class=\"card"); at != std::string::npos;
+         at = html.find("<section class=\"card", at + 1))
         ++cards;
     EXPECT_EQ(cards, manifest_["materials"].size());
     size_t total = 0;
@@ -46,7 +47,8 @@ TEST_F(SampleReportTest, EveryMaterialHasItsCardAndEveryFindingItsRow) {
         EXPECT_NE(html.find("<a class=\"tile"), std::string::npos);
         // The rows of this card, each matched to one finding of the manifest.
         std::vector<std::string> rows;
-        for (size_t at = card.find("<tr class=\"finding"); at != std::string::npos; at = card.find("<tr class=\"finding", at + 1))
+        for (size_t at = card.find("<tr class=\"finding"); at != std::string::npos;
+             at = card.find("<tr class=\"finding", at + 1))
             rows.push_back(card.substr(at, card.find("</tr>", at) - at));
         EXPECT_EQ(rows.size(), m["findings"].size()) << name;
         for (const auto& f : m["findings"]) {
@@ -68,7 +70,8 @@ TEST_F(SampleReportTest, EveryMaterialHasItsCardAndEveryFindingItsRow) {
     static const std::regex rule_href("href=\"rules\\.html#([^\"]+)\"");
     size_t links = 0;
     for (std::sregex_iterator it(html.begin(), html.end(), rule_href), end; it != end; ++it, ++links)
-        EXPECT_NE(rules.find("<tr id=\"" + (*it)[1].str() + "\">"), std::string::npos) << "rules.html has no #" << (*it)[1];
+        EXPECT_NE(rules.find("<tr id=\"" + (*it)[1].str() + "\">"), std::string::npos)
+            << "rules.html has no #" << (*it)[1];
     EXPECT_GE(links, total);
 }
 
@@ -171,7 +174,8 @@ TEST_F(SampleReportTest, AlbedoOverlayMarksTooDarkPixelsRed) {
     // x * ow / w, rows [oy * h / oh, (oy + 1) * h / oh) to row oy.
     std::vector<int> row_of(static_cast<size_t>(h));
     for (int oy = 0; oy < oh; ++oy)
-        for (int y = oy * h / oh; y < std::max(oy * h / oh + 1, (oy + 1) * h / oh); ++y) row_of[static_cast<size_t>(y)] = oy;
+        for (int y = oy * h / oh; y < std::max(oy * h / oh + 1, (oy + 1) * h / oh); ++y)
+            row_of[static_cast<size_t>(y)] = oy;
     // Per box: does any source pixel fail to be dark (resp. in range)?
     std::vector<char> not_dark(static_cast<size_t>(ow * oh)), not_in_range(static_cast<size_t>(ow * oh));
     for (int y = 0; y < h; ++y) {
@@ -190,7 +194,8 @@ TEST_F(SampleReportTest, AlbedoOverlayMarksTooDarkPixelsRed) {
     for (int oy = 0; oy < oh; ++oy) {
         for (int ox = 0; ox < ow; ++ox) {
             const auto box = static_cast<size_t>(oy * ow + ox);
-            const int r = code8(overlay.at(ox, oy, 0)), g = code8(overlay.at(ox, oy, 1)), b = code8(overlay.at(ox, oy, 2));
+            const int r = code8(overlay.at(ox, oy, 0)), g = code8(overlay.at(ox, oy, 1)),
+                      b = code8(overlay.at(ox, oy, 2));
             if (!not_dark[box]) {
                 ++dark_boxes;
                 EXPECT_EQ(r, code8(mf::report::kTooDark[0])) << ox << "," << oy;
@@ -218,7 +223,8 @@ TEST(ReportCli, DarkHalfOfAnAlbedoIsRedInTheOverlay) {
             for (int c = 0; c < 3; ++c) albedo.at(x, y, c) = (x < 32 ? 20.f : 128.f) / 255.f;
     mf::Image rough(64, 32, 1);
     for (float& v : rough.pixels) v = 0.5f;
-    for (const auto& [file, img] : {std::pair{"Dark_basecolor.png", &albedo}, std::pair{"Dark_roughness.png", &rough}}) {
+    for (const auto& [file, img] :
+         {std::pair{"Dark_basecolor.png", &albedo}, std::pair{"Dark_roughness.png", &rough}}) {
         std::vector<unsigned char> bytes;
         std::string err;
         ASSERT_TRUE(mf::encode_image(*img, mf::EncodeOptions{"png", 8}, bytes, err)) << err;

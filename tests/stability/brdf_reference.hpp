@@ -58,7 +58,9 @@ V3<T> cross(V3<T> a, V3<T> b) {
 // Precision policies: `q` is applied to every intermediate the shader would hold in a register.
 struct Exact {
     template <class T>
-    static T q(T v) { return v; }
+    static T q(T v) {
+        return v;
+    }
 };
 // fp16 emulation: round to the nearest binary16 (Imath rounds to nearest even; overflow gives
 // ±inf, as a mediump GPU register would).
@@ -83,10 +85,10 @@ inline double specular_albedo(Model m, double NoV, double roughness, int nu = 25
     const double g1v = 2.0 * NoV / (NoV + std::sqrt(a2 + (1.0 - a2) * NoV * NoV));
     // Heitz 2018, listing 1, with v = (vx, 0, vz): the hemisphere configuration.
     const double hl = std::sqrt(a2 * vx * vx + vz * vz);
-    const double Vhx = a * vx / hl, Vhz = vz / hl;      // Vh (y = 0)
+    const double Vhx = a * vx / hl, Vhz = vz / hl;        // Vh (y = 0)
     const double T1x = 0.0, T1y = Vhx > 0.0 ? 1.0 : 1.0;  // (−Vh.y, Vh.x, 0)/|…| = (0, 1, 0)
     (void)T1x;
-    const double T2x = -Vhz * T1y, T2z = Vhx * T1y;     // T2 = Vh × T1
+    const double T2x = -Vhz * T1y, T2z = Vhx * T1y;  // T2 = Vh × T1
     const double s = 0.5 * (1.0 + Vhz);
     double sum = 0.0;
     for (int i = 0; i < nu; ++i) {
@@ -141,8 +143,9 @@ private:
     EnergyTable() : e_(static_cast<size_t>(kN) * kN) {
         for (int j = 0; j < kN; ++j)
             for (int i = 0; i < kN; ++i)
-                e_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)] =
-                    specular_albedo(Model::accurate, (i + 0.5) / kN, (j + 0.5) / kN, 96, 96);
+                e_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)] = specular_albedo(Model::accurate,
+                                                                                           (i + 0.5) / kN,
+                                                                                           (j + 0.5) / kN, 96, 96);
     }
     std::vector<double> e_;
 };
@@ -240,8 +243,7 @@ std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T
         const T f0 = T(0.04) * (T(1) - metal) + albedo[i] * metal;
         const T F = P::q(f0 + (T(1) - f0) * m5);
         T spec = has_h ? P::q(DV * F) : T(0);
-        if (model == Model::accurate)
-            spec = P::q(spec * (T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1))));
+        if (model == Model::accurate) spec = P::q(spec * (T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1))));
         const T diffuse = P::q((T(1) - F) * albedo[i] * (T(1) - metal) * diffuse_norm);
         out[i] = P::q(P::q(P::q(diffuse + spec) * E[i]) * NoL);
     }

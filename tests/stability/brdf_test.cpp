@@ -17,7 +17,6 @@ namespace {
 
 using namespace mf::cpubrdf;
 
-
 V3<double> to_d(V3<float> a) { return {a.x, a.y, a.z}; }
 
 // 1 / |v̂ + l̂| (capped): how strongly input rounding moves the half vector.
@@ -35,13 +34,15 @@ struct Material {
 
 TEST(BrdfGrid, MillionHardInputsFiniteAndFp32AgreesWithDouble) {
     const auto dirs = hard_directions();
-    const std::vector<V3<float>> normals = {{0.f, 0.f, 1.f}, {0.6f, 0.f, 0.8f}, {0.f, 0.f, 0.f},
+    const std::vector<V3<float>> normals = {{0.f, 0.f, 1.f},
+                                            {0.6f, 0.f, 0.8f},
+                                            {0.f, 0.f, 0.f},
                                             {0.f, 0.f, 5.f}};  // unit, tilted, zero, unnormalized
     const std::vector<float> roughness = {0.f, 1e-4f, 0.045f, 0.1f, 0.3f, 0.6f, 1.f};
     // F0 = 0 (black metal), F0 = 1 (white metal), dielectrics (F0 = 0.04) white, black, colored.
-    const std::vector<Material> materials = {{{0.f, 0.f, 0.f}, 1.f}, {{1.f, 1.f, 1.f}, 1.f},
+    const std::vector<Material> materials = {{{0.f, 0.f, 0.f}, 1.f},  {{1.f, 1.f, 1.f}, 1.f},
                                              {{1.f, 0.5f, 0.f}, 1.f}, {{1.f, 1.f, 1.f}, 0.f},
-                                             {{0.f, 0.f, 0.f}, 0.f}, {{0.8f, 0.5f, 0.2f}, 0.5f}};
+                                             {{0.f, 0.f, 0.f}, 0.f},  {{0.8f, 0.5f, 0.2f}, 0.5f}};
     const std::vector<float> intensities = {0.f, 1.f, 1e3f, 1e6f};
     const Model models[] = {Model::standard, Model::accurate, Model::unnormalized_diffuse};
 
@@ -55,9 +56,10 @@ TEST(BrdfGrid, MillionHardInputsFiniteAndFp32AgreesWithDouble) {
                         for (const auto& mat : materials)
                             for (float e : intensities) {
                                 Inputs<float> f{n, v, l, mat.albedo, r, mat.metalness, e};
-                                Inputs<double> d{to_d(n), to_d(v), to_d(l),
-                                                 {mat.albedo[0], mat.albedo[1], mat.albedo[2]},
-                                                 r, mat.metalness, e};
+                                Inputs<double> d{to_d(n), to_d(v),
+                                                 to_d(l), {mat.albedo[0], mat.albedo[1], mat.albedo[2]},
+                                                 r,       mat.metalness,
+                                                 e};
                                 const auto rf = shade(f, model);
                                 const auto rd = shade(d, model);
                                 ++count;
@@ -66,8 +68,7 @@ TEST(BrdfGrid, MillionHardInputsFiniteAndFp32AgreesWithDouble) {
                                 // ~ε/|v̂ + l̂| (ε = 6e-8), and a narrow lobe amplifies that.
                                 const double cond = condition(to_d(v), to_d(l));
                                 for (size_t c = 0; c < 3; ++c) {
-                                    if (!std::isfinite(rf[c]) || !std::isfinite(rd[c]) || rf[c] < 0.f ||
-                                        rd[c] < 0.0)
+                                    if (!std::isfinite(rf[c]) || !std::isfinite(rd[c]) || rf[c] < 0.f || rd[c] < 0.0)
                                         ++nonfinite;
                                     if (rd[c] > 0.0) ++nonzero;
                                     // Stated bound: relative 2e-4 + 1e-6·cond², plus an absolute
@@ -82,7 +83,8 @@ TEST(BrdfGrid, MillionHardInputsFiniteAndFp32AgreesWithDouble) {
                             }
     }
     std::printf("inputs %zu, lit channels %zu, worst error / bound %.3g, worst relative error "
-                "(well-conditioned) %.3g\n", count, nonzero, worst_ratio, worst_rel);
+                "(well-conditioned) %.3g\n",
+                count, nonzero, worst_ratio, worst_rel);
     EXPECT_GE(count, size_t{1000000}) << "inputs (each evaluated in fp32 and fp64, 3 channels)";
     EXPECT_EQ(nonfinite, 0u) << "NaN, Inf or negative radiance";
     EXPECT_EQ(disagree, 0u) << "fp32 outside the stated bound of the double evaluation";
@@ -193,8 +195,7 @@ TEST(WhiteFurnace, QuadratureConverged) {
     for (Model m : {Model::standard, Model::accurate})
         for (double r : {0.045, 0.3, 1.0})
             for (double mu : {1e-4, 0.05, 0.5, 1.0})
-                EXPECT_NEAR(specular_albedo(m, mu, r), specular_albedo(m, mu, r, 1024, 1024), 6e-4)
-                    << r << " " << mu;
+                EXPECT_NEAR(specular_albedo(m, mu, r), specular_albedo(m, mu, r, 1024, 1024), 6e-4) << r << " " << mu;
 }
 
 // The accurate model's compensated lobe, F0 = 1: E · (1 + (1/E_table − 1)) = E / E_table.

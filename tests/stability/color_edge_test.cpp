@@ -12,8 +12,8 @@
 //  - quantize gives defined codes: NaN → 0, −Inf and negatives → 0, +Inf and > 1 → max.
 // The two implementations differ by design on negatives: srgb.hpp mirrors the curve
 // (f(−x) = −f(x)); OpenColorIO's ExponentWithLinearTransform continues the linear segment
-// (NEGATIVE_LINEAR, its default; slope 12.9232, derived for continuity). Both are monotonic and sign-preserving, and both quantize
-// negatives to code 0, so no output file differs.
+// (NEGATIVE_LINEAR, its default; slope 12.9232, derived for continuity). Both are monotonic and sign-preserving, and
+// both quantize negatives to code 0, so no output file differs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -40,8 +40,8 @@ std::shared_ptr<const mf::ColorContext> ctx() { return mf::testcolor::color_cont
 std::vector<float> sweep() {
     std::vector<float> v;
     for (float m = 1e6f; m >= 1e-6f; m /= 1.37f) v.push_back(-m);
-    v.insert(v.end(), {-1e-30f, -std::numeric_limits<float>::min(), -kDenorm * 1000, -kDenorm, -0.f,
-                       0.f, kDenorm, kDenorm * 1000, std::numeric_limits<float>::min(), 1e-30f});
+    v.insert(v.end(), {-1e-30f, -std::numeric_limits<float>::min(), -kDenorm * 1000, -kDenorm, -0.f, 0.f, kDenorm,
+                       kDenorm * 1000, std::numeric_limits<float>::min(), 1e-30f});
     for (float m = 1e-6f; m <= 1e6f; m *= 1.37f) v.push_back(m);
     for (float x : {0.0031308f, 0.04045f, 0.5f, 0.99999994f, 1.f, 1.0000001f, 2.f}) v.push_back(x);
     std::sort(v.begin(), v.end());
@@ -75,9 +75,15 @@ void expect_monotonic_sign_preserving(const std::vector<float>& in, F f, const c
         const float y = f(x);
         ASSERT_FALSE(std::isnan(y)) << what << "(" << x << ")";
         EXPECT_GE(y, prev) << what << " not monotonic at " << x;
-        if (x > 0.f) { EXPECT_GE(y, 0.f) << what << "(" << x << ")"; }
-        if (x < 0.f) { EXPECT_LE(y, 0.f) << what << "(" << x << ")"; }
-        if (std::abs(x) <= 1e15f) { EXPECT_TRUE(std::isfinite(y)) << what << "(" << x << ") = " << y; }
+        if (x > 0.f) {
+            EXPECT_GE(y, 0.f) << what << "(" << x << ")";
+        }
+        if (x < 0.f) {
+            EXPECT_LE(y, 0.f) << what << "(" << x << ")";
+        }
+        if (std::abs(x) <= 1e15f) {
+            EXPECT_TRUE(std::isfinite(y)) << what << "(" << x << ") = " << y;
+        }
         prev = y;
     }
 }
@@ -108,8 +114,10 @@ TEST(ColorEdges, ExactFunctionsNanInf) {
 
 TEST(ColorEdges, ExactFunctionsMonotonicEverywhere) {
     const auto in = sweep();
-    expect_monotonic_sign_preserving(in, [](float x) { return mf::srgb_to_linear(x); }, "srgb_to_linear");
-    expect_monotonic_sign_preserving(in, [](float x) { return mf::linear_to_srgb(x); }, "linear_to_srgb");
+    expect_monotonic_sign_preserving(
+        in, [](float x) { return mf::srgb_to_linear(x); }, "srgb_to_linear");
+    expect_monotonic_sign_preserving(
+        in, [](float x) { return mf::linear_to_srgb(x); }, "linear_to_srgb");
     // Encoding never overflows: even the largest float encodes to a finite value.
     EXPECT_TRUE(std::isfinite(mf::linear_to_srgb(std::numeric_limits<float>::max())));
     // Mirrored: f(−x) = −f(x) exactly.
@@ -123,8 +131,8 @@ TEST(ColorEdges, OcioFixedPointsAndSpecials) {
                             std::pair{mf::ColorEncoding::linear, mf::ColorEncoding::srgb}}) {
         const auto out = ocio(*c, {0.f, 1.f, kNaN, kInf, -kInf}, from, to);
         EXPECT_EQ(out[0], 0.f);
-        EXPECT_NEAR(out[1], 1.f, 6e-8f);           // 1 → 1 within one float ulp
-        EXPECT_EQ(mf::quantize(out[1], 8), 255);   // and the code survives
+        EXPECT_NEAR(out[1], 1.f, 6e-8f);          // 1 → 1 within one float ulp
+        EXPECT_EQ(mf::quantize(out[1], 8), 255);  // and the code survives
         EXPECT_EQ(mf::quantize(out[1], 16), 65535);
         EXPECT_TRUE(std::isnan(out[2])) << "NaN passes through (no exception)";
         EXPECT_EQ(out[3], kInf);
@@ -139,9 +147,11 @@ TEST(ColorEdges, OcioMonotonicSignPreservingFinite) {
     const auto dec = ocio(*c, in, mf::ColorEncoding::srgb, mf::ColorEncoding::linear);
     const auto enc = ocio(*c, in, mf::ColorEncoding::linear, mf::ColorEncoding::srgb);
     size_t i = 0;
-    expect_monotonic_sign_preserving(in, [&](float) { return dec[i++]; }, "OCIO decode");
+    expect_monotonic_sign_preserving(
+        in, [&](float) { return dec[i++]; }, "OCIO decode");
     i = 0;
-    expect_monotonic_sign_preserving(in, [&](float) { return enc[i++]; }, "OCIO encode");
+    expect_monotonic_sign_preserving(
+        in, [&](float) { return enc[i++]; }, "OCIO encode");
     // In [0, 1] and above, OCIO agrees with the IEC formula; negatives: linear segment (by design).
     for (size_t k = 0; k < in.size(); ++k) {
         const double x = in[k];
@@ -149,7 +159,9 @@ TEST(ColorEdges, OcioMonotonicSignPreservingFinite) {
             EXPECT_NEAR(dec[k], mf::srgb_to_linear(x), 2e-6 * std::max(1.0, mf::srgb_to_linear(x))) << x;
         }
         // OpenColorIO derives the linear slope for continuity: 12.9232 rather than 12.92.
-        if (x < 0.0 && x > -1.0) { EXPECT_NEAR(dec[k], x / 12.9232, 1e-5 * std::abs(x) + 1e-30) << x; }
+        if (x < 0.0 && x > -1.0) {
+            EXPECT_NEAR(dec[k], x / 12.9232, 1e-5 * std::abs(x) + 1e-30) << x;
+        }
     }
 }
 

@@ -56,7 +56,8 @@ TEST(GlossRoundTrip, SmoothnessChannelThroughPresetAndFile) {
     const int expected_metal[] = {0, 255, 0, 255};
     for (int x = 0; x < 4; ++x) {
         EXPECT_EQ(mf::quantize(back.at(x, 0, 3), 8), expected_smooth[x]) << x;
-        EXPECT_EQ(mf::quantize(1.f - back.at(x, 0, 3), 8), mf::quantize(planes[mf::Role::roughness].image.pixels[static_cast<size_t>(x)], 8));
+        EXPECT_EQ(mf::quantize(1.f - back.at(x, 0, 3), 8),
+                  mf::quantize(planes[mf::Role::roughness].image.pixels[static_cast<size_t>(x)], 8));
         EXPECT_EQ(mf::quantize(back.at(x, 0, 0), 8), expected_metal[x]) << x;
     }
 }
@@ -85,7 +86,9 @@ TEST(PackRoundTrip, OrmBoundaryCodesSurviveEightAndSixteenBit) {
             for (int c = 0; c < 3; ++c) {
                 const float src = out.at(x, 0, c);
                 EXPECT_EQ(mf::quantize(back.at(x, 0, c), bits), mf::quantize(src, bits)) << x << " " << c;
-                if (src == 0.f || src == 1.f) { EXPECT_EQ(back.at(x, 0, c), src) << "0 and 1 exact"; }
+                if (src == 0.f || src == 1.f) {
+                    EXPECT_EQ(back.at(x, 0, c), src) << "0 and 1 exact";
+                }
             }
     }
 }
@@ -93,8 +96,8 @@ TEST(PackRoundTrip, OrmBoundaryCodesSurviveEightAndSixteenBit) {
 // Unit GL vectors at the boundaries: axis-aligned (±X, ±Y, +Z), grazing (Z = 0 and Z = 1e-7),
 // below the surface (Z < 0: invalid in tangent space, still defined), diagonals.
 std::vector<std::array<float, 3>> boundary_normals() {
-    std::vector<std::array<float, 3>> v = {{0, 0, 1}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0},
-                                           {0, 0, -1}, {1, 0, 1e-7f}, {0, -1, 1e-7f}};
+    std::vector<std::array<float, 3>> v = {{0, 0, 1},  {1, 0, 0},  {-1, 0, 0},    {0, 1, 0},
+                                           {0, -1, 0}, {0, 0, -1}, {1, 0, 1e-7f}, {0, -1, 1e-7f}};
     for (int i = 0; i < 16; ++i) {  // around the horizon and at 45°
         const double phi = i * std::numbers::pi / 8.0;
         for (double theta : {std::numbers::pi / 2.0, std::numbers::pi / 4.0, 1e-3})
@@ -145,7 +148,8 @@ TEST(NormalRoundTrip, DxToGlTwiceIsIdentityWithinACode) {
             const double x = i / 16.0 - 1.0, y = j / 16.0 - 1.0, r2 = x * x + y * y;
             if (r2 <= 1.0) dirs.push_back({float(x), float(y), float(std::sqrt(1.0 - r2))});
         }
-    const mf::Image dx_codes = encode_and_read(mf::encode_normal(vectors_image(dirs), NormalConvention::dx), {"png", 8});
+    const mf::Image dx_codes = encode_and_read(mf::encode_normal(vectors_image(dirs), NormalConvention::dx),
+                                               {"png", 8});
     mf::Image cur = dx_codes;
     for (int round = 0; round < 2; ++round) {
         mf::Image n;
@@ -173,11 +177,11 @@ TEST(NormalRoundTrip, DegenerateInputsGiveDefinedNormals) {
     mf::Image n;
     const double bad = mf::decode_normal(enc, NormalConvention::gl, n);
     for (float v : n.pixels) EXPECT_TRUE(std::isfinite(v));
-    EXPECT_EQ(n.at(0, 0, 2), 1.f);  // zero length → flat
-    EXPECT_EQ(n.at(1, 0, 2), 1.f);  // NaN → flat
-    EXPECT_EQ(n.at(2, 0, 2), 1.f);  // Inf → flat
+    EXPECT_EQ(n.at(0, 0, 2), 1.f);                             // zero length → flat
+    EXPECT_EQ(n.at(1, 0, 2), 1.f);                             // NaN → flat
+    EXPECT_EQ(n.at(2, 0, 2), 1.f);                             // Inf → flat
     EXPECT_NEAR(n.at(3, 0, 2), -1.f / std::sqrt(3.f), 1e-6f);  // below the surface, reported
-    EXPECT_NEAR(n.at(4, 0, 0), 1.f, 1e-6f);  // grazing +X, Z = 0 exactly
+    EXPECT_NEAR(n.at(4, 0, 0), 1.f, 1e-6f);                    // grazing +X, Z = 0 exactly
     EXPECT_EQ(n.at(4, 0, 2), 0.f);
     EXPECT_NEAR(bad, 4.0 / 5.0, 1e-9);  // all but the grazing unit vector are off
     // Vectors: NaN, zero, Inf and tiny ones through renormalize and encode_normal.

@@ -70,8 +70,8 @@ void expect_unit(const mf::Image& n, const char* what) {
 }
 
 std::vector<Dim> targets(Dim d) {
-    return {{d.w, d.h}, {1, 1}, {2 * d.w + 1, 2 * d.h + 1}, {(d.w + 1) / 2, (d.h + 1) / 2},
-            {1, d.h}, {d.w, 1}, {d.w + 2, 1}, {3, 3}};
+    return {{d.w, d.h},   {1, 1}, {2 * d.w + 1, 2 * d.h + 1}, {(d.w + 1) / 2, (d.h + 1) / 2}, {1, d.h}, {d.w, 1},
+            {d.w + 2, 1}, {3, 3}};
 }
 
 TEST(OddSizes, DecodeNormalKeepsSizeAndUnitLength) {
@@ -126,7 +126,8 @@ TEST(OddSizes, FitPlaneEveryRole) {
             EXPECT_EQ(albedo.image.width, t.w);
             EXPECT_EQ(albedo.image.height, t.h);
             // Resized color is linear; an unchanged size stays sRGB (bit-exact copy).
-            EXPECT_EQ(albedo.encoding, (t.w == d.w && t.h == d.h) ? mf::ColorEncoding::srgb : mf::ColorEncoding::linear);
+            EXPECT_EQ(albedo.encoding,
+                      (t.w == d.w && t.h == d.h) ? mf::ColorEncoding::srgb : mf::ColorEncoding::linear);
             expect_all_finite(albedo.image, "fit_plane albedo");
 
             mf::RolePlane normal;
@@ -178,7 +179,8 @@ TEST(OddSizes, PackEncodeReadBackEveryGltfOutput) {
                     if (is_float) {  // half: 11 significant bits
                         EXPECT_NEAR(back.pixels[i], src, std::abs(src) * 1e-3f + 1e-7f) << o.suffix;
                     } else {
-                        EXPECT_EQ(mf::quantize(back.pixels[i], bits), mf::quantize(src, bits)) << o.suffix << " " << format;
+                        EXPECT_EQ(mf::quantize(back.pixels[i], bits), mf::quantize(src, bits))
+                            << o.suffix << " " << format;
                     }
                 }
             }

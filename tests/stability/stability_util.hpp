@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "color/color.hpp"
-#include "test_color.hpp"
 #include "image/image.hpp"
+#include "test_color.hpp"
 
 namespace mf::stability {
 

@@ -127,7 +127,9 @@ TEST(Gltf, LibraryHoldsEveryMaterialOnItsOwnNode) {
     for (size_t i = 0; i < g["nodes"].size(); ++i) {
         const json& n = g["nodes"][i];
         EXPECT_EQ(n["name"], r.manifest["materials"][i]["name"]);
-        EXPECT_EQ(g["materials"][g["meshes"][n["mesh"].get<size_t>()]["primitives"][0]["material"].get<size_t>()]["name"], n["name"]);
+        EXPECT_EQ(
+            g["materials"][g["meshes"][n["mesh"].get<size_t>()]["primitives"][0]["material"].get<size_t>()]["name"],
+            n["name"]);
         places.insert({n["translation"][0].get<double>(), n["translation"][1].get<double>()});
     }
     EXPECT_EQ(places.size(), g["nodes"].size()) << "a grid: every node in its own place";

@@ -43,9 +43,11 @@ const json* twin_output(const Ingested& in, const std::string& material, const j
 }
 
 const std::map<std::string, int> kVkFormats{
-    {"VK_FORMAT_BC1_RGB_UNORM_BLOCK", 131}, {"VK_FORMAT_BC1_RGB_SRGB_BLOCK", 132}, {"VK_FORMAT_BC3_UNORM_BLOCK", 137},
-    {"VK_FORMAT_BC3_SRGB_BLOCK", 138},      {"VK_FORMAT_BC4_UNORM_BLOCK", 139},    {"VK_FORMAT_BC5_UNORM_BLOCK", 141},
-    {"VK_FORMAT_ASTC_4x4_UNORM_BLOCK", 157}, {"VK_FORMAT_ASTC_6x6_UNORM_BLOCK", 165}, {"VK_FORMAT_ASTC_6x6_SRGB_BLOCK", 166}};
+    {"VK_FORMAT_BC1_RGB_UNORM_BLOCK", 131},  {"VK_FORMAT_BC1_RGB_SRGB_BLOCK", 132},
+    {"VK_FORMAT_BC3_UNORM_BLOCK", 137},      {"VK_FORMAT_BC3_SRGB_BLOCK", 138},
+    {"VK_FORMAT_BC4_UNORM_BLOCK", 139},      {"VK_FORMAT_BC5_UNORM_BLOCK", 141},
+    {"VK_FORMAT_ASTC_4x4_UNORM_BLOCK", 157}, {"VK_FORMAT_ASTC_6x6_UNORM_BLOCK", 165},
+    {"VK_FORMAT_ASTC_6x6_SRGB_BLOCK", 166}};
 
 }  // namespace
 
@@ -63,11 +65,12 @@ TEST(D3d11, WritesSeparateBcTexturesWithFullMips) {
             EXPECT_EQ(o["width"].get<int>() % 4, 0) << file;
             EXPECT_EQ(mf::sha256_hex(read_bytes(in.out / file)), o["sha256"]) << file;
         }
-        ASSERT_TRUE(by_suffix.count("Albedo.dds") && by_suffix.count("NormalMap.dds") && by_suffix.count("RoughnessMap.dds") &&
-                    by_suffix.count("MetalnessMap.dds"))
+        ASSERT_TRUE(by_suffix.count("Albedo.dds") && by_suffix.count("NormalMap.dds") &&
+                    by_suffix.count("RoughnessMap.dds") && by_suffix.count("MetalnessMap.dds"))
             << name;
         const bool opacity = name == "Net004A";  // the net's cut-out in the albedo's alpha
-        EXPECT_EQ(by_suffix["Albedo.dds"]["gpu_format"], opacity ? "DXGI_FORMAT_BC3_UNORM_SRGB" : "DXGI_FORMAT_BC1_UNORM_SRGB");
+        EXPECT_EQ(by_suffix["Albedo.dds"]["gpu_format"],
+                  opacity ? "DXGI_FORMAT_BC3_UNORM_SRGB" : "DXGI_FORMAT_BC1_UNORM_SRGB");
         EXPECT_EQ(by_suffix["NormalMap.dds"]["gpu_format"], "DXGI_FORMAT_BC5_UNORM");
         EXPECT_EQ(by_suffix["NormalMap.dds"]["normal_z"], "reconstructed");
         EXPECT_EQ(by_suffix["NormalMap.dds"]["normal_convention"], "dx");
@@ -102,7 +105,8 @@ TEST(D3d11, OpenImageIoReadsEveryLevelWithTheRecordedError) {
             const auto bytes = read_bytes(in.out / file);
             uint32_t dxgi = 0;
             std::memcpy(&dxgi, bytes.data() + 128, 4);
-            EXPECT_EQ(dxgi, o["color_space"] == "sRGB" ? (o["block_format"] == "bc1" ? 72u : 78u) : (o["block_format"] == "bc4" ? 80u : 83u))
+            EXPECT_EQ(dxgi, o["color_space"] == "sRGB" ? (o["block_format"] == "bc1" ? 72u : 78u)
+                                                       : (o["block_format"] == "bc4" ? 80u : 83u))
                 << file;
         }
     }
@@ -143,7 +147,11 @@ TEST(VulkanKtx2, KtxParseReadsHeaderDfdAndLevels) {
             EXPECT_EQ(k["dfd"]["texelBlockDimension"][0], f->block_width - 1) << who;
             EXPECT_EQ(k["dfd"]["texelBlockDimension"][1], f->block_height - 1) << who;
             EXPECT_EQ(k["dfd"]["bytesPlane"][0], f->block_bytes) << who;
-            const int model = f->name == "bc1" ? 128 : f->name == "bc3" ? 130 : f->name == "bc4" ? 131 : f->name == "bc5" ? 132 : 162;
+            const int model = f->name == "bc1"   ? 128
+                              : f->name == "bc3" ? 130
+                              : f->name == "bc4" ? 131
+                              : f->name == "bc5" ? 132
+                                                 : 162;
             EXPECT_EQ(k["dfd"]["colorModel"], model) << who;
             // Level sizes, and every level inflated (libzstd) and decoded: the recorded error.
             const json* twin = twin_output(in, outputs[i].first, o);
@@ -192,10 +200,8 @@ TEST(GpuPresets, ErrorsStayWithinTheShippedBounds) {
                 }
                 for (size_t l = 1; l < o["levels"].size(); ++l) {
                     const auto& e = o["levels"][l];
-                    if (is_normal(o))
-                        EXPECT_LT(e["mean_angle_deg"].get<double>(), 6.0) << o["file"] << " level " << l;
-                    else
-                        EXPECT_GT(e["psnr_db"].get<double>(), 28.0) << o["file"] << " level " << l;
+                    if (is_normal(o)) EXPECT_LT(e["mean_angle_deg"].get<double>(), 6.0) << o["file"] << " level " << l;
+                    else EXPECT_GT(e["psnr_db"].get<double>(), 28.0) << o["file"] << " level " << l;
                 }
             }
             for (const auto& f : m["findings"])
@@ -211,8 +217,8 @@ TEST(GpuPresets, ABoundExceededIsAFinding) {
     p["name"] = "d3d11-strict";
     p["outputs"][0]["min_psnr_db"] = 60;  // no BC1 meets it on real maps
     write_text(dir / "strict.json", p.dump(2));
-    const auto r = matforge({"ingest", (samples() / "Net004A_1K-JPG").string(), "-o", (dir / "out").string(), "--preset",
-                             (dir / "strict.json").string(), "--fail-on", "warning"});
+    const auto r = matforge({"ingest", (samples() / "Net004A_1K-JPG").string(), "-o", (dir / "out").string(),
+                             "--preset", (dir / "strict.json").string(), "--fail-on", "warning"});
     EXPECT_EQ(r.code, 1) << r.output;
     const json m = mf::testfiles::read_json(dir / "out" / "manifest.json");
     bool found = false;
@@ -223,7 +229,8 @@ TEST(GpuPresets, ABoundExceededIsAFinding) {
             EXPECT_EQ(f["figures"]["min_psnr_db"], 60.0);
             EXPECT_LT(f["figures"]["psnr_db"].get<double>(), 60.0);
             EXPECT_EQ(f["figures"]["block_format"], "bc3");
-            EXPECT_NE(f["message"].get<std::string>().find("output 'Albedo' level 0"), std::string::npos) << f["message"];
+            EXPECT_NE(f["message"].get<std::string>().find("output 'Albedo' level 0"), std::string::npos)
+                << f["message"];
         }
     EXPECT_TRUE(found) << m.dump(1);
     // The texture is still written (a finding, not a failure).
@@ -239,12 +246,21 @@ TEST(GpuPresets, ImpossibleFormatsAreUsageErrorsNamingTheField) {
         std::string says;
     };
     const std::vector<Case> cases{
-        {[](json& p) { p["outputs"][0]["block_format"] = "bc5"; p["outputs"][0]["color_space"] = "linear"; },
+        {[](json& p) {
+             p["outputs"][0]["block_format"] = "bc5";
+             p["outputs"][0]["color_space"] = "linear";
+         },
          "outputs[0] ('basecolor'): block_format: bc5 stores 2 channels; this output writes 3 (RGB albedo)"},
         {[](json& p) { p["outputs"][3]["block_format"] = "astc-hdr-6x6"; },
          "outputs[3] ('emissive'): block_format: astc-hdr-6x6 encodes float (HDR) samples; this output is 8-bit"},
-        {[](json& p) { p["outputs"][2]["block_format"] = "etc2"; }, "outputs[2] ('orm'): block_format: unknown block format 'etc2'"},
-        {[](json& p) { p["format"] = "dds"; p["supercompression"] = "none"; p["outputs"][2]["block_format"] = "astc-6x6"; }, "block_format: astc-6x6 has no DXGI format"},
+        {[](json& p) { p["outputs"][2]["block_format"] = "etc2"; },
+         "outputs[2] ('orm'): block_format: unknown block format 'etc2'"},
+        {[](json& p) {
+             p["format"] = "dds";
+             p["supercompression"] = "none";
+             p["outputs"][2]["block_format"] = "astc-6x6";
+         },
+         "block_format: astc-6x6 has no DXGI format"},
     };
     int i = 0;
     for (const auto& c : cases) {
@@ -252,7 +268,8 @@ TEST(GpuPresets, ImpossibleFormatsAreUsageErrorsNamingTheField) {
         c.edit(p);
         const fs::path file = dir / ("bad" + std::to_string(i++) + ".json");
         write_text(file, p.dump(2));
-        const auto r = matforge({"ingest", samples().string(), "-o", (dir / "out").string(), "--preset", file.string()});
+        const auto r = matforge({"ingest", samples().string(), "-o", (dir / "out").string(), "--preset",
+                                 file.string()});
         EXPECT_EQ(r.code, 2) << r.output;
         EXPECT_NE(r.output.find("matforge ingest: "), std::string::npos) << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;

@@ -67,12 +67,15 @@ inline std::vector<uint8_t> read_bytes(const fs::path& p) {
 // Runs `node SCRIPT NPM_DIR FILES...` (tests/texture/checkers) and parses one JSON line per file.
 inline std::vector<json> node_checker(const std::string& script, const std::vector<fs::path>& files) {
     static const bool installed = [] {
-        const auto p = mf::testbin::spawn({std::string(MATFORGE_SOURCE_DIR) + "/scripts/npm-checkers.sh", MATFORGE_NPM_DIR}, 300);
+        const auto p = mf::testbin::spawn({std::string(MATFORGE_SOURCE_DIR) + "/scripts/npm-checkers.sh",
+                                           MATFORGE_NPM_DIR},
+                                          300);
         EXPECT_EQ(p.code, 0) << "scripts/npm-checkers.sh: " << p.output;
         return p.code == 0;
     }();
     if (!installed) return {};
-    std::vector<std::string> argv{"node", std::string(MATFORGE_SOURCE_DIR) + "/tests/texture/checkers/" + script, MATFORGE_NPM_DIR};
+    std::vector<std::string> argv{"node", std::string(MATFORGE_SOURCE_DIR) + "/tests/texture/checkers/" + script,
+                                  MATFORGE_NPM_DIR};
     for (const auto& f : files) argv.push_back(f.string());
     const auto p = mf::testbin::spawn(argv, 300);
     EXPECT_EQ(p.code, 0) << p.output;
@@ -104,9 +107,11 @@ inline fs::path png_twin(const std::string& preset, const fs::path& dir) {
     json p = json::parse(r.output.substr(r.output.find('{')));
     p["name"] = preset + "-png";
     p["format"] = "png";
-    for (const char* k : {"mips", "mip_filter", "effort", "supercompression", "zstd_level", "toksvig", "material_file"}) p.erase(k);
+    for (const char* k : {"mips", "mip_filter", "effort", "supercompression", "zstd_level", "toksvig", "material_file"})
+        p.erase(k);
     for (auto& o : p["outputs"])
-        for (const char* k : {"block_format", "block_format_alpha", "effort", "min_psnr_db", "max_mean_angle_deg"}) o.erase(k);
+        for (const char* k : {"block_format", "block_format_alpha", "effort", "min_psnr_db", "max_mean_angle_deg"})
+            o.erase(k);
     const fs::path file = dir / (preset + "-png.json");
     write_text(file, p.dump(2));
     return file;
@@ -126,7 +131,8 @@ inline mf::Image8 read_codes(const fs::path& png) {
 
 // The mip chain a GPU output encodes, rebuilt from its PNG twin's level 0 and the manifest
 // entry's channels (as ingest builds it: texture/mips).
-inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Image8& level0, const std::string& filter) {
+inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Image8& level0,
+                                               const std::string& filter) {
     std::vector<mf::ChannelSpec> written;
     for (const char* key : {"RGB", "R", "G", "B", "A"}) {
         if (!output["channels"].contains(key)) continue;
@@ -149,7 +155,8 @@ inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Ima
     }
     mf::texture::MipOptions o;
     o.filter = filter == "box" ? mf::texture::MipFilter::box : mf::texture::MipFilter::kaiser;
-    return mf::texture::make_mips(level0, mf::texture::channel_kinds(written, output["color_space"] == "sRGB", cutout), o);
+    return mf::texture::make_mips(level0, mf::texture::channel_kinds(written, output["color_space"] == "sRGB", cutout),
+                                  o);
 }
 
 // Every mip level of a DDS through OpenImageIO. OpenImageIO 2.4 reads the DX10 header for BC4
@@ -182,7 +189,9 @@ inline std::vector<mf::Image8> oiio_levels(const fs::path& dds, const fs::path& 
 }
 
 inline bool xy_only(const json& output) { return output.value("normal_z", "") == "reconstructed"; }
-inline bool is_normal(const json& output) { return output["channels"].contains("RGB") && output["channels"]["RGB"] == "normal"; }
+inline bool is_normal(const json& output) {
+    return output["channels"].contains("RGB") && output["channels"]["RGB"] == "normal";
+}
 
 // Checks a decoded level against its reference and the manifest's recorded error.
 inline void expect_recorded_error(const json& output, size_t level, const mf::Image8& ref, const mf::Image8& decoded,

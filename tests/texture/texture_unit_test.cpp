@@ -85,7 +85,9 @@ TEST(Mips, ConstantsStayConstantAndBoxIsTheMean) {
                 ASSERT_EQ(level.at(x, y, 0), 77);
                 ASSERT_EQ(level.at(x, y, 1), 200);
             }
-    const Image8 ramp = make(4, 2, 1, [](int x, int y) { return std::array<uint8_t, 4>{uint8_t(x * 40 + y * 20), 0, 0, 0}; });
+    const Image8 ramp = make(4, 2, 1, [](int x, int y) {
+        return std::array<uint8_t, 4>{uint8_t(x * 40 + y * 20), 0, 0, 0};
+    });
     mt::MipOptions box;
     box.filter = mt::MipFilter::box;
     const auto chain = mt::make_mips(ramp, {mt::ChannelKind::data}, box);
@@ -99,7 +101,8 @@ TEST(Mips, NormalsAreUnitAtEveryLevel) {
     const Image8 bumpy = make(64, 64, 3, [&](int, int) {
         double x = n(rng), y = n(rng), z = 1.0;
         const double len = std::sqrt(x * x + y * y + z * z);
-        return std::array<uint8_t, 4>{code(x / len * 0.5 + 0.5), code(y / len * 0.5 + 0.5), code(z / len * 0.5 + 0.5), 0};
+        return std::array<uint8_t, 4>{code(x / len * 0.5 + 0.5), code(y / len * 0.5 + 0.5), code(z / len * 0.5 + 0.5),
+                                      0};
     });
     const auto chain = mt::make_mips(bumpy, std::vector<mt::ChannelKind>(3, mt::ChannelKind::normal), {});
     for (size_t l = 1; l < chain.size(); ++l)
@@ -120,7 +123,8 @@ TEST(Mips, AlphaTestCoverageIsKept) {
     for (int s = 0; s < 260; ++s) {
         const double x0 = u(rng) * 256, y0 = u(rng) * 256, a = u(rng) * 6.3;
         for (int t = 0; t < 40; ++t) {
-            const int x = static_cast<int>(x0 + t * std::cos(a)) & 255, y = static_cast<int>(y0 + t * std::sin(a)) & 255;
+            const int x = static_cast<int>(x0 + t * std::cos(a)) & 255,
+                      y = static_cast<int>(y0 + t * std::sin(a)) & 255;
             alpha.at(x, y) = 255;
         }
     }
@@ -325,20 +329,21 @@ uint64_t u64(const std::vector<uint8_t>& b, size_t at) {
 TEST(Dds, HeaderFollowsTheProgrammingGuide) {
     const mt::GpuTexture t = texture_of("bc1", true, 64, 32);
     const auto b = mt::write_dds(t);
-    EXPECT_EQ(u32(b, 0), 0x20534444u);                // "DDS "
-    EXPECT_EQ(u32(b, 4), 124u);                       // dwSize
-    EXPECT_EQ(u32(b, 8), 0x1u | 0x2 | 0x4 | 0x1000 | 0x20000 | 0x80000);  // caps height width pixelformat mipmapcount linearsize
-    EXPECT_EQ(u32(b, 12), 32u);                       // height
-    EXPECT_EQ(u32(b, 16), 64u);                       // width
-    EXPECT_EQ(u32(b, 20), 64u / 4 * 32 / 4 * 8);      // linear size of level 0
-    EXPECT_EQ(u32(b, 28), 7u);                        // mip count
-    EXPECT_EQ(u32(b, 76), 32u);                       // pixel format size
-    EXPECT_EQ(u32(b, 80), 0x4u);                      // DDPF_FOURCC
-    EXPECT_EQ(u32(b, 84), 0x30315844u);               // "DX10"
-    EXPECT_EQ(u32(b, 108), 0x1000u | 0x8 | 0x400000);  // texture complex mipmap
-    EXPECT_EQ(u32(b, 128), 72u);                      // DXGI_FORMAT_BC1_UNORM_SRGB
-    EXPECT_EQ(u32(b, 132), 3u);                       // TEXTURE2D
-    EXPECT_EQ(u32(b, 140), 1u);                       // arraySize
+    EXPECT_EQ(u32(b, 0), 0x20534444u);  // "DDS "
+    EXPECT_EQ(u32(b, 4), 124u);         // dwSize
+    EXPECT_EQ(u32(b, 8),
+              0x1u | 0x2 | 0x4 | 0x1000 | 0x20000 | 0x80000);  // caps height width pixelformat mipmapcount linearsize
+    EXPECT_EQ(u32(b, 12), 32u);                                // height
+    EXPECT_EQ(u32(b, 16), 64u);                                // width
+    EXPECT_EQ(u32(b, 20), 64u / 4 * 32 / 4 * 8);               // linear size of level 0
+    EXPECT_EQ(u32(b, 28), 7u);                                 // mip count
+    EXPECT_EQ(u32(b, 76), 32u);                                // pixel format size
+    EXPECT_EQ(u32(b, 80), 0x4u);                               // DDPF_FOURCC
+    EXPECT_EQ(u32(b, 84), 0x30315844u);                        // "DX10"
+    EXPECT_EQ(u32(b, 108), 0x1000u | 0x8 | 0x400000);          // texture complex mipmap
+    EXPECT_EQ(u32(b, 128), 72u);                               // DXGI_FORMAT_BC1_UNORM_SRGB
+    EXPECT_EQ(u32(b, 132), 3u);                                // TEXTURE2D
+    EXPECT_EQ(u32(b, 140), 1u);                                // arraySize
     size_t data = 0;
     for (const auto& l : t.levels) data += l.data.size();
     EXPECT_EQ(b.size(), 148 + data);
@@ -405,7 +410,8 @@ TEST(Ktx2, ReadRefusesDamage) {
 namespace {
 
 std::string preset_error(const std::string& format, const std::string& outputs, const std::string& extra = "") {
-    const std::string text = R"({"name": "t", "format": ")" + format + "\", " + extra + R"( "outputs": [)" + outputs + "]}";
+    const std::string text = R"({"name": "t", "format": ")" + format + "\", " + extra + R"( "outputs": [)" + outputs +
+                             "]}";
     std::string error;
     const auto j = mf::parse_json(text, "preset", error);
     EXPECT_TRUE(j) << error;
@@ -422,7 +428,8 @@ TEST(PresetFields, ImpossibleFormatsNameTheField) {
     auto has = [](const std::string& error, const std::string& what) {
         EXPECT_NE(error.find(what), std::string::npos) << error;
     };
-    has(preset_error("dds", kAlbedo + R"(, "block_format": "bc5"})"), "outputs[0] ('c'): block_format: bc5 has no sRGB variant");
+    has(preset_error("dds", kAlbedo + R"(, "block_format": "bc5"})"),
+        "outputs[0] ('c'): block_format: bc5 has no sRGB variant");
     has(preset_error("ktx2", R"({"suffix": "c", "channels": {"RGB": "albedo"}, "block_format": "bc5"})"),
         "outputs[0] ('c'): block_format: bc5 stores 2 channels; this output writes 3 (RGB albedo)");
     has(preset_error("ktx2", kAlbedo + R"(, "block_format": "astc-hdr-6x6"})"),
@@ -432,14 +439,18 @@ TEST(PresetFields, ImpossibleFormatsNameTheField) {
     has(preset_error("dds", kAlbedo + "}"), "outputs[0] ('c'): block_format: required with format dds");
     has(preset_error("png", kAlbedo + R"(, "block_format": "bc1"})"), "block_format: needs format dds or ktx2");
     has(preset_error("png", kAlbedo + "}", R"("mips": true,)"), "mips: needs format dds or ktx2");
-    has(preset_error("ktx2", R"({"suffix": "r", "channels": {"R": "roughness", "G": "metalness"}, "block_format": "bc4"})"),
+    has(preset_error("ktx2",
+                     R"({"suffix": "r", "channels": {"R": "roughness", "G": "metalness"}, "block_format": "bc4"})"),
         "block_format: bc4 stores 1 channel; this output writes 2 (R roughness, G metalness)");
-    has(preset_error("ktx2", R"({"suffix": "c", "color_space": "srgb", "channels": {"RGB": "albedo", "A": "opacity"}, "block_format": "bc1"})"),
+    has(preset_error(
+            "ktx2",
+            R"({"suffix": "c", "color_space": "srgb", "channels": {"RGB": "albedo", "A": "opacity"}, "block_format": "bc1"})"),
         "bc1 stores 3 channels; this output writes 4 (RGB albedo, A opacity): set block_format_alpha");
     has(preset_error("dds", kAlbedo + R"(, "block_format": "bc1"})", R"("supercompression": "zstd",)"),
         "supercompression: zstd is a KTX2 scheme");
     has(preset_error("dds", kAlbedo + R"(, "block_format": "bc1"})", R"("constant_size": 2,)"), "constant_size");
-    has(preset_error("png", kAlbedo + "}", R"("material_file": "gltf",)"), "material_file gltf: metallicRoughnessTexture");
+    has(preset_error("png", kAlbedo + "}", R"("material_file": "gltf",)"),
+        "material_file gltf: metallicRoughnessTexture");
     // BC5 takes the RGB normal (X, Y stored).
     EXPECT_EQ(preset_error("ktx2", R"({"suffix": "n", "channels": {"RGB": "normal"}, "block_format": "bc5"})"), "");
 }
@@ -492,8 +503,10 @@ TEST(GltfSphere, FacesOutwardWithUnitNormalsAndTangents) {
         }
         const std::array<float, 3> e1{p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
         const std::array<float, 3> e2{p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-        const std::array<float, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-        const float out = n[0] * (p[0][0] + p[1][0] + p[2][0]) + n[1] * (p[0][1] + p[1][1] + p[2][1]) + n[2] * (p[0][2] + p[1][2] + p[2][2]);
+        const std::array<float, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                     e1[0] * e2[1] - e1[1] * e2[0]};
+        const float out = n[0] * (p[0][0] + p[1][0] + p[2][0]) + n[1] * (p[0][1] + p[1][1] + p[2][1]) +
+                          n[2] * (p[0][2] + p[1][2] + p[2][2]);
         ASSERT_GT(out, 0.f) << "triangle " << t;
     }
     // The front (+Z) texel to the right has larger u: the texture is not mirrored.

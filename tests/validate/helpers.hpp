@@ -13,8 +13,8 @@
 namespace mft {
 
 using mf::Image;
-using mf::Role;
 using mf::NormalConvention;
+using mf::Role;
 
 // A set of in-memory maps. Inputs name their image by InputFile::display.
 struct MemSet {
@@ -42,7 +42,10 @@ struct MemSet {
         in.name_convention = conv;
         // replace an existing input of the same name
         for (auto& e : inputs)
-            if (e.name == name) { e = in; return; }
+            if (e.name == name) {
+                e = in;
+                return;
+            }
         inputs.push_back(in);
     }
     mf::validate::MapInput* input(const std::string& name) {
@@ -79,8 +82,8 @@ struct MemSet {
         };
     }
 
-    mf::validate::SetValidation run(const mf::validate::RuleConfig& cfg = {},
-                                    const std::string& material = "Test", int band_rows = 16) const {
+    mf::validate::SetValidation run(const mf::validate::RuleConfig& cfg = {}, const std::string& material = "Test",
+                                    int band_rows = 16) const {
         mf::validate::ValidateOptions opt;
         opt.material = material;
         opt.reader = reader();
@@ -102,7 +105,9 @@ inline Image constant(int w, int h, std::vector<float> v) {
 inline Image make_height(int size, double freq, unsigned seed, int waves = 6) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    struct Wave { double kx, ky, ph; };
+    struct Wave {
+        double kx, ky, ph;
+    };
     std::vector<Wave> ws;
     for (int i = 0; i < waves; ++i) {
         const double th = 2 * M_PI * u(rng);
@@ -137,7 +142,8 @@ inline Image make_bricks(int size, int rows_of_bricks, unsigned seed) {
             const double dx = std::min(xo - col * bw, (col + 1) * bw - xo);
             const double d = std::min(dx, dy);  // distance to the nearest joint
             const double bevel = std::clamp(d / mortar, 0.0, 1.0);
-            h.at(x, y) = static_cast<float>(0.2 + bevel * (top[static_cast<size_t>(row) * (rows_of_bricks + 2) + col] - 0.2));
+            h.at(x, y) = static_cast<float>(0.2 +
+                                            bevel * (top[static_cast<size_t>(row) * (rows_of_bricks + 2) + col] - 0.2));
         }
     return h;
 }
@@ -145,8 +151,8 @@ inline Image make_bricks(int size, int rows_of_bricks, unsigned seed) {
 // Encodes a tangent-space normal map from a height (central differences, wrapping), in the
 // given convention, as 2n−1-encoded RGB in [0, 1]; optional Gaussian noise per channel and
 // quantization to 8 bits. Strength is chosen so that the RMS slope is `slope`.
-inline Image normal_from_height(const Image& h, NormalConvention conv, double slope = 0.6,
-                                double noise = 0.0, unsigned seed = 1, bool quantize = true) {
+inline Image normal_from_height(const Image& h, NormalConvention conv, double slope = 0.6, double noise = 0.0,
+                                unsigned seed = 1, bool quantize = true) {
     const int w = h.width, H = h.height;
     std::vector<double> gx(static_cast<size_t>(w) * H), gr(gx.size());
     double ss = 0;

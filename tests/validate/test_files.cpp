@@ -15,8 +15,7 @@ namespace mv = mf::validate;
 
 namespace {
 
-mf::InputFile encode(const Image& img, const std::string& name, const std::string& format = "png",
-                     int bits = 8) {
+mf::InputFile encode(const Image& img, const std::string& name, const std::string& format = "png", int bits = 8) {
     mf::EncodeOptions opt;
     opt.format = format;
     opt.bit_depth = bits;
@@ -42,8 +41,8 @@ TEST(ValidateFiles, CleanAndBadSetsFromEncodedFiles) {
     std::vector<mv::MapInput> maps;
     for (const auto& in : mem.inputs) {
         std::string err;
-        auto m = mv::make_map_input(in.role, encode(*mem.images.at(in.name), in.name), in.name,
-                                    in.name_convention, err);
+        auto m = mv::make_map_input(in.role, encode(*mem.images.at(in.name), in.name), in.name, in.name_convention,
+                                    err);
         ASSERT_TRUE(m) << err;
         EXPECT_EQ(m->info.width, 64);
         maps.push_back(*m);
@@ -71,8 +70,8 @@ TEST(ValidateFiles, FloatExrWithNaN) {
     for (int x = 0; x < 32; ++x) r.at(x, 3) = static_cast<float>(x) / 31.f * 2.f;  // up to 2.0
     r.at(1, 1) = std::nanf("");
     std::string err;
-    auto m = mv::make_map_input(Role::roughness, encode(r, "R.exr", "exr", 32), "R.exr",
-                                NormalConvention::unknown, err);
+    auto m = mv::make_map_input(Role::roughness, encode(r, "R.exr", "exr", 32), "R.exr", NormalConvention::unknown,
+                                err);
     ASSERT_TRUE(m) << err;
     EXPECT_TRUE(m->info.is_float);
     const auto res = mv::validate_set({*m}, {});
@@ -131,7 +130,7 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
     // nothing holds a whole map, so the peak memory measures the validator alone.
     constexpr int W = 8192, H = 8192;
     auto gen = [](const mf::InputFile& in, int band_rows, mf::ImageInfo& info, std::string&,
-                      const std::function<void(int, int, const float*)>& fn) {
+                  const std::function<void(int, int, const float*)>& fn) {
         const bool normal = in.display == "N.png";
         const int c = normal || in.display == "A.png" ? 3 : 1;
         info = {W, H, c, 8, false, "memory", {}};
@@ -142,9 +141,13 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
                 for (int x = 0; x < W; ++x) {
                     float* p = &band[(static_cast<size_t>(y) * W + x) * c];
                     const float t = static_cast<float>((x + y0 + y) % 64) / 64.f;
-                    if (normal) { p[0] = 0.5f + 0.2f * (t - 0.5f); p[1] = 0.5f; p[2] = 0.97f; }
-                    else if (c == 3) { p[0] = p[1] = p[2] = 0.4f + 0.2f * t; }
-                    else if (in.display == "M.png") p[0] = x < W / 2 ? 0.f : 1.f;
+                    if (normal) {
+                        p[0] = 0.5f + 0.2f * (t - 0.5f);
+                        p[1] = 0.5f;
+                        p[2] = 0.97f;
+                    } else if (c == 3) {
+                        p[0] = p[1] = p[2] = 0.4f + 0.2f * t;
+                    } else if (in.display == "M.png") p[0] = x < W / 2 ? 0.f : 1.f;
                     else p[0] = t;
                 }
             fn(y0, rows, band.data());
@@ -152,8 +155,10 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
         return true;
     };
     std::vector<mv::MapInput> maps;
-    for (auto [role, name] : {std::pair{Role::albedo, "A.png"}, {Role::metalness, "M.png"},
-                              {Role::normal, "N.png"}, {Role::height, "H.png"}}) {
+    for (auto [role, name] : {std::pair{Role::albedo, "A.png"},
+                              {Role::metalness, "M.png"},
+                              {Role::normal, "N.png"},
+                              {Role::height, "H.png"}}) {
         mv::MapInput m;
         m.role = role;
         m.name = name;
@@ -169,7 +174,8 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const long grown_mb = (max_rss_kb() - before) / 1024;
     std::printf("[ 8K set ] 4 maps of 8192x8192 in %.1f s, peak memory grew by %ld MB "
-                "(one 8K RGB float map would be 768 MB)\n", secs, grown_mb);
+                "(one 8K RGB float map would be 768 MB)\n",
+                secs, grown_mb);
     EXPECT_LT(grown_mb, 200);
     EXPECT_TRUE(has_code(res.findings, mf::code::metal_albedo_too_dark)) << dump(res.findings);
 }

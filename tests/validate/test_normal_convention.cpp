@@ -30,8 +30,8 @@ TEST(NormalConvention, AccuracyOverGeneratedPairs) {
             }
             if (ok) min_conf_correct = std::min(min_conf_correct, v.confidence);
             if (!ok)
-                std::printf("[ detector ] miss: freq %g slope %.2f noise %.2f conv %s height %d -> %s (%.2f)\n",
-                            freq, slope, noise, std::string(mf::convention_name(conv)).c_str(), use_h,
+                std::printf("[ detector ] miss: freq %g slope %.2f noise %.2f conv %s height %d -> %s (%.2f)\n", freq,
+                            slope, noise, std::string(mf::convention_name(conv)).c_str(), use_h,
                             std::string(mf::convention_name(v.convention)).c_str(), v.confidence);
             EXPECT_GE(v.confidence, 0.0);
             EXPECT_LE(v.confidence, 1.0);

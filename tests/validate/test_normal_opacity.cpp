@@ -98,7 +98,8 @@ TEST(NormalMaps, MapsThatAreNotNormalMapsAreInvalid) {
         for (int x = 0; x < N; ++x) {
             const double th = M_PI * (y + 0.5) / N, ph = 2 * M_PI * (x + 0.5) / N;
             const double v[3] = {std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)};
-            for (int c = 0; c < 3; ++c) object.at(x, y, c) = static_cast<float>(std::round((0.5 + 0.5 * v[c]) * 255) / 255);
+            for (int c = 0; c < 3; ++c)
+                object.at(x, y, c) = static_cast<float>(std::round((0.5 + 0.5 * v[c]) * 255) / 255);
         }
     // A height map copied to R, G and B; and a bright one (all codes ≥ 200), whose Z is high.
     Image grey(N, N, 3), bright(N, N, 3);
@@ -171,7 +172,8 @@ TEST(NormalMaps, TwoChannelAndSteepMapsAreValid) {
     EXPECT_FALSE(has_code(res.findings, code::normal_invalid)) << dump(res.findings);
     // Steep relief (RMS slope 1.0, about as steep as the steepest vendor map measured, whose
     // upward share is 73 %): still a normal map.
-    s.add(Role::normal, "T_normal_gl.png", normal_from_height(h, NormalConvention::gl, 1.0), false, NormalConvention::gl);
+    s.add(Role::normal, "T_normal_gl.png", normal_from_height(h, NormalConvention::gl, 1.0), false,
+          NormalConvention::gl);
     res = s.run();
     EXPECT_FALSE(has_code(res.findings, code::normal_invalid)) << dump(res.findings);
 }
@@ -285,7 +287,8 @@ TEST(AlbedoShares, DarkDielectricSpecksInAMetalDoNotCount) {
     const mf::Finding* f = find(res.findings, code::albedo_too_dark);
     ASSERT_NE(f, nullptr) << dump(res.findings);
     const double dielectric = f->figures.at("pixels").get<double>();
-    EXPECT_NEAR(f->figures.at("surface_share").get<double>(), f->figures.at("share").get<double>() * dielectric / 4096.0, 1e-12);
+    EXPECT_NEAR(f->figures.at("surface_share").get<double>(),
+                f->figures.at("share").get<double>() * dielectric / 4096.0, 1e-12);
     EXPECT_GT(f->figures.at("surface_share").get<double>(), 0.5);
     EXPECT_NE(f->message.find("of the visible albedo is dielectric"), std::string::npos) << f->message;
 }

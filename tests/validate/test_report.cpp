@@ -54,13 +54,16 @@ mv::Report sample() {
 
 struct XmlDoc {
     xmlDocPtr doc = nullptr;
-    ~XmlDoc() { if (doc) xmlFreeDoc(doc); }
+    ~XmlDoc() {
+        if (doc) xmlFreeDoc(doc);
+    }
 };
 
 std::vector<xmlNodePtr> children(xmlNodePtr n, const char* name) {
     std::vector<xmlNodePtr> v;
     for (xmlNodePtr c = n->children; c; c = c->next)
-        if (c->type == XML_ELEMENT_NODE && xmlStrcmp(c->name, reinterpret_cast<const xmlChar*>(name)) == 0) v.push_back(c);
+        if (c->type == XML_ELEMENT_NODE && xmlStrcmp(c->name, reinterpret_cast<const xmlChar*>(name)) == 0)
+            v.push_back(c);
     return v;
 }
 

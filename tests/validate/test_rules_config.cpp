@@ -31,7 +31,8 @@ TEST(RuleConfig, ParsesEveryForm) {
         "severityOverrides": {"METALNESS_NOT_BINARY": 2},
         "ignore": ["RESOLUTION_MISMATCH"],
         "suppress": [{"material": "Metal*", "code": "*"}]
-    })"), err);
+    })"),
+                                         err);
     ASSERT_TRUE(cfg) << err;
     EXPECT_EQ(cfg->thresholds.albedo_min_srgb, 50.0);
     EXPECT_EQ(cfg->thresholds.albedo_max_srgb, 245.0);

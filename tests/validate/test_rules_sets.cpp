@@ -305,8 +305,8 @@ TEST(ValidateSets, NormalConventionMismatchFromContent) {
               NormalConvention::gl);
         if (!with_height) s.remove("T_height.png");
         const auto res = s.run();
-        ASSERT_TRUE(has_code(res.findings, code::normal_convention_mismatch))
-            << "with_height=" << with_height << "\n" << dump(res.findings);
+        ASSERT_TRUE(has_code(res.findings, code::normal_convention_mismatch)) << "with_height=" << with_height << "\n"
+                                                                              << dump(res.findings);
         ASSERT_TRUE(res.normal);
         EXPECT_EQ(res.normal->content.convention, NormalConvention::dx);
         EXPECT_EQ(res.normal->resolved, NormalConvention::gl) << "the name still decides";
@@ -420,8 +420,7 @@ TEST(ValidateSets, FindingsAreDeterministicAndOrdered) {
             if (cat[i].code == c) return i;
         return cat.size();
     };
-    for (size_t i = 1; i < r1.findings.size(); ++i)
-        EXPECT_LE(rank(r1.findings[i - 1].code), rank(r1.findings[i].code));
+    for (size_t i = 1; i < r1.findings.size(); ++i) EXPECT_LE(rank(r1.findings[i - 1].code), rank(r1.findings[i].code));
 }
 
 TEST(ValidateSets, HeaderThatDisagreesWithThePixelsIsUnreadable) {

@@ -90,7 +90,8 @@ TEST(StatsExact, IntegerFileMeansAreExactAndMatchTheFloatSum) {
 TEST(StatsExact, FloatFilesStillCountNonFiniteValues) {
     md::MapStats s = stats_for(32, true, 1);
     EXPECT_EQ(s.code_scale, 0.f);
-    const float band[4] = {0.25f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 0.75f};
+    const float band[4] = {0.25f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                           0.75f};
     s.add_band(0, 1, band);
     EXPECT_EQ(s.nan, 1);
     EXPECT_EQ(s.inf, 1);

@@ -32,8 +32,9 @@ bool write_image(const fs::path& path, const Pixels& px, Enc enc, bool srgb_tag,
         err = "no writer for " + path.string();
         return false;
     }
-    const OIIO::TypeDesc fmt = enc == Enc::png16 ? OIIO::TypeDesc::UINT16
-                               : enc == Enc::exr_half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8;
+    const OIIO::TypeDesc fmt = enc == Enc::png16      ? OIIO::TypeDesc::UINT16
+                               : enc == Enc::exr_half ? OIIO::TypeDesc::HALF
+                                                      : OIIO::TypeDesc::UINT8;
     OIIO::ImageSpec spec(px.w, px.h, px.c, fmt);
     if (enc == Enc::exr_half) {
         spec.attribute("DateTime", "2024:01:01 00:00:00");
@@ -47,7 +48,8 @@ bool write_image(const fs::path& path, const Pixels& px, Enc enc, bool srgb_tag,
         ok = out->write_image(OIIO::TypeDesc::FLOAT, px.v.data());
     } else if (ok && enc == Enc::png16) {
         std::vector<uint16_t> q(px.v.size());
-        for (size_t i = 0; i < q.size(); ++i) q[i] = static_cast<uint16_t>(std::floor(clamp01(px.v[i]) * 65535.f + 0.5f));
+        for (size_t i = 0; i < q.size(); ++i)
+            q[i] = static_cast<uint16_t>(std::floor(clamp01(px.v[i]) * 65535.f + 0.5f));
         ok = out->write_image(OIIO::TypeDesc::UINT16, q.data());
     } else if (ok) {
         std::vector<uint8_t> q(px.v.size());
@@ -71,7 +73,8 @@ bool write_text(const fs::path& path, const std::string& text, std::string& err)
 bool write_zip(const fs::path& staged, const fs::path& zip_path, std::string& err) {
     std::vector<std::pair<std::string, std::vector<unsigned char>>> entries;
     for (const auto& e : fs::recursive_directory_iterator(staged))
-        if (e.is_regular_file()) entries.emplace_back(fs::relative(e.path(), staged).generic_string(), read_bytes(e.path()));
+        if (e.is_regular_file())
+            entries.emplace_back(fs::relative(e.path(), staged).generic_string(), read_bytes(e.path()));
     std::sort(entries.begin(), entries.end());
     int zerr = 0;
     zip_t* za = zip_open(zip_path.string().c_str(), ZIP_CREATE | ZIP_TRUNCATE, &zerr);
@@ -80,7 +83,7 @@ bool write_zip(const fs::path& staged, const fs::path& zip_path, std::string& er
         return false;
     }
     constexpr zip_uint16_t kDosDate = ((2024 - 1980) << 9) | (1 << 5) | 1;  // 2024-01-01
-    constexpr zip_uint16_t kDosTime = 12 << 11;                         // 12:00:00
+    constexpr zip_uint16_t kDosTime = 12 << 11;                             // 12:00:00
     bool ok = true;
     for (const auto& [name, bytes] : entries) {
         zip_source_t* src = zip_source_buffer(za, bytes.data(), bytes.size(), 0);

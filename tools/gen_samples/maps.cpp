@@ -9,11 +9,15 @@ namespace gen {
 
 int channels_of(Map m) {
     switch (m) {
-    case Map::albedo: case Map::normal_gl: case Map::normal_dx: case Map::emissive:
-    case Map::arm: case Map::ort: case Map::metal_rough: case Map::preview:
-        return 3;
-    default:
-        return 1;
+        case Map::albedo:
+        case Map::normal_gl:
+        case Map::normal_dx:
+        case Map::emissive:
+        case Map::arm:
+        case Map::ort:
+        case Map::metal_rough:
+        case Map::preview: return 3;
+        default: return 1;
     }
 }
 bool is_color(Map m) { return m == Map::albedo || m == Map::emissive || m == Map::preview; }
@@ -27,21 +31,21 @@ Vec3 encode_normal(Vec3 n) { return {n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z *
 Vec3 texel(const Baked& b, size_t i, Map m) {
     const Sample& s = b.s[i];
     switch (m) {
-    case Map::albedo: return encode_srgb(s.albedo);
-    case Map::normal_gl: return encode_normal(b.normal[i]);
-    case Map::normal_dx: return encode_normal({b.normal[i].x, -b.normal[i].y, b.normal[i].z});
-    case Map::roughness: return {s.rough, 0, 0};
-    case Map::gloss: return {1.f - s.rough, 0, 0};
-    case Map::metalness: return {s.metal, 0, 0};
-    case Map::occlusion: return {b.ao[i], 0, 0};
-    case Map::height: return {s.height, 0, 0};
-    case Map::opacity: return {s.opacity, 0, 0};
-    case Map::emissive: return encode_srgb(s.emissive);
-    case Map::arm: return {b.ao[i], s.rough, s.metal};
-    case Map::ort: return {b.ao[i], s.rough, s.translucency};
-    case Map::metal_rough: return {0.f, s.rough, s.metal};
-    case Map::specular: return {s.specular, 0, 0};
-    case Map::preview: break;
+        case Map::albedo: return encode_srgb(s.albedo);
+        case Map::normal_gl: return encode_normal(b.normal[i]);
+        case Map::normal_dx: return encode_normal({b.normal[i].x, -b.normal[i].y, b.normal[i].z});
+        case Map::roughness: return {s.rough, 0, 0};
+        case Map::gloss: return {1.f - s.rough, 0, 0};
+        case Map::metalness: return {s.metal, 0, 0};
+        case Map::occlusion: return {b.ao[i], 0, 0};
+        case Map::height: return {s.height, 0, 0};
+        case Map::opacity: return {s.opacity, 0, 0};
+        case Map::emissive: return encode_srgb(s.emissive);
+        case Map::arm: return {b.ao[i], s.rough, s.metal};
+        case Map::ort: return {b.ao[i], s.rough, s.translucency};
+        case Map::metal_rough: return {0.f, s.rough, s.metal};
+        case Map::specular: return {s.specular, 0, 0};
+        case Map::preview: break;
     }
     return {};
 }

@@ -9,8 +9,21 @@
 namespace gen {
 
 enum class Map {
-    albedo, normal_gl, normal_dx, roughness, gloss, metalness, occlusion, height, opacity,
-    emissive, arm, ort, metal_rough, specular, preview
+    albedo,
+    normal_gl,
+    normal_dx,
+    roughness,
+    gloss,
+    metalness,
+    occlusion,
+    height,
+    opacity,
+    emissive,
+    arm,
+    ort,
+    metal_rough,
+    specular,
+    preview
 };
 enum class Enc { png8, png16, jpg, exr_half };
 

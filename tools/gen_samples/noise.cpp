@@ -23,9 +23,7 @@ uint32_t mix32(uint32_t x) {
 uint32_t hash(int x, int y, uint32_t seed) {
     return mix32(static_cast<uint32_t>(x) * 0x9E3779B1U + mix32(static_cast<uint32_t>(y) + mix32(seed)));
 }
-float hash01(int x, int y, uint32_t seed) {
-    return static_cast<float>(hash(x, y, seed) >> 8) / 16777216.f;
-}
+float hash01(int x, int y, uint32_t seed) { return static_cast<float>(hash(x, y, seed) >> 8) / 16777216.f; }
 
 float value_noise(float u, float v, int px, int py, uint32_t seed) {
     const float x = u * fl(px), y = v * fl(py);
@@ -47,9 +45,7 @@ float fbm(float u, float v, int px, int py, int octaves, uint32_t seed) {
     }
     return sum / total;
 }
-float fbm(float u, float v, int period, int octaves, uint32_t seed) {
-    return fbm(u, v, period, period, octaves, seed);
-}
+float fbm(float u, float v, int period, int octaves, uint32_t seed) { return fbm(u, v, period, period, octaves, seed); }
 
 Cells worley(float u, float v, int period, uint32_t seed) {
     const float x = u * fl(period), y = v * fl(period);

@@ -18,7 +18,10 @@ std::string mtlx_sidecar(const SetDef& set) {
         const bool color = f.map == Map::albedo;
         const bool normal = f.map == Map::normal_gl || f.map == Map::normal_dx;
         o << "    <image name=\"" << fs::path(f.path).stem().string() << "\" type=\""
-          << (color ? "color3" : normal ? "vector3" : "float") << "\">\n"
+          << (color    ? "color3"
+              : normal ? "vector3"
+                       : "float")
+          << "\">\n"
           << "      <input name=\"file\" type=\"filename\" value=\"" << f.path << "\""
           << (color ? " colorspace=\"srgb_texture\"" : "") << " />\n    </image>\n";
     }
@@ -31,8 +34,8 @@ std::string megascans_json(const SetDef& set) {
     o << "{\n  \"id\": \"" << set.name << "\",\n  \"name\": \"Ivy Leaves\",\n  \"type\": \"atlas\",\n"
       << "  \"maps\": [\n";
     for (size_t i = 0; i < set.files.size(); ++i)
-        o << "    {\"uri\": \"" << set.files[i].path << "\", \"resolution\": \"" << set.files[i].size
-          << "x" << set.files[i].size << "\"}" << (i + 1 < set.files.size() ? "," : "") << "\n";
+        o << "    {\"uri\": \"" << set.files[i].path << "\", \"resolution\": \"" << set.files[i].size << "x"
+          << set.files[i].size << "\"}" << (i + 1 < set.files.size() ? "," : "") << "\n";
     o << "  ]\n}\n";
     return o.str();
 }
@@ -40,31 +43,31 @@ std::string megascans_json(const SetDef& set) {
 std::string encoding_name(const FileDef& f) {
     std::string dim = std::to_string(f.size) + "²";
     switch (f.enc) {
-    case Enc::png8: return dim + " PNG 8-bit";
-    case Enc::png16: return dim + " PNG 16-bit";
-    case Enc::jpg: return dim + " JPEG q90";
-    case Enc::exr_half: return dim + " EXR half";
+        case Enc::png8: return dim + " PNG 8-bit";
+        case Enc::png16: return dim + " PNG 16-bit";
+        case Enc::jpg: return dim + " JPEG q90";
+        case Enc::exr_half: return dim + " EXR half";
     }
     return dim;
 }
 
 std::string map_description(Map m) {
     switch (m) {
-    case Map::albedo: return "albedo (sRGB)";
-    case Map::normal_gl: return "normal, content OpenGL (+Y)";
-    case Map::normal_dx: return "normal, content DirectX (-Y)";
-    case Map::roughness: return "roughness";
-    case Map::gloss: return "gloss (1 - roughness)";
-    case Map::metalness: return "metalness (binary)";
-    case Map::occlusion: return "ambient occlusion";
-    case Map::height: return "height / displacement";
-    case Map::opacity: return "opacity (cut-out)";
-    case Map::emissive: return "emissive (sRGB)";
-    case Map::arm: return "packed R=AO G=roughness B=metalness";
-    case Map::ort: return "packed R=AO G=roughness B=translucency";
-    case Map::metal_rough: return "packed R=0 G=roughness B=metalness";
-    case Map::specular: return "specular level (REFL)";
-    case Map::preview: return "clutter: preview render, not a map";
+        case Map::albedo: return "albedo (sRGB)";
+        case Map::normal_gl: return "normal, content OpenGL (+Y)";
+        case Map::normal_dx: return "normal, content DirectX (-Y)";
+        case Map::roughness: return "roughness";
+        case Map::gloss: return "gloss (1 - roughness)";
+        case Map::metalness: return "metalness (binary)";
+        case Map::occlusion: return "ambient occlusion";
+        case Map::height: return "height / displacement";
+        case Map::opacity: return "opacity (cut-out)";
+        case Map::emissive: return "emissive (sRGB)";
+        case Map::arm: return "packed R=AO G=roughness B=metalness";
+        case Map::ort: return "packed R=AO G=roughness B=translucency";
+        case Map::metal_rough: return "packed R=0 G=roughness B=metalness";
+        case Map::specular: return "specular level (REFL)";
+        case Map::preview: return "clutter: preview render, not a map";
     }
     return "";
 }

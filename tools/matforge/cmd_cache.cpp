@@ -42,23 +42,24 @@ std::string mib(uint64_t b) { return std::to_string((b + (1u << 19)) >> 20) + " 
 ExitCode run_cache(const CacheArgs& a) {
     const auto folder = cache_folder(a.dir);
     if (!folder)
-        return fail("cache", "name the cache: --cache DIR or $MATFORGE_CACHE (ingest's own default is .OUT.matforge-cache "
-                             "beside its output folder OUT)");
+        return fail("cache",
+                    "name the cache: --cache DIR or $MATFORGE_CACHE (ingest's own default is .OUT.matforge-cache "
+                    "beside its output folder OUT)");
     const std::string dir = folder->string();
     std::string error;
     auto cache = Cache::open(dir, error);
     if (!cache) return fail("cache", error);
     if (a.action == "stats") {
         const auto s = cache->stats();
-        std::cout << dir << ": " << s.records << " records, " << s.blobs << " blobs, " << mib(s.blob_bytes) << " of outputs, "
-                  << mib(s.other_bytes) << " of records and digests\n";
+        std::cout << dir << ": " << s.records << " records, " << s.blobs << " blobs, " << mib(s.blob_bytes)
+                  << " of outputs, " << mib(s.other_bytes) << " of records and digests\n";
         return ExitCode::ok;
     }
     const auto max = parse_size(a.max_size);
     if (!max) return fail("cache", "--max-size must be a size such as 500M or 10G, not \"" + a.max_size + "\"");
     const auto removed = cache->prune(*max, std::chrono::seconds(a.grace));
-    std::cout << dir << ": removed " << removed.records << " records and " << removed.blobs << " blobs (" << mib(removed.blob_bytes)
-              << ")\n";
+    std::cout << dir << ": removed " << removed.records << " records and " << removed.blobs << " blobs ("
+              << mib(removed.blob_bytes) << ")\n";
     return ExitCode::ok;
 }
 

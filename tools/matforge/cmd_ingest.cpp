@@ -56,7 +56,8 @@ ExitCode run_ingest(const IngestArgs& a) {
     install_stop_handlers();
     const IngestResult r = ingestor.run(inputs);
     if (r.interrupted)
-        return interrupted("ingest", "stopped before the end; " + (std::filesystem::path(a.out_dir) / opt.manifest_name).string() +
+        return interrupted("ingest", "stopped before the end; " +
+                                         (std::filesystem::path(a.out_dir) / opt.manifest_name).string() +
                                          " is not written until a run completes (run the command again to finish)");
     if (!r.error.empty()) return fail("ingest", r.error, r.usage_error ? ExitCode::usage : ExitCode::findings);
     if (!a.quiet)
@@ -72,46 +73,47 @@ ExitCode run_ingest(const IngestArgs& a) {
     if (!a.quiet) {
         const auto counts = manifest::count_findings(r.manifest);
         say("ingest", std::to_string(r.manifest.materials.size()) + " materials, " +
-                          std::to_string(r.manifest.failures.size()) + " failed; findings: " + std::to_string(counts[2]) +
-                          " error, " + std::to_string(counts[1]) + " warning, " + std::to_string(counts[0]) +
+                          std::to_string(r.manifest.failures.size()) +
+                          " failed; findings: " + std::to_string(counts[2]) + " error, " + std::to_string(counts[1]) +
+                          " warning, " + std::to_string(counts[0]) +
                           " info; manifest: " + (std::filesystem::path(a.out_dir) / opt.manifest_name).string());
         print_attention("ingest", r.manifest);
     }
     return verdict_exit(validate::run_fails(summarize(r.manifest), fail_on_of(a.fail_on)));
 }
 
-const Register reg{{"ingest", 10,
-                    [](CLI::App& sub) -> std::function<ExitCode()> {
-                        auto a = std::make_shared<IngestArgs>();
-                        sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
-                            ->required();
-                        sub.add_option("-o,--out", a->out_dir, "output folder (created; manifest.json goes here)")
-                            ->required();
-                        sub.add_option("--preset", a->preset, "shipped preset name (see 'matforge presets') or a JSON file")
-                            ->capture_default_str();
-                        sub.add_option("-j,--jobs", a->jobs, "sets processed in parallel (0 = all cores)")
-                            ->check(CLI::Range(0, 1024))
-                            ->capture_default_str();
-                        sub.add_option("--normal-convention", a->normal,
-                                       "override the preset's normal-map convention (gl = +Y, dx = -Y)")
-                            ->check(CLI::IsMember({"gl", "dx"}));
-                        sub.add_option("--rules", a->rules_file,
-                                       "JSON rule configuration for the checks ingest runs (docs/rules.md)");
-                        sub.add_option("--shard", a->shard,
-                                       "I/N: process only shard I of N (sets assigned by size, as `matforge plan --shards N` "
-                                       "lists them); writes manifest.shard-I-of-N.json for `matforge merge`");
-                        add_fail_on(sub, a->fail_on);
-                        sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
-                        auto* cache = sub.add_option("--cache", a->cache,
-                                                     "result cache folder (default $MATFORGE_CACHE, else .OUT.matforge-cache beside the output "
-                                                     "folder): unchanged sets are restored, not recomputed");
-                        sub.add_flag("--no-cache", a->no_cache, "compute every set; read and write no cache")->excludes(cache);
-                        sub.add_flag("--force", a->force,
-                                     "replace a manifest.json matforge did not write, and files in the way of outputs "
-                                     "that no earlier run wrote (refused without it)");
-                        return [a] { return run_ingest(*a); };
-                    },
-                    "convert material sets to engine-ready textures and a manifest.json"}};
+const Register reg{
+    {"ingest", 10,
+     [](CLI::App& sub) -> std::function<ExitCode()> {
+         auto a = std::make_shared<IngestArgs>();
+         sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
+             ->required();
+         sub.add_option("-o,--out", a->out_dir, "output folder (created; manifest.json goes here)")->required();
+         sub.add_option("--preset", a->preset, "shipped preset name (see 'matforge presets') or a JSON file")
+             ->capture_default_str();
+         sub.add_option("-j,--jobs", a->jobs, "sets processed in parallel (0 = all cores)")
+             ->check(CLI::Range(0, 1024))
+             ->capture_default_str();
+         sub.add_option("--normal-convention", a->normal,
+                        "override the preset's normal-map convention (gl = +Y, dx = -Y)")
+             ->check(CLI::IsMember({"gl", "dx"}));
+         sub.add_option("--rules", a->rules_file, "JSON rule configuration for the checks ingest runs (docs/rules.md)");
+         sub.add_option("--shard", a->shard,
+                        "I/N: process only shard I of N (sets assigned by size, as `matforge plan --shards N` "
+                        "lists them); writes manifest.shard-I-of-N.json for `matforge merge`");
+         add_fail_on(sub, a->fail_on);
+         sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
+         auto* cache =
+             sub.add_option("--cache", a->cache,
+                            "result cache folder (default $MATFORGE_CACHE, else .OUT.matforge-cache beside the output "
+                            "folder): unchanged sets are restored, not recomputed");
+         sub.add_flag("--no-cache", a->no_cache, "compute every set; read and write no cache")->excludes(cache);
+         sub.add_flag("--force", a->force,
+                      "replace a manifest.json matforge did not write, and files in the way of outputs "
+                      "that no earlier run wrote (refused without it)");
+         return [a] { return run_ingest(*a); };
+     },
+     "convert material sets to engine-ready textures and a manifest.json"}};
 
 }  // namespace
 }  // namespace mf::cli

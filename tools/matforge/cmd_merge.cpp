@@ -32,9 +32,12 @@ ExitCode run_merge(const MergeArgs& a) {
     // The manifest's paths are relative to its folder: the library goes there, built from the
     // materials' .gltf files the shards wrote.
     const std::filesystem::path dir = std::filesystem::absolute(a.out).parent_path();
-    if (!write_library(*merged, dir, [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-            return write_file_atomic(dir / rel, b, e);
-        }, error))
+    if (!write_library(
+            *merged, dir,
+            [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+                return write_file_atomic(dir / rel, b, e);
+            },
+            error))
         return fail("merge", error, ExitCode::findings);
     const std::string text = json_text(manifest::to_json(*merged));
     if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
@@ -42,14 +45,15 @@ ExitCode run_merge(const MergeArgs& a) {
     return ExitCode::ok;
 }
 
-const Register reg{{"merge", 35,
-                    [](CLI::App& sub) -> std::function<ExitCode()> {
-                        auto a = std::make_shared<MergeArgs>();
-                        sub.add_option("manifests", a->inputs, "the shards' manifests (ingest --shard I/N)")->required();
-                        sub.add_option("-o,--out", a->out, "the merged manifest.json (written atomically)")->required();
-                        return [a] { return run_merge(*a); };
-                    },
-                    "merge the manifests of sharded ingests into the manifest of one run"}};
+const Register reg{
+    {"merge", 35,
+     [](CLI::App& sub) -> std::function<ExitCode()> {
+         auto a = std::make_shared<MergeArgs>();
+         sub.add_option("manifests", a->inputs, "the shards' manifests (ingest --shard I/N)")->required();
+         sub.add_option("-o,--out", a->out, "the merged manifest.json (written atomically)")->required();
+         return [a] { return run_merge(*a); };
+     },
+     "merge the manifests of sharded ingests into the manifest of one run"}};
 
 }  // namespace
 }  // namespace mf::cli

@@ -36,8 +36,11 @@ ExitCode run_plan(const PlanArgs& a) {
     nlohmann::json list = nlohmann::json::array();
     bool unreadable = !failures.empty();
     for (size_t i = 0; i < sets.size(); ++i) {
-        nlohmann::json item{{"name", sets[i].name}, {"source", sets[i].display}, {"bytes", bytes[i]},
-                            {"files", sets[i].files.size()}, {"shard", shard[i]}};
+        nlohmann::json item{{"name", sets[i].name},
+                            {"source", sets[i].display},
+                            {"bytes", bytes[i]},
+                            {"files", sets[i].files.size()},
+                            {"shard", shard[i]}};
         if (const auto key = action_key(sets[i], context, error)) item["key"] = *key;
         else {
             item["error"] = error;
@@ -47,8 +50,9 @@ ExitCode run_plan(const PlanArgs& a) {
     }
     nlohmann::json fl = nlohmann::json::array();
     for (const auto& f : failures) fl.push_back(to_json(f));
-    const nlohmann::json plan{{"plan_version", 1}, {"generator", kGenerator}, {"preset", preset->name},
-                              {"context", context}, {"shards", a.shards}, {"sets", list}, {"failures", fl}};
+    const nlohmann::json plan{{"plan_version", 1},  {"generator", kGenerator}, {"preset", preset->name},
+                              {"context", context}, {"shards", a.shards},      {"sets", list},
+                              {"failures", fl}};
     const std::string text = json_text(plan);
     if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
         return fail("plan", error, ExitCode::findings);
@@ -58,7 +62,8 @@ ExitCode run_plan(const PlanArgs& a) {
 const Register reg{{"plan", 15,
                     [](CLI::App& sub) -> std::function<ExitCode()> {
                         auto a = std::make_shared<PlanArgs>();
-                        sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
+                        sub.add_option("inputs", a->inputs,
+                                       "material folders, .zip files, or folders of many (recursive)")
                             ->required();
                         sub.add_option("-o,--out", a->out, "the work list (JSON)")->required();
                         sub.add_option("--preset", a->preset, "preset the keys are for (shipped name or JSON file)")

@@ -35,7 +35,8 @@ std::string unique_stem(const std::string& name, std::set<std::string>& taken) {
             c = '_';
     if (s.empty() || s == "." || s == "..") s = "material";
     auto key = [](std::string k) {
-        std::transform(k.begin(), k.end(), k.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        std::transform(k.begin(), k.end(), k.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
         return k;
     };
     std::string candidate = s;
@@ -45,13 +46,17 @@ std::string unique_stem(const std::string& name, std::set<std::string>& taken) {
 
 struct Job {
     std::string name, stem;
-    std::function<std::optional<render::Material>(std::vector<std::string>& notes, std::string& error)> load;
+    // `samples`: the device's block formats (DDS/KTX2 outputs go up as written where it takes them).
+    std::function<std::optional<render::Material>(const preview::BlockSupport& samples, std::vector<std::string>& notes,
+                                                  std::string& error)>
+        load;
 };
 
 // The scene with the command line's overrides applied; nullopt after printing a usage error.
 std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
     std::string error;
-    std::optional<preview::SceneFile> sf = a.scene.empty() ? preview::default_scene() : preview::read_scene_file(a.scene, error);
+    std::optional<preview::SceneFile> sf = a.scene.empty() ? preview::default_scene()
+                                                           : preview::read_scene_file(a.scene, error);
     if (!sf) {
         say("preview", error);
         return std::nullopt;
@@ -102,13 +107,16 @@ std::optional<std::vector<Job>> build_jobs(const PreviewArgs& a, const preview::
             return std::nullopt;
         }
         const std::filesystem::path dir = std::filesystem::path(a.manifest).parent_path();
-        const preview::MaterialOptions mo{a.allow_outside};
+        const preview::MaterialOptions mo{a.allow_outside, {}};
         for (manifest::Material& mm : m->materials) {
             const std::string stem = unique_stem(mm.name, stems);
             jobs.push_back({mm.name, stem,
-                            [mm = std::move(mm), dir, mo, &sf](std::vector<std::string>& notes, std::string& err)
-                                -> std::optional<render::Material> {
-                                auto mat = preview::load_material(mm, dir, mo, notes, err);
+                            [mm = std::move(mm), dir, mo, &sf](const preview::BlockSupport& samples,
+                                                               std::vector<std::string>& notes,
+                                                               std::string& err) -> std::optional<render::Material> {
+                                preview::MaterialOptions o = mo;
+                                o.samples = samples;
+                                auto mat = preview::load_material(mm, dir, o, notes, err);
                                 if (mat && sf.material && !preview::apply_scene_material(*sf.material, *mat, err))
                                     return std::nullopt;
                                 return mat;
@@ -123,7 +131,8 @@ std::optional<std::vector<Job>> build_jobs(const PreviewArgs& a, const preview::
     }
     const std::string name = std::filesystem::path(a.scene).stem().string();
     jobs.push_back({name, unique_stem(name, stems),
-                    [name, &sf](std::vector<std::string>&, std::string& err) -> std::optional<render::Material> {
+                    [name, &sf](const preview::BlockSupport&, std::vector<std::string>&,
+                                std::string& err) -> std::optional<render::Material> {
                         render::Material m;
                         m.name = name;
                         if (!preview::apply_scene_material(*sf.material, m, err)) return std::nullopt;
@@ -154,15 +163,16 @@ ExitCode run_preview(const PreviewArgs& a) {
     try {
         render::Context context(co);
         if (!quiet)
-            say("preview", context.info().name + (context.info().cpu ? " (CPU)" : "") + ", " + std::to_string(scene.width) +
-                               "x" + std::to_string(scene.height) + ", " + std::to_string(jobs->size()) + " material(s)");
+            say("preview", context.info().name + (context.info().cpu ? " (CPU)" : "") + ", " +
+                               std::to_string(scene.width) + "x" + std::to_string(scene.height) + ", " +
+                               std::to_string(jobs->size()) + " material(s)");
         render::Renderer renderer(context, scene);
         for (const std::string& n : renderer.take_notes()) say("preview", "note: " + n);
         for (size_t i = 0; i < jobs->size(); ++i) {
             const Job& job = (*jobs)[i];
             std::vector<std::string> notes;
             std::string error;
-            auto m = job.load(notes, error);
+            auto m = job.load([&renderer](uint32_t f) { return renderer.samples(f); }, notes, error);
             for (const std::string& n : notes) say("preview", "note: " + n);
             if (!m) {
                 say("preview", job.name + ": " + error);
@@ -181,7 +191,8 @@ ExitCode run_preview(const PreviewArgs& a) {
                 } else {
                     render::OutputOptions lin;
                     lin.format = render::PixelFormat::rgba32f;
-                    written = preview::write_exr(out, scene.width, scene.height, renderer.render(gm, lin).rgba32f, error);
+                    written = preview::write_exr(out, scene.width, scene.height, renderer.render(gm, lin).rgba32f,
+                                                 error);
                 }
                 if (!written) {
                     say("preview", job.name + ": " + error);
@@ -189,7 +200,9 @@ ExitCode run_preview(const PreviewArgs& a) {
                     continue;
                 }
                 if (!a.contact_sheet.empty()) tiles.push_back({job.name, scene.width, scene.height, std::move(rgba8)});
-                if (!quiet) say("preview", "[" + std::to_string(i + 1) + "/" + std::to_string(jobs->size()) + "] " + out.string());
+                if (!quiet)
+                    say("preview",
+                        "[" + std::to_string(i + 1) + "/" + std::to_string(jobs->size()) + "] " + out.string());
             } catch (const render::NoDeviceError&) {
                 throw;
             } catch (const std::exception& e) {  // this material's upload or draw failed; the others go on
@@ -219,33 +232,48 @@ ExitCode run_preview(const PreviewArgs& a) {
     return status;
 }
 
-const Register reg{{
-    "preview", 30,
-    [](CLI::App& sub) -> std::function<ExitCode()> {
-        auto a = std::make_shared<PreviewArgs>();
-        sub.add_option("manifest", a->manifest, "manifest.json written by `matforge ingest` (optional with a --scene that holds a material)");
-        sub.add_option("-o,--out", a->out, "output folder: <material name>.png|.exr (with no manifest: <scene name>.png)")->required();
-        sub.add_option("--scene", a->scene, "scene file (JSON): camera, shape, lights, background, environment, material, output; default: one white key light on a sphere, black background");
-        sub.add_option("--size", a->size, "image width and height in pixels, 1..16384 (default: the scene's, else 512)")->check(CLI::Range(1, 16384));
-        sub.add_option("--shape", a->shape, "sphere | cube | plane (default: the scene's, else sphere)")->check(CLI::IsMember({"sphere", "cube", "plane"}));
-        sub.add_option("--light", a->lights,
-                       "light, repeatable; replaces the scene's lights: dir:X,Y,Z[:INTENSITY[:R,G,B]] (direction of travel; default intensity 3) "
-                       "or point:X,Y,Z[:INTENSITY[:R,G,B]] (default intensity 10, E = I/d²)")
-            ->allow_extra_args(false);
-        sub.add_option("--env", a->env, "equirectangular environment (.hdr, .exr; linear) for image-based lighting (default: none)");
-        sub.add_option("--format", a->format, "png (8-bit, sRGB-encoded) | exr (linear float radiance); default png")->check(CLI::IsMember({"png", "exr"}));
-        sub.add_option("--contact-sheet", a->contact_sheet, "also write every material on one labeled PNG");
-        sub.add_option("--device", a->device, "auto (a GPU if any, else lavapipe) | gpu | cpu; default auto")->check(CLI::IsMember({"auto", "gpu", "cpu"}));
-        sub.add_option("--brdf", a->brdf,
-                       "standard (GGX, Schlick Fresnel, Schlick-GGX, Lambert) | accurate (height-correlated Smith, "
-                       "multiple-scattering compensation) | assignment (un-normalized Lambert: diffuse without 1/π, π× too "
-                       "strong against the specular); default: the scene's, else standard")
-            ->check(CLI::IsMember({"standard", "accurate", "assignment"}));
-        sub.add_flag("--allow-outside", a->allow_outside, "read manifest textures that lie outside the manifest's folder");
-        sub.add_flag("--vk-validation", a->validation, "run with the Khronos validation layer and report its messages (diagnostics; slow)");
-        return [a] { return run_preview(*a); };
-    },
-    "render the materials of a manifest with a physically based BRDF, headless (PNG or EXR)"}};
+const Register reg{
+    {"preview", 30,
+     [](CLI::App& sub) -> std::function<ExitCode()> {
+         auto a = std::make_shared<PreviewArgs>();
+         sub.add_option("manifest", a->manifest,
+                        "manifest.json written by `matforge ingest` (optional with a --scene that holds a material)");
+         sub.add_option("-o,--out", a->out,
+                        "output folder: <material name>.png|.exr (with no manifest: <scene name>.png)")
+             ->required();
+         sub.add_option(
+             "--scene", a->scene,
+             "scene file (JSON): camera, shape, lights, background, environment, material, output; default: one white key light on a sphere, black background");
+         sub.add_option("--size", a->size,
+                        "image width and height in pixels, 1..16384 (default: the scene's, else 512)")
+             ->check(CLI::Range(1, 16384));
+         sub.add_option("--shape", a->shape, "sphere | cube | plane (default: the scene's, else sphere)")
+             ->check(CLI::IsMember({"sphere", "cube", "plane"}));
+         sub.add_option(
+                "--light", a->lights,
+                "light, repeatable; replaces the scene's lights: dir:X,Y,Z[:INTENSITY[:R,G,B]] (direction of travel; default intensity 3) "
+                "or point:X,Y,Z[:INTENSITY[:R,G,B]] (default intensity 10, E = I/d²)")
+             ->allow_extra_args(false);
+         sub.add_option("--env", a->env,
+                        "equirectangular environment (.hdr, .exr; linear) for image-based lighting (default: none)");
+         sub.add_option("--format", a->format, "png (8-bit, sRGB-encoded) | exr (linear float radiance); default png")
+             ->check(CLI::IsMember({"png", "exr"}));
+         sub.add_option("--contact-sheet", a->contact_sheet, "also write every material on one labeled PNG");
+         sub.add_option("--device", a->device, "auto (a GPU if any, else lavapipe) | gpu | cpu; default auto")
+             ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
+         sub.add_option(
+                "--brdf", a->brdf,
+                "standard (GGX, Schlick Fresnel, Schlick-GGX, Lambert) | accurate (height-correlated Smith, "
+                "multiple-scattering compensation) | assignment (un-normalized Lambert: diffuse without 1/π, π× too "
+                "strong against the specular); default: the scene's, else standard")
+             ->check(CLI::IsMember({"standard", "accurate", "assignment"}));
+         sub.add_flag("--allow-outside", a->allow_outside,
+                      "read manifest textures that lie outside the manifest's folder");
+         sub.add_flag("--vk-validation", a->validation,
+                      "run with the Khronos validation layer and report its messages (diagnostics; slow)");
+         return [a] { return run_preview(*a); };
+     },
+     "render the materials of a manifest with a physically based BRDF, headless (PNG or EXR)"}};
 
 }  // namespace
 }  // namespace mf::cli

@@ -58,24 +58,33 @@ ExitCode run_report(const ReportArgs& a) {
     return r.problems.empty() ? ExitCode::ok : ExitCode::findings;
 }
 
-const Register reg{{
-    "report", 32,
-    [](CLI::App& sub) -> std::function<ExitCode()> {
-        auto a = std::make_shared<ReportArgs>();
-        sub.add_option("manifest", a->manifest, "manifest.json written by `matforge ingest`")->required();
-        sub.add_option("-o,--out", a->out, "the report's folder: index.html, rules.html and <material>/*.png")->required();
-        sub.add_option("--previews", a->previews, "the -o folder of `matforge preview` (<material>.png): the contact sheet and each card's preview");
-        sub.add_option("--compare", a->compare, "the manifest of another preset's ingest of the same sets: its outputs beside this one's (before/after)");
-        sub.add_option("--compare-previews", a->compare_previews, "the previews of the --compare manifest");
-        sub.add_option("--thumb-size", a->thumb_size, "longest side of every picture, pixels, 16..2048 (default 256)")->check(CLI::Range(16, 2048));
-        sub.add_option("--page-size", a->page_size, "cards per page in the browser, 1..100000 (default 50)")->check(CLI::Range(1, 100000));
-        sub.add_option("-j,--jobs", a->jobs, "materials in parallel, 0..1024; 0 = one per hardware thread (default 0)")->check(CLI::Range(0, 1024));
-        sub.add_flag("--no-sources", a->no_sources, "no thumbnails of the source maps (faster on large libraries)");
-        sub.add_flag("--allow-outside", a->allow_outside, "read manifest outputs that lie outside the manifest's folder");
-        sub.add_flag("-q,--quiet", a->quiet, "no summary line on stderr");
-        return [a] { return run_report(*a); };
-    },
-    "write a static HTML report of a manifest: previews, sources, outputs, findings, range overlays"}};
+const Register reg{
+    {"report", 32,
+     [](CLI::App& sub) -> std::function<ExitCode()> {
+         auto a = std::make_shared<ReportArgs>();
+         sub.add_option("manifest", a->manifest, "manifest.json written by `matforge ingest`")->required();
+         sub.add_option("-o,--out", a->out, "the report's folder: index.html, rules.html and <material>/*.png")
+             ->required();
+         sub.add_option(
+             "--previews", a->previews,
+             "the -o folder of `matforge preview` (<material>.png): the contact sheet and each card's preview");
+         sub.add_option(
+             "--compare", a->compare,
+             "the manifest of another preset's ingest of the same sets: its outputs beside this one's (before/after)");
+         sub.add_option("--compare-previews", a->compare_previews, "the previews of the --compare manifest");
+         sub.add_option("--thumb-size", a->thumb_size, "longest side of every picture, pixels, 16..2048 (default 256)")
+             ->check(CLI::Range(16, 2048));
+         sub.add_option("--page-size", a->page_size, "cards per page in the browser, 1..100000 (default 50)")
+             ->check(CLI::Range(1, 100000));
+         sub.add_option("-j,--jobs", a->jobs, "materials in parallel, 0..1024; 0 = one per hardware thread (default 0)")
+             ->check(CLI::Range(0, 1024));
+         sub.add_flag("--no-sources", a->no_sources, "no thumbnails of the source maps (faster on large libraries)");
+         sub.add_flag("--allow-outside", a->allow_outside,
+                      "read manifest outputs that lie outside the manifest's folder");
+         sub.add_flag("-q,--quiet", a->quiet, "no summary line on stderr");
+         return [a] { return run_report(*a); };
+     },
+     "write a static HTML report of a manifest: previews, sources, outputs, findings, range overlays"}};
 
 }  // namespace
 }  // namespace mf::cli

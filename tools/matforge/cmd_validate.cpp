@@ -28,8 +28,9 @@ ExitCode run_validate(const ValidateArgs& a) {
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
     install_stop_handlers();
-    const validate::Report report =
-        validate_inputs(std::vector<std::filesystem::path>(a.inputs.begin(), a.inputs.end()), *preset, opt);
+    const validate::Report report = validate_inputs(std::vector<std::filesystem::path>(a.inputs.begin(),
+                                                                                       a.inputs.end()),
+                                                    *preset, opt);
     if (stop_requested()) return interrupted("validate", "stopped before the end; no report is written");
     std::vector<std::string> names;
     for (const auto& m : report.materials) names.push_back(m.name);
@@ -43,34 +44,34 @@ ExitCode run_validate(const ValidateArgs& a) {
     if (a.report_file.empty()) {
         std::cout << text;
         if (!text.empty() && text.back() != '\n') std::cout << "\n";
-    } else if (!write_file_atomic(a.report_file, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()),
-                                  error)) {
+    } else if (!write_file_atomic(a.report_file,
+                                  std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error)) {
         return fail("validate", error);
     }
     return verdict_exit(validate::run_fails(validate::summarize(report), fail_on));
 }
 
-const Register reg{{"validate", 20,
-                    [](CLI::App& sub) -> std::function<ExitCode()> {
-                        auto a = std::make_shared<ValidateArgs>();
-                        sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
-                            ->required();
-                        sub.add_option("--preset", a->preset,
-                                       "preset whose needs (MISSING_MAP) and validate block apply")
-                            ->capture_default_str();
-                        sub.add_option("--report", a->report, "report format")
-                            ->check(CLI::IsMember({"text", "json", "junit", "sarif"}))
-                            ->capture_default_str();
-                        sub.add_option("--report-file", a->report_file, "write the report here instead of stdout");
-                        sub.add_option("--rules", a->rules_file,
-                                       "JSON rule configuration: thresholds, severities, suppressions (docs/rules.md)");
-                        sub.add_option("-j,--jobs", a->jobs, "sets validated in parallel (0 = all cores)")
-                            ->check(CLI::Range(0, 1024))
-                            ->capture_default_str();
-                        add_fail_on(sub, a->fail_on);
-                        return [a] { return run_validate(*a); };
-                    },
-                    "check material sets (PBR plausibility, channels, normal convention) for CI"}};
+const Register reg{
+    {"validate", 20,
+     [](CLI::App& sub) -> std::function<ExitCode()> {
+         auto a = std::make_shared<ValidateArgs>();
+         sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
+             ->required();
+         sub.add_option("--preset", a->preset, "preset whose needs (MISSING_MAP) and validate block apply")
+             ->capture_default_str();
+         sub.add_option("--report", a->report, "report format")
+             ->check(CLI::IsMember({"text", "json", "junit", "sarif"}))
+             ->capture_default_str();
+         sub.add_option("--report-file", a->report_file, "write the report here instead of stdout");
+         sub.add_option("--rules", a->rules_file,
+                        "JSON rule configuration: thresholds, severities, suppressions (docs/rules.md)");
+         sub.add_option("-j,--jobs", a->jobs, "sets validated in parallel (0 = all cores)")
+             ->check(CLI::Range(0, 1024))
+             ->capture_default_str();
+         add_fail_on(sub, a->fail_on);
+         return [a] { return run_validate(*a); };
+     },
+     "check material sets (PBR plausibility, channels, normal convention) for CI"}};
 
 }  // namespace
 }  // namespace mf::cli

@@ -16,9 +16,9 @@
 namespace mf::cli {
 
 enum class ExitCode : int {
-    ok = 0,        // done; no finding at or above --fail-on
-    findings = 1,  // a finding at or above --fail-on, or an input not processed / an output not written
-    usage = 2,     // a usage or configuration error: option, preset, rules, scene, manifest, no Vulkan device
+    ok = 0,                  // done; no finding at or above --fail-on
+    findings = 1,            // a finding at or above --fail-on, or an input not processed / an output not written
+    usage = 2,               // a usage or configuration error: option, preset, rules, scene, manifest, no Vulkan device
     interrupted_int = 130,   // stopped by SIGINT (128 + 2), cleanly: no temporary, no stale manifest
     interrupted_term = 143,  // stopped by SIGTERM (128 + 15)
 };

@@ -20,8 +20,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string(mf::kGenerator));
     app.require_subcommand(1);
     auto commands = registry();
-    std::sort(commands.begin(), commands.end(),
-              [](const Command& a, const Command& b) { return a.order < b.order; });
+    std::sort(commands.begin(), commands.end(), [](const Command& a, const Command& b) { return a.order < b.order; });
     std::map<CLI::App*, std::function<ExitCode()>> runs;
     for (auto& c : commands) {
         CLI::App* sub = app.add_subcommand(c.name, c.description);

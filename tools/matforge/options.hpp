@@ -24,7 +24,8 @@ inline void add_fail_on(CLI::App& sub, std::string& fail_on) {
 // file system (blobs are hard links to the outputs, no second copy), outside the output folder
 // (which holds only what the manifest lists), and hidden, so a walk of an input folder that
 // holds the output skips it. nullopt when `out` is empty (the cache command without --cache).
-inline std::optional<std::filesystem::path> cache_folder(const std::string& given, const std::filesystem::path& out = {}) {
+inline std::optional<std::filesystem::path> cache_folder(const std::string& given,
+                                                         const std::filesystem::path& out = {}) {
     if (!given.empty()) return std::filesystem::path(given);
     if (const char* c = std::getenv("MATFORGE_CACHE"); c && *c) return std::filesystem::path(c);
     if (out.empty()) return std::nullopt;

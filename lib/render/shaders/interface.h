@@ -101,6 +101,7 @@ MF_CONST int kSpecOcclusionInvert = 17;
 MF_CONST int kSpecOpacityTex = 18;
 MF_CONST int kSpecOpacityChannel = 19;
 MF_CONST int kSpecOpacityInvert = 20;
+MF_CONST int kSpecNormalZFromXy = 21;  // a two-channel normal map (BC5): Z rebuilt from X and Y
 
 // brdf_lut.glsl
 MF_CONST int kSpecLutCorrelated = 0;
@@ -196,6 +197,7 @@ struct ShadeSpecialization {
     int32_t opacity_tex = -1;
     int32_t opacity_channel = 0;
     uint32_t opacity_invert = 0;
+    uint32_t normal_z_from_xy = 0;
 
     // The texture slots the variant samples (−1 where a role is a constant).
     std::array<int32_t, 7> texture_slots() const {

@@ -16,6 +16,7 @@ layout(constant_id = kSpecAlbedoTex) const int ALBEDO_TEX = -1;  // texture slot
 layout(constant_id = kSpecEmissiveTex) const int EMISSIVE_TEX = -1;
 layout(constant_id = kSpecNormalTex) const int NORMAL_TEX = -1;
 layout(constant_id = kSpecNormalGreenDown) const bool NORMAL_GREEN_DOWN = false;  // DirectX normal map
+layout(constant_id = kSpecNormalZFromXy) const bool NORMAL_Z_FROM_XY = false;  // X, Y stored only (BC5)
 layout(constant_id = kSpecRoughnessTex) const int ROUGHNESS_TEX = -1;
 layout(constant_id = kSpecRoughnessChannel) const int ROUGHNESS_CH = 0;
 layout(constant_id = kSpecRoughnessInvert) const bool ROUGHNESS_INVERT = false;  // smoothness
@@ -115,6 +116,8 @@ void main() {
     if (NORMAL_TEX >= 0) {
         vec3 b = cross(n, t) * bsign;  // toward +v
         vec3 tn = sample_role(NORMAL_TEX, st, st_dx, st_dy).xyz * 2.0 - 1.0;
+        // BC5 keeps X and Y (its blue reads 0): the unit vector's Z is the rest of its length.
+        if (NORMAL_Z_FROM_XY) tn.z = sqrt(max(1.0 - dot(tn.xy, tn.xy), 0.0));
         if (NORMAL_GREEN_DOWN) tn.y = -tn.y;
         vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
         float len2 = dot(mapped, mapped);

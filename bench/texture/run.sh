@@ -1,0 +1,149 @@
+#!/usr/bin/env bash
+# run.sh: GPU block compression — time and error per format and effort for 1K/2K/4K maps,
+# matforge's encoders (libsquish for BCn, ARM's astcenc library for ASTC: lib/texture) beside the
+# command-line tools a studio would script, on the same inputs in one run: NVIDIA's `nvcompress`
+# (NVIDIA Texture Tools 2.0.8, package libnvtt-bin; CPU, no CUDA here) and ARM's `astcenc` 4.2
+# (package astcenc). Builds nothing.
+#
+#   bench/texture/run.sh [BUILD_DIR (build)] [--quick] [--work DIR] [--results DIR]
+#
+# Inputs: bench/throughput/make_library's smooth-noise maps (albedo, GL normal, roughness) at
+# 1K, 2K and 4K (--quick: 1K), converted to 8-bit PNG once so every tool reads the same file.
+# Each encode is one process per map, timed wall-clock with /usr/bin/time (reading the PNG,
+# encoding level 0, writing the file): what a script pays per file. Error: each output decoded
+# back (nvdecompress, astcenc -d*, texture_bench decode) and compared with the PNG by one
+# measure (texture_bench psnr): PSNR over the channels the format stores; for normals X, Y and
+# the mean angle to the source's unit vector in degrees.
+# Writes RESULTS/results.md and results.csv (default docs/texture/ for a full run; WORK/ for
+# --quick).
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+repo=$(cd "$here/../.." && pwd)
+invocation="bench/texture/run.sh${*:+ $*}"
+build=build quick=0 work=/tmp/matforge-texture-bench results=""
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --quick) quick=1; shift ;;
+    --work) work=$2; shift 2 ;;
+    --results) results=$2; shift 2 ;;
+    -*) echo "usage: run.sh [BUILD_DIR] [--quick] [--work DIR] [--results DIR]" >&2; exit 2 ;;
+    *) build=$1; shift ;;
+  esac
+done
+[[ $build = /* ]] || build=$repo/$build
+tb=$build/bench-texture/texture_bench
+make_library=$build/bench-throughput/make_library
+for b in "$tb" "$make_library"; do [[ -x $b ]] || { echo "run.sh: $b not built" >&2; exit 1; }; done
+for t in nvcompress nvdecompress astcenc oiiotool; do
+  command -v "$t" >/dev/null || { echo "run.sh: $t missing (scripts/bootstrap.sh installs libnvtt-bin, astcenc, openimageio-tools)" >&2; exit 1; }
+done
+if ((quick)); then sizes=(1k); results=${results:-$work}; else sizes=(1k 2k 4k); results=${results:-$repo/docs/texture}; fi
+rm -rf "$work" && mkdir -p "$work" "$results"
+csv=$results/results.csv
+echo "size,map,format,tool,effort,seconds,psnr_db,angle_deg,bytes" > "$csv"
+
+# ---- inputs: one set per size, its albedo, normal and roughness as 8-bit PNG
+for s in "${sizes[@]}"; do
+  args=(--1k 0 --2k 0 --4k 0)
+  case $s in 1k) args[1]=1 ;; 2k) args[3]=1 ;; 4k) args[5]=1 ;; esac
+  "$make_library" "$work/lib-$s" "${args[@]}" >&2
+  set_dir=$(find "$work/lib-$s/sets" -mindepth 1 -maxdepth 1 -type d | head -1)
+  pick() { find "$set_dir" -maxdepth 1 -iname "*$1*" | grep -viE 'dx|preview' | sort | head -1; }
+  mkdir -p "$work/in/$s"
+  oiiotool "$(pick color)" --ch R,G,B -d uint8 -o "$work/in/$s/albedo.png"
+  oiiotool "$(pick normalgl)" --ch R,G,B -d uint8 -o "$work/in/$s/normal.png"
+  oiiotool "$(pick roughness)" --ch 0 -d uint8 -o "$work/in/$s/roughness.png"
+done
+
+# time_of CMD...: wall seconds of one run (its output to $work/log)
+time_of() {
+  /usr/bin/time -f %e -o "$work/t" "$@" >"$work/log" 2>&1 || { cat "$work/log" >&2; return 1; }
+  cat "$work/t"
+}
+# row SIZE MAP FORMAT TOOL EFFORT SECONDS DECODED CHANNELS OUTFILE
+row() {
+  local q angle=""
+  q=$("$tb" psnr "$work/in/$1/$2.png" "$7" "$8")
+  [[ $8 == 2 ]] && angle=${q#* }
+  echo "$1,$2,$3,$4,$5,$6,${q%% *},$angle,$(stat -c %s "$9")" >> "$csv"
+  echo "run.sh: $1 $2 $3 $4 $5: $6 s, ${q} ($(stat -c %s "$9") bytes)" >&2
+}
+
+o=$work/out
+mkdir -p "$o"
+for s in "${sizes[@]}"; do
+  in=$work/in/$s
+  # name map format channels matforge-flags nvcompress-flags astcenc-block astcenc-mode
+  while read -r map format ch mflags nvflags block amode; do
+    [[ $mflags == - ]] && mflags=""
+    for effort in fast normal thorough; do
+      f=$o/$s-$map-$format-mf-$effort
+      t=$(time_of "$tb" encode "$in/$map.png" "$f.dds" "$format" "$effort" $mflags)
+      "$tb" decode "$f.dds" "$f.png"
+      row "$s" "$map" "$format" matforge "$effort" "$t" "$f.png" "$ch" "$f.dds"
+    done
+    if [[ $nvflags != - ]]; then
+      for effort in fast normal; do
+        f=$o/$s-$map-$format-nv-$effort
+        fast=""
+        [[ $effort == fast ]] && fast=-fast
+        # shellcheck disable=SC2086
+        t=$(time_of nvcompress -nocuda -nomips -repeat $fast ${nvflags//,/ } "$in/$map.png" "$f.dds")
+        (cd "$o" && nvdecompress "$f.dds" >/dev/null 2>&1)
+        row "$s" "$map" "$format" nvcompress "$effort" "$t" "$f.tga" "$ch" "$f.dds"
+      done
+    fi
+    if [[ $block != - ]]; then
+      for effort in fast medium thorough; do
+        f=$o/$s-$map-$format-astc-$effort
+        t=$(time_of astcenc "-c$amode" "$in/$map.png" "$f.astc" "$block" "-$effort" -silent $([[ $map == normal ]] && echo -normal))
+        astcenc "-d$amode" "$f.astc" "$f.png" -silent >/dev/null
+        e=$effort
+        [[ $e == medium ]] && e=normal
+        row "$s" "$map" "$format" astcenc "$e" "$t" "$f.png" "$ch" "$f.astc"
+      done
+    fi
+  done <<'EOF'
+albedo bc1 3 --srgb -bc1 - -
+roughness bc4 1 - -bc4 - -
+normal bc5 2 --normal -bc5,-normal - -
+albedo astc-6x6 3 --srgb - 6x6 s
+normal astc-4x4 2 --normal - 4x4 l
+EOF
+done
+
+python3 - "$csv" "$results/results.md" "$invocation" "$(nproc)" <<'EOF'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+out, invocation, cores = sys.argv[2], sys.argv[3], sys.argv[4]
+L = ["# GPU block compression: matforge against nvcompress and astcenc", "",
+     f"`{invocation}` on {cores} cores. One process per map, wall seconds (/usr/bin/time: read the "
+     "8-bit PNG, encode level 0, write the file); error of the decoded level 0 against the PNG: PSNR "
+     "over the channels the format stores (normals: X and Y; with the mean angle between unit "
+     "vectors). nvcompress runs on the CPU (-nocuda; NVTT 2.0.8 has no effort level between "
+     "`-fast` and its default). astcenc's own effort names: fast, medium (listed as normal), "
+     "thorough. matforge: its `effort` preset field.", ""]
+keyf = lambda r: (r["size"], r["map"], r["format"])
+groups = []
+for r in rows:
+    if keyf(r) not in groups: groups.append(keyf(r))
+L += ["| size | map | format | tool | effort | seconds | PSNR dB | mean angle ° | bytes |",
+      "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: |"]
+for g in groups:
+    for r in rows:
+        if keyf(r) == g:
+            L.append(f"| {r['size']} | {r['map']} | {r['format']} | {r['tool']} | {r['effort']} | {float(r['seconds']):.2f} | "
+                     f"{float(r['psnr_db']):.2f} | {r['angle_deg'] or ''} | {r['bytes']} |")
+L += ["", "## matforge against the peer at the same effort", "",
+      "| size | format | effort | peer | matforge s / peer s | matforge dB − peer dB |",
+      "| --- | --- | --- | --- | ---: | ---: |"]
+for g in groups:
+    mf = {r["effort"]: r for r in rows if keyf(r) == g and r["tool"] == "matforge"}
+    for r in rows:
+        if keyf(r) == g and r["tool"] != "matforge" and r["effort"] in mf:
+            m = mf[r["effort"]]
+            L.append(f"| {g[0]} | {g[2]} | {r['effort']} | {r['tool']} | "
+                     f"{float(m['seconds']) / max(float(r['seconds']), 1e-3):.2f} | {float(m['psnr_db']) - float(r['psnr_db']):+.2f} |")
+open(out, "w").write("\n".join(L) + "\n")
+EOF
+cat "$results/results.md"
