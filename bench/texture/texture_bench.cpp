@@ -85,11 +85,13 @@ int encode(int argc, char** argv) {
     Image8 src;
     if (!read8(in, src, error)) return fail(error);
     // The channels the format stores (a normal keeps X, Y, Z for ASTC; BC5 encodes X, Y).
-    const int keep = opt.format->channels == 1 ? 1 : normal ? 3 : std::min(std::max(src.channels, 3), opt.format->channels);
+    const int keep = opt.format->channels == 1 ? 1
+                     : normal                  ? 3
+                                               : std::min(std::max(src.channels, 3), opt.format->channels);
     const Image8 level0 = channels(src, keep);
     std::vector<mf::texture::ChannelKind> kinds;
     for (int c = 0; c < keep; ++c)
-        kinds.push_back(normal ? mf::texture::ChannelKind::normal
+        kinds.push_back(normal          ? mf::texture::ChannelKind::normal
                         : srgb && c < 3 ? mf::texture::ChannelKind::srgb_color
                                         : mf::texture::ChannelKind::data);
     std::vector<Image8> chain{level0};

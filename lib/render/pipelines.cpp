@@ -188,8 +188,8 @@ std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
        << c.num_directional << " point" << c.num_point << (c.has_env ? " env" : "")
        << " albedo:" << role_text(c.albedo_tex)
        << " normal:" << (c.normal_tex >= 0 ? (c.normal_green_down ? "dx" : "gl") : "none")
-       << (c.normal_z_from_xy ? "+z" : "")
-       << " roughness:" << role_text(c.roughness_tex) << " metalness:" << role_text(c.metalness_tex);
+       << (c.normal_z_from_xy ? "+z" : "") << " roughness:" << role_text(c.roughness_tex)
+       << " metalness:" << role_text(c.metalness_tex);
     if (c.emissive_tex >= 0) os << " emissive:tex";
     if (c.opacity_tex >= 0) os << " opacity:tex";
     if (c.occlusion_tex >= 0) os << " occlusion:tex";

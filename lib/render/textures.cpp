@@ -210,7 +210,8 @@ const BlockFormatDesc* block_format_desc(uint32_t vk_format) {
         {VK_FORMAT_ASTC_8x8_UNORM_BLOCK, VK_FORMAT_ASTC_8x8_SRGB_BLOCK, 8, 8, 16},
     };
     for (const BlockFormatDesc& f : kFormats)
-        if (static_cast<uint32_t>(f.unorm) == vk_format || (f.srgb != VK_FORMAT_UNDEFINED && static_cast<uint32_t>(f.srgb) == vk_format))
+        if (static_cast<uint32_t>(f.unorm) == vk_format ||
+            (f.srgb != VK_FORMAT_UNDEFINED && static_cast<uint32_t>(f.srgb) == vk_format))
             return &f;
     return nullptr;
 }
@@ -229,11 +230,12 @@ PreparedTexture prepare_blocks(const Device& d, const Texture& t, MipKind kind) 
     if (t.width == 0 || t.height == 0 || t.block_levels.empty()) throw Error("block-compressed texture without levels");
     uint32_t w = t.width, h = t.height;
     for (size_t i = 0; i < t.block_levels.size(); ++i) {
-        const size_t expected = size_t{(w + f->block_width - 1) / f->block_width} * ((h + f->block_height - 1) / f->block_height) *
-                                f->block_bytes;
+        const size_t expected = size_t{(w + f->block_width - 1) / f->block_width} *
+                                ((h + f->block_height - 1) / f->block_height) * f->block_bytes;
         if (t.block_levels[i].size() != expected)
-            throw Error("block-compressed level " + std::to_string(i) + " (" + std::to_string(w) + "x" + std::to_string(h) +
-                        ") holds " + std::to_string(t.block_levels[i].size()) + " bytes, not " + std::to_string(expected));
+            throw Error("block-compressed level " + std::to_string(i) + " (" + std::to_string(w) + "x" +
+                        std::to_string(h) + ") holds " + std::to_string(t.block_levels[i].size()) + " bytes, not " +
+                        std::to_string(expected));
         out.levels.push_back({w, h, t.block_levels[i]});
         if (w == 1 && h == 1) break;
         w = std::max(1u, w / 2);
