@@ -39,14 +39,27 @@ struct SceneMaterial {
 
 struct SceneFile {
     render::Scene scene;           // defaults: 512², one white key light, sphere, black
-    render::OutputOptions output;  // transfer and exposure
+    render::OutputOptions output;  // transfer, exposure and tone mapping
     std::optional<SceneMaterial> material;
     std::optional<std::filesystem::path> environment;  // resolved path
     float environment_intensity = 1.f;
     bool shape_size_given = false;
+    bool lookdev = false;  // default_scene(): the studio environment is the built-in one
 };
 
+// The look-dev scene `preview` uses when no scene file is given: the built-in studio
+// environment (studio_environment) for image-based lighting, one key light from its key
+// softbox, a mid-grey background, Khronos PBR Neutral tone mapping.
 SceneFile default_scene();
+// `--scene reference` and the base every scene file starts from: one white directional light
+// (intensity 3), a sphere, a black background, no environment, no tone mapping (the scenes the
+// CPU-reference tests hold the renderer to).
+SceneFile reference_scene();
+// A photographic studio generated deterministically (512x256, linear radiance): a grey
+// cyclorama with a large warm key softbox (camera left, above), a cool fill (right), a narrow rim
+// strip behind and an overhead light. Generated rather than shipped: the same radiance on every
+// machine, no licence to track, no file to read.
+std::shared_ptr<const render::Environment> studio_environment();
 // nullopt + `error` naming `display_name` and the offending key. Values are range-checked:
 // colors are non-negative, albedo, roughness and metalness within [0, 1].
 std::optional<SceneFile> parse_scene(const nlohmann::json& j, const std::filesystem::path& base_dir,

@@ -22,11 +22,6 @@ float default_shape_size(render::ShapeType t) {
     return 1.f;
 }
 
-SceneFile default_scene() {
-    SceneFile s;  // render::Scene's defaults are the spec's: one white key light, a sphere
-    return s;
-}
-
 namespace {
 
 // Parsing stops at the first problem: a SceneError carries it to the one catch in parse_scene.
@@ -103,7 +98,7 @@ SceneMaterial::Map map_ref(const json& j, const std::filesystem::path& base, con
 }
 
 SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base, const std::string& name) {
-    SceneFile out = default_scene();
+    SceneFile out = reference_scene();  // a scene file says what it wants on top of the reference
     render::Scene& sc = out.scene;
     check_keys(j, name,
                {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf"});
@@ -224,7 +219,12 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
     }
     if (const json* o = find(j, "output")) {
         const std::string w = name + ": output";
-        check_keys(*o, w, {"transfer", "exposure"});
+        check_keys(*o, w, {"transfer", "exposure", "tonemap"});
+        if (const json* t = find(*o, "tonemap")) {
+            const auto tm = t->is_string() ? render::parse_tonemap(t->get<std::string>()) : std::nullopt;
+            if (!tm) fail(w + ".tonemap", "expected \"none\", \"neutral\" or \"aces\"");
+            out.output.tonemap = *tm;
+        }
         if (const json* t = find(*o, "transfer")) {
             if (*t == "srgb") out.output.transfer = render::Transfer::srgb;
             else if (*t == "linear") out.output.transfer = render::Transfer::linear;

@@ -98,7 +98,10 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
         d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_pipeline);
         d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_layout, 0, 1, &r.encode_set, 0,
                                      nullptr);
-        const gpu::EncodeParams params{{w, h}, output.exposure, output.transfer == Transfer::srgb ? 1u : 0u};
+        const gpu::EncodeParams params{{w, h},
+                                       output.exposure,
+                                       output.transfer == Transfer::srgb ? 1u : 0u,
+                                       static_cast<uint32_t>(output.tonemap)};
         d.fn.vkCmdPushConstants(cmd, r.encode_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
         d.fn.vkCmdDispatch(cmd, tile_groups(w), tile_groups(h), 1);
         s.end_pass();

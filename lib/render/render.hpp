@@ -219,6 +219,15 @@ void check_material(const Material& m);
 // Rendering
 
 enum class Transfer { srgb, linear };
+// Applied once to the exposed linear radiance before the transfer curve (rgba8 only):
+//  none     clipped at 1 (the reference scenes: exact against the CPU evaluation);
+//  neutral  Khronos PBR Neutral (Khronos 3D Commerce, 2024): base colors up to 0.8 stay as
+//           they are (hue and value of a material's albedo under unit light read true), highlights
+//           compress smoothly to 1 and desaturate toward white;
+//  aces     the ACES reference rendering + sRGB output transform as fitted by Hill (2016): a
+//           filmic contrast curve that darkens and saturates mid-tones.
+enum class Tonemap { none, neutral, aces };
+std::optional<Tonemap> parse_tonemap(std::string_view s);  // "none" | "neutral" | "aces"
 enum class PixelFormat { rgba8, rgba32f };
 struct OutputOptions {
     PixelFormat format = PixelFormat::rgba8;
@@ -226,6 +235,7 @@ struct OutputOptions {
     // curve for sRGB), rounded to nearest. Rgba32F is the linear radiance itself.
     Transfer transfer = Transfer::srgb;
     float exposure = 1.f;
+    Tonemap tonemap = Tonemap::none;
 };
 
 struct Frame {

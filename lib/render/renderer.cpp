@@ -19,6 +19,18 @@ std::optional<Brdf> parse_brdf(std::string_view s) {
     return std::nullopt;
 }
 
+static_assert(static_cast<int>(Tonemap::none) == gpu::kTonemapNone &&
+                  static_cast<int>(Tonemap::neutral) == gpu::kTonemapNeutral &&
+                  static_cast<int>(Tonemap::aces) == gpu::kTonemapAces,
+              "EncodeParams::tonemap carries render::Tonemap as it is");
+
+std::optional<Tonemap> parse_tonemap(std::string_view s) {
+    if (s == "none") return Tonemap::none;
+    if (s == "neutral") return Tonemap::neutral;
+    if (s == "aces") return Tonemap::aces;
+    return std::nullopt;
+}
+
 int32_t detail::brdf_model_id(Brdf b) {
     switch (b) {
         case Brdf::standard: return gpu::kBrdfStandard;

@@ -84,6 +84,37 @@ TEST(PreviewCli, GpuPresetsPreviewLikeThePngIngest) {
     }
 }
 
+// The default scene is the look-dev studio: the metal's side away from the key light still
+// reflects the environment (not black as under one light), the background is mid grey through
+// PBR Neutral (0.18 linear -> code 105), and `--scene reference` is exactly the scene a scene file
+// starts from (an empty scene file gives the same bytes), on black.
+TEST(PreviewCli, DefaultIsLookDevAndReferenceIsExact) {
+    const fs::path work = temp_dir("lookdev");
+    ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "out")).code, 0);
+    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 64 --device cpu -o ";
+    ASSERT_EQ(run(base + q(work / "lookdev")).code, 0);
+    ASSERT_EQ(run(base + q(work / "reference") + " --scene reference").code, 0);
+    write_text(work / "empty.json", "{}");
+    ASSERT_EQ(run(base + q(work / "file") + " --scene " + q(work / "empty.json")).code, 0);
+    const auto lookdev = read_pixels(work / "lookdev/Metal_Damaged_001.png");
+    const auto reference = read_pixels(work / "reference/Metal_Damaged_001.png");
+    EXPECT_EQ(bytes_of(work / "reference/Metal_Damaged_001.png"), bytes_of(work / "file/Metal_Damaged_001.png"));
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(code8(lookdev.at(0, 0, c)), 105) << "background, channel " << c;
+        EXPECT_EQ(code8(reference.at(0, 0, c)), 0) << "background, channel " << c;
+    }
+    // The lower right of the sphere faces away from the key light (camera left, above).
+    auto mean_at = [](const mf::Image& img, int x0, int y0) {
+        double sum = 0;
+        for (int y = y0; y < y0 + 6; ++y)
+            for (int x = x0; x < x0 + 6; ++x)
+                for (int c = 0; c < 3; ++c) sum += code8(img.at(x, y, c));
+        return sum / 108.0;
+    };
+    EXPECT_LT(mean_at(reference, 40, 40), 3.0) << "one light: the far side is black";
+    EXPECT_GT(mean_at(lookdev, 40, 40), 5.0) << "the studio lights the far side (a dark rusty metal: measured 7.5)";
+}
+
 TEST(PreviewCli, ContactSheetAndMissingManifest) {
     const fs::path work = temp_dir("sheet");
     ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work)).code, 0);

@@ -1,6 +1,7 @@
 // Scene files and --light specs.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "preview/preview.hpp"
@@ -10,15 +11,69 @@ namespace {
 
 using nlohmann::json;
 
-TEST(SceneFile, DefaultsMakeAPlainCallUseful) {
-    const SceneFile s = default_scene();
+TEST(SceneFile, ReferenceSceneIsTheExactOne) {
+    const SceneFile s = reference_scene();
     EXPECT_EQ(s.scene.width, 512u);
     ASSERT_EQ(s.scene.lights.size(), 1u);  // one white directional key light
     EXPECT_EQ(s.scene.lights[0].type, render::LightType::directional);
+    EXPECT_EQ(s.scene.lights[0].intensity, 3.f);
     EXPECT_EQ(s.scene.shape.type, render::ShapeType::sphere);
     EXPECT_EQ(s.scene.background, (render::Vec3{0, 0, 0}));
     EXPECT_FALSE(s.scene.environment);
     EXPECT_EQ(s.output.transfer, render::Transfer::srgb);
+    EXPECT_EQ(s.output.tonemap, render::Tonemap::none);
+    // A scene file starts from it: an empty one is the reference scene.
+    std::string error;
+    const auto empty = parse_scene(json::object(), "/", "empty.json", error);
+    ASSERT_TRUE(empty) << error;
+    EXPECT_FALSE(empty->scene.environment);
+    EXPECT_EQ(empty->output.tonemap, render::Tonemap::none);
+    EXPECT_EQ(empty->scene.lights.size(), 1u);
+}
+
+TEST(SceneFile, DefaultIsTheLookDevStudio) {
+    const SceneFile s = default_scene();
+    ASSERT_TRUE(s.scene.environment);
+    EXPECT_EQ(s.scene.environment->width, 512u);
+    EXPECT_EQ(s.scene.environment->height, 256u);
+    ASSERT_EQ(s.scene.lights.size(), 1u);
+    EXPECT_EQ(s.output.tonemap, render::Tonemap::neutral);
+    EXPECT_EQ(s.scene.background, (render::Vec3{0.18f, 0.18f, 0.18f}));
+    // The key light travels away from the key softbox, which is the environment's brightest
+    // region: the light comes from above, camera left, toward the camera side.
+    const render::Vec3 d = s.scene.lights[0].direction;
+    EXPECT_LT(d[1], -0.5f);
+    EXPECT_GT(d[0], 0.2f);
+    EXPECT_LT(d[2], -0.2f);
+    const auto& env = *s.scene.environment;
+    auto radiance = [&](render::Vec3 from) {  // render::Environment's mapping
+        const float len = std::sqrt(from[0] * from[0] + from[1] * from[1] + from[2] * from[2]);
+        const float u = 0.5f + std::atan2(from[0] / len, -from[2] / len) / (2.f * 3.14159265f);
+        const float v = std::acos(from[1] / len) / 3.14159265f;
+        const auto x = std::min(env.width - 1, static_cast<uint32_t>(u * static_cast<float>(env.width)));
+        const auto y = std::min(env.height - 1, static_cast<uint32_t>(v * static_cast<float>(env.height)));
+        return env.rgba[(size_t{y} * env.width + x) * 4 + 1];
+    };
+    EXPECT_NEAR(radiance({-d[0], -d[1], -d[2]}), 5.f * 0.97f + 0.136f, 0.05f);  // inside the key softbox
+    EXPECT_NEAR(radiance({0.f, -1.f, 0.f}), 0.08f, 0.005f);                     // the floor: the darkest grey
+    float sum = 0.f;
+    for (size_t i = 0; i < env.rgba.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(env.rgba[i]));
+        ASSERT_GE(env.rgba[i], 0.f);
+        if (i % 4 != 3) sum += env.rgba[i];
+    }
+    EXPECT_GT(sum, 0.f);
+    // Deterministic: the same radiance every time (a generated environment, no file).
+    EXPECT_EQ(studio_environment()->rgba, env.rgba);
+}
+
+TEST(SceneFile, ToneMappingIsReadAndChecked) {
+    std::string error;
+    auto s = parse_scene(json::parse(R"({"output": {"tonemap": "aces"}})"), "/", "t.json", error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->output.tonemap, render::Tonemap::aces);
+    EXPECT_FALSE(parse_scene(json::parse(R"({"output": {"tonemap": "filmic"}})"), "/", "t.json", error));
+    EXPECT_NE(error.find("t.json: output.tonemap"), std::string::npos) << error;
 }
 
 TEST(SceneFile, ReadsTheSpecExample) {

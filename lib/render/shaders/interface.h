@@ -77,6 +77,11 @@ MF_CONST int kBrdfAccurate = 1;
 // for comparison with engines that leave the 1/π out.
 MF_CONST int kBrdfUnnormalizedDiffuse = 2;
 
+// encode.comp's tone mappers (EncodeParams::tonemap; render::Tonemap in the same order).
+MF_CONST int kTonemapNone = 0;     // radiance clipped at 1: exact, for reference scenes
+MF_CONST int kTonemapNeutral = 1;  // Khronos PBR Neutral
+MF_CONST int kTonemapAces = 2;     // ACES RRT + sRGB ODT, Hill's fit
+
 // ---- specialization constant ids
 
 // shade.frag: what a material and scene call for; the rest is compiled out.
@@ -139,7 +144,8 @@ struct FrameData {
 struct EncodeParams {
     uvec2 size;
     float exposure;
-    uint srgb;  // 1: IEC 61966-2-1 sRGB curve; 0: linear
+    uint srgb;     // 1: IEC 61966-2-1 sRGB curve; 0: linear
+    uint tonemap;  // kTonemap*: applied to the exposed radiance, before the transfer curve
 };
 
 // The environment passes' push constants.
@@ -167,7 +173,7 @@ struct GridPush {
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 32);
 static_assert(sizeof(FrameData) == 64 + 10 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
-static_assert(sizeof(EncodeParams) == 16 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
+static_assert(sizeof(EncodeParams) == 20 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
 static_assert(sizeof(GridInput) == 64);
 
 // ---- specialization constant values (C++ only): one 4-byte field per constant (int32, or
