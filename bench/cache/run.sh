@@ -61,7 +61,7 @@ for lib in lib tiny; do
   T[$lib.warm]=$(secs "$mf" ingest "$in" -o "$work/$lib-out" -q)
   cmp "$work/$lib-out/manifest.json" "$work/$lib-nc/manifest.json" || { echo "run.sh: warm manifest differs ($lib)" >&2; exit 1; }
   # One map of one set rewritten: its set only is computed again.
-  first=$(find "$in" -mindepth 2 -name '*olor*.png' | sort | head -1)
+  first=$(find "$in" -mindepth 2 -name '*olor*.png' | sort | sed -n 1p)
   oiiotool "$first" --addc 0.02 -o "$first"
   T[$lib.edit]=$(secs "$mf" ingest "$in" -o "$work/$lib-out" -q)
   T[$lib.newout]=$(MATFORGE_CACHE=$work/$lib-out/.matforge-cache secs "$mf" ingest "$in" -o "$work/$lib-out2" -q)

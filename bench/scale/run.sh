@@ -74,7 +74,7 @@ record() {
 # Rewrites one map of one set with new bytes (a new file: hard links to the seed stay intact).
 edit_one() {
   local f
-  f=$(find "$1" -mindepth 2 -name '*olor*.png' | sort | head -1)
+  f=$(find "$1" -mindepth 2 -name '*olor*.png' | sort | sed -n 1p)
   oiiotool "$f" --addc 0.02 -o "$work/edited.png"
   rm "$f" && mv "$work/edited.png" "$f"
 }
@@ -103,12 +103,17 @@ ingest_steps() {  # LIBRARY-LABEL SETS IN: the cold / warm / one-edit / merge ro
 }
 for n in "${counts[@]}"; do
   in=$work/tiny$n
-  mkdir -p "$in"
-  for ((i = 0; i < n; i++)); do
-    d=$in/Tiny$i
-    mkdir "$d"
-    for f in "$seed"/*.png; do ln "$f" "$d/Tiny${i}_$(basename "$f")"; done
-  done
+  # n folders of hard links to the seed maps (one process, not 3n): Tiny<i>/Tiny<i>_<map>.png
+  python3 -c '
+import os, sys
+seed, out, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+maps = sorted(f for f in os.listdir(seed) if f.endswith(".png"))
+for i in range(n):
+    d = os.path.join(out, f"Tiny{i}")
+    os.makedirs(d)
+    for m in maps:
+        os.link(os.path.join(seed, m), os.path.join(d, f"Tiny{i}_{m}"))
+' "$seed" "$in" "$n"
   record tiny "$n" plan "$mf" plan "$in" -o "$work/plan.json"
   ingest_steps tiny "$n" "$in"
   rm -rf "$in"
@@ -128,11 +133,15 @@ for e in "${entries[@]}"; do
   mkdir -p "$z/folders"
   oiiotool --pattern constant:color=0.4,0.5,0.6 1x1 3 -o "$z/c.png"
   oiiotool --pattern constant:color=0.5 1x1 1 -o "$z/r.png"
-  for ((s = 0; s < e / 2; s++)); do
-    mkdir "$z/folders/S$s"
-    ln "$z/c.png" "$z/folders/S$s/S${s}_Color.png"
-    ln "$z/r.png" "$z/folders/S$s/S${s}_Roughness.png"
-  done
+  python3 -c '
+import os, sys
+z, sets = sys.argv[1], int(sys.argv[2])
+for s in range(sets):
+    d = os.path.join(z, "folders", f"S{s}")
+    os.makedirs(d)
+    os.link(os.path.join(z, "c.png"), os.path.join(d, f"S{s}_Color.png"))
+    os.link(os.path.join(z, "r.png"), os.path.join(d, f"S{s}_Roughness.png"))
+' "$z" "$((e / 2))"
   (cd "$z/folders" && python3 -c '
 import os, sys, zipfile
 with zipfile.ZipFile(sys.argv[1], "w", zipfile.ZIP_STORED) as zf:

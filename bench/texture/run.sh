@@ -9,11 +9,17 @@
 #
 # Inputs: bench/throughput/make_library's smooth-noise maps (albedo, GL normal, roughness) at
 # 1K, 2K and 4K (--quick: 1K), converted to 8-bit PNG once so every tool reads the same file.
-# Each encode is one process per map, timed wall-clock with /usr/bin/time (reading the PNG,
-# encoding level 0, writing the file): what a script pays per file. Error: each output decoded
-# back (nvdecompress, astcenc -d*, texture_bench decode) and compared with the PNG by one
-# measure (texture_bench psnr): PSNR over the channels the format stores; for normals X, Y and
-# the mean angle to the source's unit vector in degrees.
+# Time per map: for the peers, the wall time of one process per file (/usr/bin/time: start-up,
+# reading the PNG, encoding level 0, writing the file), what a script pays per file; for
+# matforge, the time from reading the PNG to the file written inside one process (texture_bench
+# prints it), what `ingest` pays per map (its start-up, ~0.3 s for OpenImageIO's plugins, comes
+# once per run); matforge's process wall time is in the CSV too. Threads: matforge and astcenc
+# use every core; nvcompress 2.0.8's CPU compressor uses one. Error: each output decoded back by
+# a decoder other than the encoder where one exists (OpenImageIO's DDS reader for nvcompress's
+# files, `astcenc -d` for astcenc's, texture_bench decode for matforge's) and compared with the
+# PNG by one measure (texture_bench psnr): PSNR over the channels the format stores; for normals
+# X, Y and the mean angle to the source's unit vector in degrees. nvcompress 2.0.8 encodes BC4
+# from the alpha channel, so it is given the roughness map in R, G, B and A.
 # Writes RESULTS/results.md and results.csv (default docs/texture/ for a full run; WORK/ for
 # --quick).
 set -euo pipefail
@@ -40,7 +46,7 @@ done
 if ((quick)); then sizes=(1k); results=${results:-$work}; else sizes=(1k 2k 4k); results=${results:-$repo/docs/texture}; fi
 rm -rf "$work" && mkdir -p "$work" "$results"
 csv=$results/results.csv
-echo "size,map,format,tool,effort,seconds,psnr_db,angle_deg,bytes" > "$csv"
+echo "size,map,format,tool,effort,seconds,process_seconds,psnr_db,angle_deg,bytes" > "$csv"
 
 # ---- inputs: one set per size, its albedo, normal and roughness as 8-bit PNG
 for s in "${sizes[@]}"; do
@@ -53,6 +59,8 @@ for s in "${sizes[@]}"; do
   oiiotool "$(pick color)" --ch R,G,B -d uint8 -o "$work/in/$s/albedo.png"
   oiiotool "$(pick normalgl)" --ch R,G,B -d uint8 -o "$work/in/$s/normal.png"
   oiiotool "$(pick roughness)" --ch 0 -d uint8 -o "$work/in/$s/roughness.png"
+  # NVTT 2.0.8 encodes BC4 from the alpha channel: nvcompress gets the map in R, G, B and A.
+  oiiotool "$work/in/$s/roughness.png" --ch 0,0,0,0 -o "$work/in/$s/roughness-rgba.png"
 done
 
 # time_of CMD...: wall seconds of one run (its output to $work/log)
@@ -60,13 +68,13 @@ time_of() {
   /usr/bin/time -f %e -o "$work/t" "$@" >"$work/log" 2>&1 || { cat "$work/log" >&2; return 1; }
   cat "$work/t"
 }
-# row SIZE MAP FORMAT TOOL EFFORT SECONDS DECODED CHANNELS OUTFILE
+# row SIZE MAP FORMAT TOOL EFFORT SECONDS PROCESS_SECONDS DECODED CHANNELS OUTFILE
 row() {
   local q angle=""
-  q=$("$tb" psnr "$work/in/$1/$2.png" "$7" "$8")
-  [[ $8 == 2 ]] && angle=${q#* }
-  echo "$1,$2,$3,$4,$5,$6,${q%% *},$angle,$(stat -c %s "$9")" >> "$csv"
-  echo "run.sh: $1 $2 $3 $4 $5: $6 s, ${q} ($(stat -c %s "$9") bytes)" >&2
+  q=$("$tb" psnr "$work/in/$1/$2.png" "$8" "$9")
+  [[ $9 == 2 ]] && angle=${q#* }
+  echo "$1,$2,$3,$4,$5,$6,$7,${q%% *},$angle,$(stat -c %s "${10}")" >> "$csv"
+  echo "run.sh: $1 $2 $3 $4 $5: $6 s (process $7 s), ${q} ($(stat -c %s "${10}") bytes)" >&2
 }
 
 o=$work/out
@@ -76,11 +84,15 @@ for s in "${sizes[@]}"; do
   # name map format channels matforge-flags nvcompress-flags astcenc-block astcenc-mode
   while read -r map format ch mflags nvflags block amode; do
     [[ $mflags == - ]] && mflags=""
+    ext=dds
+    [[ $format == astc* ]] && ext=ktx2
     for effort in fast normal thorough; do
       f=$o/$s-$map-$format-mf-$effort
-      t=$(time_of "$tb" encode "$in/$map.png" "$f.dds" "$format" "$effort" $mflags)
-      "$tb" decode "$f.dds" "$f.png"
-      row "$s" "$map" "$format" matforge "$effort" "$t" "$f.png" "$ch" "$f.dds"
+      # shellcheck disable=SC2086
+      t=$(time_of "$tb" encode "$in/$map.png" "$f.$ext" "$format" "$effort" $mflags --threads "$(nproc)")
+      inside=$(cat "$work/log")
+      "$tb" decode "$f.$ext" "$f.png"
+      row "$s" "$map" "$format" matforge "$effort" "$inside" "$t" "$f.png" "$ch" "$f.$ext"
     done
     if [[ $nvflags != - ]]; then
       for effort in fast normal; do
@@ -88,19 +100,22 @@ for s in "${sizes[@]}"; do
         fast=""
         [[ $effort == fast ]] && fast=-fast
         # shellcheck disable=SC2086
-        t=$(time_of nvcompress -nocuda -nomips -repeat $fast ${nvflags//,/ } "$in/$map.png" "$f.dds")
-        (cd "$o" && nvdecompress "$f.dds" >/dev/null 2>&1)
-        row "$s" "$map" "$format" nvcompress "$effort" "$t" "$f.tga" "$ch" "$f.dds"
+        nvin=$in/$map.png
+        [[ $format == bc4 ]] && nvin=$in/$map-rgba.png
+        t=$(time_of nvcompress -nocuda -nomips -repeat $fast ${nvflags//,/ } "$nvin" "$f.dds")
+        oiiotool "$f.dds" -d uint8 -o "$f.png"  # OpenImageIO's DDS reader (nvdecompress 2.0.8 misreads BC4)
+        row "$s" "$map" "$format" nvcompress "$effort" "$t" "$t" "$f.png" "$ch" "$f.dds"
       done
     fi
     if [[ $block != - ]]; then
       for effort in fast medium thorough; do
         f=$o/$s-$map-$format-astc-$effort
-        t=$(time_of astcenc "-c$amode" "$in/$map.png" "$f.astc" "$block" "-$effort" -silent $([[ $map == normal ]] && echo -normal))
+        # As matforge's vulkan-ktx2-astc preset stores a normal: X, Y, Z in RGB (no -normal swizzle).
+        t=$(time_of astcenc "-c$amode" "$in/$map.png" "$f.astc" "$block" "-$effort" -silent)
         astcenc "-d$amode" "$f.astc" "$f.png" -silent >/dev/null
         e=$effort
         [[ $e == medium ]] && e=normal
-        row "$s" "$map" "$format" astcenc "$e" "$t" "$f.png" "$ch" "$f.astc"
+        row "$s" "$map" "$format" astcenc "$e" "$t" "$t" "$f.png" "$ch" "$f.astc"
       done
     fi
   done <<'EOF'
@@ -117,22 +132,25 @@ import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 out, invocation, cores = sys.argv[2], sys.argv[3], sys.argv[4]
 L = ["# GPU block compression: matforge against nvcompress and astcenc", "",
-     f"`{invocation}` on {cores} cores. One process per map, wall seconds (/usr/bin/time: read the "
-     "8-bit PNG, encode level 0, write the file); error of the decoded level 0 against the PNG: PSNR "
-     "over the channels the format stores (normals: X and Y; with the mean angle between unit "
-     "vectors). nvcompress runs on the CPU (-nocuda; NVTT 2.0.8 has no effort level between "
-     "`-fast` and its default). astcenc's own effort names: fast, medium (listed as normal), "
-     "thorough. matforge: its `effort` preset field.", ""]
+     f"`{invocation}` on {cores} cores. Seconds per map: for nvcompress and astcenc the wall time "
+     "of one process per file (start-up, read the 8-bit PNG, encode level 0, write the file), what "
+     "a script running them per file pays; for matforge the time from reading the PNG to the file "
+     "written inside its process, what `ingest` pays per map (its start-up, about 0.3 s, comes once "
+     "per run; the process wall time is the CSV's process_seconds). Threads: matforge and astcenc "
+     "use every core, nvcompress 2.0.8 (CPU, -nocuda) one. Error of the decoded level 0 against "
+     "the PNG: PSNR over the channels the format stores (normals: X and Y, with the mean angle "
+     "between unit vectors). NVTT 2.0.8 has no effort level between `-fast` and its default; "
+     "astcenc's medium is listed as normal; matforge's is its `effort` preset field.", ""]
 keyf = lambda r: (r["size"], r["map"], r["format"])
 groups = []
 for r in rows:
     if keyf(r) not in groups: groups.append(keyf(r))
-L += ["| size | map | format | tool | effort | seconds | PSNR dB | mean angle ° | bytes |",
-      "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: |"]
+L += ["| size | map | format | tool | effort | s per map | process s | PSNR dB | mean angle ° | bytes |",
+      "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"]
 for g in groups:
     for r in rows:
         if keyf(r) == g:
-            L.append(f"| {r['size']} | {r['map']} | {r['format']} | {r['tool']} | {r['effort']} | {float(r['seconds']):.2f} | "
+            L.append(f"| {r['size']} | {r['map']} | {r['format']} | {r['tool']} | {r['effort']} | {float(r['seconds']):.3f} | {float(r['process_seconds']):.2f} | "
                      f"{float(r['psnr_db']):.2f} | {r['angle_deg'] or ''} | {r['bytes']} |")
 L += ["", "## matforge against the peer at the same effort", "",
       "| size | format | effort | peer | matforge s / peer s | matforge dB − peer dB |",

@@ -3,10 +3,13 @@
 // bench/texture/run.sh, which times each process (wall, /usr/bin/time) and writes the table.
 //
 //   texture_bench encode IN.png OUT.dds|OUT.ktx2 FORMAT EFFORT [--srgb] [--normal] [--mips]
+//                        [--threads N]
 //       reads IN (lib/image), encodes level 0 (with --mips: the whole chain, lib/texture's
 //       filters) with matforge's codec for FORMAT (bc1, bc3, bc4, bc5, astc-4x4, astc-6x6, ...)
-//       at EFFORT (fast, normal, thorough), writes the container; --normal: IN is a normal map
-//       (BC5: X, Y kept; mips renormalized).
+//       at EFFORT (fast, normal, thorough) on N threads (default 1), writes the container;
+//       --normal: IN is a normal map (BC5: X, Y kept; mips renormalized). Prints the seconds
+//       from reading IN to the file written: the time per map inside a run (`ingest` pays its
+//       process start-up, OpenImageIO's plugins, once per run, not per map).
 //   texture_bench decode IN.dds|IN.ktx2 OUT.png
 //       level 0 decoded back with the codec that wrote it (libsquish, astcenc).
 //   texture_bench psnr REF DECODED CHANNELS
@@ -14,8 +17,10 @@
 //       OpenImageIO reads: the peers' TGA and PNG decodes too), and for CHANNELS = 2 (a normal's
 //       X, Y) also the mean angle in degrees between the unit vectors they give.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <numbers>
@@ -66,12 +71,15 @@ int encode(int argc, char** argv) {
     if (argc < 6) return fail("encode IN OUT FORMAT EFFORT [--srgb] [--normal] [--mips]");
     const std::string in = argv[2], out = argv[3];
     bool srgb = false, normal = false, mips = false;
+    int threads = 1;
     for (int i = 6; i < argc; ++i) {
         const std::string f = argv[i];
         srgb = srgb || f == "--srgb";
         normal = normal || f == "--normal";
         mips = mips || f == "--mips";
+        if (f == "--threads" && i + 1 < argc) threads = std::max(1, std::atoi(argv[++i]));
     }
+    const auto t0 = std::chrono::steady_clock::now();
     mf::texture::CodecOptions opt;
     opt.format = mf::block_format_info(argv[4]);
     if (!opt.format) return fail(std::string("unknown format ") + argv[4] + " (" + mf::block_format_names() + ")");
@@ -81,6 +89,7 @@ int encode(int argc, char** argv) {
     opt.srgb = srgb && opt.format->has_srgb;
     opt.normal_xy = normal && opt.format->channels == 2;
     opt.mask = !srgb && !normal && opt.format->channels >= 3;
+    opt.threads = threads;
     std::string error;
     Image8 src;
     if (!read8(in, src, error)) return fail(error);
@@ -112,6 +121,7 @@ int encode(int argc, char** argv) {
         bytes = mf::texture::write_dds(t);
     }
     if (!mf::write_file_atomic(out, bytes, error)) return fail(error);
+    std::printf("%.4f\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     return 0;
 }
 

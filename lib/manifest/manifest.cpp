@@ -226,6 +226,11 @@ Material material_of(const json& j, const std::string& at) {
                                         string_of(f, "sha256", fat, false)});
         }
     }
+    if (const json* s = member(j, "emissive_strength")) {
+        const auto v = json_float(*s, 1.0, 1e9);
+        if (!v) fail(where + ": emissive_strength", "must be a number >= 1");
+        m.emissive_strength = *v;
+    }
     if (const json* f = member(j, "findings")) {
         if (!f->is_array()) fail(where, "\"findings\" is not an array");
         for (size_t i = 0; i < f->size(); ++i) {
@@ -331,6 +336,7 @@ json to_json(const Material& m) {
             files.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
         j["material_files"] = std::move(files);
     }
+    if (m.emissive_strength > 1.f) j["emissive_strength"] = m.emissive_strength;
     json findings = json::array();
     for (const Finding& f : m.findings) findings.push_back(mf::to_json(f));
     j["findings"] = std::move(findings);

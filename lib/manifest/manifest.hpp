@@ -93,6 +93,10 @@ struct Material {
     std::vector<Output> outputs;               // in preset order
     std::vector<MaterialFile> material_files;  // preset material_file (glTF + buffer)
     std::vector<Finding> findings;
+    // > 1 when the emissive map holds radiance above 1 (an EXR) and the preset writes it to an
+    // integer file: the outputs hold emissive / emissive_strength (the brightest texel at 1, hue
+    // kept), the engine multiplies back (glTF: KHR_materials_emissive_strength). 1: as stored.
+    float emissive_strength = 1.f;
 };
 
 struct Manifest {

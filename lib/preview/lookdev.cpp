@@ -82,6 +82,43 @@ std::shared_ptr<const render::Environment> studio_environment() {
     return env;
 }
 
+void place_textures(const SceneFile& sf, render::Material& m) {
+    float k = 1.f;
+    if (sf.keep_aspect && !m.textures.empty()) {
+        const size_t i = m.albedo.texture >= 0 ? static_cast<size_t>(m.albedo.texture) : 0;
+        const render::Texture& t = m.textures[i];
+        const render::ShapeType s = sf.scene.shape.type;
+        const float surface = s == render::ShapeType::sphere || s == render::ShapeType::shaderball ? 2.f : 1.f;
+        if (t.width > 0 && t.height > 0) k = surface * static_cast<float>(t.height) / static_cast<float>(t.width);
+    }
+    m.uv_scale = {sf.uv_scale[0] * k, sf.uv_scale[1]};
+    m.uv_offset = sf.uv_offset;
+}
+
+std::optional<render::Camera> orbit_camera(const render::Camera& c, std::optional<std::array<float, 2>> az_el,
+                                           std::optional<float> distance, std::string& error) {
+    const float dx = c.position[0] - c.target[0], dy = c.position[1] - c.target[1], dz = c.position[2] - c.target[2];
+    const float current = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(current > 0.f)) {
+        error = "the camera sits on its target: no direction to orbit from";
+        return std::nullopt;
+    }
+    float az = std::atan2(dx, dz), el = std::asin(std::clamp(dy / current, -1.f, 1.f));
+    if (az_el) {
+        az = (*az_el)[0] * kPi / 180.f;
+        el = (*az_el)[1] * kPi / 180.f;
+    }
+    if (std::fabs(std::cos(el)) < 1e-3f) {
+        error = "an elevation of ±90° looks straight along the camera's up vector: use at most ±89.9";
+        return std::nullopt;
+    }
+    const float r = distance.value_or(current);
+    render::Camera out = c;
+    out.position = {c.target[0] + r * std::cos(el) * std::sin(az), c.target[1] + r * std::sin(el),
+                    c.target[2] + r * std::cos(el) * std::cos(az)};
+    return out;
+}
+
 SceneFile reference_scene() {
     SceneFile s;  // render::Scene's defaults: one white key light, a sphere, black, no tone mapping
     return s;
@@ -100,6 +137,7 @@ SceneFile default_scene() {
     sc.background = {0.18f, 0.18f, 0.18f};  // mid grey: neither hides a dark rim nor a bright one
     s.output.tonemap = render::Tonemap::neutral;
     s.lookdev = true;
+    s.keep_aspect = true;
     return s;
 }
 

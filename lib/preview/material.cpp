@@ -95,6 +95,7 @@ std::optional<render::Material> load_material(const manifest::Material& mm, cons
             notes.push_back(mm.name + ": " + shown + " is tagged sRGB but holds data; read as linear");
         m.textures.push_back(std::move(*t));
     }
+    m.emissive.strength = mm.emissive_strength;  // an HDR emissive stored as emissive / strength
     for (const manifest::Constant& c : mm.constants) {
         if (c.role == Role::albedo || c.role == Role::emissive) {
             const auto& v = c.value;

@@ -11,6 +11,7 @@
 //    bomb guard, no FIFO or device ever opened) and lib/core (atomic writes): an 8-bit file is
 //    handed to the renderer as its codes, any other as float; the renderer decodes sRGB.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -45,7 +46,26 @@ struct SceneFile {
     float environment_intensity = 1.f;
     bool shape_size_given = false;
     bool lookdev = false;  // default_scene(): the studio environment is the built-in one
+    // Texture placement for every material (scene key "uv"): tiling, and whether the texture's
+    // aspect ratio is kept on the shape (place_textures).
+    std::array<float, 2> uv_scale{1.f, 1.f}, uv_offset{0.f, 0.f};
+    bool keep_aspect = false;  // lookdev: true
 };
+
+// Sets `m`'s uv_scale and uv_offset from the scene's: the scale times, with keep_aspect, the
+// factor that keeps a texel square on the shape. A shape's (u, v) spans lengths in the ratio
+// 2:1 on the sphere and the shaderball (once around, pole to pole) and 1:1 on a plane or a cube
+// face; a texture of aspect w/h then needs u scaled by (surface ratio) / (w/h): a square map goes
+// twice around the sphere, a 2:1 map once, and on a plane a 2:1 map shows its left half
+// unstretched. The texture measured is the albedo's, else the first.
+void place_textures(const SceneFile& sf, render::Material& m);
+
+// The camera moved on its orbit around its target: `az_el` degrees (azimuth from +Z toward +X,
+// elevation above the target's horizon), at `distance` (default: the camera's own). nullopt +
+// `error` when the camera sits on its target (no direction to orbit from) or would look straight
+// along its up vector.
+std::optional<render::Camera> orbit_camera(const render::Camera& c, std::optional<std::array<float, 2>> az_el,
+                                           std::optional<float> distance, std::string& error);
 
 // The look-dev scene `preview` uses when no scene file is given: the built-in studio
 // environment (studio_environment) for image-based lighting, one key light from its key

@@ -18,6 +18,7 @@ float default_shape_size(render::ShapeType t) {
         case render::ShapeType::sphere: return 1.f;
         case render::ShapeType::cube: return 1.2f;
         case render::ShapeType::plane: return 2.f;
+        case render::ShapeType::shaderball: return 1.f;
     }
     return 1.f;
 }
@@ -101,7 +102,7 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
     SceneFile out = reference_scene();  // a scene file says what it wants on top of the reference
     render::Scene& sc = out.scene;
     check_keys(j, name,
-               {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf"});
+               {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf", "uv"});
     if (const json* img = find(j, "image")) {
         check_keys(*img, name + ": image", {"width", "height"});
         if (const json* w = find(*img, "width")) sc.width = dimension(*w, name + ": image.width");
@@ -133,7 +134,8 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
         if (const json* t = find(*sh, "type")) {
             const std::string type = t->is_string() ? t->get<std::string>() : "";
             const auto shape = parse_shape(type);
-            if (!shape) fail(w + ".type", "expected \"sphere\", \"cube\" or \"plane\", got " + t->dump());
+            if (!shape)
+                fail(w + ".type", "expected \"sphere\", \"cube\", \"plane\" or \"shaderball\", got " + t->dump());
             sc.shape.type = *shape;
         }
         sc.shape.size = default_shape_size(sc.shape.type);
@@ -235,6 +237,29 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
             if (out.output.exposure < 0.f) fail(w + ".exposure", "must not be negative");
         }
     }
+    if (const json* uv = find(j, "uv")) {
+        const std::string w = name + ": uv";
+        check_keys(*uv, w, {"scale", "offset", "aspect"});
+        if (const json* v = find(*uv, "scale")) {
+            if (v->is_number()) {
+                out.uv_scale[0] = out.uv_scale[1] = number_in(*v, w + ".scale", 1e-3f, 1e3f);
+            } else {
+                if (!v->is_array() || v->size() != 2)
+                    fail(w + ".scale", "expected a number or [u, v], got " + v->dump());
+                out.uv_scale = {number_in((*v)[0], w + ".scale", 1e-3f, 1e3f),
+                                number_in((*v)[1], w + ".scale", 1e-3f, 1e3f)};
+            }
+        }
+        if (const json* v = find(*uv, "offset")) {
+            if (!v->is_array() || v->size() != 2) fail(w + ".offset", "expected [u, v], got " + v->dump());
+            out.uv_offset = {number_in((*v)[0], w + ".offset", -1e3f, 1e3f),
+                             number_in((*v)[1], w + ".offset", -1e3f, 1e3f)};
+        }
+        if (const json* v = find(*uv, "aspect")) {
+            if (*v != "keep" && *v != "stretch") fail(w + ".aspect", "expected \"keep\" or \"stretch\"");
+            out.keep_aspect = *v == "keep";
+        }
+    }
     if (const json* b = find(j, "brdf")) {
         const auto brdf = b->is_string() ? render::parse_brdf(b->get<std::string>()) : std::nullopt;
         if (!brdf) fail(name + ": brdf", "expected \"standard\", \"accurate\" or \"assignment\"");
@@ -265,6 +290,7 @@ std::optional<render::ShapeType> parse_shape(std::string_view name) {
     if (name == "sphere") return render::ShapeType::sphere;
     if (name == "cube") return render::ShapeType::cube;
     if (name == "plane") return render::ShapeType::plane;
+    if (name == "shaderball") return render::ShapeType::shaderball;
     return std::nullopt;
 }
 

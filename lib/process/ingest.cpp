@@ -1,6 +1,7 @@
 #include "process/ingest.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <set>
@@ -52,6 +53,30 @@ BasicImage<T> first_two_channels(const BasicImage<T>& src) {
         out.pixels[2 * p + 1] = src.pixels[p * static_cast<size_t>(src.channels) + 1];
     }
     return out;
+}
+
+// An emissive map with radiance above 1 (an EXR, an HDR) written to an integer file would clip
+// to white and lose its hue: it is stored as emissive / S, S its brightest channel, and S is
+// returned for the manifest (`emissive_strength`) and the glTF (KHR_materials_emissive_strength).
+// 1 when nothing is scaled: no emissive map, one at most 1, or float outputs (EXR, 32-bit).
+float normalize_hdr_emissive(Planes& planes, const Preset& preset) {
+    const auto it = planes.find(Role::emissive);
+    if (it == planes.end() || it->second.is_codes() || it->second.encoding != ColorEncoding::linear) return 1.f;
+    bool integer_output = false;
+    for (const auto& o : preset.outputs) {
+        const auto roles = o.roles();
+        if (std::find(roles.begin(), roles.end(), Role::emissive) != roles.end())
+            integer_output = integer_output || (preset.format != "exr" && o.bit_depth != 32);
+    }
+    Image& img = it->second.image;
+    float brightest = 0.f;
+    const auto c = static_cast<size_t>(img.channels);
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        if (i % c < 3 && std::isfinite(img.pixels[i])) brightest = std::max(brightest, img.pixels[i]);
+    if (!integer_output || brightest <= 1.f) return 1.f;
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        if (i % c < 3) img.pixels[i] /= brightest;
+    return brightest;
 }
 
 // Canonical planes per output role from the plan's routes (pack/pack.hpp's conventions). A
@@ -192,6 +217,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     Planes planes = make_planes(plan);
     const int w = plan.width, h = plan.height;
     for (auto& [r, p] : planes) fit_plane(r, p, w, h, *color_);
+    const float emissive_strength = normalize_hdr_emissive(planes, preset_);
 
     // Pack, encode, write.
     const fs::path mat_dir = opt_.out_dir / src.name;
@@ -329,6 +355,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     m.inputs = manifest_inputs(plan);
     m.constants = std::move(plan.constants);
     m.findings = std::move(plan.findings);
+    m.emissive_strength = emissive_strength;
     write_material_files(
         preset_, planes,
         [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {

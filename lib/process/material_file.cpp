@@ -42,6 +42,7 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
         }
     gltf::MaterialOptions opt;
     opt.alpha_cutoff = preset.alpha_cutoff;
+    opt.emissive_strength = m.emissive_strength;
     if (const auto it = planes.find(Role::opacity); it != planes.end()) {
         switch (texture::classify_opacity(plane_floats(Role::opacity, it->second))) {
             case texture::AlphaUse::opaque: opt.alpha_mode = gltf::AlphaMode::opaque; break;

@@ -109,7 +109,7 @@ void Renderer::Impl::write_frame(const Material& m) {
     f.viewport[3] = 1.f / static_cast<float>(scene.height);
     put(f.background, d3(scene.background), 1.0);
     put(f.albedo, d3(m.albedo.value), 1.0);
-    put(f.emissive, d3(m.emissive.value), 1.0);
+    put(f.emissive, d3(m.emissive.value), m.emissive.strength);
     f.scalars[0] = m.roughness.value;
     f.scalars[1] = m.metalness.value;
     f.scalars[2] = m.occlusion.value;
@@ -117,6 +117,10 @@ void Renderer::Impl::write_frame(const Material& m) {
     f.shape[0] = scene.shape.size;
     f.shape[1] = scene.environment ? scene.environment->intensity : 0.f;
     f.shape[2] = static_cast<float>(env_specular_mips > 0 ? env_specular_mips - 1 : 0);
+    f.uv[0] = m.uv_scale[0];
+    f.uv[1] = m.uv_scale[1];
+    f.uv[2] = m.uv_offset[0];
+    f.uv[3] = m.uv_offset[1];
 
     // Directional lights first, then point lights: the order the shader's loop expects.
     size_t slot = 0;

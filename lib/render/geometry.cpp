@@ -118,11 +118,74 @@ Mesh make_cube(float edge) {
     return m;
 }
 
+Mesh make_torus(float major, float minor, uint32_t major_segments, uint32_t minor_segments) {
+    Mesh m;
+    const double pi = std::numbers::pi;
+    for (uint32_t j = 0; j <= minor_segments; ++j) {
+        const double v = static_cast<double>(j) / minor_segments, psi = 2.0 * pi * v;
+        for (uint32_t i = 0; i <= major_segments; ++i) {
+            const double u = static_cast<double>(i) / major_segments, phi = 2.0 * pi * u;
+            // In the XZ plane: the tube's centre circle of radius `major` around +Y.
+            const double cx = std::cos(phi), cz = -std::sin(phi);
+            const double nx = std::cos(psi) * cx, ny = std::sin(psi), nz = std::cos(psi) * cz;
+            Vertex vx{};
+            vx.position[0] = static_cast<float>(major * cx + minor * nx);
+            vx.position[1] = static_cast<float>(minor * ny);
+            vx.position[2] = static_cast<float>(major * cz + minor * nz);
+            vx.normal[0] = static_cast<float>(nx);
+            vx.normal[1] = static_cast<float>(ny);
+            vx.normal[2] = static_cast<float>(nz);
+            // ∂p/∂u ∝ (−sin φ, 0, −cos φ): along the ring; ∂p/∂v points around the tube.
+            vx.tangent[0] = static_cast<float>(-std::sin(phi));
+            vx.tangent[1] = 0.f;
+            vx.tangent[2] = static_cast<float>(-std::cos(phi));
+            // Handedness of (t, b = ∂p/∂v, n): b ∝ (−sin ψ cos φ, cos ψ, sin ψ sin φ).
+            const double bx = -std::sin(psi) * cx, by = std::cos(psi), bz = -std::sin(psi) * cz;
+            const double tx = -std::sin(phi), tz = -std::cos(phi);
+            const double cxn = 0.0 * bz - tz * by, cyn = tz * bx - tx * bz, czn = tx * by - 0.0 * bx;
+            vx.tangent[3] = cxn * nx + cyn * ny + czn * nz >= 0.0 ? 1.f : -1.f;
+            // u runs twice around the ring: the ring (2π · major) is about twice the tube's
+            // circumference per unit of u at the shaderball's proportions, as the sphere's u is
+            // twice its v, so one texel keeps its shape across the ball.
+            vx.uv[0] = static_cast<float>(2.0 * u);
+            vx.uv[1] = static_cast<float>(v);
+            m.vertices.push_back(vx);
+        }
+    }
+    const uint32_t row = major_segments + 1;
+    for (uint32_t j = 0; j < minor_segments; ++j)
+        for (uint32_t i = 0; i < major_segments; ++i) {
+            const uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
+            m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+        }
+    return m;
+}
+
+Mesh make_shaderball(float size) {
+    Mesh m = make_sphere(0.7f * size);
+    Mesh ring = make_torus(0.7f * size, 0.16f * size, 128, 32);
+    // Tilted 20° about X toward the camera (+Z), so the ring's upper inner crease is in view.
+    const double a = 20.0 * std::numbers::pi / 180.0;
+    const double rx[3][3] = {{1, 0, 0}, {0, std::cos(a), -std::sin(a)}, {0, std::sin(a), std::cos(a)}};
+    const auto base = static_cast<uint32_t>(m.vertices.size());
+    for (Vertex v : ring.vertices) {
+        rotate(v.position, rx);
+        rotate(v.normal, rx);
+        float t[3] = {v.tangent[0], v.tangent[1], v.tangent[2]};
+        rotate(t, rx);
+        for (int i = 0; i < 3; ++i) v.tangent[i] = t[i];
+        m.vertices.push_back(v);
+    }
+    for (const uint32_t i : ring.indices) m.indices.push_back(base + i);
+    return m;
+}
+
 Mesh make_shape(const Shape& shape) {
     switch (shape.type) {
         case ShapeType::sphere: return make_sphere(shape.size);
         case ShapeType::cube: return make_cube(shape.size);
         case ShapeType::plane: return make_plane(shape.size);
+        case ShapeType::shaderball: return make_shaderball(shape.size);
     }
     return make_sphere(shape.size);
 }

@@ -33,6 +33,9 @@ Mesh make_sphere(float radius, uint32_t width_segments = 128, uint32_t height_se
 Mesh make_cube(float edge);
 // A square of the given side in the XY plane, facing +Z.
 Mesh make_plane(float side);
+// A torus around +Y in the XZ plane: u along the ring, v around the tube.
+Mesh make_torus(float major, float minor, uint32_t major_segments, uint32_t minor_segments);
+Mesh make_shaderball(float size);
 Mesh make_shape(const Shape& shape);
 
 // ---- textures.cpp

@@ -182,7 +182,7 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
 
 std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
     static const char* const brdf_names[] = {"standard", "accurate", "assignment"};  // CLI values
-    static const char* const shape_names[] = {"sphere", "cube", "plane"};
+    static const char* const shape_names[] = {"sphere", "cube", "plane", "shaderball"};
     std::ostringstream os;
     os << shape_names[static_cast<int>(scene.shape.type)] << ' ' << brdf_names[static_cast<int>(scene.brdf)] << " dir"
        << c.num_directional << " point" << c.num_point << (c.has_env ? " env" : "")

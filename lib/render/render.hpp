@@ -110,11 +110,14 @@ struct Camera {
     float yfov_deg = 35.f;
 };
 
-enum class ShapeType { sphere, cube, plane };
+enum class ShapeType { sphere, cube, plane, shaderball };
 struct Shape {
     ShapeType type = ShapeType::sphere;
     // Sphere: radius (the UV sphere of three.js SphereGeometry(r, 128, 64), shaded on the exact
     // sphere). Cube: edge length (turned to show three faces). Plane: side of a square facing +Z.
+    // Shaderball: overall radius; a sphere of 0.7 × size girdled by a tilted torus ring (tube
+    // 0.16 × size), whose inner side meets the sphere in concave creases: convex, concave and
+    // saddle curvature in one view, as look-dev shader balls have.
     float size = 1.f;
 };
 
@@ -191,6 +194,9 @@ struct ScalarRole {
 struct ColorRole {
     int texture = -1;  // RGB of that texture, or `value` (linear) when < 0
     Vec3 value{0.f, 0.f, 0.f};
+    // Multiplies the texture (emissive only): an HDR emissive stored as emissive / strength in
+    // an 8-bit file (manifest `emissive_strength`, glTF KHR_materials_emissive_strength).
+    float strength = 1.f;
 };
 struct NormalRole {
     int texture = -1;         // tangent-space normal in RGB; < 0: no normal mapping
@@ -210,6 +216,10 @@ struct Material {
     ScalarRole metalness{-1, Channel::R, false, 0.f};
     ScalarRole occlusion{-1, Channel::R, false, 1.f};  // scales environment light only
     ScalarRole opacity{-1, Channel::R, false, 1.f};    // blends over the background
+    // Texture coordinates sampled: (u, v) × uv_scale + uv_offset (tiling; a scale that keeps a
+    // texture's texels square on the shape is the caller's choice: preview::uv_for_aspect).
+    std::array<float, 2> uv_scale{1.f, 1.f};
+    std::array<float, 2> uv_offset{0.f, 0.f};
 };
 
 // Throws Error when roles point at missing textures or a normal map is also marked sRGB.

@@ -2,6 +2,7 @@
 // pass into a linear fp32 target, one encoding pass, readback (see renderer_impl.hpp for which
 // file does what).
 #include <algorithm>
+#include <cmath>
 
 #include <utility>
 
@@ -64,6 +65,10 @@ void check_material(const Material& m) {
     }
     if (m.normal.texture >= 0 && m.textures[static_cast<size_t>(m.normal.texture)].srgb)
         throw Error("material '" + m.name + "': the normal map is marked sRGB");
+    for (const float v : {m.uv_scale[0], m.uv_scale[1], m.uv_offset[0], m.uv_offset[1]})
+        if (!std::isfinite(v)) throw Error("material '" + m.name + "': uv_scale and uv_offset must be finite");
+    if (!(m.uv_scale[0] > 0.f && m.uv_scale[1] > 0.f))
+        throw Error("material '" + m.name + "': uv_scale must be positive (a mirrored texture would flip its normals)");
 }
 
 // ---------------------------------------------------------------------------------------------

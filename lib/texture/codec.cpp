@@ -22,6 +22,7 @@
 #include <cstring>
 #include <memory>
 
+#include "core/parallel.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {
@@ -75,7 +76,7 @@ struct AstcContext {
     AstcContext& operator=(const AstcContext&) = delete;
 };
 
-bool astc_context(const CodecOptions& opt, bool decompress_only, AstcContext& out, std::string& error) {
+bool astc_context(const CodecOptions& opt, bool decompress_only, int threads, AstcContext& out, std::string& error) {
     const float quality = opt.effort == Effort::fast     ? ASTCENC_PRE_FAST
                           : opt.effort == Effort::normal ? ASTCENC_PRE_MEDIUM
                                                          : ASTCENC_PRE_THOROUGH;
@@ -85,7 +86,7 @@ bool astc_context(const CodecOptions& opt, bool decompress_only, AstcContext& ou
     auto status = astcenc_config_init(opt.srgb ? ASTCENC_PRF_LDR_SRGB : ASTCENC_PRF_LDR,
                                       static_cast<unsigned>(opt.format->block_width),
                                       static_cast<unsigned>(opt.format->block_height), 1, quality, flags, &config);
-    if (status == ASTCENC_SUCCESS) status = astcenc_context_alloc(&config, 1, &out.ctx);
+    if (status == ASTCENC_SUCCESS) status = astcenc_context_alloc(&config, static_cast<unsigned>(threads), &out.ctx);
     if (status != ASTCENC_SUCCESS) {
         error = std::string("astcenc: ") + astcenc_get_error_string(status);
         return false;
@@ -177,23 +178,32 @@ bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint
     blocks.assign(level_bytes(f, level.width, level.height), 0);
     if (is_astc(f)) {
         AstcContext ctx;
-        if (!astc_context(opt, false, ctx, error)) return false;
+        const int threads = std::max(1, opt.threads);
+        if (!astc_context(opt, false, threads, ctx, error)) return false;
         Image8 rgba = to_rgba(level);
         void* slice = rgba.pixels.data();
         astcenc_image image{static_cast<unsigned>(level.width), static_cast<unsigned>(level.height), 1, ASTCENC_TYPE_U8,
                             &slice};
         const astcenc_swizzle swz{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
-        const auto status = astcenc_compress_image(ctx.ctx, &image, &swz, blocks.data(), blocks.size(), 0);
-        if (status != ASTCENC_SUCCESS) {
-            error = std::string("astcenc: ") + astcenc_get_error_string(status);
-            return false;
-        }
+        // astcenc shares the image's blocks among the threads that call it with their index.
+        std::vector<astcenc_error> status(static_cast<size_t>(threads), ASTCENC_SUCCESS);
+        parallel_for(status.size(), threads, [&](size_t t) {
+            status[t] = astcenc_compress_image(ctx.ctx, &image, &swz, blocks.data(), blocks.size(),
+                                               static_cast<unsigned>(t));
+        });
+        for (const astcenc_error e : status)
+            if (e != ASTCENC_SUCCESS) {
+                error = std::string("astcenc: ") + astcenc_get_error_string(e);
+                return false;
+            }
         return true;
     }
     const int flags = squish_flags(f, opt.effort);
     const int bw = (level.width + 3) / 4, bh = (level.height + 3) / 4;
-    std::array<uint8_t, 64> rgba{};
-    for (int by = 0; by < bh; ++by)
+    // Rows of blocks are independent: any number of threads writes the same bytes.
+    parallel_for(static_cast<size_t>(bh), std::max(1, opt.threads), [&](size_t row) {
+        const int by = static_cast<int>(row);
+        std::array<uint8_t, 64> rgba{};
         for (int bx = 0; bx < bw; ++bx) {
             int mask = 0;
             gather_block(level, bx, by, opt.normal_xy, rgba, mask);
@@ -201,6 +211,7 @@ bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint
                                    static_cast<size_t>(f.block_bytes)];
             squish::CompressMasked(rgba.data(), mask, out, flags);
         }
+    });
     return true;
 }
 
@@ -216,7 +227,7 @@ bool decode_level(std::span<const uint8_t> blocks, int width, int height, const 
     rgba = Image8(width, height, 4);
     if (is_astc(f)) {
         AstcContext ctx;
-        if (!astc_context(opt, true, ctx, error)) return false;
+        if (!astc_context(opt, true, 1, ctx, error)) return false;
         void* slice = rgba.pixels.data();
         astcenc_image image{static_cast<unsigned>(width), static_cast<unsigned>(height), 1, ASTCENC_TYPE_U8, &slice};
         const astcenc_swizzle swz{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};

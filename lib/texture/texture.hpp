@@ -86,6 +86,7 @@ struct CodecOptions {
     Effort effort = Effort::normal;
     bool normal_xy = false;  // BC5 of a normal: X, Y stored, Z dropped
     bool mask = false;       // channels are independent data (ASTC's mask-map error metric)
+    int threads = 1;         // encode_level's threads (block rows / astcenc's own threads): same blocks
 };
 
 // A level of codes (1 to 4 channels) to blocks. 1-channel levels go to BC1/ASTC as grey.

@@ -115,6 +115,27 @@ TEST(PreviewCli, DefaultIsLookDevAndReferenceIsExact) {
     EXPECT_GT(mean_at(lookdev, 40, 40), 5.0) << "the studio lights the far side (a dark rusty metal: measured 7.5)";
 }
 
+// Shape, camera and tiling from the command line: the shaderball, an orbit that moves the
+// camera (another image), tiling that moves the texture (another image), and usage errors.
+TEST(PreviewCli, ShapeOrbitAndTiling) {
+    const fs::path work = temp_dir("controls");
+    ASSERT_EQ(run("ingest " + q(samples() / "Net004A_1K-JPG") + " -o " + q(work / "out")).code, 0);
+    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 48 --device cpu -o ";
+    auto image = [&](const std::string& name, const std::string& args) {
+        const auto r = run(base + q(work / name) + " " + args);
+        EXPECT_EQ(r.code, 0) << args << ": " << r.output;
+        return bytes_of(work / name / "Net004A.png");
+    };
+    const std::string plain = image("plain", "");
+    EXPECT_NE(image("ball", "--shape shaderball"), plain);
+    EXPECT_NE(image("orbit", "--orbit 60,25"), plain);
+    EXPECT_NE(image("tiled", "--uv-scale 3"), plain);
+    EXPECT_EQ(image("same", "--orbit 0,0 --distance 4 --uv-scale 1 --uv-offset 0,0"), plain);
+    for (const std::string bad :
+         {"--orbit 10", "--uv-scale 0", "--distance 0", "--shape teapot", "--orbit 0,90", "--uv-aspect square"})
+        EXPECT_EQ(run(base + q(work / "bad") + " " + bad).code, 2) << bad;
+}
+
 TEST(PreviewCli, ContactSheetAndMissingManifest) {
     const fs::path work = temp_dir("sheet");
     ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work)).code, 0);

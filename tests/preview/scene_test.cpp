@@ -67,6 +67,61 @@ TEST(SceneFile, DefaultIsTheLookDevStudio) {
     EXPECT_EQ(studio_environment()->rgba, env.rgba);
 }
 
+TEST(Placement, TexelsStaySquareOnTheShape) {
+    SceneFile sf = default_scene();  // keep_aspect
+    render::Material m;
+    m.textures.resize(1);
+    m.albedo.texture = 0;
+    auto scale_for = [&](render::ShapeType shape, uint32_t w, uint32_t h) {
+        sf.scene.shape.type = shape;
+        m.textures[0].width = w;
+        m.textures[0].height = h;
+        place_textures(sf, m);
+        return m.uv_scale;
+    };
+    using S = std::array<float, 2>;
+    EXPECT_EQ(scale_for(render::ShapeType::sphere, 1024, 1024), (S{2.f, 1.f}));  // twice around
+    EXPECT_EQ(scale_for(render::ShapeType::sphere, 2048, 1024), (S{1.f, 1.f}));  // once, unstretched
+    EXPECT_EQ(scale_for(render::ShapeType::plane, 2048, 1024), (S{0.5f, 1.f}));  // the left half
+    EXPECT_EQ(scale_for(render::ShapeType::shaderball, 512, 1024), (S{4.f, 1.f}));
+    sf.uv_scale = {3.f, 2.f};
+    sf.uv_offset = {0.25f, 0.5f};
+    EXPECT_EQ(scale_for(render::ShapeType::cube, 1024, 1024), (S{3.f, 2.f}));
+    EXPECT_EQ(m.uv_offset, (S{0.25f, 0.5f}));
+    sf.keep_aspect = false;
+    EXPECT_EQ(scale_for(render::ShapeType::sphere, 1024, 1024), (S{3.f, 2.f}));
+    // Read from a scene file; out-of-range values are errors naming the key.
+    std::string error;
+    auto parsed = parse_scene(json::parse(R"({"uv": {"scale": [2, 1], "offset": [0.5, 0], "aspect": "keep"}})"), "/",
+                              "uv.json", error);
+    ASSERT_TRUE(parsed) << error;
+    EXPECT_EQ(parsed->uv_scale, (S{2.f, 1.f}));
+    EXPECT_TRUE(parsed->keep_aspect);
+    EXPECT_FALSE(parse_scene(json::parse(R"({"uv": {"scale": -1}})"), "/", "uv.json", error));
+    EXPECT_NE(error.find("uv.json: uv.scale"), std::string::npos) << error;
+}
+
+TEST(Placement, OrbitKeepsTheTargetAndDistance) {
+    render::Camera c;  // (0, 0, 4) looking at the origin
+    std::string error;
+    auto o = orbit_camera(c, std::array<float, 2>{90.f, 0.f}, std::nullopt, error);
+    ASSERT_TRUE(o) << error;
+    EXPECT_NEAR(o->position[0], 4.f, 1e-5f);
+    EXPECT_NEAR(o->position[1], 0.f, 1e-5f);
+    EXPECT_NEAR(o->position[2], 0.f, 1e-5f);
+    o = orbit_camera(c, std::array<float, 2>{0.f, 30.f}, 2.f, error);
+    ASSERT_TRUE(o) << error;
+    EXPECT_NEAR(o->position[1], 1.f, 1e-5f);             // 2 sin 30°
+    EXPECT_NEAR(o->position[2], std::sqrt(3.f), 1e-5f);  // 2 cos 30°
+    o = orbit_camera(c, std::nullopt, 8.f, error);       // the same direction, farther
+    ASSERT_TRUE(o) << error;
+    EXPECT_NEAR(o->position[2], 8.f, 1e-5f);
+    EXPECT_FALSE(orbit_camera(c, std::array<float, 2>{0.f, 90.f}, std::nullopt, error));
+    c.position = c.target;
+    EXPECT_FALSE(orbit_camera(c, std::nullopt, 2.f, error));
+    EXPECT_NE(error.find("sits on its target"), std::string::npos);
+}
+
 TEST(SceneFile, ToneMappingIsReadAndChecked) {
     std::string error;
     auto s = parse_scene(json::parse(R"({"output": {"tonemap": "aces"}})"), "/", "t.json", error);

@@ -218,5 +218,35 @@ TEST(Geometry, PlaneThroughOriginAndCubeFacesOutward) {
     }
 }
 
+// The shaderball's ring: unit normals pointing away from the tube's centre circle, tangents
+// along the ring and perpendicular to the normal, and a bitangent sign that makes cross(n, t) ×
+// sign point toward increasing v (the shader's convention), checked against finite differences.
+TEST(Geometry, ShaderballRingHasAConsistentTangentFrame) {
+    const Mesh ring = render::detail::make_torus(0.7f, 0.16f, 64, 16);
+    ASSERT_EQ(ring.vertices.size(), 65u * 17u);
+    for (uint32_t j = 0; j < 16; ++j)
+        for (uint32_t i = 0; i < 64; ++i) {
+            const auto& v = ring.vertices[j * 65 + i];
+            const auto& next_v = ring.vertices[(j + 1) * 65 + i];  // one step along +v
+            float n2 = 0, tn = 0;
+            for (int k = 0; k < 3; ++k) n2 += v.normal[k] * v.normal[k], tn += v.normal[k] * v.tangent[k];
+            EXPECT_NEAR(n2, 1.f, 1e-5f);
+            EXPECT_NEAR(tn, 0.f, 1e-5f);
+            // The point lies at distance `minor` from the centre circle, along its normal.
+            const float cx = v.position[0] - 0.16f * v.normal[0], cz = v.position[2] - 0.16f * v.normal[2];
+            EXPECT_NEAR(std::sqrt(cx * cx + cz * cz), 0.7f, 1e-5f);
+            const float b[3] = {v.normal[1] * v.tangent[2] - v.normal[2] * v.tangent[1],
+                                v.normal[2] * v.tangent[0] - v.normal[0] * v.tangent[2],
+                                v.normal[0] * v.tangent[1] - v.normal[1] * v.tangent[0]};
+            float toward_v = 0;
+            for (int k = 0; k < 3; ++k) toward_v += b[k] * v.tangent[3] * (next_v.position[k] - v.position[k]);
+            EXPECT_GT(toward_v, 0.f) << "vertex " << i << "," << j;
+        }
+    const Mesh ball = render::detail::make_shaderball(1.f);
+    EXPECT_EQ(ball.vertices.size(), 129u * 65u + 129u * 33u);
+    EXPECT_EQ(ball.indices.size() % 3, 0u);
+    for (const uint32_t i : ball.indices) ASSERT_LT(i, ball.vertices.size());
+}
+
 }  // namespace
 }  // namespace mf::test

@@ -1,8 +1,10 @@
 // `matforge ingest --preset gltf`: a .gltf per set and library.gltf, checked by the Khronos
 // glTF-Validator (0 errors, 0 warnings) on sample_materials/ and the real-material corpus, and
 // their materials checked against the manifest (slots, alpha mode, URIs, hashes).
+#include <cmath>
 #include <set>
 
+#include "color/srgb.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;
@@ -147,4 +149,55 @@ TEST(Gltf, DxNormalsSkipTheGltfWithAFinding) {
     for (const auto& f : m["materials"][0]["findings"]) skipped |= f["code"] == "MATERIAL_FILE_SKIPPED";
     EXPECT_TRUE(skipped);
     EXPECT_FALSE(m["materials"][0].contains("material_files"));
+}
+
+// An HDR emissive (an EXR of radiance up to 4) written to an 8-bit file: stored as emissive / 4
+// (the hue kept, not clipped to white), emissive_strength 4 in the manifest, the glTF carrying
+// KHR_materials_emissive_strength (glTF-Validator clean), and the preview's radiance back at 4.
+TEST(Gltf, HdrEmissiveKeepsItsHueAndStrength) {
+    const fs::path dir = temp_dir("hdr");
+    const fs::path set = dir / "in" / "Lamp";
+    fs::create_directories(set);
+    auto write = [](const mf::Image& img, const fs::path& file, const std::string& format, int bits) {
+        std::vector<unsigned char> bytes;
+        std::string err;
+        ASSERT_TRUE(mf::encode_image(img, {format, bits}, bytes, err)) << err;
+        ASSERT_TRUE(mf::write_file_atomic(file, bytes, err)) << err;
+    };
+    write(mf::Image(16, 16, 3, 0.02f), set / "Lamp_Color.png", "png", 8);
+    mf::Image emissive(16, 16, 3);
+    for (size_t p = 0; p < 256; ++p) {
+        emissive.pixels[3 * p] = 4.f;
+        emissive.pixels[3 * p + 1] = 3.f;
+        emissive.pixels[3 * p + 2] = 2.f;
+    }
+    write(emissive, set / "Lamp_Emissive.exr", "exr", 32);
+    const fs::path out = dir / "out";
+    const json m = ingest({dir / "in"}, out, "gltf");
+    ASSERT_EQ(m["materials"].size(), 1u);
+    const json& mat = m["materials"][0];
+    ASSERT_TRUE(mat.contains("emissive_strength")) << mat.dump(1);
+    EXPECT_FLOAT_EQ(mat["emissive_strength"].get<float>(), 4.f);
+    const mf::Image png = mf::testfiles::read_pixels(out / "Lamp" / "Lamp_emissive.png");
+    auto code = [](double linear) { return static_cast<int>(std::lround(mf::linear_to_srgb(linear) * 255.0)); };
+    EXPECT_EQ(static_cast<int>(std::lround(png.at(5, 5, 0) * 255.f)), 255);
+    EXPECT_EQ(static_cast<int>(std::lround(png.at(5, 5, 1) * 255.f)), code(0.75));
+    EXPECT_EQ(static_cast<int>(std::lround(png.at(5, 5, 2) * 255.f)), code(0.5));
+    const json doc = mf::testfiles::read_json(out / "Lamp" / "Lamp.gltf");
+    EXPECT_EQ(doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"], 4.0);
+    EXPECT_EQ(doc["extensionsUsed"], json::array({"KHR_materials_emissive_strength"}));
+    const auto reports = node_checker("gltf_validate.mjs", {out / "Lamp" / "Lamp.gltf", out / "library.gltf"});
+    ASSERT_EQ(reports.size(), 2u);
+    for (const auto& rep : reports) {
+        EXPECT_EQ(rep["errors"], 0) << rep.dump(1);
+        EXPECT_EQ(rep["warnings"], 0) << rep.dump(1);
+    }
+    // The preview multiplies back: the sphere's centre emits (4, 3, 2) (plus a dim reflection).
+    const auto r = matforge({"preview", (out / "manifest.json").string(), "-o", (dir / "prev").string(), "--device",
+                             "cpu", "--size", "32", "--scene", "reference", "--format", "exr"});
+    ASSERT_EQ(r.code, 0) << r.output;
+    const mf::Image frame = mf::testfiles::read_pixels(dir / "prev" / "Lamp.exr");
+    EXPECT_NEAR(frame.at(16, 16, 0), 4.f, 0.25f);
+    EXPECT_NEAR(frame.at(16, 16, 1), 3.f, 0.2f);
+    EXPECT_NEAR(frame.at(16, 16, 2), 2.f, 0.15f);
 }

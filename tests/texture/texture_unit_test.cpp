@@ -199,6 +199,11 @@ TEST_P(Codec, RoundTripsSmoothContent) {
         EXPECT_GT(mt::psnr(img, back, std::min(c.channels, o.format->channels)), c.min_psnr) << c.format;
         // A wrong channel order or a decoder of another format is far off.
         EXPECT_LT(mt::psnr(img, back, std::min(c.channels, o.format->channels)), 100.0);
+        // Threads share the work, never change the blocks.
+        o.threads = 3;
+        std::vector<uint8_t> threaded;
+        ASSERT_TRUE(mt::encode_level(img, o, threaded, err)) << err;
+        EXPECT_EQ(threaded, blocks) << c.format << " on 3 threads";
     }
 }
 

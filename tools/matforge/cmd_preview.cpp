@@ -21,7 +21,9 @@ namespace {
 struct PreviewArgs {
     std::string manifest, out, scene, shape, env, contact_sheet, brdf, tonemap;
     uint32_t size = 0;
-    std::optional<float> exposure;
+    std::optional<float> exposure, distance;
+    std::vector<float> orbit, uv_scale, uv_offset;
+    std::string uv_aspect;
     std::vector<std::string> lights;
     std::string format = "png", device = "auto";
     bool validation = false, allow_outside = false;
@@ -71,6 +73,19 @@ std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
         scene.shape.type = *preview::parse_shape(a.shape);  // CLI11 checked the name
         if (!sf->shape_size_given) scene.shape.size = preview::default_shape_size(scene.shape.type);
     }
+    if (!a.orbit.empty() || a.distance) {
+        std::optional<std::array<float, 2>> az_el;
+        if (!a.orbit.empty()) az_el = std::array<float, 2>{a.orbit[0], a.orbit[1]};
+        const auto cam = preview::orbit_camera(scene.camera, az_el, a.distance, error);
+        if (!cam) {
+            say("preview", "--orbit/--distance: " + error);
+            return std::nullopt;
+        }
+        scene.camera = *cam;
+    }
+    if (!a.uv_scale.empty()) sf->uv_scale = {a.uv_scale[0], a.uv_scale.size() > 1 ? a.uv_scale[1] : a.uv_scale[0]};
+    if (!a.uv_offset.empty()) sf->uv_offset = {a.uv_offset[0], a.uv_offset[1]};
+    if (!a.uv_aspect.empty()) sf->keep_aspect = a.uv_aspect == "keep";
     if (!a.lights.empty()) {
         if (a.lights.size() > render::kMaxLights) {
             say("preview", "at most " + std::to_string(render::kMaxLights) + " lights");
@@ -125,6 +140,7 @@ std::optional<std::vector<Job>> build_jobs(const PreviewArgs& a, const preview::
                                 auto mat = preview::load_material(mm, dir, o, notes, err);
                                 if (mat && sf.material && !preview::apply_scene_material(*sf.material, *mat, err))
                                     return std::nullopt;
+                                if (mat) preview::place_textures(sf, *mat);
                                 return mat;
                             }});
         }
@@ -142,6 +158,7 @@ std::optional<std::vector<Job>> build_jobs(const PreviewArgs& a, const preview::
                         render::Material m;
                         m.name = name;
                         if (!preview::apply_scene_material(*sf.material, m, err)) return std::nullopt;
+                        preview::place_textures(sf, m);
                         return m;
                     }});
     return jobs;
@@ -264,8 +281,32 @@ const Register reg{
          sub.add_option("--size", a->size,
                         "image width and height in pixels, 1..16384 (default: the scene's, else 512)")
              ->check(CLI::Range(1, 16384));
-         sub.add_option("--shape", a->shape, "sphere | cube | plane (default: the scene's, else sphere)")
-             ->check(CLI::IsMember({"sphere", "cube", "plane"}));
+         sub.add_option("--shape", a->shape,
+                        "sphere | cube | plane | shaderball (a sphere girdled by a tilted ring: convex, concave and "
+                        "saddle parts); default: the scene's, else sphere")
+             ->check(CLI::IsMember({"sphere", "cube", "plane", "shaderball"}));
+         sub.add_option("--orbit", a->orbit,
+                        "AZ,EL: the camera on its orbit around the target, degrees (azimuth toward +X, elevation "
+                        "above the horizon), at --distance or the scene's distance; default: the scene's camera")
+             ->expected(2)
+             ->delimiter(',')
+             ->check(CLI::Range(-360.0, 360.0));
+         sub.add_option("--distance", a->distance,
+                        "camera distance to the target in metres, 0.1..1000 (default: the scene's, 4)")
+             ->check(CLI::Range(0.1, 1000.0));
+         sub.add_option("--uv-scale", a->uv_scale, "U[,V]: texture tiling, 0.001..1000 (default 1)")
+             ->expected(1, 2)
+             ->delimiter(',')
+             ->check(CLI::Range(0.001, 1000.0));
+         sub.add_option("--uv-offset", a->uv_offset, "U,V: texture offset (default 0,0)")
+             ->expected(2)
+             ->delimiter(',')
+             ->check(CLI::Range(-1000.0, 1000.0));
+         sub.add_option("--uv-aspect", a->uv_aspect,
+                        "keep (a texture's texels stay square on the shape: a square map goes twice around the "
+                        "sphere, a 2:1 map once) | stretch (the map once around, whatever its shape); default: "
+                        "lookdev keep, else the scene's (stretch)")
+             ->check(CLI::IsMember({"keep", "stretch"}));
          sub.add_option(
                 "--light", a->lights,
                 "light, repeatable; replaces the scene's lights: dir:X,Y,Z[:INTENSITY[:R,G,B]] (direction of travel; default intensity 3) "

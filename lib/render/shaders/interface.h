@@ -134,9 +134,10 @@ struct FrameData {
     vec4 viewport;     // width, height, 1/width, 1/height
     vec4 background;   // rgb, linear
     vec4 albedo;       // rgb: constant albedo (linear) where the role has no texture
-    vec4 emissive;     // rgb: constant emitted radiance
+    vec4 emissive;     // rgb: constant emitted radiance; w: the emissive texture's strength
     vec4 scalars;      // constant roughness, metalness, occlusion, opacity
     vec4 shape;        // x: sphere radius; y: environment intensity; z: last prefiltered mip
+    vec4 uv;           // xy: scale, zw: offset of the texture coordinates (tiling)
     LightData lights[kMaxLights];
 };
 
@@ -172,7 +173,7 @@ struct GridPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 32);
-static_assert(sizeof(FrameData) == 64 + 10 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
+static_assert(sizeof(FrameData) == 64 + 11 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
 static_assert(sizeof(EncodeParams) == 20 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
 static_assert(sizeof(GridInput) == 64);
 

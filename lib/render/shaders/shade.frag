@@ -112,6 +112,10 @@ void main() {
         }
     }
     t = normalize(t - n * dot(n, t));  // Gram-Schmidt: interpolation bends it off the normal
+    // Tiling: a positive scale keeps the tangent frame's orientation (texels may repeat, never mirror).
+    st = st * frame.uv.xy + frame.uv.zw;
+    st_dx *= frame.uv.xy;
+    st_dy *= frame.uv.xy;
 
     if (NORMAL_TEX >= 0) {
         vec3 b = cross(n, t) * bsign;  // toward +v
@@ -125,7 +129,7 @@ void main() {
     }
 
     vec3 albedo = ALBEDO_TEX >= 0 ? sample_role(ALBEDO_TEX, st, st_dx, st_dy).rgb : frame.albedo.rgb;
-    vec3 emitted = EMISSIVE_TEX >= 0 ? sample_role(EMISSIVE_TEX, st, st_dx, st_dy).rgb : frame.emissive.rgb;
+    vec3 emitted = EMISSIVE_TEX >= 0 ? sample_role(EMISSIVE_TEX, st, st_dx, st_dy).rgb * frame.emissive.w : frame.emissive.rgb;
     float roughness = scalar_role(ROUGHNESS_TEX, ROUGHNESS_CH, ROUGHNESS_INVERT, frame.scalars.x, st, st_dx, st_dy);
     float metalness = scalar_role(METALNESS_TEX, METALNESS_CH, METALNESS_INVERT, frame.scalars.y, st, st_dx, st_dy);
     float opacity = scalar_role(OPACITY_TEX, OPACITY_CH, OPACITY_INVERT, frame.scalars.w, st, st_dx, st_dy);
