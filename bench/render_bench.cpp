@@ -148,6 +148,9 @@ struct Config {
     int point_lights = 0;
     Brdf brdf = Brdf::standard;
     PixelFormat output = PixelFormat::rgba8;
+    uint32_t supersample = 1;
+    Tonemap tonemap = Tonemap::none;
+    ShapeType shape = ShapeType::sphere;
 };
 
 std::vector<Config> configs() {
@@ -165,6 +168,16 @@ std::vector<Config> configs() {
         {"ibl", "base + environment (split-sum IBL)", false, false, true, 0, Brdf::standard, PixelFormat::rgba8},
         {"full", "textures + normal map + 8 lights + accurate + IBL", true, true, true, 7, Brdf::accurate,
          PixelFormat::rgba8},
+        {"tonemap", "base + PBR Neutral tone mapping (in the encode pass)", false, false, false, 0, Brdf::standard,
+         PixelFormat::rgba8, 1, Tonemap::neutral},
+        {"aa2", "base, 2x2 samples a pixel", false, false, false, 0, Brdf::standard, PixelFormat::rgba8, 2},
+        {"aa3", "base, 3x3 samples a pixel (the look-dev default)", false, false, false, 0, Brdf::standard,
+         PixelFormat::rgba8, 3},
+        {"aa4", "base, 4x4 samples a pixel", false, false, false, 0, Brdf::standard, PixelFormat::rgba8, 4},
+        {"shaderball", "base on the shaderball (mesh shading, ring and ball)", false, false, false, 0, Brdf::standard,
+         PixelFormat::rgba8, 1, Tonemap::none, ShapeType::shaderball},
+        {"lookdev", "textures + normal map + IBL + 1 light + PBR Neutral + 3x3 samples (the default preview)", true,
+         true, true, 0, Brdf::standard, PixelFormat::rgba8, 3, Tonemap::neutral},
     };
 }
 
@@ -224,6 +237,8 @@ int main(int argc, char** argv) {
                 Scene scene;
                 scene.width = scene.height = size;
                 scene.brdf = c.brdf;
+                scene.supersample = c.supersample;
+                scene.shape.type = c.shape;
                 for (int i = 0; i < c.point_lights; ++i) {
                     Light l;
                     l.type = LightType::point;
@@ -261,6 +276,7 @@ int main(int argc, char** argv) {
 
                 OutputOptions out;
                 out.format = c.output;
+                out.tonemap = c.tonemap;
                 std::map<std::string, std::vector<double>> times;
                 std::vector<std::string> order;
                 for (int f = 0; f < args.warmup + frames; ++f) {

@@ -10,6 +10,30 @@ std::string json_text(const nlohmann::json& j) {
     return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
+std::string json_text_with_array(const nlohmann::json& head, const std::string& key, size_t count,
+                                 const std::function<nlohmann::json(size_t)>& element) {
+    std::string text = json_text(head);
+    if (count == 0) return text;
+    // json_text indents 2 spaces a level: the array's key at 2, its elements at 4. JSON strings
+    // hold no raw newline, so every line of an element's dump is a line of the file.
+    const std::string empty = "\n  " + nlohmann::json(key).dump() + ": []";
+    const size_t at = text.find(empty);
+    if (at == std::string::npos) return text;  // `key` is not an empty top-level array: the caller's mistake
+    std::string items = "\n  " + nlohmann::json(key).dump() + ": [\n";
+    for (size_t i = 0; i < count; ++i) {
+        const std::string one = element(i).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+        for (size_t start = 0; start <= one.size();) {
+            const size_t end = std::min(one.find('\n', start), one.size());
+            items.append("    ").append(one, start, end - start);
+            if (end < one.size()) items += '\n';
+            start = end + 1;
+        }
+        items += i + 1 < count ? ",\n" : "\n  ]";
+    }
+    text.replace(at, empty.size(), items);
+    return text;
+}
+
 std::optional<int> json_int(const nlohmann::json& v, int lo, int hi) {
     if (!v.is_number_integer()) return std::nullopt;
     if (v.is_number_unsigned()) {

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,6 +14,12 @@ namespace mf {
 // folder names are bytes, not necessarily UTF-8; invalid sequences become U+FFFD instead of
 // throwing, so one odd name never costs the whole report.
 std::string json_text(const nlohmann::json& j);
+// json_text(head) where head's top-level `key` is an empty array, with that array holding
+// `count` elements made by element(i), each dumped alone: the same bytes as json_text of the whole
+// tree, without ever holding the tree (a JSON tree is several times its text; a manifest or
+// report of 10,000 sets would hold hundreds of MB).
+std::string json_text_with_array(const nlohmann::json& head, const std::string& key, size_t count,
+                                 const std::function<nlohmann::json(size_t)>& element);
 
 // JSON numbers arrive as 64-bit integers or doubles, whatever a file says; narrowing one outside
 // the target's range is undefined behaviour (the preset fuzzer found `"preset_version": 1e100`).

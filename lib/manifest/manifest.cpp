@@ -365,6 +365,19 @@ json to_json(const Manifest& m) {
     return j;
 }
 
+std::string manifest_text(const Manifest& m) {
+    Manifest head;  // everything but the materials
+    head.manifest_version = m.manifest_version;
+    head.generator = m.generator;
+    head.preset = m.preset;
+    head.normal_convention = m.normal_convention;
+    head.failures = m.failures;
+    head.library = m.library;
+    head.shard = m.shard;
+    return json_text_with_array(to_json(head), "materials", m.materials.size(),
+                                [&](size_t i) { return to_json(m.materials[i]); });
+}
+
 std::optional<Manifest> manifest_from_json(const json& j, std::string& error) {
     try {
         if (!j.is_object()) fail("manifest", "is not a JSON object");

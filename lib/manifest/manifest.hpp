@@ -126,6 +126,10 @@ nlohmann::json to_json(const std::vector<Constant>& constants);  // {role: numbe
 nlohmann::json to_json(const Output& out);
 nlohmann::json to_json(const Material& m);
 nlohmann::json to_json(const Manifest& m);
+// The manifest file's text: the bytes of core's json_text(to_json(m)), made one material at a
+// time so that writing a library of 10,000 sets holds its text, not a JSON tree of it (about
+// six times the text's size).
+std::string manifest_text(const Manifest& m);
 
 // nullopt + `error` (naming the material and member) when `j` is not a manifest this version
 // reads. Members a later version may add are ignored; members of the wrong type are errors.

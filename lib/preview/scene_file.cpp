@@ -104,7 +104,12 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
     check_keys(j, name,
                {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf", "uv"});
     if (const json* img = find(j, "image")) {
-        check_keys(*img, name + ": image", {"width", "height"});
+        check_keys(*img, name + ": image", {"width", "height", "supersample"});
+        if (const json* v = find(*img, "supersample")) {
+            const auto n = json_int(*v, 1, 4);
+            if (!n) fail(name + ": image.supersample", "must be an integer 1..4, got " + v->dump());
+            sc.supersample = static_cast<uint32_t>(*n);
+        }
         if (const json* w = find(*img, "width")) sc.width = dimension(*w, name + ": image.width");
         if (const json* h = find(*img, "height")) sc.height = dimension(*h, name + ": image.height");
     }

@@ -501,7 +501,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
                            },
                            result.error))
         return result;
-    const std::string text = json_text(manifest::to_json(m));  // never throws on non-UTF-8 names
+    const std::string text = manifest::manifest_text(m);  // never throws on non-UTF-8 names
     std::set<std::string> produced;
     for (const auto& mat : m.materials) {
         for (const auto& o : mat.outputs) produced.insert(o.file);

@@ -1,5 +1,6 @@
 // The frame: render targets, then Renderer::render's passes — shade into the linear fp32
 // target, encode to 8 bits (or copy the floats), read back.
+#include <algorithm>
 #include <cstring>
 
 #include "render/internal.hpp"
@@ -18,10 +19,16 @@ void Renderer::Impl::create_targets() {
 }
 
 void Renderer::Impl::create_frame_resources() {
+    const uint32_t limit = d.properties.limits.maxImageDimension2D;
+    if (std::max(scene.width, scene.height) * scene.supersample > limit)
+        throw Error("with " + std::to_string(scene.supersample) + "x" + std::to_string(scene.supersample) +
+                    " samples a pixel it is shaded at " + std::to_string(scene.width * scene.supersample) + "x" +
+                    std::to_string(scene.height * scene.supersample) + ", past this device's limit of " +
+                    std::to_string(limit) + " pixels a side: use a smaller --size or --aa");
     ImageDesc td;
     td.format = kTargetFormat;
-    td.width = scene.width;
-    td.height = scene.height;
+    td.width = scene.width * scene.supersample;  // shaded at every sample; encode averages them
+    td.height = scene.height * scene.supersample;
     td.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     target = create_image(d, td);
     readback = create_buffer(d, VkDeviceSize{scene.width} * scene.height * 16,
@@ -52,6 +59,7 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     const GpuMaterial::Impl& m = material.impl();
     if (m.owner != impl_.get()) throw Error("material '" + m.name + "' was uploaded by another renderer");
     const uint32_t w = r.scene.width, h = r.scene.height;
+    const uint32_t tw = w * r.scene.supersample, th = h * r.scene.supersample;  // the shaded samples
     r.write_frame(m.constants);
     r.frame_times.clear();
 
@@ -70,14 +78,14 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     att.clearValue.color = {{r.scene.background[0], r.scene.background[1], r.scene.background[2], 1.f}};
     auto ri = vk_struct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
-    ri.renderArea = {{0, 0}, {w, h}};
+    ri.renderArea = {{0, 0}, {tw, th}};
     ri.layerCount = 1;
     ri.colorAttachmentCount = 1;
     ri.pColorAttachments = &att;
     d.fn.vkCmdBeginRendering(cmd, &ri);
     d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline);
-    const VkViewport viewport{0.f, 0.f, static_cast<float>(w), static_cast<float>(h), 0.f, 1.f};
-    const VkRect2D scissor{{0, 0}, {w, h}};
+    const VkViewport viewport{0.f, 0.f, static_cast<float>(tw), static_cast<float>(th), 0.f, 1.f};
+    const VkRect2D scissor{{0, 0}, {tw, th}};
     d.fn.vkCmdSetViewport(cmd, 0, 1, &viewport);
     d.fn.vkCmdSetScissor(cmd, 0, 1, &scissor);
     const VkDescriptorSet sets[] = {r.frame_set, m.set};  // gpu::kSetFrame, gpu::kSetMaterial
@@ -90,38 +98,26 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     d.fn.vkCmdEndRendering(cmd);
     s.end_pass();
 
-    if (output.format == PixelFormat::rgba8) {
-        image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-        s.begin_pass("encode");
-        d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_pipeline);
-        d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_layout, 0, 1, &r.encode_set, 0,
-                                     nullptr);
-        const gpu::EncodeParams params{{w, h},
-                                       output.exposure,
-                                       output.transfer == Transfer::srgb ? 1u : 0u,
-                                       static_cast<uint32_t>(output.tonemap)};
-        d.fn.vkCmdPushConstants(cmd, r.encode_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
-        d.fn.vkCmdDispatch(cmd, tile_groups(w), tile_groups(h), 1);
-        s.end_pass();
-        memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    } else {
-        image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
-        s.begin_pass("readback");
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {w, h, 1};
-        d.fn.vkCmdCopyImageToBuffer(cmd, r.target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.readback.buffer, 1,
-                                    &region);
-        s.end_pass();
-        memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    }
+    // One compute pass for both outputs: the N×N samples of each pixel averaged in linear
+    // radiance, then either encoded to 8 bits (exposure, tone mapping, transfer) or kept as floats.
+    image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    const bool floats = output.format != PixelFormat::rgba8;
+    s.begin_pass(floats ? "resolve" : "encode");
+    d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_pipeline);
+    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_layout, 0, 1, &r.encode_set, 0, nullptr);
+    const gpu::EncodeParams params{{w, h},
+                                   output.exposure,
+                                   output.transfer == Transfer::srgb ? 1u : 0u,
+                                   static_cast<uint32_t>(output.tonemap),
+                                   r.scene.supersample,
+                                   floats ? 1u : 0u};
+    d.fn.vkCmdPushConstants(cmd, r.encode_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof params, &params);
+    d.fn.vkCmdDispatch(cmd, tile_groups(w), tile_groups(h), 1);
+    s.end_pass();
+    memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     s.finish(r.frame_times);
     invalidate(d, r.readback);
 

@@ -103,10 +103,13 @@ void Renderer::Impl::write_frame(const Material& m) {
     put(f.ray_right, {right[0] * tan_half * aspect, right[1] * tan_half * aspect, right[2] * tan_half * aspect});
     put(f.ray_up, {up[0] * tan_half, up[1] * tan_half, up[2] * tan_half});
     put(f.ray_forward, fwd);
-    f.viewport[0] = static_cast<float>(scene.width);
-    f.viewport[1] = static_cast<float>(scene.height);
-    f.viewport[2] = 1.f / static_cast<float>(scene.width);
-    f.viewport[3] = 1.f / static_cast<float>(scene.height);
+    // The shaded target: N×N samples a pixel (Scene::supersample), each at its own centre.
+    const auto tw = static_cast<float>(scene.width * scene.supersample),
+               th = static_cast<float>(scene.height * scene.supersample);
+    f.viewport[0] = tw;
+    f.viewport[1] = th;
+    f.viewport[2] = 1.f / tw;
+    f.viewport[3] = 1.f / th;
     put(f.background, d3(scene.background), 1.0);
     put(f.albedo, d3(m.albedo.value), 1.0);
     put(f.emissive, d3(m.emissive.value), m.emissive.strength);

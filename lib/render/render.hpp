@@ -156,6 +156,10 @@ inline constexpr size_t kMaxLights = gpu::kMaxLights;
 
 struct Scene {
     uint32_t width = 512, height = 512;
+    // Anti-aliasing: N×N samples per pixel at the sub-pixel centres ((i + 0.5) / N), shaded as a
+    // frame N times larger and box-averaged in linear radiance before tone mapping and encoding
+    // (1: one sample at the pixel centre, the reference tests' setting). 1..4; the cost is N².
+    uint32_t supersample = 1;
     Camera camera;
     Shape shape;
     Vec3 background{0.f, 0.f, 0.f};  // linear

@@ -84,6 +84,7 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
     if (scene.width == 0 || scene.height == 0 || scene.width > 16384 || scene.height > 16384)
         throw Error("image size must be 1..16384 pixels a side");
     if (scene.lights.size() > kMaxLights) throw Error("at most " + std::to_string(kMaxLights) + " lights");
+    if (scene.supersample < 1 || scene.supersample > 4) throw Error("supersample must be 1..4 samples a side");
     if (!d.supports(kTargetFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
         throw NoDeviceError(d.info.name + " cannot render to RGBA32F");
 

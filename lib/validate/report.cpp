@@ -122,22 +122,25 @@ bool run_fails(const Summary& s, FailOn f) {
            (s.info > 0 && fails(Severity::info, f));
 }
 
-nlohmann::json report_json(const Report& r) {
+namespace {
+
+nlohmann::json material_json(const MaterialReport& m) {
+    nlohmann::json fs = nlohmann::json::array();
+    for (const auto& f : m.findings) fs.push_back(to_json(f));
+    return {{"name", m.name},
+            {"source", m.source},
+            {"convention", m.convention},
+            {"inputs", manifest::to_json(m.inputs)},
+            {"constants", manifest::to_json(m.constants)},
+            {"findings", fs}};
+}
+
+// The report without its materials (an empty array in their place).
+nlohmann::json report_head(const Report& r) {
     nlohmann::json j;
     j["report_version"] = 1;
     j["generator"] = "matforge " + r.tool_version;
-    nlohmann::json mats = nlohmann::json::array();
-    for (const auto& m : r.materials) {
-        nlohmann::json fs = nlohmann::json::array();
-        for (const auto& f : m.findings) fs.push_back(to_json(f));
-        mats.push_back({{"name", m.name},
-                        {"source", m.source},
-                        {"convention", m.convention},
-                        {"inputs", manifest::to_json(m.inputs)},
-                        {"constants", manifest::to_json(m.constants)},
-                        {"findings", fs}});
-    }
-    j["materials"] = mats;
+    j["materials"] = nlohmann::json::array();
     nlohmann::json fl = nlohmann::json::array();
     for (const auto& f : r.failures) fl.push_back({{"source", f.source}, {"code", f.code}, {"message", f.message}});
     j["failures"] = fl;
@@ -146,7 +149,19 @@ nlohmann::json report_json(const Report& r) {
     return j;
 }
 
-std::string write_json(const Report& r) { return json_text(report_json(r)); }
+}  // namespace
+
+nlohmann::json report_json(const Report& r) {
+    nlohmann::json j = report_head(r);
+    for (const auto& m : r.materials) j["materials"].push_back(material_json(m));
+    return j;
+}
+
+// One material at a time: a report of 50,000 sets holds its text, not a JSON tree of it.
+std::string write_json(const Report& r) {
+    return json_text_with_array(report_head(r), "materials", r.materials.size(),
+                                [&](size_t i) { return material_json(r.materials[i]); });
+}
 
 std::string write_text(const Report& r, FailOn fail_on) {
     std::string out;

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/json.hpp"
 #include "preview/preview.hpp"
 #include "vulkan_fixture.hpp"
 
@@ -102,6 +103,38 @@ TEST(Manifest, SpecExampleMapsChannelsToRoles) {
     EXPECT_EQ(mat.metalness.channel, render::Channel::B);
     EXPECT_EQ(mat.albedo.texture, -1);
     EXPECT_EQ(mat.normal.texture, -1);
+}
+
+// manifest_text (one material at a time) writes the bytes of the whole-tree dump it replaces,
+// for no material, one, several, non-UTF-8 bytes in a name, failures, a library and a shard.
+TEST(Manifest, TextMadeOneMaterialAtATimeIsTheWholeDump) {
+    manifest::Manifest m;
+    m.generator = "matforge 0.1.0";
+    m.preset = "gltf";
+    EXPECT_EQ(manifest::manifest_text(m), json_text(manifest::to_json(m)));
+    for (int i = 0; i < 3; ++i) {
+        manifest::Material mat;
+        mat.name = "Set" + std::to_string(i);
+        mat.source = "in/set " + std::to_string(i) + (i == 1 ? std::string("\xff\xfe") : std::string());
+        mat.convention = "ambientcg";
+        manifest::Output o;
+        o.file = mat.name + "/" + mat.name + "_basecolor.png";
+        o.srgb = true;
+        o.width = o.height = 1024;
+        o.bit_depth = 8;
+        o.format = "png";
+        o.sha256 = std::string(64, 'a');
+        mat.outputs.push_back(o);
+        mat.constants.push_back({Role::metalness, {0.f}});
+        mat.findings.push_back({"CONSTANT_MAP", Severity::info, "metalness", "", "line one \"quoted\"", {{"k", 1.5}}});
+        if (i == 2) mat.emissive_strength = 4.5f;
+        m.materials.push_back(mat);
+        EXPECT_EQ(manifest::manifest_text(m), json_text(manifest::to_json(m))) << i + 1 << " material(s)";
+    }
+    m.failures.push_back({"in/broken", "UNREADABLE_FILE", "truncated"});
+    m.library.push_back({"library.gltf", "gltf", std::string(64, 'b')});
+    m.shard = manifest::Manifest::Shard{1, 3, std::string(64, 'c')};
+    EXPECT_EQ(manifest::manifest_text(m), json_text(manifest::to_json(m)));
 }
 
 TEST(Manifest, SmoothnessConstantsUnusedAndConventions) {

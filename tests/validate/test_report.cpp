@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "core/json.hpp"
 #include "validate/report.hpp"
 
 namespace mv = mf::validate;
@@ -89,6 +90,13 @@ TEST(Report, JsonShape) {
     EXPECT_EQ(j.at("failures")[0].at("code"), "UNREADABLE_FILE");
     EXPECT_EQ(j.at("summary"), (json{{"error", 1}, {"warning", 1}, {"info", 1}, {"failures", 1}}));
     EXPECT_EQ(mv::write_json(sample()), mv::write_json(sample())) << "deterministic";
+    // Written one material at a time, the bytes of the whole tree's dump (none, one, two).
+    mv::Report r = sample();
+    EXPECT_EQ(mv::write_json(r), mf::json_text(mv::report_json(r)));
+    r.materials.pop_back();
+    EXPECT_EQ(mv::write_json(r), mf::json_text(mv::report_json(r)));
+    r.materials.clear();
+    EXPECT_EQ(mv::write_json(r), mf::json_text(mv::report_json(r)));
 }
 
 TEST(Report, Verdict) {

@@ -39,7 +39,7 @@ ExitCode run_merge(const MergeArgs& a) {
             },
             error))
         return fail("merge", error, ExitCode::findings);
-    const std::string text = json_text(manifest::to_json(*merged));
+    const std::string text = manifest::manifest_text(*merged);
     if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
         return fail("merge", error, ExitCode::findings);
     return ExitCode::ok;

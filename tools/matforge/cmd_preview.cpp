@@ -22,6 +22,7 @@ struct PreviewArgs {
     std::string manifest, out, scene, shape, env, contact_sheet, brdf, tonemap;
     uint32_t size = 0;
     std::optional<float> exposure, distance;
+    uint32_t aa = 0;
     std::vector<float> orbit, uv_scale, uv_offset;
     std::string uv_aspect;
     std::vector<std::string> lights;
@@ -69,6 +70,7 @@ std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
     }
     render::Scene& scene = sf->scene;
     if (a.size) scene.width = scene.height = a.size;
+    if (a.aa) scene.supersample = a.aa;
     if (!a.shape.empty()) {
         scene.shape.type = *preview::parse_shape(a.shape);  // CLI11 checked the name
         if (!sf->shape_size_given) scene.shape.size = preview::default_shape_size(scene.shape.type);
@@ -278,6 +280,10 @@ const Register reg{
          sub.add_option("--exposure", a->exposure,
                         "radiance scale before tone mapping, 0..1000 (default: the scene's, 1)")
              ->check(CLI::Range(0.0, 1000.0));
+         sub.add_option("--aa", a->aa,
+                        "N: anti-aliasing, N×N samples a pixel averaged in linear light, 1..4 (cost N²); default: the "
+                        "scene's (lookdev 3, reference and scene files 1)")
+             ->check(CLI::Range(1, 4));
          sub.add_option("--size", a->size,
                         "image width and height in pixels, 1..16384 (default: the scene's, else 512)")
              ->check(CLI::Range(1, 16384));

@@ -1,12 +1,14 @@
 #version 460
-// The one place the output is encoded: linear radiance × exposure → tone mapping (none, PBR
-// Neutral or ACES; render::Tonemap) → transfer curve → 8 bits, rounded to nearest.
+// The one place the output is made: the N×N samples of a pixel averaged (Scene::supersample),
+// then either kept as linear floats or encoded: × exposure → tone mapping (none, PBR Neutral or
+// ACES; render::Tonemap) → transfer curve → 8 bits, rounded to nearest.
 #include "interface.h"
 
 layout(local_size_x = kTile, local_size_y = kTile) in;
 
 layout(set = 0, binding = kBindingEncodeRadiance, rgba32f) uniform readonly image2D radiance;
-layout(set = 0, binding = kBindingEncodePixels, std430) writeonly buffer Pixels { uint rgba8[]; } pixels;
+// 4 bytes a pixel (RGBA8), or 16 (four floats' bits) with params.floats.
+layout(set = 0, binding = kBindingEncodePixels, std430) writeonly buffer Pixels { uint words[]; } pixels;
 layout(push_constant) uniform EncodePush {
     EncodeParams params;
 };
@@ -58,10 +60,20 @@ uint quantize(float x) {
 void main() {
     uvec2 xy = gl_GlobalInvocationID.xy;
     if (xy.x >= params.size.x || xy.y >= params.size.y) return;
-    vec3 c = imageLoad(radiance, ivec2(xy)).rgb * params.exposure;
+    // The pixel's N×N samples, averaged in linear radiance (a box filter over the pixel).
+    vec4 sum = vec4(0.0);
+    uint n = params.supersample;
+    for (uint j = 0u; j < n; ++j)
+        for (uint i = 0u; i < n; ++i) sum += imageLoad(radiance, ivec2(xy * n + uvec2(i, j)));
+    vec4 px = sum / float(n * n);
+    uint index = xy.y * params.size.x + xy.x;
+    if (params.floats != 0u) {
+        for (uint k = 0u; k < 4u; ++k) pixels.words[4u * index + k] = floatBitsToUint(px[k]);
+        return;
+    }
+    vec3 c = px.rgb * params.exposure;
     if (params.tonemap == kTonemapNeutral) c = tonemap_neutral(max(c, vec3(0.0)));
     else if (params.tonemap == kTonemapAces) c = tonemap_aces(max(c, vec3(0.0)));
     if (params.srgb != 0u) c = vec3(srgb_encode(max(c.r, 0.0)), srgb_encode(max(c.g, 0.0)), srgb_encode(max(c.b, 0.0)));
-    pixels.rgba8[xy.y * params.size.x + xy.x] =
-        quantize(c.r) | (quantize(c.g) << 8) | (quantize(c.b) << 16) | (255u << 24);
+    pixels.words[index] = quantize(c.r) | (quantize(c.g) << 8) | (quantize(c.b) << 16) | (255u << 24);
 }

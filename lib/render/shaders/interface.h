@@ -145,8 +145,10 @@ struct FrameData {
 struct EncodeParams {
     uvec2 size;
     float exposure;
-    uint srgb;     // 1: IEC 61966-2-1 sRGB curve; 0: linear
-    uint tonemap;  // kTonemap*: applied to the exposed radiance, before the transfer curve
+    uint srgb;         // 1: IEC 61966-2-1 sRGB curve; 0: linear
+    uint tonemap;      // kTonemap*: applied to the exposed radiance, before the transfer curve
+    uint supersample;  // N: the radiance image holds N×N samples a pixel, averaged here
+    uint floats;       // 1: write the averaged linear radiance as 4 floats a pixel (no encoding)
 };
 
 // The environment passes' push constants.
@@ -174,7 +176,7 @@ struct GridPush {
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 32);
 static_assert(sizeof(FrameData) == 64 + 11 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
-static_assert(sizeof(EncodeParams) == 20 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
+static_assert(sizeof(EncodeParams) == 28 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
 static_assert(sizeof(GridInput) == 64);
 
 // ---- specialization constant values (C++ only): one 4-byte field per constant (int32, or
