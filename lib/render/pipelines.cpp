@@ -236,13 +236,18 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     auto vp = vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
     vp.viewportCount = 1;
     vp.scissorCount = 1;
-    // The shapes are convex: culling back faces is all the visibility they need (no depth buffer).
+    // Back faces culled (every shape is closed) and a depth test (the shaderball is not convex).
     auto rs =
         vk_struct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
     rs.polygonMode = VK_POLYGON_MODE_FILL;
     rs.cullMode = VK_CULL_MODE_BACK_BIT;
     rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     rs.lineWidth = 1.f;
+    auto dss =
+        vk_struct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
+    dss.depthTestEnable = VK_TRUE;
+    dss.depthWriteEnable = VK_TRUE;
+    dss.depthCompareOp = VK_COMPARE_OP_LESS;
     auto ms = vk_struct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
     ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineColorBlendAttachmentState blend{};
@@ -258,6 +263,7 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     auto rendering = vk_struct<VkPipelineRenderingCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO);
     rendering.colorAttachmentCount = 1;
     rendering.pColorAttachmentFormats = &kTargetFormat;
+    rendering.depthAttachmentFormat = kDepthFormat;
 
     auto ci = vk_struct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
     ci.pNext = &rendering;
@@ -268,6 +274,7 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     ci.pViewportState = &vp;
     ci.pRasterizationState = &rs;
     ci.pMultisampleState = &ms;
+    ci.pDepthStencilState = &dss;
     ci.pColorBlendState = &cb;
     ci.pDynamicState = &ds;
     ci.layout = shade_layout;

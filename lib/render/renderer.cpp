@@ -87,6 +87,8 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
     if (scene.supersample < 1 || scene.supersample > 4) throw Error("supersample must be 1..4 samples a side");
     if (!d.supports(kTargetFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
         throw NoDeviceError(d.info.name + " cannot render to RGBA32F");
+    if (!d.supports(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+        throw NoDeviceError(d.info.name + " has no 32-bit float depth buffer");
 
     auto pi = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
     pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

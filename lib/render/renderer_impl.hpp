@@ -18,6 +18,9 @@
 namespace mf::render {
 
 inline constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // linear radiance
+// Depth (fp32): the shaderball is not convex (its ring passes in front of and behind the ball),
+// so back-face culling alone cannot order its surfaces.
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr uint32_t kQueryCount = 16;                               // two timestamps for each of up to 8 passes
 
 // Descriptor needs of the image-based-lighting passes (ibl.cpp), reserved in the renderer's pool.
@@ -51,6 +54,7 @@ struct Renderer::Impl {
     detail::Buffer vertices, indices, uniforms, readback;
     uint32_t index_count = 0;
     detail::Image target;  // linear radiance, kTargetFormat
+    detail::Image depth;   // kDepthFormat, the target's size
     detail::Image dummy_2d, dummy_cube;
     detail::Image brdf_lut;                      // when the accurate BRDF or an environment needs it
     detail::Image env_specular, env_irradiance;  // when the scene has an environment

@@ -96,7 +96,7 @@ Unique<VkImageView> create_view(const Device& d, const Image& img, VkImageViewTy
     vi.image = img.image;
     vi.viewType = type;
     vi.format = img.desc.format;
-    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base_mip, mips, base_layer, layers};
+    vi.subresourceRange = {img.desc.aspect, base_mip, mips, base_layer, layers};
     VkImageView v = VK_NULL_HANDLE;
     VK_CHECK(d.fn.vkCreateImageView(d.device, &vi, nullptr, &v));
     return Unique<VkImageView>(d, v);
@@ -113,7 +113,7 @@ Unique<VkShaderModule> create_shader(const Device& d, const uint32_t* words, siz
 
 void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
                    VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                   VkAccessFlags2 dst_access, uint32_t base_mip, uint32_t mips) {
+                   VkAccessFlags2 dst_access, uint32_t base_mip, uint32_t mips, VkImageAspectFlags aspect) {
     auto b = vk_struct<VkImageMemoryBarrier2>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2);
     b.srcStageMask = src_stage;
     b.srcAccessMask = src_access;
@@ -124,7 +124,7 @@ void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageL
     b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base_mip, mips, 0, VK_REMAINING_ARRAY_LAYERS};
+    b.subresourceRange = {aspect, base_mip, mips, 0, VK_REMAINING_ARRAY_LAYERS};
     auto dep = vk_struct<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &b;

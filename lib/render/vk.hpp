@@ -237,6 +237,7 @@ struct ImageDesc {
     uint32_t width = 1, height = 1, mips = 1, layers = 1;
     VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     bool cube = false;  // layers == 6, viewed as a cube map
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;  // VK_IMAGE_ASPECT_DEPTH_BIT for a depth buffer
 };
 struct Image {
     Unique<VkImage> image;
@@ -253,7 +254,8 @@ Unique<VkShaderModule> create_shader(const Device& d, const uint32_t* words, siz
 // Image layout transition of all mips and layers, with the given scopes (synchronization2).
 void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
                    VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-                   VkAccessFlags2 dst_access, uint32_t base_mip = 0, uint32_t mips = VK_REMAINING_MIP_LEVELS);
+                   VkAccessFlags2 dst_access, uint32_t base_mip = 0, uint32_t mips = VK_REMAINING_MIP_LEVELS,
+                   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
 void memory_barrier(const Device& d, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                     VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
