@@ -151,6 +151,7 @@ struct Config {
     uint32_t supersample = 1;
     Tonemap tonemap = Tonemap::none;
     ShapeType shape = ShapeType::sphere;
+    bool ground = false;
 };
 
 std::vector<Config> configs() {
@@ -176,6 +177,8 @@ std::vector<Config> configs() {
         {"aa4", "base, 4x4 samples a pixel", false, false, false, 0, Brdf::standard, PixelFormat::rgba8, 4},
         {"shaderball", "base on the shaderball (mesh shading, ring and ball)", false, false, false, 0, Brdf::standard,
          PixelFormat::rgba8, 1, Tonemap::none, ShapeType::shaderball},
+        {"ground", "base + ground plane with the key light's soft shadow", false, false, false, 0, Brdf::standard,
+         PixelFormat::rgba8, 1, Tonemap::none, ShapeType::sphere, true},
         {"lookdev", "textures + normal map + IBL + 1 light + PBR Neutral + 3x3 samples (the default preview)", true,
          true, true, 0, Brdf::standard, PixelFormat::rgba8, 3, Tonemap::neutral},
     };
@@ -239,6 +242,7 @@ int main(int argc, char** argv) {
                 scene.brdf = c.brdf;
                 scene.supersample = c.supersample;
                 scene.shape.type = c.shape;
+                scene.ground.enabled = c.ground;
                 for (int i = 0; i < c.point_lights; ++i) {
                     Light l;
                     l.type = LightType::point;

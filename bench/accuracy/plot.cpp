@@ -226,7 +226,7 @@ Image draw_plot(const PlotSpec& spec, const std::vector<PlotSeries>& series) {
 
     // Legend at the right.
     int ly = top;
-    draw_text(img, right + 20, ly, "KNOB", black, 2);
+    draw_text(img, right + 20, ly, spec.legend, black, 2);
     ly += 26;
     for (size_t s = 0; s < series.size(); ++s) {
         const auto c = kPalette[s % std::size(kPalette)];

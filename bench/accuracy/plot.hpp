@@ -22,6 +22,7 @@ struct PlotSeries {
 
 struct PlotSpec {
     std::string title, x_label, y_label;
+    std::string legend = "KNOB";  // the legend's heading
     int width = 1700, height = 1000;
     double y_floor = 1e-4;  // smallest y shown; smaller values sit on this line
 };

@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
     spec.title = opt.count("--title") ? opt["--title"] : "";
     spec.x_label = opt.count("--xlabel") ? opt["--xlabel"] : opt["--x"];
     spec.y_label = opt.count("--ylabel") ? opt["--ylabel"] : opt["--y"];
+    spec.legend = opt["--series"];
     spec.width = 1200;
     spec.height = 800;
     spec.y_floor = 1e-3;

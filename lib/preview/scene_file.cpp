@@ -102,7 +102,8 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
     SceneFile out = reference_scene();  // a scene file says what it wants on top of the reference
     render::Scene& sc = out.scene;
     check_keys(j, name,
-               {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf", "uv"});
+               {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf", "uv",
+                "ground"});
     if (const json* img = find(j, "image")) {
         check_keys(*img, name + ": image", {"width", "height", "supersample"});
         if (const json* v = find(*img, "supersample")) {
@@ -240,6 +241,21 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
         if (const json* e = find(*o, "exposure")) {
             out.output.exposure = number(*e, w + ".exposure");
             if (out.output.exposure < 0.f) fail(w + ".exposure", "must not be negative");
+        }
+    }
+    if (const json* g = find(j, "ground")) {
+        const std::string w = name + ": ground";
+        if (g->is_boolean()) {
+            sc.ground.enabled = g->get<bool>();
+        } else {
+            if (!g->is_object())
+                fail(w, "expected true, false or {\"albedo\", \"roughness\", \"light_deg\"}, got " + g->dump());
+            check_keys(*g, w, {"albedo", "roughness", "light_deg"});
+            sc.ground.enabled = true;
+            if (const json* v = find(*g, "albedo")) sc.ground.albedo = number_in(*v, w + ".albedo", 0.f, 1.f);
+            if (const json* v = find(*g, "roughness")) sc.ground.roughness = number_in(*v, w + ".roughness", 0.f, 1.f);
+            if (const json* v = find(*g, "light_deg"))
+                sc.ground.light_deg = number_in(*v, w + ".light_deg", 0.1f, 45.f);
         }
     }
     if (const json* uv = find(j, "uv")) {

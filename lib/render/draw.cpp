@@ -116,6 +116,13 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     d.fn.vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
     d.fn.vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     d.fn.vkCmdDrawIndexed(cmd, r.index_count, 1, 0, 0, 0);
+    if (m.ground_pipeline) {  // Scene::ground: the floor under the shape, its own variant
+        d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.ground_pipeline);
+        const VkBuffer gvb = r.ground_vertices.buffer;
+        d.fn.vkCmdBindVertexBuffers(cmd, 0, 1, &gvb, &zero);
+        d.fn.vkCmdBindIndexBuffer(cmd, r.ground_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+        d.fn.vkCmdDrawIndexed(cmd, 6, 1, 0, 0, 0);
+    }
     d.fn.vkCmdEndRendering(cmd);
     s.end_pass();
 

@@ -50,6 +50,7 @@ constexpr VkSpecializationMapEntry kShadeEntries[] = {
     spec_entry(gpu::kSpecOpacityChannel, offsetof(ShadeSpecialization, opacity_channel)),
     spec_entry(gpu::kSpecOpacityInvert, offsetof(ShadeSpecialization, opacity_invert)),
     spec_entry(gpu::kSpecNormalZFromXy, offsetof(ShadeSpecialization, normal_z_from_xy)),
+    spec_entry(gpu::kSpecGround, offsetof(ShadeSpecialization, ground)),
 };
 static_assert(spec_entries_distinct(kShadeEntries), "an id or field mapped twice");
 
@@ -180,6 +181,16 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     return c;
 }
 
+ShadeSpecialization Renderer::Impl::ground_specialization(const ShadeSpecialization& c) {
+    ShadeSpecialization g{};
+    g.num_directional = c.num_directional;
+    g.num_point = c.num_point;
+    g.brdf_model = c.brdf_model;
+    g.has_env = c.has_env;
+    g.ground = 1;
+    return g;  // every *_tex −1: nothing sampled; no analytic sphere
+}
+
 std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
     static const char* const brdf_names[] = {"standard", "accurate", "assignment"};  // CLI values
     static const char* const shape_names[] = {"sphere", "cube", "plane", "shaderball"};
@@ -193,6 +204,7 @@ std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
     if (c.emissive_tex >= 0) os << " emissive:tex";
     if (c.opacity_tex >= 0) os << " opacity:tex";
     if (c.occlusion_tex >= 0) os << " occlusion:tex";
+    if (scene.ground.enabled) os << " ground";
     return os.str();
 }
 

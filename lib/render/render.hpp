@@ -165,6 +165,17 @@ struct Scene {
     Vec3 background{0.f, 0.f, 0.f};  // linear
     std::vector<Light> lights{Light{}};
     std::shared_ptr<const Environment> environment;  // null: no image-based lighting
+    // A ground plane under the shape, only when asked (nothing of it is computed otherwise): a
+    // square of 16 × the shape's size at the shape's lowest point, a grey dielectric, shaded by
+    // the scene's lights and environment, with a soft contact shadow: the key light (the first
+    // directional light, seen as a disc of `ground_light_deg` angular radius) occluded by the
+    // shape's bounding sphere, and the environment occluded by that sphere too (the shadow the
+    // shape casts on the floor of a photo studio).
+    struct Ground {
+        bool enabled = false;
+        float albedo = 0.5f, roughness = 0.7f;
+        float light_deg = 4.f;  // key light's angular radius: the penumbra's width
+    } ground;
     Brdf brdf = Brdf::standard;
 };
 

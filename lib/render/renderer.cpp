@@ -85,6 +85,11 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
         throw Error("image size must be 1..16384 pixels a side");
     if (scene.lights.size() > kMaxLights) throw Error("at most " + std::to_string(kMaxLights) + " lights");
     if (scene.supersample < 1 || scene.supersample > 4) throw Error("supersample must be 1..4 samples a side");
+    if (scene.ground.enabled &&
+        !(scene.ground.albedo >= 0.f && scene.ground.albedo <= 1.f && scene.ground.roughness >= 0.f &&
+          scene.ground.roughness <= 1.f && scene.ground.light_deg > 0.f && scene.ground.light_deg <= 45.f))
+        throw Error(
+            "ground: albedo and roughness must be within [0, 1], the key light's radius within (0, 45] degrees");
     if (!d.supports(kTargetFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
         throw NoDeviceError(d.info.name + " cannot render to RGBA32F");
     if (!d.supports(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))

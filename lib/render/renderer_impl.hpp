@@ -21,7 +21,7 @@ inline constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // lin
 // Depth (fp32): the shaderball is not convex (its ring passes in front of and behind the ball),
 // so back-face culling alone cannot order its surfaces.
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-inline constexpr uint32_t kQueryCount = 16;                               // two timestamps for each of up to 8 passes
+inline constexpr uint32_t kQueryCount = 16;  // two timestamps for each of up to 8 passes
 
 // Descriptor needs of the image-based-lighting passes (ibl.cpp), reserved in the renderer's pool.
 inline constexpr uint32_t kIblSets = 24;
@@ -53,8 +53,10 @@ struct Renderer::Impl {
 
     detail::Buffer vertices, indices, uniforms, readback;
     uint32_t index_count = 0;
-    detail::Image target;  // linear radiance, kTargetFormat
-    detail::Image depth;   // kDepthFormat, the target's size
+    float shape_bottom = 0.f, shape_radius = 0.f;    // lowest y and bounding-sphere radius of the shape's mesh
+    detail::Buffer ground_vertices, ground_indices;  // only with Scene::ground
+    detail::Image target;                            // linear radiance, kTargetFormat
+    detail::Image depth;                             // kDepthFormat, the target's size
     detail::Image dummy_2d, dummy_cube;
     detail::Image brdf_lut;                      // when the accurate BRDF or an environment needs it
     detail::Image env_specular, env_irradiance;  // when the scene has an environment
@@ -81,6 +83,9 @@ struct Renderer::Impl {
     void create_layouts();
     // The variant of shade.frag a material needs in this scene, and its one-line description.
     gpu::ShadeSpecialization specialization(const Material& m) const;
+    // The ground plane's variant beside the shape's `c`: the scene's lights, environment and
+    // BRDF, no texture, flat, not the analytic sphere.
+    static gpu::ShadeSpecialization ground_specialization(const gpu::ShadeSpecialization& c);
     std::string describe(const gpu::ShadeSpecialization& c) const;
     VkPipeline shade_pipeline(const gpu::ShadeSpecialization& c);
 
@@ -111,7 +116,8 @@ struct GpuMaterial::Impl {
     std::vector<detail::Image> textures;
     detail::Unique<VkDescriptorPool> pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
-    VkPipeline pipeline = VK_NULL_HANDLE;  // owned by the renderer's cache
+    VkPipeline pipeline = VK_NULL_HANDLE;         // owned by the renderer's cache
+    VkPipeline ground_pipeline = VK_NULL_HANDLE;  // with Scene::ground: the ground's variant for this scene
 };
 
 }  // namespace mf::render

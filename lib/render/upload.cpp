@@ -1,6 +1,7 @@
 // To the device: buffers, the mesh, textures with their mip chains, the placeholders bound
 // where a variant samples nothing, and Renderer::upload (a material's textures and set).
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <optional>
 
@@ -34,6 +35,24 @@ void Renderer::Impl::upload_mesh() {
     indices = upload_buffer(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
                             VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     index_count = static_cast<uint32_t>(mesh.indices.size());
+    for (const Vertex& v : mesh.vertices) {
+        shape_bottom = std::min(shape_bottom, v.position[1]);
+        shape_radius = std::max(shape_radius, std::sqrt(v.position[0] * v.position[0] + v.position[1] * v.position[1] +
+                                                        v.position[2] * v.position[2]));
+    }
+    if (!scene.ground.enabled) return;  // simulated only when asked
+    // A square facing +Y just under the shape's lowest point (a thousandth of its size below:
+    // no depth fight where they touch), 16 × the shape's size a side.
+    const float half = 8.f * std::max(scene.shape.size, 1e-3f), y = shape_bottom - 1e-3f * scene.shape.size;
+    std::vector<Vertex> quad(4);
+    for (int c = 0; c < 4; ++c) {
+        const float u = (c == 1 || c == 2) ? 1.f : 0.f, v = c >= 2 ? 1.f : 0.f;
+        quad[size_t(c)] =
+            Vertex{{(2.f * u - 1.f) * half, y, (1.f - 2.f * v) * half}, {0.f, 1.f, 0.f}, {1.f, 0.f, 0.f, 1.f}, {u, v}};
+    }
+    const uint32_t quad_indices[] = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from above
+    ground_vertices = upload_buffer(quad.data(), quad.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    ground_indices = upload_buffer(quad_indices, sizeof quad_indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
 Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandBuffer cmd,
@@ -144,6 +163,7 @@ GpuMaterial Renderer::upload(const Material& material) {
     const gpu::ShadeSpecialization constants = r.specialization(material);
     m.variant = r.describe(constants);
     m.pipeline = r.shade_pipeline(constants);
+    if (r.scene.ground.enabled) m.ground_pipeline = r.shade_pipeline(Impl::ground_specialization(constants));
 
     // Which textures the variant samples: the rest are not uploaded at all.
     std::vector<bool> used(material.textures.size(), false);

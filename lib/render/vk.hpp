@@ -236,7 +236,7 @@ struct ImageDesc {
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;
     VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
-    bool cube = false;  // layers == 6, viewed as a cube map
+    bool cube = false;                                      // layers == 6, viewed as a cube map
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;  // VK_IMAGE_ASPECT_DEPTH_BIT for a depth buffer
 };
 struct Image {

@@ -101,6 +101,21 @@ TEST(Placement, TexelsStaySquareOnTheShape) {
     EXPECT_NE(error.find("uv.json: uv.scale"), std::string::npos) << error;
 }
 
+TEST(SceneFile, GroundIsReadAndChecked) {
+    std::string error;
+    auto s = parse_scene(json::parse(R"({"ground": true})"), "/", "g.json", error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_TRUE(s->scene.ground.enabled);
+    s = parse_scene(json::parse(R"({"ground": {"albedo": 0.3, "roughness": 0.9}})"), "/", "g.json", error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_TRUE(s->scene.ground.enabled);
+    EXPECT_FLOAT_EQ(s->scene.ground.albedo, 0.3f);
+    EXPECT_FALSE(reference_scene().scene.ground.enabled);
+    EXPECT_FALSE(default_scene().scene.ground.enabled);  // only when asked
+    EXPECT_FALSE(parse_scene(json::parse(R"({"ground": {"albedo": 2}})"), "/", "g.json", error));
+    EXPECT_NE(error.find("g.json: ground.albedo"), std::string::npos) << error;
+}
+
 TEST(Placement, OrbitKeepsTheTargetAndDistance) {
     render::Camera c;  // (0, 0, 4) looking at the origin
     std::string error;

@@ -86,5 +86,37 @@ TEST_F(PlacementTest, ShaderballRendersItsRingAndBall) {
     EXPECT_GT(beyond, 10u);
 }
 
+// The ground (Scene::ground), only when asked: the key light (travelling down, back and right)
+// casts the sphere's shadow back and to the right on the floor; the same floor to the left is
+// lit. Without it the variant has no ground and the frame's floor area is background.
+TEST_F(PlacementTest, GroundOnlyWhenAskedWithTheKeyLightsShadow) {
+    render::Scene s;
+    s.width = s.height = 64;
+    s.background = {0.f, 0.f, 0.f};
+    render::Material m;
+    m.albedo.value = {0.8f, 0.8f, 0.8f};
+    render::OutputOptions o;
+    o.format = render::PixelFormat::rgba32f;
+    auto at = [](const render::Frame& f, int x, int y) { return f.rgba32f[(size_t(y) * f.width + size_t(x)) * 4]; };
+    {
+        render::Renderer plain(context(), s);
+        const render::GpuMaterial gm = plain.upload(m);
+        EXPECT_EQ(gm.variant().find("ground"), std::string::npos) << gm.variant();
+        EXPECT_EQ(at(plain.render(gm, o), 12, 52), 0.f) << "no ground: background";
+    }
+    s.ground.enabled = true;
+    render::Renderer r(context(), s);
+    const render::GpuMaterial gm = r.upload(m);
+    EXPECT_NE(gm.variant().find("ground"), std::string::npos) << gm.variant();
+    const render::Frame f = r.render(gm, o);
+    // The light travels along (1, −1, −1)/√3: from the sphere's centre it meets the floor
+    // (y = −1) at (1, −1, −1), seen at about pixel (52, 52); its mirror image (12, 52) is lit.
+    const float lit = at(f, 12, 52), shadowed = at(f, 52, 52);
+    EXPECT_GT(lit, 0.1f);
+    EXPECT_LT(shadowed, 0.2f * lit) << "lit " << lit << ", in the shadow " << shadowed;
+    // Far from the sphere the floor is plain Lambert + specular under the key light: no shadow.
+    EXPECT_GT(at(f, 2, 62), 0.1f);
+}
+
 }  // namespace
 }  // namespace mf::test

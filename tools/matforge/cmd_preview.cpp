@@ -27,7 +27,7 @@ struct PreviewArgs {
     std::string uv_aspect;
     std::vector<std::string> lights;
     std::string format = "png", device = "auto";
-    bool validation = false, allow_outside = false;
+    bool validation = false, allow_outside = false, ground = false;
 };
 
 // A material name as a file name: path separators and characters shells trip on become '_';
@@ -71,6 +71,7 @@ std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
     render::Scene& scene = sf->scene;
     if (a.size) scene.width = scene.height = a.size;
     if (a.aa) scene.supersample = a.aa;
+    if (a.ground) scene.ground.enabled = true;
     if (!a.shape.empty()) {
         scene.shape.type = *preview::parse_shape(a.shape);  // CLI11 checked the name
         if (!sf->shape_size_given) scene.shape.size = preview::default_shape_size(scene.shape.type);
@@ -280,6 +281,9 @@ const Register reg{
          sub.add_option("--exposure", a->exposure,
                         "radiance scale before tone mapping, 0..1000 (default: the scene's, 1)")
              ->check(CLI::Range(0.0, 1000.0));
+         sub.add_flag("--ground", a->ground,
+                      "a ground plane under the shape (grey, rough) with a soft contact shadow from the key light; "
+                      "simulated only when asked (default: the scene's, none)");
          sub.add_option("--aa", a->aa,
                         "N: anti-aliasing, N×N samples a pixel averaged in linear light, 1..4 (cost N²); default: the "
                         "scene's (lookdev 3, reference and scene files 1)")

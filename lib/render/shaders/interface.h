@@ -107,6 +107,7 @@ MF_CONST int kSpecOpacityTex = 18;
 MF_CONST int kSpecOpacityChannel = 19;
 MF_CONST int kSpecOpacityInvert = 20;
 MF_CONST int kSpecNormalZFromXy = 21;  // a two-channel normal map (BC5): Z rebuilt from X and Y
+MF_CONST int kSpecGround = 22;         // this draw is the ground plane (Scene::ground), not the shape
 
 // brdf_lut.glsl
 MF_CONST int kSpecLutCorrelated = 0;
@@ -138,6 +139,8 @@ struct FrameData {
     vec4 scalars;      // constant roughness, metalness, occlusion, opacity
     vec4 shape;        // x: sphere radius; y: environment intensity; z: last prefiltered mip
     vec4 uv;           // xy: scale, zw: offset of the texture coordinates (tiling)
+    vec4 ground;       // x: height of the ground plane; y: its albedo (grey); z: its roughness; w: tan of the key light's angular radius
+    vec4 occluder;     // xyz: centre, w: radius of the shape's bounding sphere (the ground's shadow)
     LightData lights[kMaxLights];
 };
 
@@ -175,7 +178,7 @@ struct GridPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 32);
-static_assert(sizeof(FrameData) == 64 + 11 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
+static_assert(sizeof(FrameData) == 64 + 13 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
 static_assert(sizeof(EncodeParams) == 28 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
 static_assert(sizeof(GridInput) == 64);
 
@@ -207,6 +210,7 @@ struct ShadeSpecialization {
     int32_t opacity_channel = 0;
     uint32_t opacity_invert = 0;
     uint32_t normal_z_from_xy = 0;
+    uint32_t ground = 0;
 
     // The texture slots the variant samples (−1 where a role is a constant).
     std::array<int32_t, 7> texture_slots() const {

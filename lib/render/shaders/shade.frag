@@ -17,6 +17,7 @@ layout(constant_id = kSpecEmissiveTex) const int EMISSIVE_TEX = -1;
 layout(constant_id = kSpecNormalTex) const int NORMAL_TEX = -1;
 layout(constant_id = kSpecNormalGreenDown) const bool NORMAL_GREEN_DOWN = false;  // DirectX normal map
 layout(constant_id = kSpecNormalZFromXy) const bool NORMAL_Z_FROM_XY = false;  // X, Y stored only (BC5)
+layout(constant_id = kSpecGround) const bool GROUND = false;  // the ground plane: its own constant material
 layout(constant_id = kSpecRoughnessTex) const int ROUGHNESS_TEX = -1;
 layout(constant_id = kSpecRoughnessChannel) const int ROUGHNESS_CH = 0;
 layout(constant_id = kSpecRoughnessInvert) const bool ROUGHNESS_INVERT = false;  // smoothness
@@ -82,6 +83,30 @@ bool sphere_hit(out vec3 p) {
     return true;
 }
 
+// The fraction of the key light (a disc of angular radius atan(frame.ground.w) around direction
+// `l`) that the occluding sphere (frame.occluder) leaves visible from `p`: 1 where the ray toward
+// the light passes the sphere by more than the disc's spread at that distance, 0 well inside,
+// smooth in between (the penumbra widens with the distance to the occluder: a contact shadow is
+// sharp at the contact and soft farther out).
+float key_light_visibility(vec3 p, vec3 l) {
+    vec3 to_centre = frame.occluder.xyz - p;
+    float t = dot(to_centre, l);
+    if (t <= 0.0) return 1.0;  // the sphere is behind the light's direction
+    float miss = length(to_centre - t * l);
+    float spread = t * frame.ground.w;
+    return smoothstep(frame.occluder.w - spread, frame.occluder.w + spread, miss);
+}
+
+// The share of the hemisphere above `p` (normal `n`) hidden by the occluding sphere, cosine
+// weighted: (R / D)² · cos θ for a sphere of radius R at distance D and angle θ from the normal
+// (the exact form-factor of a sphere while it stays above the horizon).
+float sphere_occlusion(vec3 p, vec3 n) {
+    vec3 d = frame.occluder.xyz - p;
+    float D2 = dot(d, d);
+    float r = frame.occluder.w;
+    return clamp(dot(n, d) * inversesqrt(D2) * r * r / D2, 0.0, 1.0);
+}
+
 void main() {
     // Gradients of the mesh's (u, v): continuous across the seam at u = 0|1, unlike the
     // analytic u, so the sampler picks the right mip everywhere.
@@ -129,10 +154,20 @@ void main() {
     }
 
     vec3 albedo = ALBEDO_TEX >= 0 ? sample_role(ALBEDO_TEX, st, st_dx, st_dy).rgb : frame.albedo.rgb;
+    if (GROUND) {  // a grey dielectric, flat (its variant samples no texture)
+        albedo = vec3(frame.ground.y);
+        n = vec3(0.0, 1.0, 0.0);
+    }
     vec3 emitted = EMISSIVE_TEX >= 0 ? sample_role(EMISSIVE_TEX, st, st_dx, st_dy).rgb * frame.emissive.w : frame.emissive.rgb;
     float roughness = scalar_role(ROUGHNESS_TEX, ROUGHNESS_CH, ROUGHNESS_INVERT, frame.scalars.x, st, st_dx, st_dy);
     float metalness = scalar_role(METALNESS_TEX, METALNESS_CH, METALNESS_INVERT, frame.scalars.y, st, st_dx, st_dy);
     float opacity = scalar_role(OPACITY_TEX, OPACITY_CH, OPACITY_INVERT, frame.scalars.w, st, st_dx, st_dy);
+    if (GROUND) {
+        emitted = vec3(0.0);
+        roughness = frame.ground.z;
+        metalness = 0.0;
+        opacity = 1.0;
+    }
 
     roughness = clamp(roughness, MIN_ROUGHNESS, 1.0);
     metalness = clamp(metalness, 0.0, 1.0);
@@ -165,6 +200,8 @@ void main() {
             l = to_light * inversesqrt(d2);
             E /= d2;
         }
+        // The ground's contact shadow: the key light (the first directional one) behind the shape.
+        if (GROUND && i == 0 && NUM_DIRECTIONAL > 0) E *= key_light_visibility(p, l);
         color += brdf_light(BRDF_MODEL, n, v, l, NoV, roughness, f0, diffuse_color, spec_scale, E);
     }
 
@@ -190,6 +227,7 @@ void main() {
             vec3 kd = diffuse_color * (1.0 - FssEss);
             ibl = FssEss * prefiltered + kd * irradiance * (diffuse_norm * PI);
         }
+        if (GROUND) occlusion = 1.0 - sphere_occlusion(p, n);
         color += ibl * occlusion * frame.shape.y;
     }
 
