@@ -152,14 +152,17 @@ struct Config {
     Tonemap tonemap = Tonemap::none;
     ShapeType shape = ShapeType::sphere;
     bool ground = false;
+    bool fill_only = false;
 };
 
 std::vector<Config> configs() {
     return {
+        {"floor", "the fill-rate floor: the sphere's pixels written with a constant, nothing shaded", false, false,
+         false, 0, Brdf::standard, PixelFormat::rgba8, 1, Tonemap::none, ShapeType::sphere, false, true},
         {"base", "constant material, 1 directional light, standard BRDF", false, false, false, 0, Brdf::standard,
          PixelFormat::rgba8},
-        {"exr", "base, linear float output (copy instead of encode)", false, false, false, 0, Brdf::standard,
-         PixelFormat::rgba32f},
+        {"exr", "base, linear float output (resolve to floats instead of encode)", false, false, false, 0,
+         Brdf::standard, PixelFormat::rgba32f},
         {"textures", "base + albedo/ORM textures (2048², trilinear)", true, false, false, 0, Brdf::standard,
          PixelFormat::rgba8},
         {"normal_map", "textures + normal map", true, true, false, 0, Brdf::standard, PixelFormat::rgba8},
@@ -243,6 +246,7 @@ int main(int argc, char** argv) {
                 scene.supersample = c.supersample;
                 scene.shape.type = c.shape;
                 scene.ground.enabled = c.ground;
+                scene.fill_only = c.fill_only;
                 for (int i = 0; i < c.point_lights; ++i) {
                     Light l;
                     l.type = LightType::point;

@@ -31,13 +31,15 @@ void Renderer::Impl::create_frame_resources() {
     td.height = scene.height * scene.supersample;
     td.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     target = create_image(d, td);
-    ImageDesc dd;
-    dd.format = kDepthFormat;
-    dd.width = td.width;
-    dd.height = td.height;
-    dd.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    dd.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-    depth = create_image(d, dd);
+    if (uses_depth()) {
+        ImageDesc dd;
+        dd.format = kDepthFormat;
+        dd.width = td.width;
+        dd.height = td.height;
+        dd.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+        dd.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+        depth = create_image(d, dd);
+    }
     readback = create_buffer(d, VkDeviceSize{scene.width} * scene.height * 16,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     uniforms = create_buffer(d, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
@@ -78,11 +80,12 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
                   VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 
     // Depth is cleared every frame: the previous frame's depth tests are done before the clear.
-    image_barrier(d, cmd, r.depth.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                  VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0,
-                  VK_REMAINING_MIP_LEVELS, VK_IMAGE_ASPECT_DEPTH_BIT);
+    if (r.uses_depth())
+        image_barrier(d, cmd, r.depth.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0,
+                      VK_REMAINING_MIP_LEVELS, VK_IMAGE_ASPECT_DEPTH_BIT);
 
     s.begin_pass("shade");
     auto att = vk_struct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
@@ -102,7 +105,7 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     ri.layerCount = 1;
     ri.colorAttachmentCount = 1;
     ri.pColorAttachments = &att;
-    ri.pDepthAttachment = &depth;
+    if (r.uses_depth()) ri.pDepthAttachment = &depth;
     d.fn.vkCmdBeginRendering(cmd, &ri);
     d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline);
     const VkViewport viewport{0.f, 0.f, static_cast<float>(tw), static_cast<float>(th), 0.f, 1.f};

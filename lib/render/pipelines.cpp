@@ -51,6 +51,7 @@ constexpr VkSpecializationMapEntry kShadeEntries[] = {
     spec_entry(gpu::kSpecOpacityInvert, offsetof(ShadeSpecialization, opacity_invert)),
     spec_entry(gpu::kSpecNormalZFromXy, offsetof(ShadeSpecialization, normal_z_from_xy)),
     spec_entry(gpu::kSpecGround, offsetof(ShadeSpecialization, ground)),
+    spec_entry(gpu::kSpecFillOnly, offsetof(ShadeSpecialization, fill_only)),
 };
 static_assert(spec_entries_distinct(kShadeEntries), "an id or field mapped twice");
 
@@ -166,6 +167,7 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     c.normal_tex = m.normal.texture;
     c.normal_green_down = flag(m.normal.green_down);
     c.normal_z_from_xy = flag(m.normal.texture >= 0 && m.normal.z_from_xy);
+    c.fill_only = flag(scene.fill_only);
     auto scalar = [](const ScalarRole& r, int32_t& tex, int32_t& channel, uint32_t& invert) {
         tex = r.texture;
         channel = static_cast<int32_t>(r.channel);
@@ -248,7 +250,7 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     auto vp = vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
     vp.viewportCount = 1;
     vp.scissorCount = 1;
-    // Back faces culled (every shape is closed) and a depth test (the shaderball is not convex).
+    // Back faces culled (every shape is closed); a depth test where culling is not enough.
     auto rs =
         vk_struct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
     rs.polygonMode = VK_POLYGON_MODE_FILL;
@@ -257,8 +259,8 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     rs.lineWidth = 1.f;
     auto dss =
         vk_struct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
-    dss.depthTestEnable = VK_TRUE;
-    dss.depthWriteEnable = VK_TRUE;
+    dss.depthTestEnable = uses_depth() ? VK_TRUE : VK_FALSE;
+    dss.depthWriteEnable = uses_depth() ? VK_TRUE : VK_FALSE;
     dss.depthCompareOp = VK_COMPARE_OP_LESS;
     auto ms = vk_struct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
     ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
@@ -275,7 +277,7 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     auto rendering = vk_struct<VkPipelineRenderingCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO);
     rendering.colorAttachmentCount = 1;
     rendering.pColorAttachmentFormats = &kTargetFormat;
-    rendering.depthAttachmentFormat = kDepthFormat;
+    rendering.depthAttachmentFormat = uses_depth() ? kDepthFormat : VK_FORMAT_UNDEFINED;
 
     auto ci = vk_struct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
     ci.pNext = &rendering;

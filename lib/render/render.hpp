@@ -160,6 +160,9 @@ struct Scene {
     // frame N times larger and box-averaged in linear radiance before tone mapping and encoding
     // (1: one sample at the pixel centre, the reference tests' setting). 1..4; the cost is N².
     uint32_t supersample = 1;
+    // Benchmarks only (bench/render_bench "floor"): the shape's pixels written with a constant and
+    // nothing computed, the device's fill-rate floor every shading figure is compared with.
+    bool fill_only = false;
     Camera camera;
     Shape shape;
     Vec3 background{0.f, 0.f, 0.f};  // linear

@@ -92,7 +92,7 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
             "ground: albedo and roughness must be within [0, 1], the key light's radius within (0, 45] degrees");
     if (!d.supports(kTargetFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
         throw NoDeviceError(d.info.name + " cannot render to RGBA32F");
-    if (!d.supports(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+    if (uses_depth() && !d.supports(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
         throw NoDeviceError(d.info.name + " has no 32-bit float depth buffer");
 
     auto pi = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);

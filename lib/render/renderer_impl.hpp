@@ -18,8 +18,10 @@
 namespace mf::render {
 
 inline constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // linear radiance
-// Depth (fp32): the shaderball is not convex (its ring passes in front of and behind the ball),
-// so back-face culling alone cannot order its surfaces.
+// Depth (fp32), only where back-face culling cannot order the surfaces: the shaderball is not
+// convex (its ring passes in front of and behind the ball) and the ground is a second surface.
+// The sphere, cube and plane alone need none (on the H200 a depth buffer adds 28 % to a 2048²
+// shade pass, which is bound by writing pixels: docs/bench/README.md).
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr uint32_t kQueryCount = 16;  // two timestamps for each of up to 8 passes
 
@@ -56,7 +58,8 @@ struct Renderer::Impl {
     float shape_bottom = 0.f, shape_radius = 0.f;    // lowest y and bounding-sphere radius of the shape's mesh
     detail::Buffer ground_vertices, ground_indices;  // only with Scene::ground
     detail::Image target;                            // linear radiance, kTargetFormat
-    detail::Image depth;                             // kDepthFormat, the target's size
+    detail::Image depth;                             // kDepthFormat, the target's size, when uses_depth()
+    bool uses_depth() const { return scene.shape.type == ShapeType::shaderball || scene.ground.enabled; }
     detail::Image dummy_2d, dummy_cube;
     detail::Image brdf_lut;                      // when the accurate BRDF or an environment needs it
     detail::Image env_specular, env_irradiance;  // when the scene has an environment

@@ -7,8 +7,10 @@
 layout(local_size_x = kTile, local_size_y = kTile) in;
 
 layout(set = 0, binding = kBindingEncodeRadiance, rgba32f) uniform readonly image2D radiance;
-// 4 bytes a pixel (RGBA8), or 16 (four floats' bits) with params.floats.
+// The output buffer, seen two ways: 4 bytes a pixel (RGBA8), or with params.floats one vec4 a
+// pixel (one 16-byte store per invocation: a warp's stores to the host-visible buffer coalesce).
 layout(set = 0, binding = kBindingEncodePixels, std430) writeonly buffer Pixels { uint words[]; } pixels;
+layout(set = 0, binding = kBindingEncodePixels, std430) writeonly buffer PixelFloats { vec4 texels[]; } floats;
 layout(push_constant) uniform EncodePush {
     EncodeParams params;
 };
@@ -68,7 +70,7 @@ void main() {
     vec4 px = sum / float(n * n);
     uint index = xy.y * params.size.x + xy.x;
     if (params.floats != 0u) {
-        for (uint k = 0u; k < 4u; ++k) pixels.words[4u * index + k] = floatBitsToUint(px[k]);
+        floats.texels[index] = px;
         return;
     }
     vec3 c = px.rgb * params.exposure;

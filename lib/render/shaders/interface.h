@@ -108,6 +108,7 @@ MF_CONST int kSpecOpacityChannel = 19;
 MF_CONST int kSpecOpacityInvert = 20;
 MF_CONST int kSpecNormalZFromXy = 21;  // a two-channel normal map (BC5): Z rebuilt from X and Y
 MF_CONST int kSpecGround = 22;         // this draw is the ground plane (Scene::ground), not the shape
+MF_CONST int kSpecFillOnly = 23;       // write a constant and return: the fill-rate floor (Scene::fill_only)
 
 // brdf_lut.glsl
 MF_CONST int kSpecLutCorrelated = 0;
@@ -211,6 +212,7 @@ struct ShadeSpecialization {
     uint32_t opacity_invert = 0;
     uint32_t normal_z_from_xy = 0;
     uint32_t ground = 0;
+    uint32_t fill_only = 0;
 
     // The texture slots the variant samples (−1 where a role is a constant).
     std::array<int32_t, 7> texture_slots() const {

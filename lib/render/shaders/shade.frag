@@ -18,6 +18,7 @@ layout(constant_id = kSpecNormalTex) const int NORMAL_TEX = -1;
 layout(constant_id = kSpecNormalGreenDown) const bool NORMAL_GREEN_DOWN = false;  // DirectX normal map
 layout(constant_id = kSpecNormalZFromXy) const bool NORMAL_Z_FROM_XY = false;  // X, Y stored only (BC5)
 layout(constant_id = kSpecGround) const bool GROUND = false;  // the ground plane: its own constant material
+layout(constant_id = kSpecFillOnly) const bool FILL_ONLY = false;  // benchmarks: the fill-rate floor
 layout(constant_id = kSpecRoughnessTex) const int ROUGHNESS_TEX = -1;
 layout(constant_id = kSpecRoughnessChannel) const int ROUGHNESS_CH = 0;
 layout(constant_id = kSpecRoughnessInvert) const bool ROUGHNESS_INVERT = false;  // smoothness
@@ -108,6 +109,10 @@ float sphere_occlusion(vec3 p, vec3 n) {
 }
 
 void main() {
+    if (FILL_ONLY) {
+        out_radiance = vec4(frame.albedo.rgb, 1.0);
+        return;
+    }
     // Gradients of the mesh's (u, v): continuous across the seam at u = 0|1, unlike the
     // analytic u, so the sampler picks the right mip everywhere.
     vec2 st = vec2(v_uv.x, 1.0 - v_uv.y);
