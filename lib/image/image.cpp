@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <mutex>
+#include <new>
 
 #include <unistd.h>
 
@@ -391,6 +392,13 @@ template <class F>
 auto guarded(const InputFile& in, std::string& error, F&& f) -> decltype(f()) {
     try {
         return f();
+    } catch (const std::bad_alloc&) {
+        // Headers are checked against the pixel budget before decoding, so this is most often a
+        // machine (or its memory limit) without the memory for the image, not malformed data.
+        error = in.display +
+                ": decoding it needed more memory than could be allocated (too little free memory or a memory "
+                "limit, or a header that claims more than the file holds); run with fewer --jobs, or set the "
+                "preset's max_size";
     } catch (const std::exception& e) {
         error = in.display + ": the decoder failed on malformed data (" + e.what() + ")";
     } catch (...) {

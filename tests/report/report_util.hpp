@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -82,19 +81,28 @@ struct Img {
     int width = 0, height = 0;
 };
 
+// The value of attribute `name` (` name="..."`) in a tag's text, or "" (no std::regex: GCC 12's
+// <regex> trips -Wmaybe-uninitialized in the sanitizer build).
+inline std::string attribute_of(const std::string& tag, const std::string& name) {
+    const std::string key = " " + name + "=\"";
+    const size_t at = tag.find(key);
+    if (at == std::string::npos) return {};
+    const size_t start = at + key.size(), end = tag.find('"', start);
+    return end == std::string::npos ? std::string() : tag.substr(start, end - start);
+}
+
 inline std::vector<Img> images_of(const std::string& html) {
     std::vector<Img> out;
-    static const std::regex tag("<img [^>]*>");
-    static const std::regex src(" src=\"([^\"]*)\""), width(" width=\"([0-9]+)\""), height(" height=\"([0-9]+)\""),
-        cls(" class=\"([^\"]*)\"");
-    for (std::sregex_iterator it(html.begin(), html.end(), tag), end; it != end; ++it) {
-        const std::string t = it->str();
-        std::smatch m;
+    for (size_t at = html.find("<img "); at != std::string::npos; at = html.find("<img ", at + 1)) {
+        const size_t end = html.find('>', at);
+        if (end == std::string::npos) break;
+        const std::string t = html.substr(at, end - at + 1);
         Img i;
-        if (std::regex_search(t, m, src)) i.src = m[1];
-        if (std::regex_search(t, m, width)) i.width = std::stoi(m[1]);
-        if (std::regex_search(t, m, height)) i.height = std::stoi(m[1]);
-        if (std::regex_search(t, m, cls)) i.cls = m[1];
+        i.src = attribute_of(t, "src");
+        i.cls = attribute_of(t, "class");
+        const std::string w = attribute_of(t, "width"), h = attribute_of(t, "height");
+        if (!w.empty()) i.width = std::stoi(w);
+        if (!h.empty()) i.height = std::stoi(h);
         out.push_back(i);
     }
     return out;
