@@ -42,5 +42,8 @@ fi
 
 # The project's own builds treat every C++ and shader warning as an error (a plain `cmake`
 # build does not); extra args after it may override.
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMATFORGE_WERROR=ON "$@" >/dev/null
+# -g1 (line tables: file:line in backtraces and sanitizer reports) instead of -g: a third less
+# compile time on the test files, the same code.
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMATFORGE_WERROR=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" "$@" >/dev/null
 cmake --build "$build" -j"$(nproc)"

@@ -173,6 +173,7 @@ std::map<std::string, NameMatch> sidecar_matches(const std::vector<std::string>&
     std::map<std::string, std::vector<std::string>> by_base;
     for (const auto& f : set_files) by_base[std::string(naming::base_name(f))].push_back(f);
     std::vector<const SidecarRoles*> order;
+    order.reserve(sidecars.size());
     for (const auto& s : sidecars) order.push_back(&s);
     const auto rank = [](SidecarKind k) { return k == SidecarKind::megascans ? 0 : k == SidecarKind::gltf ? 1 : 2; };
     std::stable_sort(order.begin(), order.end(),

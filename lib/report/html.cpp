@@ -232,7 +232,7 @@ std::string markdown_to_html(std::string_view markdown, const MarkdownOptions& o
                 const auto item = list_item(lines[i]);
                 if (!item) break;
                 std::string text(item->second);
-                for (++i; i < lines.size() && !starts_block(lines[i]); ++i) text += " " + std::string(trim(lines[i]));
+                for (++i; i < lines.size() && !starts_block(lines[i]); ++i) text.append(" ").append(trim(lines[i]));
                 html += "<li>" + inline_html(utf8_or_replacement(text)) + "</li>\n";
                 while (i < lines.size() && trim(lines[i]).empty() && i + 1 < lines.size() &&
                        list_item(lines[i + 1]).has_value())
@@ -241,7 +241,7 @@ std::string markdown_to_html(std::string_view markdown, const MarkdownOptions& o
             html += ordered ? "</ol>\n" : "</ul>\n";
         } else {
             std::string text(t);
-            for (++i; i < lines.size() && !starts_block(lines[i]); ++i) text += " " + std::string(trim(lines[i]));
+            for (++i; i < lines.size() && !starts_block(lines[i]); ++i) text.append(" ").append(trim(lines[i]));
             html += "<p>" + inline_html(utf8_or_replacement(text)) + "</p>\n";
         }
     }

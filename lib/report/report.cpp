@@ -665,7 +665,8 @@ std::vector<std::string> material_stems(const std::vector<std::string>& names) {
         const std::string base = safe_component(name);
         std::string s = base;
         for (int n = 2; !taken.insert(lower(s)).second; ++n) {
-            const std::string suffix = "_" + std::to_string(n);
+            std::string suffix = "_";  // appended: see temp_name (core/files.cpp), GCC 12 -O3 -Wrestrict
+            suffix.append(std::to_string(n));
             s = base.substr(0, std::min(base.size(), 96 - suffix.size())) + suffix;
         }
         stems.push_back(s);

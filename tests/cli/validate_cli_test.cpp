@@ -52,26 +52,28 @@ TEST(ValidateCli, JsonReportOnSamples) {
 }
 
 TEST(ValidateCli, FailOnWarningAndSuppression) {
-    // Two samples carry warnings: Net004A's dark albedo, Metal_Damaged_001's graded metalness.
+    // Two samples carry warnings: Net004A's dark albedo, Metal_Damaged_001's graded metalness
+    // (validated together: the suppressions act per material).
     const fs::path out = temp_dir("out");
-    auto r = run("validate " + q(samples()) + " --fail-on warning");
+    const std::string sets = q(samples() / "Net004A_1K-JPG") + " " + q(samples() / "Metal_Damaged_001_SD");
+    auto r = run("validate " + sets + " --fail-on warning");
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("ALBEDO_TOO_DARK"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("METALNESS_NOT_BINARY"), std::string::npos) << r.output;
     // Suppressing one material's warning leaves the other's: still a failure.
     write_text(out / "net.json",
                R"({"suppress": [{"material": "Net004A", "code": "ALBEDO_TOO_DARK", "reason": "black rope"}]})");
-    r = run("validate " + q(samples()) + " --fail-on warning --rules " + q(out / "net.json"));
+    r = run("validate " + sets + " --fail-on warning --rules " + q(out / "net.json"));
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("METALNESS_NOT_BINARY"), std::string::npos) << r.output;
     write_text(out / "rules.json",
                R"({"suppress": [{"material": "Net004A", "code": "ALBEDO_TOO_DARK", "reason": "black rope"},
                                {"material": "Metal_*", "code": "METALNESS_NOT_BINARY", "reason": "rust blends"},
                                {"material": "Metal_*", "code": "METAL_ALBEDO_TOO_DARK", "reason": "dirt"}]})");
-    r = run("validate " + q(samples()) + " --fail-on warning --rules " + q(out / "rules.json"));
+    r = run("validate " + sets + " --fail-on warning --rules " + q(out / "rules.json"));
     EXPECT_EQ(r.code, 0) << r.output;
     write_text(out / "bad.json", R"({"rules": {"NO_SUCH_CODE": "off"}})");
-    r = run("validate " + q(samples()) + " --rules " + q(out / "bad.json"));
+    r = run("validate " + sets + " --rules " + q(out / "bad.json"));
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_NE(r.output.find("bad.json"), std::string::npos);
 }

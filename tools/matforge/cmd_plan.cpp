@@ -31,6 +31,7 @@ ExitCode run_plan(const PlanArgs& a) {
     const auto sets = find_material_sets({a.inputs.begin(), a.inputs.end()}, {}, failures);
     const std::string context = context_digest(*preset, *rules, *color);
     std::vector<uint64_t> bytes;
+    bytes.reserve(sets.size());
     for (const auto& s : sets) bytes.push_back(set_bytes(s));
     const std::vector<int> shard = assign_shards(sets, bytes, a.shards);
     nlohmann::json list = nlohmann::json::array();
