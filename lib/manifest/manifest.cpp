@@ -318,6 +318,34 @@ json to_json(const Output& o) {
     return j;
 }
 
+namespace {
+
+// material_files and library: [{file, format, sha256}, ...]
+json files_json(const std::vector<MaterialFile>& files) {
+    json out = json::array();
+    for (const MaterialFile& f : files) out.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
+    return out;
+}
+
+// The manifest without its materials (an empty array in their place): to_json fills it,
+// manifest_text streams them into its text.
+json manifest_head(const Manifest& m) {
+    json j;
+    j["manifest_version"] = m.manifest_version;
+    j["generator"] = m.generator;
+    j["preset"] = m.preset;
+    j["normal_convention"] = convention_name(m.normal_convention);
+    j["materials"] = json::array();
+    json failures = json::array();
+    for (const InputFailure& f : m.failures) failures.push_back(mf::to_json(f));
+    j["failures"] = std::move(failures);
+    if (!m.library.empty()) j["library"] = files_json(m.library);
+    if (m.shard) j["shard"] = {{"index", m.shard->index}, {"count", m.shard->count}, {"context", m.shard->context}};
+    return j;
+}
+
+}  // namespace
+
 json to_json(const Material& m) {
     json j;
     j["name"] = m.name;
@@ -330,12 +358,7 @@ json to_json(const Material& m) {
     json outputs = json::array();
     for (const Output& o : m.outputs) outputs.push_back(to_json(o));
     j["outputs"] = std::move(outputs);
-    if (!m.material_files.empty()) {
-        json files = json::array();
-        for (const MaterialFile& f : m.material_files)
-            files.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
-        j["material_files"] = std::move(files);
-    }
+    if (!m.material_files.empty()) j["material_files"] = files_json(m.material_files);
     if (m.emissive_strength > 1.f) j["emissive_strength"] = m.emissive_strength;
     json findings = json::array();
     for (const Finding& f : m.findings) findings.push_back(mf::to_json(f));
@@ -344,37 +367,13 @@ json to_json(const Material& m) {
 }
 
 json to_json(const Manifest& m) {
-    json j;
-    j["manifest_version"] = m.manifest_version;
-    j["generator"] = m.generator;
-    j["preset"] = m.preset;
-    j["normal_convention"] = convention_name(m.normal_convention);
-    json materials = json::array();
-    for (const Material& mat : m.materials) materials.push_back(to_json(mat));
-    j["materials"] = std::move(materials);
-    json failures = json::array();
-    for (const InputFailure& f : m.failures) failures.push_back(mf::to_json(f));
-    j["failures"] = std::move(failures);
-    if (!m.library.empty()) {
-        json files = json::array();
-        for (const MaterialFile& f : m.library)
-            files.push_back({{"file", f.file}, {"format", f.format}, {"sha256", f.sha256}});
-        j["library"] = std::move(files);
-    }
-    if (m.shard) j["shard"] = {{"index", m.shard->index}, {"count", m.shard->count}, {"context", m.shard->context}};
+    json j = manifest_head(m);
+    for (const Material& mat : m.materials) j["materials"].push_back(to_json(mat));
     return j;
 }
 
 std::string manifest_text(const Manifest& m) {
-    Manifest head;  // everything but the materials
-    head.manifest_version = m.manifest_version;
-    head.generator = m.generator;
-    head.preset = m.preset;
-    head.normal_convention = m.normal_convention;
-    head.failures = m.failures;
-    head.library = m.library;
-    head.shard = m.shard;
-    return json_text_with_array(to_json(head), "materials", m.materials.size(),
+    return json_text_with_array(manifest_head(m), "materials", m.materials.size(),
                                 [&](size_t i) { return to_json(m.materials[i]); });
 }
 

@@ -120,7 +120,7 @@ void Renderer::Impl::write_frame(const Material& m) {
     f.shape[0] = scene.shape.size;
     f.shape[1] = scene.environment ? scene.environment->intensity : 0.f;
     f.shape[2] = static_cast<float>(env_specular_mips > 0 ? env_specular_mips - 1 : 0);
-    f.ground[0] = shape_bottom - 1e-3f * scene.shape.size;
+    f.ground[0] = ground_y;
     f.ground[1] = scene.ground.albedo;
     f.ground[2] = scene.ground.roughness;
     f.ground[3] = static_cast<float>(std::tan(double{scene.ground.light_deg} * std::numbers::pi / 180.0));

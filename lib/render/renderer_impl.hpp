@@ -55,7 +55,9 @@ struct Renderer::Impl {
 
     detail::Buffer vertices, indices, uniforms, readback;
     uint32_t index_count = 0;
-    float shape_bottom = 0.f, shape_radius = 0.f;    // lowest y and bounding-sphere radius of the shape's mesh
+    // The ground plane's height (a thousandth of the shape's size under its lowest point: no depth
+    // fight where they touch) and the shape's bounding-sphere radius, from its mesh.
+    float ground_y = 0.f, shape_radius = 0.f;
     detail::Buffer ground_vertices, ground_indices;  // only with Scene::ground
     detail::Image target;                            // linear radiance, kTargetFormat
     detail::Image depth;                             // kDepthFormat, the target's size, when uses_depth()

@@ -35,15 +35,16 @@ void Renderer::Impl::upload_mesh() {
     indices = upload_buffer(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t),
                             VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     index_count = static_cast<uint32_t>(mesh.indices.size());
+    float bottom = 0.f;
     for (const Vertex& v : mesh.vertices) {
-        shape_bottom = std::min(shape_bottom, v.position[1]);
+        bottom = std::min(bottom, v.position[1]);
         shape_radius = std::max(shape_radius, std::sqrt(v.position[0] * v.position[0] + v.position[1] * v.position[1] +
                                                         v.position[2] * v.position[2]));
     }
+    ground_y = bottom - 1e-3f * scene.shape.size;
     if (!scene.ground.enabled) return;  // simulated only when asked
-    // A square facing +Y just under the shape's lowest point (a thousandth of its size below:
-    // no depth fight where they touch), 16 × the shape's size a side.
-    const float half = 8.f * std::max(scene.shape.size, 1e-3f), y = shape_bottom - 1e-3f * scene.shape.size;
+    // A square facing +Y at ground_y, 16 × the shape's size a side.
+    const float half = 8.f * std::max(scene.shape.size, 1e-3f), y = ground_y;
     std::vector<Vertex> quad(4);
     for (int c = 0; c < 4; ++c) {
         const float u = (c == 1 || c == 2) ? 1.f : 0.f, v = c >= 2 ? 1.f : 0.f;
