@@ -7,7 +7,7 @@
 # CPU (lavapipe), so no GPU is needed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=${1:-$root/build}
+build=$(cd "${1:-$root/build}" && pwd)  # absolute: the script runs from a scratch folder
 png=${2:-$root/docs/report.png}
 bin=${MATFORGE_BIN:-$build/tools/matforge/matforge}
 work=$(mktemp -d "${TMPDIR:-/tmp}/matforge-report-shot.XXXXXX")
