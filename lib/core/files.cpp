@@ -21,9 +21,25 @@ namespace mf {
 namespace fs = std::filesystem;
 
 std::string sha256_hex(std::span<const unsigned char> bytes) {
+    Sha256 h;
+    h.update({reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+    return h.hex();
+}
+
+Sha256::Sha256() : ctx_(EVP_MD_CTX_new()) {
+    if (!ctx_ || EVP_DigestInit_ex(static_cast<EVP_MD_CTX*>(ctx_), EVP_sha256(), nullptr) != 1) throw std::bad_alloc();
+}
+
+Sha256::~Sha256() { EVP_MD_CTX_free(static_cast<EVP_MD_CTX*>(ctx_)); }
+
+void Sha256::update(std::string_view bytes) {
+    EVP_DigestUpdate(static_cast<EVP_MD_CTX*>(ctx_), bytes.data(), bytes.size());
+}
+
+std::string Sha256::hex() {
     unsigned char digest[EVP_MAX_MD_SIZE];
     unsigned int len = 0;
-    EVP_Digest(bytes.data(), bytes.size(), digest, &len, EVP_sha256(), nullptr);
+    EVP_DigestFinal_ex(static_cast<EVP_MD_CTX*>(ctx_), digest, &len);
     static constexpr char kHex[] = "0123456789abcdef";
     std::string out;
     out.reserve(len * 2);
@@ -178,9 +194,9 @@ struct Fd {
     Fd& operator=(const Fd&) = delete;
 };
 
-// Writes `bytes` as `name` in folder `dfd` by a temporary beside it and renameat. `shown` names the
-// destination in messages.
-bool write_at(int dfd, const std::string& name, std::span<const unsigned char> bytes, const std::string& shown,
+// Writes what `produce` gives as `name` in folder `dfd` by a temporary beside it and renameat.
+// `shown` names the destination in messages.
+bool write_at(int dfd, const std::string& name, const ByteProducer& produce, const std::string& shown,
               std::string& error) {
     const std::string tmp = temp_name(name);
     const int fd = ::openat(dfd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
@@ -188,12 +204,33 @@ bool write_at(int dfd, const std::string& name, std::span<const unsigned char> b
         error = shown + ": cannot write (" + errno_text(errno) + ")";
         return false;
     }
-    const bool ok = write_all(fd, bytes) && ::fsync(fd) == 0;
-    const int saved = errno;
+    // Small pieces (a JSON element) gather in a buffer; one write(2) each would cost more than them.
+    constexpr size_t kBuffer = size_t{1} << 20;
+    std::string buffer;
+    int failed = 0;  // errno of the first failed write
+    auto flush = [&] {
+        if (!failed && !write_all(fd, {reinterpret_cast<const unsigned char*>(buffer.data()), buffer.size()}))
+            failed = errno;
+        buffer.clear();
+        return !failed;
+    };
+    const ByteSink sink = [&](std::string_view piece) {
+        if (buffer.size() + piece.size() > kBuffer && !flush()) return false;
+        if (piece.size() < kBuffer) {
+            buffer.append(piece);
+            return true;
+        }
+        if (!write_all(fd, {reinterpret_cast<const unsigned char*>(piece.data()), piece.size()})) failed = errno;
+        return !failed;
+    };
+    const bool produced = produce(sink);
+    const bool ok = produced && flush() && ::fsync(fd) == 0;
+    const int saved = failed ? failed : errno;
     ::close(fd);
     if (!ok) {
         ::unlinkat(dfd, tmp.c_str(), 0);
-        error = shown + ": cannot write (" + errno_text(saved) + ")";
+        if (produced || failed) error = shown + ": cannot write (" + errno_text(saved) + ")";
+        else if (error.empty()) error = shown + ": not written";
         return false;
     }
     if (::renameat(dfd, tmp.c_str(), dfd, name.c_str()) != 0) {
@@ -207,9 +244,16 @@ bool write_at(int dfd, const std::string& name, std::span<const unsigned char> b
     ::fsync(dfd);  // make the rename itself durable
     return true;
 }
+
+ByteProducer producer_of(std::span<const unsigned char> bytes) {
+    return [bytes](const ByteSink& sink) { return sink({reinterpret_cast<const char*>(bytes.data()), bytes.size()}); };
+}
 }  // namespace
 
-bool write_file_atomic(const fs::path& dest, std::span<const unsigned char> bytes, std::string& error) {
+namespace {
+// write_file_atomic's steps; `same` (the bytes, when known in advance) leaves an identical file be.
+bool write_atomic(const fs::path& dest, const ByteProducer& produce, const std::span<const unsigned char>* same,
+                  std::string& error) {
     std::error_code ec;
     const fs::path dir = dest.parent_path().empty() ? fs::path(".") : dest.parent_path();
     fs::create_directories(dir, ec);
@@ -217,17 +261,19 @@ bool write_file_atomic(const fs::path& dest, std::span<const unsigned char> byte
         error = dir.string() + ": cannot create folder (" + ec.message() + ")";
         return false;
     }
-    if (same_content(dest, bytes)) return true;
+    if (same && same_content(dest, *same)) return true;
     const Fd dfd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
     if (dfd.fd < 0) {
         error = dest.string() + ": cannot write (" + errno_text(errno) + ")";
         return false;
     }
-    return write_at(dfd.fd, dest.filename().string(), bytes, dest.string(), error);
+    return write_at(dfd.fd, dest.filename().string(), produce, dest.string(), error);
 }
 
-bool write_file_under(const fs::path& root, const std::string& rel, std::span<const unsigned char> bytes,
-                      std::string& error, const std::function<std::string(bool exists)>& before_write) {
+// write_file_under's steps; `same` as write_atomic's.
+bool write_under(const fs::path& root, const std::string& rel, const ByteProducer& produce,
+                 const std::span<const unsigned char>* same, std::string& error,
+                 const std::function<std::string(bool exists)>& before_write) {
     const fs::path r = fs::path(rel).lexically_normal();
     std::vector<std::string> parts;
     for (const auto& p : r) parts.push_back(p.string());
@@ -270,7 +316,7 @@ bool write_file_under(const fs::path& root, const std::string& rel, std::span<co
             error = rel + ": cannot write (a folder of that name is in the way)";
             return false;
         }
-        if (S_ISREG(st.st_mode) && same_content_at(dfd->fd, name.c_str(), bytes)) return true;
+        if (same && S_ISREG(st.st_mode) && same_content_at(dfd->fd, name.c_str(), *same)) return true;
         exists = true;
     } else if (errno != ENOENT) {
         error = rel + ": cannot write (" + errno_text(errno) + ")";
@@ -282,7 +328,26 @@ bool write_file_under(const fs::path& root, const std::string& rel, std::span<co
             return false;
         }
     }
-    return write_at(dfd->fd, name, bytes, rel, error);
+    return write_at(dfd->fd, name, produce, rel, error);
+}
+}  // namespace
+
+bool write_file_atomic(const fs::path& dest, std::span<const unsigned char> bytes, std::string& error) {
+    return write_atomic(dest, producer_of(bytes), &bytes, error);
+}
+
+bool write_file_atomic(const fs::path& dest, const ByteProducer& produce, std::string& error) {
+    return write_atomic(dest, produce, nullptr, error);
+}
+
+bool write_file_under(const fs::path& root, const std::string& rel, std::span<const unsigned char> bytes,
+                      std::string& error, const std::function<std::string(bool exists)>& before_write) {
+    return write_under(root, rel, producer_of(bytes), &bytes, error, before_write);
+}
+
+bool write_file_under(const fs::path& root, const std::string& rel, const ByteProducer& produce, std::string& error,
+                      const std::function<std::string(bool exists)>& before_write) {
+    return write_under(root, rel, produce, nullptr, error, before_write);
 }
 
 int remove_stale_temps(const fs::path& dir) {

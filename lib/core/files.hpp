@@ -13,10 +13,33 @@ namespace mf {
 
 std::string sha256_hex(std::span<const unsigned char> bytes);
 
+// SHA-256 of bytes that arrive in pieces (a file streamed to disk): update() each, then hex().
+class Sha256 {
+public:
+    Sha256();
+    ~Sha256();
+    Sha256(const Sha256&) = delete;
+    Sha256& operator=(const Sha256&) = delete;
+    void update(std::string_view bytes);
+    std::string hex();  // of everything given so far; once
+
+private:
+    void* ctx_;  // EVP_MD_CTX (OpenSSL stays out of this header)
+};
+
+// Files too large to hold as one buffer (the manifest or library of 100,000 sets) are produced
+// in pieces: `produce` is called once with a sink, hands it the file's bytes in order and returns
+// false to abandon the write (nothing is renamed into place; `error` is left to the producer).
+// The sink returns false when the disk refused a piece (the producer should stop).
+using ByteSink = std::function<bool(std::string_view)>;
+using ByteProducer = std::function<bool(const ByteSink&)>;
+
 // Writes `bytes` to `dest` atomically: a temporary file beside it (named by temp_marker()),
 // fsync, rename over `dest`, fsync of the folder. Creates missing parent folders. When `dest`
 // already holds exactly these bytes it is left untouched. False + `error` on failure.
 bool write_file_atomic(const std::filesystem::path& dest, std::span<const unsigned char> bytes, std::string& error);
+// The same from a producer; the file is written even when it already holds these bytes.
+bool write_file_atomic(const std::filesystem::path& dest, const ByteProducer& produce, std::string& error);
 
 // The substring every temporary file of ours carries. A temporary is named exactly
 // "." + <final name> + kTempMarker + <pid> + "-" + <counter>: temp_name() makes one, temp_owner()
@@ -37,6 +60,9 @@ int remove_stale_temps(const std::filesystem::path& dir);
 // holding other bytes: exists = true) and may refuse with a reason (then nothing is written and
 // `error` is "rel: reason"). Identical bytes leave the file untouched. False + `error` on failure.
 bool write_file_under(const std::filesystem::path& root, const std::string& rel, std::span<const unsigned char> bytes,
+                      std::string& error, const std::function<std::string(bool exists)>& before_write = {});
+// The same from a producer; the file is written even when it already holds these bytes.
+bool write_file_under(const std::filesystem::path& root, const std::string& rel, const ByteProducer& produce,
                       std::string& error, const std::function<std::string(bool exists)>& before_write = {});
 
 // An exclusive lock on a folder: flock(2) on the file `name` inside it, held until destroyed

@@ -1,6 +1,11 @@
 #include "core/json.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
 
 #include "core/files.hpp"
 
@@ -10,27 +15,52 @@ std::string json_text(const nlohmann::json& j) {
     return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
+std::string array_element_text(const nlohmann::json& element) {
+    // json_text indents 2 spaces a level: a top-level array's elements sit at 4. JSON strings hold
+    // no raw newline, so every line of an element's dump is a line of the file.
+    const std::string one = element.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+    std::string out;
+    out.reserve(one.size() + one.size() / 8);
+    for (size_t start = 0; start <= one.size();) {
+        const size_t end = std::min(one.find('\n', start), one.size());
+        out.append("    ").append(one, start, end - start);
+        if (end < one.size()) out += '\n';
+        start = end + 1;
+    }
+    return out;
+}
+
+bool write_json_text(const nlohmann::json& head, const std::vector<StreamedArray>& arrays, const ByteSink& sink) {
+    const std::string text = json_text(head);
+    // Where each array's empty "[]" is in the head's text, in text order.
+    std::vector<std::pair<size_t, const StreamedArray*>> at;
+    for (const StreamedArray& a : arrays) {
+        const std::string empty = "\n  " + nlohmann::json(a.key).dump() + ": []";
+        const size_t pos = text.find(empty);
+        if (pos == std::string::npos || a.count == 0) continue;  // not an empty top-level array: left as it is
+        at.emplace_back(pos + empty.size() - 2, &a);             // at its "[]"
+    }
+    std::sort(at.begin(), at.end());
+    size_t written = 0;
+    for (const auto& [pos, a] : at) {
+        if (!sink(std::string_view(text).substr(written, pos - written)) || !sink("[\n")) return false;
+        for (size_t i = 0; i < a->count; ++i)
+            if (!a->element(i, sink) || !sink(i + 1 < a->count ? ",\n" : "\n  ]")) return false;
+        written = pos + 2;
+    }
+    return sink(std::string_view(text).substr(written));
+}
+
 std::string json_text_with_array(const nlohmann::json& head, const std::string& key, size_t count,
                                  const std::function<nlohmann::json(size_t)>& element) {
-    std::string text = json_text(head);
-    if (count == 0) return text;
-    // json_text indents 2 spaces a level: the array's key at 2, its elements at 4. JSON strings
-    // hold no raw newline, so every line of an element's dump is a line of the file.
-    const std::string empty = "\n  " + nlohmann::json(key).dump() + ": []";
-    const size_t at = text.find(empty);
-    if (at == std::string::npos) return text;  // `key` is not an empty top-level array: the caller's mistake
-    std::string items = "\n  " + nlohmann::json(key).dump() + ": [\n";
-    for (size_t i = 0; i < count; ++i) {
-        const std::string one = element(i).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
-        for (size_t start = 0; start <= one.size();) {
-            const size_t end = std::min(one.find('\n', start), one.size());
-            items.append("    ").append(one, start, end - start);
-            if (end < one.size()) items += '\n';
-            start = end + 1;
-        }
-        items += i + 1 < count ? ",\n" : "\n  ]";
-    }
-    text.replace(at, empty.size(), items);
+    std::string text;
+    write_json_text(head,
+                    {{key, count,
+                      [&](size_t i, const ByteSink& sink) { return sink(array_element_text(element(i))); }}},
+                    [&](std::string_view piece) {
+                        text.append(piece);
+                        return true;
+                    });
     return text;
 }
 
@@ -97,6 +127,47 @@ std::optional<nlohmann::json> read_json_file(const std::filesystem::path& file, 
     if (!read_file(file, bytes, error)) return std::nullopt;
     return parse_json(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file.string(),
                       error);
+}
+
+std::optional<nlohmann::json> read_json_file(
+    const std::filesystem::path& file, const std::string& key,
+    const std::function<bool(nlohmann::json& element, std::string& error)>& each, std::string& error) {
+    if (const auto why = not_a_regular_file(file)) {  // a FIFO would block the read forever
+        error = file.string() + ": " + *why;
+        return std::nullopt;
+    }
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.c_str(), "rb"), &std::fclose);
+    if (!in) {
+        error = file.string() + ": cannot open (" + std::strerror(errno) + ")";
+        return std::nullopt;
+    }
+    struct Stop {  // thrown from the parser's callback: too deep, or `each` said stop
+        std::string message;
+    };
+    std::string top_key;
+    try {
+        // The callback sees every value as it completes (depth 1: the document's members, 2: an
+        // element of one of its arrays); returning false drops the value from the tree. The
+        // parser itself is iterative: depth only matters to whoever walks the tree later.
+        auto j = nlohmann::json::parse(in.get(), [&](int depth, nlohmann::json::parse_event_t event,
+                                                     nlohmann::json& parsed) {
+            if (depth > kMaxJsonDepth) throw Stop{"nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
+            if (event == nlohmann::json::parse_event_t::key && depth == 1) top_key = parsed.get<std::string>();
+            const bool element_done = event == nlohmann::json::parse_event_t::object_end ||
+                                      event == nlohmann::json::parse_event_t::array_end ||
+                                      event == nlohmann::json::parse_event_t::value;
+            if (depth != 2 || top_key != key || !element_done) return true;
+            std::string e;
+            if (!each(parsed, e)) throw Stop{e};
+            return false;
+        });
+        return j;
+    } catch (const Stop& s) {
+        error = file.string() + ": " + s.message;
+    } catch (const nlohmann::json::exception& e) {
+        error = file.string() + ": not valid JSON (" + e.what() + ")";
+    }
+    return std::nullopt;
 }
 
 }  // namespace mf

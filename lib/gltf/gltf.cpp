@@ -5,10 +5,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numbers>
+#include <stdexcept>
 
 #include "core/files.hpp"
 #include "core/json.hpp"
+#include "core/spool.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
 
@@ -227,67 +230,78 @@ bool material_gltf(const manifest::Material& m, const std::string& gltf_file, co
     return true;
 }
 
-bool library_gltf(const manifest::Manifest& m, const fs::path& out_dir, Files& out, std::string& error) {
+std::optional<ByteProducer> library_gltf(const std::vector<LibraryItem>& items, const fs::path& out_dir,
+                                         std::string& error) {
+    // The five per-material arrays are spooled as their text (core/spool), the rest is small.
+    static constexpr std::array<const char*, 5> kArrays = {"images", "textures", "materials", "meshes", "nodes"};
+    std::array<std::shared_ptr<TextSpool>, 5> spools;
+    for (auto& s : spools)
+        if (!(s = TextSpool::open(out_dir, error))) return std::nullopt;
+    auto& [images, textures, materials, meshes, nodes] = spools;
     json doc;
     doc["asset"] = {{"version", "2.0"}, {"generator", std::string(kGenerator)}};
     const json primitive = add_sphere(doc, "library.bin");
     doc["samplers"] = json::array({{{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}}});
-    doc["images"] = doc["textures"] = doc["materials"] = doc["meshes"] = doc["nodes"] = json::array();
-    std::vector<const manifest::Material*> mats;
-    for (const auto& mat : m.materials)
-        if (std::any_of(mat.material_files.begin(), mat.material_files.end(),
-                        [](const auto& f) { return f.format == "gltf"; }))
-            mats.push_back(&mat);
-    const auto side = static_cast<size_t>(std::ceil(std::sqrt(static_cast<double>(mats.size()))));
+    for (const char* k : kArrays) doc[k] = json::array();
+    auto add = [&](TextSpool& spool, const json& element) {
+        if (!spool.append(array_element_text(element), error)) throw std::runtime_error(error);
+    };
+    const auto side = static_cast<size_t>(std::ceil(std::sqrt(static_cast<double>(items.size()))));
     bool emissive_strength = false;
-    for (size_t i = 0; i < mats.size(); ++i) {
-        const manifest::Material& mat = *mats[i];
-        const auto file = std::find_if(mat.material_files.begin(), mat.material_files.end(),
-                                       [](const auto& f) { return f.format == "gltf"; });
-        const fs::path gltf_path = out_dir / file->file;
-        const auto one = read_json_file(gltf_path, error);
-        if (!one) return false;
-        try {
-            // The material's images move from its folder's URIs to the root's.
-            const fs::path base = fs::path(file->file).parent_path();
-            const size_t first_texture = doc["textures"].size();
-            for (const auto& img : one->at("images")) {
-                const std::string uri = img.at("uri").get<std::string>();
-                doc["images"].push_back({{"uri", uri_of((base / uri).lexically_normal().generic_string())}});
+    try {
+        for (size_t i = 0; i < items.size(); ++i) {
+            const fs::path gltf_path = out_dir / items[i].gltf_file;
+            const auto one = read_json_file(gltf_path, error);
+            if (!one) return std::nullopt;
+            try {
+                // The material's images move from its folder's URIs to the root's.
+                const fs::path base = fs::path(items[i].gltf_file).parent_path();
+                const size_t first_texture = textures->size(), first_image = images->size();
+                for (const auto& img : one->at("images"))
+                    add(*images,
+                        {{"uri",
+                          uri_of((base / img.at("uri").get<std::string>()).lexically_normal().generic_string())}});
+                for (const auto& t : one->at("textures"))
+                    add(*textures, {{"sampler", 0}, {"source", first_image + t.at("source").get<size_t>()}});
+                json material = one->at("materials").at(0);
+                for (auto& [slot, v] : material.items())
+                    if (v.is_object() && v.contains("index")) v["index"] = first_texture + v["index"].get<size_t>();
+                for (auto& [slot, v] : material["pbrMetallicRoughness"].items())
+                    if (v.is_object() && v.contains("index")) v["index"] = first_texture + v["index"].get<size_t>();
+                if (material.contains("extensions")) emissive_strength = true;
+                add(*materials, material);
+            } catch (const json::exception& e) {
+                error = gltf_path.string() + ": not a material file of ours (" + e.what() + ")";
+                return std::nullopt;
             }
-            const size_t first_image = doc["images"].size() - one->at("images").size();
-            for (const auto& t : one->at("textures"))
-                doc["textures"].push_back({{"sampler", 0}, {"source", first_image + t.at("source").get<size_t>()}});
-            json material = one->at("materials").at(0);
-            for (auto& [slot, v] : material.items())
-                if (v.is_object() && v.contains("index")) v["index"] = first_texture + v["index"].get<size_t>();
-            for (auto& [slot, v] : material["pbrMetallicRoughness"].items())
-                if (v.is_object() && v.contains("index")) v["index"] = first_texture + v["index"].get<size_t>();
-            if (material.contains("extensions")) emissive_strength = true;
-            doc["materials"].push_back(std::move(material));
-        } catch (const json::exception& e) {
-            error = gltf_path.string() + ": not a material file of ours (" + e.what() + ")";
-            return false;
+            json p = primitive;
+            p["material"] = i;
+            add(*meshes, {{"name", items[i].name}, {"primitives", json::array({std::move(p)})}});
+            const auto column = i % side, row = i / side;  // the grid cell of material i
+            const double x = 1.25 * static_cast<double>(column), y = -1.25 * static_cast<double>(row);
+            add(*nodes, {{"name", items[i].name}, {"mesh", i}, {"translation", {x, y, 0.0}}});
         }
-        json p = primitive;
-        p["material"] = i;
-        doc["meshes"].push_back({{"name", mat.name}, {"primitives", json::array({std::move(p)})}});
-        const auto column = i % side, row = i / side;  // the grid cell of material i
-        const double x = 1.25 * static_cast<double>(column), y = -1.25 * static_cast<double>(row);
-        doc["nodes"].push_back({{"name", mat.name}, {"mesh", i}, {"translation", {x, y, 0.0}}});
+    } catch (const std::runtime_error&) {  // a spool's write failed: `error` says why
+        return std::nullopt;
     }
     if (emissive_strength) doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
-    json nodes = json::array();
-    for (size_t i = 0; i < mats.size(); ++i) nodes.push_back(i);
-    doc["scenes"] = json::array({{{"name", "library"}, {"nodes", std::move(nodes)}}});
+    json scene_nodes = json::array();
+    for (size_t i = 0; i < items.size(); ++i) scene_nodes.push_back(i);
+    doc["scenes"] = json::array({{{"name", "library"}, {"nodes", std::move(scene_nodes)}}});
     doc["scene"] = 0;
     // glTF requires non-empty arrays where present.
-    for (const char* k : {"images", "textures", "materials", "meshes", "nodes"})
-        if (doc[k].empty()) doc.erase(k);
+    for (size_t k = 0; k < kArrays.size(); ++k)
+        if (spools[k]->size() == 0) doc.erase(kArrays[k]);
     if (!doc.contains("images")) doc.erase("samplers");
-    out.gltf = text_of(doc);
-    out.bin = sphere_buffer();
-    return true;
+    return ByteProducer([doc = std::move(doc), spools](const ByteSink& sink) {
+        std::vector<StreamedArray> arrays;
+        std::string ignored;  // a spool of our own that cannot be read back: the write fails, the caller says so
+        for (size_t k = 0; k < kArrays.size(); ++k)
+            arrays.push_back({kArrays[k], spools[k]->size(), [&, k](size_t i, const ByteSink& out) {
+                                  return spools[k]->copy(static_cast<uint32_t>(i), out, ignored);
+                              }});
+        return write_json_text(doc, arrays, sink);
+    });
 }
 
 }  // namespace mf::gltf

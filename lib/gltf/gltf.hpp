@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "core/files.hpp"
 #include "manifest/manifest.hpp"
 
 namespace mf::gltf {
@@ -51,10 +52,17 @@ const std::vector<uint8_t>& sphere_buffer();
 bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri,
                    const MaterialOptions& opt, Files& out, std::string& error);
 
-// library.gltf at the root of `out_dir` (its buffer `library.bin`): every material of `m` that
-// has a .gltf (material_files), read back from that file, on a node of a square grid, 1.25 m
-// apart, named after the material. Materials in name order.
-bool library_gltf(const manifest::Manifest& m, const std::filesystem::path& out_dir, Files& out, std::string& error);
+// library.gltf at the root of `out_dir` (its buffer `library.bin`, sphere_buffer()): each item's
+// material, read back from its .gltf, on a node of a square grid, 1.25 m apart, named after the
+// material, in the items' order (the manifest's: by name). The .gltf files are read now (false +
+// `error` naming the file); the text is made by the producer returned, as it is written, from
+// temporary files in `out_dir` (a library of 100,000 materials is never held in memory).
+struct LibraryItem {
+    std::string name;
+    std::string gltf_file;  // relative to out_dir
+};
+std::optional<ByteProducer> library_gltf(const std::vector<LibraryItem>& items, const std::filesystem::path& out_dir,
+                                         std::string& error);
 
 // A relative path as a URI reference (RFC 3986 percent-encoding, '/' kept).
 std::string uri_of(const std::string& relative_path);

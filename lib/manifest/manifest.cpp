@@ -438,6 +438,32 @@ std::optional<Manifest> read_manifest(const std::string& path, std::string& erro
     return m;
 }
 
+std::optional<Material> material_from_json(const json& j, const std::string& at, std::string& error) {
+    try {
+        return material_of(j, at);
+    } catch (const ParseError& e) {
+        error = e.message;
+        return std::nullopt;
+    }
+}
+
+std::optional<Manifest> read_manifest(const std::string& path,
+                                      const std::function<bool(Material&&, std::string& error)>& each,
+                                      std::string& error) {
+    size_t index = 0;
+    const auto head = read_json_file(
+        path, "materials",
+        [&](json& element, std::string& e) {
+            auto m = material_from_json(element, "materials[" + std::to_string(index++) + "]", e);
+            return m && each(std::move(*m), e);
+        },
+        error);
+    if (!head) return std::nullopt;
+    auto m = manifest_from_json(*head, error);
+    if (!m) error = path + ": " + error;
+    return m;
+}
+
 namespace {
 
 // merge(), stage 1: the parts were written by one run's configuration (the more specific
@@ -503,8 +529,8 @@ bool every_shard_once(const std::vector<Manifest>& parts, const std::function<st
 
 }  // namespace
 
-std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
-                              std::string& error) {
+std::optional<Manifest> merge_heads(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
+                                    std::string& error) {
     if (parts.empty()) {
         error = "no manifest to merge";
         return std::nullopt;
@@ -513,26 +539,13 @@ std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vec
         return i < names.size() ? names[i] : "manifest " + std::to_string(i + 1);
     };
     if (!same_run(parts, name, error) || !every_shard_once(parts, name, error)) return std::nullopt;
-    // Stage 3: the sets, in the order one unsharded run writes them (no `shard` member).
+    // Stage 3: what one unsharded run writes beside its materials (no `shard` member).
     Manifest out;
     out.manifest_version = parts[0].manifest_version;
     out.generator = parts[0].generator;
     out.preset = parts[0].preset;
     out.normal_convention = parts[0].normal_convention;
-    std::map<std::string, size_t> owner;
-    for (size_t i = 0; i < parts.size(); ++i) {
-        for (const Material& m : parts[i].materials) {
-            const auto [it, fresh] = owner.emplace(m.name, i);
-            if (!fresh) {
-                error = "material \"" + m.name + "\" is in both " + name(it->second) + " and " + name(i);
-                return std::nullopt;
-            }
-            out.materials.push_back(m);
-        }
-        out.failures.insert(out.failures.end(), parts[i].failures.begin(), parts[i].failures.end());
-    }
-    std::sort(out.materials.begin(), out.materials.end(),
-              [](const Material& a, const Material& b) { return a.name < b.name; });
+    for (const Manifest& p : parts) out.failures.insert(out.failures.end(), p.failures.begin(), p.failures.end());
     auto key = [](const InputFailure& f) { return std::tie(f.source, f.code, f.message); };
     std::sort(out.failures.begin(), out.failures.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
     out.failures.erase(std::unique(out.failures.begin(), out.failures.end(),

@@ -10,6 +10,7 @@
 //  - reading never throws: every member is type-checked, an unknown role, channel key or
 //    status is an error naming the material and the member (a typo must not become a default).
 #pragma once
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -136,16 +137,24 @@ std::string manifest_text(const Manifest& m);
 std::optional<Manifest> manifest_from_json(const nlohmann::json& j, std::string& error);
 // Reads and parses a manifest file (the error names the file).
 std::optional<Manifest> read_manifest(const std::string& path, std::string& error);
+// The same without holding the materials (a manifest of 100,000 sets is hundreds of MB as a JSON
+// tree): each element of "materials" is checked and handed to `each` as soon as it is parsed, then
+// dropped; the manifest returned has every other member and no materials. `each` returns false
+// + `error` to stop. Peak memory: one material's tree.
+std::optional<Manifest> read_manifest(const std::string& path,
+                                      const std::function<bool(Material&&, std::string& error)>& each,
+                                      std::string& error);
+// One element of "materials" (`at` names it in the error).
+std::optional<Material> material_from_json(const nlohmann::json& j, const std::string& at, std::string& error);
 
-// The manifest of one run from the manifests of its shards (`matforge ingest --shard I/N`):
-// materials and failures merged in the order one unsharded run writes them (materials by name,
-// failures by source; a failure every shard reports is kept once), so the result is the same
-// bytes as the unsharded run's manifest. nullopt + `error` naming the inputs when they do not
-// make one run: different manifest versions, generators, presets, normal conventions or
-// contexts, a part that is not a shard, a shard missing or given twice, or one material in two
-// shards. `names[i]` names parts[i] in messages.
-std::optional<Manifest> merge(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
-                              std::string& error);
+// The manifest of one run from the manifests of its shards (`matforge ingest --shard I/N`), all
+// but its materials (manifest/spool.hpp's merge_shards brings those): failures merged in the
+// order one unsharded run writes them (by source; a failure every shard reports is kept once).
+// nullopt + `error` naming the inputs when they do not make one run: different manifest
+// versions, generators, presets, normal conventions or contexts, a part that is not a shard, a
+// shard missing or given twice. `names[i]` names parts[i] in messages.
+std::optional<Manifest> merge_heads(const std::vector<Manifest>& parts, const std::vector<std::string>& names,
+                                    std::string& error);
 
 // Findings of every material by severity: [info, warning, error].
 std::array<size_t, 3> count_findings(const Manifest& m);

@@ -13,6 +13,7 @@
 #include "core/json.hpp"
 #include "core/parallel.hpp"
 #include "core/version.hpp"
+#include "manifest/spool.hpp"
 #include "pack/pack.hpp"
 #include "preset/texture_fields.hpp"
 #include "process/cache.hpp"
@@ -209,7 +210,12 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         InFlight& operator=(const InFlight&) = delete;
     } in_flight(in_flight_);
     MaterialResult res;
-    SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget});
+    // A set running while a worker is idle (alone, or at the batch's tail) decodes its maps and
+    // encodes its outputs on two threads, so a re-ingest of one changed set keeps both cores busy;
+    // with every worker busy that would only oversubscribe.
+    const int workers = opt_.jobs > 0 ? opt_.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+    const bool idle_worker = in_flight_.load() < workers;
+    SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget, idle_worker});
     if (plan.failure) {
         res.failure = std::move(plan.failure);
         return res;
@@ -291,12 +297,9 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         e.levels = std::move(gpu->levels);
         return Written{std::move(e), std::nullopt, std::move(gpu->findings)};
     };
-    // The outputs of a large set are packed and encoded on two threads (each output on one:
-    // deflate is serial) when a worker is idle, so a 4K set running alone (at the end of a batch,
-    // or on its own) keeps both cores busy; with every worker busy that would only oversubscribe.
-    const int workers = opt_.jobs > 0 ? opt_.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-    const bool idle_worker = in_flight_.load() < workers;
-    parallel_for(wanted.size(), plan.footprint > (uint64_t{64} << 20) && idle_worker ? 2 : 1, [&](size_t i) {
+    // Outputs are packed and encoded on two threads (each output on one: deflate is serial) when
+    // a worker is idle (above).
+    parallel_for(wanted.size(), idle_worker ? 2 : 1, [&](size_t i) {
         try {
             written[i] = write_output(*wanted[i]);
         } catch (const std::bad_alloc&) {  // parallel_for's fn must not throw
@@ -440,47 +443,65 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         }
     } reset{*this};
 
-    std::vector<MaterialResult> results(sets.size());
+    // Each set's entry goes to the spool (a temporary file) when the set is done: the run holds a
+    // tally and the file names of each set, not its entry, and the manifest is written from the
+    // spool (manifest/spool.hpp).
+    auto spool = manifest::MaterialSpool::open(opt_.out_dir, result.error);
+    if (!spool) return result;
     MemoryBudget budget(opt_.memory_budget);
-    std::mutex progress_mutex;
+    std::mutex done_mutex;
     size_t done = 0;
+    std::string spool_error;
+    std::set<std::string> produced;
+    manifest::Manifest& m = result.manifest;
     const std::vector<size_t> order = largest_first(sets);
     parallel_for(sets.size(), opt_.jobs, [&](size_t k) {
         const size_t i = order[k];
         if (stop_requested()) return;  // a signal asked to stop: no new set starts
+        MaterialResult r;
         try {
-            results[i] = process(sets[i], opt_.memory_budget ? &budget : nullptr);
+            r = process(sets[i], opt_.memory_budget ? &budget : nullptr);
         } catch (const std::bad_alloc&) {  // exhaustion in one set must not stop the others
-            results[i] = MaterialResult{};
-            results[i].failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
-                                                   "fewer --jobs, or set the preset's max_size";
+            r = MaterialResult{};
+            r.failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
+                                          "fewer --jobs, or set the preset's max_size";
         } catch (const std::exception& e) {  // nor a bug
-            results[i] = MaterialResult{};
-            results[i].failure = sets[i].display + ": internal error: " + e.what();
+            r = MaterialResult{};
+            r.failure = sets[i].display + ": internal error: " + e.what();
         }
-        std::lock_guard lock(progress_mutex);
+        std::string error;
+        const bool spooled = r.failure || spool->add(r.entry, error);
+        std::lock_guard lock(done_mutex);
         ++done;
-        if (opt_.progress) opt_.progress(done, sets.size(), sets[i].name, results[i]);
+        if (opt_.progress) opt_.progress(done, sets.size(), sets[i].name, r);
+        if (!spooled) {
+            if (spool_error.empty()) spool_error = error;
+        } else if (r.failure) {
+            m.failures.push_back({source_of(sets[i], opt_.out_dir), std::string(code::unreadable_file), *r.failure});
+        } else {
+            MaterialTally t{r.entry.name, {}};
+            validate::add_material(t.findings, r.entry.findings);
+            result.materials.push_back(std::move(t));
+            for (const auto& o : r.entry.outputs) produced.insert(o.file);
+            for (const auto& f : r.entry.material_files) produced.insert(f.file);
+        }
     });
+    if (!spool_error.empty()) {
+        result.error = spool_error;
+        return result;
+    }
 
-    manifest::Manifest& m = result.manifest;
     m.generator = std::string(kGenerator);
     m.preset = preset_.name;
     m.normal_convention = preset_.normal_convention;
     if (opt_.shard) m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, context_};
-    for (size_t i = 0; i < sets.size(); ++i) {
-        auto& r = results[i];
-        if (r.failure) {
-            m.failures.push_back({source_of(sets[i], opt_.out_dir), std::string(code::unreadable_file), *r.failure});
-            continue;
-        }
-        m.materials.push_back(std::move(r.entry));
-    }
     for (auto& f : source_failures) {
         f.source = relative_to(f.source, opt_.out_dir);
         m.failures.push_back(std::move(f));
     }
-    std::sort(m.materials.begin(), m.materials.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    spool->sort();  // names are unique: one folder each
+    std::sort(result.materials.begin(), result.materials.end(),
+              [](const auto& a, const auto& b) { return a.name < b.name; });
     // By source, then code and message: a total order, the one `matforge merge` writes too.
     std::sort(m.failures.begin(), m.failures.end(), [](const auto& a, const auto& b) {
         return std::tie(a.source, a.code, a.message) < std::tie(b.source, b.code, b.message);
@@ -494,21 +515,18 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         return result;
     }
     // library.gltf: every material of the run in one file (not per shard: a shard sees its part).
-    if (!opt_.shard && !write_library(
-                           m, opt_.out_dir,
-                           [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-                               return folder->write(rel, b, e);
-                           },
-                           result.error))
+    if (!opt_.shard &&
+        !write_library(
+            spool->entries(), opt_.out_dir,
+            [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+                return folder->write(rel, b, e);
+            },
+            [&](const std::string& rel, const ByteProducer& p, std::string& e) { return folder->write(rel, p, e); },
+            m.library, result.error))
         return result;
-    const std::string text = manifest::manifest_text(m);  // never throws on non-UTF-8 names
-    std::set<std::string> produced;
-    for (const auto& mat : m.materials) {
-        for (const auto& o : mat.outputs) produced.insert(o.file);
-        for (const auto& f : mat.material_files) produced.insert(f.file);
-    }
     for (const auto& f : m.library) produced.insert(f.file);
     std::string err;
+    const ByteProducer text = [&](const ByteSink& sink) { return spool->write_manifest(m, sink, err); };
     if (!folder->finish(text, produced, result.notes, err)) result.error = err;
     remove_stale_temps(opt_.out_dir);
     return result;

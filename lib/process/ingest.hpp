@@ -17,6 +17,7 @@
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
 #include "process/sets.hpp"
+#include "validate/report.hpp"
 #include "validate/rules.hpp"
 
 namespace mf {
@@ -50,8 +51,17 @@ struct IngestOptions {
     std::function<void(size_t done, size_t total, const std::string& name, const MaterialResult& result)> progress;
 };
 
+// A material of the run as its caller reports it: its name and its findings counted.
+struct MaterialTally {
+    std::string name;
+    validate::Summary findings;  // error, warning, info; incomplete
+};
+
 struct IngestResult {
+    // The manifest written, but for its materials (they go from a temporary file into the file,
+    // never all in memory: manifest/spool.hpp); those are tallied in `materials`, by name.
     manifest::Manifest manifest;
+    std::vector<MaterialTally> materials;
     std::string error;               // batch-level error (output folder unusable); empty when fine
     bool usage_error = false;        // `error` is about the choice of output folder (exit 2)
     bool interrupted = false;        // stopped by a signal (core/interrupt.hpp): no manifest written
@@ -79,8 +89,8 @@ private:
     Preset preset_;
     std::shared_ptr<const ColorContext> color_;
     IngestOptions opt_;
-    // Sets inside process() now: a large set with a worker left idle (the batch's tail, or a
-    // single set) encodes its outputs on two threads; with every worker busy, one.
+    // Sets inside compute() now: a set with a worker left idle (the batch's tail, or a single
+    // set) decodes and encodes on two threads; with every worker busy, on one.
     mutable std::atomic<int> in_flight_{0};
     // Set by run() for the sets it processes: the folder (lock, journal, ownership of files) and
     // the outputs whose paths another output claimed first (material -> suffix -> why).

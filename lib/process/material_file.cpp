@@ -60,17 +60,33 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
     }
 }
 
-bool write_library(manifest::Manifest& m, const std::filesystem::path& out_dir, const WriteFile& write,
-                   std::string& error) {
-    const bool any = std::any_of(m.materials.begin(), m.materials.end(),
-                                 [](const auto& mat) { return !mat.material_files.empty(); });
-    if (!any) return true;
-    gltf::Files files;
-    if (!gltf::library_gltf(m, out_dir, files, error)) return false;
-    if (!write_pair(files, "library.gltf", "library.bin", write, m.library, error)) {
+bool write_library(const std::vector<manifest::MaterialSpool::Entry>& materials, const std::filesystem::path& out_dir,
+                   const WriteFile& write, const WriteStream& write_stream,
+                   std::vector<manifest::MaterialFile>& library, std::string& error) {
+    std::vector<gltf::LibraryItem> items;
+    for (const auto& m : materials)
+        if (!m.gltf.empty()) items.push_back({m.name, m.gltf});
+    if (items.empty()) return true;
+    const auto text = gltf::library_gltf(items, out_dir, error);
+    if (!text) return false;
+    // The buffer first: a .gltf is never there without the buffer it names.
+    const std::vector<uint8_t>& bin = gltf::sphere_buffer();
+    Sha256 sha;
+    const bool ok = write("library.bin", bin, error) && write_stream(
+                                                            "library.gltf",
+                                                            [&](const ByteSink& sink) {
+                                                                return (*text)([&](std::string_view piece) {
+                                                                    sha.update(piece);
+                                                                    return sink(piece);
+                                                                });
+                                                            },
+                                                            error);
+    if (!ok) {
         error = "library.gltf: " + error;
         return false;
     }
+    library.push_back({"library.gltf", "gltf", sha.hex()});
+    library.push_back({"library.bin", "bin", sha256_hex(bin)});
     return true;
 }
 

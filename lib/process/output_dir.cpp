@@ -36,25 +36,38 @@ bool is_ours(const nlohmann::json& j) {
            j["generator"].get<std::string>().rfind("matforge", 0) == 0;
 }
 
-// materials[].outputs[] of a manifest: file -> sha256 (leniently: a later version's manifest too).
-void manifest_outputs(const nlohmann::json& j, std::map<std::string, std::string>& out) {
-    auto add = [&](const nlohmann::json& list) {  // [{file, sha256}, ...]
-        if (!list.is_array()) return;
-        for (const auto& o : list) {
-            if (!o.is_object() || !o.contains("file") || !o["file"].is_string()) continue;
-            const auto rel = inside(o["file"].get<std::string>());
-            if (!rel) continue;
-            out[*rel] = o.contains("sha256") && o["sha256"].is_string() ? o["sha256"].get<std::string>() : "";
-        }
-    };
-    // Material files (the .gltf of a set and its buffer, library.gltf) are outputs too.
-    if (j.contains("library")) add(j["library"]);
-    if (!j.contains("materials") || !j["materials"].is_array()) return;
-    for (const auto& m : j["materials"]) {
-        if (!m.is_object()) continue;
-        if (m.contains("outputs")) add(m["outputs"]);
-        if (m.contains("material_files")) add(m["material_files"]);
+// [{file, sha256}, ...] of a manifest (leniently: a later version's manifest too) into `out`.
+void add_files(const nlohmann::json& list, std::map<std::string, std::string>& out) {
+    if (!list.is_array()) return;
+    for (const auto& o : list) {
+        if (!o.is_object() || !o.contains("file") || !o["file"].is_string()) continue;
+        const auto rel = inside(o["file"].get<std::string>());
+        if (!rel) continue;
+        out[*rel] = o.contains("sha256") && o["sha256"].is_string() ? o["sha256"].get<std::string>() : "";
     }
+}
+
+// A manifest file read one material at a time (core/json: a manifest of 100,000 sets is never a
+// tree in memory): its head (materials empty), and when matforge wrote it, the files it lists
+// (outputs, material files, the library: file -> sha256) added to `out`. nullopt + `why`.
+std::optional<nlohmann::json> read_manifest_files(const fs::path& file, std::map<std::string, std::string>& out,
+                                                  std::string& why) {
+    std::map<std::string, std::string> found;
+    auto j = read_json_file(
+        file, "materials",
+        [&](nlohmann::json& m, std::string&) {
+            if (m.is_object()) {
+                if (m.contains("outputs")) add_files(m["outputs"], found);
+                if (m.contains("material_files")) add_files(m["material_files"], found);
+            }
+            return true;
+        },
+        why);
+    if (j && is_ours(*j)) {
+        if (j->contains("library")) add_files((*j)["library"], found);
+        out.merge(found);
+    }
+    return j;
 }
 
 // A journal's files: "prev" lines keep the sha256 the manifest listed, "wrote" lines (files a
@@ -138,7 +151,7 @@ std::unique_ptr<OutputFolder> OutputFolder::open(const Options& opt, std::string
         std::optional<nlohmann::json> j;
         if (fs::is_symlink(st)) why = "it is a symbolic link";
         else if (!fs::is_regular_file(st)) why = "it is not a regular file";
-        else if (!(j = read_json_file(manifest, why))) why = "it is not a manifest: " + why;
+        else if (!(j = read_manifest_files(manifest, f->previous_, why))) why = "it is not a manifest: " + why;
         else if (!is_ours(*j))
             why = std::string("its generator is ") +
                   (j->is_object() && j->contains("generator") ? (*j)["generator"].dump() : std::string("not stated"));
@@ -148,7 +161,6 @@ std::unique_ptr<OutputFolder> OutputFolder::open(const Options& opt, std::string
             usage = true;
             return nullptr;
         }
-        if (why.empty()) manifest_outputs(*j, f->previous_);
     }
     journal_files(opt.dir / f->journal_name(), f->previous_);
     f->others_ = f->listed_elsewhere();
@@ -165,7 +177,7 @@ std::set<std::string> OutputFolder::listed_elsewhere() const {
         if (!it->is_regular_file(fec) || it->is_symlink(fec)) continue;
         if (n.rfind("manifest", 0) == 0 && it->path().extension() == ".json") {
             std::string err;
-            if (const auto j = read_json_file(it->path(), err); j && is_ours(*j)) manifest_outputs(*j, files);
+            read_manifest_files(it->path(), files, err);
         } else if (n.size() > 8 && n.front() == '.' && n.substr(n.size() - 8) == ".journal") {
             journal_files(it->path(), files);
         }
@@ -233,27 +245,31 @@ std::string OutputFolder::claim(const std::string& rel, const std::string& owner
 }
 
 bool OutputFolder::write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
-    return write_file_under(opt_.dir, rel, bytes, error, [&](bool exists) -> std::string {
-        if (exists && !opt_.force && !ours(rel))
-            return "a file matforge did not write is in the way (no earlier manifest of this folder lists it); "
-                   "move it away, or pass --force to replace it";
-        // Journaled before it is replaced: a run stopped after the rename still knows the file is ours.
-        const std::string line = nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false,
-                                                                     nlohmann::json::error_handler_t::replace) +
-                                 "\n";
-        std::lock_guard lock(journal_mutex_);
-        if (journal_fd_ >= 0 && (::write(journal_fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()) ||
-                                 ::fdatasync(journal_fd_) != 0))
-            return std::string("cannot record it in the journal (") + std::strerror(errno) + ")";
-        return {};
-    });
+    return write_file_under(opt_.dir, rel, bytes, error, [&](bool exists) { return may_write(rel, exists); });
 }
 
-bool OutputFolder::finish(const std::string& manifest_text, const std::set<std::string>& produced,
+bool OutputFolder::write(const std::string& rel, const ByteProducer& produce, std::string& error) {
+    return write_file_under(opt_.dir, rel, produce, error, [&](bool exists) { return may_write(rel, exists); });
+}
+
+std::string OutputFolder::may_write(const std::string& rel, bool exists) {
+    if (exists && !opt_.force && !ours(rel))
+        return "a file matforge did not write is in the way (no earlier manifest of this folder lists it); "
+               "move it away, or pass --force to replace it";
+    // Journaled before it is replaced: a run stopped after the rename still knows the file is ours.
+    const std::string line = nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false,
+                                                                 nlohmann::json::error_handler_t::replace) +
+                             "\n";
+    std::lock_guard lock(journal_mutex_);
+    if (journal_fd_ >= 0 && (::write(journal_fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()) ||
+                             ::fdatasync(journal_fd_) != 0))
+        return std::string("cannot record it in the journal (") + std::strerror(errno) + ")";
+    return {};
+}
+
+bool OutputFolder::finish(const ByteProducer& manifest, const std::set<std::string>& produced,
                           std::vector<std::string>& notes, std::string& error) {
-    if (!write_file_under(opt_.dir, opt_.manifest_name,
-                          std::span(reinterpret_cast<const unsigned char*>(manifest_text.data()), manifest_text.size()),
-                          error)) {
+    if (!write_file_under(opt_.dir, opt_.manifest_name, manifest, error)) {
         error = (opt_.dir / opt_.manifest_name).string() + ": " +
                 error.substr(error.find(": ") == std::string::npos ? 0 : error.find(": ") + 2);
         return false;

@@ -57,14 +57,18 @@ public:
     // write_file_under(dir, rel): a file that is there and is not ours is refused (unless force).
     // Thread-safe.
     bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error);
-    // The new manifest, stale outputs removed (`produced`: every output file of this run), the
-    // journal removed. `notes`: one line per file removed or kept.
-    bool finish(const std::string& manifest_text, const std::set<std::string>& produced,
-                std::vector<std::string>& notes, std::string& error);
+    // The same for a file made as it is written (it is written even when it holds these bytes).
+    bool write(const std::string& rel, const ByteProducer& produce, std::string& error);
+    // The new manifest (made as it is written), stale outputs removed (`produced`: every output
+    // file of this run), the journal removed. `notes`: one line per file removed or kept.
+    bool finish(const ByteProducer& manifest, const std::set<std::string>& produced, std::vector<std::string>& notes,
+                std::string& error);
 
 private:
     explicit OutputFolder(Options opt) : opt_(std::move(opt)) {}
     bool ours(const std::string& rel) const;
+    // write()'s check and journal line before `rel` is replaced: "" or why not.
+    std::string may_write(const std::string& rel, bool exists);
     // Paths other manifests and journals of ours in the folder list now (other shards).
     std::set<std::string> listed_elsewhere() const;
 

@@ -425,10 +425,10 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
     plan.footprint = estimated_bytes(d);
     if (opt.mode == PlanMode::decode) plan.lease = std::make_unique<BudgetLease>(opt.budget, plan.footprint);
 
-    // Sets of 4 Mpixel maps and up decode their maps on two threads; small ones stay on one
-    // (the batch is already parallel across sets).
+    // Sets of 4 Mpixel maps and up decode their maps on two threads, and any set when a core is
+    // idle; small ones stay on one otherwise (the batch is already parallel across sets).
     std::vector<validate::MapInput> maps;
-    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) ? 2 : 1, maps);
+    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) || opt.spare_core ? 2 : 1, maps);
     if (maps.empty()) {
         std::string msg = src.display + ": no map of the set could be read";
         for (const auto& f : plan.findings)

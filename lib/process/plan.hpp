@@ -34,6 +34,9 @@ struct PlanOptions {
     const validate::RuleConfig* rules = nullptr;  // thresholds, severities, suppressions
     PlanMode mode = PlanMode::decode;
     MemoryBudget* budget = nullptr;  // decode mode: the set's decoded bytes are leased from it
+    // A core of the batch is idle (a set alone, or the batch's tail): decode on two threads
+    // whatever the set's size (else only sets of 64 MB and up do).
+    bool spare_core = false;
 };
 
 struct DecodedMap {

@@ -8,8 +8,10 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <thread>
 
 #include "core/json.hpp"
+#include "manifest/spool.hpp"
 #include "preview/preview.hpp"
 #include "vulkan_fixture.hpp"
 
@@ -105,6 +107,27 @@ TEST(Manifest, SpecExampleMapsChannelsToRoles) {
     EXPECT_EQ(mat.normal.texture, -1);
 }
 
+// A manifest's material as ingest writes one (an output, a constant, a finding; `i` varies it).
+manifest::Material sample_material(int i) {
+    manifest::Material mat;
+    mat.name = "Set" + std::to_string(i);
+    mat.source = "in/set " + std::to_string(i) + (i == 1 ? std::string("\xff\xfe") : std::string());
+    mat.convention = "ambientcg";
+    manifest::Output o;
+    o.file = mat.name + "/" + mat.name + "_basecolor.png";
+    o.srgb = true;
+    o.width = o.height = 1024;
+    o.bit_depth = 8;
+    o.format = "png";
+    o.sha256 = std::string(64, 'a');
+    mat.outputs.push_back(o);
+    mat.constants.push_back({Role::metalness, {0.f}});
+    mat.findings.push_back({"CONSTANT_MAP", Severity::info, "metalness", "", "line one \"quoted\"", {{"k", 1.5}}});
+    if (i == 2) mat.emissive_strength = 4.5f;
+    if (i % 2 == 0) mat.material_files.push_back({mat.name + "/" + mat.name + ".gltf", "gltf", std::string(64, 'd')});
+    return mat;
+}
+
 // manifest_text (one material at a time) writes the bytes of the whole-tree dump it replaces,
 // for no material, one, several, non-UTF-8 bytes in a name, failures, a library and a shard.
 TEST(Manifest, TextMadeOneMaterialAtATimeIsTheWholeDump) {
@@ -113,28 +136,100 @@ TEST(Manifest, TextMadeOneMaterialAtATimeIsTheWholeDump) {
     m.preset = "gltf";
     EXPECT_EQ(manifest::manifest_text(m), json_text(manifest::to_json(m)));
     for (int i = 0; i < 3; ++i) {
-        manifest::Material mat;
-        mat.name = "Set" + std::to_string(i);
-        mat.source = "in/set " + std::to_string(i) + (i == 1 ? std::string("\xff\xfe") : std::string());
-        mat.convention = "ambientcg";
-        manifest::Output o;
-        o.file = mat.name + "/" + mat.name + "_basecolor.png";
-        o.srgb = true;
-        o.width = o.height = 1024;
-        o.bit_depth = 8;
-        o.format = "png";
-        o.sha256 = std::string(64, 'a');
-        mat.outputs.push_back(o);
-        mat.constants.push_back({Role::metalness, {0.f}});
-        mat.findings.push_back({"CONSTANT_MAP", Severity::info, "metalness", "", "line one \"quoted\"", {{"k", 1.5}}});
-        if (i == 2) mat.emissive_strength = 4.5f;
-        m.materials.push_back(mat);
+        m.materials.push_back(sample_material(i));
         EXPECT_EQ(manifest::manifest_text(m), json_text(manifest::to_json(m))) << i + 1 << " material(s)";
     }
     m.failures.push_back({"in/broken", "UNREADABLE_FILE", "truncated"});
     m.library.push_back({"library.gltf", "gltf", std::string(64, 'b')});
     m.shard = manifest::Manifest::Shard{1, 3, std::string(64, 'c')};
     EXPECT_EQ(manifest::manifest_text(m), json_text(manifest::to_json(m)));
+}
+
+// The spool (materials in a temporary file, the manifest written from it) gives the bytes of
+// manifest_text for materials added in any order from several threads, reads them back in name
+// order, and names a material added twice with the parts of both.
+TEST(Manifest, SpooledMaterialsWriteTheSameBytes) {
+    const fs::path dir = temp_dir("spool");
+    manifest::Manifest m;
+    m.generator = "matforge 0.1.0";
+    m.preset = "gltf";
+    m.failures.push_back({"in/broken", "UNREADABLE_FILE", "truncated"});
+    for (int i = 0; i < 40; ++i) m.materials.push_back(sample_material(i));
+    std::sort(m.materials.begin(), m.materials.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    std::string error;
+    auto spool = manifest::MaterialSpool::open(dir, error);
+    ASSERT_TRUE(spool) << error;
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            std::string e;
+            for (int i = 39 - t; i >= 0; i -= 4) EXPECT_TRUE(spool->add(sample_material(i), e, t)) << e;
+        });
+    for (auto& th : threads) th.join();
+    EXPECT_FALSE(spool->sort());
+    std::string text;
+    manifest::Manifest head = m;
+    head.materials.clear();
+    ASSERT_TRUE(spool->write_manifest(
+        head, [&](std::string_view p) { return text.append(p), true; }, error))
+        << error;
+    EXPECT_EQ(text, manifest::manifest_text(m));
+    std::vector<std::string> names;
+    ASSERT_TRUE(spool->for_each([&](manifest::Material&& mat) { return names.push_back(mat.name), true; }, error));
+    ASSERT_EQ(names.size(), 40u);
+    for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(names[i], m.materials[i].name);
+    EXPECT_EQ(spool->entries()[0].gltf, "Set0/Set0.gltf");
+    EXPECT_EQ(spool->entries()[1].gltf, "");  // Set1: no .gltf
+
+    ASSERT_TRUE(spool->add(sample_material(7), error, 9));
+    const auto dup = spool->sort();
+    ASSERT_TRUE(dup);
+    EXPECT_EQ(dup->name, "Set7");
+    EXPECT_EQ(dup->second_part, 9);
+    fs::remove_all(dir);
+}
+
+// merge_shards reads the shards' manifests one material at a time: the merged manifest is the
+// bytes of the unsharded one; a material in two shards and a shard missing are refused by name.
+TEST(Manifest, MergeOfSpooledShardsIsTheWholeRun) {
+    const fs::path dir = temp_dir("merge");
+    manifest::Manifest whole;
+    whole.generator = "matforge 0.1.0";
+    whole.preset = "gltf";
+    for (int i = 0; i < 9; ++i) whole.materials.push_back(sample_material(i));
+    std::vector<std::string> paths;
+    for (int s = 0; s < 3; ++s) {
+        manifest::Manifest part = whole;
+        part.materials.clear();
+        for (int i = s; i < 9; i += 3) part.materials.push_back(sample_material(i));
+        part.failures.push_back({"in/bad" + std::to_string(s % 2), "UNREADABLE_FILE", "truncated"});
+        part.shard = manifest::Manifest::Shard{s, 3, std::string(64, 'c')};
+        paths.push_back((dir / ("manifest.shard-" + std::to_string(s) + "-of-3.json")).string());
+        std::ofstream(paths.back()) << manifest::manifest_text(part);
+    }
+    whole.failures = {{"in/bad0", "UNREADABLE_FILE", "truncated"}, {"in/bad1", "UNREADABLE_FILE", "truncated"}};
+    std::string error;
+    auto spool = manifest::MaterialSpool::open(dir, error);
+    ASSERT_TRUE(spool) << error;
+    const auto head = manifest::merge_shards(paths, *spool, error);
+    ASSERT_TRUE(head) << error;
+    std::string text;
+    ASSERT_TRUE(spool->write_manifest(
+        *head, [&](std::string_view p) { return text.append(p), true; }, error));
+    EXPECT_EQ(text, manifest::manifest_text(whole));
+
+    auto twice = manifest::MaterialSpool::open(dir, error);
+    manifest::Manifest extra = whole;
+    extra.materials = {sample_material(4)};  // Set4 is shard 1's
+    extra.failures.clear();
+    extra.shard = manifest::Manifest::Shard{0, 3, std::string(64, 'c')};
+    std::ofstream(dir / "extra.json") << manifest::manifest_text(extra);
+    EXPECT_FALSE(manifest::merge_shards({(dir / "extra.json").string(), paths[1], paths[2]}, *twice, error));
+    EXPECT_EQ(error, "material \"Set4\" is in both " + (dir / "extra.json").string() + " and " + paths[1]);
+    auto missing = manifest::MaterialSpool::open(dir, error);
+    EXPECT_FALSE(manifest::merge_shards({paths[0], paths[2]}, *missing, error));
+    EXPECT_NE(error.find("shard(s) 1 of 3 missing"), std::string::npos) << error;
+    fs::remove_all(dir);
 }
 
 TEST(Manifest, SmoothnessConstantsUnusedAndConventions) {

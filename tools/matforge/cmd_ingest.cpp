@@ -67,19 +67,18 @@ ExitCode run_ingest(const IngestArgs& a) {
         say("ingest", "cache: " + std::to_string(r.cache_hits) + " sets restored, " + std::to_string(r.cache_misses) +
                           " computed (" + opt.cache_dir->string() + ")");
     std::vector<std::string> names;
-    for (const auto& m : r.manifest.materials) names.push_back(m.name);
+    for (const auto& m : r.materials) names.push_back(m.name);
     report_unmatched_suppressions("ingest", opt.rules, names);
     for (const auto& f : r.manifest.failures) say("ingest", f.code + ": " + f.message);
     if (!a.quiet) {
-        const auto counts = manifest::count_findings(r.manifest);
-        say("ingest", std::to_string(r.manifest.materials.size()) + " materials, " +
-                          std::to_string(r.manifest.failures.size()) +
-                          " failed; findings: " + std::to_string(counts[2]) + " error, " + std::to_string(counts[1]) +
-                          " warning, " + std::to_string(counts[0]) +
+        const validate::Summary counts = summarize(r);
+        say("ingest", std::to_string(r.materials.size()) + " materials, " + std::to_string(r.manifest.failures.size()) +
+                          " failed; findings: " + std::to_string(counts.error) + " error, " +
+                          std::to_string(counts.warning) + " warning, " + std::to_string(counts.info) +
                           " info; manifest: " + (std::filesystem::path(a.out_dir) / opt.manifest_name).string());
-        print_attention("ingest", r.manifest);
+        print_attention("ingest", r);
     }
-    return verdict_exit(validate::run_fails(summarize(r.manifest), fail_on_of(a.fail_on)));
+    return verdict_exit(validate::run_fails(summarize(r), fail_on_of(a.fail_on)));
 }
 
 const Register reg{

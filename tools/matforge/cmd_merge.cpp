@@ -8,6 +8,7 @@
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "manifest/manifest.hpp"
+#include "manifest/spool.hpp"
 #include "process/material_file.hpp"
 
 namespace mf::cli {
@@ -19,28 +20,29 @@ struct MergeArgs {
 };
 
 ExitCode run_merge(const MergeArgs& a) {
-    std::vector<manifest::Manifest> parts;
-    for (const std::string& f : a.inputs) {
-        std::string error;
-        auto m = manifest::read_manifest(f, error);
-        if (!m) return fail("merge", error);
-        parts.push_back(std::move(*m));
-    }
-    std::string error;
-    auto merged = manifest::merge(parts, a.inputs, error);
-    if (!merged) return fail("merge", error);
     // The manifest's paths are relative to its folder: the library goes there, built from the
-    // materials' .gltf files the shards wrote.
+    // materials' .gltf files the shards wrote. The materials pass through a temporary file there
+    // (manifest/spool.hpp): the merge of 100,000 sets holds an index, not their entries.
     const std::filesystem::path dir = std::filesystem::absolute(a.out).parent_path();
+    std::string error;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    auto spool = manifest::MaterialSpool::open(dir, error);
+    if (!spool) return fail("merge", error, ExitCode::findings);
+    auto merged = manifest::merge_shards(a.inputs, *spool, error);
+    if (!merged) return fail("merge", error);
     if (!write_library(
-            *merged, dir,
+            spool->entries(), dir,
             [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
                 return write_file_atomic(dir / rel, b, e);
             },
-            error))
+            [&](const std::string& rel, const ByteProducer& p, std::string& e) {
+                return write_file_atomic(dir / rel, p, e);
+            },
+            merged->library, error))
         return fail("merge", error, ExitCode::findings);
-    const std::string text = manifest::manifest_text(*merged);
-    if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
+    if (!write_file_atomic(
+            a.out, [&](const ByteSink& sink) { return spool->write_manifest(*merged, sink, error); }, error))
         return fail("merge", error, ExitCode::findings);
     return ExitCode::ok;
 }

@@ -20,22 +20,30 @@ inline std::string set_status(const MaterialResult& r) {
     return "ok";
 }
 
-// validate::summarize's counts, for a manifest.
-inline validate::Summary summarize(const manifest::Manifest& m) {
+// validate::summarize's counts, for an ingest run.
+inline validate::Summary summarize(const IngestResult& r) {
     validate::Summary s;
-    for (const auto& mat : m.materials) validate::add_material(s, mat.findings);
-    s.failures = static_cast<int>(m.failures.size());
+    for (const auto& m : r.materials) {
+        s.error += m.findings.error;
+        s.warning += m.findings.warning;
+        s.info += m.findings.info;
+        s.incomplete += m.findings.incomplete;
+    }
+    s.failures = static_cast<int>(r.manifest.failures.size());
     return s;
 }
 
-// "sets with errors: A, B" and "sets with warnings: C" (at most 20 names each).
-inline void print_attention(std::string_view command, const manifest::Manifest& m) {
+// "sets with errors: A, B" and "sets with warnings: C" (at most 20 names each, by name).
+inline void print_attention(std::string_view command, const IngestResult& r) {
     for (const Severity level : {Severity::error, Severity::warning}) {
         std::string names;
         size_t n = 0;
-        for (const auto& mat : m.materials) {
-            if (worst(mat.findings) != level) continue;
-            if (n++ < 20) names += (names.empty() ? "" : ", ") + mat.name;
+        for (const auto& m : r.materials) {
+            const Severity worst = m.findings.error > 0     ? Severity::error
+                                   : m.findings.warning > 0 ? Severity::warning
+                                                            : Severity::info;
+            if (worst != level) continue;
+            if (n++ < 20) names += (names.empty() ? "" : ", ") + m.name;
         }
         if (n == 0) continue;
         if (n > 20) names += ", … (" + std::to_string(n - 20) + " more)";
