@@ -112,7 +112,8 @@ std::vector<float> energy_table() {
     const auto& t = cb::EnergyTable::get();
     for (int j = 0; j < cb::EnergyTable::kN; ++j)
         for (int i = 0; i < cb::EnergyTable::kN; ++i)
-            e.push_back(static_cast<float>(t.lookup((i + 0.5) / cb::EnergyTable::kN, (j + 0.5) / cb::EnergyTable::kN)));
+            for (double ab : t.lookup_dfg((i + 0.5) / cb::EnergyTable::kN, (j + 0.5) / cb::EnergyTable::kN))
+                e.push_back(static_cast<float>(ab));
     return e;
 }
 

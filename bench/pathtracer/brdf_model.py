@@ -171,8 +171,9 @@ def F_avg_schlick(f0):
 
 def shade(common, mat, model="accurate", diffuse="one_minus_F", etab=None, pix=None, ms="turquin"):
     """Radiance of every pixel (box-averaged sub-samples) for a constant material.
-    diffuse: 'one_minus_F' (matforge today: (1 - F(v.h))), 'none' (additive), 'one_minus_Eo'
-    (albedo scaling by the lobe's albedo at the view, (1 - E_F(n.v))), 'kc' (Kulla & Conty's
+    diffuse: 'one_minus_F' (matforge standard, and accurate before proposal 1: (1 - F(v.h))), 'none'
+    (additive), 'one_minus_Eo' (albedo scaling by the lobe's albedo at the view, (1 - E_F(n.v)):
+    matforge accurate since proposal 1), 'kc' (Kulla & Conty's
     reciprocal (1 - E_F(n.v))(1 - E_F(n.l))/(1 - E_F,avg)), 'burley' (Disney 2015 as Cycles 3.x).
     etab: {'E1': (mus, E(mu) with F = 1), 'EF': (mus, the specular lobe's albedo with its Fresnel)}.
     ms (accurate model only): 'turquin' (matforge today: the lobe scaled by 1 + F0 (1/E - 1)) or

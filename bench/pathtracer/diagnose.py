@@ -12,11 +12,13 @@ different diffuse coupling gives. Writes WORK/diagnosis.md.
    scattering lobe by 1 + F0 (1/E - 1) (Turquin 2019) against Kulla & Conty's separate lobe
    F_ms (1 - E(n.v))(1 - E(n.l)) / (pi (1 - E_avg)), and single scattering alone.
 Candidates (diffuse = albedo (1 - metalness) / pi x k):
-  one_minus_F   k = 1 - F(v.h)                     matforge today (glTF's fresnel_mix), three.js
+  one_minus_F   k = 1 - F(v.h)                     matforge standard (accurate before proposal 1;
+                                                   glTF's fresnel_mix), three.js
   none          k = 1                              Filament, Cycles `lambert_add`
   one_minus_Eo  k = 1 - E_spec(n.v)                albedo scaling by the specular lobe's albedo in
                                                    the view direction, E_spec = (F0 A + B)(1 + F0 (1/E - 1))
-                                                   from matforge's own BRDF table (A, B, E = A + B)
+                                                   from matforge's own BRDF table (A, B, E = A + B):
+                                                   matforge accurate since proposal 1
   kc            k = (1 - E_spec(n.v))(1 - E_spec(n.l)) / (1 - E_spec,avg)   reciprocal form
   burley        Cycles 3.4 Principled's diffuse (Burley 2015, retro-reflection), for the record
   one_minus_Eo+kc_lobe   one_minus_Eo with E_spec = F0 A + B + F_ms (1 - E), and Kulla & Conty's

@@ -25,8 +25,10 @@ enum class BrdfPrecision { fp32, fp16 };
 
 class BrdfHarness {
 public:
-    // energy: E(n·v, roughness) of the height-correlated lobe at the 32 × 32 texel centres
-    // ((i + 0.5)/32, (j + 0.5)/32), row j = roughness, for the accurate model's compensation.
+    // energy: the split-sum terms (A, B) of the height-correlated lobe (its directional albedo
+    // with Schlick's F is F0 A + B, with F = 1 it is E = A + B) at the 32 × 32 texel centres
+    // ((i + 0.5)/32, (j + 0.5)/32), row j = roughness, as interleaved pairs A, B (2 × 32² floats):
+    // the accurate model's energy compensation and diffuse weight.
     BrdfHarness(Context& context, const std::vector<float>& energy);
     ~BrdfHarness();
     BrdfHarness(const BrdfHarness&) = delete;

@@ -58,9 +58,9 @@ struct Surface {
 };
 
 // The scene's lights through the BRDF oracle (tests/stability/brdf_reference.hpp), prepared as
-// shade.frag prepares them: roughness and metalness clamped, albedo as sampled; E(μ, r) of the
-// accurate model's compensation by quadrature (specular_albedo_correlated), where the GPU reads
-// its table.
+// shade.frag prepares them: roughness and metalness clamped, albedo as sampled; the split-sum
+// terms (A, B)(μ, r) of the accurate model's compensation and diffuse weight by the oracle's own
+// quadrature (specular_dfg_correlated), where the GPU reads its BRDF lookup table.
 RGB shade(const Scene& scene, const Surface& s, V3 p, V3 v) {
     const double r = std::clamp(s.roughness, kMinRoughness, 1.0);
     const double metal = std::clamp(s.metalness, 0.0, 1.0);
@@ -84,7 +84,7 @@ RGB shade(const Scene& scene, const Surface& s, V3 p, V3 v) {
             for (double& e : E) e /= d2;
         }
         const auto c = cpubrdf::light_radiance<double>(model, to_oracle(n), to_oracle(v), to_oracle(l), NoV, r, metal,
-                                                       albedo, E, specular_albedo_correlated);
+                                                       albedo, E, specular_dfg_correlated);
         for (size_t i = 0; i < 3; ++i) out.c[i] += c[i];
     }
     for (int i = 0; i < 3; ++i) {
@@ -189,15 +189,15 @@ void sphere_st(V3 n, double& s, double& t) {
 
 int to_code(double e) { return static_cast<int>(std::floor(std::clamp(e, 0.0, 1.0) * 255.0 + 0.5)); }
 
-double specular_albedo_correlated(double NoV, double roughness) {
+std::array<double, 2> specular_dfg_correlated(double NoV, double roughness) {
     // Tabulated per roughness over √(n·v) (E is steepest at grazing angles), 257 entries,
     // linear in between: the interpolation error stays near 1e-6. Each entry is the oracle's
     // quadrature over visible normals, 128² points.
-    static std::map<double, std::vector<double>> tables;
+    static std::map<double, std::vector<std::array<double, 2>>> tables;
     static std::mutex mutex;
     const double r = std::max(roughness, kMinRoughness);
     constexpr int kEntries = 257;
-    std::vector<double>* table;
+    std::vector<std::array<double, 2>>* table;
     {
         std::lock_guard lock(mutex);
         table = &tables[r];
@@ -205,15 +205,17 @@ double specular_albedo_correlated(double NoV, double roughness) {
             table->resize(kEntries);
             for (int i = 0; i < kEntries; ++i) {
                 const double x = double(i) / (kEntries - 1);
-                (*table)[size_t(i)] = cpubrdf::specular_albedo(cpubrdf::Model::accurate, std::max(x * x, kMinNoV), r,
-                                                               128, 128);
+                (*table)[size_t(i)] = cpubrdf::specular_dfg(cpubrdf::Model::accurate, std::max(x * x, kMinNoV), r, 128,
+                                                            128);
             }
         }
     }
     const double x = std::sqrt(std::clamp(NoV, 0.0, 1.0)) * (kEntries - 1);
     const int i = std::min(int(x), kEntries - 2);
     const double f = x - i;
-    return (*table)[size_t(i)] * (1 - f) + (*table)[size_t(i) + 1] * f;
+    const auto& a = (*table)[size_t(i)];
+    const auto& b = (*table)[size_t(i) + 1];
+    return {a[0] * (1 - f) + b[0] * f, a[1] * (1 - f) + b[1] * f};
 }
 
 bool ReferenceImage::silhouette(uint32_t x, uint32_t y) const {

@@ -3,6 +3,7 @@
 // tests/stability/brdf_reference.hpp (written from the papers' formulas, not from the shaders);
 // this adds the camera, the exact sphere, bilinear texture sampling, lights, opacity.
 #pragma once
+#include <array>
 #include <vector>
 
 #include "render/render.hpp"
@@ -26,9 +27,10 @@ struct ReferenceImage {
 // Sphere scenes only (the one shape the renderer shades analytically, see shade.frag).
 ReferenceImage render_reference(const render::Scene& scene, const render::Material& material);
 
-// Directional albedo with F = 1 of the accurate BRDF's specular lobe (height-correlated Smith
-// GGX), by quadrature (cpubrdf::specular_albedo), tabulated per roughness.
-double specular_albedo_correlated(double NoV, double roughness);
+// Split-sum terms (A, B) of the accurate BRDF's specular lobe (height-correlated Smith GGX): its
+// directional albedo is F0 A + B with Schlick's F, A + B with F = 1. By quadrature
+// (cpubrdf::specular_dfg), tabulated per roughness.
+std::array<double, 2> specular_dfg_correlated(double NoV, double roughness);
 
 // The sRGB curves are mf::linear_to_srgb / mf::srgb_to_linear (color/srgb.hpp).
 int to_code(double encoded);  // round to nearest 8-bit code, clamped

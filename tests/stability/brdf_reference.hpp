@@ -16,11 +16,15 @@
 //  - F: Schlick 1994 (eq. 15) with a colored F0 = lerp(0.04, albedo, metalness);
 //  - G: Schlick-GGX, G1(x) = x / (x (1 − k) + k), k = (roughness + 1)² / 8 (Karis 2013, p. 3,
 //    the remap for punctual lights), folded into V = G / (4 N·L N·V);
-//  - accurate variant: height-correlated Smith G2 (Heitz 2014, eq. 99) and the multiple-
-//    scattering compensation 1 + F0 (1/E − 1) (Kulla & Conty 2017; Fdez-Agüera 2019);
-//  - diffuse: Lambert albedo / π, scaled by (1 − F)(1 − metalness); the unnormalized_diffuse
-//    variant leaves out Lambert's 1/π (diffuse π times too strong against the specular lobe),
-//    for comparison with engines that do this.
+//  - accurate variant: height-correlated Smith G2 (Heitz 2014, eq. 99), the multiple-
+//    scattering compensation 1 + F0 (1/E − 1) (Kulla & Conty 2017; Fdez-Agüera 2019), and the
+//    diffuse weighted by 1 − E_spec(N·V), E_spec = (F0 A + B)(1 + F0 (1/E − 1)) the compensated
+//    lobe's directional albedo (albedo scaling, Kulla & Conty 2017), with A, B, E = A + B given
+//    by the caller (specular_dfg's quadrature, or EnergyTable where the shader reads a table);
+//  - diffuse: Lambert albedo / π, scaled by (1 − F)(1 − metalness) (accurate: by
+//    (1 − E_spec)(1 − metalness)); the unnormalized_diffuse variant leaves out Lambert's 1/π
+//    (diffuse π times too strong against the specular lobe), for comparison with engines that do
+//    this.
 #pragma once
 #include <Imath/half.h>
 
@@ -68,7 +72,9 @@ struct Binary16 {
     static float q(float v) { return static_cast<float>(Imath::half(v)); }
 };
 
-// Directional albedo E(μ, roughness) with F = 1 of a specular lobe, by deterministic quadrature.
+// Directional albedo of a specular lobe by deterministic quadrature, split as the split-sum terms
+// (A, B) of Karis 2013: with Schlick's F the albedo is F0 A + B (A weights the integrand by
+// 1 − (1 − v·h)⁵, B by (1 − v·h)⁵), and with F = 1 it is E(μ, roughness) = A + B.
 // The unit square is mapped onto half vectors by Heitz's sampling of the visible normals
 // (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", listing 1), whose density in
 // l is pdf(l) = G1(v) D(h) / (4 n·v) with the exact Smith G1 of GGX (Heitz 2014, eq. 72). So
@@ -76,7 +82,7 @@ struct Binary16 {
 // a bounded, continuous integrand (G2 → 0 as l reaches the horizon): the midpoint rule
 // converges at grazing angles and at roughness 0.045 alike, where integrating over solid angle
 // or over D's CDF leaves errors of 1e-2 at thousands of points per axis.
-inline double specular_albedo(Model m, double NoV, double roughness, int nu = 256, int nphi = 256) {
+inline std::array<double, 2> specular_dfg(Model m, double NoV, double roughness, int nu = 256, int nphi = 256) {
     const double r = std::clamp(roughness, kMinRoughness, 1.0);
     const double a = r * r, a2 = a * a;
     NoV = std::clamp(NoV, kMinNoV, 1.0);
@@ -90,7 +96,7 @@ inline double specular_albedo(Model m, double NoV, double roughness, int nu = 25
     (void)T1x;
     const double T2x = -Vhz * T1y, T2z = Vhx * T1y;  // T2 = Vh × T1
     const double s = 0.5 * (1.0 + Vhz);
-    double sum = 0.0;
+    double sum_a = 0.0, sum_b = 0.0;
     for (int i = 0; i < nu; ++i) {
         const double rr = std::sqrt((i + 0.5) / nu);
         for (int j = 0; j < nphi; ++j) {
@@ -114,14 +120,24 @@ inline double specular_albedo(Model m, double NoV, double roughness, int nu = 25
             } else {  // separable Schlick-GGX, k = (r + 1)² / 8
                 G2 = NoL / (NoL * (1.0 - k) + k) * NoV / (NoV * (1.0 - k) + k);
             }
-            sum += G2 / g1v;
+            const double m1 = 1.0 - VoH, fc = m1 * m1 * m1 * m1 * m1;
+            sum_a += (1.0 - fc) * G2 / g1v;
+            sum_b += fc * G2 / g1v;
         }
     }
-    return sum / (static_cast<double>(nu) * nphi);
+    const double cells = static_cast<double>(nu) * nphi;
+    return {sum_a / cells, sum_b / cells};
 }
 
-// E(μ, r) of the height-correlated lobe on a 32 × 32 grid of texel centres (as the renderer's
-// BRDF lookup table), bilinear in between: the accurate model's energy compensation.
+// E(μ, roughness) = A + B: the directional albedo with F = 1.
+inline double specular_albedo(Model m, double NoV, double roughness, int nu = 256, int nphi = 256) {
+    const auto ab = specular_dfg(m, NoV, roughness, nu, nphi);
+    return ab[0] + ab[1];
+}
+
+// (A, B)(μ, r) of the height-correlated lobe on a 32 × 32 grid of texel centres (as the renderer's
+// BRDF lookup table), bilinear in between: the accurate model's energy compensation and diffuse
+// weight.
 class EnergyTable {
 public:
     static constexpr int kN = 32;
@@ -129,25 +145,35 @@ public:
         static const EnergyTable t;
         return t;
     }
-    double lookup(double NoV, double r) const {
+    // (A, B), each interpolated bilinearly.
+    std::array<double, 2> lookup_dfg(double NoV, double r) const {
         const double x = std::clamp(NoV * kN - 0.5, 0.0, kN - 1.0);
         const double y = std::clamp(r * kN - 0.5, 0.0, kN - 1.0);
         const int x0 = std::min(static_cast<int>(x), kN - 2), y0 = std::min(static_cast<int>(y), kN - 2);
         const double fx = x - x0, fy = y - y0;
-        auto at = [&](int i, int j) { return e_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)]; };
-        return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
-               fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+        std::array<double, 2> out{};
+        for (size_t c = 0; c < 2; ++c) {
+            auto at = [&](int i, int j) { return ab_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)][c]; };
+            out[c] = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+                     fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+        }
+        return out;
+    }
+    // E = A + B.
+    double lookup(double NoV, double r) const {
+        const auto ab = lookup_dfg(NoV, r);
+        return ab[0] + ab[1];
     }
 
 private:
-    EnergyTable() : e_(static_cast<size_t>(kN) * kN) {
+    EnergyTable() : ab_(static_cast<size_t>(kN) * kN) {
         for (int j = 0; j < kN; ++j)
-            for (int i = 0; i < kN; ++i)
-                e_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)] = specular_albedo(Model::accurate,
-                                                                                           (i + 0.5) / kN,
-                                                                                           (j + 0.5) / kN, 96, 96);
+            for (int i = 0; i < kN; ++i) {
+                const size_t k = static_cast<size_t>(j) * kN + static_cast<size_t>(i);
+                ab_[k] = specular_dfg(Model::accurate, (i + 0.5) / kN, (j + 0.5) / kN, 96, 96);
+            }
     }
-    std::vector<double> e_;
+    std::vector<std::array<double, 2>> ab_;
 };
 
 template <class T>
@@ -195,13 +221,15 @@ bool unit(V3<T>& a) {
 // One punctual light's reflected radiance (f_diffuse + f_specular) · E · N·L, RGB: the twin of
 // brdf.glsl's brdf_light(). n, v, l unit; NoV = N·V clamped to [kMinNoV, 1]; r = perceptual
 // roughness in [kMinRoughness, 1]; metal in [0, 1]; `albedo` as given (not clamped); E the
-// light's irradiance at normal incidence per channel. energy(NoV, r) gives E(μ, r) of the
-// height-correlated lobe, asked for by the accurate model only.
+// light's irradiance at normal incidence per channel. dfg(NoV, r) gives the split-sum terms
+// (A, B) of the height-correlated lobe (E = A + B; with Schlick's F its albedo is F0 A + B), asked
+// for by the accurate model only: its compensation 1 + F0 (1/E − 1) and its diffuse weight
+// 1 − (F0 A + B)(1 + F0 (1/E − 1)) (brdf.glsl's accurate_diffuse_weight).
 //  - N·L ≤ 0, and NaN (NaN × 0 = NaN would survive a max(N·L, 0) clamp) → 0;
-//  - v = −l → no specular, diffuse weighted by 1 − F0.
-template <class T, class P = Exact, class Energy>
+//  - v = −l → no specular, diffuse weighted by 1 − F0 (accurate: 1 − E_spec(N·V), as for any l).
+template <class T, class P = Exact, class Dfg>
 std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T r, T metal,
-                                const std::array<T, 3>& albedo, const std::array<T, 3>& E, Energy&& energy) {
+                                const std::array<T, 3>& albedo, const std::array<T, 3>& E, Dfg&& dfg) {
     using detail::clamp_nan;
     const std::array<T, 3> zero{};
     const T alpha = P::q(r * r);
@@ -233,7 +261,13 @@ std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T
     }
     const T m = T(1) - VoH;
     const T m5 = P::q(P::q(m * m) * P::q(m * m) * m);
-    const T comp_e = model == Model::accurate ? static_cast<T>(energy(NoV, r)) : T(1);
+    T dfg_a = T(1), dfg_b = T(0);
+    if (model == Model::accurate) {
+        const auto ab = dfg(NoV, r);
+        dfg_a = static_cast<T>(ab[0]);
+        dfg_b = static_cast<T>(ab[1]);
+    }
+    const T comp_e = model == Model::accurate ? P::q(dfg_a + dfg_b) : T(1);
     // Lambert's 1/π: a white surface under irradiance E reflects radiance E/π.
     const T diffuse_norm = model == Model::unnormalized_diffuse ? T(1) : T(1.0 / std::numbers::pi);
     const T DV = P::q(D * Vis);
@@ -243,18 +277,25 @@ std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T
         const T f0 = T(0.04) * (T(1) - metal) + albedo[i] * metal;
         const T F = P::q(f0 + (T(1) - f0) * m5);
         T spec = has_h ? P::q(DV * F) : T(0);
-        if (model == Model::accurate) spec = P::q(spec * (T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1))));
-        const T diffuse = P::q((T(1) - F) * albedo[i] * (T(1) - metal) * diffuse_norm);
+        T diffuse_weight = T(1) - F;  // energy left to the diffuse lobe
+        if (model == Model::accurate) {
+            const T scale = P::q(T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1)));
+            spec = P::q(spec * scale);
+            // 1 − E_spec(N·V): the compensated lobe's directional albedo toward v.
+            diffuse_weight = P::q(T(1) - P::q(P::q(f0 * dfg_a + dfg_b) * scale));
+        }
+        const T diffuse = P::q(diffuse_weight * albedo[i] * (T(1) - metal) * diffuse_norm);
         out[i] = P::q(P::q(P::q(diffuse + spec) * E[i]) * NoL);
     }
     return out;
 }
 
-// light_radiance() for arbitrary inputs, with E(μ, r) from EnergyTable (as the shader harness
-// reads it). Defined results for hard inputs (the stability suite asserts them):
+// light_radiance() for arbitrary inputs, with (A, B)(μ, r) from EnergyTable (as the shader
+// harness reads it). Defined results for hard inputs (the stability suite asserts them):
 //  - n or l without a direction → 0 (no surface orientation / no light direction);
 //  - v without a direction → the viewer is taken along n;
-//  - N·L ≤ 0 → 0; N·V floored at 1e-4; v = −l → no specular, diffuse weighted by 1 − F0;
+//  - N·L ≤ 0 → 0; N·V floored at 1e-4; v = −l → no specular, diffuse weighted by 1 − F0
+//    (accurate: 1 − E_spec(N·V));
 //  - roughness NaN or below the floor → 0.045; metalness, albedo clamped to [0, 1], NaN → 0;
 //  - intensity NaN, negative or infinite → 0 (a light must have a finite power).
 template <class T, class P = Exact>
@@ -272,7 +313,7 @@ std::array<T, 3> shade(Inputs<T> in, Model model) {
     std::array<T, 3> albedo{};
     for (size_t i = 0; i < 3; ++i) albedo[i] = clamp_nan(in.albedo[i], T(0), T(1), T(0));
     return light_radiance<T, P>(model, n, v, l, NoV, r, metal, albedo, {E, E, E}, [](T mu, T rough) {
-        return EnergyTable::get().lookup(static_cast<double>(mu), static_cast<double>(rough));
+        return EnergyTable::get().lookup_dfg(static_cast<double>(mu), static_cast<double>(rough));
     });
 }
 

@@ -86,13 +86,30 @@ mf_vec3 energy_compensation(mf_vec3 f0, mf_float E) {
     return mf_float(1.0) + f0 * (mf_float(1.0) / max(E, mf_float(1e-4)) - mf_float(1.0));
 }
 
+// The accurate model's weight of the diffuse lobe: one minus the directional albedo of its
+// (compensated) specular lobe toward the viewer, 1 − E_spec(n·v) with
+// E_spec = (F0 A + B) · spec_scale. (A, B) = dfg are the split-sum terms of the BRDF lookup table
+// at (n·v, roughness): F0 A + B = ∫ f_spec (n·l) dω_l with Schlick's F (Karis 2013). This is
+// albedo scaling (Kulla & Conty 2017, "Revisiting Physically Based Shading at Imageworks"; as
+// Blender 4's Principled BSDF and OpenPBR): the diffuse lobe gets exactly the energy the specular
+// lobe does not reflect, so a white dielectric under uniform light reflects 1 at every n·v, where
+// the per-light weight 1 − F(v·h) loses 2 % on rough surfaces and adds up to 40 % at grazing views
+// on smooth ones (docs/accuracy/pathtracer.md). The environment's diffuse in shade.frag has the
+// same weight, 1 − F_ss E_ss − F_ms E_ms (Fdez-Agüera 2019), so lights and environment
+// share one diffuse weighting. It depends on n·v only (not reciprocal): one value per pixel.
+mf_vec3 accurate_diffuse_weight(mf_vec3 f0, mf_float A, mf_float B, mf_vec3 spec_scale) {
+    return mf_float(1.0) - (f0 * A + B) * spec_scale;
+}
+
 // One punctual light's reflected radiance (f_d + f_s) E (n·l): the body of shade.frag's light
 // loop, here so that the preview and the accuracy harness (brdf_grid.comp) run the same code.
 // n, v, l unit; NoV = clamp(n·v, MIN_NOV, 1); roughness in [MIN_ROUGHNESS, 1]; f0 = lerp(0.04,
 // albedo, metalness) (Karis 2013, p. 9); diffuse_color = albedo (1 − metalness); spec_scale the
-// accurate model's energy compensation (1 otherwise); E the light's irradiance at normal incidence.
+// accurate model's energy compensation (1 otherwise); diffuse_weight the accurate model's
+// accurate_diffuse_weight() (the other models weight the diffuse lobe by 1 − F(v·h) and ignore
+// it); E the light's irradiance at normal incidence.
 mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_float roughness,
-                   mf_vec3 f0, mf_vec3 diffuse_color, mf_vec3 spec_scale, mf_vec3 E) {
+                   mf_vec3 f0, mf_vec3 diffuse_color, mf_vec3 spec_scale, mf_vec3 diffuse_weight, mf_vec3 E) {
     mf_float NoL = dot(n, l);
     // Also rejects NaN: NaN × 0 = NaN would survive a max(n·l, 0) clamp.
     if (!(NoL > mf_float(0.0))) return mf_vec3(0.0);
@@ -101,11 +118,12 @@ mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_
     mf_float diffuse_norm = model == kBrdfUnnormalizedDiffuse ? mf_float(1.0) : Fd_Lambert();
     // Half vector normalize(v + l), not (v + l)/2 (which is not unit length). For v = −l it has
     // no direction: there is no mirror configuration, so no specular reflection, and the diffuse
-    // lobe keeps its normal-incidence weight 1 − F0. With n·l > 0 this needs n·v < 0, i.e. a
-    // normal map bent away from the viewer; a fallback h = n would put D's peak (~1e5 E with the
-    // N·V floor) exactly there. The cut-off is |v + l|² ≤ 1e-30, as the CPU reference: a wider one
-    // (1e-12) replaced a well-defined h for nearly opposite v and l at grazing angles (measured by
-    // tests/render/brdf_grid_test.cpp: 1.5e4 · E against 2e-6 · E).
+    // lobe keeps its normal-incidence weight 1 − F0 (accurate: 1 − E_spec, as for any l). With
+    // n·l > 0 this needs n·v < 0, i.e. a normal map bent away from the viewer; a fallback h = n
+    // would put D's peak (~1e5 E with the N·V floor) exactly there. The cut-off is
+    // |v + l|² ≤ 1e-30, as the CPU reference: a wider one (1e-12) replaced a well-defined h for
+    // nearly opposite v and l at grazing angles (measured by tests/render/brdf_grid_test.cpp:
+    // 1.5e4 · E against 2e-6 · E).
     mf_vec3 hv = v + l;
     mf_float hlen2 = dot(hv, hv);
     bool has_h = hlen2 > mf_float(1e-30);
@@ -118,8 +136,10 @@ mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_
                                         : V_SchlickGGX(NoV, NoL, roughness);
     // A select, not a product: D at the fallback h may overflow in fp16, and inf × 0 = NaN.
     mf_vec3 specular = has_h ? (D * V) * F * spec_scale : mf_vec3(0.0);
-    // Energy left to the diffuse lobe: (1 − F)(1 − metalness).
-    mf_vec3 diffuse = (mf_float(1.0) - F) * diffuse_color * diffuse_norm;
+    // Energy left to the diffuse lobe: (1 − F)(1 − metalness); accurate: (1 − E_spec(n·v)) ×
+    // (1 − metalness).
+    mf_vec3 kd = model == kBrdfAccurate ? diffuse_weight : mf_float(1.0) - F;
+    mf_vec3 diffuse = kd * diffuse_color * diffuse_norm;
     return (diffuse + specular) * E * NoL;
 }
 

@@ -186,10 +186,14 @@ void main() {
     float NoV = clamp(dot(n, v), MIN_NOV, 1.0);
 
     vec3 spec_scale = vec3(1.0);
+    vec3 diffuse_weight = vec3(1.0);  // accurate only: 1 − E_spec(n·v), see brdf.glsl
     vec2 dfg = vec2(1.0, 0.0);
     if (NEEDS_LUT) {
         dfg = textureLod(brdf_lut, vec2(NoV, roughness), 0.0).xy;
-        if (BRDF_MODEL == kBrdfAccurate) spec_scale = energy_compensation(f0, dfg.x + dfg.y);
+        if (BRDF_MODEL == kBrdfAccurate) {
+            spec_scale = energy_compensation(f0, dfg.x + dfg.y);
+            diffuse_weight = accurate_diffuse_weight(f0, dfg.x, dfg.y, spec_scale);
+        }
     }
 
     vec3 color = vec3(0.0);
@@ -207,7 +211,7 @@ void main() {
         }
         // The ground's contact shadow: the key light (the first directional one) behind the shape.
         if (GROUND && i == 0 && NUM_DIRECTIONAL > 0) E *= key_light_visibility(p, l);
-        color += brdf_light(BRDF_MODEL, n, v, l, NoV, roughness, f0, diffuse_color, spec_scale, E);
+        color += brdf_light(BRDF_MODEL, n, v, l, NoV, roughness, f0, diffuse_color, spec_scale, diffuse_weight, E);
     }
 
     if (HAS_ENV) {
