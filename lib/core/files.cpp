@@ -67,7 +67,7 @@ std::optional<std::string> not_a_regular_file(const fs::path& path) {
            ")";
 }
 
-bool read_file(const fs::path& path, std::vector<unsigned char>& bytes, std::string& error) {
+bool read_file(const fs::path& path, const ByteSink& sink, std::string& error) {
     // Checked before opening (a FIFO blocks open() until a writer comes, a device may never end),
     // and again on the descriptor, opened non-blocking: a FIFO swapped in between cannot hang us.
     if (const auto why = not_a_regular_file(path)) {
@@ -85,9 +85,7 @@ bool read_file(const fs::path& path, std::vector<unsigned char>& bytes, std::str
         error = path.string() + ": not a regular file";
         return false;
     }
-    bytes.clear();
-    bytes.reserve(static_cast<size_t>(std::max<off_t>(0, st.st_size)));
-    unsigned char buf[1 << 16];
+    char buf[1 << 16];
     for (;;) {
         const ssize_t n = ::read(fd, buf, sizeof buf);
         if (n < 0 && errno == EINTR) continue;
@@ -98,10 +96,40 @@ bool read_file(const fs::path& path, std::vector<unsigned char>& bytes, std::str
             return false;
         }
         if (n == 0) break;
-        bytes.insert(bytes.end(), buf, buf + n);
+        if (!sink({buf, static_cast<size_t>(n)})) {
+            ::close(fd);
+            error = path.string() + ": reading stopped";
+            return false;
+        }
     }
     ::close(fd);
     return true;
+}
+
+bool read_file(const fs::path& path, std::vector<unsigned char>& bytes, std::string& error) {
+    bytes.clear();
+    std::error_code ec;
+    if (const auto size = fs::file_size(path, ec); !ec) bytes.reserve(static_cast<size_t>(size));
+    return read_file(
+        path,
+        [&](std::string_view piece) {
+            bytes.insert(bytes.end(), piece.begin(), piece.end());
+            return true;
+        },
+        error);
+}
+
+std::optional<std::string> sha256_of_file(const fs::path& path, std::string& error) {
+    Sha256 h;
+    if (!read_file(
+            path,
+            [&](std::string_view piece) {
+                h.update(piece);
+                return true;
+            },
+            error))
+        return std::nullopt;
+    return h.hex();
 }
 
 namespace {

@@ -88,6 +88,11 @@ private:
 // The whole file. Only a regular file is opened (a FIFO would block, a device never end): every
 // reader of the project (JSON documents, sidecars) comes through here or through lib/image.
 bool read_file(const std::filesystem::path& path, std::vector<unsigned char>& bytes, std::string& error);
+// The same in 64 KB pieces handed to `sink` in order (a false from the sink stops the read with an
+// error): a file is hashed or copied without holding it.
+bool read_file(const std::filesystem::path& path, const ByteSink& sink, std::string& error);
+// SHA-256 (hex) of the file's bytes, read in pieces. nullopt + `error` as read_file.
+std::optional<std::string> sha256_of_file(const std::filesystem::path& path, std::string& error);
 // Why `path` must not be opened (broken link, folder, FIFO, socket, device), nullopt when it is a
 // regular file (following symbolic links).
 std::optional<std::string> not_a_regular_file(const std::filesystem::path& path);

@@ -73,12 +73,11 @@ std::optional<std::string> remembered_digest(const fs::path& file, const fs::pat
             if (nl != std::string::npos && rec->substr(0, nl) == now && is_sha(rec->substr(nl + 1)))
                 return rec->substr(nl + 1);
         }
-    std::vector<unsigned char> bytes;
-    if (!read_file(file, bytes, error)) return std::nullopt;
-    const std::string sha = sha256_hex(bytes);
+    const std::optional<std::string> sha = sha256_of_file(file, error);  // in pieces, never held
+    if (!sha) return std::nullopt;
     // Written only when the stat did not move while we read (else the next run hashes again).
     if (!now.empty() && stat_line(file) == now) {
-        write_hint(stat_file, now + "\n" + sha);
+        write_hint(stat_file, now + "\n" + *sha);
     }
     return sha;
 }

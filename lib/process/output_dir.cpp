@@ -127,12 +127,11 @@ std::optional<std::string> file_sha(int dfd, const std::string& leaf) {
         ::close(fd);
         return std::nullopt;
     }
-    std::vector<unsigned char> bytes;
-    std::vector<unsigned char> buf(size_t{1} << 16);
-    for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;)
-        bytes.insert(bytes.end(), buf.begin(), buf.begin() + n);
+    Sha256 sha;  // in pieces: an 8K output is not held to be hashed
+    std::vector<char> buf(size_t{1} << 16);
+    for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;) sha.update({buf.data(), static_cast<size_t>(n)});
     ::close(fd);
-    return sha256_hex(bytes);
+    return sha.hex();
 }
 
 }  // namespace

@@ -70,8 +70,7 @@ std::optional<std::string> action_key(const MaterialSource& set, const std::stri
         } else if (!in.open_error.empty()) {
             error = in.display + ": " + in.open_error;
         } else {
-            std::vector<unsigned char> bytes;
-            if (read_file(in.path, bytes, error)) sha = sha256_hex(bytes);
+            sha = sha256_of_file(in.path, error);  // in pieces: a 150 MB map is not held to be hashed
         }
         if (!sha) return std::nullopt;
         h.add(f);
