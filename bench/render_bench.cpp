@@ -1,18 +1,28 @@
 // render_bench: what each effect of the preview costs on the GPU.
 //
 //   render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]
-//                [--csv FILE] [--only NAME[,NAME…]]
+//                [--csv FILE] [--only NAME[,NAME…]] [--gpu-formats] [--texture-size N]
+//                [--library N]
 //
 // For each configuration and size it builds a renderer (load-time passes timed once), uploads
 // the material, renders --warmup frames untimed and --frames frames timed, and prints the median
 // GPU time of each pass from timestamp queries. Textures and the environment are made in memory:
 // no image files, so the program needs nothing but the Vulkan loader and a driver.
+//
+// --library N: for each textured configuration, N materials previewed one after another as
+// `matforge preview` does (textures prepared on another thread up to two materials ahead, upload
+// and render with the 8-bit readback on this one): materials per second, file decoding and PNG
+// writing left out (they stay on the host's CPU whatever the device).
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <fstream>
+#include <future>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -33,13 +43,17 @@ struct Args {
     int warmup = 3;
     std::string csv;
     std::vector<std::string> only;
+    bool gpu_formats = false;  // ContextOptions::precise_cpu_textures off
+    uint32_t texture_size = 2048;
+    int library = 0;  // --library N: materials previewed in a row per textured configuration
 };
 
 [[noreturn]] void usage(const char* why) {
     std::fprintf(stderr,
                  "render_bench: %s\n"
                  "usage: render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]\n"
-                 "                    [--csv FILE] [--only NAME[,NAME...]]\n",
+                 "                    [--csv FILE] [--only NAME[,NAME...]] [--gpu-formats]\n"
+                 "                    [--texture-size N] [--library N]\n",
                  why);
     std::exit(2);
 }
@@ -79,6 +93,16 @@ Args parse(int argc, char** argv) {
             a.csv = value();
         } else if (k == "--only") {
             a.only = split(value());
+        } else if (k == "--gpu-formats") {
+            a.gpu_formats = true;
+        } else if (k == "--texture-size") {
+            const long n = std::strtol(value().c_str(), nullptr, 10);
+            if (n < 1 || n > 16384) usage("--texture-size must be in 1..16384");
+            a.texture_size = static_cast<uint32_t>(n);
+        } else if (k == "--library") {
+            const long n = std::strtol(value().c_str(), nullptr, 10);
+            if (n < 1 || n > 100000) usage("--library must be in 1..100000");
+            a.library = static_cast<int>(n);
         } else if (k == "-h" || k == "--help") {
             usage("GPU time per pass of the matforge preview");
         } else {
@@ -153,6 +177,8 @@ struct Config {
     ShapeType shape = ShapeType::sphere;
     bool ground = false;
     bool fill_only = false;
+    uint32_t msaa = 1;
+    bool fast_textures = false;
 };
 
 std::vector<Config> configs() {
@@ -163,8 +189,8 @@ std::vector<Config> configs() {
          PixelFormat::rgba8},
         {"exr", "base, linear float output (resolve to floats instead of encode)", false, false, false, 0,
          Brdf::standard, PixelFormat::rgba32f},
-        {"textures", "base + albedo/ORM textures (2048², trilinear)", true, false, false, 0, Brdf::standard,
-         PixelFormat::rgba8},
+        {"textures", "base + albedo/ORM textures (2048² unless --texture-size, trilinear)", true, false, false, 0,
+         Brdf::standard, PixelFormat::rgba8},
         {"normal_map", "textures + normal map", true, true, false, 0, Brdf::standard, PixelFormat::rgba8},
         {"lights8", "base + 7 point lights (8 in all)", false, false, false, 7, Brdf::standard, PixelFormat::rgba8},
         {"accurate", "base, accurate BRDF (correlated Smith + energy compensation)", false, false, false, 0,
@@ -175,16 +201,34 @@ std::vector<Config> configs() {
         {"tonemap", "base + PBR Neutral tone mapping (in the encode pass)", false, false, false, 0, Brdf::standard,
          PixelFormat::rgba8, 1, Tonemap::neutral},
         {"aa2", "base, 2x2 samples a pixel", false, false, false, 0, Brdf::standard, PixelFormat::rgba8, 2},
-        {"aa3", "base, 3x3 samples a pixel (the look-dev default)", false, false, false, 0, Brdf::standard,
-         PixelFormat::rgba8, 3},
+        {"aa3", "base, 3x3 samples a pixel (--aa 3)", false, false, false, 0, Brdf::standard, PixelFormat::rgba8, 3},
         {"aa4", "base, 4x4 samples a pixel", false, false, false, 0, Brdf::standard, PixelFormat::rgba8, 4},
         {"shaderball", "base on the shaderball (mesh shading, ring and ball)", false, false, false, 0, Brdf::standard,
          PixelFormat::rgba8, 1, Tonemap::none, ShapeType::shaderball},
         {"ground", "base + ground plane with the key light's soft shadow", false, false, false, 0, Brdf::standard,
          PixelFormat::rgba8, 1, Tonemap::none, ShapeType::sphere, true},
-        {"lookdev", "textures + normal map + IBL + 1 light + PBR Neutral + 3x3 samples (the default preview)", true,
-         true, true, 0, Brdf::standard, PixelFormat::rgba8, 3, Tonemap::neutral},
+        {"lookdev", "textures + normal map + IBL + 1 light + PBR Neutral + 3x3 samples", true, true, true, 0,
+         Brdf::standard, PixelFormat::rgba8, 3, Tonemap::neutral},
+        {"lookdev_aa1", "lookdev with one sample a pixel (no anti-aliasing)", true, true, true, 0, Brdf::standard,
+         PixelFormat::rgba8, 1, Tonemap::neutral},
+        {"msaa4", "base, 4 samples a pixel multisampled (shaded once)", false, false, false, 0, Brdf::standard,
+         PixelFormat::rgba8, 1, Tonemap::none, ShapeType::sphere, false, false, 4},
+        {"lookdev_msaa", "lookdev with MSAA 4x instead of 3x3 samples, CPU mips", true, true, true, 0, Brdf::standard,
+         PixelFormat::rgba8, 1, Tonemap::neutral, ShapeType::sphere, false, false, 4},
+        {"lookdev_fast", "lookdev with MSAA 4x and mips made on the device (the default preview)", true, true, true, 0,
+         Brdf::standard, PixelFormat::rgba8, 1, Tonemap::neutral, ShapeType::sphere, false, false, 4, true},
+        {"mips_device", "textures + normal map, mips made on the device (material load)", true, true, false, 0,
+         Brdf::standard, PixelFormat::rgba8, 1, Tonemap::none, ShapeType::sphere, false, false, 1, true},
     };
+}
+
+// CPU time of the whole process, all threads (on lavapipe the rendering itself): unlike wall
+// time, other programs on a shared machine barely move it.
+double process_cpu_ms() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return (static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3) +
+           (static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3);
 }
 
 double median(std::vector<double> v) {
@@ -209,6 +253,7 @@ int main(int argc, char** argv) {
     try {
         ContextOptions co;
         co.device = args.device;
+        co.precise_cpu_textures = !args.gpu_formats;
         Context context(co);
         const DeviceInfo& info = context.info();
         if (!info.timestamps) {
@@ -224,7 +269,8 @@ int main(int argc, char** argv) {
         std::shared_ptr<Environment> env = make_environment(1024, 512);
         Material textured;
         textured.name = "textured";
-        textured.textures = {make_texture(2048, 4, true, 1), make_texture(2048, 3, false, 2), make_normal_map(2048)};
+        const uint32_t ts = args.texture_size;
+        textured.textures = {make_texture(ts, 4, true, 1), make_texture(ts, 3, false, 2), make_normal_map(ts)};
         textured.albedo.texture = 0;
         textured.roughness = {1, Channel::G, false, 0.5f};
         textured.metalness = {1, Channel::B, false, 0.f};
@@ -247,6 +293,8 @@ int main(int argc, char** argv) {
                 scene.shape.type = c.shape;
                 scene.ground.enabled = c.ground;
                 scene.fill_only = c.fill_only;
+                scene.msaa = c.msaa;
+                scene.fast_textures = c.fast_textures;
                 for (int i = 0; i < c.point_lights; ++i) {
                     Light l;
                     l.type = LightType::point;
@@ -266,8 +314,9 @@ int main(int argc, char** argv) {
                 Material m = c.textures ? textured : constant;
                 if (c.textures && c.normal_map) m.normal.texture = 2;
                 t0 = Clock::now();
+                double cpu0 = process_cpu_ms();
                 const GpuMaterial gm = renderer.upload(m);
-                const double upload_wall = ms_since(t0);
+                const double upload_wall = ms_since(t0), upload_cpu = process_cpu_ms() - cpu0;
                 auto emit = [&](const std::string& pass, const std::vector<double>& ms) {
                     const Row r{c.name,        size, pass, median(ms), *std::min_element(ms.begin(), ms.end()),
                                 int(ms.size())};
@@ -281,6 +330,21 @@ int main(int argc, char** argv) {
                 // included; on lavapipe also the only exact split, see docs/bench/README.md.
                 emit("load wall: scene (host)", {scene_wall});
                 emit("load wall: material (host)", {upload_wall});
+                emit("load cpu: material (process)", {upload_cpu});
+                if (c.textures) {
+                    // Again, the pipeline and the blits' shaders now compiled: what each further
+                    // material of a library costs (median of five).
+                    std::vector<double> wall, cpu;
+                    for (int i = 0; i < 5; ++i) {
+                        t0 = Clock::now();
+                        cpu0 = process_cpu_ms();
+                        renderer.upload(m);
+                        wall.push_back(ms_since(t0));
+                        cpu.push_back(process_cpu_ms() - cpu0);
+                    }
+                    emit("load wall: next material", wall);
+                    emit("load cpu: next material", cpu);
+                }
 
                 OutputOptions out;
                 out.format = c.output;
@@ -289,10 +353,12 @@ int main(int argc, char** argv) {
                 std::vector<std::string> order;
                 for (int f = 0; f < args.warmup + frames; ++f) {
                     t0 = Clock::now();
+                    cpu0 = process_cpu_ms();
                     renderer.render(gm, out);
-                    const double wall = ms_since(t0);
+                    const double wall = ms_since(t0), cpu = process_cpu_ms() - cpu0;
                     if (f < args.warmup) continue;
                     times["frame wall (host)"].push_back(wall);
+                    times["frame cpu (process)"].push_back(cpu);
                     double total = 0;
                     for (const PassTime& p : renderer.frame_times()) {
                         if (!times.count(p.name)) order.push_back(p.name);
@@ -303,7 +369,41 @@ int main(int argc, char** argv) {
                 }
                 order.push_back("frame (sum)");
                 order.push_back("frame wall (host)");
+                order.push_back("frame cpu (process)");
                 for (const std::string& p : order) emit(p, times[p]);
+                if (args.library && c.textures) {
+                    // Four texture sets in turn (each prepared anew, as distinct files would be).
+                    std::vector<Material> library(4, m);
+                    for (uint32_t k = 1; k < library.size(); ++k)
+                        library[k].textures = {make_texture(ts, 4, true, 1 + 2 * k),
+                                               make_texture(ts, 3, false, 2 + 2 * k), library[0].textures[2]};
+                    std::deque<std::future<PreparedMaterial>> ahead;
+                    int launched = 0;
+                    auto launch = [&] {
+                        const Material& lm = library[size_t(launched++) % library.size()];
+                        ahead.push_back(std::async(std::launch::async,
+                                                   [&renderer, &lm] { return renderer.prepare(lm); }));
+                    };
+                    t0 = Clock::now();
+                    cpu0 = process_cpu_ms();
+                    size_t checksum = 0;
+                    for (int i = 0; i < args.library; ++i) {
+                        while (launched < args.library && launched <= i + 2) launch();
+                        PreparedMaterial pm = ahead.front().get();
+                        ahead.pop_front();
+                        const GpuMaterial lg = renderer.upload(std::move(pm));
+                        checksum += renderer.render(lg, out).rgba8.size();
+                    }
+                    const double wall = ms_since(t0), cpu = process_cpu_ms() - cpu0;
+                    if (checksum != size_t(args.library) * size * size * 4)
+                        throw std::runtime_error("library: short frame");
+                    emit("library wall per material", {wall / args.library});
+                    emit("library cpu per material", {cpu / args.library});
+                    std::printf("%-11s %6u  library of %d materials (%u² textures): %.2f s wall, %.1f materials/s, "
+                                "%.2f s CPU\n",
+                                c.name.c_str(), size, args.library, ts, wall / 1e3, args.library * 1e3 / wall,
+                                cpu / 1e3);
+                }
             }
         }
         std::printf("\nvariants:\n");

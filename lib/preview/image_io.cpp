@@ -48,7 +48,7 @@ std::optional<render::Texture> read_texture(const std::filesystem::path& file, s
     if (d.is_codes()) {
         t.type = render::TexelType::u8;
         if (nch <= 4) {
-            copy_samples(d.codes.pixels, t);
+            t.data = std::move(d.codes.pixels);  // the codes as decoded, not copied
         } else {
             t.data.resize(texels * 4);
             for (size_t p = 0; p < texels; ++p) std::memcpy(&t.data[4 * p], &d.codes.pixels[p * size_t(nch)], 4);

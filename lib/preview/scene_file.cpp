@@ -105,11 +105,16 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
                {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf", "uv",
                 "ground"});
     if (const json* img = find(j, "image")) {
-        check_keys(*img, name + ": image", {"width", "height", "supersample"});
+        check_keys(*img, name + ": image", {"width", "height", "supersample", "msaa"});
         if (const json* v = find(*img, "supersample")) {
             const auto n = json_int(*v, 1, 4);
             if (!n) fail(name + ": image.supersample", "must be an integer 1..4, got " + v->dump());
             sc.supersample = static_cast<uint32_t>(*n);
+        }
+        if (const json* v = find(*img, "msaa")) {
+            const auto n = json_int(*v, 1, 8);
+            if (!n || (*n & (*n - 1)) != 0) fail(name + ": image.msaa", "must be 1, 2, 4 or 8, got " + v->dump());
+            sc.msaa = static_cast<uint32_t>(*n);
         }
         if (const json* w = find(*img, "width")) sc.width = dimension(*w, name + ": image.width");
         if (const json* h = find(*img, "height")) sc.height = dimension(*h, name + ": image.height");

@@ -102,6 +102,14 @@ bool Device::supports(VkFormat format, VkFormatFeatureFlags features) const {
     return (p.optimalTilingFeatures & features) == features;
 }
 
+VkSampleCountFlags Device::sample_counts(VkFormat format, VkImageUsageFlags usage) const {
+    VkImageFormatProperties p{};
+    if (fn.vkGetPhysicalDeviceImageFormatProperties(physical, format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, usage,
+                                                    0, &p) != VK_SUCCESS)
+        return 0;
+    return p.sampleCounts;
+}
+
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";

@@ -31,11 +31,21 @@ void Renderer::Impl::create_frame_resources() {
     td.height = scene.height * scene.supersample;
     td.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     target = create_image(d, td);
+    if (samples != VK_SAMPLE_COUNT_1_BIT) {  // Scene::msaa: shaded here, resolved into `target`
+        ImageDesc md;
+        md.format = kTargetFormat;
+        md.width = td.width;
+        md.height = td.height;
+        md.samples = samples;
+        md.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+        msaa_target = create_image(d, md);
+    }
     if (uses_depth()) {
         ImageDesc dd;
         dd.format = kDepthFormat;
         dd.width = td.width;
         dd.height = td.height;
+        dd.samples = samples;
         dd.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
         dd.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
         depth = create_image(d, dd);
@@ -79,6 +89,14 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0,
                   VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 
+    // The multisampled target likewise: the previous frame's writes and resolve are done.
+    const bool msaa = r.samples != VK_SAMPLE_COUNT_1_BIT;
+    if (msaa)
+        image_barrier(d, cmd, r.msaa_target.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+
     // Depth is cleared every frame: the previous frame's depth tests are done before the clear.
     if (r.uses_depth())
         image_barrier(d, cmd, r.depth.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -94,6 +112,15 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     att.clearValue.color = {{r.scene.background[0], r.scene.background[1], r.scene.background[2], 1.f}};
+    if (msaa) {
+        // Shaded into the samples, averaged into the target as the pass ends (for a float
+        // format the resolve is the average: VK_RESOLVE_MODE_AVERAGE_BIT).
+        att.imageView = r.msaa_target.view;
+        att.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        att.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        att.resolveImageView = r.target.view;
+        att.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    }
     auto depth = vk_struct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
     depth.imageView = r.depth.view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;

@@ -50,8 +50,13 @@ struct TextureLevel {
 };
 struct PreparedTexture {
     VkFormat format = VK_FORMAT_UNDEFINED;
-    std::vector<TextureLevel> levels;  // level 0 first, down to 1×1
-    std::string note;                  // set when the texture was reduced to fit the device (said to the user)
+    std::vector<TextureLevel> levels;  // level 0 first, down to 1×1 (or level 0 alone: see mips)
+    // Levels of the image; more than levels.size() when the device makes the rest from the last
+    // one given (Scene::fast_textures: level 0 given, the chain down to 1×1 blitted).
+    uint32_t mips = 0;
+    // Channels (bit c: channel c) stored as their complement, 1 − x (the fast path's `invert`).
+    uint32_t inverted = 0;
+    std::string note;  // set when the texture was reduced to fit the device (said to the user)
 };
 
 // Fits `t` within the device's maxImageDimension2D (a larger image crashes drivers: lavapipe
@@ -60,8 +65,18 @@ struct PreparedTexture {
 // anything; throws Error naming the size and the limit when it cannot.
 void fit_to_device(const Device& d, PreparedTexture& t, const std::string& what);
 
-// Converts to a 4-channel upload format the device can filter linearly and builds the mips.
-PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind);
+// Converts to a 4-channel upload format the device can filter linearly and builds the mips. With
+// `fast` (Scene::fast_textures), an 8-bit texture whose format the device blits gets level 0 only
+// (the bytes the CPU chain would start with; color in 8-bit sRGB also where precise textures
+// would promote it) and PreparedTexture::mips for the device to fill; the channels in `invert`
+// (bit c: channel c) are then stored as their complement (PreparedTexture::inverted says whether
+// that was done).
+PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind, bool fast = false,
+                                uint32_t invert = 0);
+// Blit source and destination with a linear filter: what making mips on the device needs.
+inline constexpr VkFormatFeatureFlags kBlitMipFeatures = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                                         VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                                         VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
 
 // A block-compressed format Texture::block_format may name: its UNORM and sRGB VkFormats (the
 // sRGB one VK_FORMAT_UNDEFINED where none exists) and block size. nullptr for any other value.

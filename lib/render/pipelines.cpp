@@ -52,6 +52,7 @@ constexpr VkSpecializationMapEntry kShadeEntries[] = {
     spec_entry(gpu::kSpecNormalZFromXy, offsetof(ShadeSpecialization, normal_z_from_xy)),
     spec_entry(gpu::kSpecGround, offsetof(ShadeSpecialization, ground)),
     spec_entry(gpu::kSpecFillOnly, offsetof(ShadeSpecialization, fill_only)),
+    spec_entry(gpu::kSpecMsaa, offsetof(ShadeSpecialization, msaa)),
 };
 static_assert(spec_entries_distinct(kShadeEntries), "an id or field mapped twice");
 
@@ -168,6 +169,7 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     c.normal_green_down = flag(m.normal.green_down);
     c.normal_z_from_xy = flag(m.normal.texture >= 0 && m.normal.z_from_xy);
     c.fill_only = flag(scene.fill_only);
+    c.msaa = flag(samples != VK_SAMPLE_COUNT_1_BIT);
     auto scalar = [](const ScalarRole& r, int32_t& tex, int32_t& channel, uint32_t& invert) {
         tex = r.texture;
         channel = static_cast<int32_t>(r.channel);
@@ -190,6 +192,7 @@ ShadeSpecialization Renderer::Impl::ground_specialization(const ShadeSpecializat
     g.brdf_model = c.brdf_model;
     g.has_env = c.has_env;
     g.ground = 1;
+    g.msaa = c.msaa;
     return g;  // every *_tex −1: nothing sampled; no analytic sphere
 }
 
@@ -207,6 +210,7 @@ std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
     if (c.opacity_tex >= 0) os << " opacity:tex";
     if (c.occlusion_tex >= 0) os << " occlusion:tex";
     if (scene.ground.enabled) os << " ground";
+    if (c.msaa) os << " msaa" << static_cast<uint32_t>(samples);
     return os.str();
 }
 
@@ -263,7 +267,7 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     dss.depthWriteEnable = uses_depth() ? VK_TRUE : VK_FALSE;
     dss.depthCompareOp = VK_COMPARE_OP_LESS;
     auto ms = vk_struct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
-    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    ms.rasterizationSamples = samples;
     VkPipelineColorBlendAttachmentState blend{};
     blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                            VK_COLOR_COMPONENT_A_BIT;

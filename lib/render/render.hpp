@@ -160,6 +160,27 @@ struct Scene {
     // frame N times larger and box-averaged in linear radiance before tone mapping and encoding
     // (1: one sample at the pixel centre, the reference tests' setting). 1..4; the cost is N².
     uint32_t supersample = 1;
+    // Multisampling: coverage (and depth) at `msaa` samples a pixel, the shader run once a pixel,
+    // the samples averaged in linear radiance (a resolve into the target, then the encode pass
+    // with the supersamples). 1 (off), 2, 4 or 8. Anti-aliases silhouettes at about the cost of
+    // one sample a pixel; inside the silhouette it shades as one sample does (trilinear texture
+    // filtering, no extra samples of specular detail), once per triangle where a mesh edge crosses
+    // the pixel. The analytic sphere is hit along the ray
+    // through the centroid of the covered samples. Where the device lacks the count for the
+    // RGBA32F target (or the depth buffer), N×N supersampling with N² ≥ msaa is used instead
+    // (said in take_notes()).
+    uint32_t msaa = 1;
+    // The fast texture path (look-dev previews of a library): an 8-bit texture's level 0 is
+    // converted on the host by a table of its 256 codes and the rest of its mip chain is made on
+    // the device (vkCmdBlitImage level by level, linear filter: 2×2 averages at even sizes, each
+    // level from the one above as stored, sRGB decoded and re-encoded by the device, normals not
+    // renormalized). Formats as the exact path's, but for color on a CPU device: 8-bit sRGB as on
+    // a GPU, where ContextOptions::precise_cpu_textures would promote it to float (data keeps its
+    // 16-bit promotion, so that inverted channels average alike). Off: the exact path, every
+    // level averaged on the CPU in float (area weights, color in linear light, renormalized
+    // normals), as the reference tests use. 16-bit, float and block-compressed textures, and
+    // formats the device cannot blit, take the exact path either way.
+    bool fast_textures = false;
     // Benchmarks only (bench/render_bench "floor"): the shape's pixels written with a constant and
     // nothing computed, the device's fill-rate floor every shading figure is compared with.
     bool fill_only = false;
@@ -224,6 +245,7 @@ struct NormalRole {
 
 inline constexpr size_t kMaxTextures = gpu::kMaxTextures;
 
+// A field added here is copied by roles_of (upload.cpp), which copies everything but the texels.
 struct Material {
     std::string name;
     std::vector<Texture> textures;  // at most kMaxTextures
@@ -279,6 +301,27 @@ struct PassTime {
 
 class Renderer;
 
+// The host half of Renderer::upload(): a material's textures converted to their upload formats
+// with their mips (or only level 0 where the device makes them, Scene::fast_textures). Made by
+// Renderer::prepare(), which makes no Vulkan call that needs synchronizing: it may run on another
+// thread while the renderer uploads or renders other materials.
+class PreparedMaterial {
+public:
+    PreparedMaterial();
+    ~PreparedMaterial();
+    PreparedMaterial(PreparedMaterial&&) noexcept;
+    PreparedMaterial& operator=(PreparedMaterial&&) noexcept;
+    // Host memory its textures hold (their levels as they will be uploaded).
+    size_t bytes() const;
+
+    struct Impl;
+    Impl& impl() const { return *impl_; }
+
+private:
+    friend class Renderer;
+    std::unique_ptr<Impl> impl_;
+};
+
 // A material's textures on the device and the pipeline variant it needs. Destroy before the
 // Renderer that made it.
 class GpuMaterial {
@@ -312,6 +355,11 @@ public:
     // Uploads textures with their mip chains (linear-light averages for color, renormalized
     // vectors for normals, plain averages for data) and builds the pipeline variant.
     GpuMaterial upload(const Material& material);
+    // upload() in two halves: prepare() is the CPU work (conversion, mips) and is safe to call
+    // from another thread, concurrently with this renderer's other calls; upload(prepared) makes
+    // the device objects and must be called where render() is.
+    PreparedMaterial prepare(const Material& material) const;
+    GpuMaterial upload(PreparedMaterial prepared);
 
     Frame render(const GpuMaterial& material, const OutputOptions& output = {});
 

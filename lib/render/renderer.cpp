@@ -85,6 +85,8 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
         throw Error("image size must be 1..16384 pixels a side");
     if (scene.lights.size() > kMaxLights) throw Error("at most " + std::to_string(kMaxLights) + " lights");
     if (scene.supersample < 1 || scene.supersample > 4) throw Error("supersample must be 1..4 samples a side");
+    if (scene.msaa != 1 && scene.msaa != 2 && scene.msaa != 4 && scene.msaa != 8)
+        throw Error("msaa must be 1, 2, 4 or 8 samples a pixel");
     if (scene.ground.enabled &&
         !(scene.ground.albedo >= 0.f && scene.ground.albedo <= 1.f && scene.ground.roughness >= 0.f &&
           scene.ground.roughness <= 1.f && scene.ground.light_deg > 0.f && scene.ground.light_deg <= 45.f))
@@ -111,6 +113,7 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
         queries = Unique<VkQueryPool>(d, q);
     }
 
+    choose_samples();
     create_samplers();
     create_layouts();           // pipelines.cpp
     create_targets();           // draw.cpp
@@ -122,6 +125,31 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
 
 Renderer::Impl::~Impl() {
     if (d.device) d.fn.vkDeviceWaitIdle(d.device);
+}
+
+void Renderer::Impl::choose_samples() {
+    if (scene.msaa <= 1) return;
+    const auto want = static_cast<VkSampleCountFlagBits>(scene.msaa);
+    const VkPhysicalDeviceLimits& l = d.properties.limits;
+    bool ok = (l.framebufferColorSampleCounts & want) &&
+              (d.sample_counts(kTargetFormat,
+                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT) &
+               want);
+    if (uses_depth())
+        ok = ok && (l.framebufferDepthSampleCounts & want) &&
+             (d.sample_counts(kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) & want);
+    if (ok) {
+        samples = want;
+        return;
+    }
+    // As many samples a pixel by supersampling (N×N ≥ msaa), N² times the shading.
+    uint32_t n = 1;
+    while (n * n < scene.msaa) ++n;
+    scene.supersample = std::max(scene.supersample, n);
+    notes.push_back(d.info.name + " cannot multisample the frame (RGBA32F" + (uses_depth() ? ", 32-bit depth" : "") +
+                    ") at " + std::to_string(scene.msaa) + " samples: " + std::to_string(scene.supersample) + "x" +
+                    std::to_string(scene.supersample) + " supersampling instead");
+    scene.msaa = 1;
 }
 
 Unique<VkSampler> Renderer::Impl::make_sampler(VkSamplerAddressMode mode, bool anisotropic) const {

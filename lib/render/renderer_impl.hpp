@@ -9,6 +9,7 @@
 //   ibl.cpp        load-time passes: BRDF table, environment cube and its prefiltered maps
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,11 @@ struct Renderer::Impl {
     float ground_y = 0.f, shape_radius = 0.f;
     detail::Buffer ground_vertices, ground_indices;  // only with Scene::ground
     detail::Image target;                            // linear radiance, kTargetFormat
-    detail::Image depth;                             // kDepthFormat, the target's size, when uses_depth()
+    // Scene::msaa where the device has it: the multisampled target shaded into and resolved
+    // (averaged) into `target` at the end of the pass; depth then has as many samples.
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    detail::Image msaa_target;
+    detail::Image depth;  // kDepthFormat, the target's size, when uses_depth()
     bool uses_depth() const { return scene.shape.type == ShapeType::shaderball || scene.ground.enabled; }
     detail::Image dummy_2d, dummy_cube;
     detail::Image brdf_lut;                      // when the accurate BRDF or an environment needs it
@@ -73,6 +78,7 @@ struct Renderer::Impl {
     Impl& operator=(const Impl&) = delete;
 
     // renderer.cpp
+    void choose_samples();  // Scene::msaa, or the supersampling that stands in for it
     detail::Unique<VkSampler> make_sampler(VkSamplerAddressMode mode, bool anisotropic) const;
     void create_samplers();
 
@@ -112,6 +118,13 @@ struct Renderer::Impl {
 
     // ibl.cpp: the BRDF table and environment maps, only when the scene calls for them.
     void build_environment();
+};
+
+struct PreparedMaterial::Impl {
+    const Renderer::Impl* owner = nullptr;
+    Material constants;  // roles and constant values (no texel data)
+    gpu::ShadeSpecialization specialization;
+    std::vector<std::optional<detail::PreparedTexture>> textures;  // by index; none where the variant samples nothing
 };
 
 struct GpuMaterial::Impl {

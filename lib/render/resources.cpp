@@ -65,7 +65,7 @@ Image create_image(const Device& d, const ImageDesc& desc) {
     ci.extent = {desc.width, desc.height, 1};
     ci.mipLevels = desc.mips;
     ci.arrayLayers = desc.layers;
-    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.samples = desc.samples;
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = desc.usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;

@@ -247,7 +247,33 @@ PreparedTexture prepare_blocks(const Device& d, const Texture& t, MipKind kind) 
 
 }  // namespace
 
-PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind) {
+namespace {
+
+// Level 0 of an 8-bit texture in its upload format, without the float chain: each code's stored
+// value (per channel: color channels and alpha differ) is computed once through the CPU path's
+// own steps (to_domain, store) and the texels are looked up, so the bytes are the ones the CPU
+// path stores for level 0. Missing channels are filled as to_rgba does (gray to RGB, alpha 1).
+// T: the stored sample (uint8_t, uint16_t, or a float's bits as uint32_t).
+template <class T>
+void expand_codes(const Texture& t, const std::vector<uint8_t>& table_bytes, std::vector<uint8_t>& out) {
+    std::vector<T> table(table_bytes.size() / sizeof(T));  // 256 texels × 4 channels
+    std::memcpy(table.data(), table_bytes.data(), table_bytes.size());
+    const size_t n = size_t{t.width} * t.height;
+    out.resize(n * 4 * sizeof(T));
+    uint8_t* o = out.data();
+    const uint8_t* s = t.data.data();
+    const uint32_t c = t.channels;
+    for (size_t p = 0; p < n; ++p, s += c, o += 4 * sizeof(T)) {
+        const size_t r = s[0], g = c <= 2 ? s[0] : s[1], b = c <= 2 ? s[0] : s[2];
+        const size_t a = c == 2 ? s[1] : c == 4 ? s[3] : 255;  // no alpha: 1
+        const T texel[4] = {table[4 * r + 0], table[4 * g + 1], table[4 * b + 2], table[4 * a + 3]};
+        std::memcpy(o, texel, sizeof texel);
+    }
+}
+
+}  // namespace
+
+PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind, bool fast, uint32_t invert) {
     if (t.block_format != 0) return prepare_blocks(d, t, kind);
     const size_t bytes = t.type == TexelType::u8 ? 1 : t.type == TexelType::u16 ? 2 : 4;
     if (t.width == 0 || t.height == 0 || t.channels < 1 || t.channels > 4 ||
@@ -262,9 +288,16 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
     // and stored linear, as half floats (a relative precision of 2⁻¹¹ at every magnitude).
     bool encode_srgb = false;
     // ContextOptions::precise_cpu_textures: on lavapipe 8-bit texels go up as 16-bit linear
-    // UNORM (data × 257 exactly; color decoded here with the exact curve), filtered in float.
-    const bool promote = d.precise_textures && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter);
+    // UNORM (data × 257 exactly; color decoded here with the exact curve), filtered in float. The
+    // fast path (Scene::fast_textures) keeps 8-bit color as R8G8B8A8_SRGB, as on a GPU: a quarter
+    // of the float's bytes to convert, upload, blit and sample, and within a code or two at preview
+    // sizes (tests/render/fast_path_test.cpp); data keeps its promotion (8-bit filtering would move
+    // a smooth highlight by up to 20 codes where a roughness mip is a code off).
     const bool srgb_color = t.srgb && kind == MipKind::color;
+    const bool fast_u8 = fast && t.type == TexelType::u8 &&
+                         std::max(t.width, t.height) <= std::max(1u, d.properties.limits.maxImageDimension2D);
+    const bool color_as_read = fast_u8 && srgb_color && d.supports(VK_FORMAT_R8G8B8A8_SRGB, kFilter | kBlitMipFeatures);
+    const bool promote = !color_as_read && d.precise_textures && d.supports(VK_FORMAT_R16G16B16A16_UNORM, kFilter);
     if (t.type == TexelType::u8 && !promote) {
         storage = Storage::U8;
         encode_srgb = srgb_color;
@@ -281,6 +314,34 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
         out.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     } else {
         out.format = VK_FORMAT_R16G16B16A16_SFLOAT;  // filterable on every Vulkan device
+    }
+
+    // Scene::fast_textures: level 0 of an 8-bit texture in the format and bytes the float chain
+    // below would store (8-bit, as on a GPU), the rest of the chain blitted by the device from it.
+    if (fast_u8 && d.supports(out.format, kBlitMipFeatures)) {
+        // The stored value of every code, through the CPU path's steps (a 256×1 level of codes);
+        // a channel in `invert` stores code 255 − x where x is read (the exact complement).
+        FloatLevel codes{256, 1, std::vector<float>(256 * 4)};
+        for (size_t i = 0; i < codes.rgba.size(); ++i) {
+            const size_t code = i / 4, c = i % 4;
+            codes.rgba[i] = static_cast<float>((invert >> c) & 1u ? 255 - code : code) / 255.f;
+        }
+        to_domain(codes, kind, t.srgb, true);
+        TextureLevel table;
+        store(codes, storage, kind, encode_srgb, table);
+        TextureLevel top{t.width, t.height, {}};
+        switch (storage) {
+            case Storage::U8: expand_codes<uint8_t>(t, table.bytes, top.bytes); break;
+            case Storage::U16:
+            case Storage::F16: expand_codes<uint16_t>(t, table.bytes, top.bytes); break;
+            case Storage::F32: expand_codes<uint32_t>(t, table.bytes, top.bytes); break;
+        }
+        out.levels.push_back(std::move(top));
+        out.inverted = invert;
+        out.mips = 1;
+        for (uint32_t w = t.width, h = t.height; w > 1 || h > 1; w = std::max(1u, w / 2), h = std::max(1u, h / 2))
+            ++out.mips;
+        return out;
     }
 
     FloatLevel level = to_rgba(t);
@@ -307,6 +368,7 @@ PreparedTexture prepare_texture(const Device& d, const Texture& t, MipKind kind)
         if (kind == MipKind::normal) renormalize(level);
     }
     fit_to_device(d, out, "texture");
+    out.mips = static_cast<uint32_t>(out.levels.size());
     return out;
 }
 

@@ -72,8 +72,10 @@ Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandB
     desc.format = t.format;
     desc.width = t.levels[0].width;
     desc.height = t.levels[0].height;
-    desc.mips = static_cast<uint32_t>(t.levels.size());
-    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const auto given = static_cast<uint32_t>(t.levels.size());
+    desc.mips = std::max(t.mips, given);  // past `given`: blitted here from the level above
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                 (desc.mips > given ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0});
     Image img = create_image(d, desc);
 
     VkDeviceSize total = 0;
@@ -92,14 +94,49 @@ Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandB
         offset += (l.bytes.size() + 15) & ~VkDeviceSize{15};
     }
     flush(d, buf);
+    // Every level a transfer destination: of the copy, and of the blits that make the rest.
     image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+                  VK_PIPELINE_STAGE_2_NONE, 0,
+                  VK_PIPELINE_STAGE_2_COPY_BIT | (desc.mips > given ? VK_PIPELINE_STAGE_2_BLIT_BIT : 0),
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
     d.fn.vkCmdCopyBufferToImage(cmd, buf.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                 static_cast<uint32_t>(regions.size()), regions.data());
-    image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    constexpr VkPipelineStageFlags2 kSampledBy = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    if (desc.mips > given) {
+        if (given != 1) throw Error("internal: mips are made on the device from level 0 alone");
+        // The rest of the chain on the device: each level blitted from the one above with a
+        // linear filter (a 2×2 average at even sizes), which then turns into a source. The
+        // levels given and the blitted ones end up sampled-read-only, each with its last writer.
+        uint32_t w = desc.width, h = desc.height;
+        for (uint32_t level = given; level < desc.mips; ++level) {
+            const VkPipelineStageFlags2 writer = level - 1 < given ? VK_PIPELINE_STAGE_2_COPY_BIT
+                                                                   : VK_PIPELINE_STAGE_2_BLIT_BIT;
+            image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                          writer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                          VK_ACCESS_2_TRANSFER_READ_BIT, level - 1, 1);
+            const uint32_t nw = std::max(1u, w / 2), nh = std::max(1u, h / 2);
+            VkImageBlit b{};
+            b.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1};
+            b.srcOffsets[1] = {static_cast<int32_t>(w), static_cast<int32_t>(h), 1};
+            b.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+            b.dstOffsets[1] = {static_cast<int32_t>(nw), static_cast<int32_t>(nh), 1};
+            d.fn.vkCmdBlitImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.image,
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &b, VK_FILTER_LINEAR);
+            w = nw;
+            h = nh;
+        }
+        image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_BLIT_BIT, 0, kSampledBy, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, 0,
+                      desc.mips - 1);
+        image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kSampledBy,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, desc.mips - 1, 1);
+    } else {
+        image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kSampledBy,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
     staging.push_back(std::move(buf));
     return img;
 }
@@ -148,41 +185,124 @@ bool Renderer::samples(uint32_t block_format) const {
            (f->srgb == VK_FORMAT_UNDEFINED || d.supports(f->srgb, kSampledTextureFeatures));
 }
 
-GpuMaterial Renderer::upload(const Material& material) {
+namespace {
+
+// A material's roles and constants without its texels: copying the whole Material and then
+// clearing `textures` would copy every texel first (tens of megabytes a material).
+Material roles_of(const Material& m) {
+    Material c;
+    c.name = m.name;
+    c.albedo = m.albedo;
+    c.emissive = m.emissive;
+    c.normal = m.normal;
+    c.roughness = m.roughness;
+    c.metalness = m.metalness;
+    c.occlusion = m.occlusion;
+    c.opacity = m.opacity;
+    c.uv_scale = m.uv_scale;
+    c.uv_offset = m.uv_offset;
+    return c;
+}
+
+}  // namespace
+
+PreparedMaterial::PreparedMaterial() = default;
+PreparedMaterial::~PreparedMaterial() = default;
+PreparedMaterial::PreparedMaterial(PreparedMaterial&&) noexcept = default;
+PreparedMaterial& PreparedMaterial::operator=(PreparedMaterial&&) noexcept = default;
+size_t PreparedMaterial::bytes() const {
+    size_t n = 0;
+    if (impl_)
+        for (const auto& t : impl_->textures)
+            if (t)
+                for (const TextureLevel& l : t->levels) n += l.bytes.size();
+    return n;
+}
+
+PreparedMaterial Renderer::prepare(const Material& material) const {
     check_material(material);
+    const Impl& r = *impl_;
+    PreparedMaterial out;
+    out.impl_ = std::make_unique<PreparedMaterial::Impl>();
+    PreparedMaterial::Impl& p = *out.impl_;
+    p.owner = impl_.get();
+    p.constants = roles_of(material);
+    gpu::ShadeSpecialization& c = p.specialization;
+    c = r.specialization(material);
+    const size_t n = material.textures.size();
+    p.textures.resize(n);
+
+    // The fast path stores a channel read inverted (smoothness, a DirectX normal's green) as its
+    // complement and the shader reads it plainly: one surface in any channel layout then uploads
+    // the same values, which 8-bit filtering and blitted mips treat alike. Not a channel that
+    // another role reads plainly.
+    struct Read {
+        int32_t texture, channel;
+        uint32_t* inverted;  // the variant's flag, cleared where the channel is stored inverted
+    };
+    uint32_t green_down = c.normal_green_down;
+    const Read reads[] = {
+        {c.roughness_tex, c.roughness_channel, &c.roughness_invert},
+        {c.metalness_tex, c.metalness_channel, &c.metalness_invert},
+        {c.occlusion_tex, c.occlusion_channel, &c.occlusion_invert},
+        {c.opacity_tex, c.opacity_channel, &c.opacity_invert},
+        {c.normal_tex, 1, &green_down},
+    };
+    std::vector<uint32_t> inverted_reads(n, 0), plain_reads(n, 0);
+    for (const Read& rd : reads)
+        if (rd.texture >= 0)
+            (*rd.inverted ? inverted_reads : plain_reads)[static_cast<size_t>(rd.texture)] |= 1u << rd.channel;
+    for (const int32_t slot : {c.albedo_tex, c.emissive_tex})
+        if (slot >= 0) plain_reads[static_cast<size_t>(slot)] |= 7u;              // RGB
+    if (c.normal_tex >= 0) plain_reads[static_cast<size_t>(c.normal_tex)] |= 5u;  // X and Z
+
+    // Which textures the variant samples: the rest are not prepared nor uploaded at all.
+    for (const int32_t slot : c.texture_slots()) {
+        if (slot < 0 || p.textures[static_cast<size_t>(slot)]) continue;
+        const auto i = static_cast<size_t>(slot);
+        const Texture& t = material.textures[i];
+        const MipKind kind = slot == material.normal.texture ? MipKind::normal
+                             : t.srgb                        ? MipKind::color
+                                                             : MipKind::data;
+        p.textures[i] = prepare_texture(r.d, t, kind, r.scene.fast_textures,
+                                        r.scene.fast_textures ? inverted_reads[i] & ~plain_reads[i] : 0);
+    }
+    for (const Read& rd : reads)
+        if (rd.texture >= 0 && *rd.inverted &&
+            ((p.textures[static_cast<size_t>(rd.texture)]->inverted >> rd.channel) & 1u))
+            *rd.inverted = 0;
+    c.normal_green_down = green_down;
+    return out;
+}
+
+GpuMaterial Renderer::upload(const Material& material) { return upload(prepare(material)); }
+
+GpuMaterial Renderer::upload(PreparedMaterial prepared) {
     Impl& r = *impl_;
     const Device& d = r.d;
+    if (!prepared.impl_) throw Error("upload of an empty PreparedMaterial");
+    PreparedMaterial::Impl& p = *prepared.impl_;
+    if (p.owner != impl_.get()) throw Error("material '" + p.constants.name + "' was prepared by another renderer");
     GpuMaterial out;
     out.impl_ = std::make_unique<GpuMaterial::Impl>();
     GpuMaterial::Impl& m = *out.impl_;
     m.owner = impl_.get();
-    m.name = material.name;
-    m.constants = material;
-    m.constants.textures.clear();
-    m.constants.textures.shrink_to_fit();
+    m.name = p.constants.name;
+    m.constants = std::move(p.constants);
 
-    const gpu::ShadeSpecialization constants = r.specialization(material);
-    m.variant = r.describe(constants);
-    m.pipeline = r.shade_pipeline(constants);
-    if (r.scene.ground.enabled) m.ground_pipeline = r.shade_pipeline(Impl::ground_specialization(constants));
-
-    // Which textures the variant samples: the rest are not uploaded at all.
-    std::vector<bool> used(material.textures.size(), false);
-    for (const int32_t slot : constants.texture_slots())
-        if (slot >= 0) used[static_cast<size_t>(slot)] = true;
+    m.variant = r.describe(p.specialization);
+    m.pipeline = r.shade_pipeline(p.specialization);
+    if (r.scene.ground.enabled) m.ground_pipeline = r.shade_pipeline(Impl::ground_specialization(p.specialization));
 
     std::vector<Buffer> staging;
     Submission s(d, r.command_pool, r.queries, kQueryCount);
-    s.begin_pass("upload " + material.name);
-    m.textures.resize(material.textures.size());
-    for (size_t i = 0; i < material.textures.size(); ++i) {
-        if (!used[i]) continue;
-        const Texture& t = material.textures[i];
-        const MipKind kind = static_cast<int>(i) == material.normal.texture ? MipKind::normal
-                             : t.srgb                                       ? MipKind::color
-                                                                            : MipKind::data;
-        m.textures[i] = r.upload_texture(prepare_texture(d, t, kind), s.cmd(), staging);
-    }
+    s.begin_pass("upload " + m.name);
+    m.textures.resize(p.textures.size());
+    for (size_t i = 0; i < p.textures.size(); ++i)
+        if (p.textures[i]) {
+            m.textures[i] = r.upload_texture(*p.textures[i], s.cmd(), staging);
+            p.textures[i].reset();  // its host copy is in the staging buffer now
+        }
     s.finish(r.load_times);
 
     VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, static_cast<uint32_t>(kMaxTextures)};

@@ -32,6 +32,7 @@ static_assert(sizeof(void*) == 8, "non-dispatchable handles must be distinct typ
     X(vkGetPhysicalDeviceQueueFamilyProperties) \
     X(vkGetPhysicalDeviceMemoryProperties)      \
     X(vkGetPhysicalDeviceFormatProperties)      \
+    X(vkGetPhysicalDeviceImageFormatProperties) \
     X(vkEnumerateDeviceExtensionProperties)     \
     X(vkCreateDevice)                           \
     X(vkGetDeviceProcAddr)
@@ -104,6 +105,7 @@ static_assert(sizeof(void*) == 8, "non-dispatchable handles must be distinct typ
     X(vkCmdDispatch)                  \
     X(vkCmdCopyBuffer)                \
     X(vkCmdCopyBufferToImage)         \
+    X(vkCmdBlitImage)                 \
     X(vkCmdCopyImageToBuffer)         \
     X(vkCmdPushConstants)             \
     X(vkCmdSetViewport)               \
@@ -163,6 +165,8 @@ struct Device {
     // VK_ERROR_OUT_OF_DEVICE_MEMORY.
     VkDeviceMemory allocate(const VkMemoryRequirements& req, uint32_t type, const std::string& what) const;
     bool supports(VkFormat format, VkFormatFeatureFlags optimal_tiling_features) const;
+    // The sample counts a 2D optimal-tiling image of `format` with `usage` may have (0: none).
+    VkSampleCountFlags sample_counts(VkFormat format, VkImageUsageFlags usage) const;
 };
 
 Device& device_of(Context& context);
@@ -235,6 +239,7 @@ void invalidate(const Device& d, const Buffer& b);  // before the host reads
 struct ImageDesc {
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;  // > 1: a multisampled render target
     VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     bool cube = false;                                      // layers == 6, viewed as a cube map
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;  // VK_IMAGE_ASPECT_DEPTH_BIT for a depth buffer

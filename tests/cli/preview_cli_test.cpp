@@ -136,6 +136,76 @@ TEST(PreviewCli, ShapeOrbitAndTiling) {
         EXPECT_EQ(run(base + q(work / "bad") + " " + bad).code, 2) << bad;
 }
 
+// Anti-aliasing and the texture path from the command line, on lavapipe under the validation
+// layer: the look-dev default is `--aa msaa4 --textures fast`; multisampling leaves most of the
+// inside of the sphere as one sample shades it (±1 code: the ray goes through the covered
+// samples' centroid, the pixel centre when all are covered; a pixel an edge of the mesh's
+// triangles crosses is shaded once per triangle) and moves the silhouette toward the 4×4
+// supersampled picture; the fast texture path differs from the exact one by rounding only.
+// tests/render's ReferenceTest measures both against the CPU reference; this checks the options.
+TEST(PreviewCli, AntiAliasingAndTexturePath) {
+    const fs::path work = temp_dir("aa");
+    ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "out")).code, 0);
+    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 64 --device cpu --vk-validation -o ";
+    auto render = [&](const std::string& name, const std::string& args) {
+        const auto r = run(base + q(work / name) + " " + args);
+        EXPECT_EQ(r.code, 0) << args << ": " << r.output;
+        return work / name / "Metal_Damaged_001.png";
+    };
+    EXPECT_EQ(bytes_of(render("default", "")), bytes_of(render("explicit", "--aa msaa4 --textures fast")));
+    const std::string ref = "--scene reference --textures exact ";
+    const auto one = read_pixels(render("aa1", ref + "--aa 1"));
+    const auto msaa = read_pixels(render("msaa4", ref + "--aa msaa4"));
+    const auto ss4 = read_pixels(render("ss4", ref + "--aa 4"));
+    ASSERT_EQ(one.width, 64);
+    auto lit = [](const mf::Image& img, int x, int y) {
+        return code8(img.at(x, y, 0)) + code8(img.at(x, y, 1)) + code8(img.at(x, y, 2)) > 0;
+    };
+    int inside = 0, edge = 0, inside_same = 0;
+    double edge_msaa = 0, edge_one = 0;  // summed |Δ| against the 4×4 supersampled picture
+    for (int y = 1; y < 63; ++y)
+        for (int x = 1; x < 63; ++x) {
+            bool all = true, any = false;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    all = all && lit(ss4, x + dx, y + dy);
+                    any = any || lit(ss4, x + dx, y + dy);
+                }
+            int worst = 0;
+            for (int c = 0; c < 3; ++c) {
+                const int m = code8(msaa.at(x, y, c)), o = code8(one.at(x, y, c)), s = code8(ss4.at(x, y, c));
+                worst = std::max(worst, std::abs(m - o));
+                if (any && !all) {
+                    edge_msaa += std::abs(m - s);
+                    edge_one += std::abs(o - s);
+                }
+            }
+            inside += all;
+            inside_same += all && worst <= 1;
+            edge += any && !all;
+        }
+    ASSERT_GT(inside, 1000);
+    ASSERT_GT(edge, 100);
+    // Measured on lavapipe: 1280 of 1665 inside pixels (77 %; the rest lie on the triangles' edges
+    // at 64²), and msaa4 0.61 of one sample's error at the silhouette (texture detail included).
+    EXPECT_GE(inside_same, inside * 2 / 3) << "multisampling shades the inside once a pixel";
+    EXPECT_LT(edge_msaa, 0.75 * edge_one) << "the silhouette is anti-aliased (msaa4 " << edge_msaa << ", one sample "
+                                          << edge_one << ", codes summed over " << edge << " edge pixels)";
+    // Fast textures: level 0 as read, mips blitted in 8-bit sRGB; the exact path averages in float.
+    const auto fast_png = render("fast", "--scene reference --aa 1 --textures fast");
+    EXPECT_NE(bytes_of(fast_png), bytes_of(work / "aa1/Metal_Damaged_001.png")) << "--textures had no effect";
+    const auto fast = read_pixels(fast_png);
+    double sum = 0;
+    int n = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < 3 && lit(one, x, y); ++c, ++n)
+                sum += std::abs(code8(fast.at(x, y, c)) - code8(one.at(x, y, c)));
+    EXPECT_LE(sum / n, 1.0) << "fast textures differ from exact ones by rounding";
+    for (const std::string bad : {"--aa msaa3", "--aa 5", "--aa msaa", "--aa 0", "--textures quick"})
+        EXPECT_EQ(run(base + q(work / "bad") + " " + bad).code, 2) << bad;
+}
+
 TEST(PreviewCli, ContactSheetAndMissingManifest) {
     const fs::path work = temp_dir("sheet");
     ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work)).code, 0);

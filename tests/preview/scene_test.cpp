@@ -116,6 +116,26 @@ TEST(SceneFile, GroundIsReadAndChecked) {
     EXPECT_NE(error.find("g.json: ground.albedo"), std::string::npos) << error;
 }
 
+// The look-dev default multisamples and takes the fast texture path; the reference and scene
+// files do neither unless asked (image.msaa), as the exactness tests need.
+TEST(SceneFile, AntiAliasingAndTexturePath) {
+    EXPECT_EQ(default_scene().scene.msaa, 4u);
+    EXPECT_EQ(default_scene().scene.supersample, 1u);
+    EXPECT_TRUE(default_scene().scene.fast_textures);
+    EXPECT_EQ(reference_scene().scene.msaa, 1u);
+    EXPECT_FALSE(reference_scene().scene.fast_textures);
+    std::string error;
+    auto s = parse_scene(json::parse(R"({"image": {"msaa": 4, "supersample": 2}})"), "/", "a.json", error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->scene.msaa, 4u);
+    EXPECT_EQ(s->scene.supersample, 2u);
+    EXPECT_FALSE(s->scene.fast_textures);
+    for (const char* bad : {R"({"image": {"msaa": 3}})", R"({"image": {"msaa": 16}})", R"({"image": {"msaa": 0}})"}) {
+        EXPECT_FALSE(parse_scene(json::parse(bad), "/", "a.json", error)) << bad;
+        EXPECT_NE(error.find("a.json: image.msaa"), std::string::npos) << error;
+    }
+}
+
 TEST(Placement, OrbitKeepsTheTargetAndDistance) {
     render::Camera c;  // (0, 0, 4) looking at the origin
     std::string error;

@@ -1,15 +1,21 @@
 // matforge preview [<manifest.json>] -o <out-dir> [--scene FILE.json] [--size N]
 //   [--shape sphere|cube|plane] [--light SPEC]... [--env FILE.hdr|.exr] [--format png|exr]
 //   [--contact-sheet FILE.png] [--device auto|gpu|cpu] [--brdf standard|accurate|assignment]
-//   [--allow-outside] [--vk-validation]
+//   [--aa N|msaaN] [--textures fast|exact] [--allow-outside] [--vk-validation]
 // Options -> scene -> materials -> images: every material is loaded, uploaded, rendered and
-// written in turn; one that fails is reported and the others are still rendered.
+// written in manifest order; one that fails is reported and the others are still rendered. A
+// pipeline: while material i renders (on the device, or lavapipe's threads), materials i+1 and
+// i+2 are read and their textures prepared on other threads, and material i-1's image is encoded
+// and written on another. Messages come out in manifest order, as one loop would say them.
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <deque>
 #include <functional>
+#include <future>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "command.hpp"
@@ -22,7 +28,7 @@ struct PreviewArgs {
     std::string manifest, out, scene, shape, env, contact_sheet, brdf, tonemap;
     uint32_t size = 0;
     std::optional<float> exposure, distance;
-    uint32_t aa = 0;
+    std::string aa, textures;
     std::vector<float> orbit, uv_scale, uv_offset;
     std::string uv_aspect;
     std::vector<std::string> lights;
@@ -70,7 +76,13 @@ std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
     }
     render::Scene& scene = sf->scene;
     if (a.size) scene.width = scene.height = a.size;
-    if (a.aa) scene.supersample = a.aa;
+    if (!a.aa.empty()) {  // CLI11 checked it: N (supersampling) or msaaN
+        const bool msaa = a.aa.rfind("msaa", 0) == 0;
+        const auto n = static_cast<uint32_t>(std::stoul(msaa ? a.aa.substr(4) : a.aa));
+        scene.supersample = msaa ? 1 : n;
+        scene.msaa = msaa ? n : 1;
+    }
+    if (!a.textures.empty()) scene.fast_textures = a.textures == "fast";
     if (a.ground) scene.ground.enabled = true;
     if (!a.shape.empty()) {
         scene.shape.type = *preview::parse_shape(a.shape);  // CLI11 checked the name
@@ -186,56 +198,152 @@ ExitCode run_preview(const PreviewArgs& a) {
     std::vector<preview::SheetTile> tiles;
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
+
+    // What one material comes to: its messages in the order one loop would say them, whether it
+    // failed, and its 8-bit image for the contact sheet.
+    struct Outcome {
+        std::vector<std::string> lines;
+        bool failed = false;
+        std::vector<uint8_t> rgba8;
+    };
+    // The reading half, on a worker thread: files decoded, textures converted and their mips made
+    // (render::Renderer::prepare makes no Vulkan call that needs the renderer's thread).
+    struct Loaded {
+        std::optional<render::PreparedMaterial> prepared;
+        std::vector<std::string> notes;
+        std::string error;
+    };
     try {
-        render::Context context(co);
-        if (!quiet)
-            say("preview", context.info().name + (context.info().cpu ? " (CPU)" : "") + ", " +
-                               std::to_string(scene.width) + "x" + std::to_string(scene.height) + ", " +
-                               std::to_string(jobs->size()) + " material(s)");
-        render::Renderer renderer(context, scene);
-        for (const std::string& n : renderer.take_notes()) say("preview", "note: " + n);
+        // The first material is read while the device starts and the scene's load-time passes
+        // run (the studio environment's prefiltering): the reading waits for the renderer only
+        // where it needs it, to know a GPU texture file's formats and to prepare the textures.
+        std::optional<render::Context> context;
+        std::optional<render::Renderer> renderer;
+        std::promise<void> made_early;
+        const std::shared_future<void> ready = made_early.get_future().share();
+        auto load = [&renderer, &ready, &jobs](size_t i) {
+            Loaded l;
+            try {
+                auto m = (*jobs)[i].load(
+                    [&](uint32_t f) {
+                        ready.get();
+                        return renderer->samples(f);
+                    },
+                    l.notes, l.error);
+                if (m) {
+                    ready.get();
+                    l.prepared = renderer->prepare(*m);
+                }
+            } catch (const std::exception& e) {  // this material's textures (or the renderer); the others go on
+                l.error = e.what();
+            }
+            return l;
+        };
+        std::deque<std::future<Loaded>> loading;
+        size_t launched = 0;
+        if (!jobs->empty()) loading.push_back(std::async(std::launch::async, load, launched++));
+        // Destroyed before `loading` (which waits for the readers): unset, it wakes them.
+        std::promise<void> made = std::move(made_early);
+        try {
+            context.emplace(co);
+            if (!quiet)
+                say("preview", context->info().name + (context->info().cpu ? " (CPU)" : "") + ", " +
+                                   std::to_string(scene.width) + "x" + std::to_string(scene.height) + ", " +
+                                   std::to_string(jobs->size()) + " material(s)");
+            renderer.emplace(*context, scene);
+            made.set_value();
+        } catch (...) {
+            made.set_exception(std::current_exception());
+            throw;
+        }
+        for (const std::string& n : renderer->take_notes()) say("preview", "note: " + n);
+        auto done = [](Outcome o) {
+            std::promise<Outcome> p;
+            p.set_value(std::move(o));
+            return p.get_future();
+        };
+        // Outcomes in manifest order, said as they complete; at most `keep` left in flight (the
+        // last material's image may still be being written while the next one renders).
+        std::deque<std::future<Outcome>> pending;
+        size_t reported = 0;
+        auto flush = [&](size_t keep) {
+            while (pending.size() > keep) {
+                Outcome o = pending.front().get();
+                pending.pop_front();
+                const Job& job = (*jobs)[reported++];
+                for (const std::string& line : o.lines) say("preview", line);
+                if (o.failed) status = ExitCode::findings;
+                else if (!a.contact_sheet.empty())
+                    tiles.push_back({job.name, scene.width, scene.height, std::move(o.rgba8)});
+            }
+        };
+        // Reading runs ahead, so that it has work while the device renders (on lavapipe, whose
+        // passes are not all multithreaded, it fills idle cores): two materials ahead, one where
+        // the last material's textures took more than 128 MB (4K maps), none past 512 MB (8K:
+        // each in memory alone, as without the pipeline). The first is read alone, to know.
         for (size_t i = 0; i < jobs->size(); ++i) {
+            if (launched == i) loading.push_back(std::async(std::launch::async, load, launched++));
             const Job& job = (*jobs)[i];
-            std::vector<std::string> notes;
-            std::string error;
-            auto m = job.load([&renderer](uint32_t f) { return renderer.samples(f); }, notes, error);
-            for (const std::string& n : notes) say("preview", "note: " + n);
-            if (!m) {
-                say("preview", job.name + ": " + error);
-                status = ExitCode::findings;
+            Loaded l = loading.front().get();
+            loading.pop_front();
+            const size_t bytes = l.prepared ? l.prepared->bytes() : 0;
+            const size_t ahead = bytes > (size_t{512} << 20) ? 0 : bytes > (size_t{128} << 20) ? 1 : 2;
+            for (; launched < jobs->size() && launched <= i + ahead; ++launched)
+                loading.push_back(std::async(std::launch::async, load, launched));
+            Outcome o;
+            for (const std::string& n : l.notes) o.lines.push_back("note: " + n);
+            if (!l.prepared) {
+                o.lines.push_back(job.name + ": " + l.error);
+                o.failed = true;
+                pending.push_back(done(std::move(o)));
+                flush(1);
                 continue;
             }
             try {
-                const render::GpuMaterial gm = renderer.upload(*m);
-                for (const std::string& n : renderer.take_notes()) say("preview", job.name + ": note: " + n);
-                const std::filesystem::path out = std::filesystem::path(a.out) / (job.stem + "." + a.format);
+                const render::GpuMaterial gm = renderer->upload(std::move(*l.prepared));
+                for (const std::string& n : renderer->take_notes()) o.lines.push_back(job.name + ": note: " + n);
                 std::vector<uint8_t> rgba8;
-                if (a.format == "png" || !a.contact_sheet.empty()) rgba8 = renderer.render(gm, sf->output).rgba8;
-                bool written = false;
-                if (a.format == "png") {
-                    written = preview::write_png(out, scene.width, scene.height, rgba8, error);
-                } else {
+                std::vector<float> rgba32f;
+                if (a.format == "png" || !a.contact_sheet.empty()) rgba8 = renderer->render(gm, sf->output).rgba8;
+                if (a.format != "png") {
                     render::OutputOptions lin;
                     lin.format = render::PixelFormat::rgba32f;
-                    written = preview::write_exr(out, scene.width, scene.height, renderer.render(gm, lin).rgba32f,
-                                                 error);
+                    rgba32f = renderer->render(gm, lin).rgba32f;
                 }
-                if (!written) {
-                    say("preview", job.name + ": " + error);
-                    status = ExitCode::findings;
-                    continue;
-                }
-                if (!a.contact_sheet.empty()) tiles.push_back({job.name, scene.width, scene.height, std::move(rgba8)});
-                if (!quiet)
-                    say("preview",
-                        "[" + std::to_string(i + 1) + "/" + std::to_string(jobs->size()) + "] " + out.string());
+                // Encoded and written on a thread of its own while the next material renders.
+                const std::filesystem::path out = std::filesystem::path(a.out) / (job.stem + "." + a.format);
+                const std::string progress = "[" + std::to_string(i + 1) + "/" + std::to_string(jobs->size()) + "] ";
+                pending.push_back(std::async(std::launch::async, [&a, &scene, &job, out, progress, quiet,
+                                                                  o = std::move(o), rgba8 = std::move(rgba8),
+                                                                  rgba32f = std::move(rgba32f)]() mutable {
+                    std::string error;
+                    bool written = false;
+                    try {
+                        written = a.format == "png"
+                                      ? preview::write_png(out, scene.width, scene.height, rgba8, error)
+                                      : preview::write_exr(out, scene.width, scene.height, rgba32f, error);
+                    } catch (const std::exception& e) {
+                        error = e.what();
+                    }
+                    if (!written) {
+                        o.lines.push_back(job.name + ": " + error);
+                        o.failed = true;
+                    } else if (!quiet) {
+                        o.lines.push_back(progress + out.string());
+                    }
+                    o.rgba8 = std::move(rgba8);
+                    return std::move(o);
+                }));
             } catch (const render::NoDeviceError&) {
                 throw;
             } catch (const std::exception& e) {  // this material's upload or draw failed; the others go on
-                say("preview", job.name + ": " + e.what());
-                status = ExitCode::findings;
+                o.lines.push_back(job.name + ": " + e.what());
+                o.failed = true;
+                pending.push_back(done(std::move(o)));
             }
+            flush(1);
         }
+        flush(0);
     } catch (const render::NoDeviceError& e) {
         return fail("preview", e.what());
     } catch (const std::exception& e) {
@@ -285,9 +393,15 @@ const Register reg{
                       "a ground plane under the shape (grey, rough) with a soft contact shadow from the key light; "
                       "simulated only when asked (default: the scene's, none)");
          sub.add_option("--aa", a->aa,
-                        "N: anti-aliasing, N×N samples a pixel averaged in linear light, 1..4 (cost N²); default: the "
-                        "scene's (lookdev 3, reference and scene files 1)")
-             ->check(CLI::Range(1, 4));
+                        "anti-aliasing: N (1..4) shades N×N samples a pixel and averages them in linear light (cost "
+                        "N²; texture and specular detail too); msaa2|msaa4|msaa8 multisamples the silhouettes and "
+                        "shades once a pixel; default: the scene's (lookdev msaa4, reference and scene files 1)")
+             ->check(CLI::IsMember({"1", "2", "3", "4", "msaa2", "msaa4", "msaa8"}));
+         sub.add_option("--textures", a->textures,
+                        "fast (8-bit textures go up as read and their mips are made on the device) | exact (mips "
+                        "averaged on the CPU in linear light, renormalized normals; on lavapipe 8-bit texels "
+                        "filtered in float); default: the scene's (lookdev fast, reference and scene files exact)")
+             ->check(CLI::IsMember({"fast", "exact"}));
          sub.add_option("--size", a->size,
                         "image width and height in pixels, 1..16384 (default: the scene's, else 512)")
              ->check(CLI::Range(1, 16384));

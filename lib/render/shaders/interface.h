@@ -68,6 +68,8 @@ MF_CONST int kLocationPosition = 0;
 MF_CONST int kLocationNormal = 1;
 MF_CONST int kLocationTangent = 2;  // xyz: ∂p/∂u; w: sign of the bitangent (toward +v)
 MF_CONST int kLocationUv = 3;
+// shade.vert → shade.frag: the position again, interpolated at the centroid of the covered samples
+MF_CONST int kVaryingCentroidPosition = 4;
 
 // ---- BRDF models (the values of the BRDF_MODEL and model constants)
 
@@ -109,6 +111,7 @@ MF_CONST int kSpecOpacityInvert = 20;
 MF_CONST int kSpecNormalZFromXy = 21;  // a two-channel normal map (BC5): Z rebuilt from X and Y
 MF_CONST int kSpecGround = 22;         // this draw is the ground plane (Scene::ground), not the shape
 MF_CONST int kSpecFillOnly = 23;       // write a constant and return: the fill-rate floor (Scene::fill_only)
+MF_CONST int kSpecMsaa = 24;           // multisampled (Scene::msaa): the sphere's ray through the centroid
 
 // brdf_lut.glsl
 MF_CONST int kSpecLutCorrelated = 0;
@@ -213,6 +216,7 @@ struct ShadeSpecialization {
     uint32_t normal_z_from_xy = 0;
     uint32_t ground = 0;
     uint32_t fill_only = 0;
+    uint32_t msaa = 0;
 
     // The texture slots the variant samples (−1 where a role is a constant).
     std::array<int32_t, 7> texture_slots() const {

@@ -19,6 +19,7 @@ layout(constant_id = kSpecNormalGreenDown) const bool NORMAL_GREEN_DOWN = false;
 layout(constant_id = kSpecNormalZFromXy) const bool NORMAL_Z_FROM_XY = false;  // X, Y stored only (BC5)
 layout(constant_id = kSpecGround) const bool GROUND = false;  // the ground plane: its own constant material
 layout(constant_id = kSpecFillOnly) const bool FILL_ONLY = false;  // benchmarks: the fill-rate floor
+layout(constant_id = kSpecMsaa) const bool MSAA = false;  // multisampled: shaded once a pixel
 layout(constant_id = kSpecRoughnessTex) const int ROUGHNESS_TEX = -1;
 layout(constant_id = kSpecRoughnessChannel) const int ROUGHNESS_CH = 0;
 layout(constant_id = kSpecRoughnessInvert) const bool ROUGHNESS_INVERT = false;  // smoothness
@@ -43,6 +44,8 @@ layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec4 v_tangent;
 layout(location = 3) in vec2 v_uv;
+// On the mesh within the covered samples (the pixel's centre may lie off it at a silhouette).
+layout(location = kVaryingCentroidPosition) centroid in vec3 v_position_centroid;
 
 layout(location = 0) out vec4 out_radiance;
 
@@ -66,10 +69,20 @@ float scalar_role(int slot, int ch, bool invert, float constant, vec2 st, vec2 d
 // UV sphere) decides coverage; position, normal, (u, v) and tangent frame come from the sphere
 // itself, so shading has no faceting and matches an analytic reference. Returns false when the
 // ray misses (only possible at the silhouette, in the last bits of precision).
+//
+// Multisampled, the shader runs once for all covered samples of a pixel, whose centre may lie
+// outside the sphere at the silhouette: the ray goes through the centroid of the covered samples
+// on the mesh instead, which lies within the sphere (the mesh's triangles are chords of it), so
+// it always hits.
 bool sphere_hit(out vec3 p) {
-    vec2 ndc = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;  // y grows downward
-    vec3 d = normalize(frame.ray_forward.xyz + ndc.x * frame.ray_right.xyz - ndc.y * frame.ray_up.xyz);
     vec3 o = frame.camera_position.xyz;
+    vec3 d;
+    if (MSAA) {
+        d = normalize(v_position_centroid - o);
+    } else {
+        vec2 ndc = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;  // y grows downward
+        d = normalize(frame.ray_forward.xyz + ndc.x * frame.ray_right.xyz - ndc.y * frame.ray_up.xyz);
+    }
     float r = frame.shape.x;
     // Ray Tracing Gems ch. 7 (Haines et al. 2019): the discriminant from the distance of the
     // centre to the ray, and the near root from c / q, avoid both cancellations.

@@ -11,11 +11,13 @@ layout(location = 0) out vec3 v_position;
 layout(location = 1) out vec3 v_normal;
 layout(location = 2) out vec4 v_tangent;
 layout(location = 3) out vec2 v_uv;
+layout(location = kVaryingCentroidPosition) centroid out vec3 v_position_centroid;
 
 void main() {
     v_position = in_position;
     v_normal = in_normal;
     v_tangent = in_tangent;
     v_uv = in_uv;
+    v_position_centroid = in_position;
     gl_Position = frame.view_proj * vec4(in_position, 1.0);
 }
