@@ -3,6 +3,7 @@
 // file does what).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <utility>
 
@@ -24,6 +25,13 @@ static_assert(static_cast<int>(Tonemap::none) == gpu::kTonemapNone &&
                   static_cast<int>(Tonemap::neutral) == gpu::kTonemapNeutral &&
                   static_cast<int>(Tonemap::aces) == gpu::kTonemapAces,
               "EncodeParams::tonemap carries render::Tonemap as it is");
+
+std::optional<Shading> parse_shading(std::string_view s) {
+    if (s == "auto") return Shading::automatic;
+    if (s == "raster") return Shading::raster;
+    if (s == "compute") return Shading::compute;
+    return std::nullopt;
+}
 
 std::optional<Tonemap> parse_tonemap(std::string_view s) {
     if (s == "none") return Tonemap::none;
@@ -113,6 +121,7 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
         queries = Unique<VkQueryPool>(d, q);
     }
 
+    choose_shading(context);
     choose_samples();
     create_samplers();
     create_layouts();           // pipelines.cpp
@@ -127,8 +136,72 @@ Renderer::Impl::~Impl() {
     if (d.device) d.fn.vkDeviceWaitIdle(d.device);
 }
 
+namespace {
+
+// Compute shading is chosen when its shade pass is at least this much faster than raster's: a
+// margin for the measurement's noise, favouring the path that covers every scene.
+constexpr double kComputeMargin = 1.5;
+constexpr uint32_t kMeasureSize = 512;  // the measured frame: a constant sphere, this many pixels a side
+
+// The shade pass of a constant-material sphere on `path`, the least of three frames after one
+// that warms up (pipeline and caches); 0 where the device gave no time.
+double shade_ms(Context& context, Shading path) {
+    Scene s;
+    s.width = s.height = kMeasureSize;
+    s.shading = path;
+    Renderer r(context, s);
+    const GpuMaterial m = r.upload(Material{});
+    double best = 0.0;
+    for (int frame = 0; frame < 4; ++frame) {
+        r.render(m);
+        for (const PassTime& t : r.frame_times())
+            if (t.name == "shade" && frame > 0 && (best == 0.0 || t.ms < best)) best = t.ms;
+    }
+    return best;
+}
+
+std::string fixed(double v, int digits) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+
+}  // namespace
+
+void Renderer::Impl::choose_shading(Context& context) {
+    if (scene.shading == Shading::raster) return;
+    if (!compute_covers()) {
+        // The shaderball is a mesh and the ground's shadow is drawn with depth: raster alone.
+        if (scene.shading == Shading::compute)
+            notes.push_back(std::string("compute shading covers the sphere, cube and plane, not ") +
+                            (scene.ground.enabled ? "the ground plane" : "the shaderball") +
+                            ": shaded on the raster path");
+        return;
+    }
+    if (scene.shading == Shading::compute) {
+        compute = true;
+        return;
+    }
+    Device::ShadingChoice& c = d.shading_choice;
+    if (!c.measured) {
+        c.measured = true;
+        if (!d.info.timestamps) {
+            notes.push_back("shading auto: raster (" + d.info.name + " has no timestamp queries to measure with)");
+            return;
+        }
+        c.raster_ms = shade_ms(context, Shading::raster);
+        c.compute_ms = shade_ms(context, Shading::compute);
+        c.compute = c.compute_ms > 0.0 && c.raster_ms >= kComputeMargin * c.compute_ms;
+        notes.push_back("shading auto: " + std::string(c.compute ? "compute" : "raster") + " on " + d.info.name +
+                        " (shade pass of a " + std::to_string(kMeasureSize) + "x" + std::to_string(kMeasureSize) +
+                        " constant sphere: raster " + fixed(c.raster_ms, 3) + " ms, compute " + fixed(c.compute_ms, 3) +
+                        " ms; compute when at least " + fixed(kComputeMargin, 1) + "x faster)");
+    }
+    compute = c.compute;
+}
+
 void Renderer::Impl::choose_samples() {
-    if (scene.msaa <= 1) return;
+    if (scene.msaa <= 1 || compute) return;  // compute: shaded at the sample positions (shade.comp)
     const auto want = static_cast<VkSampleCountFlagBits>(scene.msaa);
     const VkPhysicalDeviceLimits& l = d.properties.limits;
     bool ok = (l.framebufferColorSampleCounts & want) &&
@@ -179,6 +252,7 @@ void Renderer::Impl::create_samplers() {
 Renderer::Renderer(Context& context, const Scene& scene) : impl_(std::make_unique<Impl>(context, scene)) {}
 Renderer::~Renderer() = default;
 const Scene& Renderer::scene() const { return impl_->scene; }
+Shading Renderer::shading() const { return impl_->compute ? Shading::compute : Shading::raster; }
 const std::vector<PassTime>& Renderer::load_times() const { return impl_->load_times; }
 const std::vector<PassTime>& Renderer::frame_times() const { return impl_->frame_times; }
 std::vector<std::string> Renderer::take_notes() { return std::exchange(impl_->notes, {}); }
