@@ -130,11 +130,11 @@ Texture make_texture(uint32_t size, uint32_t channels, bool srgb, uint32_t seed)
     t.srgb = srgb;
     t.data.resize(size_t{size} * size * channels);
     uint32_t x = seed * 2654435761u + 1u;
-    for (size_t i = 0; i < t.data.size(); ++i) {
+    for (uint8_t& texel : t.data) {
         x ^= x << 13;
         x ^= x >> 17;
         x ^= x << 5;
-        t.data[i] = static_cast<uint8_t>(96 + (x >> 24) % 64);  // mid-range noise
+        texel = static_cast<uint8_t>(96 + (x >> 24) % 64);  // mid-range noise
     }
     return t;
 }
@@ -382,9 +382,9 @@ int main(int argc, char** argv) {
                     }
                     times["frame (sum)"].push_back(total);
                 }
-                order.push_back("frame (sum)");
-                order.push_back("frame wall (host)");
-                order.push_back("frame cpu (process)");
+                order.emplace_back("frame (sum)");
+                order.emplace_back("frame wall (host)");
+                order.emplace_back("frame cpu (process)");
                 for (const std::string& p : order) emit(p, times[p]);
                 if (args.library && c.textures) {
                     // Four texture sets in turn (each prepared anew, as distinct files would be).

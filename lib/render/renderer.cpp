@@ -2,8 +2,11 @@
 // pass into a linear fp32 target, one encoding pass, readback (see renderer_impl.hpp for which
 // file does what).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include <utility>
 
@@ -143,20 +146,29 @@ namespace {
 constexpr double kComputeMargin = 1.5;
 constexpr uint32_t kMeasureSize = 512;  // the measured frame: a constant sphere, this many pixels a side
 
-// The shade pass of a constant-material sphere on `path`, the least of three frames after one
-// that warms up (pipeline and caches); 0 where the device gave no time.
-double shade_ms(Context& context, Shading path) {
+constexpr int kWarmupFrames = 2, kTimedFrames = 5;
+
+// The shade pass of a constant-material sphere on each path (raster, compute): the least of
+// kTimedFrames after kWarmupFrames (pipelines, caches, a CPU device's threads), the two paths'
+// frames interleaved so that a load that comes and goes on the device weighs on both alike.
+// 0 where the device gave no time.
+std::array<double, 2> shade_ms(Context& context) {
     Scene s;
     s.width = s.height = kMeasureSize;
-    s.shading = path;
-    Renderer r(context, s);
-    const GpuMaterial m = r.upload(Material{});
-    double best = 0.0;
-    for (int frame = 0; frame < 4; ++frame) {
-        r.render(m);
-        for (const PassTime& t : r.frame_times())
-            if (t.name == "shade" && frame > 0 && (best == 0.0 || t.ms < best)) best = t.ms;
+    std::vector<std::unique_ptr<Renderer>> renderers;
+    std::vector<GpuMaterial> materials;
+    for (const Shading path : {Shading::raster, Shading::compute}) {
+        s.shading = path;
+        renderers.push_back(std::make_unique<Renderer>(context, s));
+        materials.push_back(renderers.back()->upload(Material{}));
     }
+    std::array<double, 2> best{0.0, 0.0};
+    for (int frame = 0; frame < kWarmupFrames + kTimedFrames; ++frame)
+        for (size_t i = 0; i < 2; ++i) {
+            renderers[i]->render(materials[i]);
+            for (const PassTime& t : renderers[i]->frame_times())
+                if (t.name == "shade" && frame >= kWarmupFrames && (best[i] == 0.0 || t.ms < best[i])) best[i] = t.ms;
+        }
     return best;
 }
 
@@ -189,8 +201,9 @@ void Renderer::Impl::choose_shading(Context& context) {
             notes.push_back("shading auto: raster (" + d.info.name + " has no timestamp queries to measure with)");
             return;
         }
-        c.raster_ms = shade_ms(context, Shading::raster);
-        c.compute_ms = shade_ms(context, Shading::compute);
+        const std::array<double, 2> ms = shade_ms(context);
+        c.raster_ms = ms[0];
+        c.compute_ms = ms[1];
         c.compute = c.compute_ms > 0.0 && c.raster_ms >= kComputeMargin * c.compute_ms;
         notes.push_back("shading auto: " + std::string(c.compute ? "compute" : "raster") + " on " + d.info.name +
                         " (shade pass of a " + std::to_string(kMeasureSize) + "x" + std::to_string(kMeasureSize) +
