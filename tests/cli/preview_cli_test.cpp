@@ -22,7 +22,7 @@ TEST(PreviewCli, EveryPresetPreviewsTheSameImage) {
         auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out) + " --preset " + p);
         ASSERT_EQ(r.code, 0) << p << ": " << r.output;
         r = run("preview " + q(out / "manifest.json") + " -o " + q(out / "preview") +
-                " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12");
+                " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12 --shading raster");
         ASSERT_EQ(r.code, 0) << p << ": " << r.output;
         images[p] = read_pixels(out / "preview" / "Metal_Damaged_001.png");
     }
@@ -50,7 +50,9 @@ TEST(PreviewCli, EveryPresetPreviewsTheSameImage) {
 // 2.00 / 17).
 TEST(PreviewCli, GpuPresetsPreviewLikeThePngIngest) {
     const fs::path work = temp_dir("gpu");
-    const std::string args = " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12";
+    // The path pinned: the look-dev default (`auto`) could pick either from one run to the next.
+    const std::string args =
+        " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12 --shading raster";
     auto render = [&](const std::string& preset) {
         const fs::path out = work / preset;
         auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out) + " --preset " + preset);
@@ -121,7 +123,8 @@ TEST(PreviewCli, DefaultIsLookDevAndReferenceIsExact) {
 TEST(PreviewCli, ShapeOrbitAndTiling) {
     const fs::path work = temp_dir("controls");
     ASSERT_EQ(run("ingest " + q(samples() / "Net004A_1K-JPG") + " -o " + q(work / "out")).code, 0);
-    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 48 --device cpu -o ";
+    const std::string base = "preview " + q(work / "out/manifest.json") +
+                             " --size 48 --device cpu --shading raster -o ";
     auto image = [&](const std::string& name, const std::string& args) {
         const auto r = run(base + q(work / name) + " " + args);
         EXPECT_EQ(r.code, 0) << args << ": " << r.output;
@@ -147,7 +150,8 @@ TEST(PreviewCli, ShapeOrbitAndTiling) {
 TEST(PreviewCli, AntiAliasingAndTexturePath) {
     const fs::path work = temp_dir("aa");
     ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "out")).code, 0);
-    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 64 --device cpu --vk-validation -o ";
+    const std::string base = "preview " + q(work / "out/manifest.json") +
+                             " --size 64 --device cpu --vk-validation --shading raster -o ";
     auto render = [&](const std::string& name, const std::string& args) {
         const auto r = run(base + q(work / name) + " " + args);
         EXPECT_EQ(r.code, 0) << args << ": " << r.output;
