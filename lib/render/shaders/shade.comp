@@ -94,7 +94,7 @@ bool sphere_point(vec3 o, vec3 d, out SurfacePoint s) {
     // At the poles, the tangent of the mesh's column at this u (∂p/∂u ∝ (sin 2πu, 0, cos 2πu)).
     s.t = sphere_tangent(s.n, vec3(sin(2.0 * PI * s.st.x), 0.0, cos(2.0 * PI * s.st.x)));
     s.bsign = 1.0;
-    return hit;
+    return hit && t > 0.0;  // from inside, or behind the camera: back faces, culled by the raster path
 }
 
 bool shape_hit(vec3 o, vec3 d, out SurfacePoint s) {
