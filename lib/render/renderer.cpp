@@ -196,12 +196,13 @@ void Renderer::Impl::choose_shading(Context& context) {
     }
     Device::ShadingChoice& c = d.shading_choice;
     if (!c.measured) {
-        c.measured = true;
         if (!d.info.timestamps) {
+            c.measured = true;
             notes.push_back("shading auto: raster (" + d.info.name + " has no timestamp queries to measure with)");
             return;
         }
-        const std::array<double, 2> ms = shade_ms(context);
+        const std::array<double, 2> ms = shade_ms(context);  // a failure throws: measured again next time
+        c.measured = true;
         c.raster_ms = ms[0];
         c.compute_ms = ms[1];
         c.compute = c.compute_ms > 0.0 && c.raster_ms >= kComputeMargin * c.compute_ms;
