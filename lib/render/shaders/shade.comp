@@ -1,6 +1,7 @@
 #version 460
-// The compute path (Scene::shading compute): for devices whose raster units are few (datacenter
-// GPUs shade a frame here tens of times faster than through the fragment pass). Each invocation
+// The compute path (Scene::shading compute): for devices whose raster units are few (an H200's
+// fragment pass is bound by them, 40x slower than the same BRDF in a compute shader: see
+// docs/bench/README.md). Each invocation
 // casts its pixel's primary rays at the analytic shape (sphere, cube or plane), with the (u, v),
 // normal and tangent frame the mesh gives the raster path, shades the hits with shading.glsl, as
 // shade.frag does, and writes the linear radiance into the same RGBA32F target (then encode.comp
