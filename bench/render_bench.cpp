@@ -2,7 +2,7 @@
 //
 //   render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]
 //                [--csv FILE] [--only NAME[,NAME…]] [--gpu-formats] [--texture-size N]
-//                [--library N]
+//                [--library N] [--shading raster|compute|auto]
 //
 // For each configuration and size it builds a renderer (load-time passes timed once), uploads
 // the material, renders --warmup frames untimed and --frames frames timed, and prints the median
@@ -13,6 +13,10 @@
 // `matforge preview` does (textures prepared on another thread up to two materials ahead, upload
 // and render with the 8-bit readback on this one): materials per second, file decoding and PNG
 // writing left out (they stay on the host's CPU whatever the device).
+//
+// --shading: the path every configuration is shaded on (Scene::shading; default raster), so the
+// same table can be made on both. The path that ran is printed for each configuration (a scene
+// compute does not cover falls back to raster, said in a note) and is a CSV column.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -46,6 +50,7 @@ struct Args {
     bool gpu_formats = false;  // ContextOptions::precise_cpu_textures off
     uint32_t texture_size = 2048;
     int library = 0;  // --library N: materials previewed in a row per textured configuration
+    Shading shading = Shading::raster;
 };
 
 [[noreturn]] void usage(const char* why) {
@@ -53,7 +58,7 @@ struct Args {
                  "render_bench: %s\n"
                  "usage: render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]\n"
                  "                    [--csv FILE] [--only NAME[,NAME...]] [--gpu-formats]\n"
-                 "                    [--texture-size N] [--library N]\n",
+                 "                    [--texture-size N] [--library N] [--shading raster|compute|auto]\n",
                  why);
     std::exit(2);
 }
@@ -103,6 +108,10 @@ Args parse(int argc, char** argv) {
             const long n = std::strtol(value().c_str(), nullptr, 10);
             if (n < 1 || n > 100000) usage("--library must be in 1..100000");
             a.library = static_cast<int>(n);
+        } else if (k == "--shading") {
+            const auto sh = parse_shading(value());
+            if (!sh) usage("--shading must be raster, compute or auto");
+            a.shading = *sh;
         } else if (k == "-h" || k == "--help") {
             usage("GPU time per pass of the matforge preview");
         } else {
@@ -121,11 +130,11 @@ Texture make_texture(uint32_t size, uint32_t channels, bool srgb, uint32_t seed)
     t.srgb = srgb;
     t.data.resize(size_t{size} * size * channels);
     uint32_t x = seed * 2654435761u + 1u;
-    for (size_t i = 0; i < t.data.size(); ++i) {
+    for (uint8_t& texel : t.data) {
         x ^= x << 13;
         x ^= x >> 17;
         x ^= x << 5;
-        t.data[i] = static_cast<uint8_t>(96 + (x >> 24) % 64);  // mid-range noise
+        texel = static_cast<uint8_t>(96 + (x >> 24) % 64);  // mid-range noise
     }
     return t;
 }
@@ -240,6 +249,7 @@ double median(std::vector<double> v) {
 
 struct Row {
     std::string config;
+    std::string shading;  // the path that ran: raster or compute
     uint32_t size;
     std::string pass;
     double median_ms, min_ms;
@@ -295,6 +305,7 @@ int main(int argc, char** argv) {
                 scene.fill_only = c.fill_only;
                 scene.msaa = c.msaa;
                 scene.fast_textures = c.fast_textures;
+                scene.shading = args.shading;
                 for (int i = 0; i < c.point_lights; ++i) {
                     Light l;
                     l.type = LightType::point;
@@ -311,6 +322,10 @@ int main(int argc, char** argv) {
                 auto t0 = Clock::now();
                 Renderer renderer(context, scene);
                 const double scene_wall = ms_since(t0);
+                const char* path = renderer.shading() == Shading::compute ? "compute" : "raster";
+                std::printf("%-11s %6u  shading: %s\n", c.name.c_str(), size, path);
+                for (const std::string& n : renderer.take_notes())
+                    std::printf("%-11s %6u  note: %s\n", c.name.c_str(), size, n.c_str());
                 Material m = c.textures ? textured : constant;
                 if (c.textures && c.normal_map) m.normal.texture = 2;
                 t0 = Clock::now();
@@ -318,7 +333,7 @@ int main(int argc, char** argv) {
                 const GpuMaterial gm = renderer.upload(m);
                 const double upload_wall = ms_since(t0), upload_cpu = process_cpu_ms() - cpu0;
                 auto emit = [&](const std::string& pass, const std::vector<double>& ms) {
-                    const Row r{c.name,        size, pass, median(ms), *std::min_element(ms.begin(), ms.end()),
+                    const Row r{c.name,        path, size, pass, median(ms), *std::min_element(ms.begin(), ms.end()),
                                 int(ms.size())};
                     std::printf("%-11s %6u  %-28s %10.3f %10.3f\n", r.config.c_str(), r.size, r.pass.c_str(),
                                 r.median_ms, r.min_ms);
@@ -367,9 +382,9 @@ int main(int argc, char** argv) {
                     }
                     times["frame (sum)"].push_back(total);
                 }
-                order.push_back("frame (sum)");
-                order.push_back("frame wall (host)");
-                order.push_back("frame cpu (process)");
+                order.emplace_back("frame (sum)");
+                order.emplace_back("frame wall (host)");
+                order.emplace_back("frame cpu (process)");
                 for (const std::string& p : order) emit(p, times[p]);
                 if (args.library && c.textures) {
                     // Four texture sets in turn (each prepared anew, as distinct files would be).
@@ -417,10 +432,10 @@ int main(int argc, char** argv) {
                 std::fprintf(stderr, "render_bench: cannot write %s\n", args.csv.c_str());
                 return 1;
             }
-            csv << "device,config,size,pass,median_ms,min_ms,samples\n";
+            csv << "device,config,shading,size,pass,median_ms,min_ms,samples\n";
             for (const Row& r : rows)
-                csv << '"' << info.name << "\"," << r.config << ',' << r.size << ",\"" << r.pass << "\"," << r.median_ms
-                    << ',' << r.min_ms << ',' << r.samples << '\n';
+                csv << '"' << info.name << "\"," << r.config << ',' << r.shading << ',' << r.size << ",\"" << r.pass
+                    << "\"," << r.median_ms << ',' << r.min_ms << ',' << r.samples << '\n';
         }
         return 0;
     } catch (const NoDeviceError& e) {

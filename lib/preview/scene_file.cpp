@@ -105,7 +105,7 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
                {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf", "uv",
                 "ground"});
     if (const json* img = find(j, "image")) {
-        check_keys(*img, name + ": image", {"width", "height", "supersample", "msaa"});
+        check_keys(*img, name + ": image", {"width", "height", "supersample", "msaa", "shading"});
         if (const json* v = find(*img, "supersample")) {
             const auto n = json_int(*v, 1, 4);
             if (!n) fail(name + ": image.supersample", "must be an integer 1..4, got " + v->dump());
@@ -115,6 +115,11 @@ SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base,
             const auto n = json_int(*v, 1, 8);
             if (!n || (*n & (*n - 1)) != 0) fail(name + ": image.msaa", "must be 1, 2, 4 or 8, got " + v->dump());
             sc.msaa = static_cast<uint32_t>(*n);
+        }
+        if (const json* v = find(*img, "shading")) {
+            const auto sh = v->is_string() ? render::parse_shading(v->get<std::string>()) : std::nullopt;
+            if (!sh) fail(name + ": image.shading", "must be \"auto\", \"raster\" or \"compute\", got " + v->dump());
+            sc.shading = *sh;
         }
         if (const json* w = find(*img, "width")) sc.width = dimension(*w, name + ": image.width");
         if (const json* h = find(*img, "height")) sc.height = dimension(*h, name + ": image.height");

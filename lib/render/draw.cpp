@@ -72,95 +72,115 @@ void Renderer::Impl::create_frame_resources() {
     d.fn.vkUpdateDescriptorSets(d.device, 2, w, 0, nullptr);
 }
 
-Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output) {
-    Impl& r = *impl_;
-    const Device& d = r.d;
-    const GpuMaterial::Impl& m = material.impl();
-    if (m.owner != impl_.get()) throw Error("material '" + m.name + "' was uploaded by another renderer");
-    const uint32_t w = r.scene.width, h = r.scene.height;
-    const uint32_t tw = w * r.scene.supersample, th = h * r.scene.supersample;  // the shaded samples
-    r.write_frame(m.constants);
-    r.frame_times.clear();
-
-    Submission s(d, r.command_pool, r.queries, kQueryCount);
-    VkCommandBuffer cmd = s.cmd();
+void Renderer::Impl::record_raster(VkCommandBuffer cmd, const GpuMaterial::Impl& m) const {
+    const uint32_t tw = scene.width * scene.supersample, th = scene.height * scene.supersample;  // the shaded samples
     // The previous frame read the target (encode or copy); this one overwrites it.
-    image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+    image_barrier(d, cmd, target.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0,
                   VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 
     // The multisampled target likewise: the previous frame's writes and resolve are done.
-    const bool msaa = r.samples != VK_SAMPLE_COUNT_1_BIT;
+    const bool msaa = samples != VK_SAMPLE_COUNT_1_BIT;
     if (msaa)
-        image_barrier(d, cmd, r.msaa_target.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        image_barrier(d, cmd, msaa_target.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                       VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 
     // Depth is cleared every frame: the previous frame's depth tests are done before the clear.
-    if (r.uses_depth())
-        image_barrier(d, cmd, r.depth.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+    if (uses_depth())
+        image_barrier(d, cmd, depth.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0,
                       VK_REMAINING_MIP_LEVELS, VK_IMAGE_ASPECT_DEPTH_BIT);
 
-    s.begin_pass("shade");
     auto att = vk_struct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-    att.imageView = r.target.view;
+    att.imageView = target.view;
     att.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    att.clearValue.color = {{r.scene.background[0], r.scene.background[1], r.scene.background[2], 1.f}};
+    att.clearValue.color = {{scene.background[0], scene.background[1], scene.background[2], 1.f}};
     if (msaa) {
         // Shaded into the samples, averaged into the target as the pass ends (for a float
         // format the resolve is the average: VK_RESOLVE_MODE_AVERAGE_BIT).
-        att.imageView = r.msaa_target.view;
+        att.imageView = msaa_target.view;
         att.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         att.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
-        att.resolveImageView = r.target.view;
+        att.resolveImageView = target.view;
         att.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     }
-    auto depth = vk_struct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-    depth.imageView = r.depth.view;
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {1.f, 0};
+    auto depth_att = vk_struct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    depth_att.imageView = depth.view;
+    depth_att.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth_att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth_att.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth_att.clearValue.depthStencil = {1.f, 0};
     auto ri = vk_struct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
     ri.renderArea = {{0, 0}, {tw, th}};
     ri.layerCount = 1;
     ri.colorAttachmentCount = 1;
     ri.pColorAttachments = &att;
-    if (r.uses_depth()) ri.pDepthAttachment = &depth;
+    if (uses_depth()) ri.pDepthAttachment = &depth_att;
     d.fn.vkCmdBeginRendering(cmd, &ri);
     d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.pipeline);
     const VkViewport viewport{0.f, 0.f, static_cast<float>(tw), static_cast<float>(th), 0.f, 1.f};
     const VkRect2D scissor{{0, 0}, {tw, th}};
     d.fn.vkCmdSetViewport(cmd, 0, 1, &viewport);
     d.fn.vkCmdSetScissor(cmd, 0, 1, &scissor);
-    const VkDescriptorSet sets[] = {r.frame_set, m.set};  // gpu::kSetFrame, gpu::kSetMaterial
-    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.shade_layout, 0, 2, sets, 0, nullptr);
+    const VkDescriptorSet sets[] = {frame_set, m.set};  // gpu::kSetFrame, gpu::kSetMaterial
+    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shade_layout, 0, 2, sets, 0, nullptr);
     const VkDeviceSize zero = 0;
-    const VkBuffer vb = r.vertices.buffer;
+    const VkBuffer vb = vertices.buffer;
     d.fn.vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
-    d.fn.vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-    d.fn.vkCmdDrawIndexed(cmd, r.index_count, 1, 0, 0, 0);
+    d.fn.vkCmdBindIndexBuffer(cmd, indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    d.fn.vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
     if (m.ground_pipeline) {  // Scene::ground: the floor under the shape, its own variant
         d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.ground_pipeline);
-        const VkBuffer gvb = r.ground_vertices.buffer;
+        const VkBuffer gvb = ground_vertices.buffer;
         d.fn.vkCmdBindVertexBuffers(cmd, 0, 1, &gvb, &zero);
-        d.fn.vkCmdBindIndexBuffer(cmd, r.ground_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+        d.fn.vkCmdBindIndexBuffer(cmd, ground_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
         d.fn.vkCmdDrawIndexed(cmd, 6, 1, 0, 0, 0);
     }
     d.fn.vkCmdEndRendering(cmd);
+
+    image_barrier(d, cmd, target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+void Renderer::Impl::record_compute(VkCommandBuffer cmd, const GpuMaterial::Impl& m) const {
+    const uint32_t tw = scene.width * scene.supersample, th = scene.height * scene.supersample;
+    // The previous frame read the target (encode or copy); this one overwrites every pixel.
+    image_barrier(d, cmd, target.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, 0,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.pipeline);
+    const VkDescriptorSet sets[] = {frame_set, m.set, encode_set};  // kSetFrame, kSetMaterial, kSetShadeTarget
+    d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute_layout, 0, 3, sets, 0, nullptr);
+    d.fn.vkCmdDispatch(cmd, tile_groups(tw), tile_groups(th), 1);
+    memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output) {
+    Impl& r = *impl_;
+    const Device& d = r.d;
+    const GpuMaterial::Impl& m = material.impl();
+    if (m.owner != impl_.get()) throw Error("material '" + m.name + "' was uploaded by another renderer");
+    const uint32_t w = r.scene.width, h = r.scene.height;
+    r.write_frame(m.constants);
+    r.frame_times.clear();
+
+    Submission s(d, r.command_pool, r.queries, kQueryCount);
+    VkCommandBuffer cmd = s.cmd();
+    s.begin_pass("shade");  // one name on both paths: bench tables and the auto choice compare it
+    if (r.compute) r.record_compute(cmd, m);
+    else r.record_raster(cmd, m);
     s.end_pass();
 
     // One compute pass for both outputs: the N×N samples of each pixel averaged in linear
     // radiance, then either encoded to 8 bits (exposure, tone mapping, transfer) or kept as floats.
-    image_barrier(d, cmd, r.target.image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     const bool floats = output.format != PixelFormat::rgba8;
     s.begin_pass(floats ? "resolve" : "encode");
     d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.encode_pipeline);

@@ -125,6 +125,12 @@ void Renderer::Impl::write_frame(const Material& m) {
     f.ground[2] = scene.ground.roughness;
     f.ground[3] = static_cast<float>(std::tan(double{scene.ground.light_deg} * std::numbers::pi / 180.0));
     f.occluder[3] = shape_radius;  // centred at the origin, where every shape sits
+    // Column-major for GLSL; the identity but for the cube (the sphere and plane are not turned).
+    const Rotation rot = scene.shape.type == ShapeType::cube ? cube_rotation()
+                                                             : Rotation{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    for (size_t c = 0; c < 3; ++c)
+        for (size_t r = 0; r < 3; ++r) f.shape_rotation[c * 4 + r] = static_cast<float>(rot[r][c]);
+    f.shape_rotation[15] = 1.f;
     f.uv[0] = m.uv_scale[0];
     f.uv[1] = m.uv_scale[1];
     f.uv[2] = m.uv_offset[0];

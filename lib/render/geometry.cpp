@@ -88,6 +88,17 @@ void rotate(float (&p)[3], const double (&r)[3][3]) {
 
 }  // namespace
 
+Rotation cube_rotation() {
+    // R = Rx(25°) · Ry(−35°): the +X and +Y faces turn toward a camera on +Z.
+    const double a = -35.0 * std::numbers::pi / 180.0, b = 25.0 * std::numbers::pi / 180.0;
+    const double ry[3][3] = {{std::cos(a), 0, std::sin(a)}, {0, 1, 0}, {-std::sin(a), 0, std::cos(a)}};
+    const double rx[3][3] = {{1, 0, 0}, {0, std::cos(b), -std::sin(b)}, {0, std::sin(b), std::cos(b)}};
+    Rotation r{};
+    for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j) r[i][j] = rx[i][0] * ry[0][j] + rx[i][1] * ry[1][j] + rx[i][2] * ry[2][j];
+    return r;
+}
+
 Mesh make_plane(float side) {
     Mesh m;
     add_face(m, {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, side * 0.5f, 0.f);  // through the origin
@@ -101,13 +112,10 @@ Mesh make_cube(float edge) {
         {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
     };
     for (const Face& f : faces) add_face(m, f, edge * 0.5f, edge * 0.5f);
-    // R = Rx(25°) · Ry(−35°): the +X and +Y faces turn toward a camera on +Z.
-    const double a = -35.0 * std::numbers::pi / 180.0, b = 25.0 * std::numbers::pi / 180.0;
-    const double ry[3][3] = {{std::cos(a), 0, std::sin(a)}, {0, 1, 0}, {-std::sin(a), 0, std::cos(a)}};
-    const double rx[3][3] = {{1, 0, 0}, {0, std::cos(b), -std::sin(b)}, {0, std::sin(b), std::cos(b)}};
+    const Rotation rot = cube_rotation();
     double r[3][3];
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) r[i][j] = rx[i][0] * ry[0][j] + rx[i][1] * ry[1][j] + rx[i][2] * ry[2][j];
+        for (int j = 0; j < 3; ++j) r[i][j] = rot[size_t(i)][size_t(j)];
     for (Vertex& v : m.vertices) {
         rotate(v.position, r);
         rotate(v.normal, r);

@@ -55,7 +55,8 @@ constexpr VkSpecializationMapEntry kLutEntries[] = {
 static_assert(spec_entries_distinct(kLutEntries));
 
 constexpr auto kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-constexpr auto kFragment = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+// The maps are read by the shading pass: shade.frag, or shade.comp on the compute path.
+constexpr auto kFragment = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
 constexpr auto kWrite = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
 constexpr auto kSampled = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
 

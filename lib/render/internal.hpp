@@ -1,5 +1,6 @@
 // Internal pieces of the renderer core shared between its source files.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -31,6 +32,9 @@ struct Mesh {
 Mesh make_sphere(float radius, uint32_t width_segments = 128, uint32_t height_segments = 64);
 // A cube of the given edge, turned (35° about Y, then 25° about X) so that three faces show.
 Mesh make_cube(float edge);
+// That turn, object to world (rows), also given to shade.comp, which intersects the cube.
+using Rotation = std::array<std::array<double, 3>, 3>;
+Rotation cube_rotation();
 // A square of the given side in the XY plane, facing +Z.
 Mesh make_plane(float side);
 // A torus around +Y in the XZ plane: u along the ring, v around the tube.

@@ -21,6 +21,9 @@ constexpr uint32_t kShadeVert[] =
 constexpr uint32_t kShadeFrag[] =
 #include "shaders/shade.frag.inc"
     ;
+constexpr uint32_t kShadeComp[] =
+#include "shaders/shade.comp.inc"
+    ;
 constexpr uint32_t kEncodeComp[] =
 #include "shaders/encode.comp.inc"
     ;
@@ -53,10 +56,17 @@ constexpr VkSpecializationMapEntry kShadeEntries[] = {
     spec_entry(gpu::kSpecGround, offsetof(ShadeSpecialization, ground)),
     spec_entry(gpu::kSpecFillOnly, offsetof(ShadeSpecialization, fill_only)),
     spec_entry(gpu::kSpecMsaa, offsetof(ShadeSpecialization, msaa)),
+    spec_entry(gpu::kSpecShape, offsetof(ShadeSpecialization, shape)),
+    spec_entry(gpu::kSpecSamples, offsetof(ShadeSpecialization, samples)),
 };
 static_assert(spec_entries_distinct(kShadeEntries), "an id or field mapped twice");
 
 uint32_t flag(bool b) { return b ? 1u : 0u; }
+
+static_assert(static_cast<int>(ShapeType::sphere) == gpu::kShapeSphere &&
+                  static_cast<int>(ShapeType::cube) == gpu::kShapeCube &&
+                  static_cast<int>(ShapeType::plane) == gpu::kShapePlane,
+              "ShadeSpecialization::shape carries render::ShapeType as it is");
 
 const char* role_text(int texture) { return texture >= 0 ? "tex" : "const"; }
 
@@ -112,7 +122,8 @@ VkDescriptorSet Renderer::Impl::allocate_set(VkDescriptorPool pool, VkDescriptor
 }
 
 void Renderer::Impl::create_layouts() {
-    constexpr auto kFrag = VK_SHADER_STAGE_FRAGMENT_BIT;
+    // Read by the fragment shader, or by shade.comp on the compute path.
+    constexpr auto kFrag = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
     constexpr auto kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
     auto binding = [](int b, VkDescriptorType type, uint32_t count, VkShaderStageFlags stages) {
         return VkDescriptorSetLayoutBinding{static_cast<uint32_t>(b), type, count, stages, nullptr};
@@ -134,6 +145,8 @@ void Renderer::Impl::create_layouts() {
     static_assert(gpu::kSetFrame == 0 && gpu::kSetMaterial == 1, "the order of shade_layout's sets");
     shade_layout = make_pipeline_layout({frame_layout, material_layout}, 0, 0);
     encode_layout = make_pipeline_layout({encode_set_layout}, sizeof(gpu::EncodeParams), kCompute);
+    static_assert(gpu::kSetShadeTarget == 2, "the order of compute_layout's sets");
+    compute_layout = make_pipeline_layout({frame_layout, material_layout, encode_set_layout}, 0, 0);
     encode_pipeline = make_compute_pipeline(kEncodeComp, sizeof(kEncodeComp), encode_layout, nullptr);
     vert = create_shader(d, kShadeVert, sizeof(kShadeVert));
     frag = create_shader(d, kShadeFrag, sizeof(kShadeFrag));
@@ -170,6 +183,8 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     c.normal_z_from_xy = flag(m.normal.texture >= 0 && m.normal.z_from_xy);
     c.fill_only = flag(scene.fill_only);
     c.msaa = flag(samples != VK_SAMPLE_COUNT_1_BIT);
+    c.shape = static_cast<int32_t>(scene.shape.type);
+    c.samples = compute ? static_cast<int32_t>(scene.msaa) : 1;  // raster: coverage samples instead
     auto scalar = [](const ScalarRole& r, int32_t& tex, int32_t& channel, uint32_t& invert) {
         tex = r.texture;
         channel = static_cast<int32_t>(r.channel);
@@ -193,6 +208,7 @@ ShadeSpecialization Renderer::Impl::ground_specialization(const ShadeSpecializat
     g.has_env = c.has_env;
     g.ground = 1;
     g.msaa = c.msaa;
+    g.shape = c.shape;
     return g;  // every *_tex −1: nothing sampled; no analytic sphere
 }
 
@@ -211,13 +227,21 @@ std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
     if (c.occlusion_tex >= 0) os << " occlusion:tex";
     if (scene.ground.enabled) os << " ground";
     if (c.msaa) os << " msaa" << static_cast<uint32_t>(samples);
+    if (compute) os << " compute" << (c.samples > 1 ? " samples" + std::to_string(c.samples) : "");
     return os.str();
 }
 
 VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) {
     auto it = shade_pipelines.find(constants);
     if (it != shade_pipelines.end()) return it->second;
+    if (!compute) return shade_pipelines.emplace(constants, graphics_pipeline(constants)).first->second;
+    const VkSpecializationInfo spec = spec_info(kShadeEntries, constants);
+    return shade_pipelines
+        .emplace(constants, make_compute_pipeline(kShadeComp, sizeof(kShadeComp), compute_layout, &spec))
+        .first->second;
+}
 
+Unique<VkPipeline> Renderer::Impl::graphics_pipeline(const ShadeSpecialization& constants) const {
     const VkSpecializationInfo spec = spec_info(kShadeEntries, constants);
 
     VkPipelineShaderStageCreateInfo stages[2]{};
@@ -298,7 +322,7 @@ VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) 
     ci.layout = shade_layout;
     VkPipeline h = VK_NULL_HANDLE;
     VK_CHECK(d.fn.vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &h));
-    return shade_pipelines.emplace(constants, Unique<VkPipeline>(d, h)).first->second;
+    return Unique<VkPipeline>(d, h);
 }
 
 }  // namespace mf::render

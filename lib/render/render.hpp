@@ -154,6 +154,25 @@ std::optional<Brdf> parse_brdf(std::string_view s);  // "standard" | "accurate" 
 
 inline constexpr size_t kMaxLights = gpu::kMaxLights;
 
+// Where the shape's pixels are shaded (both write the same linear radiance target, encoded by the
+// same pass; both share the shading code, shaders/shading.glsl, and pass the same CPU-reference
+// tests):
+enum class Shading {
+    // Measured once per Context: a 512×512 constant-material frame timed on both paths (the
+    // shade pass's timestamps), compute chosen when it is at least 1.5× faster (datacenter GPUs
+    // with few raster units); the decision and both times are said once in take_notes(). Raster
+    // without a measurement where compute does not cover the scene (below).
+    automatic,
+    // The mesh rasterized (shade.vert, shade.frag): every shape, the ground plane, MSAA coverage.
+    raster,
+    // One compute dispatch (shade.comp): each pixel's rays (each supersample's, and with
+    // Scene::msaa each of its samples at the standard positions, averaged) intersected with the
+    // analytic sphere, cube or plane. The shaderball (a mesh) and the ground plane (its shadow)
+    // are not covered: those scenes are shaded on the raster path, said in take_notes().
+    compute,
+};
+std::optional<Shading> parse_shading(std::string_view s);  // "auto" | "raster" | "compute"
+
 struct Scene {
     uint32_t width = 512, height = 512;
     // Anti-aliasing: N×N samples per pixel at the sub-pixel centres ((i + 0.5) / N), shaded as a
@@ -168,7 +187,11 @@ struct Scene {
     // the pixel. The analytic sphere is hit along the ray
     // through the centroid of the covered samples. Where the device lacks the count for the
     // RGBA32F target (or the depth buffer), N×N supersampling with N² ≥ msaa is used instead
-    // (said in take_notes()).
+    // (said in take_notes()). On the compute path (Shading::compute) the pixel is instead shaded
+    // at each of the `msaa` standard sample positions (2: the diagonal pair, 4: the rotated grid,
+    // 8: Vulkan's standard eight) and the samples averaged in linear radiance before the write:
+    // silhouettes alike, and texture and specular detail inside them supersampled too, at
+    // `msaa` times the shading.
     uint32_t msaa = 1;
     // The fast texture path (look-dev previews of a library): an 8-bit texture's level 0 is
     // converted on the host by a table of its 256 codes and the rest of its mip chain is made on
@@ -201,6 +224,9 @@ struct Scene {
         float light_deg = 4.f;  // key light's angular radius: the penumbra's width
     } ground;
     Brdf brdf = Brdf::standard;
+    // Raster by default: the same path, hence the same image, on every device (reference
+    // tests, scene files); the preview CLI asks for automatic.
+    Shading shading = Shading::raster;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -368,6 +394,8 @@ public:
     bool samples(uint32_t block_format) const;
 
     const Scene& scene() const;
+    // The path this renderer shades on: raster or compute, Scene::shading resolved.
+    Shading shading() const;
     const std::vector<PassTime>& load_times() const;   // upload and load-time passes, in order
     const std::vector<PassTime>& frame_times() const;  // passes of the last render()
     // Notes on what was changed to fit the device (a texture or environment larger than its

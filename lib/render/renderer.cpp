@@ -2,7 +2,11 @@
 // pass into a linear fp32 target, one encoding pass, readback (see renderer_impl.hpp for which
 // file does what).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <memory>
+#include <vector>
 
 #include <utility>
 
@@ -24,6 +28,13 @@ static_assert(static_cast<int>(Tonemap::none) == gpu::kTonemapNone &&
                   static_cast<int>(Tonemap::neutral) == gpu::kTonemapNeutral &&
                   static_cast<int>(Tonemap::aces) == gpu::kTonemapAces,
               "EncodeParams::tonemap carries render::Tonemap as it is");
+
+std::optional<Shading> parse_shading(std::string_view s) {
+    if (s == "auto") return Shading::automatic;
+    if (s == "raster") return Shading::raster;
+    if (s == "compute") return Shading::compute;
+    return std::nullopt;
+}
 
 std::optional<Tonemap> parse_tonemap(std::string_view s) {
     if (s == "none") return Tonemap::none;
@@ -113,6 +124,7 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
         queries = Unique<VkQueryPool>(d, q);
     }
 
+    choose_shading(context);
     choose_samples();
     create_samplers();
     create_layouts();           // pipelines.cpp
@@ -127,8 +139,83 @@ Renderer::Impl::~Impl() {
     if (d.device) d.fn.vkDeviceWaitIdle(d.device);
 }
 
+namespace {
+
+// Compute shading is chosen when its shade pass is at least this much faster than raster's: a
+// margin for the measurement's noise, favouring the path that covers every scene.
+constexpr double kComputeMargin = 1.5;
+constexpr uint32_t kMeasureSize = 512;  // the measured frame: a constant sphere, this many pixels a side
+
+constexpr int kWarmupFrames = 2, kTimedFrames = 5;
+
+// The shade pass of a constant-material sphere on each path (raster, compute): the least of
+// kTimedFrames after kWarmupFrames (pipelines, caches, a CPU device's threads), the two paths'
+// frames interleaved so that a load that comes and goes on the device weighs on both alike.
+// 0 where the device gave no time.
+std::array<double, 2> shade_ms(Context& context) {
+    Scene s;
+    s.width = s.height = kMeasureSize;
+    std::vector<std::unique_ptr<Renderer>> renderers;
+    std::vector<GpuMaterial> materials;
+    for (const Shading path : {Shading::raster, Shading::compute}) {
+        s.shading = path;
+        renderers.push_back(std::make_unique<Renderer>(context, s));
+        materials.push_back(renderers.back()->upload(Material{}));
+    }
+    std::array<double, 2> best{0.0, 0.0};
+    for (int frame = 0; frame < kWarmupFrames + kTimedFrames; ++frame)
+        for (size_t i = 0; i < 2; ++i) {
+            renderers[i]->render(materials[i]);
+            for (const PassTime& t : renderers[i]->frame_times())
+                if (t.name == "shade" && frame >= kWarmupFrames && (best[i] == 0.0 || t.ms < best[i])) best[i] = t.ms;
+        }
+    return best;
+}
+
+std::string fixed(double v, int digits) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+
+}  // namespace
+
+void Renderer::Impl::choose_shading(Context& context) {
+    if (scene.shading == Shading::raster) return;
+    if (!compute_covers()) {
+        // The shaderball is a mesh and the ground's shadow is drawn with depth: raster alone.
+        if (scene.shading == Shading::compute)
+            notes.push_back(std::string("compute shading covers the sphere, cube and plane, not ") +
+                            (scene.ground.enabled ? "the ground plane" : "the shaderball") +
+                            ": shaded on the raster path");
+        return;
+    }
+    if (scene.shading == Shading::compute) {
+        compute = true;
+        return;
+    }
+    Device::ShadingChoice& c = d.shading_choice;
+    if (!c.measured) {
+        if (!d.info.timestamps) {
+            c.measured = true;
+            notes.push_back("shading auto: raster (" + d.info.name + " has no timestamp queries to measure with)");
+            return;
+        }
+        const std::array<double, 2> ms = shade_ms(context);  // a failure throws: measured again next time
+        c.measured = true;
+        c.raster_ms = ms[0];
+        c.compute_ms = ms[1];
+        c.compute = c.compute_ms > 0.0 && c.raster_ms >= kComputeMargin * c.compute_ms;
+        notes.push_back("shading auto: " + std::string(c.compute ? "compute" : "raster") + " on " + d.info.name +
+                        " (shade pass of a " + std::to_string(kMeasureSize) + "x" + std::to_string(kMeasureSize) +
+                        " constant sphere: raster " + fixed(c.raster_ms, 3) + " ms, compute " + fixed(c.compute_ms, 3) +
+                        " ms; compute when at least " + fixed(kComputeMargin, 1) + "x faster)");
+    }
+    compute = c.compute;
+}
+
 void Renderer::Impl::choose_samples() {
-    if (scene.msaa <= 1) return;
+    if (scene.msaa <= 1 || compute) return;  // compute: shaded at the sample positions (shade.comp)
     const auto want = static_cast<VkSampleCountFlagBits>(scene.msaa);
     const VkPhysicalDeviceLimits& l = d.properties.limits;
     bool ok = (l.framebufferColorSampleCounts & want) &&
@@ -179,6 +266,7 @@ void Renderer::Impl::create_samplers() {
 Renderer::Renderer(Context& context, const Scene& scene) : impl_(std::make_unique<Impl>(context, scene)) {}
 Renderer::~Renderer() = default;
 const Scene& Renderer::scene() const { return impl_->scene; }
+Shading Renderer::shading() const { return impl_->compute ? Shading::compute : Shading::raster; }
 const std::vector<PassTime>& Renderer::load_times() const { return impl_->load_times; }
 const std::vector<PassTime>& Renderer::frame_times() const { return impl_->frame_times; }
 std::vector<std::string> Renderer::take_notes() { return std::exchange(impl_->notes, {}); }

@@ -5,7 +5,8 @@
 //                  by name), the encode pipeline
 //   upload.cpp     buffers, the mesh, textures with their mips, placeholders; Renderer::upload
 //   frame.cpp      per-frame uniforms (camera, material constants, lights), frame descriptors
-//   draw.cpp       render targets; Renderer::render: shade, encode or copy, readback
+//   draw.cpp       render targets; Renderer::render: shade (raster pass or shade.comp), encode or
+//                  copy, readback
 //   ibl.cpp        load-time passes: BRDF table, environment cube and its prefiltered maps
 #pragma once
 #include <map>
@@ -47,6 +48,10 @@ struct Renderer::Impl {
     detail::Unique<VkSampler> sampler_repeat, sampler_clamp;
     detail::Unique<VkDescriptorSetLayout> frame_layout, material_layout, encode_set_layout;
     detail::Unique<VkPipelineLayout> shade_layout, encode_layout;
+    // Scene::shading resolved: shade.comp (compute_layout: the shade sets and encode's, whose
+    // storage image is the target) instead of shade.vert + shade.frag.
+    bool compute = false;
+    detail::Unique<VkPipelineLayout> compute_layout;
     detail::Unique<VkShaderModule> vert, frag;
     detail::Unique<VkPipeline> encode_pipeline;
     // Shading pipelines by specialization constants: materials of one variant share one.
@@ -78,6 +83,9 @@ struct Renderer::Impl {
     Impl& operator=(const Impl&) = delete;
 
     // renderer.cpp
+    // Scene::shading to a path: compute where it covers the scene, automatic by measurement.
+    void choose_shading(Context& context);
+    bool compute_covers() const { return scene.shape.type != ShapeType::shaderball && !scene.ground.enabled; }
     void choose_samples();  // Scene::msaa, or the supersampling that stands in for it
     detail::Unique<VkSampler> make_sampler(VkSamplerAddressMode mode, bool anisotropic) const;
     void create_samplers();
@@ -99,6 +107,7 @@ struct Renderer::Impl {
     static gpu::ShadeSpecialization ground_specialization(const gpu::ShadeSpecialization& c);
     std::string describe(const gpu::ShadeSpecialization& c) const;
     VkPipeline shade_pipeline(const gpu::ShadeSpecialization& c);
+    detail::Unique<VkPipeline> graphics_pipeline(const gpu::ShadeSpecialization& c) const;
 
     // upload.cpp
     detail::Buffer upload_buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage);
@@ -115,6 +124,10 @@ struct Renderer::Impl {
     // draw.cpp
     void create_targets();  // the frame's resources, an error naming the frame when they do not fit
     void create_frame_resources();
+    // Records the shade pass of `m` into the target (raster or compute), the target left for
+    // encode.comp to read (GENERAL).
+    void record_raster(VkCommandBuffer cmd, const GpuMaterial::Impl& m) const;
+    void record_compute(VkCommandBuffer cmd, const GpuMaterial::Impl& m) const;
 
     // ibl.cpp: the BRDF table and environment maps, only when the scene calls for them.
     void build_environment();

@@ -156,6 +156,13 @@ struct Device {
     bool shader_float16 = false;      // VkPhysicalDeviceVulkan12Features::shaderFloat16 enabled
     bool precise_textures = false;    // ContextOptions::precise_cpu_textures, on a CPU device
     VkDeviceSize max_allocation = 0;  // maxMemoryAllocationSize (Vulkan 1.1): the largest single allocation
+    // Scene::shading automatic: measured by the first renderer that needs it, then kept for every
+    // later one of this context (renderers of one context are made on one thread, as they submit
+    // to its one queue).
+    struct ShadingChoice {
+        bool measured = false, compute = false;
+        double raster_ms = 0.0, compute_ms = 0.0;
+    } shading_choice;
 
     // A memory type index with all of `flags` among `type_bits`; throws when there is none.
     uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "cli_util.hpp"
 
@@ -21,14 +22,14 @@ TEST(PreviewCli, EveryPresetPreviewsTheSameImage) {
         auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out) + " --preset " + p);
         ASSERT_EQ(r.code, 0) << p << ": " << r.output;
         r = run("preview " + q(out / "manifest.json") + " -o " + q(out / "preview") +
-                " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12");
+                " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12 --shading raster");
         ASSERT_EQ(r.code, 0) << p << ": " << r.output;
         images[p] = read_pixels(out / "preview" / "Metal_Damaged_001.png");
     }
     const mf::Image& ref = images["gltf"];
     ASSERT_EQ(ref.width, 96);
     int lit = 0;
-    for (size_t i = 0; i < ref.pixels.size(); ++i) lit += code8(ref.pixels[i]) > 8;
+    for (const float pixel : ref.pixels) lit += code8(pixel) > 8;
     EXPECT_GT(lit, 2000) << "the sphere is lit";
     for (const auto& p : presets) {
         const mf::Image& img = images[p];
@@ -49,7 +50,9 @@ TEST(PreviewCli, EveryPresetPreviewsTheSameImage) {
 // 2.00 / 17).
 TEST(PreviewCli, GpuPresetsPreviewLikeThePngIngest) {
     const fs::path work = temp_dir("gpu");
-    const std::string args = " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12";
+    // The path pinned: the look-dev default (`auto`) could pick either from one run to the next.
+    const std::string args =
+        " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12 --shading raster";
     auto render = [&](const std::string& preset) {
         const fs::path out = work / preset;
         auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out) + " --preset " + preset);
@@ -120,7 +123,8 @@ TEST(PreviewCli, DefaultIsLookDevAndReferenceIsExact) {
 TEST(PreviewCli, ShapeOrbitAndTiling) {
     const fs::path work = temp_dir("controls");
     ASSERT_EQ(run("ingest " + q(samples() / "Net004A_1K-JPG") + " -o " + q(work / "out")).code, 0);
-    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 48 --device cpu -o ";
+    const std::string base = "preview " + q(work / "out/manifest.json") +
+                             " --size 48 --device cpu --shading raster -o ";
     auto image = [&](const std::string& name, const std::string& args) {
         const auto r = run(base + q(work / name) + " " + args);
         EXPECT_EQ(r.code, 0) << args << ": " << r.output;
@@ -146,7 +150,8 @@ TEST(PreviewCli, ShapeOrbitAndTiling) {
 TEST(PreviewCli, AntiAliasingAndTexturePath) {
     const fs::path work = temp_dir("aa");
     ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "out")).code, 0);
-    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 64 --device cpu --vk-validation -o ";
+    const std::string base = "preview " + q(work / "out/manifest.json") +
+                             " --size 64 --device cpu --vk-validation --shading raster -o ";
     auto render = [&](const std::string& name, const std::string& args) {
         const auto r = run(base + q(work / name) + " " + args);
         EXPECT_EQ(r.code, 0) << args << ": " << r.output;
@@ -203,6 +208,62 @@ TEST(PreviewCli, AntiAliasingAndTexturePath) {
                 sum += std::abs(code8(fast.at(x, y, c)) - code8(one.at(x, y, c)));
     EXPECT_LE(sum / n, 1.0) << "fast textures differ from exact ones by rounding";
     for (const std::string bad : {"--aa msaa3", "--aa 5", "--aa msaa", "--aa 0", "--textures quick"})
+        EXPECT_EQ(run(base + q(work / "bad") + " " + bad).code, 2) << bad;
+}
+
+// The shading path from the command line (tests/render's ComputeShadingTest compares the paths
+// closely): compute and raster give the same picture of a textured material inside the
+// silhouette; the shaderball falls back to raster with a note; auto says what it measured.
+TEST(PreviewCli, ShadingPath) {
+    const fs::path work = temp_dir("shading");
+    ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "out")).code, 0);
+    const std::string base = "preview " + q(work / "out/manifest.json") + " --size 64 --device cpu --vk-validation -o ";
+    auto render = [&](const std::string& name, const std::string& args) {
+        const auto r = run(base + q(work / name) + " " + args);
+        EXPECT_EQ(r.code, 0) << args << ": " << r.output;
+        return r.output;
+    };
+    const std::string ref = "--scene reference --aa 1 ";
+    EXPECT_EQ(render("raster", ref + "--shading raster").find("note:"), std::string::npos);
+    EXPECT_EQ(render("compute", ref + "--shading compute").find("note:"), std::string::npos);
+    const auto raster = read_pixels(work / "raster/Metal_Damaged_001.png");
+    const auto compute = read_pixels(work / "compute/Metal_Damaged_001.png");
+    auto lit = [](const mf::Image& img, int x, int y) {
+        return code8(img.at(x, y, 0)) + code8(img.at(x, y, 1)) + code8(img.at(x, y, 2)) > 0;
+    };
+    int inside = 0, worst = 0;
+    double sum = 0;
+    for (int y = 1; y < 63; ++y)
+        for (int x = 1; x < 63; ++x) {
+            bool all = true;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) all = all && lit(raster, x + dx, y + dy);
+            if (!all) continue;
+            ++inside;
+            for (int c = 0; c < 3; ++c) {
+                const int d = std::abs(code8(raster.at(x, y, c)) - code8(compute.at(x, y, c)));
+                worst = std::max(worst, d);
+                sum += d;
+            }
+        }
+    ASSERT_GT(inside, 1000);
+    std::printf("  compute vs raster, 64², 1K maps: max |Δcode| %d, mean %.3f over %d inside pixels\n", worst,
+                sum / (3.0 * inside), inside);
+    // 1K maps at 64²: minified 16×, where the mip level comes from each path's derivatives (the
+    // raster path's per 2×2 quad, compute's per pixel). Measured on lavapipe: mean 0.05, at most
+    // 3 codes in a few pixels.
+    EXPECT_LE(sum / (3.0 * inside), 0.25);
+    EXPECT_LE(worst, 4) << "mip selection from analytic derivatives against the raster path's";
+
+    const std::string ball = render("ball", "--shape shaderball --shading compute");
+    EXPECT_NE(ball.find("note: compute shading covers the sphere, cube and plane, not the shaderball"),
+              std::string::npos)
+        << ball;
+    const std::string automatic = render("auto", "--shading auto");
+    EXPECT_NE(automatic.find("note: shading auto: "), std::string::npos) << automatic;
+    EXPECT_EQ(automatic.find("note: shading auto: ", automatic.find("note: shading auto: ") + 1), std::string::npos)
+        << "said once";
+    for (const std::string bad : {"--shading gpu", "--shading", "--shading Compute"})
         EXPECT_EQ(run(base + q(work / "bad") + " " + bad).code, 2) << bad;
 }
 

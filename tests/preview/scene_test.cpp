@@ -136,6 +136,24 @@ TEST(SceneFile, AntiAliasingAndTexturePath) {
     }
 }
 
+// The look-dev default shades on the faster path of the device (measured); the reference and
+// scene files on raster, the same image everywhere, unless image.shading asks.
+TEST(SceneFile, ShadingPath) {
+    EXPECT_EQ(default_scene().scene.shading, render::Shading::automatic);
+    EXPECT_EQ(reference_scene().scene.shading, render::Shading::raster);
+    std::string error;
+    auto s = parse_scene(json::parse(R"({"image": {"shading": "compute"}})"), "/", "a.json", error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->scene.shading, render::Shading::compute);
+    s = parse_scene(json::parse(R"({"image": {}})"), "/", "a.json", error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->scene.shading, render::Shading::raster);
+    for (const char* bad : {R"({"image": {"shading": "gpu"}})", R"({"image": {"shading": 1}})"}) {
+        EXPECT_FALSE(parse_scene(json::parse(bad), "/", "a.json", error)) << bad;
+        EXPECT_NE(error.find("a.json: image.shading"), std::string::npos) << error;
+    }
+}
+
 TEST(Placement, OrbitKeepsTheTargetAndDistance) {
     render::Camera c;  // (0, 0, 4) looking at the origin
     std::string error;

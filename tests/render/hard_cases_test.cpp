@@ -39,10 +39,14 @@ Material plain(float roughness, float metalness) {
     return m;
 }
 
-class HardCaseTest : public VulkanTest {
+// Every case on both shading paths (the parameter: Scene::shading).
+class HardCaseTest : public VulkanTest, public ::testing::WithParamInterface<render::Shading> {
 protected:
-    render::Frame linear(const Scene& s, const Material& m) {
+    render::Frame linear(const Scene& scene, const Material& m) {
+        Scene s = scene;
+        s.shading = GetParam();
         render::Renderer r(context(), s);
+        EXPECT_EQ(r.shading(), GetParam());
         const render::GpuMaterial gm = r.upload(m);
         render::OutputOptions o;
         o.format = render::PixelFormat::rgba32f;
@@ -58,7 +62,7 @@ protected:
     }
 };
 
-TEST_F(HardCaseTest, RoughnessZeroHasAFiniteHighlightMatchingTheReference) {
+TEST_P(HardCaseTest, RoughnessZeroHasAFiniteHighlightMatchingTheReference) {
     // Mirror-like metal lit along the view axis: the highlight sits at the centre pixel, where
     // n·h = 1 and D = 1/(π α²) peaks (7.7e4 at the 0.045 floor; a 1e-6 floor on α² would give
     // 3.2e5, past fp16's 65504).
@@ -74,7 +78,7 @@ TEST_F(HardCaseTest, RoughnessZeroHasAFiniteHighlightMatchingTheReference) {
     }
 }
 
-TEST_F(HardCaseTest, LightBehindTheSurfaceGivesBlackNotNaN) {
+TEST_P(HardCaseTest, LightBehindTheSurfaceGivesBlackNotNaN) {
     // The light travels toward the camera: at the centre v = −l exactly (no half vector), and every
     // visible point has n·l ≤ 0.
     const render::Frame f = linear(one_light(directional({0.f, 0.f, 1.f})), plain(0.3f, 0.f));
@@ -84,7 +88,7 @@ TEST_F(HardCaseTest, LightBehindTheSurfaceGivesBlackNotNaN) {
             for (int c = 0; c < 3; ++c) EXPECT_EQ(at(f, x, y, c), 0.f) << x << "," << y;
 }
 
-TEST_F(HardCaseTest, ViewOppositeLightWithTiltedNormalStaysFinite) {
+TEST_P(HardCaseTest, ViewOppositeLightWithTiltedNormalStaysFinite) {
     // A normal map that turns the normal fully around makes n·l > 0 where v = −l: the half
     // vector v + l is zero there. Output must be finite and non-negative.
     Material m = plain(0.2f, 1.f);
@@ -99,7 +103,7 @@ TEST_F(HardCaseTest, ViewOppositeLightWithTiltedNormalStaysFinite) {
     for (float v : f.rgba32f) EXPECT_GE(v, 0.f);
 }
 
-TEST_F(HardCaseTest, GrazingLightMatchesReference) {
+TEST_P(HardCaseTest, GrazingLightMatchesReference) {
     // Light at 90° to the view: the terminator crosses the middle of the sphere.
     const Scene s = one_light(directional({-1.f, 0.f, 0.f}));
     for (const Material& m : {plain(0.f, 0.f), plain(0.5f, 1.f), plain(1.f, 0.f)}) {
@@ -118,7 +122,7 @@ TEST_F(HardCaseTest, GrazingLightMatchesReference) {
     }
 }
 
-TEST_F(HardCaseTest, PointLightOnTheSurfaceStaysFinite) {
+TEST_P(HardCaseTest, PointLightOnTheSurfaceStaysFinite) {
     // The light sits on the sphere where the centre ray meets it: d → 0 (a zero-length
     // vector); E = I/d² is skipped below d² = 1e-12 and huge but finite above.
     Light l;
@@ -131,7 +135,7 @@ TEST_F(HardCaseTest, PointLightOnTheSurfaceStaysFinite) {
     }
 }
 
-TEST_F(HardCaseTest, NonFiniteTexelsAreNeutralized) {
+TEST_P(HardCaseTest, NonFiniteTexelsAreNeutralized) {
     Material m = plain(0.5f, 0.f);
     render::Texture t;
     t.width = t.height = 2;
@@ -146,12 +150,16 @@ TEST_F(HardCaseTest, NonFiniteTexelsAreNeutralized) {
     EXPECT_EQ(nonfinite(f), 0u);
 }
 
-TEST_F(HardCaseTest, DegenerateSceneVectorsAreErrors) {
+TEST_P(HardCaseTest, DegenerateSceneVectorsAreErrors) {
     render::Scene s = one_light(directional({0.f, 0.f, 0.f}));
+    s.shading = GetParam();
     render::Renderer r(context(), s);
     const render::GpuMaterial gm = r.upload(plain(0.5f, 0.f));
     EXPECT_THROW(r.render(gm), render::Error);
 }
+
+INSTANTIATE_TEST_SUITE_P(BothPaths, HardCaseTest, ::testing::ValuesIn(kShadingPaths),
+                         [](const ::testing::TestParamInfo<render::Shading>& i) { return shading_name(i.param); });
 
 }  // namespace
 }  // namespace mf::test

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "reference.hpp"
 #include "vulkan_fixture.hpp"
 
 namespace mf::test {
@@ -65,24 +66,35 @@ protected:
 };
 
 TEST_F(IblTest, WhiteDielectricInAWhiteFurnaceIsWhite) {
-    // Whatever the specular lobe reflects, the diffuse lobe gets the rest: exactly 1.
-    render::Renderer r(context(), furnace(render::Brdf::standard));
-    for (float roughness : {0.f, 0.5f, 1.f}) {
-        const auto [lo, hi] = sphere_range(r, white(roughness, 0.f));
-        EXPECT_NEAR(lo, 1.f, 2e-3f) << roughness;
-        EXPECT_NEAR(hi, 1.f, 2e-3f) << roughness;
+    // Whatever the specular lobe reflects, the diffuse lobe gets the rest: exactly 1. On both
+    // shading paths.
+    for (const render::Shading path : kShadingPaths) {
+        Scene scene = furnace(render::Brdf::standard);
+        scene.shading = path;
+        render::Renderer r(context(), scene);
+        ASSERT_EQ(r.shading(), path);
+        for (float roughness : {0.f, 0.5f, 1.f}) {
+            const auto [lo, hi] = sphere_range(r, white(roughness, 0.f));
+            EXPECT_NEAR(lo, 1.f, 2e-3f) << roughness << ' ' << shading_name(path);
+            EXPECT_NEAR(hi, 1.f, 2e-3f) << roughness << ' ' << shading_name(path);
+        }
     }
 }
 
 TEST_F(IblTest, MultipleScatteringKeepsAWhiteMetalWhite) {
     // Single scattering loses up to half the energy of a rough metal; the accurate BRDF's
     // compensation (Fdez-Agüera 2019) gives it back. The standard one does lose it.
-    render::Renderer accurate(context(), furnace(render::Brdf::accurate));
     render::Renderer standard(context(), furnace(render::Brdf::standard));
-    for (float roughness : {0.2f, 0.6f, 1.f}) {
-        const auto [lo, hi] = sphere_range(accurate, white(roughness, 1.f));
-        EXPECT_NEAR(lo, 1.f, 3e-3f) << roughness;
-        EXPECT_NEAR(hi, 1.f, 3e-3f) << roughness;
+    for (const render::Shading path : kShadingPaths) {
+        Scene scene = furnace(render::Brdf::accurate);
+        scene.shading = path;
+        render::Renderer accurate(context(), scene);
+        ASSERT_EQ(accurate.shading(), path);
+        for (float roughness : {0.2f, 0.6f, 1.f}) {
+            const auto [lo, hi] = sphere_range(accurate, white(roughness, 1.f));
+            EXPECT_NEAR(lo, 1.f, 3e-3f) << roughness << ' ' << shading_name(path);
+            EXPECT_NEAR(hi, 1.f, 3e-3f) << roughness << ' ' << shading_name(path);
+        }
     }
     const auto [lo, hi] = sphere_range(standard, white(1.f, 1.f));
     EXPECT_LT(lo, 0.8f);

@@ -35,4 +35,10 @@ std::array<double, 2> specular_dfg_correlated(double NoV, double roughness);
 // The sRGB curves are mf::linear_to_srgb / mf::srgb_to_linear (color/srgb.hpp).
 int to_code(double encoded);  // round to nearest 8-bit code, clamped
 
+// Both shading paths (Scene::shading), which every reference test runs with the same bounds.
+inline constexpr render::Shading kShadingPaths[] = {render::Shading::raster, render::Shading::compute};
+inline const char* shading_name(render::Shading s) {
+    return s == render::Shading::compute ? "compute" : s == render::Shading::raster ? "raster" : "auto";
+}
+
 }  // namespace mf::test

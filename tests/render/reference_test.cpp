@@ -17,10 +17,11 @@ using render::Scene;
 
 constexpr uint32_t kSize = 128;
 
-Scene test_scene(Brdf brdf) {
+Scene test_scene(Brdf brdf, render::Shading shading) {
     Scene s;
     s.width = s.height = kSize;
     s.brdf = brdf;
+    s.shading = shading;
     s.lights.clear();
     render::Light key;  // the example scene's lights: a white key light and a blue point light
     key.direction = {0.57735027f, -0.57735027f, -0.57735027f};
@@ -96,18 +97,20 @@ class ReferenceTest : public VulkanTest {
 protected:
     Errors run(const Scene& scene, const Material& m, bool skip_minified = false) {
         render::Renderer renderer(context(), scene);
+        EXPECT_EQ(renderer.shading(), scene.shading) << "the path asked for is the one that ran";
         const render::GpuMaterial gm = renderer.upload(m);
         const render::Frame f8 = renderer.render(gm);
-        dump(f8, m.name + "_" + std::to_string(int(scene.brdf)));
+        dump(f8, m.name + "_" + std::to_string(int(scene.brdf)) + "_" + shading_name(scene.shading));
         render::OutputOptions lin;
         lin.format = render::PixelFormat::rgba32f;
         const render::Frame f32 = renderer.render(gm, lin);
         const ReferenceImage ref = render_reference(scene, m);
         const Errors e = compare(f8, f32, ref, skip_minified);
         static const char* const brdf[] = {"standard", "accurate", "unnorm-diffuse"};
-        std::printf(
-            "  %-24s %-10s max |Δcode| %d  max rel %.2e  (%zu px compared, sphere and background; %zu excepted)\n",
-            m.name.c_str(), brdf[int(scene.brdf)], e.max_code, e.max_rel, e.compared, e.excepted);
+        std::printf("  %-24s %-10s %-7s max |Δcode| %d  max rel %.2e  (%zu px compared, sphere and background; %zu "
+                    "excepted)\n",
+                    m.name.c_str(), brdf[int(scene.brdf)], shading_name(scene.shading), e.max_code, e.max_rel,
+                    e.compared, e.excepted);
         return e;
     }
 };
@@ -122,21 +125,23 @@ const Material kConstants[] = {
 };
 
 TEST_F(ReferenceTest, ConstantSpheresStandard) {
-    for (const Material& m : kConstants) {
-        const Errors e = run(test_scene(Brdf::standard), m);
-        EXPECT_LE(e.max_code, 1) << m.name;
-        EXPECT_LE(e.max_rel, 1e-3) << m.name;
-        EXPECT_GT(e.compared, 8000u);
-    }
+    for (const render::Shading path : kShadingPaths)
+        for (const Material& m : kConstants) {
+            const Errors e = run(test_scene(Brdf::standard, path), m);
+            EXPECT_LE(e.max_code, 1) << m.name << ' ' << shading_name(path);
+            EXPECT_LE(e.max_rel, 1e-3) << m.name << ' ' << shading_name(path);
+            EXPECT_GT(e.compared, 8000u);
+        }
 }
 
 // Lambert without its 1/π: the diffuse lobe π times stronger, the specular one unchanged.
 TEST_F(ReferenceTest, ConstantSpheresUnnormalizedDiffuse) {
-    for (const Material& m : {kConstants[0], kConstants[3]}) {
-        const Errors e = run(test_scene(Brdf::unnormalized_diffuse), m);
-        EXPECT_LE(e.max_code, 1) << m.name;
-        EXPECT_LE(e.max_rel, 1e-3) << m.name;
-    }
+    for (const render::Shading path : kShadingPaths)
+        for (const Material& m : {kConstants[0], kConstants[3]}) {
+            const Errors e = run(test_scene(Brdf::unnormalized_diffuse, path), m);
+            EXPECT_LE(e.max_code, 1) << m.name << ' ' << shading_name(path);
+            EXPECT_LE(e.max_rel, 1e-3) << m.name << ' ' << shading_name(path);
+        }
 }
 
 }  // namespace
@@ -149,11 +154,12 @@ namespace {
 // at load; the reference integrates E by quadrature at each pixel. Table interpolation and fp16
 // storage are the error budget here.
 TEST_F(ReferenceTest, ConstantSpheresAccurate) {
-    for (const Material& m : {kConstants[0], kConstants[1], kConstants[2], kConstants[4]}) {
-        const Errors e = run(test_scene(Brdf::accurate), m);
-        EXPECT_LE(e.max_code, 1) << m.name;
-        EXPECT_LE(e.max_rel, 1e-3) << m.name;
-    }
+    for (const render::Shading path : kShadingPaths)
+        for (const Material& m : {kConstants[0], kConstants[1], kConstants[2], kConstants[4]}) {
+            const Errors e = run(test_scene(Brdf::accurate, path), m);
+            EXPECT_LE(e.max_code, 1) << m.name << ' ' << shading_name(path);
+            EXPECT_LE(e.max_rel, 1e-3) << m.name << ' ' << shading_name(path);
+        }
 }
 
 }  // namespace
@@ -169,7 +175,7 @@ namespace {
 TEST_F(ReferenceTest, SupersampledFrameMatchesSupersampledReferenceEdgesIncluded) {
     constexpr uint32_t kN = 4;
     for (const Material& m : kConstants) {
-        Scene s = test_scene(Brdf::standard);
+        Scene s = test_scene(Brdf::standard, render::Shading::raster);
         Scene fine = s;
         fine.width *= kN;
         fine.height *= kN;
@@ -183,10 +189,12 @@ TEST_F(ReferenceTest, SupersampledFrameMatchesSupersampledReferenceEdgesIncluded
                         for (uint32_t i = 0; i < kN; ++i) sum += ref.at(x * kN + i, y * kN + j).rgb[c];
                     codes[(size_t{y} * s.width + x) * 3 + size_t(c)] = to_code(mf::linear_to_srgb(sum / (kN * kN)));
                 }
-        auto psnr = [&](uint32_t samples) {
+        auto psnr = [&](uint32_t samples, render::Shading path) {
             Scene g = s;
             g.supersample = samples;
+            g.shading = path;
             render::Renderer renderer(context(), g);
+            EXPECT_EQ(renderer.shading(), path);
             const render::Frame f = renderer.render(renderer.upload(m));
             double se = 0;
             for (size_t p = 0; p < size_t{s.width} * s.height; ++p)
@@ -197,11 +205,15 @@ TEST_F(ReferenceTest, SupersampledFrameMatchesSupersampledReferenceEdgesIncluded
             const double mse = se / (double(s.width) * s.height * 3);
             return mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
         };
-        const double aa = psnr(kN), aliased = psnr(1);
-        std::printf("  %-24s PSNR against the 4x4-supersampled reference: %.1f dB with 4x4 samples, %.1f dB with 1\n",
-                    m.name.c_str(), aa, aliased);
-        EXPECT_GE(aa, 45.0) << m.name;
-        EXPECT_LT(aliased, aa - 3.0) << m.name << ": a single sample a pixel should be visibly worse at the edges";
+        for (const render::Shading path : kShadingPaths) {
+            const double aa = psnr(kN, path), aliased = psnr(1, path);
+            std::printf(
+                "  %-24s %-7s PSNR against the 4x4-supersampled reference: %.1f dB with 4x4 samples, %.1f dB with 1\n",
+                m.name.c_str(), shading_name(path), aa, aliased);
+            EXPECT_GE(aa, 45.0) << m.name << ' ' << shading_name(path);
+            EXPECT_LT(aliased, aa - 3.0) << m.name << ' ' << shading_name(path)
+                                         << ": a single sample a pixel should be visibly worse at the edges";
+        }
     }
 }
 
@@ -217,7 +229,7 @@ namespace {
 TEST_F(ReferenceTest, MultisampledFrameMatchesSupersampledReferenceEdgesIncluded) {
     constexpr uint32_t kN = 4;
     for (const Material& m : kConstants) {
-        Scene s = test_scene(Brdf::standard);
+        Scene s = test_scene(Brdf::standard, render::Shading::raster);
         Scene fine = s;
         fine.width *= kN;
         fine.height *= kN;
@@ -241,11 +253,13 @@ TEST_F(ReferenceTest, MultisampledFrameMatchesSupersampledReferenceEdgesIncluded
         struct Psnr {
             double frame, edges;
         };
-        auto psnr = [&](uint32_t supersample, uint32_t msaa) {
+        auto psnr = [&](uint32_t supersample, uint32_t msaa, render::Shading path) {
             Scene g = s;
             g.supersample = supersample;
             g.msaa = msaa;
+            g.shading = path;
             render::Renderer renderer(context(), g);
+            EXPECT_EQ(renderer.shading(), path);
             EXPECT_TRUE(renderer.take_notes().empty()) << "lavapipe multisamples RGBA32F at " << msaa << " samples";
             const render::Frame f = renderer.render(renderer.upload(m));
             double se = 0, se_edges = 0;
@@ -264,18 +278,24 @@ TEST_F(ReferenceTest, MultisampledFrameMatchesSupersampledReferenceEdgesIncluded
             };
             return Psnr{db(se, n), db(se_edges, edges)};
         };
-        const Psnr msaa = psnr(1, 4), aliased = psnr(1, 1), ss3 = psnr(3, 1);
-        std::printf("  %-24s PSNR vs 4x4 reference, frame / partly covered pixels: msaa4 %.1f / %.1f dB, 3x3 samples "
-                    "%.1f / %.1f, 1 sample %.1f / %.1f\n",
-                    m.name.c_str(), msaa.frame, msaa.edges, ss3.frame, ss3.edges, aliased.frame, aliased.edges);
-        // Bounds half a dB or more under the least measured on lavapipe (frame 41.7, edges 24.7 dB:
-        // the white sphere, brightest against the dark background). Four coverage samples against
-        // the reference's sixteen and one shading point a pixel cost 2.3-4.8 dB at the edges
-        // against 3x3 supersampling (nine of each); one sample a pixel is 8.8-9.9 dB worse still.
-        EXPECT_GE(msaa.frame, 41.0) << m.name;
-        EXPECT_GE(msaa.edges, 24.0) << m.name;
-        EXPECT_GE(msaa.edges, aliased.edges + 8.0) << m.name << ": multisampling must anti-alias the silhouette";
-        EXPECT_GE(msaa.edges, ss3.edges - 5.5) << m.name;
+        for (const render::Shading path : kShadingPaths) {
+            const Psnr msaa = psnr(1, 4, path), aliased = psnr(1, 1, path), ss3 = psnr(3, 1, path);
+            std::printf("  %-24s %-7s PSNR vs 4x4 reference, frame / partly covered pixels: msaa4 %.1f / %.1f dB, 3x3 "
+                        "samples %.1f / %.1f, 1 sample %.1f / %.1f\n",
+                        m.name.c_str(), shading_name(path), msaa.frame, msaa.edges, ss3.frame, ss3.edges, aliased.frame,
+                        aliased.edges);
+            // Bounds half a dB or more under the least measured on lavapipe (frame 41.7, edges 24.7 dB:
+            // the white sphere, brightest against the dark background). Four coverage samples against
+            // the reference's sixteen and one shading point a pixel cost 2.3-4.8 dB at the edges
+            // against 3x3 supersampling (nine of each); one sample a pixel is 8.8-9.9 dB worse still.
+            // The compute path shades each of the four samples (no single shading point a pixel): at
+            // least as close, with the same bounds.
+            EXPECT_GE(msaa.frame, 41.0) << m.name << ' ' << shading_name(path);
+            EXPECT_GE(msaa.edges, 24.0) << m.name << ' ' << shading_name(path);
+            EXPECT_GE(msaa.edges, aliased.edges + 8.0)
+                << m.name << ' ' << shading_name(path) << ": multisampling must anti-alias the silhouette";
+            EXPECT_GE(msaa.edges, ss3.edges - 5.5) << m.name << ' ' << shading_name(path);
+        }
     }
 }
 

@@ -135,9 +135,11 @@ struct Result {
     size_t compared = 0, excepted = 0;
 };
 
-Result compare_with_reference(render::Context& context, const Material& m, const char* label) {
-    const Scene sc = scene();
+Result compare_with_reference(render::Context& context, const Material& m, const char* label, render::Shading path) {
+    Scene sc = scene();
+    sc.shading = path;
     render::Renderer renderer(context, sc);
+    EXPECT_EQ(renderer.shading(), path);
     const render::GpuMaterial gm = renderer.upload(m);
     const render::Frame f8 = renderer.render(gm);
     render::OutputOptions lin;
@@ -162,16 +164,18 @@ Result compare_with_reference(render::Context& context, const Material& m, const
                                        std::abs(f32.rgba32f[i + size_t(c)] - r.rgb[c]) / std::max(r.rgb[c], 1e-4));
             }
         }
-    std::printf("  %s: max |Δcode| %d  max rel %.2e  (%zu sphere px compared, %zu excepted)\n", label, res.max_code,
-                res.max_rel, res.compared, res.excepted);
+    std::printf("  %s, %s: max |Δcode| %d  max rel %.2e  (%zu sphere px compared, %zu excepted)\n", label,
+                shading_name(path), res.max_code, res.max_rel, res.compared, res.excepted);
     return res;
 }
 
 TEST_F(TexturedTest, MatchesReferenceWhereLevelZeroIsSampled) {
-    const Result r = compare_with_reference(context(), textured(Layout::Separate), "textured sphere");
-    EXPECT_GT(r.compared, 8000u);
-    EXPECT_LE(r.max_code, 1);
-    EXPECT_LE(r.max_rel, 1e-3);
+    for (const render::Shading path : kShadingPaths) {
+        const Result r = compare_with_reference(context(), textured(Layout::Separate), "textured sphere", path);
+        EXPECT_GT(r.compared, 8000u);
+        EXPECT_LE(r.max_code, 1) << shading_name(path);
+        EXPECT_LE(r.max_rel, 1e-3) << shading_name(path);
+    }
 }
 
 // The formats a GPU gets (8-bit, albedo as R8G8B8A8_SRGB decoded by the sampler), on lavapipe.
@@ -188,10 +192,12 @@ TEST_F(HardwareFormatsTest, SrgbTexturesDecodedBySamplerWithinOneCode) {
     m.normal.texture = -1;
     m.roughness = {-1, Channel::R, false, 0.6f};
     m.metalness = {-1, Channel::R, false, 0.f};
-    const Result r = compare_with_reference(context(), m, "albedo-textured sphere, 8-bit/sRGB formats");
-    EXPECT_GT(r.compared, 8000u);
-    EXPECT_LE(r.max_code, 1);
-    EXPECT_LE(r.max_rel, 2e-2);
+    for (const render::Shading path : kShadingPaths) {
+        const Result r = compare_with_reference(context(), m, "albedo-textured sphere, 8-bit/sRGB formats", path);
+        EXPECT_GT(r.compared, 8000u);
+        EXPECT_LE(r.max_code, 1) << shading_name(path);
+        EXPECT_LE(r.max_rel, 2e-2) << shading_name(path);
+    }
 }
 
 TEST_F(TexturedTest, ChannelLayoutsGiveTheSameImage) {

@@ -1,7 +1,8 @@
 // matforge preview [<manifest.json>] -o <out-dir> [--scene FILE.json] [--size N]
 //   [--shape sphere|cube|plane] [--light SPEC]... [--env FILE.hdr|.exr] [--format png|exr]
 //   [--contact-sheet FILE.png] [--device auto|gpu|cpu] [--brdf standard|accurate|assignment]
-//   [--aa N|msaaN] [--textures fast|exact] [--allow-outside] [--vk-validation]
+//   [--aa N|msaaN] [--textures fast|exact] [--shading auto|raster|compute] [--allow-outside]
+//   [--vk-validation]
 // Options -> scene -> materials -> images: every material is loaded, uploaded, rendered and
 // written in manifest order; one that fails is reported and the others are still rendered. A
 // pipeline: while material i renders (on the device, or lavapipe's threads), materials i+1 and
@@ -28,7 +29,7 @@ struct PreviewArgs {
     std::string manifest, out, scene, shape, env, contact_sheet, brdf, tonemap;
     uint32_t size = 0;
     std::optional<float> exposure, distance;
-    std::string aa, textures;
+    std::string aa, textures, shading;
     std::vector<float> orbit, uv_scale, uv_offset;
     std::string uv_aspect;
     std::vector<std::string> lights;
@@ -83,6 +84,7 @@ std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
         scene.msaa = msaa ? n : 1;
     }
     if (!a.textures.empty()) scene.fast_textures = a.textures == "fast";
+    if (!a.shading.empty()) scene.shading = *render::parse_shading(a.shading);  // CLI11 checked it
     if (a.ground) scene.ground.enabled = true;
     if (!a.shape.empty()) {
         scene.shape.type = *preview::parse_shape(a.shape);  // CLI11 checked the name
@@ -402,6 +404,13 @@ const Register reg{
                         "averaged on the CPU in linear light, renormalized normals; on lavapipe 8-bit texels "
                         "filtered in float); default: the scene's (lookdev fast, reference and scene files exact)")
              ->check(CLI::IsMember({"fast", "exact"}));
+         sub.add_option("--shading", a->shading,
+                        "where pixels are shaded: raster (the mesh rasterized: every shape, --ground) | compute (one "
+                        "compute pass casting each pixel's rays at the analytic sphere, cube or plane: faster where "
+                        "raster units are few, as on datacenter GPUs; the shaderball and --ground fall back to "
+                        "raster with a note) | auto (both timed once on the device, compute when at least 1.5x "
+                        "faster); default: the scene's (lookdev auto, reference and scene files raster)")
+             ->check(CLI::IsMember({"auto", "raster", "compute"}));
          sub.add_option("--size", a->size,
                         "image width and height in pixels, 1..16384 (default: the scene's, else 512)")
              ->check(CLI::Range(1, 16384));

@@ -45,6 +45,9 @@ MF_CONST int kBindingEnvSpecular = 2;     // samplerCube: GGX-prefiltered, mip =
 MF_CONST int kBindingEnvIrradiance = 3;   // samplerCube: E(n)/π
 MF_CONST int kSetMaterial = 1;
 MF_CONST int kBindingMaterialTextures = 0;  // sampler2D[kMaxTextures]; a role's slot indexes it
+// shade.comp only: the radiance target as a storage image, in encode.comp's set (bound again as
+// set 2, binding kBindingEncodeRadiance), so the compute path needs no descriptors of its own.
+MF_CONST int kSetShadeTarget = 2;
 
 // encode.comp
 MF_CONST int kBindingEncodeRadiance = 0;  // rgba32f storage image
@@ -112,6 +115,13 @@ MF_CONST int kSpecNormalZFromXy = 21;  // a two-channel normal map (BC5): Z rebu
 MF_CONST int kSpecGround = 22;         // this draw is the ground plane (Scene::ground), not the shape
 MF_CONST int kSpecFillOnly = 23;       // write a constant and return: the fill-rate floor (Scene::fill_only)
 MF_CONST int kSpecMsaa = 24;           // multisampled (Scene::msaa): the sphere's ray through the centroid
+MF_CONST int kSpecShape = 25;          // shade.comp: the kShape* intersected by the primary rays
+MF_CONST int kSpecSamples = 26;        // shade.comp: rays a pixel at the standard msaa positions (1, 2, 4, 8)
+
+// Shapes shade.comp intersects analytically (render::ShapeType in the same order).
+MF_CONST int kShapeSphere = 0;
+MF_CONST int kShapeCube = 1;
+MF_CONST int kShapePlane = 2;
 
 // brdf_lut.glsl
 MF_CONST int kSpecLutCorrelated = 0;
@@ -145,6 +155,7 @@ struct FrameData {
     vec4 uv;           // xy: scale, zw: offset of the texture coordinates (tiling)
     vec4 ground;       // x: height of the ground plane; y: its albedo (grey); z: its roughness; w: tan of the key light's angular radius
     vec4 occluder;     // xyz: centre, w: radius of the shape's bounding sphere (the ground's shadow)
+    mat4 shape_rotation;  // the cube's turn, object to world (shade.comp intersects it in object space)
     LightData lights[kMaxLights];
 };
 
@@ -182,7 +193,7 @@ struct GridPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 32);
-static_assert(sizeof(FrameData) == 64 + 13 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
+static_assert(sizeof(FrameData) == 2 * 64 + 13 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
 static_assert(sizeof(EncodeParams) == 28 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
 static_assert(sizeof(GridInput) == 64);
 
@@ -217,6 +228,8 @@ struct ShadeSpecialization {
     uint32_t ground = 0;
     uint32_t fill_only = 0;
     uint32_t msaa = 0;
+    int32_t shape = kShapeSphere;
+    int32_t samples = 1;
 
     // The texture slots the variant samples (−1 where a role is a constant).
     std::array<int32_t, 7> texture_slots() const {
