@@ -143,8 +143,8 @@ SceneFile default_scene() {
     // the difference from 3×3 supersampling with exact textures (`--aa 3 --textures exact`).
     sc.msaa = 4;
     sc.fast_textures = true;
-    // The faster shading path of the device, measured once (a render farm's datacenter GPUs shade
-    // far faster in compute); the reference scene and scene files keep raster, the same everywhere.
+    // On a GPU the faster shading path, measured once (a render farm's datacenter GPUs shade far
+    // faster in compute); raster on lavapipe. The reference scene and scene files keep raster.
     sc.shading = render::Shading::automatic;
     return s;
 }

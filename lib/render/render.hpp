@@ -158,10 +158,12 @@ inline constexpr size_t kMaxLights = gpu::kMaxLights;
 // same pass; both share the shading code, shaders/shading.glsl, and pass the same CPU-reference
 // tests):
 enum class Shading {
-    // Measured once per Context: a 512×512 constant-material frame timed on both paths (the
-    // shade pass's timestamps), compute chosen when it is at least 1.5× faster (datacenter GPUs
-    // with few raster units); the decision and both times are said once in take_notes(). Raster
-    // without a measurement where compute does not cover the scene (below).
+    // On a GPU, measured once per Context (measure_shading: a 512×512 constant-material frame
+    // with the scene's anti-aliasing, timed on both paths), compute chosen when it is at least
+    // 1.5× faster (datacenter GPUs with few raster units); the decision and both times are said
+    // once in take_notes(). On a CPU device (lavapipe) raster, unmeasured: compute never
+    // measured 1.5× faster there (docs/bench/README.md), and a measurement near the margin could
+    // pick either path from run to run. Raster where compute does not cover the scene (below).
     automatic,
     // The mesh rasterized (shade.vert, shade.frag): every shape, the ground plane, MSAA coverage.
     raster,
@@ -172,6 +174,16 @@ enum class Shading {
     compute,
 };
 std::optional<Shading> parse_shading(std::string_view s);  // "auto" | "raster" | "compute"
+
+class Context;
+// The shade pass of a constant-material sphere, 512×512, with `msaa` and `supersample` as in a
+// Scene, on each path: the least of five timestamped frames after two warm-up frames, the two
+// paths' frames interleaved so that a load that comes and goes weighs on both alike. 0 where the
+// device gave no time. What Shading::automatic decides by on a GPU; usable on any device.
+struct ShadingTimes {
+    double raster_ms = 0.0, compute_ms = 0.0;
+};
+ShadingTimes measure_shading(Context& context, uint32_t msaa = 1, uint32_t supersample = 1);
 
 struct Scene {
     uint32_t width = 512, height = 512;

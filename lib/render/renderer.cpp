@@ -148,13 +148,19 @@ constexpr uint32_t kMeasureSize = 512;  // the measured frame: a constant sphere
 
 constexpr int kWarmupFrames = 2, kTimedFrames = 5;
 
-// The shade pass of a constant-material sphere on each path (raster, compute): the least of
-// kTimedFrames after kWarmupFrames (pipelines, caches, a CPU device's threads), the two paths'
-// frames interleaved so that a load that comes and goes on the device weighs on both alike.
-// 0 where the device gave no time.
-std::array<double, 2> shade_ms(Context& context) {
+std::string fixed(double v, int digits) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+
+}  // namespace
+
+ShadingTimes measure_shading(Context& context, uint32_t msaa, uint32_t supersample) {
     Scene s;
     s.width = s.height = kMeasureSize;
+    s.msaa = msaa;
+    s.supersample = supersample;
     std::vector<std::unique_ptr<Renderer>> renderers;
     std::vector<GpuMaterial> materials;
     for (const Shading path : {Shading::raster, Shading::compute}) {
@@ -169,16 +175,8 @@ std::array<double, 2> shade_ms(Context& context) {
             for (const PassTime& t : renderers[i]->frame_times())
                 if (t.name == "shade" && frame >= kWarmupFrames && (best[i] == 0.0 || t.ms < best[i])) best[i] = t.ms;
         }
-    return best;
+    return {best[0], best[1]};
 }
-
-std::string fixed(double v, int digits) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-    return buf;
-}
-
-}  // namespace
 
 void Renderer::Impl::choose_shading(Context& context) {
     if (scene.shading == Shading::raster) return;
@@ -194,6 +192,7 @@ void Renderer::Impl::choose_shading(Context& context) {
         compute = true;
         return;
     }
+    if (d.info.cpu) return;  // raster, unmeasured: see Shading::automatic
     Device::ShadingChoice& c = d.shading_choice;
     if (!c.measured) {
         if (!d.info.timestamps) {
@@ -201,15 +200,19 @@ void Renderer::Impl::choose_shading(Context& context) {
             notes.push_back("shading auto: raster (" + d.info.name + " has no timestamp queries to measure with)");
             return;
         }
-        const std::array<double, 2> ms = shade_ms(context);  // a failure throws: measured again next time
+        // With this scene's anti-aliasing: multisampling costs the two paths differently (compute
+        // shades every sample). A failure throws: measured again by the next renderer.
+        const ShadingTimes ms = measure_shading(context, scene.msaa, scene.supersample);
         c.measured = true;
-        c.raster_ms = ms[0];
-        c.compute_ms = ms[1];
+        c.raster_ms = ms.raster_ms;
+        c.compute_ms = ms.compute_ms;
         c.compute = c.compute_ms > 0.0 && c.raster_ms >= kComputeMargin * c.compute_ms;
         notes.push_back("shading auto: " + std::string(c.compute ? "compute" : "raster") + " on " + d.info.name +
                         " (shade pass of a " + std::to_string(kMeasureSize) + "x" + std::to_string(kMeasureSize) +
-                        " constant sphere: raster " + fixed(c.raster_ms, 3) + " ms, compute " + fixed(c.compute_ms, 3) +
-                        " ms; compute when at least " + fixed(kComputeMargin, 1) + "x faster)");
+                        " constant sphere, msaa " + std::to_string(scene.msaa) + ", supersample " +
+                        std::to_string(scene.supersample) + ": raster " + fixed(c.raster_ms, 3) + " ms, compute " +
+                        fixed(c.compute_ms, 3) + " ms; compute when at least " + fixed(kComputeMargin, 1) +
+                        "x faster)");
     }
     compute = c.compute;
 }

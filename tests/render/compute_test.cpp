@@ -179,29 +179,23 @@ TEST_F(ComputeShadingTest, FallsBackToRasterWithANote) {
     }
 }
 
-// `auto` times both paths once per context and keeps the faster, compute only at 1.5x: the note
-// says which and both times, the first time only.
-TEST_F(ComputeShadingTest, AutomaticMeasuresOncePerContext) {
-    render::Renderer first(context(), shape_scene(ShapeType::sphere, Shading::automatic));
-    const std::vector<std::string> notes = first.take_notes();
-    ASSERT_EQ(notes.size(), 1u);
-    std::printf("  %s\n", notes[0].c_str());
-    double raster_ms = 0, compute_ms = 0;
-    const size_t at = notes[0].find("raster ", notes[0].find('('));
-    ASSERT_NE(at, std::string::npos) << notes[0];
-    ASSERT_EQ(std::sscanf(notes[0].c_str() + at, "raster %lf ms, compute %lf ms", &raster_ms, &compute_ms), 2)
-        << notes[0];
-    EXPECT_GT(raster_ms, 0.0);
-    EXPECT_GT(compute_ms, 0.0);
-    const Shading expected = raster_ms >= 1.5 * compute_ms ? Shading::compute : Shading::raster;
-    EXPECT_EQ(first.shading(), expected);
-    EXPECT_EQ(notes[0].rfind(std::string("shading auto: ") + shading_name(expected), 0), 0u) << notes[0];
-
-    render::Renderer second(context(), shape_scene(ShapeType::cube, Shading::automatic));
-    EXPECT_EQ(second.shading(), expected) << "the choice is kept by the context";
-    EXPECT_TRUE(second.take_notes().empty());
-    const render::Frame f = second.render(second.upload(textured()));
-    EXPECT_FALSE(background(f, size_t{kSize / 2} * kSize + kSize / 2));
+// `auto` on a CPU device is raster without a measurement (compute never measured 1.5x faster on
+// lavapipe, and a measurement near the margin could change the picture from run to run): the
+// same picture as raster, nothing said. The measurement a GPU decides by runs here too and
+// times both paths, with multisampling as the scene asks.
+TEST_F(ComputeShadingTest, AutomaticIsRasterOnACpuDeviceAndTheMeasurementRuns) {
+    ASSERT_TRUE(context().info().cpu) << "the tests run on lavapipe";
+    render::Renderer automatic(context(), shape_scene(ShapeType::sphere, Shading::automatic));
+    EXPECT_EQ(automatic.shading(), Shading::raster);
+    EXPECT_TRUE(automatic.take_notes().empty());
+    render::Renderer raster(context(), shape_scene(ShapeType::sphere, Shading::raster));
+    EXPECT_EQ(automatic.render(automatic.upload(textured())).rgba8, raster.render(raster.upload(textured())).rgba8);
+    for (const uint32_t msaa : {1u, 4u}) {
+        const render::ShadingTimes t = render::measure_shading(context(), msaa);
+        std::printf("  measure_shading msaa %u: raster %.3f ms, compute %.3f ms\n", msaa, t.raster_ms, t.compute_ms);
+        EXPECT_GT(t.raster_ms, 0.0);
+        EXPECT_GT(t.compute_ms, 0.0);
+    }
 }
 
 // Scene::msaa on the compute path: every sample shaded and averaged (no multisampled target),
