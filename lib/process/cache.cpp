@@ -73,7 +73,7 @@ std::optional<std::string> remembered_digest(const fs::path& file, const fs::pat
             if (nl != std::string::npos && rec->substr(0, nl) == now && is_sha(rec->substr(nl + 1)))
                 return rec->substr(nl + 1);
         }
-    const std::optional<std::string> sha = sha256_of_file(file, error);  // in pieces, never held
+    std::optional<std::string> sha = sha256_of_file(file, error);  // in pieces, never held
     if (!sha) return std::nullopt;
     // Written only when the stat did not move while we read (else the next run hashes again).
     if (!now.empty() && stat_line(file) == now) {
