@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "color/srgb.hpp"
+#include "reference.hpp"
 #include "render/internal.hpp"
 #include "vulkan_fixture.hpp"
 
@@ -13,16 +14,6 @@ using render::Material;
 using render::Texture;
 using render::detail::MipKind;
 using render::detail::PreparedTexture;
-
-Texture gray_row(std::vector<uint8_t> values, uint32_t w, uint32_t h, uint32_t channels, bool srgb) {
-    Texture t;
-    t.width = w;
-    t.height = h;
-    t.channels = channels;
-    t.srgb = srgb;
-    t.data = std::move(values);
-    return t;
-}
 
 // Channel c of texel 0 of `level`, as the sampler would read it before any sRGB decode.
 double texel(const PreparedTexture& p, size_t level, int c) {
@@ -54,7 +45,7 @@ protected:
 };
 
 TEST_P(MipTest, ColorIsAveragedInLinearLight) {
-    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, true), MipKind::color);
+    const PreparedTexture p = prepare(texture_of({0, 255}, 2, 1, 1, true), MipKind::color);
     ASSERT_EQ(p.levels.size(), 2u);
     double v = texel(p, 1, 0);
     if (p.format == VK_FORMAT_R8G8B8A8_SRGB) {
@@ -90,7 +81,7 @@ TEST_P(MipTest, FloatColorIsDecodedExactlyNegativesMirrored) {
 
 TEST_P(MipTest, NormalsAreRenormalized) {
     // +X and +Z average to (0.5, 0, 0.5), renormalized to (0.707, 0, 0.707): code 218, not 191.
-    const PreparedTexture p = prepare(gray_row({255, 128, 128, 128, 128, 255}, 2, 1, 3, false), MipKind::normal);
+    const PreparedTexture p = prepare(texture_of({255, 128, 128, 128, 128, 255}, 2, 1, 3, false), MipKind::normal);
     ASSERT_EQ(p.levels.size(), 2u);
     const double x = texel(p, 1, 0) * 2 - 1, y = texel(p, 1, 1) * 2 - 1, z = texel(p, 1, 2) * 2 - 1;
     EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 1.0, 1e-2);
@@ -99,20 +90,20 @@ TEST_P(MipTest, NormalsAreRenormalized) {
 }
 
 TEST_P(MipTest, DataIsAveragedAsStored) {
-    const PreparedTexture p = prepare(gray_row({0, 255}, 2, 1, 1, false), MipKind::data);
+    const PreparedTexture p = prepare(texture_of({0, 255}, 2, 1, 1, false), MipKind::data);
     EXPECT_NEAR(texel(p, 1, 0), 0.5, 2.5e-3);
 }
 
 TEST_P(MipTest, OddSizesUseAreaWeights) {
     std::vector<uint8_t> v;
     for (uint8_t i = 0; i < 9; ++i) v.push_back(static_cast<uint8_t>(i * 30));
-    const PreparedTexture p = prepare(gray_row(v, 3, 3, 1, false), MipKind::data);
+    const PreparedTexture p = prepare(texture_of(v, 3, 3, 1, false), MipKind::data);
     ASSERT_EQ(p.levels.size(), 2u);  // 3×3 → 1×1
     EXPECT_NEAR(texel(p, 1, 0), 120 / 255.0, 2.5e-3);
 }
 
 TEST_P(MipTest, ChainGoesDownToOneTexel) {
-    const PreparedTexture p = prepare(gray_row(std::vector<uint8_t>(5 * 3, 7), 5, 3, 1, false), MipKind::data);
+    const PreparedTexture p = prepare(texture_of(std::vector<uint8_t>(5 * 3, 7), 5, 3, 1, false), MipKind::data);
     ASSERT_EQ(p.levels.size(), 3u);  // 5×3, 2×1, 1×1
     EXPECT_EQ(p.levels[1].width, 2u);
     EXPECT_EQ(p.levels[1].height, 1u);
@@ -137,7 +128,7 @@ TEST_F(VariantTest, OnlyWhatTheMaterialAndSceneCallForIsCompiledIn) {
     EXPECT_EQ(a.variant(), "sphere standard dir2 point1 albedo:const normal:none roughness:const metalness:const");
 
     Material textured;
-    Texture t = gray_row(std::vector<uint8_t>(4 * 4 * 3, 128), 4, 4, 3, false);
+    Texture t = texture_of(std::vector<uint8_t>(4 * 4 * 3, 128), 4, 4, 3, false);
     textured.textures = {t, t};
     textured.textures[0].srgb = true;
     textured.albedo.texture = 0;
@@ -158,7 +149,7 @@ TEST_F(VariantTest, BadMaterialsAreRejected) {
     m.albedo.texture = 0;  // no such texture
     EXPECT_THROW(r.upload(m), render::Error);
     Material n;
-    n.textures = {gray_row({1, 2, 3}, 1, 1, 3, true)};
+    n.textures = {texture_of({1, 2, 3}, 1, 1, 3, true)};
     n.roughness.texture = 0;  // an sRGB texture's R channel as data
     EXPECT_THROW(r.upload(n), render::Error);
 }

@@ -34,16 +34,6 @@ std::vector<uint8_t> noise(size_t n, uint32_t seed) {
     return v;
 }
 
-Texture texture(uint32_t w, uint32_t h, uint32_t channels, bool srgb, std::vector<uint8_t> data) {
-    Texture t;
-    t.width = w;
-    t.height = h;
-    t.channels = channels;
-    t.srgb = srgb;
-    t.data = std::move(data);
-    return t;
-}
-
 // A surface with detail at every scale: smooth waves of several periods plus a little noise, so
 // that each mip level averages something different.
 Material detailed_material(uint32_t size) {
@@ -73,8 +63,8 @@ Material detailed_material(uint32_t size) {
         }
     Material m;
     m.name = "detailed";
-    m.textures = {texture(size, size, 3, true, albedo), texture(size, size, 3, false, orm),
-                  texture(size, size, 3, false, normal)};
+    m.textures = {texture_of(albedo, size, size, 3, true), texture_of(orm, size, size, 3, false),
+                  texture_of(normal, size, size, 3, false)};
     m.albedo.texture = 0;
     m.occlusion = {1, Channel::R, false, 1.f};
     m.roughness = {1, Channel::G, false, 0.5f};
@@ -172,7 +162,7 @@ TEST_F(FastTexturesTest, LevelZeroIsTheExactPathsLevelZero) {
     for (uint32_t channels = 1; channels <= 4; ++channels)
         for (const MipKind kind : {MipKind::color, MipKind::normal, MipKind::data}) {
             const bool srgb = kind == MipKind::color;
-            const Texture t = texture(w, h, channels, srgb, noise(size_t{w} * h * channels, channels));
+            const Texture t = texture_of(noise(size_t{w} * h * channels, channels), w, h, channels, srgb);
             const PreparedTexture exact = prepare(t, kind, false), fast = prepare(t, kind, true);
             ASSERT_EQ(fast.levels.size(), 1u) << channels;
             EXPECT_EQ(fast.format, exact.format) << channels;
@@ -182,7 +172,7 @@ TEST_F(FastTexturesTest, LevelZeroIsTheExactPathsLevelZero) {
                 << channels << " channels, kind " << static_cast<int>(kind);
         }
     // 16-bit and float textures take the exact path whatever is asked.
-    Texture t16 = texture(4, 4, 1, false, std::vector<uint8_t>(32, 7));
+    Texture t16 = texture_of(std::vector<uint8_t>(32, 7), 4, 4, 1, false);
     t16.type = render::TexelType::u16;
     EXPECT_EQ(prepare(t16, MipKind::data, true).levels.size(), 3u);
 }
@@ -303,7 +293,7 @@ TEST_F(FastVersusPreciseTest, InvertedChannelsGiveTheSameImage) {
 // The fast path's blits and their barriers under the validation layer (the fixture fails on any
 // message), with sizes that are not powers of two (the chain still ends at 1×1).
 TEST_F(FastTexturesTest, OddSizesMakeFullChains) {
-    const Texture t = texture(300, 7, 4, true, noise(size_t{300} * 7 * 4, 3));
+    const Texture t = texture_of(noise(size_t{300} * 7 * 4, 3), 300, 7, 4, true);
     const PreparedTexture p = prepare(t, MipKind::color, true);
     EXPECT_EQ(p.mips, 9u);  // 300, 150, 75, 37, 18, 9, 4, 2, 1
     Material m;

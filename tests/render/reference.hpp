@@ -4,6 +4,7 @@
 // this adds the camera, the exact sphere, bilinear texture sampling, lights, opacity.
 #pragma once
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "render/render.hpp"
@@ -36,6 +37,17 @@ std::array<double, 2> specular_dfg_correlated(double NoV, double roughness);
 int to_code(double encoded);  // round to nearest 8-bit code, clamped
 
 // Both shading paths (Scene::shading), which every reference test runs with the same bounds.
+// An 8-bit texture of `w`×`h` texels and `channels` channels holding `codes` as given.
+inline render::Texture texture_of(std::vector<uint8_t> codes, uint32_t w, uint32_t h, uint32_t channels, bool srgb) {
+    render::Texture t;
+    t.width = w;
+    t.height = h;
+    t.channels = channels;
+    t.srgb = srgb;
+    t.data = std::move(codes);
+    return t;
+}
+
 inline constexpr render::Shading kShadingPaths[] = {render::Shading::raster, render::Shading::compute};
 inline const char* shading_name(render::Shading s) {
     return s == render::Shading::compute ? "compute" : s == render::Shading::raster ? "raster" : "auto";

@@ -168,6 +168,35 @@ TEST_F(ReferenceTest, ConstantSpheresAccurate) {
 namespace mf::test {
 namespace {
 
+// The CPU reference of `m` in `s` supersampled n×n: rendered at n× the resolution, each pixel's
+// n×n samples averaged in linear light, then encoded (codes, RGB a pixel); `edge` marks the partly
+// covered pixels (some of their samples hit the shape, not all).
+struct Supersampled {
+    std::vector<int> codes;
+    std::vector<bool> edge;
+};
+Supersampled supersampled_reference(const Scene& s, const Material& m, uint32_t n) {
+    Scene fine = s;
+    fine.width *= n;
+    fine.height *= n;
+    const ReferenceImage ref = render_reference(fine, m);
+    Supersampled out{std::vector<int>(size_t{s.width} * s.height * 3), std::vector<bool>(size_t{s.width} * s.height)};
+    for (uint32_t y = 0; y < s.height; ++y)
+        for (uint32_t x = 0; x < s.width; ++x) {
+            int hits = 0;
+            for (uint32_t j = 0; j < n; ++j)
+                for (uint32_t i = 0; i < n; ++i) hits += ref.at(x * n + i, y * n + j).hit ? 1 : 0;
+            out.edge[size_t{y} * s.width + x] = hits > 0 && hits < int(n * n);
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0;
+                for (uint32_t j = 0; j < n; ++j)
+                    for (uint32_t i = 0; i < n; ++i) sum += ref.at(x * n + i, y * n + j).rgb[c];
+                out.codes[(size_t{y} * s.width + x) * 3 + size_t(c)] = to_code(mf::linear_to_srgb(sum / (n * n)));
+            }
+        }
+    return out;
+}
+
 // Anti-aliasing (Scene::supersample): with 4×4 samples a pixel, every constant-material scene
 // matches the reference supersampled the same way (the CPU reference at 4× the resolution, its
 // 4×4 blocks averaged in linear light, then encoded) to PSNR ≥ 45 dB over the whole frame,
@@ -176,19 +205,7 @@ TEST_F(ReferenceTest, SupersampledFrameMatchesSupersampledReferenceEdgesIncluded
     constexpr uint32_t kN = 4;
     for (const Material& m : kConstants) {
         Scene s = test_scene(Brdf::standard, render::Shading::raster);
-        Scene fine = s;
-        fine.width *= kN;
-        fine.height *= kN;
-        const ReferenceImage ref = render_reference(fine, m);
-        std::vector<int> codes(size_t{s.width} * s.height * 3);
-        for (uint32_t y = 0; y < s.height; ++y)
-            for (uint32_t x = 0; x < s.width; ++x)
-                for (int c = 0; c < 3; ++c) {
-                    double sum = 0;
-                    for (uint32_t j = 0; j < kN; ++j)
-                        for (uint32_t i = 0; i < kN; ++i) sum += ref.at(x * kN + i, y * kN + j).rgb[c];
-                    codes[(size_t{y} * s.width + x) * 3 + size_t(c)] = to_code(mf::linear_to_srgb(sum / (kN * kN)));
-                }
+        const std::vector<int> codes = supersampled_reference(s, m, kN).codes;
         auto psnr = [&](uint32_t samples, render::Shading path) {
             Scene g = s;
             g.supersample = samples;
@@ -230,26 +247,10 @@ TEST_F(ReferenceTest, MultisampledFrameMatchesSupersampledReferenceEdgesIncluded
     constexpr uint32_t kN = 4;
     for (const Material& m : kConstants) {
         Scene s = test_scene(Brdf::standard, render::Shading::raster);
-        Scene fine = s;
-        fine.width *= kN;
-        fine.height *= kN;
-        const ReferenceImage ref = render_reference(fine, m);
         const size_t n = size_t{s.width} * s.height;
-        std::vector<int> codes(n * 3);
-        std::vector<bool> edge(n, false);
-        for (uint32_t y = 0; y < s.height; ++y)
-            for (uint32_t x = 0; x < s.width; ++x) {
-                int hits = 0;
-                for (uint32_t j = 0; j < kN; ++j)
-                    for (uint32_t i = 0; i < kN; ++i) hits += ref.at(x * kN + i, y * kN + j).hit ? 1 : 0;
-                edge[size_t{y} * s.width + x] = hits > 0 && hits < int(kN * kN);
-                for (int c = 0; c < 3; ++c) {
-                    double sum = 0;
-                    for (uint32_t j = 0; j < kN; ++j)
-                        for (uint32_t i = 0; i < kN; ++i) sum += ref.at(x * kN + i, y * kN + j).rgb[c];
-                    codes[(size_t{y} * s.width + x) * 3 + size_t(c)] = to_code(mf::linear_to_srgb(sum / (kN * kN)));
-                }
-            }
+        const Supersampled ss = supersampled_reference(s, m, kN);
+        const std::vector<int>& codes = ss.codes;  // named references: lambdas capture them (clang 14)
+        const std::vector<bool>& edge = ss.edge;
         struct Psnr {
             double frame, edges;
         };
