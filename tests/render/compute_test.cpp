@@ -90,12 +90,7 @@ Scene shape_scene(ShapeType type, Shading path) {
     s.shape.size = type == ShapeType::sphere ? 1.f : type == ShapeType::cube ? 1.3f : 2.f;
     s.shading = path;
     s.background = {1.f, 0.f, 1.f};  // no material pixel has this code: the shape's coverage
-    render::Light point;
-    point.type = render::LightType::point;
-    point.position = {2.5f, -0.5f, 1.5f};
-    point.color = {0.3f, 0.5f, 1.0f};
-    point.intensity = 10.f;
-    s.lights.push_back(point);
+    s.lights.push_back(example_point_light());
     s.environment = sky();
     return s;
 }

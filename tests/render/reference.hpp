@@ -37,6 +37,16 @@ std::array<double, 2> specular_dfg_correlated(double NoV, double roughness);
 int to_code(double encoded);  // round to nearest 8-bit code, clamped
 
 // Both shading paths (Scene::shading), which every reference test runs with the same bounds.
+// The example scene's blue point light (docs/interface.md, scene file), used beside other lights.
+inline render::Light example_point_light() {
+    render::Light point;
+    point.type = render::LightType::point;
+    point.position = {2.5f, -0.5f, 1.5f};
+    point.color = {0.3f, 0.5f, 1.0f};
+    point.intensity = 10.f;
+    return point;
+}
+
 // An 8-bit texture of `w`×`h` texels and `channels` channels holding `codes` as given.
 inline render::Texture texture_of(std::vector<uint8_t> codes, uint32_t w, uint32_t h, uint32_t channels, bool srgb) {
     render::Texture t;

@@ -27,12 +27,7 @@ Scene test_scene(Brdf brdf, render::Shading shading) {
     key.direction = {0.57735027f, -0.57735027f, -0.57735027f};
     key.intensity = 3.f;
     s.lights.push_back(key);
-    render::Light point;
-    point.type = render::LightType::point;
-    point.position = {2.5f, -0.5f, 1.5f};
-    point.color = {0.3f, 0.5f, 1.0f};
-    point.intensity = 10.f;
-    s.lights.push_back(point);
+    s.lights.push_back(example_point_light());
     s.background = {0.02f, 0.03f, 0.04f};
     return s;
 }

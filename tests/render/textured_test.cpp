@@ -118,12 +118,7 @@ Scene scene() {
     render::Light key;
     key.direction = {0.57735027f, -0.57735027f, -0.57735027f};
     key.intensity = 3.f;
-    render::Light point;
-    point.type = render::LightType::point;
-    point.position = {2.5f, -0.5f, 1.5f};
-    point.color = {0.3f, 0.5f, 1.0f};
-    point.intensity = 10.f;
-    s.lights = {key, point};
+    s.lights = {key, example_point_light()};
     return s;
 }
 
