@@ -107,15 +107,7 @@ std::vector<double> reference_image(uint32_t size) {
     return ref;
 }
 
-std::vector<float> energy_table() {
-    std::vector<float> e;
-    const auto& t = cb::EnergyTable::get();
-    for (int j = 0; j < cb::EnergyTable::kN; ++j)
-        for (int i = 0; i < cb::EnergyTable::kN; ++i)
-            for (double ab : t.lookup_dfg((i + 0.5) / cb::EnergyTable::kN, (j + 0.5) / cb::EnergyTable::kN))
-                e.push_back(static_cast<float>(ab));
-    return e;
-}
+std::vector<float> energy_table() { return cb::EnergyTable::get().texels(); }
 
 struct Row {
     std::string model, precision;

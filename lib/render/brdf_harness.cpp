@@ -47,7 +47,8 @@ struct BrdfHarness::Impl {
     Buffer energy;
 
     Impl(Context& context, const std::vector<float>& e) : d(device_of(context)) {
-        if (e.size() != 2 * kEnergyN * kEnergyN) throw Error("BRDF harness: the (A, B) table must be 32 × 32 pairs");
+        if (e.size() != 4 * kEnergyN * kEnergyN)
+            throw Error("BRDF harness: the energy table must be 32 × 32 (A, B, E_avg, 0)");
         auto pi = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
         pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
         pi.queueFamilyIndex = d.queue_family;

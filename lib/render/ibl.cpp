@@ -1,7 +1,7 @@
 // Load-time passes: the split-sum BRDF table and, with an environment, its prefiltered maps.
 // Only what the scene calls for is computed. All of it is recorded into one submission:
 //
-//   brdf_lut        the table (F0 scale, bias) over (n·v, roughness)       accurate BRDF or env
+//   brdf_lut        the table (F0 scale, bias, E_avg) over (n·v, roughness) accurate BRDF or env
 //   env_upload      the equirectangular image to the device                  env
 //   env_cube        equirect → cube mip 0, then each mip from the one above  env
 //   env_prefilter   GGX-prefiltered cube, one roughness per mip             env
@@ -40,7 +40,7 @@ constexpr uint32_t kIrradianceComp[] =
 #include "shaders/irradiance.comp.inc"
     ;
 
-constexpr uint32_t kLutSize = 128;
+constexpr uint32_t kLutSize = gpu::kBrdfLutSize;  // one workgroup a row (brdf_lut.glsl)
 constexpr uint32_t kLutSamples = 1024;
 constexpr uint32_t kSpecularFace = 128;  // prefiltered cube: mip m holds roughness m / (levels − 1)
 constexpr uint32_t kSpecularLevels = 6;
@@ -246,7 +246,7 @@ void record_brdf_lut(Recording& rec) {
     rec.s.begin_pass("brdf_lut");
     d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-    d.fn.vkCmdDispatch(cmd, tile_groups(kLutSize), tile_groups(kLutSize), 1);
+    d.fn.vkCmdDispatch(cmd, 1, kLutSize, 1);
     rec.s.end_pass();
     image_barrier(d, cmd, r.brdf_lut.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kCompute,
                   kWrite, kFragment, kSampled);

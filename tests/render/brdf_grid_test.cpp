@@ -20,17 +20,9 @@ using namespace mf::cpubrdf;
 using mf::render::BrdfHarness;
 using mf::render::BrdfInput;
 
-// (A, B)(n·v, roughness) at the 32 × 32 texel centres of the reference's table: the shader reads
+// (A, B, E_avg)(n·v, roughness) at the 32 × 32 texel centres of the reference's table: the shader reads
 // the same numbers (see brdf_grid.glsl), so the accurate model's comparison is of arithmetic only.
-std::vector<float> energy_table() {
-    std::vector<float> e;
-    const auto& t = EnergyTable::get();
-    for (int j = 0; j < EnergyTable::kN; ++j)
-        for (int i = 0; i < EnergyTable::kN; ++i)
-            for (double ab : t.lookup_dfg((i + 0.5) / EnergyTable::kN, (j + 0.5) / EnergyTable::kN))
-                e.push_back(static_cast<float>(ab));
-    return e;
-}
+std::vector<float> energy_table() { return EnergyTable::get().texels(); }
 
 // 1 / |v̂ + l̂| (capped): how strongly rounding moves the half vector.
 double condition(V3<double> v, V3<double> l) {
@@ -138,7 +130,31 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
 // parameterized by the half vector h, dω_l = 4 (v·h) dω_h (Walter et al. 2007, eq. 14), and h by
 // GGX's inverse CDF, tan² θ_h = α² u / (1 − u) (Walter et al. 2007, eq. 35), so the quadrature
 // points concentrate where D does and the midpoint rule in (u, φ) resolves even the floor
-// roughness 0.045, whose lobe is a milliradian wide.
+// roughness 0.045, whose lobe is a milliradian wide. The accurate model's multiple-scattering
+// lobe is as broad as a diffuse one, which that grid samples poorly at low roughness: its part is
+// taken out of the grid's sum as the CPU evaluates it from the same table (ms_radiance) and
+// integrated over cos θ_l instead (a control variate; BrdfShaderGrid.MillionHardInputs… checks
+// the shader's lobe against the CPU's).
+namespace {
+// f_ms (n·l) for unit irradiance: F_ms (1 − E(μ_v)) (1 − E(μ_l)) / (π (1 − E_avg)) · μ_l, with
+// EnergyTable's (1 − E, 1 − E_avg) and Kulla & Conty's F_ms (brdf.glsl).
+double ms_radiance(double f0, double mu_v, double mu_l, double r) {
+    if (!(mu_l > 0.0)) return 0.0;
+    const auto t = EnergyTable::get().lookup_dfg(mu_v, r);
+    const double f_avg = f0 + (1.0 - f0) / 21.0;
+    const double f_ms = f_avg * f_avg * (1.0 - t[3]) / (1.0 - f_avg * t[3]);
+    const double lost_l = EnergyTable::get().lookup_dfg(std::min(mu_l, 1.0), r)[2];
+    return f_ms * t[2] * lost_l / (std::numbers::pi * std::max(t[3], 1e-4)) * mu_l;
+}
+// ∫ ms_radiance dω_l over the hemisphere (it depends on cos θ_l only).
+double ms_albedo(double f0, double mu_v, double r) {
+    constexpr int kSteps = 2000;
+    double sum = 0.0;
+    for (int i = 0; i < kSteps; ++i) sum += ms_radiance(f0, mu_v, (i + 0.5) / kSteps, r);
+    return sum * 2.0 * std::numbers::pi / kSteps;
+}
+}  // namespace
+
 TEST_F(BrdfShaderGrid, WhiteFurnaceFromTheShader) {
     BrdfHarness harness(context(), energy_table());
     const int nu = 512, nphi = 128;
@@ -194,14 +210,17 @@ TEST_F(BrdfShaderGrid, WhiteFurnaceFromTheShader) {
                                       {a, a, a, 0.f}});
                 }
             const auto out = harness.evaluate(in);
-            double e_diel = 0.0;
-            for (size_t k = 0; k < n_spec; ++k) e_diel += w[k] * out[3 * (n_spec + k) + 1][0];
+            const double NoV = std::max(mu, 1e-4);
+            double e_diel = ms_albedo(0.04, NoV, rr);
+            for (size_t k = 0; k < n_spec; ++k)
+                e_diel += w[k] * (out[3 * (n_spec + k) + 1][0] - ms_radiance(0.04, NoV, in[k].l[2], rr));
             for (size_t k = 2 * n_spec; k < in.size(); k += 2)
                 e_diel += (out[3 * k + 1][0] - out[3 * (k + 1) + 1][0]) * (2.0 * std::numbers::pi / (nt * np));
-            double e_std = 0.0, e_acc = 0.0;
+            double e_std = 0.0, e_acc = ms_albedo(1.0, NoV, rr);
             for (size_t k = 0; k < n_spec; ++k) {
                 e_std += w[k] * out[3 * k + 0][0];  // standard: f (n·l) with E = 1
-                e_acc += w[k] * out[3 * k + 1][0];  // accurate, energy-compensated
+                // accurate: single and multiple scattering
+                e_acc += w[k] * (out[3 * k + 1][0] - ms_radiance(1.0, NoV, in[k].l[2], rr));
             }
             const double cpu = specular_albedo(Model::standard, mu, r);
             worst_std = std::max(worst_std, e_std);

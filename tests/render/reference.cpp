@@ -59,8 +59,9 @@ struct Surface {
 
 // The scene's lights through the BRDF oracle (tests/stability/brdf_reference.hpp), prepared as
 // shade.frag prepares them: roughness and metalness clamped, albedo as sampled; the split-sum
-// terms (A, B)(μ, r) of the accurate model's compensation and diffuse weight by the oracle's own
-// quadrature (specular_dfg_correlated), where the GPU reads its BRDF lookup table.
+// terms (A, B)(μ, r) and E_avg(r) of the accurate model's multiple-scattering lobe and diffuse
+// weight by the oracle's own quadrature (specular_dfg_correlated), where the GPU reads its BRDF
+// lookup table.
 RGB shade(const Scene& scene, const Surface& s, V3 p, V3 v) {
     const double r = std::clamp(s.roughness, kMinRoughness, 1.0);
     const double metal = std::clamp(s.metalness, 0.0, 1.0);
@@ -189,33 +190,42 @@ void sphere_st(V3 n, double& s, double& t) {
 
 int to_code(double e) { return static_cast<int>(std::floor(std::clamp(e, 0.0, 1.0) * 255.0 + 0.5)); }
 
-std::array<double, 2> specular_dfg_correlated(double NoV, double roughness) {
+std::array<double, 4> specular_dfg_correlated(double NoV, double roughness) {
     // Tabulated per roughness over √(n·v) (E is steepest at grazing angles), 257 entries,
     // linear in between: the interpolation error stays near 1e-6. Each entry is the oracle's
-    // quadrature over visible normals, 128² points.
-    static std::map<double, std::vector<std::array<double, 2>>> tables;
+    // quadrature over visible normals, 128² points. 1 − E_avg = 2 ∫ (1 − E(μ)) μ dμ
+    // = 4 ∫ (1 − E(x²)) x³ dx (μ = x²) by the trapezoidal rule over the same entries.
+    struct Table {
+        std::vector<std::array<double, 2>> ab;
+        double lost_avg = 0.0;
+    };
+    static std::map<double, Table> tables;
     static std::mutex mutex;
     const double r = std::max(roughness, kMinRoughness);
     constexpr int kEntries = 257;
-    std::vector<std::array<double, 2>>* table;
+    Table* table;
     {
         std::lock_guard lock(mutex);
         table = &tables[r];
-        if (table->empty()) {
-            table->resize(kEntries);
+        if (table->ab.empty()) {
+            table->ab.resize(kEntries);
             for (int i = 0; i < kEntries; ++i) {
                 const double x = double(i) / (kEntries - 1);
-                (*table)[size_t(i)] = cpubrdf::specular_dfg(cpubrdf::Model::accurate, std::max(x * x, kMinNoV), r, 128,
-                                                            128);
+                table->ab[size_t(i)] = cpubrdf::specular_dfg(cpubrdf::Model::accurate, std::max(x * x, kMinNoV), r, 128,
+                                                             128);
+                const double w = (i == 0 || i == kEntries - 1) ? 0.5 : 1.0;
+                const double lost = 1.0 - table->ab[size_t(i)][0] - table->ab[size_t(i)][1];
+                table->lost_avg += w * 4.0 * lost * x * x * x / (kEntries - 1);
             }
         }
     }
     const double x = std::sqrt(std::clamp(NoV, 0.0, 1.0)) * (kEntries - 1);
     const int i = std::min(int(x), kEntries - 2);
     const double f = x - i;
-    const auto& a = (*table)[size_t(i)];
-    const auto& b = (*table)[size_t(i) + 1];
-    return {a[0] * (1 - f) + b[0] * f, a[1] * (1 - f) + b[1] * f};
+    const auto& a = table->ab[size_t(i)];
+    const auto& b = table->ab[size_t(i) + 1];
+    const double A = a[0] * (1 - f) + b[0] * f, B = a[1] * (1 - f) + b[1] * f;
+    return {A, B, 1.0 - A - B, table->lost_avg};
 }
 
 bool ReferenceImage::silhouette(uint32_t x, uint32_t y) const {

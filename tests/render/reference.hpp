@@ -29,9 +29,10 @@ struct ReferenceImage {
 ReferenceImage render_reference(const render::Scene& scene, const render::Material& material);
 
 // Split-sum terms (A, B) of the accurate BRDF's specular lobe (height-correlated Smith GGX): its
-// directional albedo is F0 A + B with Schlick's F, A + B with F = 1. By quadrature
+// directional albedo is F0 A + B with Schlick's F, E = A + B with F = 1; the loss 1 − E; and
+// 1 − E_avg(roughness), E_avg being E's cosine-weighted average. By quadrature
 // (cpubrdf::specular_dfg), tabulated per roughness.
-std::array<double, 2> specular_dfg_correlated(double NoV, double roughness);
+std::array<double, 4> specular_dfg_correlated(double NoV, double roughness);
 
 // The sRGB curves are mf::linear_to_srgb / mf::srgb_to_linear (color/srgb.hpp).
 int to_code(double encoded);  // round to nearest 8-bit code, clamped

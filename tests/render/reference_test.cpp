@@ -145,15 +145,22 @@ TEST_F(ReferenceTest, ConstantSpheresUnnormalizedDiffuse) {
 namespace mf::test {
 namespace {
 
-// The accurate BRDF reads E(n·v, r) from a 128² half-float table built by importance sampling
-// at load; the reference integrates E by quadrature at each pixel. Table interpolation and fp16
-// storage are the error budget here.
+// The accurate BRDF reads (A, B, 1 − E, 1 − E_avg) from a 128² table built by quasi-random
+// sampling of the visible normals at load (1024 samples a texel); the reference integrates by
+// quadrature (128² points, tabulated per roughness). Table interpolation is the error budget of
+// single scattering: 1e-3. The multiple-scattering lobe is proportional to the losses
+// (1 − E(n·v))(1 − E(n·l)) / (1 − E_avg), small differences of E near 1 that both integrations
+// carry with percents of relative error where they are small (roughness 0.3, n·v near 1: the
+// table 3-6 %, the 128² quadrature 9 %, against a 4096² one; the loss comes from the few
+// microfacets seen edge-on). Where that lobe dominates (a metal away from its highlight, radiance
+// near 0.015 of the key light's) the two differ by up to 1.7 %; every 8-bit code stays within 1.
 TEST_F(ReferenceTest, ConstantSpheresAccurate) {
     for (const render::Shading path : kShadingPaths)
         for (const Material& m : {kConstants[0], kConstants[1], kConstants[2], kConstants[4]}) {
             const Errors e = run(test_scene(Brdf::accurate, path), m);
             EXPECT_LE(e.max_code, 1) << m.name << ' ' << shading_name(path);
-            EXPECT_LE(e.max_rel, 1e-3) << m.name << ' ' << shading_name(path);
+            const bool metal = m.metalness.value > 0.f;
+            EXPECT_LE(e.max_rel, metal ? 2.5e-2 : 1e-3) << m.name << ' ' << shading_name(path);
         }
 }
 

@@ -16,11 +16,13 @@
 //  - F: Schlick 1994 (eq. 15) with a colored F0 = lerp(0.04, albedo, metalness);
 //  - G: Schlick-GGX, G1(x) = x / (x (1 − k) + k), k = (roughness + 1)² / 8 (Karis 2013, p. 3,
 //    the remap for punctual lights), folded into V = G / (4 N·L N·V);
-//  - accurate variant: height-correlated Smith G2 (Heitz 2014, eq. 99), the multiple-
-//    scattering compensation 1 + F0 (1/E − 1) (Kulla & Conty 2017; Fdez-Agüera 2019), and the
-//    diffuse weighted by 1 − E_spec(N·V), E_spec = (F0 A + B)(1 + F0 (1/E − 1)) the compensated
-//    lobe's directional albedo (albedo scaling, Kulla & Conty 2017), with A, B, E = A + B given
-//    by the caller (specular_dfg's quadrature, or EnergyTable where the shader reads a table);
+//  - accurate variant: height-correlated Smith G2 (Heitz 2014, eq. 99), Kulla & Conty's 2017
+//    multiple-scattering lobe F_ms (1 − E(N·V))(1 − E(N·L)) / (π (1 − E_avg)) with
+//    F_ms = F_avg² E_avg / (1 − F_avg (1 − E_avg)), F_avg = F0 + (1 − F0)/21, and the diffuse
+//    weighted by 1 − E_spec(N·V), E_spec = F0 A + B + F_ms (1 − E) the whole specular lobe's
+//    directional albedo (albedo scaling, Kulla & Conty 2017), with A, B, the losses 1 − E
+//    (E = A + B) and 1 − E_avg given by the caller (specular_dfg's quadrature, or EnergyTable
+//    where the shader reads a table);
 //  - diffuse: Lambert albedo / π, scaled by (1 − F)(1 − metalness) (accurate: by
 //    (1 − E_spec)(1 − metalness)); the unnormalized_diffuse variant leaves out Lambert's 1/π
 //    (diffuse π times too strong against the specular lobe), for comparison with engines that do
@@ -135,9 +137,11 @@ inline double specular_albedo(Model m, double NoV, double roughness, int nu = 25
     return ab[0] + ab[1];
 }
 
-// (A, B)(μ, r) of the height-correlated lobe on a 32 × 32 grid of texel centres (as the renderer's
-// BRDF lookup table), bilinear in between: the accurate model's energy compensation and diffuse
-// weight.
+// (A, B)(μ, r) of the height-correlated lobe on a 32 × 32 grid of texel centres uniform in μ and
+// r, bilinear in between, with the loss 1 − E = 1 − A − B (formed in double) and each row's
+// 1 − E_avg(r) = 2 ∫ (1 − E) μ dμ by the midpoint rule over the row's texel centres, linear in r:
+// the accurate model's multiple-scattering lobe and diffuse weight, as the shader harness reads
+// them (brdf_grid.glsl; the preview's own table, brdf_lut.glsl, is over √μ and finer).
 class EnergyTable {
 public:
     static constexpr int kN = 32;
@@ -145,14 +149,14 @@ public:
         static const EnergyTable t;
         return t;
     }
-    // (A, B), each interpolated bilinearly.
-    std::array<double, 2> lookup_dfg(double NoV, double r) const {
+    // (A, B, 1 − E, 1 − E_avg), each interpolated bilinearly (1 − E_avg is constant along a row).
+    std::array<double, 4> lookup_dfg(double NoV, double r) const {
         const double x = std::clamp(NoV * kN - 0.5, 0.0, kN - 1.0);
         const double y = std::clamp(r * kN - 0.5, 0.0, kN - 1.0);
         const int x0 = std::min(static_cast<int>(x), kN - 2), y0 = std::min(static_cast<int>(y), kN - 2);
         const double fx = x - x0, fy = y - y0;
-        std::array<double, 2> out{};
-        for (size_t c = 0; c < 2; ++c) {
+        std::array<double, 4> out{};
+        for (size_t c = 0; c < 4; ++c) {
             auto at = [&](int i, int j) { return ab_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)][c]; };
             out[c] = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
                      fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
@@ -164,16 +168,29 @@ public:
         const auto ab = lookup_dfg(NoV, r);
         return ab[0] + ab[1];
     }
+    // The table as render::BrdfHarness takes it: (A, B, 1 − E, 1 − E_avg) at each texel centre,
+    // row by row.
+    std::vector<float> texels() const {
+        std::vector<float> e;
+        for (const auto& t : ab_) e.insert(e.end(), {float(t[0]), float(t[1]), float(t[2]), float(t[3])});
+        return e;
+    }
 
 private:
     EnergyTable() : ab_(static_cast<size_t>(kN) * kN) {
-        for (int j = 0; j < kN; ++j)
+        for (int j = 0; j < kN; ++j) {
+            double lost_avg = 0.0;
             for (int i = 0; i < kN; ++i) {
                 const size_t k = static_cast<size_t>(j) * kN + static_cast<size_t>(i);
-                ab_[k] = specular_dfg(Model::accurate, (i + 0.5) / kN, (j + 0.5) / kN, 96, 96);
+                const auto ab = specular_dfg(Model::accurate, (i + 0.5) / kN, (j + 0.5) / kN, 96, 96);
+                const double lost = 1.0 - ab[0] - ab[1];
+                ab_[k] = {ab[0], ab[1], lost, 0.0};
+                lost_avg += 2.0 * lost * (i + 0.5) / kN / kN;
             }
+            for (int i = 0; i < kN; ++i) ab_[static_cast<size_t>(j) * kN + static_cast<size_t>(i)][3] = lost_avg;
+        }
     }
-    std::vector<std::array<double, 2>> ab_;
+    std::vector<std::array<double, 4>> ab_;
 };
 
 template <class T>
@@ -221,10 +238,11 @@ bool unit(V3<T>& a) {
 // One punctual light's reflected radiance (f_diffuse + f_specular) · E · N·L, RGB: the twin of
 // brdf.glsl's brdf_light(). n, v, l unit; NoV = N·V clamped to [kMinNoV, 1]; r = perceptual
 // roughness in [kMinRoughness, 1]; metal in [0, 1]; `albedo` as given (not clamped); E the
-// light's irradiance at normal incidence per channel. dfg(NoV, r) gives the split-sum terms
-// (A, B) of the height-correlated lobe (E = A + B; with Schlick's F its albedo is F0 A + B), asked
-// for by the accurate model only: its compensation 1 + F0 (1/E − 1) and its diffuse weight
-// 1 − (F0 A + B)(1 + F0 (1/E − 1)) (brdf.glsl's accurate_diffuse_weight).
+// light's irradiance at normal incidence per channel. dfg(μ, r) gives the split-sum terms
+// (A, B) of the height-correlated lobe (E = A + B; with Schlick's F its albedo is F0 A + B), the
+// loss 1 − E and 1 − E_avg(r), asked for by the accurate model only, at μ = N·V and N·L: its
+// multiple-scattering lobe (brdf.glsl's multiscatter_fresnel, multiscatter_lobe) and its diffuse
+// weight 1 − (F0 A + B) − F_ms (1 − E) (accurate_diffuse_weight).
 //  - N·L ≤ 0, and NaN (NaN × 0 = NaN would survive a max(N·L, 0) clamp) → 0;
 //  - v = −l → no specular, diffuse weighted by 1 − F0 (accurate: 1 − E_spec(N·V), as for any l).
 template <class T, class P = Exact, class Dfg>
@@ -261,13 +279,16 @@ std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T
     }
     const T m = T(1) - VoH;
     const T m5 = P::q(P::q(m * m) * P::q(m * m) * m);
-    T dfg_a = T(1), dfg_b = T(0);
+    // The accurate model's table terms: A, B, 1 − E(N·V), 1 − E_avg; 1 − E(N·L).
+    T dfg_a = T(1), dfg_b = T(0), lost_v = T(0), lost_avg = T(0), lost_l = T(0);
     if (model == Model::accurate) {
         const auto ab = dfg(NoV, r);
         dfg_a = static_cast<T>(ab[0]);
         dfg_b = static_cast<T>(ab[1]);
+        lost_v = static_cast<T>(ab[2]);
+        lost_avg = static_cast<T>(ab[3]);
+        lost_l = static_cast<T>(dfg(NoL, r)[2]);
     }
-    const T comp_e = model == Model::accurate ? P::q(dfg_a + dfg_b) : T(1);
     // Lambert's 1/π: a white surface under irradiance E reflects radiance E/π.
     const T diffuse_norm = model == Model::unnormalized_diffuse ? T(1) : T(1.0 / std::numbers::pi);
     const T DV = P::q(D * Vis);
@@ -279,10 +300,13 @@ std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T
         T spec = has_h ? P::q(DV * F) : T(0);
         T diffuse_weight = T(1) - F;  // energy left to the diffuse lobe
         if (model == Model::accurate) {
-            const T scale = P::q(T(1) + f0 * (T(1) / std::max(comp_e, T(1e-4)) - T(1)));
-            spec = P::q(spec * scale);
-            // 1 − E_spec(N·V): the compensated lobe's directional albedo toward v.
-            diffuse_weight = P::q(T(1) - P::q(P::q(f0 * dfg_a + dfg_b) * scale));
+            // Kulla & Conty's lobe: F_ms (1 − E(N·V))(1 − E(N·L)) / (π (1 − E_avg)), also for v = −l.
+            const T f_avg = P::q(f0 + (T(1) - f0) * T(1.0 / 21.0));
+            const T f_ms = P::q(P::q(P::q(f_avg * f_avg) * (T(1) - lost_avg)) / P::q(T(1) - P::q(f_avg * lost_avg)));
+            const T ms_v = P::q(f_ms * P::q(lost_v * T(1.0 / std::numbers::pi) / std::max(lost_avg, T(1e-4))));
+            spec = P::q(spec + P::q(ms_v * lost_l));
+            // 1 − E_spec(N·V): the whole specular lobe's directional albedo toward v.
+            diffuse_weight = P::q(T(1) - P::q(f0 * dfg_a + dfg_b) - P::q(f_ms * lost_v));
         }
         const T diffuse = P::q(diffuse_weight * albedo[i] * (T(1) - metal) * diffuse_norm);
         out[i] = P::q(P::q(P::q(diffuse + spec) * E[i]) * NoL);

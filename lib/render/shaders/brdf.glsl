@@ -76,40 +76,55 @@ mf_float Fd_Lambert() {
 }
 
 
-// Multiple-scattering energy compensation for the specular lobe. Single-scattering GGX loses
-// the energy 1 − E(μ) of light bouncing between microfacets (Kulla & Conty 2017, "Revisiting
-// Physically Based Shading at Imageworks"); scaling the lobe by 1 + F0 (1/E − 1) returns it
-// (Fdez-Agüera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based
-// Lighting", and Turquin 2019 for the punctual form). E(μ, α) = directional albedo of the lobe
-// with F = 1, from the BRDF lookup table.
-mf_vec3 energy_compensation(mf_vec3 f0, mf_float E) {
-    return mf_float(1.0) + f0 * (mf_float(1.0) / max(E, mf_float(1e-4)) - mf_float(1.0));
+// Multiple scattering of the specular lobe, as a lobe of its own (Kulla & Conty 2017,
+// "Revisiting Physically Based Shading at Imageworks", slides 18-21). Single-scattering GGX
+// loses the energy 1 − E(μ) of light that bounces between microfacets; E(μ, α) = A + B is the
+// lobe's directional albedo with F = 1, E_avg(α) = 2 ∫ E(μ) μ dμ its cosine-weighted average.
+// The lobe
+//   f_ms(v, l) = F_ms (1 − E(n·v)) (1 − E(n·l)) / (π (1 − E_avg))
+// reflects exactly 1 − E(n·v) for F = 1 (the white furnace stays at 1) and, unlike scaling the
+// single-scattering lobe by 1 + F0 (1/E − 1) (Turquin 2019, this model's form before), spreads
+// the returned energy as broadly as the random walk does (docs/accuracy/pathtracer.md).
+// The tables hold the losses 1 − E and 1 − E_avg themselves (channels b, a of the BRDF table),
+// accumulated as such: on smooth surfaces E is within 1e-5 of 1, and 1 − E formed from an fp32 E
+// keeps two significant digits (it moved the radiance by 1e-3 relative).
+// F_ms: the lobe's Fresnel, every bounce's F replaced by Schlick's hemispherical average
+// F_avg = F0 + (1 − F0)/21 and the bounces summed: F_avg² E_avg / (1 − F_avg (1 − E_avg)).
+mf_vec3 multiscatter_fresnel(mf_vec3 f0, mf_float lost_avg) {
+    mf_vec3 F_avg = f0 + (mf_float(1.0) - f0) * mf_float(1.0 / 21.0);
+    return F_avg * F_avg * (mf_float(1.0) - lost_avg) / (mf_float(1.0) - F_avg * lost_avg);
 }
 
-// The accurate model's weight of the diffuse lobe: one minus the directional albedo of its
-// (compensated) specular lobe toward the viewer, 1 − E_spec(n·v) with
-// E_spec = (F0 A + B) · spec_scale. (A, B) = dfg are the split-sum terms of the BRDF lookup table
-// at (n·v, roughness): F0 A + B = ∫ f_spec (n·l) dω_l with Schlick's F (Karis 2013). This is
-// albedo scaling (Kulla & Conty 2017, "Revisiting Physically Based Shading at Imageworks"; as
-// Blender 4's Principled BSDF and OpenPBR): the diffuse lobe gets exactly the energy the specular
-// lobe does not reflect, so a white dielectric under uniform light reflects 1 at every n·v, where
-// the per-light weight 1 − F(v·h) loses 2 % on rough surfaces and adds up to 40 % at grazing views
-// on smooth ones (docs/accuracy/pathtracer.md). The environment's diffuse in shade.frag has the
-// same weight, 1 − F_ss E_ss − F_ms E_ms (Fdez-Agüera 2019), so lights and environment
-// share one diffuse weighting. It depends on n·v only (not reciprocal): one value per pixel.
-mf_vec3 accurate_diffuse_weight(mf_vec3 f0, mf_float A, mf_float B, mf_vec3 spec_scale) {
-    return mf_float(1.0) - (f0 * A + B) * spec_scale;
+// The per-pixel factor of f_ms: F_ms (1 − E(n·v)) / (π (1 − E_avg)); brdf_light() multiplies it by
+// 1 − E(n·l). 1 − E_avg is floored at 1e-4, which only roughness below 0.1 reaches: there
+// 1 − E(n·v) is as small, and the floor takes less than 1e-4 of the light away while keeping the
+// quotient finite (also in binary16, whose smallest normal number is 6.1e-5).
+mf_vec3 multiscatter_lobe(mf_vec3 F_ms, mf_float lost_v, mf_float lost_avg) {
+    return F_ms * (lost_v * mf_float(1.0 / PI) / max(lost_avg, mf_float(1e-4)));
+}
+
+// The accurate model's weight of the diffuse lobe: one minus the directional albedo of the whole
+// specular lobe toward the viewer, 1 − E_spec(n·v), E_spec = F0 A + B + F_ms (1 − E) (single
+// scattering with Schlick's F, Karis 2013, plus f_ms's albedo). This is albedo scaling (Kulla &
+// Conty 2017; as Blender 4's Principled BSDF and OpenPBR): the diffuse lobe gets exactly the
+// energy the specular lobe does not reflect, so a white dielectric under uniform light reflects
+// 1 at every n·v, where the per-light weight 1 − F(v·h) loses 2 % on rough surfaces and adds up
+// to 40 % at grazing views on smooth ones (docs/accuracy/pathtracer.md). The environment's
+// diffuse in shading.glsl has the same weight, so lights and environment share one diffuse
+// weighting. It depends on n·v only (not reciprocal): one value per pixel.
+mf_vec3 accurate_diffuse_weight(mf_vec3 f0, mf_float A, mf_float B, mf_float lost_v, mf_vec3 F_ms) {
+    return mf_float(1.0) - (f0 * A + B) - F_ms * lost_v;
 }
 
 // One punctual light's reflected radiance (f_d + f_s) E (n·l): the body of shade.frag's light
 // loop, here so that the preview and the accuracy harness (brdf_grid.comp) run the same code.
 // n, v, l unit; NoV = clamp(n·v, MIN_NOV, 1); roughness in [MIN_ROUGHNESS, 1]; f0 = lerp(0.04,
-// albedo, metalness) (Karis 2013, p. 9); diffuse_color = albedo (1 − metalness); spec_scale the
-// accurate model's energy compensation (1 otherwise); diffuse_weight the accurate model's
-// accurate_diffuse_weight() (the other models weight the diffuse lobe by 1 − F(v·h) and ignore
-// it); E the light's irradiance at normal incidence.
-mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_float roughness,
-                   mf_vec3 f0, mf_vec3 diffuse_color, mf_vec3 spec_scale, mf_vec3 diffuse_weight, mf_vec3 E) {
+// albedo, metalness) (Karis 2013, p. 9); diffuse_color = albedo (1 − metalness); accurate model
+// only (the others ignore them): ms_v = multiscatter_lobe() at this pixel, lost_l = 1 − E(n·l)
+// from the table, diffuse_weight = accurate_diffuse_weight() (the other models weight the diffuse lobe by
+// 1 − F(v·h)); E the light's irradiance at normal incidence.
+mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_float roughness, mf_vec3 f0,
+                   mf_vec3 diffuse_color, mf_vec3 ms_v, mf_float lost_l, mf_vec3 diffuse_weight, mf_vec3 E) {
     mf_float NoL = dot(n, l);
     // Also rejects NaN: NaN × 0 = NaN would survive a max(n·l, 0) clamp.
     if (!(NoL > mf_float(0.0))) return mf_vec3(0.0);
@@ -135,7 +150,9 @@ mf_vec3 brdf_light(int model, mf_vec3 n, mf_vec3 v, mf_vec3 l, mf_float NoV, mf_
     mf_float V = model == kBrdfAccurate ? V_SmithGGXCorrelated(NoV, NoL, alpha)
                                         : V_SchlickGGX(NoV, NoL, roughness);
     // A select, not a product: D at the fallback h may overflow in fp16, and inf × 0 = NaN.
-    mf_vec3 specular = has_h ? (D * V) * F * spec_scale : mf_vec3(0.0);
+    mf_vec3 specular = has_h ? (D * V) * F : mf_vec3(0.0);
+    // The multiple-scattering lobe has no half vector: it is there for v = −l too.
+    if (model == kBrdfAccurate) specular += ms_v * lost_l;
     // Energy left to the diffuse lobe: (1 − F)(1 − metalness); accurate: (1 − E_spec(n·v)) ×
     // (1 − metalness).
     mf_vec3 kd = model == kBrdfAccurate ? diffuse_weight : mf_float(1.0) - F;

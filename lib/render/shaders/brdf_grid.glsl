@@ -12,9 +12,10 @@
 // orthographic unit sphere, one directional light, roughness bands, metal on the right half,
 // with 1/4/8 samples per pixel at the D3D11 standard multisample positions.
 //
-// The accurate model's energy compensation and diffuse weight need the split-sum terms (A, B) at
-// (n·v, roughness) (E = A + B), which the preview samples from its BRDF lookup table; here they
-// are a 32 × 32 table of texel centres (kBindingGridEnergy, (A, B) pairs) read bilinearly, the
+// The accurate model's multiple-scattering lobe and diffuse weight need the split-sum terms
+// (A, B) and the loss 1 − E at (n·v, roughness), 1 − E at (n·l, roughness) and 1 − E_avg(roughness),
+// which the preview samples from its BRDF lookup table; here they are a 32 × 32 table of texel
+// centres uniform in n·v (kBindingGridEnergy, (A, B, 1 − E, 1 − E_avg) each) read bilinearly, the
 // same table and interpolation as the CPU reference's EnergyTable, so the two evaluations differ
 // by arithmetic only.
 #include "brdf.glsl"  // includes interface.h: GridInput, GridPush
@@ -24,7 +25,7 @@ layout(constant_id = kSpecGridMode) const int MODE = kGridModeInputs;
 
 layout(std430, set = 0, binding = kBindingGridInputs) readonly buffer Inputs { GridInput inputs[]; };
 layout(std430, set = 0, binding = kBindingGridOutputs) writeonly buffer Outputs { vec4 outputs[]; };
-layout(std430, set = 0, binding = kBindingGridEnergy) readonly buffer Energy { vec2 dfg_table[]; };  // [roughness][n·v]
+layout(std430, set = 0, binding = kBindingGridEnergy) readonly buffer Energy { vec4 dfg_table[]; };  // [roughness][n·v]
 
 layout(push_constant) uniform GridPushBlock {
     GridPush pc;
@@ -32,14 +33,14 @@ layout(push_constant) uniform GridPushBlock {
 
 const int kEnergyN = kEnergyTableSize;
 
-vec2 dfg_lookup(float NoV, float r) {
+vec4 dfg_lookup(float NoV, float r) {
     float x = clamp(NoV * float(kEnergyN) - 0.5, 0.0, float(kEnergyN - 1));
     float y = clamp(r * float(kEnergyN) - 0.5, 0.0, float(kEnergyN - 1));
     int x0 = min(int(x), kEnergyN - 2), y0 = min(int(y), kEnergyN - 2);
     float fx = x - float(x0), fy = y - float(y0);
     int i = y0 * kEnergyN + x0;
-    return (1.0 - fy) * ((1.0 - fx) * dfg_table[i] + fx * dfg_table[i + 1]) +
-           fy * ((1.0 - fx) * dfg_table[i + kEnergyN] + fx * dfg_table[i + kEnergyN + 1]);
+    return ((1.0 - fy) * ((1.0 - fx) * dfg_table[i] + fx * dfg_table[i + 1]) +
+            fy * ((1.0 - fx) * dfg_table[i + kEnergyN] + fx * dfg_table[i + kEnergyN + 1]));
 }
 
 bool to_unit(inout vec3 a) {
@@ -57,15 +58,20 @@ vec3 shade_one(int model, vec3 n, vec3 v, vec3 l, vec3 albedo, float roughness, 
     vec3 f0 = mix(vec3(0.04), albedo, metalness);
     vec3 diffuse_color = albedo * (1.0 - metalness);
     float NoV = clamp(dot(n, v), MIN_NOV, 1.0);
-    mf_vec3 spec_scale = mf_vec3(1.0);
-    mf_vec3 diffuse_weight = mf_vec3(1.0);
+    // The accurate model's per-pixel terms (shade.frag computes them once per pixel), in the
+    // BRDF's arithmetic type; the table reads stay fp32.
+    vec3 ms_v = vec3(0.0), diffuse_weight = vec3(1.0);
+    float lost_l = 0.0;
     if (model == kBrdfAccurate) {
-        vec2 dfg = dfg_lookup(NoV, roughness);
-        spec_scale = energy_compensation(mf_vec3(f0), mf_float(dfg.x + dfg.y));
-        diffuse_weight = accurate_diffuse_weight(mf_vec3(f0), mf_float(dfg.x), mf_float(dfg.y), spec_scale);
+        vec4 dfg = dfg_lookup(NoV, roughness);
+        mf_vec3 F_ms = multiscatter_fresnel(mf_vec3(f0), mf_float(dfg.w));
+        ms_v = vec3(multiscatter_lobe(F_ms, mf_float(dfg.z), mf_float(dfg.w)));
+        diffuse_weight = vec3(accurate_diffuse_weight(mf_vec3(f0), mf_float(dfg.x), mf_float(dfg.y), mf_float(dfg.z), F_ms));
+        lost_l = dfg_lookup(clamp(dot(n, l), 0.0, 1.0), roughness).z;
     }
     return vec3(brdf_light(model, mf_vec3(n), mf_vec3(v), mf_vec3(l), mf_float(NoV), mf_float(roughness),
-                           mf_vec3(f0), mf_vec3(diffuse_color), spec_scale, diffuse_weight, mf_vec3(E)));
+                           mf_vec3(f0), mf_vec3(diffuse_color), mf_vec3(ms_v), mf_float(lost_l), mf_vec3(diffuse_weight),
+                           mf_vec3(E)));
 }
 
 // D3D11 standard multisample positions, in 1/16 pixel.

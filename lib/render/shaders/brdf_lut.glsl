@@ -1,10 +1,16 @@
-// Split-sum BRDF table (Karis 2013, "Real Shading in Unreal Engine 4", p. 6-7): for
-// x = n·v and y = perceptual roughness (texel centres), the directional albedo of the specular
-// lobe as F0 · A + B. A + B is the lobe's albedo with F = 1, E(μ, α), which the accurate BRDF's
-// energy compensation needs.
+// Split-sum BRDF table (Karis 2013, "Real Shading in Unreal Engine 4", p. 6-7), over
+// x = √(n·v) and y = perceptual roughness (texel centres): the directional albedo of the specular
+// lobe as F0 · A + B (channels r, g); channel b holds 1 − E(μ, α), what the lobe loses with F = 1
+// (E = A + B), and channel a 1 − E_avg(α) = 2 ∫ (1 − E(μ)) μ dμ, the same in every texel of a row.
+// The accurate BRDF's multiple-scattering lobe needs 1 − E at n·v and n·l and 1 − E_avg
+// (brdf.glsl). √(n·v), not n·v: E falls steeply at grazing angles (at roughness 0.3 from 0.95 to
+// 0.6 over the last 1 % of n·v), where a table linear in n·v interpolated the lobe 1.6 % wrong;
+// look it up with brdf_table() (shading.glsl).
 #include "brdf.glsl"
 
-layout(local_size_x = kTile, local_size_y = kTile) in;
+// One workgroup per row (kBrdfLutSize texels): E_avg is the row's own quadrature.
+layout(local_size_x = kBrdfLutSize, local_size_y = 1) in;
+shared float row_energy[kBrdfLutSize];  // (1 − E) x³ of each texel
 layout(constant_id = kSpecLutCorrelated) const bool CORRELATED = false;  // accurate BRDF: Heitz's height-correlated Smith
 layout(constant_id = kSpecLutSamples) const uint SAMPLES = 1024;
 layout(set = 0, binding = kBindingLut, LUT_FORMAT) uniform writeonly image2D lut;
@@ -41,21 +47,24 @@ float G1_Smith(float NoV, float alpha) {
 }
 
 void main() {
-    ivec2 size = imageSize(lut);
+    ivec2 size = imageSize(lut);  // kBrdfLutSize square (ibl.cpp)
     ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
-    if (xy.x >= size.x || xy.y >= size.y) return;
-    float NoV = (float(xy.x) + 0.5) / float(size.x);
+    float x = (float(xy.x) + 0.5) / float(size.x);
+    float NoV = x * x;
     float roughness = max((float(xy.y) + 0.5) / float(size.y), MIN_ROUGHNESS);
     float alpha = roughness * roughness;
     vec3 v = vec3(sqrt(1.0 - NoV * NoV), 0.0, NoV);
     float g1 = G1_Smith(NoV, alpha);
-    float a = 0.0, b = 0.0;
+    float a = 0.0, b = 0.0, lost = 0.0;
     for (uint i = 0u; i < SAMPLES; ++i) {
         vec3 h = sample_vndf(v, alpha, hammersley(i));
         float VoH = dot(v, h);
         vec3 l = 2.0 * VoH * h - v;
         float NoL = l.z;
-        if (NoL <= 0.0 || VoH <= 0.0) continue;
+        if (NoL <= 0.0 || VoH <= 0.0) {
+            lost += 1.0;  // the sample's light leaves below the horizon: all of it lost
+            continue;
+        }
         // Image-based lighting takes k = α/2 in Schlick-GGX, not the (r + 1)²/8 of punctual
         // lights (Karis 2013, p. 3: that remap is for analytic lights only).
         float vis = CORRELATED ? V_SmithGGXCorrelated(NoV, NoL, alpha) : V_SchlickGGX_k(NoV, NoL, alpha * 0.5);
@@ -64,6 +73,16 @@ void main() {
         float fc = pow(1.0 - VoH, 5.0);
         a += (1.0 - fc) * g;
         b += fc * g;
+        lost += 1.0 - g;
     }
-    imageStore(lut, xy, vec4(a, b, 0.0, 0.0) / float(SAMPLES));
+    a /= float(SAMPLES);
+    b /= float(SAMPLES);
+    lost /= float(SAMPLES);
+    // 1 − E_avg = 2 ∫ (1 − E) μ dμ = 4 ∫ (1 − E(x²)) x³ dx, by the midpoint rule over the row's
+    // texel centres. Every invocation sums the row in the same order, so all write the same value.
+    row_energy[xy.x] = lost * x * x * x;
+    barrier();
+    float sum = 0.0;
+    for (uint i = 0u; i < kBrdfLutSize; ++i) sum += row_energy[i];
+    imageStore(lut, xy, vec4(a, b, lost, 4.0 * sum / float(size.x)));
 }

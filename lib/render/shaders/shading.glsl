@@ -41,7 +41,12 @@ layout(constant_id = kSpecOpacityInvert) const bool OPACITY_INVERT = false;
 
 const bool NEEDS_LUT = HAS_ENV || BRDF_MODEL == kBrdfAccurate;
 
-layout(set = kSetFrame, binding = kBindingBrdfLut) uniform sampler2D brdf_lut;  // (scale, bias) of F0; x: n·v, y: roughness
+layout(set = kSetFrame, binding = kBindingBrdfLut) uniform sampler2D brdf_lut;  // brdf_lut.glsl: x √(n·v), y roughness
+
+// The BRDF table at (μ, roughness): (A, B) = scale and bias of F0, 1 − E(μ), 1 − E_avg.
+vec4 brdf_table(float mu, float roughness) {
+    return textureLod(brdf_lut, vec2(sqrt(clamp(mu, 0.0, 1.0)), roughness), 0.0);
+}
 layout(set = kSetFrame, binding = kBindingEnvSpecular) uniform samplerCube env_specular;  // GGX-prefiltered, mip = roughness
 layout(set = kSetFrame, binding = kBindingEnvIrradiance) uniform samplerCube env_irradiance;  // E(n)/π
 layout(set = kSetMaterial, binding = kBindingMaterialTextures) uniform sampler2D textures[kMaxTextures];
@@ -175,14 +180,17 @@ vec3 shade_point(SurfacePoint s) {
     vec3 v = normalize(frame.camera_position.xyz - p);
     float NoV = clamp(dot(n, v), MIN_NOV, 1.0);
 
-    vec3 spec_scale = vec3(1.0);
-    vec3 diffuse_weight = vec3(1.0);  // accurate only: 1 − E_spec(n·v), see brdf.glsl
-    vec2 dfg = vec2(1.0, 0.0);
+    // Accurate model only (brdf.glsl): the multiple-scattering lobe's per-pixel factor and
+    // Fresnel, and the diffuse weight 1 − E_spec(n·v).
+    vec3 ms_v = vec3(0.0), F_ms = vec3(0.0);
+    vec3 diffuse_weight = vec3(1.0);
+    vec4 dfg = vec4(1.0, 0.0, 0.0, 0.0);  // (A, B, 1 − E, 1 − E_avg) at (n·v, roughness)
     if (NEEDS_LUT) {
-        dfg = textureLod(brdf_lut, vec2(NoV, roughness), 0.0).xy;
+        dfg = brdf_table(NoV, roughness);
         if (BRDF_MODEL == kBrdfAccurate) {
-            spec_scale = energy_compensation(f0, dfg.x + dfg.y);
-            diffuse_weight = accurate_diffuse_weight(f0, dfg.x, dfg.y, spec_scale);
+            F_ms = multiscatter_fresnel(f0, dfg.w);
+            ms_v = multiscatter_lobe(F_ms, dfg.z, dfg.w);
+            diffuse_weight = accurate_diffuse_weight(f0, dfg.x, dfg.y, dfg.z, F_ms);
         }
     }
 
@@ -201,7 +209,9 @@ vec3 shade_point(SurfacePoint s) {
         }
         // The ground's contact shadow: the key light (the first directional one) behind the shape.
         if (GROUND && i == 0 && NUM_DIRECTIONAL > 0) E *= key_light_visibility(p, l);
-        color += brdf_light(BRDF_MODEL, n, v, l, NoV, roughness, f0, diffuse_color, spec_scale, diffuse_weight, E);
+        // 1 − E(n·l) for the multiple-scattering lobe: one more table fetch per light, accurate only.
+        float lost_l = BRDF_MODEL == kBrdfAccurate ? brdf_table(dot(n, l), roughness).z : 0.0;
+        color += brdf_light(BRDF_MODEL, n, v, l, NoV, roughness, f0, diffuse_color, ms_v, lost_l, diffuse_weight, E);
     }
 
     if (HAS_ENV) {
@@ -213,13 +223,11 @@ vec3 shade_point(SurfacePoint s) {
         vec3 FssEss = f0 * dfg.x + dfg.y;
         vec3 ibl;
         if (BRDF_MODEL == kBrdfAccurate) {
-            // Fdez-Agüera 2019, eqs. 11-16: multiple scattering for the split sum.
-            float Ess = dfg.x + dfg.y;
-            float Ems = 1.0 - Ess;
-            vec3 Favg = f0 + (1.0 - f0) / 21.0;
-            vec3 Fms = FssEss * Favg / (1.0 - Ems * Favg);
-            vec3 kd = diffuse_color * (1.0 - FssEss - Fms * Ems);
-            ibl = FssEss * prefiltered + (Fms * Ems + kd) * irradiance;
+            // The lights' multiple-scattering lobe under the environment: its albedo
+            // F_ms (1 − E(n·v)) times the cosine-weighted radiance (Fdez-Agüera 2019, eq. 16,
+            // with Kulla & Conty's F_ms as the lights have it), and the same diffuse weight.
+            vec3 ms = F_ms * dfg.z;
+            ibl = FssEss * prefiltered + (ms + diffuse_color * diffuse_weight) * irradiance;
         } else {
             // The diffuse lobe keeps what the specular lobe does not reflect. env_irradiance
             // holds E(n)/π, the radiance a white Lambertian surface reflects.
