@@ -1,7 +1,8 @@
 # matforge_test(name [RUNS_BINARY] [LOCK name] SOURCES... LIBS ...): one GoogleTest program,
 # discovered by ctest. LOCK: its tests never run at the same time as another test holding that
 # ctest RESOURCE_LOCK (tests that share costly results through the test cache: the first
-# computes, the others restore, instead of all computing at once under ctest -j). RUNS_BINARY: the tests run the matforge binary (MATFORGE_BIN) and can generate synthetic
+# computes, the others restore, instead of all computing at once under ctest -j).
+# RUNS_BINARY: the tests run the matforge binary (MATFORGE_BIN) and can generate synthetic
 # sets (MATFORGE_GEN_SAMPLES, tests/common/synthetic_sets.hpp), and every manifest and
 # validate report they leave behind is copied to the schema spool (tests/common/run_binary.hpp),
 # which the schema_check test validates after them (tests/CMakeLists.txt).

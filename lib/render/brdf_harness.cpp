@@ -48,7 +48,7 @@ struct BrdfHarness::Impl {
 
     Impl(Context& context, const std::vector<float>& e) : d(device_of(context)) {
         if (e.size() != 4 * kEnergyN * kEnergyN)
-            throw Error("BRDF harness: the energy table must be 32 × 32 (A, B, E_avg, 0)");
+            throw Error("BRDF harness: the energy table must be 32 × 32 (A, B, 1 − E, 1 − E_avg)");
         auto pi = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
         pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
         pi.queueFamilyIndex = d.queue_family;

@@ -26,10 +26,11 @@ enum class BrdfPrecision { fp32, fp16 };
 class BrdfHarness {
 public:
     // energy: the split-sum terms (A, B) of the height-correlated lobe (its directional albedo
-    // with Schlick's F is F0 A + B, with F = 1 it is E = A + B) and E_avg (the row's
-    // cosine-weighted average of E) at the 32 × 32 texel centres ((i + 0.5)/32, (j + 0.5)/32),
-    // row j = roughness, as A, B, E_avg, 0 (4 × 32² floats): the accurate model's
-    // multiple-scattering lobe and diffuse weight.
+    // with Schlick's F is F0 A + B, with F = 1 it is E = A + B), the loss 1 − E and the row's
+    // 1 − E_avg (E_avg the cosine-weighted average of E) at the 32 × 32 texel centres
+    // ((i + 0.5)/32, (j + 0.5)/32), row j = roughness, as A, B, 1 − E, 1 − E_avg (4 × 32² floats,
+    // cpubrdf::EnergyTable::texels()): the accurate model's multiple-scattering lobe and diffuse
+    // weight.
     BrdfHarness(Context& context, const std::vector<float>& energy);
     ~BrdfHarness();
     BrdfHarness(const BrdfHarness&) = delete;

@@ -1,7 +1,7 @@
 // Load-time passes: the split-sum BRDF table and, with an environment, its prefiltered maps.
 // Only what the scene calls for is computed. All of it is recorded into one submission:
 //
-//   brdf_lut        the table (F0 scale, bias, E_avg) over (n·v, roughness) accurate BRDF or env
+//   brdf_lut        the table (A, B, 1 − E, 1 − E_avg) over (√(n·v), roughness)   accurate BRDF or env
 //   env_upload      the equirectangular image to the device                  env
 //   env_cube        equirect → cube mip 0, then each mip from the one above  env
 //   env_prefilter   GGX-prefiltered cube, one roughness per mip             env

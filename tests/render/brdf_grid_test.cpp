@@ -20,7 +20,7 @@ using namespace mf::cpubrdf;
 using mf::render::BrdfHarness;
 using mf::render::BrdfInput;
 
-// (A, B, E_avg)(n·v, roughness) at the 32 × 32 texel centres of the reference's table: the shader reads
+// (A, B, 1 − E, 1 − E_avg)(n·v, roughness) at the 32 × 32 texel centres of the reference's table: the shader reads
 // the same numbers (see brdf_grid.glsl), so the accurate model's comparison is of arithmetic only.
 std::vector<float> energy_table() { return EnergyTable::get().texels(); }
 
@@ -136,15 +136,13 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
 // integrated over cos θ_l instead (a control variate; BrdfShaderGrid.MillionHardInputs… checks
 // the shader's lobe against the CPU's).
 namespace {
-// f_ms (n·l) for unit irradiance: F_ms (1 − E(μ_v)) (1 − E(μ_l)) / (π (1 − E_avg)) · μ_l, with
-// EnergyTable's (1 − E, 1 − E_avg) and Kulla & Conty's F_ms (brdf.glsl).
+// f_ms (n·l) for unit irradiance, with EnergyTable's (1 − E, 1 − E_avg): the oracle's
+// multiscatter_lobe() times 1 − E(μ_l) and μ_l.
 double ms_radiance(double f0, double mu_v, double mu_l, double r) {
     if (!(mu_l > 0.0)) return 0.0;
     const auto t = EnergyTable::get().lookup_dfg(mu_v, r);
-    const double f_avg = f0 + (1.0 - f0) / 21.0;
-    const double f_ms = f_avg * f_avg * (1.0 - t[3]) / (1.0 - f_avg * t[3]);
     const double lost_l = EnergyTable::get().lookup_dfg(std::min(mu_l, 1.0), r)[2];
-    return f_ms * t[2] * lost_l / (std::numbers::pi * std::max(t[3], 1e-4)) * mu_l;
+    return multiscatter_lobe(multiscatter_fresnel(f0, t[3]), t[2], t[3]) * lost_l * mu_l;
 }
 // ∫ ms_radiance dω_l over the hemisphere (it depends on cos θ_l only).
 double ms_albedo(double f0, double mu_v, double r) {

@@ -59,9 +59,8 @@ struct Surface {
 
 // The scene's lights through the BRDF oracle (tests/stability/brdf_reference.hpp), prepared as
 // shade.frag prepares them: roughness and metalness clamped, albedo as sampled; the split-sum
-// terms (A, B)(μ, r) and E_avg(r) of the accurate model's multiple-scattering lobe and diffuse
-// weight by the oracle's own quadrature (specular_dfg_correlated), where the GPU reads its BRDF
-// lookup table.
+// terms (A, B)(μ, r) and the losses 1 − E(μ, r), 1 − E_avg(r) of the accurate model's multiple-scattering lobe and
+// diffuse weight by the oracle's own quadrature (specular_dfg_correlated), where the GPU reads its BRDF lookup table.
 RGB shade(const Scene& scene, const Surface& s, V3 p, V3 v) {
     const double r = std::clamp(s.roughness, kMinRoughness, 1.0);
     const double metal = std::clamp(s.metalness, 0.0, 1.0);

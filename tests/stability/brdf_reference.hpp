@@ -235,6 +235,20 @@ bool unit(V3<T>& a) {
 }
 }  // namespace detail
 
+// Kulla & Conty's (2017) multiple-scattering lobe, the twins of brdf.glsl's functions of the same
+// names. F_ms = F_avg² E_avg / (1 − F_avg (1 − E_avg)), F_avg = F0 + (1 − F0)/21, from the loss
+// 1 − E_avg; the lobe's per-view factor F_ms (1 − E(N·V)) / (π (1 − E_avg)), 1 − E_avg floored
+// at 1e-4 as in the shader. f_ms(v, l) is that factor times 1 − E(N·L).
+template <class T, class P = Exact>
+T multiscatter_fresnel(T f0, T lost_avg) {
+    const T f_avg = P::q(f0 + (T(1) - f0) * T(1.0 / 21.0));
+    return P::q(P::q(P::q(f_avg * f_avg) * (T(1) - lost_avg)) / P::q(T(1) - P::q(f_avg * lost_avg)));
+}
+template <class T, class P = Exact>
+T multiscatter_lobe(T f_ms, T lost_v, T lost_avg) {
+    return P::q(f_ms * P::q(lost_v * T(1.0 / std::numbers::pi) / std::max(lost_avg, T(1e-4))));
+}
+
 // One punctual light's reflected radiance (f_diffuse + f_specular) · E · N·L, RGB: the twin of
 // brdf.glsl's brdf_light(). n, v, l unit; NoV = N·V clamped to [kMinNoV, 1]; r = perceptual
 // roughness in [kMinRoughness, 1]; metal in [0, 1]; `albedo` as given (not clamped); E the
@@ -301,9 +315,8 @@ std::array<T, 3> light_radiance(Model model, V3<T> n, V3<T> v, V3<T> l, T NoV, T
         T diffuse_weight = T(1) - F;  // energy left to the diffuse lobe
         if (model == Model::accurate) {
             // Kulla & Conty's lobe: F_ms (1 − E(N·V))(1 − E(N·L)) / (π (1 − E_avg)), also for v = −l.
-            const T f_avg = P::q(f0 + (T(1) - f0) * T(1.0 / 21.0));
-            const T f_ms = P::q(P::q(P::q(f_avg * f_avg) * (T(1) - lost_avg)) / P::q(T(1) - P::q(f_avg * lost_avg)));
-            const T ms_v = P::q(f_ms * P::q(lost_v * T(1.0 / std::numbers::pi) / std::max(lost_avg, T(1e-4))));
+            const T f_ms = multiscatter_fresnel<T, P>(f0, lost_avg);
+            const T ms_v = multiscatter_lobe<T, P>(f_ms, lost_v, lost_avg);
             spec = P::q(spec + P::q(ms_v * lost_l));
             // 1 − E_spec(N·V): the whole specular lobe's directional albedo toward v.
             diffuse_weight = P::q(T(1) - P::q(f0 * dfg_a + dfg_b) - P::q(f_ms * lost_v));

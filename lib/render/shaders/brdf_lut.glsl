@@ -3,9 +3,9 @@
 // lobe as F0 · A + B (channels r, g); channel b holds 1 − E(μ, α), what the lobe loses with F = 1
 // (E = A + B), and channel a 1 − E_avg(α) = 2 ∫ (1 − E(μ)) μ dμ, the same in every texel of a row.
 // The accurate BRDF's multiple-scattering lobe needs 1 − E at n·v and n·l and 1 − E_avg
-// (brdf.glsl). √(n·v), not n·v: E falls steeply at grazing angles (at roughness 0.3 from 0.95 to
-// 0.6 over the last 1 % of n·v), where a table linear in n·v interpolated the lobe 1.6 % wrong;
-// look it up with brdf_table() (shading.glsl).
+// (brdf.glsl). √(n·v), not n·v: E changes fastest at grazing angles, where the texels then are
+// (ReferenceTest.ConstantSpheresAccurate's worst gold pixel: 3.0 % from the reference with a table
+// linear in n·v, 1.7 % with this one); look it up with brdf_table() (shading.glsl).
 #include "brdf.glsl"
 
 // One workgroup per row (kBrdfLutSize texels): E_avg is the row's own quadrature.

@@ -34,9 +34,9 @@ MF_CONST int kMaxTextures = 8;   // material textures, one descriptor array
 MF_CONST uint kTile = 8u;        // 2D compute passes run in kTile × kTile workgroups
 MF_CONST uint kGridGroup = 64u;  // brdf_grid.glsl's 1D workgroup
 MF_CONST int kEnergyTableSize = 32;  // brdf_grid.glsl's E(n·v, roughness) table side
-// brdf_lut.glsl's table side (n·v across, roughness down). One workgroup computes one row, so that
-// the row's cosine-weighted average E_avg(roughness) goes into the table with it: at most 128
-// invocations (the least maxComputeWorkGroupInvocations Vulkan allows).
+// brdf_lut.glsl's table side (√(n·v) across, roughness down). One workgroup computes one row, so
+// that the row's 1 − E_avg(roughness) goes into the table with it: at most 128 invocations (the
+// least maxComputeWorkGroupInvocations Vulkan allows).
 MF_CONST uint kBrdfLutSize = 128u;
 
 // ---- descriptor sets and bindings

@@ -42,14 +42,14 @@ layout(constant_id = kSpecOpacityInvert) const bool OPACITY_INVERT = false;
 const bool NEEDS_LUT = HAS_ENV || BRDF_MODEL == kBrdfAccurate;
 
 layout(set = kSetFrame, binding = kBindingBrdfLut) uniform sampler2D brdf_lut;  // brdf_lut.glsl: x √(n·v), y roughness
+layout(set = kSetFrame, binding = kBindingEnvSpecular) uniform samplerCube env_specular;  // GGX-prefiltered, mip = roughness
+layout(set = kSetFrame, binding = kBindingEnvIrradiance) uniform samplerCube env_irradiance;  // E(n)/π
+layout(set = kSetMaterial, binding = kBindingMaterialTextures) uniform sampler2D textures[kMaxTextures];
 
 // The BRDF table at (μ, roughness): (A, B) = scale and bias of F0, 1 − E(μ), 1 − E_avg.
 vec4 brdf_table(float mu, float roughness) {
     return textureLod(brdf_lut, vec2(sqrt(clamp(mu, 0.0, 1.0)), roughness), 0.0);
 }
-layout(set = kSetFrame, binding = kBindingEnvSpecular) uniform samplerCube env_specular;  // GGX-prefiltered, mip = roughness
-layout(set = kSetFrame, binding = kBindingEnvIrradiance) uniform samplerCube env_irradiance;  // E(n)/π
-layout(set = kSetMaterial, binding = kBindingMaterialTextures) uniform sampler2D textures[kMaxTextures];
 
 // A point of the shape as either path finds it. `st` is the material's (u, v) as the image's
 // texture coordinate (t = 1 − v: Vulkan's t = 0 is the first, top row), before tiling; st_dx and
