@@ -1,5 +1,8 @@
-# matforge_test(name [RUNS_BINARY] [LOCK name] SOURCES... LIBS ...): one GoogleTest program,
-# discovered by ctest. LOCK: its tests never run at the same time as another test holding that
+# matforge_test(name [RUNS_BINARY] [LOCK name] [SLOW regex...] SOURCES... LIBS ...): one
+# GoogleTest program, discovered by ctest. Every test gets a ctest label: `unit` (in-process) or
+# `integration` (RUNS_BINARY), and `slow` when its name matches one of the SLOW regular
+# expressions (anchored; each with its reason in the caller's CMakeLists.txt): the sanitizer
+# stage of scripts/test.sh runs `ctest -LE slow`, the release stage runs everything. LOCK: its tests never run at the same time as another test holding that
 # ctest RESOURCE_LOCK (tests that share costly results through the test cache: the first
 # computes, the others restore, instead of all computing at once under ctest -j).
 # RUNS_BINARY: the tests run the matforge binary (MATFORGE_BIN) and can generate synthetic
@@ -12,36 +15,48 @@ set(MATFORGE_SCHEMA_SPOOL ${PROJECT_BINARY_DIR}/schema-spool)
 # Emptied with the spool at the start of a ctest run.
 set(MATFORGE_TEST_CACHE ${PROJECT_BINARY_DIR}/test-cache)
 function(matforge_test name)
-  cmake_parse_arguments(T "RUNS_BINARY" "LOCK" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(T "RUNS_BINARY" "LOCK" "SLOW;SOURCES;LIBS" ${ARGN})
   add_executable(test_${name} ${T_SOURCES})
   matforge_target_defaults(test_${name})
   target_link_libraries(test_${name} PRIVATE ${T_LIBS} GTest::gtest_main GTest::gmock)
   target_include_directories(test_${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
-  target_compile_definitions(test_${name} PRIVATE
-    MATFORGE_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    MATFORGE_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  # Paths reach the tests through the environment (tests/common/test_env.hpp), never compiled
+  # in: a test object must not depend on where the clone lives (ccache hits across clones).
   set(_env "MATFORGE_SOURCE_DIR=${PROJECT_SOURCE_DIR};MATFORGE_CACHE=${MATFORGE_TEST_CACHE}")
+  string(APPEND _env ";MATFORGE_BIN=$<TARGET_FILE:matforge>;MATFORGE_GEN_SAMPLES=$<TARGET_FILE:gen_samples>")
+  string(APPEND _env ";MATFORGE_CORPUS_DIR=${MATFORGE_CORPUS_DIR};MATFORGE_NPM_DIR=${PROJECT_BINARY_DIR}/npm")
   if(MATFORGE_SANITIZE)
     # Third-party leaks only (scripts/lsan.supp says which and why), for the test and every
     # matforge it runs, also when ctest is run by hand in the sanitizer build.
     string(APPEND _env ";LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/scripts/lsan.supp:print_suppressions=0")
   endif()
+  if(T_RUNS_BINARY)
+    add_dependencies(test_${name} matforge gen_samples)
+    string(APPEND _env ";MATFORGE_SCHEMA_SPOOL=${MATFORGE_SCHEMA_SPOOL}")
+  endif()
   set(_props "ENVIRONMENT \"${_env}\"")
   if(T_RUNS_BINARY)
-    target_compile_definitions(test_${name} PRIVATE MATFORGE_BIN="$<TARGET_FILE:matforge>"
-      MATFORGE_GEN_SAMPLES="$<TARGET_FILE:gen_samples>" MATFORGE_SCHEMA_SPOOL="${MATFORGE_SCHEMA_SPOOL}")
-    add_dependencies(test_${name} matforge gen_samples)
     string(APPEND _props " FIXTURES_REQUIRED schema_spool")
+    set(_label integration)
+  else()
+    set(_label unit)
   endif()
   if(T_LOCK)
     string(APPEND _props " RESOURCE_LOCK ${T_LOCK}")
   endif()
+  list(JOIN T_SLOW "|" _slow)
   gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60)
   # The properties go on the discovered tests from a file ctest reads after their list
   # (test_<name>_TESTS), not through gtest_discover_tests(PROPERTIES): CMake 3.25 splits a
   # property value at ';' there, so of an ENVIRONMENT of two variables only the first reached
   # the tests, and every property after it was lost (checked with ctest --show-only=json-v1).
+  # file(GENERATE): the environment names the binaries by $<TARGET_FILE:...>.
   set(_file ${CMAKE_CURRENT_BINARY_DIR}/test_${name}_properties.cmake)
-  file(WRITE ${_file} "foreach(_t IN LISTS test_${name}_TESTS)\n  set_tests_properties(\"\${_t}\" PROPERTIES ${_props})\nendforeach()\n")
+  set(_body "foreach(_t IN LISTS test_${name}_TESTS)\n  set_tests_properties(\"\${_t}\" PROPERTIES ${_props} LABELS ${_label})\n")
+  if(_slow)
+    string(APPEND _body "  if(_t MATCHES \"^(${_slow})$\")\n    set_tests_properties(\"\${_t}\" PROPERTIES LABELS \"${_label};slow\")\n  endif()\n")
+  endif()
+  string(APPEND _body "endforeach()\n")
+  file(GENERATE OUTPUT ${_file} CONTENT "${_body}")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${_file})
 endfunction()

@@ -4,7 +4,7 @@ if(MATFORGE_SANITIZE)
   # report it inside libstdc++ (std::regex's _State moves in <bits/regex_automaton.h>), which
   # the release build, where the flow analysis is exact, keeps an error.
   set(MATFORGE_SANITIZER_FLAGS -fsanitize=address,undefined,leak -fno-omit-frame-pointer
-      -fno-sanitize-recover=undefined -Wno-error=maybe-uninitialized)
+      -fno-sanitize-recover=undefined $<$<CXX_COMPILER_ID:GNU>:-Wno-error=maybe-uninitialized>)
 endif()
 
 function(matforge_target_defaults target)
@@ -17,8 +17,16 @@ function(matforge_target_defaults target)
   if(MATFORGE_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  if(CMAKE_UNITY_BUILD AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    # A unity build includes the .cpp files into one: GCC then takes a struct of one file that
+    # holds a type of its anonymous namespace for a header's, which -Wsubobject-linkage is for.
+    target_compile_options(${target} PRIVATE -Wno-subobject-linkage)
+  endif()
   if(MATFORGE_SANITIZE)
     target_compile_options(${target} PRIVATE ${MATFORGE_SANITIZER_FLAGS})
     target_link_options(${target} PRIVATE ${MATFORGE_SANITIZER_FLAGS})
+    # What code asks instead of compiler macros: GCC says __SANITIZE_ADDRESS__, clang
+    # __has_feature(address_sanitizer), and the sanitizer build is made with either.
+    target_compile_definitions(${target} PRIVATE MATFORGE_SANITIZE_BUILD=1)
   endif()
 endfunction()

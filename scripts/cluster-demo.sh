@@ -56,11 +56,13 @@ munged --force --socket="$socket" --key-file="$work/munge/munge.key" --pid-file=
 for _ in $(seq 50); do [[ -S $socket ]] && break; sleep 0.1; done
 munge -S "$socket" -n | unmunge -S "$socket" >/dev/null || { say "munge does not work"; exit 1; }
 
+# Addresses are given, never looked up: a fresh container's /etc/hosts often does not resolve
+# its own host name, and slurmd then exits at once without a word.
 host=$(hostname -s)
 conf=$work/slurm/slurm.conf
 cat >"$conf" <<EOF
 ClusterName=matforge
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmUser=root
 AuthType=auth/munge
 AuthInfo=socket=$socket
@@ -80,7 +82,7 @@ SlurmctldPidFile=$work/slurm/slurmctld.pid
 SlurmdPidFile=$work/slurm/slurmd.pid
 SlurmctldLogFile=$work/slurm/log/slurmctld.log
 SlurmdLogFile=$work/slurm/log/slurmd.log
-NodeName=$host CPUs=$(nproc) State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 NodeHostname=$host CPUs=$(nproc) State=UNKNOWN
 PartitionName=main Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
 export SLURM_CONF=$conf

@@ -1,21 +1,21 @@
 #!/usr/bin/env bash
-# libFuzzer targets (tests/fuzz) for our parsers: preset, file-name discovery, and, when the
-# preview module is built, the scene file and manifest reader.
+# libFuzzer targets (tests/fuzz) for our parsers: preset, file-name discovery, the scene file and
+# the manifest reader.
 #   scripts/fuzz.sh [SECONDS]          each target for SECONDS (default 30) on a scratch copy of
 #                                      its committed corpus (CI: bounded, the corpus is unchanged)
 #   FUZZ_GROW=1 scripts/fuzz.sh 3600   by hand: longer, new inputs merged into tests/fuzz/corpus
-# A crash leaves crash-* in build-fuzz/artifacts/ and fails; commit it to the corpus once fixed.
+# A crash leaves crash-* in build-asan/artifacts/ and fails; commit it to the corpus once fixed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 secs=${1:-30}
-build=${FUZZ_BUILD:-$root/build-fuzz}
-command -v clang++-14 >/dev/null || { echo "fuzz: clang++-14 missing (apt-get install clang)" >&2; exit 2; }
-flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-# Warnings are gcc's job in the main build; here only crashes matter.
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_CXX_FLAGS="$flags" \
-  -DMATFORGE_FUZZ=ON -DMATFORGE_WERROR=OFF -DMATFORGE_BENCHMARKS=OFF >/dev/null
-cmake --build "$build" --target fuzz -j"$(nproc)"
+# shellcheck source=bootstrap.sh
+source "$root/scripts/bootstrap.sh"
+# The sanitizer build of scripts/test.sh (MATFORGE_SANITIZE=1) holds the fuzz targets: reused
+# when it is there, configured the same way when not.
+build=${FUZZ_BUILD:-$root/build-asan}
+install_set dev
+[[ -f $build/CMakeCache.txt ]] || configure_sanitizer "$build"
+build_quietly "$build" fuzz
 mkdir -p "$build/artifacts"
 status=0
 for exe in "$build"/tests/fuzz/fuzz_*; do

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "color/srgb.hpp"
+
 namespace mf::bench {
 
 // Running max / mean of |error| (a non-finite error counts as huge, never as 0).
@@ -28,6 +30,10 @@ inline uint32_t xorshift(uint32_t& s) {
     s ^= s << 13, s ^= s >> 17, s ^= s << 5;
     return s;
 }
+
+// The 8-bit display code of a radiance: clamped to [0, 1], through the exact sRGB curve. The
+// unit of every "codes" error of a rendered or resampled color.
+inline double display_code(double radiance) { return linear_to_srgb(std::clamp(radiance, 0.0, 1.0)) * 255.0; }
 
 struct Config {
     bool quick = false;       // CI smoke: small inputs, short timings

@@ -72,8 +72,6 @@ std::vector<double> render(int size, Model m, const std::vector<std::array<int, 
     return img;
 }
 
-double display_code(double radiance) { return linear_to_srgb(std::clamp(radiance, 0.0, 1.0)) * 255.0; }
-
 }  // namespace
 
 std::vector<Variant> brdf_variants(const Config& c) {

@@ -220,8 +220,6 @@ double shade_one(V3<double> n, double roughness) {
     return cpubrdf::shade(in, cpubrdf::Model::standard)[1];
 }
 
-double display_code(double radiance) { return linear_to_srgb(std::clamp(radiance, 0.0, 1.0)) * 255.0; }
-
 Image make_normal_source(int w) {
     Image n(w, w, 3);
     // Height field: ridges along x, a rivet grid, fine bumps; normals from its gradient.

@@ -41,7 +41,7 @@ tb=$build/bench-texture/texture_bench
 make_library=$build/bench-throughput/make_library
 for b in "$tb" "$make_library"; do [[ -x $b ]] || { echo "run.sh: $b not built" >&2; exit 1; }; done
 for t in nvcompress nvdecompress astcenc oiiotool; do
-  command -v "$t" >/dev/null || { echo "run.sh: $t missing (scripts/bootstrap.sh installs libnvtt-bin, astcenc, openimageio-tools)" >&2; exit 1; }
+  command -v "$t" >/dev/null || { echo "run.sh: $t missing (Debian: apt-get install --no-install-recommends libnvtt-bin astcenc openimageio-tools)" >&2; exit 1; }
 done
 if ((quick)); then sizes=(1k); results=${results:-$work}; else sizes=(1k 2k 4k); results=${results:-$repo/docs/texture}; fi
 rm -rf "$work" && mkdir -p "$work" "$results"

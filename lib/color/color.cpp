@@ -117,4 +117,6 @@ std::shared_ptr<const ColorContext> ColorContext::create(std::string& error) {
     }
 }
 
+std::string color_library_version() { return std::string("OpenColorIO ") + OCIO::GetVersion(); }
+
 }  // namespace mf

@@ -38,4 +38,7 @@ public:
     virtual std::string cache_id() const = 0;
 };
 
+// For `matforge --version`: the OpenColorIO library loaded at run time.
+std::string color_library_version();
+
 }  // namespace mf

@@ -1,5 +1,6 @@
 #include "core/files.hpp"
 
+#include <openssl/crypto.h>
 #include <openssl/evp.h>
 
 #include <algorithm>
@@ -438,5 +439,15 @@ FolderLock::~FolderLock() {
     ::unlink(file_.c_str());  // while still holding it: a waiter that opened it retries (see acquire)
     ::close(fd_);
 }
+
+std::optional<std::string> path_inside(const std::string& rel) {
+    const std::filesystem::path p = std::filesystem::path(rel).lexically_normal();
+    if (rel.empty() || p.is_absolute() || p.empty() || p == ".") return std::nullopt;
+    for (const auto& part : p)
+        if (part == "..") return std::nullopt;
+    return p.generic_string();
+}
+
+std::string crypto_library_version() { return OpenSSL_version(OPENSSL_VERSION); }
 
 }  // namespace mf

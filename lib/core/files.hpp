@@ -97,4 +97,12 @@ std::optional<std::string> sha256_of_file(const std::filesystem::path& path, std
 // regular file (following symbolic links).
 std::optional<std::string> not_a_regular_file(const std::filesystem::path& path);
 
+// `rel` normalized ('/'-separated) when it names a path inside a folder: relative, not empty,
+// no ".." component. nullopt otherwise: a path a manifest, journal or record names that is not
+// inside its folder (a crafted "../x" or "/etc/x") is never read, written or removed.
+std::optional<std::string> path_inside(const std::string& rel);
+
+// For `matforge --version`: the OpenSSL library behind sha256 (every output's and cache blob's).
+std::string crypto_library_version();
+
 }  // namespace mf

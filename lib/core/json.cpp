@@ -1,5 +1,7 @@
 #include "core/json.hpp"
 
+#include <set>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
@@ -84,39 +86,58 @@ std::optional<float> json_float(const nlohmann::json& v, double lo, double hi) {
 }
 
 namespace {
-// Counts nesting; stops the parse at the first container past the limit.
-struct DepthCheck : nlohmann::json_sax<nlohmann::json> {
+// What no document of ours holds, found before a DOM is built: nesting past the limit, a member
+// named twice in one object (a parser keeps one of them silently: which one the user meant is
+// unknowable), a NUL character in a string (a path holding one is cut there by the system, and
+// another file is read).
+struct DocumentCheck : nlohmann::json_sax<nlohmann::json> {
+    std::vector<std::set<std::string>> keys;  // the members seen, per open object
     int depth = 0;
-    bool too_deep = false;
-    std::string message;
+    std::string message;  // set when the document is refused for one of the reasons above
+    std::string parse_message;
     bool open() {
-        too_deep = ++depth > kMaxJsonDepth;
-        return !too_deep;
+        if (++depth > kMaxJsonDepth) message = "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+        return message.empty();
+    }
+    bool text(const string_t& s) {
+        if (s.find('\0') != string_t::npos)
+            message = "the string \"" + s.substr(0, s.find('\0')) + "\\u0000…\" holds a NUL character";
+        return message.empty();
     }
     bool null() override { return true; }
     bool boolean(bool) override { return true; }
     bool number_integer(number_integer_t) override { return true; }
     bool number_unsigned(number_unsigned_t) override { return true; }
     bool number_float(number_float_t, const string_t&) override { return true; }
-    bool string(string_t&) override { return true; }
+    bool string(string_t& s) override { return text(s); }
     bool binary(binary_t&) override { return true; }
-    bool start_object(std::size_t) override { return open(); }
-    bool key(string_t&) override { return true; }
-    bool end_object() override { return --depth, true; }
+    bool start_object(std::size_t) override {
+        keys.emplace_back();
+        return open();
+    }
+    bool key(string_t& k) override {
+        if (!text(k)) return false;
+        if (!keys.back().insert(k).second) message = "the member \"" + k + "\" is given twice in one object";
+        return message.empty();
+    }
+    bool end_object() override {
+        keys.pop_back();
+        return --depth, true;
+    }
     bool start_array(std::size_t) override { return open(); }
     bool end_array() override { return --depth, true; }
     bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
-        message = e.what();
+        parse_message = e.what();
         return false;
     }
 };
 }  // namespace
 
 std::optional<nlohmann::json> parse_json(std::string_view text, const std::string& what, std::string& error) {
-    DepthCheck check;
+    DocumentCheck check;
     if (!nlohmann::json::sax_parse(text, &check)) {
-        error = what + (check.too_deep ? ": JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"
-                                       : ": not valid JSON (" + check.message + ")");
+        error = what +
+                (!check.message.empty() ? ": " + check.message : ": not valid JSON (" + check.parse_message + ")");
         return std::nullopt;
     }
     return nlohmann::json::parse(text, nullptr, false);
@@ -152,6 +173,9 @@ std::optional<nlohmann::json> read_json_file(
         auto j = nlohmann::json::parse(in.get(), [&](int depth, nlohmann::json::parse_event_t event,
                                                      nlohmann::json& parsed) {
             if (depth > kMaxJsonDepth) throw Stop{"nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
+            if ((event == nlohmann::json::parse_event_t::value || event == nlohmann::json::parse_event_t::key) &&
+                parsed.is_string() && parsed.get_ref<const std::string&>().find('\0') != std::string::npos)
+                throw Stop{"a string holds a NUL character"};
             if (event == nlohmann::json::parse_event_t::key && depth == 1) top_key = parsed.get<std::string>();
             const bool element_done = event == nlohmann::json::parse_event_t::object_end ||
                                       event == nlohmann::json::parse_event_t::array_end ||

@@ -1,5 +1,10 @@
 #include "core/text.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <vector>
+
 #include <cctype>
 
 namespace mf {
@@ -73,5 +78,60 @@ std::string percent_encode_path(std::string_view path) {
     }
     return out;
 }
+
+std::string ascii_lower(std::string s) {
+    for (char& c : s)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return s;
+}
+
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
+    const std::string w = ascii_lower(word);
+    std::string best;
+    size_t best_d = std::max<size_t>(1, w.size() / 3) + 1;
+    for (const std::string& c : candidates) {
+        const std::string l = ascii_lower(c);
+        std::vector<size_t> row(l.size() + 1);
+        for (size_t j = 0; j <= l.size(); ++j) row[j] = j;
+        for (size_t i = 1; i <= w.size(); ++i) {
+            size_t diag = row[0];
+            row[0] = i;
+            for (size_t j = 1; j <= l.size(); ++j) {
+                const size_t up = row[j];
+                row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (w[i - 1] == l[j - 1] ? 0 : 1)});
+                diag = up;
+            }
+        }
+        if (row[l.size()] < best_d) best_d = row[l.size()], best = c;
+    }
+    return best;
+}
+
+std::string terminal_safe(std::string_view s, bool keep_newlines) {
+    static const char* digits = "0123456789abcdef";
+    std::string out;
+    out.reserve(s.size());
+    for (size_t i = 0; i < s.size(); ++i) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        // C1 controls are U+0080..U+009F, in UTF-8 the bytes C2 80..C2 9F.
+        const bool c1 = c == 0xC2 && i + 1 < s.size() && static_cast<unsigned char>(s[i + 1]) >= 0x80 &&
+                        static_cast<unsigned char>(s[i + 1]) <= 0x9F;
+        if ((c < 0x20 && !(keep_newlines && c == '\n') && c != '\t') || c == 0x7F || c1) {
+            const unsigned char v = c1 ? static_cast<unsigned char>(s[++i]) : c;
+            out += {'\\', 'x', digits[v >> 4], digits[v & 15]};
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    return out;
+}
+
+std::string fixed(double v, int digits) {
+    std::array<char, 64> buf{};
+    std::snprintf(buf.data(), buf.size(), "%.*f", digits, v);
+    return buf.data();
+}
+
+std::string percent(double share) { return fixed(100.0 * share, 1) + " %"; }
 
 }  // namespace mf

@@ -2,6 +2,7 @@
 #pragma once
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace mf {
 
@@ -14,5 +15,24 @@ std::string utf8_or_replacement(std::string_view s);
 // other byte percent-encoded (upper-case hex). glTF's image URIs and the report's links use it,
 // so a name with spaces, '#', '%' or non-ASCII bytes resolves to the file on disk.
 std::string percent_encode_path(std::string_view path);
+
+// `s` with ASCII letters in lower case, other bytes unchanged: names compared as case-insensitive
+// file systems compare them (file names are bytes, not text in a locale).
+std::string ascii_lower(std::string s);
+
+// The candidate closest to `word` (Levenshtein distance, case-insensitive) when it is close
+// enough to be a typo of it (at most a third of its letters, at least one), else "": "did you
+// mean" in usage errors (commands, options, presets).
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
+
+// `s` for a terminal: every control character (C0, DEL, C1 as UTF-8) written as \xNN, so a file
+// name holding ESC or BEL cannot clear the screen or retitle the terminal. Printable text and
+// valid UTF-8 are unchanged; a newline stays a newline only when `keep_newlines`.
+std::string terminal_safe(std::string_view s, bool keep_newlines = false);
+
+// Numbers in messages and reports: `v` with `digits` decimals ("%.*f"), and a share in [0, 1] as
+// a percentage with one decimal ("12.3 %"). One spelling for every finding and page.
+std::string fixed(double v, int digits);
+std::string percent(double share);
 
 }  // namespace mf

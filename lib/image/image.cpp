@@ -536,4 +536,14 @@ bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsig
 // The library loaded at run time (an upgraded libOpenImageIO without a rebuild counts too).
 std::string image_library_version() { return "OpenImageIO " + std::to_string(OIIO::openimageio_version()); }
 
+std::string image_library_versions() {
+    const int v = OIIO::openimageio_version();  // 20407 is 2.4.7
+    std::string s = "OpenImageIO " + std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." +
+                    std::to_string(v % 100);
+    std::string formats = OIIO::get_string_attribute("library_list");
+    std::replace(formats.begin(), formats.end(), ';', ' ');
+    if (!formats.empty()) s += " (formats: " + formats + ")";
+    return s;
+}
+
 }  // namespace mf

@@ -108,6 +108,9 @@ struct EncodeOptions {
 // OpenImageIO's version (its readers decode every input, its PNG/TIFF/EXR writers encode the
 // outputs), for the ingest cache's action key.
 std::string image_library_version();
+// For `matforge --version`: OpenImageIO's version (major.minor.patch) and the format libraries
+// it was built with, as it reports them ("png:libpng 1.6.39;jpeg:jpeg-turbo 2.1.5;...").
+std::string image_library_versions();
 
 bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error);
 

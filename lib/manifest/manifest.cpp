@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/json.hpp"
+#include "core/text.hpp"
 
 namespace mf::manifest {
 using nlohmann::json;
@@ -112,9 +113,7 @@ Output output_of(const json& j, const std::string& where) {
     o.file = string_of(j, "file", where, true);
     if (o.file.empty()) fail(where, "\"file\" is empty");
     // Written as "sRGB" / "linear"; read in any case (presets and hand-made manifests say "srgb").
-    std::string cs = string_of(j, "color_space", where, false, "linear");
-    std::transform(cs.begin(), cs.end(), cs.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string cs = ascii_lower(string_of(j, "color_space", where, false, "linear"));
     if (cs != "srgb" && cs != "linear")
         fail(where, "\"color_space\" must be \"sRGB\" or \"linear\", not \"" + cs + "\"");
     o.srgb = cs == "srgb";
@@ -143,6 +142,8 @@ Output output_of(const json& j, const std::string& where) {
     }
     if (member(j, "normal_convention"))
         o.normal_convention = convention_of(string_of(j, "normal_convention", where, true), where);
+    if (member(j, "normal_converted_from"))
+        o.normal_converted_from = convention_of(string_of(j, "normal_converted_from", where, true), where);
     o.width = int_of(j, "width", where);
     o.height = int_of(j, "height", where);
     o.bit_depth = int_of(j, "bit_depth", where);
@@ -295,6 +296,7 @@ json to_json(const Output& o) {
     }
     j["channels"] = std::move(ch);
     if (o.normal_convention) j["normal_convention"] = convention_name(*o.normal_convention);
+    if (o.normal_converted_from) j["normal_converted_from"] = convention_name(*o.normal_converted_from);
     j["width"] = o.width;
     j["height"] = o.height;
     j["bit_depth"] = o.bit_depth;
@@ -340,7 +342,13 @@ json manifest_head(const Manifest& m) {
     for (const InputFailure& f : m.failures) failures.push_back(mf::to_json(f));
     j["failures"] = std::move(failures);
     if (!m.library.empty()) j["library"] = files_json(m.library);
-    if (m.shard) j["shard"] = {{"index", m.shard->index}, {"count", m.shard->count}, {"context", m.shard->context}};
+    if (!m.thresholds.empty()) j["thresholds"] = m.thresholds;
+    if (m.shard)
+        j["shard"] = {{"index", m.shard->index},
+                      {"count", m.shard->count},
+                      {"context", m.shard->context},
+                      {"plan", m.shard->plan},
+                      {"sets", m.shard->sets}};
     return j;
 }
 
@@ -405,6 +413,13 @@ std::optional<Manifest> manifest_from_json(const json& j, std::string& error) {
                                      string_of(f, "sha256", at, false)});
             }
         }
+        if (const json* tj = member(j, "thresholds")) {
+            for (const auto& [code, values] : object_of(*tj, "thresholds").items())
+                for (const auto& [name, value] : object_of(values, "thresholds." + code).items()) {
+                    if (!value.is_number()) fail("thresholds." + code, "\"" + name + "\" is not a number");
+                    m.thresholds[code][name] = value.get<double>();
+                }
+        }
         if (const json* sj = member(j, "shard")) {
             const json& o = object_of(*sj, "shard");
             const json* c = member(o, "count");
@@ -413,7 +428,12 @@ std::optional<Manifest> manifest_from_json(const json& j, std::string& error) {
             const int index = i && count > 0 ? json_int(*i, 0, count - 1).value_or(-1) : -1;
             if (count == 0 || index < 0)
                 fail("shard", "\"index\" and \"count\" must be integers, 0 <= index < count <= 100000");
-            m.shard = Manifest::Shard{index, count, string_of(o, "context", "shard", true)};
+            const json* n = member(o, "sets");
+            const int sets = n ? json_int(*n, 0, 100000000).value_or(-1) : -1;
+            if (sets < 0)
+                fail("shard", "\"sets\" must be an integer >= 0 (a shard of an older matforge: run it again)");
+            m.shard = Manifest::Shard{index, count, string_of(o, "context", "shard", true),
+                                      string_of(o, "plan", "shard", true), sets};
         }
         if (const json* f = member(j, "failures")) {
             if (!f->is_array()) fail("manifest", "\"failures\" is not an array");
@@ -492,6 +512,12 @@ bool same_run(const std::vector<Manifest>& parts, const std::function<std::strin
                 " are not parts of one run: made with other preset content, rules, OpenColorIO config or library versions";
             return false;
         }
+        if (p.shard && p0.shard && p.shard->plan != p0.shard->plan) {
+            error = name(0) + " and " + name(i) +
+                    " are not parts of one run: made from other libraries, or from one that changed between the "
+                    "shards' runs (a set added, removed or resized moves sets between shards); run every shard again";
+            return false;
+        }
     }
     return true;
 }
@@ -545,6 +571,7 @@ std::optional<Manifest> merge_heads(const std::vector<Manifest>& parts, const st
     out.generator = parts[0].generator;
     out.preset = parts[0].preset;
     out.normal_convention = parts[0].normal_convention;
+    out.thresholds = parts[0].thresholds;  // one run's: the shards' context digest holds its rules
     for (const Manifest& p : parts) out.failures.insert(out.failures.end(), p.failures.begin(), p.failures.end());
     auto key = [](const InputFailure& f) { return std::tie(f.source, f.code, f.message); };
     std::sort(out.failures.begin(), out.failures.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });

@@ -11,6 +11,7 @@
 //    status is an error naming the material and the member (a typo must not become a default).
 #pragma once
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -58,6 +59,9 @@ struct Output {
     bool srgb = false;  // "color_space": "sRGB" (color channels encoded) or "linear"
     std::vector<Channel> channels;
     std::optional<NormalConvention> normal_convention;  // textures holding a normal
+    // A normal texture whose green channel was flipped: the input's convention (the output's is
+    // normal_convention). Absent: written in the convention it was read in, or no map (flat).
+    std::optional<NormalConvention> normal_converted_from;
     int width = 0, height = 0, bit_depth = 0;
     std::string format, sha256;
     // Block-compressed outputs (format dds | ktx2) only:
@@ -108,13 +112,21 @@ struct Manifest {
     std::vector<Material> materials;     // sorted by name
     std::vector<InputFailure> failures;  // sorted by source
     std::vector<MaterialFile> library;   // library.gltf + library.bin (preset material_file gltf)
+    // The validation thresholds the run applied, by the names a rules file gives them
+    // ({CODE: {name: value}}, validate::threshold_table): a later reader judges as the run did
+    // (the report's albedo overlay counts what the findings count). Empty in older manifests.
+    std::map<std::string, std::map<std::string, double>> thresholds;
     // Only in the manifest of one shard (`ingest --shard I/N`): which part of which run it is.
     // `context` is the digest of everything but the inputs that decides the outputs (preset
     // content, rules, OpenColorIO config, versions): shards of one run have the same. `merge`
     // checks the parts against it and writes no `shard`.
+    // `plan` is the digest of the library's split (process/work.hpp plan_digest): shards of one
+    // run over one unchanged library have the same. `sets`: how many sets this shard was given.
     struct Shard {
         int index = 0, count = 1;
         std::string context;
+        std::string plan;
+        int sets = 0;
     };
     std::optional<Shard> shard;
 };

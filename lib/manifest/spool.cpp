@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/files.hpp"
 #include "core/json.hpp"
 
 namespace mf::manifest {
@@ -61,12 +62,46 @@ bool MaterialSpool::write_manifest(const Manifest& head, const ByteSink& sink, s
                            sink);
 }
 
-std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, MaterialSpool& spool, std::string& error) {
+namespace {
+
+// A file a part lists: inside the output folder, a regular file (never through a link), and the
+// bytes its sha256 says. "" or what is wrong.
+std::string listed_file_problem(const std::filesystem::path& dir, const std::string& file, const std::string& sha) {
+    const auto rel = path_inside(file);
+    if (!rel) return "\"" + file + "\" is not a path inside the output folder";
+    std::error_code ec;
+    const auto st = std::filesystem::symlink_status(dir / *rel, ec);
+    if (!std::filesystem::is_regular_file(st)) return *rel + ": not a regular file in the output folder";
+    std::string error;
+    const auto have = sha256_of_file(dir / *rel, error);
+    if (!have) return error;
+    if (*have != sha) return *rel + ": its bytes do not hash to the sha256 the part lists (changed or edited)";
+    return {};
+}
+
+}  // namespace
+
+std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& dir,
+                                     MaterialSpool& spool, std::string& error) {
     std::vector<Manifest> heads;
     for (size_t i = 0; i < paths.size(); ++i) {
+        size_t materials = 0;
         auto head = read_manifest(
-            paths[i], [&](Material&& m, std::string& e) { return spool.add(m, e, static_cast<int>(i)); }, error);
+            paths[i],
+            [&](Material&& m, std::string& e) {
+                ++materials;
+                return spool.add(m, e, static_cast<int>(i));
+            },
+            error);
         if (!head) return std::nullopt;
+        // Each set of the shard is a material, or a failure when nothing of it could be read.
+        if (head->shard && (materials > static_cast<size_t>(head->shard->sets) ||
+                            materials + head->failures.size() < static_cast<size_t>(head->shard->sets))) {
+            error = paths[i] + ": holds " + std::to_string(materials) + " materials and " +
+                    std::to_string(head->failures.size()) + " failures for the " + std::to_string(head->shard->sets) +
+                    " sets its shard was given (an incomplete or edited part); run that shard again";
+            return std::nullopt;
+        }
         heads.push_back(std::move(*head));
     }
     auto merged = merge_heads(heads, paths, error);
@@ -76,6 +111,23 @@ std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, Mate
                 paths[static_cast<size_t>(dup->second_part)];
         return std::nullopt;
     }
+    // The parts make one run: every file they list must be there, as they list it.
+    std::string problem;
+    const bool listed_ok = spool.for_each(
+        [&](Material&& m) {
+            for (const Output& o : m.outputs)
+                if (problem = listed_file_problem(dir, o.file, o.sha256); !problem.empty()) break;
+            for (const MaterialFile& f : m.material_files)
+                if (problem.empty()) problem = listed_file_problem(dir, f.file, f.sha256);
+            if (!problem.empty()) problem = "material \"" + m.name + "\": " + problem;
+            return problem.empty();
+        },
+        error);
+    if (!problem.empty()) {
+        error = problem;
+        return std::nullopt;
+    }
+    if (!listed_ok) return std::nullopt;
     return merged;
 }
 

@@ -55,9 +55,14 @@ private:
     std::vector<Entry> entries_;
 };
 
-// `matforge merge`: the shard manifests at `paths` read one material at a time into `spool` (then
-// sorted), checked to make one run (merge_heads), and one material in two shards refused. The
-// merged manifest's head (its materials are the spool's), or nullopt + `error` naming the files.
-std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, MaterialSpool& spool, std::string& error);
+// `matforge merge`: the shard manifests at `paths` (all in `dir`, the run's output folder) read
+// one material at a time into `spool` (then sorted), checked to make one run (merge_heads), one
+// material in two shards refused, and every part complete: it holds as many materials as its
+// shard was given sets (each set a material, or a failure when nothing of it could be read),
+// and every file a material lists is inside `dir`, a regular file there, and hashes to its
+// sha256. The merged manifest's head (its materials are the spool's), or nullopt + `error`
+// naming the files.
+std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& dir,
+                                     MaterialSpool& spool, std::string& error);
 
 }  // namespace mf::manifest

@@ -5,6 +5,7 @@
 #include <set>
 #include <tuple>
 
+#include "core/catalog.hpp"
 #include "material/classify.hpp"
 #include "material/discovery.hpp"
 #include "material/families.hpp"
@@ -113,26 +114,17 @@ std::string join(const std::vector<std::string>& parts, std::string_view sep) {
 }
 
 Finding ambiguity_finding(Role role, const Ambiguity& a) {
-    Finding f;
-    f.code = std::string(code::ambiguous_map);
-    f.severity = Severity::info;
-    f.role = std::string(role_name(role));
-    f.file = a.chosen;
+    const std::string r(role_name(role));
     const auto reason = join(a.reasons, "; ");
-    f.message = std::to_string(a.candidates.size()) + " files could be the " + f.role + " map (" +
-                join(a.candidates, ", ") + "); chose " + a.chosen + ": " + reason;
-    f.figures = {{"candidates", a.candidates}, {"chosen", a.chosen}, {"reason", reason}};
-    return f;
+    return finding(code::ambiguous_map, r, a.chosen,
+                   std::to_string(a.candidates.size()) + " files could be the " + r + " map (" +
+                       join(a.candidates, ", ") + "); chose " + a.chosen + ": " + reason,
+                   {{"candidates", a.candidates}, {"chosen", a.chosen}, {"reason", reason}});
 }
 
 Finding unrecognized_finding(const std::string& file, std::string_view reason) {
-    Finding f;
-    f.code = std::string(code::unrecognized_file);
-    f.severity = Severity::info;
-    f.file = file;
-    f.message = std::string(reason) + "; not used as a map";
-    f.figures = {{"reason", std::string(reason)}};
-    return f;
+    return finding(code::unrecognized_file, "", file, std::string(reason) + "; not used as a map",
+                   {{"reason", std::string(reason)}});
 }
 
 // The set's convention: the family compatible with the most files; ties go to the family more

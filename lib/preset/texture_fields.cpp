@@ -4,6 +4,7 @@
 #include <array>
 #include <optional>
 
+#include "core/error.hpp"
 #include "core/json.hpp"
 
 namespace mf {
@@ -24,11 +25,6 @@ constexpr std::array kFormats{
     BlockFormatInfo{"astc-hdr-4x4", 4, 4, 16, 4, false, false, true},
     BlockFormatInfo{"astc-hdr-6x6", 6, 6, 16, 4, false, false, true},
 };
-
-bool fail(std::string& error, const std::string& msg) {
-    error = msg;
-    return false;
-}
 
 std::optional<bool> bool_field(const nlohmann::json& j, const char* key, bool def) {
     if (!j.contains(key)) return def;

@@ -110,8 +110,9 @@ bool link_or_write(const fs::path& file, const fs::path& blob, std::span<const u
 }
 
 // Version 2 records carry the SHA-256 of their entry's JSON text (`entry_sha256`): a record cut
-// short or altered is detected like a blob, never trusted. Version 1 records (without it) miss.
-constexpr int kRecordVersion = 2;
+// short or altered is detected like a blob, never trusted. Version 3 entries record a flipped
+// normal's convention (normal_converted_from). Records of other versions miss.
+constexpr int kRecordVersion = 3;
 
 // The digest of a record's entry: its compact JSON text, invalid UTF-8 in names replaced as the
 // manifest writer does (a file name is any bytes; dump() would throw on them).
@@ -150,7 +151,64 @@ std::optional<manifest::Material> read_record(const fs::path& rec, std::string& 
 
 }  // namespace
 
-std::optional<Cache> Cache::open(const fs::path& dir, std::string& error) {
+namespace {
+
+constexpr std::string_view kMarker = "matforge cache 1\n";
+constexpr const char* kMarkerName = "version";
+
+bool has_marker(const fs::path& dir) {
+    const fs::path marker = dir / kMarkerName;
+    std::error_code ec;
+    if (fs::is_symlink(marker, ec) || !fs::is_regular_file(marker, ec) || fs::file_size(marker, ec) != kMarker.size())
+        return false;
+    const auto text = read_text(marker);
+    return text && *text == kMarker;
+}
+
+// Our own name for a record (`ac/<aa>/<64 hex>.json`) or a blob (`cas/<aa>/<64 hex>`), relative
+// to the cache: prune() removes nothing else.
+bool our_file(const fs::path& rel, std::string_view top) {
+    std::vector<std::string> parts;
+    for (const auto& p : rel) parts.push_back(p.string());
+    if (parts.size() != 3 || parts[0] != top) return false;
+    std::string name = parts[2];
+    if (top == "ac") {
+        if (name.size() < 5 || name.substr(name.size() - 5) != ".json") return false;
+        name.resize(name.size() - 5);
+    }
+    return is_sha(name) && parts[1] == name.substr(0, 2);
+}
+
+}  // namespace
+
+std::string Cache::unusable(const fs::path& dir) {
+    std::error_code ec;
+    const auto st = fs::symlink_status(dir, ec);
+    if (!fs::exists(st)) return {};
+    if (!fs::is_directory(fs::status(dir, ec)))
+        return dir.string() + ": not a folder; a cache is a folder matforge makes";
+    if (has_marker(dir)) return {};
+    // Empty, or holding only the marker another run is writing (create() writes it before
+    // anything else): a cache being made, by us or by a concurrent shard.
+    fs::directory_iterator it(dir, ec);
+    if (ec) return dir.string() + ": cannot list it (" + ec.message() + ")";
+    for (; it != fs::directory_iterator(); it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.starts_with("." + std::string(kMarkerName) + kTempMarker) && temp_owner(name)) continue;
+        return dir.string() + ": not a matforge cache (it holds " + name +
+               " and no cache marker): matforge writes and removes nothing there; name an empty or new folder";
+    }
+    return {};
+}
+
+std::optional<Cache> Cache::create(const fs::path& dir, std::string& error) {
+    if (std::string why = unusable(dir); !why.empty()) {
+        error = std::move(why);
+        return std::nullopt;
+    }
+    // The marker first: a concurrent run (another shard on the same new cache) must never see
+    // our folders without it and take the cache for a user's folder.
+    if (!write_file_atomic(dir / kMarkerName, as_bytes(std::string(kMarker)), error)) return std::nullopt;
     std::error_code ec;
     for (const char* sub : {"cas", "ac", "stat"}) {
         fs::create_directories(dir / sub, ec);
@@ -159,8 +217,20 @@ std::optional<Cache> Cache::open(const fs::path& dir, std::string& error) {
             return std::nullopt;
         }
     }
-    const fs::path probe = dir / "version";
-    if (!write_file_atomic(probe, as_bytes("matforge cache 1\n"), error)) return std::nullopt;
+    return Cache(fs::absolute(dir, ec));
+}
+
+std::optional<Cache> Cache::open(const fs::path& dir, std::string& error) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+        error = dir.string() + ": no such cache folder";
+        return std::nullopt;
+    }
+    if (!has_marker(dir)) {
+        error = dir.string() +
+                ": not a matforge cache (no cache marker 'version' in it); nothing is read or removed there";
+        return std::nullopt;
+    }
     return Cache(fs::absolute(dir, ec));
 }
 
@@ -267,11 +337,11 @@ Cache::Stats Cache::stats() const {
     Stats s;
     std::error_code ec;
     for (fs::recursive_directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
-        if (!it->is_regular_file(ec)) continue;
+        if (!it->is_regular_file(ec) || it->is_symlink(ec)) continue;
         const auto size = it->file_size(ec);
-        const std::string top = it->path().lexically_relative(dir_).begin()->string();
-        if (top == "cas") ++s.blobs, s.blob_bytes += size;
-        else if (top == "ac") ++s.records, s.other_bytes += size;
+        const fs::path rel = it->path().lexically_relative(dir_);
+        if (our_file(rel, "cas")) ++s.blobs, s.blob_bytes += size;
+        else if (our_file(rel, "ac")) ++s.records, s.other_bytes += size;
         else s.other_bytes += size;
     }
     return s;
@@ -285,15 +355,23 @@ Cache::Stats Cache::prune(uint64_t max_bytes, std::chrono::seconds grace) const 
     };
     std::vector<Record> records;
     Stats removed;
+    // Only what is gone counts; a file that stays (a read-only cache) is a failure, said once.
+    auto remove = [&](const fs::path& p) {
+        std::error_code rec;
+        if (fs::remove(p, rec)) return true;
+        ++removed.failed;
+        if (removed.error.empty()) removed.error = p.string() + ": " + (rec ? rec.message() : "not removed");
+        return false;
+    };
     std::error_code ec;
     for (fs::recursive_directory_iterator it(dir_ / "ac", ec), end; !ec && it != end; it.increment(ec)) {
-        if (!it->is_regular_file(ec)) continue;
+        if (it->is_symlink(ec) || !it->is_regular_file(ec) || !our_file(it->path().lexically_relative(dir_), "ac"))
+            continue;
         Record r{it->path(), it->last_write_time(ec), {}};
         std::string error;
         const auto entry = read_record(r.path, error);
         if (!entry) {  // unusable: restore() would remove it too
-            fs::remove(r.path, ec);
-            ++removed.records;
+            if (remove(r.path)) ++removed.records;
             continue;
         }
         for (const FileRef& f : files_of(*entry)) r.blobs.push_back(f.sha256);  // outputs and material files
@@ -302,7 +380,8 @@ Cache::Stats Cache::prune(uint64_t max_bytes, std::chrono::seconds grace) const 
     std::sort(records.begin(), records.end(), [](const Record& a, const Record& b) { return a.used > b.used; });
     std::map<std::string, uint64_t> blob_size;
     for (fs::recursive_directory_iterator it(dir_ / "cas", ec), end; !ec && it != end; it.increment(ec))
-        if (it->is_regular_file(ec)) blob_size[it->path().filename().string()] = it->file_size(ec);
+        if (!it->is_symlink(ec) && it->is_regular_file(ec) && our_file(it->path().lexically_relative(dir_), "cas"))
+            blob_size[it->path().filename().string()] = it->file_size(ec);
     std::set<std::string> kept;
     uint64_t used = 0;
     for (const Record& r : records) {
@@ -310,8 +389,8 @@ Cache::Stats Cache::prune(uint64_t max_bytes, std::chrono::seconds grace) const 
         for (const auto& b : r.blobs)
             if (!kept.count(b) && blob_size.count(b)) extra += blob_size[b];
         if (used + extra > max_bytes) {
-            fs::remove(r.path, ec);
-            ++removed.records;
+            if (remove(r.path)) ++removed.records;
+            else kept.insert(r.blobs.begin(), r.blobs.end());  // still there: its blobs stay usable
             continue;
         }
         used += extra;
@@ -322,7 +401,7 @@ Cache::Stats Cache::prune(uint64_t max_bytes, std::chrono::seconds grace) const 
         if (kept.count(sha)) continue;
         const fs::path p = blob_path(sha);
         if (fs::last_write_time(p, ec) > young) continue;
-        if (fs::remove(p, ec)) ++removed.blobs, removed.blob_bytes += size;
+        if (remove(p)) ++removed.blobs, removed.blob_bytes += size;
     }
     return removed;
 }

@@ -13,7 +13,10 @@
 //  - file digests are remembered by (device, inode, size, mtime, ctime) in `stat/`: a changed
 //    file always changes its ctime, so it is always read and hashed again;
 //  - eviction is least recently used: a record's mtime is its last use; prune() keeps the most
-//    recent records within the size limit and the blobs they name.
+//    recent records within the size limit and the blobs they name;
+//  - a cache is known by its marker (`version`, "matforge cache 1"): nothing is written into or
+//    removed from a folder without it (a user's folder named by mistake), and prune() removes
+//    only files named as this cache names them (`ac/<aa>/<sha256>.json`, `cas/<aa>/<sha256>`).
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -31,8 +34,15 @@ namespace mf {
 
 class Cache {
 public:
-    // nullopt + `error` when `dir` cannot be created or written.
+    // ingest's: the cache in `dir`, made there when `dir` does not exist or is an empty folder.
+    // nullopt + `error` when `dir` is a folder that holds something but no cache marker (it is
+    // not a cache: nothing is written there), or cannot be created or written.
+    static std::optional<Cache> create(const std::filesystem::path& dir, std::string& error);
+    // `matforge cache`'s: the cache that is in `dir` already; nothing is created. nullopt +
+    // `error` when `dir` holds no cache marker.
     static std::optional<Cache> open(const std::filesystem::path& dir, std::string& error);
+    // "" when `dir` may be a cache (absent, an empty folder, or a cache), else why not.
+    static std::string unusable(const std::filesystem::path& dir);
 
     const std::filesystem::path& dir() const { return dir_; }
 
@@ -61,11 +71,14 @@ public:
 
     struct Stats {
         uint64_t records = 0, blobs = 0, blob_bytes = 0, other_bytes = 0;
+        // prune(): files it had to remove and could not (a read-only cache), and the first error.
+        uint64_t failed = 0;
+        std::string error;
     };
     Stats stats() const;
     // Least recently used records go first until the blobs of the rest fit in `max_bytes`;
     // blobs no kept record names are removed (those younger than `grace` are left: a writer may
-    // be about to name them). Returns what was removed.
+    // be about to name them). Returns what was removed, counting only what is gone.
     Stats prune(uint64_t max_bytes, std::chrono::seconds grace = std::chrono::seconds(60)) const;
 
 private:

@@ -8,6 +8,7 @@
 #include <thread>
 #include <tuple>
 
+#include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "core/interrupt.hpp"
 #include "core/json.hpp"
@@ -239,9 +240,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     std::vector<Written> written(wanted.size());
     auto write_output = [&](const OutputSpec& o) -> Written {
         auto failed = [](std::string msg) {
-            return Written{std::nullopt,
-                           Finding{std::string(code::output_write_failed), Severity::error, "", "", std::move(msg), {}},
-                           {}};
+            return Written{std::nullopt, finding(code::output_write_failed, "", "", std::move(msg)), {}};
         };
         const std::string rel = preset_.output_path(src.name, o);
         const fs::path rel_path = fs::path(rel).lexically_normal();
@@ -280,8 +279,12 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         e.file = rel_path.generic_string();
         e.srgb = o.srgb;
         e.channels = manifest_channels(effective_channels(o, planes));
-        if (std::find(roles.begin(), roles.end(), Role::normal) != roles.end())
+        if (std::find(roles.begin(), roles.end(), Role::normal) != roles.end()) {
             e.normal_convention = preset_.normal_convention;
+            // The one owner of "the green channel was flipped" (the report reads it here).
+            if (plan.routes.count(Role::normal) && plan.normal_from() != preset_.normal_convention)
+                e.normal_converted_from = plan.normal_from();
+        }
         e.width = size.width;
         e.height = size.height;
         e.bit_depth = o.bit_depth;
@@ -303,22 +306,14 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         try {
             written[i] = write_output(*wanted[i]);
         } catch (const std::bad_alloc&) {  // parallel_for's fn must not throw
-            written[i].failure = Finding{std::string(code::output_write_failed),
-                                         Severity::error,
-                                         "",
-                                         "",
+            written[i].failure = finding(code::output_write_failed, "", "",
                                          preset_.output_path(src.name, *wanted[i]) +
                                              ": out of memory while packing or encoding it (" + std::to_string(w) +
                                              "x" + std::to_string(h) +
-                                             "); run with fewer --jobs, or set the preset's max_size",
-                                         {}};
+                                             "); run with fewer --jobs, or set the preset's max_size");
         } catch (const std::exception& e) {
-            written[i].failure = Finding{std::string(code::output_write_failed),
-                                         Severity::error,
-                                         "",
-                                         "",
-                                         preset_.output_path(src.name, *wanted[i]) + ": " + e.what(),
-                                         {}};
+            written[i].failure = finding(code::output_write_failed, "", "",
+                                         preset_.output_path(src.name, *wanted[i]) + ": " + e.what());
         }
     });
     // GPUs and engines import at most 16384 pixels a side (Vulkan's and D3D12's image limit on
@@ -326,16 +321,13 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     constexpr int kEngineMaxSide = 16384;
     for (const auto& r : written)
         if (r.entry && std::max(r.entry->width, r.entry->height) > kEngineMaxSide) {
-            plan.findings.push_back({std::string(code::output_too_large),
-                                     Severity::warning,
-                                     "",
-                                     "",
-                                     r.entry->file + " is " + std::to_string(r.entry->width) + "x" +
-                                         std::to_string(r.entry->height) + ": wider or taller than " +
-                                         std::to_string(kEngineMaxSide) +
-                                         " pixels, which engines and GPUs do not import; downsample the source or set "
-                                         "the preset's max_size",
-                                     {{"size", {r.entry->width, r.entry->height}}, {"limit", kEngineMaxSide}}});
+            plan.findings.push_back(finding(
+                code::output_too_large, "", "",
+                r.entry->file + " is " + std::to_string(r.entry->width) + "x" + std::to_string(r.entry->height) +
+                    ": wider or taller than " + std::to_string(kEngineMaxSide) +
+                    " pixels, which engines and GPUs do not import; downsample the source or set "
+                    "the preset's max_size",
+                {{"size", {r.entry->width, r.entry->height}}, {"limit", kEngineMaxSide}}));
             validate::apply_config(plan.findings, src.name, opt_.rules);
             break;
         }
@@ -383,7 +375,9 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     }
     std::vector<InputFailure> source_failures;
     std::string conflict;
-    std::vector<MaterialSource> sets = find_material_sets(inputs, opt_.out_dir, source_failures, &conflict);
+    std::vector<std::string> skipped;  // earlier output folders in the inputs: said as notes
+    std::vector<MaterialSource> sets = find_material_sets(inputs, opt_.out_dir, source_failures, &conflict, &skipped);
+    result.notes.insert(result.notes.end(), skipped.begin(), skipped.end());
     if (!conflict.empty()) {
         result.error = conflict;
         result.usage_error = true;
@@ -394,11 +388,13 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
                                                               result.error, result.usage_error);
     if (!folder) return result;
     remove_stale_temps(opt_.out_dir);  // a killed run's, never a running one's
+    std::string plan;                  // a shard's: the digest of the library's split (merge checks the parts)
     if (opt_.shard) {                  // this shard's sets only (process/work: stable, balanced by size)
         std::vector<uint64_t> bytes;
         bytes.reserve(sets.size());
         for (const auto& s : sets) bytes.push_back(set_bytes(s));
         const std::vector<int> shard = assign_shards(sets, bytes, opt_.shard->second);
+        plan = plan_digest(sets, bytes, shard, opt_.shard->second, context_digest(preset_, opt_.rules, *color_));
         std::vector<MaterialSource> mine;
         for (size_t i = 0; i < sets.size(); ++i)
             if (shard[i] == opt_.shard->first) mine.push_back(std::move(sets[i]));
@@ -425,7 +421,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     context_ = context_digest(preset_, opt_.rules, *color_);  // the cache's keys and a shard's run
     if (opt_.cache_dir) {
         std::string error;
-        cache = Cache::open(*opt_.cache_dir, error);
+        cache = Cache::create(*opt_.cache_dir, error);
         if (cache) {
             cache_ = &*cache;
             cache_log_ = &cache_log;
@@ -494,7 +490,10 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     m.generator = std::string(kGenerator);
     m.preset = preset_.name;
     m.normal_convention = preset_.normal_convention;
-    if (opt_.shard) m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, context_};
+    m.thresholds = validate::threshold_table(opt_.rules.thresholds);
+    if (opt_.shard)
+        m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, context_, plan,
+                                            static_cast<int>(sets.size())};
     for (auto& f : source_failures) {
         f.source = relative_to(f.source, opt_.out_dir);
         m.failures.push_back(std::move(f));

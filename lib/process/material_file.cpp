@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "gltf/gltf.hpp"
 #include "texture/texture.hpp"
@@ -30,14 +31,12 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
     // --normal-convention dx: the PNGs as asked, but no glTF (its normal textures are +Y).
     for (const auto& o : m.outputs)
         if (o.normal_convention && *o.normal_convention != NormalConvention::gl) {
-            m.findings.push_back({std::string(code::material_file_skipped),
-                                  Severity::info,
-                                  "normal",
-                                  "",
-                                  gltf_rel + " not written: glTF normal textures are +Y (gl) and this run writes " +
-                                      std::string(convention_name(*o.normal_convention)) +
-                                      " normals (--normal-convention)",
-                                  {{"normal_convention", std::string(convention_name(*o.normal_convention))}}});
+            m.findings.push_back(finding(code::material_file_skipped, "normal", "",
+                                         gltf_rel +
+                                             " not written: glTF normal textures are +Y (gl) and this run writes " +
+                                             std::string(convention_name(*o.normal_convention)) +
+                                             " normals (--normal-convention)",
+                                         {{"normal_convention", std::string(convention_name(*o.normal_convention))}}));
             return;
         }
     gltf::MaterialOptions opt;
@@ -54,8 +53,7 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
     std::string error;
     if (!gltf::material_gltf(m, gltf_rel, m.name + ".bin", opt, files, error) ||
         !write_pair(files, gltf_rel, bin_rel, write, m.material_files, error)) {
-        m.findings.push_back(
-            {std::string(code::output_write_failed), Severity::error, "", "", gltf_rel + ": " + error, {}});
+        m.findings.push_back(finding(code::output_write_failed, "", "", gltf_rel + ": " + error));
         m.status = manifest::Status::partial;
     }
 }

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/catalog.hpp"
+
 namespace mf {
 namespace {
 std::string format_number(float v) {
@@ -65,8 +67,9 @@ std::vector<Finding> missing_map_findings(const Preset& preset, const std::set<R
         if (made)
             figures["generated"] = made->value.size() == 1 ? nlohmann::json(made->value[0])
                                                            : nlohmann::json(made->value);
-        findings.push_back({std::string(code::missing_map), sev->second, rname, "", "no " + rname + " map; " + what,
-                            std::move(figures)});
+        Finding f = finding(code::missing_map, rname, "", "no " + rname + " map; " + what, std::move(figures));
+        f.severity = sev->second;  // the preset's missing_severity decides (docs/interface.md "Finding codes")
+        findings.push_back(std::move(f));
     }
     return findings;
 }

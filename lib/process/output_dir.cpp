@@ -9,27 +9,13 @@
 #include <unistd.h>
 
 #include "core/json.hpp"
+#include "core/text.hpp"
 
 namespace mf {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kJournalHeader = "matforge journal 1";
-
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
-
-// A path a manifest or journal may name: relative, inside the folder. Anything else (a crafted
-// "../x" or "/etc/x") is never touched.
-std::optional<std::string> inside(const std::string& rel) {
-    const fs::path p = fs::path(rel).lexically_normal();
-    if (rel.empty() || p.is_absolute() || p.empty() || p == ".") return std::nullopt;
-    for (const auto& part : p)
-        if (part == "..") return std::nullopt;
-    return p.generic_string();
-}
 
 bool is_ours(const nlohmann::json& j) {
     return j.is_object() && j.contains("generator") && j["generator"].is_string() &&
@@ -41,7 +27,7 @@ void add_files(const nlohmann::json& list, std::map<std::string, std::string>& o
     if (!list.is_array()) return;
     for (const auto& o : list) {
         if (!o.is_object() || !o.contains("file") || !o["file"].is_string()) continue;
-        const auto rel = inside(o["file"].get<std::string>());
+        const auto rel = path_inside(o["file"].get<std::string>());
         if (!rel) continue;
         out[*rel] = o.contains("sha256") && o["sha256"].is_string() ? o["sha256"].get<std::string>() : "";
     }
@@ -88,7 +74,7 @@ void journal_files(const fs::path& file, std::map<std::string, std::string>& out
         if (!line || !line->is_object()) continue;
         for (const char* key : {"prev", "wrote"}) {
             if (!line->contains(key) || !(*line)[key].is_string()) continue;
-            const auto rel = inside((*line)[key].get<std::string>());
+            const auto rel = path_inside((*line)[key].get<std::string>());
             if (!rel) continue;
             if (std::string(key) == "wrote") rewritten.insert(*rel);
             const std::string sha = line->contains("sha256") && (*line)["sha256"].is_string()
@@ -220,9 +206,9 @@ bool OutputFolder::begin(std::string& error) {
 }
 
 std::string OutputFolder::claim(const std::string& rel, const std::string& owner) {
-    const auto r = inside(rel);
+    const auto r = path_inside(rel);
     if (!r) return "the path leaves the output folder";
-    const std::string key = lower(*r);
+    const std::string key = ascii_lower(*r);
     auto held = [&](const std::string& by) {
         return by == owner ? std::string("another output of this material") : "material '" + by + "'";
     };

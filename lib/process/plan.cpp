@@ -4,6 +4,7 @@
 #include <fstream>
 #include <set>
 
+#include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "core/parallel.hpp"
 #include "process/missing.hpp"
@@ -24,9 +25,9 @@ struct Files {
     }
 };
 
-Finding make_finding(std::string_view code, Severity s, Role role, std::string file, std::string msg,
+Finding make_finding(std::string_view code, Role role, std::string file, std::string msg,
                      nlohmann::json figures = nlohmann::json::object()) {
-    return {std::string(code), s, std::string(role_name(role)), std::move(file), std::move(msg), std::move(figures)};
+    return finding(code, std::string(role_name(role)), std::move(file), std::move(msg), std::move(figures));
 }
 
 // The set's glTF and Megascans JSON sidecars, read for the roles they state (at most
@@ -87,9 +88,10 @@ uint64_t estimated_bytes(const SetDiscovery& d) {
 
 // One readable map per input role: each choice's candidates in order until one reads (decode
 // mode: the whole image, in parallel for large sets; stream mode: the header). Every candidate
-// that fails is an UNREADABLE_FILE finding, and the set is partial.
+// that fails is an UNREADABLE_FILE finding, and the set is partial. `failed`: files known
+// unreadable (stream mode: their pixels failed the rules' pass), failing here with that error.
 void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode mode, int threads,
-                  std::vector<validate::MapInput>& maps) {
+                  const std::map<std::string, std::string>& failed, std::vector<validate::MapInput>& maps) {
     std::vector<std::vector<const Candidate*>> orders;
     for (const auto& choice : d.choices) {
         std::vector<const Candidate*> order{&choice.chosen};
@@ -110,6 +112,10 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
         for (const Candidate* c : orders[i]) {
             const InputFile& in = files.opened.at(c->file);
             std::string err;
+            if (const auto bad = failed.find(c->file); bad != failed.end()) {
+                o.errors.emplace_back(c, bad->second);
+                continue;
+            }
             if (mode == PlanMode::decode) {
                 if (read_image(in, o.decoded.img, o.decoded.info, err)) {
                     validate::MapInput m;
@@ -136,12 +142,11 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
         const Role role = d.choices[i].role;
         for (const auto& [c, err] : outcomes[i].errors) {
             plan.partial = true;
-            plan.findings.push_back(make_finding(code::unreadable_file, Severity::error, role, c->file,
-                                                 err + "; the file is skipped"));
+            plan.findings.push_back(make_finding(code::unreadable_file, role, c->file, err + "; the file is skipped"));
         }
         if (!outcomes[i].used) continue;
         for (const auto& [c, msg] : outcomes[i].map->info.notes)  // MULTIPART_IMAGE, ORIENTATION_IGNORED
-            plan.findings.push_back(make_finding(c, Severity::warning, role, outcomes[i].used->file, msg));
+            plan.findings.push_back(make_finding(c, role, outcomes[i].used->file, msg));
         plan.inputs.emplace(role, *outcomes[i].used);
         if (mode == PlanMode::decode) plan.decoded.emplace(outcomes[i].used->file, std::move(outcomes[i].decoded));
         maps.push_back(std::move(*outcomes[i].map));
@@ -161,7 +166,7 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
             std::string err;
             auto m = validate::make_map_input(role, files.opened.at(c->file), c->file, c->match.normal, err);
             if (!m) {
-                plan.findings.push_back(make_finding(code::unreadable_file, Severity::error, role, c->file,
+                plan.findings.push_back(make_finding(code::unreadable_file, role, c->file,
                                                      err + "; the file is skipped"));
                 continue;
             }
@@ -232,8 +237,7 @@ void route(SetPlan& plan, const validate::SetValidation& checked) {
         plan.routes.erase(op);
         return;
     }
-    plan.findings.push_back(make_finding(code::packed_input_unpacked, Severity::info, Role::opacity,
-                                         plan.inputs.at(Role::albedo).file,
+    plan.findings.push_back(make_finding(code::packed_input_unpacked, Role::opacity, plan.inputs.at(Role::albedo).file,
                                          "opacity taken from the albedo map's alpha channel"));
 }
 
@@ -247,13 +251,13 @@ void conversion_findings(SetPlan& plan, NormalConvention target) {
             const NormalConvention from = plan.normal_from();
             if (from != target)
                 plan.findings.push_back(
-                    make_finding(code::normal_convention_converted, Severity::info, out, c.file,
+                    make_finding(code::normal_convention_converted, out, c.file,
                                  "green channel flipped from " + std::string(convention_name(from)) + " to " +
                                      std::string(convention_name(target)) + " for the preset",
                                  {{"from", convention_name(from)}, {"to", convention_name(target)}}));
         }
         if (r.invert)
-            plan.findings.push_back(make_finding(code::gloss_inverted, Severity::info, out, c.file,
+            plan.findings.push_back(make_finding(code::gloss_inverted, out, c.file,
                                                  "gloss map converted to roughness (roughness = 1 - gloss)"));
         if (traits(r.from).packed) unpacked.insert(r.from);
     }
@@ -264,7 +268,7 @@ void conversion_findings(SetPlan& plan, NormalConvention target) {
         for (size_t i = 0; i < 3; ++i)
             if (layout[i])
                 parts += (parts.empty() ? "" : ", ") + std::string(kCh[i]) + " = " + std::string(role_name(*layout[i]));
-        plan.findings.push_back(make_finding(code::packed_input_unpacked, Severity::info, p, plan.inputs.at(p).file,
+        plan.findings.push_back(make_finding(code::packed_input_unpacked, p, plan.inputs.at(p).file,
                                              "packed " + std::string(role_name(p)) + " map split into " + parts +
                                                  (p == Role::ort ? " (translucency is not metalness)" : "")));
     }
@@ -323,15 +327,12 @@ void decide_size(SetPlan& plan) {
         const Candidate& c = plan.inputs.at(m.role);
         refused.insert(c.file);
         const std::string file = c.file;
-        plan.findings.push_back({std::string(code::aspect_mismatch),
-                                 Severity::error,
-                                 std::string(role_name(m.role)),
-                                 file,
-                                 file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) +
-                                     ", a shape more than 2x off the set's " + std::to_string(w) + "x" +
-                                     std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
-                                     "); it is not stretched to fit and not used",
-                                 {{"size", {m.w, m.h}}, {"set_size", {w, h}}}});
+        plan.findings.push_back(make_finding(code::aspect_mismatch, m.role, file,
+                                             file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) +
+                                                 ", a shape more than 2x off the set's " + std::to_string(w) + "x" +
+                                                 std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
+                                                 "); it is not stretched to fit and not used",
+                                             {{"size", {m.w, m.h}}, {"set_size", {w, h}}}));
         for (auto it = plan.routes.begin(); it != plan.routes.end();)
             it = it->second.from == m.role ? plan.routes.erase(it) : std::next(it);
         plan.inputs.erase(m.role);
@@ -365,14 +366,11 @@ void decide_size(SetPlan& plan) {
             if (in == plan.inputs.end() || !restate.count(in->second.file) || (m.w == w && m.h == h)) continue;
             const std::string& file = in->second.file;
             plan.findings.push_back(
-                {std::string(code::resolution_mismatch),
-                 Severity::warning,
-                 std::string(role_name(m.role)),
-                 file,
-                 file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " +
-                     std::to_string(w) + "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file +
-                     "); it will be resampled",
-                 {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}}});
+                make_finding(code::resolution_mismatch, m.role, file,
+                             file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " +
+                                 std::to_string(w) + "x" + std::to_string(h) + " (" +
+                                 plan.inputs.at(largest->role).file + "); it will be resampled",
+                             {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}}));
         }
     }
     plan.width = w;
@@ -387,14 +385,11 @@ void limit_size(SetPlan& plan, const Preset& preset) {
         const double k = static_cast<double>(preset.max_size) / std::max(w, h);
         w = std::max(1, static_cast<int>(std::lround(w * k)));
         h = std::max(1, static_cast<int>(std::lround(h * k)));
-        plan.findings.push_back({std::string(code::resized),
-                                 Severity::info,
-                                 "",
-                                 "",
-                                 "downsampled from " + std::to_string(ow) + "x" + std::to_string(oh) + " to " +
-                                     std::to_string(w) + "x" + std::to_string(h) + " (preset max_size " +
-                                     std::to_string(preset.max_size) + ")",
-                                 {{"from", {ow, oh}}, {"to", {w, h}}}});
+        plan.findings.push_back(finding(code::resized, "", "",
+                                        "downsampled from " + std::to_string(ow) + "x" + std::to_string(oh) + " to " +
+                                            std::to_string(w) + "x" + std::to_string(h) + " (preset max_size " +
+                                            std::to_string(preset.max_size) + ")",
+                                        {{"from", {ow, oh}}, {"to", {w, h}}}));
     }
     plan.width = w;
     plan.height = h;
@@ -406,7 +401,10 @@ NormalConvention SetPlan::normal_from() const {
     return normal && normal->convention != NormalConvention::unknown ? normal->convention : NormalConvention::gl;
 }
 
-SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
+namespace {
+
+SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::map<std::string, std::string>& failed,
+                  std::map<std::string, std::string>& newly_failed) {
     const Preset& preset = *opt.preset;
     SetPlan plan;
     Files files{src, {}};
@@ -428,7 +426,8 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
     // Sets of 4 Mpixel maps and up decode their maps on two threads, and any set when a core is
     // idle; small ones stay on one otherwise (the batch is already parallel across sets).
     std::vector<validate::MapInput> maps;
-    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) || opt.spare_core ? 2 : 1, maps);
+    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) || opt.spare_core ? 2 : 1, failed,
+                 maps);
     if (maps.empty()) {
         std::string msg = src.display + ": no map of the set could be read";
         for (const auto& f : plan.findings)
@@ -445,6 +444,13 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
         vo.reader = memory_reader(std::move(by_display));
     }
     const validate::SetValidation checked = validate::validate_set(maps, *opt.rules, vo);
+    // Stream mode reads a map's header here and its pixels in the rules: a chosen map whose pixels
+    // fail is planned again as decode mode saw it, a file that does not read (the next candidate,
+    // or no map: MISSING_MAP).
+    for (const auto& [role, c] : plan.inputs)
+        if (const auto bad = checked.unreadable.find(c.file); bad != checked.unreadable.end())
+            newly_failed.insert(*bad);
+    if (!newly_failed.empty()) return plan;
     plan.findings.insert(plan.findings.end(), checked.findings.begin(), checked.findings.end());
     maps.clear();
     files.opened.clear();  // read (decode mode) or streamed (stream mode): free zip bytes early
@@ -466,6 +472,18 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
 
     validate::apply_config(plan.findings, src.name, *opt.rules);  // suppressions reach every finding
     return plan;
+}
+
+}  // namespace
+
+SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
+    std::map<std::string, std::string> failed;
+    for (;;) {  // at most once more per chosen map: each pass fails at least one more file
+        std::map<std::string, std::string> newly_failed;
+        SetPlan plan = plan_once(src, opt, failed, newly_failed);
+        if (newly_failed.empty()) return plan;
+        failed.merge(newly_failed);
+    }
 }
 
 std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {

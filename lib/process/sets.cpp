@@ -5,14 +5,17 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <fstream>
 #include <functional>
 #include <list>
 #include <map>
 #include <mutex>
 #include <set>
 
+#include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "core/json.hpp"
+#include "core/text.hpp"
 #include "material/discovery.hpp"
 
 namespace mf {
@@ -99,11 +102,6 @@ namespace {
 
 bool hidden(const std::string& name) { return name.empty() || name[0] == '.' || name == "__MACOSX"; }
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
-
 // The real path of a folder or archive, to read each once however many inputs reach it.
 fs::path real_path(const fs::path& p) {
     std::error_code ec;
@@ -118,8 +116,33 @@ bool unread_image_format(const std::string& file) {
                                             "pam", "pfm", "heic", "heif", "avif", "jxl",   "ico", "sgi", "rgb", "iff",
                                             "pcx", "ktx", "ktx2", "astc", "pvr",  "basis", "dpx", "cin", "fits"};
     const auto dot = file.rfind('.');
-    if (dot == std::string::npos || dot == 0 || !kExt.count(lower(file.substr(dot + 1)))) return false;
+    if (dot == std::string::npos || dot == 0 || !kExt.count(ascii_lower(file.substr(dot + 1)))) return false;
     return classify_name(file.substr(0, dot) + ".png").has_value();
+}
+
+// The file that marks `dir` as an output folder of matforge ("" when none): a manifest or a
+// stopped run's journal that matforge wrote, or a report's index.html. Only the start of a file
+// is read: a manifest of 100,000 sets is hundreds of MB.
+std::string matforge_output_marker(const fs::path& dir) {
+    std::error_code ec;
+    auto starts_with_ours = [](const fs::path& f, std::string_view needle) {
+        std::ifstream in(f, std::ios::binary);
+        std::string head(size_t{1} << 20, '\0');
+        in.read(head.data(), static_cast<std::streamsize>(head.size()));
+        head.resize(static_cast<size_t>(in.gcount()));
+        return head.find(needle) != std::string::npos;
+    };
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        std::string n = it->path().filename().string();
+        std::error_code fec;
+        if (!it->is_regular_file(fec) || it->is_symlink(fec)) continue;
+        if (n.rfind(".manifest", 0) == 0 && n.size() > 8 && n.substr(n.size() - 8) == ".journal") return n;
+        if (n.rfind("manifest", 0) == 0 && it->path().extension() == ".json" &&
+            starts_with_ours(it->path(), "\"generator\": \"matforge "))
+            return n;
+        if (n == "index.html" && starts_with_ours(it->path(), "<meta name=\"generator\" content=\"matforge ")) return n;
+    }
+    return {};
 }
 
 struct Scan {
@@ -127,6 +150,7 @@ struct Scan {
     std::vector<MaterialSource>& out;
     std::vector<InputFailure>& failures;
     std::string* output_conflict;
+    std::vector<std::string>* skipped;             // output folders of matforge met in the walk, said once each
     std::map<fs::path, std::vector<size_t>> seen;  // real path of a folder/archive -> its sets
     std::string input;                             // the input being walked, for DUPLICATE_INPUT
     size_t reached_again = 0;                      // folders and archives met a second time
@@ -143,9 +167,7 @@ bool already_seen(Scan& scan, const fs::path& p) {
                                 "; it is read once (overlapping inputs)";
         const bool known = std::any_of(s.findings.begin(), s.findings.end(),
                                        [&](const Finding& f) { return f.message == msg; });
-        if (!known)
-            s.findings.push_back(
-                {std::string(code::duplicate_input), Severity::info, "", "", msg, {{"input", scan.input}}});
+        if (!known) s.findings.push_back(finding(code::duplicate_input, "", "", msg, {{"input", scan.input}}));
     }
     return true;
 }
@@ -164,10 +186,10 @@ void add_groups(const std::string& fallback, const std::vector<std::string>& fil
             // Spellings that differ only in resolution/format tags are one material at several
             // sizes (info); a difference of case or separators may be two materials (warning).
             nlohmann::json figures{{"spellings", g.merge->spellings}, {"files", g.merge->files}};
-            s.findings.push_back({std::string(code::names_merged),
-                                  g.merge->spelling_differs ? Severity::warning : Severity::info, "",
-                                  g.merge->files.empty() ? "" : g.merge->files.front(), g.merge->message,
-                                  std::move(figures)});
+            Finding f = finding(code::names_merged, "", g.merge->files.empty() ? "" : g.merge->files.front(),
+                                g.merge->message, std::move(figures));
+            if (!g.merge->spelling_differs) f.severity = Severity::info;  // the catalog's one exception (its title)
+            s.findings.push_back(std::move(f));
         }
         out.push_back(std::move(s));
     }
@@ -252,13 +274,10 @@ void scan_zip(Scan& scan, const fs::path& zip_path) {
             const std::string entry = s.zip_folder.empty() ? f : s.zip_folder + "/" + f;
             const auto it = zip->entries.find(entry);
             if (it == zip->entries.end() || it->second.copies < 2) continue;
-            s.findings.push_back({std::string(code::duplicate_entry),
-                                  Severity::warning,
-                                  "",
-                                  f,
-                                  shown + ": " + std::to_string(it->second.copies) + " entries are named '" + entry +
-                                      "'; the first is used, the others are ignored",
-                                  {{"entries", it->second.copies}}});
+            s.findings.push_back(finding(code::duplicate_entry, "", f,
+                                         shown + ": " + std::to_string(it->second.copies) + " entries are named '" +
+                                             entry + "'; the first is used, the others are ignored",
+                                         {{"entries", it->second.copies}}));
         }
     }
     if (scan.out.size() == before)
@@ -297,7 +316,8 @@ bool list_folder(const fs::path& dir, std::vector<std::string>& files, std::vect
         if (fs::is_directory(st)) continue;          // walk() decides about folders
         // Everything else is a candidate file, also FIFOs, sockets and broken or looping links:
         // they get a coded error naming them when read (never opened, so a FIFO cannot hang us).
-        if (zips && fs::is_regular_file(st) && name.size() > 4 && lower(fs::path(name).extension().string()) == ".zip")
+        if (zips && fs::is_regular_file(st) && name.size() > 4 &&
+            ascii_lower(fs::path(name).extension().string()) == ".zip")
             zips->push_back(it->path());
         else files.push_back(name);
     }
@@ -352,17 +372,7 @@ std::string set_in_output_folder(const fs::path& dir) {
     std::vector<std::string> files;
     std::string error;
     if (!list_folder(dir, files, nullptr, error)) return {};
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
-        const std::string n = e.path().filename().string();
-        if (n.rfind(".manifest", 0) == 0 && n.size() > 8 && n.substr(n.size() - 8) == ".journal") return {};
-        if (n.rfind("manifest", 0) != 0 || e.path().extension() != ".json") continue;
-        std::string err;
-        const auto j = read_json_file(e.path(), err);
-        if (j && j->is_object() && j->contains("generator") && (*j)["generator"].is_string() &&
-            (*j)["generator"].get<std::string>().rfind("matforge", 0) == 0)
-            return {};
-    }
+    if (!matforge_output_marker(dir).empty()) return {};
     std::vector<MaterialSource> sets;
     add_groups(dir.filename().string(), files, MaterialSource{}, sets);
     if (sets.empty()) return {};
@@ -380,6 +390,15 @@ std::string set_in_output_folder(const fs::path& dir) {
 
 void walk(Scan& scan, const fs::path& root) {
     if (already_seen(scan, root)) return;
+    // An output folder of an earlier run (or a report) is never read as material sets: its
+    // outputs would come back as new materials and rename the real ones ("<name>_2").
+    if (const std::string marker = matforge_output_marker(root); !marker.empty()) {
+        scan.seen[real_path(root)];
+        if (scan.skipped)
+            scan.skipped->push_back(root.string() + ": skipped, an output folder of matforge (it holds its " + marker +
+                                    "), not material sets");
+        return;
+    }
     scan_folder(scan, root);
     std::vector<fs::path> subdirs;
     std::error_code ec;
@@ -417,13 +436,13 @@ std::vector<std::string> unique_names(const std::vector<std::string>& wanted,
     std::map<std::string, int> holders;  // lower-case safe name -> how many sets want it
     for (const auto& w : wanted) {
         names.push_back(safe_name(w));
-        ++holders[lower(names.back())];
+        ++holders[ascii_lower(names.back())];
     }
     std::set<std::string> taken(reserved.begin(), reserved.end());
     // First come, first kept: the first set of each name keeps it, unless reserved.
     std::vector<bool> kept(names.size(), false);
     for (size_t i = 0; i < names.size(); ++i)
-        kept[i] = !taken.count(lower(names[i])) && taken.insert(lower(names[i])).second;
+        kept[i] = !taken.count(ascii_lower(names[i])) && taken.insert(ascii_lower(names[i])).second;
     for (size_t i = 0; i < names.size(); ++i) {
         if (kept[i]) continue;
         const std::string base = names[i];
@@ -431,13 +450,43 @@ std::vector<std::string> unique_names(const std::vector<std::string>& wanted,
             const std::string suffix = "_" + std::to_string(n);
             std::string candidate = base.substr(0, std::min(base.size(), kMaxNameBytes - suffix.size())) + suffix;
             // A name another set holds as its own is never handed out, even before that set's turn.
-            if (holders.count(lower(candidate)) || !taken.insert(lower(candidate)).second) continue;
+            if (holders.count(ascii_lower(candidate)) || !taken.insert(ascii_lower(candidate)).second) continue;
             names[i] = candidate;
             break;
         }
     }
     return names;
 }
+
+namespace {
+
+// An entry larger than one read piece is judged by its first piece before the rest is inflated
+// (a 1 MiB zip can hold a 1 GiB entry of zeros named like a map): "" when it may be read, else
+// why not. Its header must name an image whose pixels its size could encode (twice the raw size:
+// no PNG, JPEG, TIFF or EXR of an image needs more), or, when the header is not in the first piece
+// (a TIFF may keep its directory at the end), the entry must be within what a set's file of
+// that kind holds in practice (kUnprobed).
+std::string entry_beyond_its_image(const std::string& display, const std::vector<unsigned char>& bytes, size_t got,
+                                   uint64_t size) {
+    constexpr uint64_t kUnprobed = uint64_t{256} << 20;
+    InputFile head;
+    head.display = display;
+    head.bytes = std::make_shared<std::vector<unsigned char>>(bytes.begin(), bytes.begin() + static_cast<long>(got));
+    std::string error;
+    const auto info = read_info(head, error);
+    if (!info) {
+        if (size <= kUnprobed) return {};
+        if (error.rfind(display + ": ", 0) == 0) error.erase(0, display.size() + 2);  // the caller names it
+        return error + "; the rest of its " + std::to_string(size) + " bytes was not read";
+    }
+    const uint64_t raw = uint64_t(info->width) * uint64_t(info->height) * uint64_t(info->channels) *
+                         uint64_t(std::max(1, info->bit_depth / 8));
+    if (size <= 2 * raw + (uint64_t{1} << 20)) return {};
+    return "holds " + std::to_string(size) + " bytes for a " + std::to_string(info->width) + "x" +
+           std::to_string(info->height) + " image, more than any encoding of it needs; not read";
+}
+
+}  // namespace
 
 InputFile MaterialSource::open(const std::string& file) const {
     InputFile in;
@@ -474,6 +523,7 @@ InputFile MaterialSource::open(const std::string& file) const {
                        // grow, so a forged header cannot make us allocate what the data does not hold.
                        constexpr size_t kChunk = size_t{1} << 20;
                        size_t got = 0;
+                       bool probed = false;
                        for (;;) {
                            bytes->resize(got + kChunk);
                            const zip_int64_t n = zip_fread(f, bytes->data() + got, kChunk);
@@ -486,6 +536,11 @@ InputFile MaterialSource::open(const std::string& file) const {
                            if (got > kMaxEntry) {
                                in.open_error = "entry inflates beyond the 2 GiB limit";
                                break;
+                           }
+                           if (!probed && st.size > kChunk && got >= kChunk) {
+                               probed = true;
+                               in.open_error = entry_beyond_its_image(in.display, *bytes, got, st.size);
+                               if (!in.open_error.empty()) break;
                            }
                        }
                        bytes->resize(got);
@@ -502,6 +557,88 @@ InputFile MaterialSource::open(const std::string& file) const {
     return in;
 }
 
+namespace {
+// `p` made absolute, its links and dots resolved as far as it exists.
+fs::path resolved(const fs::path& p) {
+    std::error_code ec;
+    return fs::weakly_canonical(fs::absolute(p, ec), ec);
+}
+// Whether `a` is `b` or lies inside it (both resolved).
+bool within(const fs::path& a, const fs::path& b) {
+    const fs::path rel = a.lexically_relative(b);
+    return !rel.empty() && *rel.begin() != "..";
+}
+}  // namespace
+
+std::string input_problem(const fs::path& input) {
+    std::error_code ec;
+    const auto st = fs::status(input, ec);
+    if (fs::is_directory(st)) return {};
+    if (fs::is_regular_file(st) && ascii_lower(input.extension().string()) == ".zip") return {};
+    if (!fs::exists(st)) return input.string() + ": no such folder or .zip file";
+    if (fs::is_regular_file(st))
+        return input.string() + ": a file, not a folder or a .zip file; give the folder that holds the set (" +
+               input.parent_path().string() + ")";
+    return input.string() + ": not a folder or a .zip file";
+}
+
+std::string no_usable_input(const std::vector<fs::path>& inputs) {
+    std::string all;
+    for (const auto& i : inputs) {
+        const std::string why = input_problem(i);
+        if (why.empty()) return {};
+        all += (all.empty() ? "" : "; ") + why;
+    }
+    return all;
+}
+
+std::string written_file_conflict(const fs::path& file, const std::vector<fs::path>& inputs,
+                                  const std::vector<MaterialSource>& sets) {
+    const fs::path f = resolved(file);
+    const std::string rule = "; matforge never writes over what it reads: name a file outside the material sets";
+    for (const auto& i : inputs)
+        if (f == resolved(i)) return file.string() + " is the input " + i.string() + rule;
+    for (const auto& s : sets) {
+        const fs::path root = resolved(s.root);
+        if (s.is_zip && f == root) return file.string() + " is the archive of the set '" + s.name + "'" + rule;
+        if (!s.is_zip && f.parent_path() == root)
+            return file.string() + " lies in the folder of the set '" + s.name + "' (" + s.display +
+                   "), among its maps" + rule;
+    }
+    return {};
+}
+
+namespace {
+// " is WHAT", " is inside WHAT SHOWN" or " holds WHAT SHOWN" for resolved paths `a` and `b` when
+// one is within the other, else "".
+std::string placement(const fs::path& a, const fs::path& b, const std::string& what, const std::string& shown) {
+    if (a == b) return " is " + what;
+    if (within(a, b)) return " is inside " + what + " " + shown;
+    if (within(b, a)) return " holds " + what + " " + shown;
+    return {};
+}
+}  // namespace
+
+std::string cache_overlaps(const fs::path& cache, const fs::path& out_dir, const std::vector<fs::path>& inputs) {
+    const fs::path c = resolved(cache);
+    const std::string rule = "; the cache must be a folder of its own, outside the output folder and the inputs";
+    if (std::string p = placement(c, resolved(out_dir), "the output folder", out_dir.string()); !p.empty())
+        return "the cache " + cache.string() + p + rule;
+    for (const auto& i : inputs) {
+        const fs::path in = resolved(i);
+        // Inside an input under a hidden folder (~/.cache/matforge in a walk of ~) is never read:
+        // the walk skips hidden folders.
+        bool hidden_below = false;
+        if (within(c, in) && c != in)
+            for (const auto& part : c.lexically_relative(in))
+                hidden_below = hidden_below || part.string().front() == '.';
+        if (hidden_below) continue;
+        if (std::string p = placement(c, in, "the input", i.string()); !p.empty())
+            return "the cache " + cache.string() + p + rule;
+    }
+    return {};
+}
+
 std::string output_overlaps_input(const fs::path& out_dir, const std::vector<fs::path>& inputs) {
     std::error_code ec;
     const fs::path out = fs::weakly_canonical(fs::absolute(out_dir, ec), ec);
@@ -516,9 +653,10 @@ std::string output_overlaps_input(const fs::path& out_dir, const std::vector<fs:
 }
 
 std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inputs, const fs::path& exclude,
-                                               std::vector<InputFailure>& failures, std::string* output_conflict) {
+                                               std::vector<InputFailure>& failures, std::string* output_conflict,
+                                               std::vector<std::string>* skipped) {
     std::vector<MaterialSource> sets;
-    Scan scan{exclude, sets, failures, output_conflict, {}, {}};
+    Scan scan{exclude, sets, failures, output_conflict, skipped, {}, {}};
     for (const auto& in : inputs) {
         scan.input = in.string();
         const size_t sets_before = sets.size(), failures_before = failures.size(), again = scan.reached_again;
@@ -526,11 +664,10 @@ std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inpu
         const bool seen_before = scan.seen.count(real_path(in)) > 0;
         if (fs::is_directory(in, ec)) {
             walk(scan, in);
-        } else if (fs::is_regular_file(in, ec) && lower(in.extension().string()) == ".zip") {
+        } else if (fs::is_regular_file(in, ec) && ascii_lower(in.extension().string()) == ".zip") {
             scan_zip(scan, in);
         } else {
-            failures.push_back({in.string(), std::string(code::input_not_found),
-                                in.string() + ": no such folder or .zip file"});
+            failures.push_back({in.string(), std::string(code::input_not_found), input_problem(in)});
             continue;
         }
         // Nothing found is not a pass: an input without a set fails, naming it (as a zip does).
@@ -547,5 +684,7 @@ std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inpu
     for (size_t i = 0; i < sets.size(); ++i) sets[i].name = names[i];
     return sets;
 }
+
+std::string archive_library_version() { return std::string("libzip ") + zip_libzip_version(); }
 
 }  // namespace mf

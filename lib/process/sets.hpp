@@ -39,15 +39,36 @@ struct MaterialSource {
 // appending _2, _3 … in path order, skipping names other sets have.
 // `output_conflict` (when given): set to a message when `exclude` is itself the folder of a set
 // (it holds the set's maps): that set would be dropped and the outputs written among its sources.
+// A folder holding a manifest or journal matforge wrote, or a report of `matforge report`, is an
+// output: it is skipped with all below it, and said in `skipped` (when given), one line each.
 std::vector<MaterialSource> find_material_sets(const std::vector<std::filesystem::path>& inputs,
                                                const std::filesystem::path& exclude,
                                                std::vector<InputFailure>& failures,
-                                               std::string* output_conflict = nullptr);
+                                               std::string* output_conflict = nullptr,
+                                               std::vector<std::string>* skipped = nullptr);
+
+// Why `input` cannot be read as material sets ("" when it is a folder or a .zip file): it does
+// not exist, or it is a file of another kind (a map given alone: "give the folder holding it").
+std::string input_problem(const std::filesystem::path& input);
+// Non-empty (each input's problem) when no input can be read at all: the command stops before
+// it creates anything (an output folder, a manifest, a cache).
+std::string no_usable_input(const std::vector<std::filesystem::path>& inputs);
 
 // Non-empty (a message) when `out_dir` is one of `inputs` or holds one: outputs would then be
 // found as inputs by the next run. An output folder inside an input is fine (it is skipped).
 std::string output_overlaps_input(const std::filesystem::path& out_dir,
                                   const std::vector<std::filesystem::path>& inputs);
+
+// Non-empty (a message) when `file`, which a command is about to write (validate's report, plan's
+// work list), is one of the files the run read, or lies in the folder of one of `sets` (the
+// next run would read it among the set's maps): an input given, an archive, a set's map.
+std::string written_file_conflict(const std::filesystem::path& file, const std::vector<std::filesystem::path>& inputs,
+                                  const std::vector<MaterialSource>& sets);
+
+// Non-empty (a message) when the cache folder `cache` would be mixed with what a run reads or
+// writes: the output folder, a folder inside it or holding it, an input, or inside or holding one.
+std::string cache_overlaps(const std::filesystem::path& cache, const std::filesystem::path& out_dir,
+                           const std::vector<std::filesystem::path>& inputs);
 
 // A name safe as one path component: [A-Za-z0-9._-] kept, others '_', no leading dot, ≤ 96 bytes.
 inline constexpr size_t kMaxNameBytes = 96;
@@ -59,5 +80,8 @@ std::string safe_name(const std::string& name);
 // set holds, cut so that the suffix fits in kMaxNameBytes.
 std::vector<std::string> unique_names(const std::vector<std::string>& wanted,
                                       const std::vector<std::string>& reserved = {"manifest.json"});
+
+// For `matforge --version`: libzip, which reads .zip sets in place.
+std::string archive_library_version();
 
 }  // namespace mf

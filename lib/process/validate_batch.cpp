@@ -57,10 +57,10 @@ std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const
 }
 
 validate::Report validate_inputs(const std::vector<std::filesystem::path>& inputs, const Preset& preset,
-                                 const ValidateBatchOptions& opt) {
+                                 const ValidateBatchOptions& opt, std::vector<std::string>* notes) {
     validate::Report report;
     std::vector<InputFailure> source_failures;
-    const auto sets = find_material_sets(inputs, {}, source_failures);
+    const auto sets = find_material_sets(inputs, {}, source_failures, nullptr, notes);
     std::vector<SetOutcome> outcomes(sets.size());
     parallel_for(sets.size(), opt.jobs, [&](size_t i) {
         if (stop_requested()) return;  // a signal asked to stop (the command reports it)

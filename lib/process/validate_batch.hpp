@@ -22,7 +22,8 @@ std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const
                                                      std::string& error);
 
 // Sets under `inputs` validated in parallel; materials in path order, failures after.
+// `notes` (when given): a line per output folder of matforge met in the inputs and skipped.
 validate::Report validate_inputs(const std::vector<std::filesystem::path>& inputs, const Preset& preset,
-                                 const ValidateBatchOptions& opt);
+                                 const ValidateBatchOptions& opt, std::vector<std::string>* notes = nullptr);
 
 }  // namespace mf

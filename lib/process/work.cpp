@@ -109,6 +109,21 @@ std::vector<int> assign_shards(const std::vector<MaterialSource>& sets, const st
     return shard;
 }
 
+std::string plan_digest(const std::vector<MaterialSource>& sets, const std::vector<uint64_t>& bytes,
+                        const std::vector<int>& shard, int n, const std::string& context) {
+    Hasher h;
+    h.add(context);
+    h.add(std::to_string(n));
+    for (size_t i = 0; i < sets.size(); ++i) {
+        h.add(sets[i].name);
+        h.add(std::to_string(sets[i].files.size()));
+        for (const std::string& f : sets[i].files) h.add(f);
+        h.add(std::to_string(bytes[i]));
+        h.add(std::to_string(shard[i]));
+    }
+    return h.hex();
+}
+
 std::optional<std::pair<int, int>> parse_shard(const std::string& spec) {
     const auto slash = spec.find('/');
     if (slash == std::string::npos || slash == 0 || slash + 1 == spec.size()) return std::nullopt;

@@ -38,6 +38,14 @@ uint64_t set_bytes(const MaterialSource& set);
 // same library always splits the same way.
 std::vector<int> assign_shards(const std::vector<MaterialSource>& sets, const std::vector<uint64_t>& bytes, int n);
 
+// The digest of a sharded run's plan (hex SHA-256): `context`, the number of shards, and every
+// set of the library in order with its name, its files, its size and its shard. Every shard of
+// one run computes the same one; a library changed between two shards' runs (a set added,
+// removed or resized, which moves sets between shards) gives another, and `merge` refuses.
+// Names and sizes, not contents: a shard never reads the files of the others.
+std::string plan_digest(const std::vector<MaterialSource>& sets, const std::vector<uint64_t>& bytes,
+                        const std::vector<int>& shard, int n, const std::string& context);
+
 // "I/N" -> {I, N} with 0 <= I < N; nullopt when malformed.
 std::optional<std::pair<int, int>> parse_shard(const std::string& spec);
 

@@ -120,7 +120,7 @@ constexpr const char* kDriverHint =
 // threads or atexit handlers is what makes leak checkers and some drivers unhappy.
 PFN_vkGetInstanceProcAddr load_loader() {
     static void* handle = [] {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(MATFORGE_SANITIZE_BUILD)
         // LeakSanitizer checks after the loader has unloaded the driver and layer, so their
         // one-time allocations show up as leaks in "<unknown module>" that no suppression can
         // name. Pinning them (RTLD_NODELETE) keeps their symbols for LSan's report and its
@@ -439,5 +439,10 @@ const DeviceInfo& Context::info() const { return impl_->dev.info; }
 namespace detail {
 Device& device_of(Context& context) { return context.impl().dev; }
 }  // namespace detail
+
+std::string vulkan_header_version() {
+    return "Vulkan headers " + std::to_string(VK_API_VERSION_MAJOR(VK_HEADER_VERSION_COMPLETE)) + "." +
+           std::to_string(VK_API_VERSION_MINOR(VK_HEADER_VERSION_COMPLETE)) + "." + std::to_string(VK_HEADER_VERSION);
+}
 
 }  // namespace mf::render

@@ -124,7 +124,7 @@ VkDescriptorSet Renderer::Impl::allocate_set(VkDescriptorPool pool, VkDescriptor
 void Renderer::Impl::create_layouts() {
     // Read by the fragment shader, or by shade.comp on the compute path.
     constexpr auto kFrag = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr auto kCompute = VK_SHADER_STAGE_COMPUTE_BIT;
+    constexpr auto kComputeShader = VK_SHADER_STAGE_COMPUTE_BIT;
     auto binding = [](int b, VkDescriptorType type, uint32_t count, VkShaderStageFlags stages) {
         return VkDescriptorSetLayoutBinding{static_cast<uint32_t>(b), type, count, stages, nullptr};
     };
@@ -139,12 +139,12 @@ void Renderer::Impl::create_layouts() {
                 static_cast<uint32_t>(kMaxTextures), kFrag),
     });
     encode_set_layout = make_set_layout({
-        binding(gpu::kBindingEncodeRadiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, kCompute),
-        binding(gpu::kBindingEncodePixels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kCompute),
+        binding(gpu::kBindingEncodeRadiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, kComputeShader),
+        binding(gpu::kBindingEncodePixels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kComputeShader),
     });
     static_assert(gpu::kSetFrame == 0 && gpu::kSetMaterial == 1, "the order of shade_layout's sets");
     shade_layout = make_pipeline_layout({frame_layout, material_layout}, 0, 0);
-    encode_layout = make_pipeline_layout({encode_set_layout}, sizeof(gpu::EncodeParams), kCompute);
+    encode_layout = make_pipeline_layout({encode_set_layout}, sizeof(gpu::EncodeParams), kComputeShader);
     static_assert(gpu::kSetShadeTarget == 2, "the order of compute_layout's sets");
     compute_layout = make_pipeline_layout({frame_layout, material_layout, encode_set_layout}, 0, 0);
     encode_pipeline = make_compute_pipeline(kEncodeComp, sizeof(kEncodeComp), encode_layout, nullptr);

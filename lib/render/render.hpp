@@ -46,6 +46,10 @@ public:
 // ---------------------------------------------------------------------------------------------
 // Device
 
+// For `matforge --version`: the Vulkan headers built against. The loader and the driver are
+// loaded by `preview` alone, at run time (dlopen), so --version does not touch them.
+std::string vulkan_header_version();
+
 enum class DeviceKind { automatic, gpu, cpu };                    // automatic: a real GPU if any, else lavapipe (CPU)
 std::optional<DeviceKind> parse_device_kind(std::string_view s);  // "auto" | "gpu" | "cpu"
 

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "color/srgb.hpp"
+#include "validate/albedo_class.hpp"
+#include "validate/validate.hpp"
 
 namespace mf::report {
 namespace {
@@ -54,54 +56,90 @@ void reduced_size(int w, int h, int max_size, int& ow, int& oh) {
     oh = std::max(1, static_cast<int>(std::lround(h * s)));
 }
 
-// Box reduction of an RGB image (values averaged as they are).
-Image box_reduce(const Image& rgb, int max_size) {
-    int ow = 0, oh = 0;
-    reduced_size(rgb.width, rgb.height, max_size, ow, oh);
-    if (ow == rgb.width && oh == rgb.height) return rgb;
-    Image out(ow, oh, 3);
-    std::vector<double> acc(static_cast<size_t>(ow) * 3);
-    std::vector<size_t> count(static_cast<size_t>(ow));
-    std::vector<int> col_of(static_cast<size_t>(rgb.width));
-    for (int x = 0; x < rgb.width; ++x)
-        col_of[static_cast<size_t>(x)] = static_cast<int>(static_cast<int64_t>(x) * ow / rgb.width);
-    for (int oy = 0; oy < oh; ++oy) {
-        const int y0 = static_cast<int>(static_cast<int64_t>(oy) * rgb.height / oh);
-        const int y1 = std::max(y0 + 1, static_cast<int>(static_cast<int64_t>(oy + 1) * rgb.height / oh));
-        std::fill(acc.begin(), acc.end(), 0.0);
-        std::fill(count.begin(), count.end(), 0);
-        for (int y = y0; y < y1; ++y) {
-            const float* row = &rgb.pixels[rgb.index(0, y)];
-            for (int x = 0; x < rgb.width; ++x) {
-                const auto ox = static_cast<size_t>(col_of[static_cast<size_t>(x)]);
-                for (size_t c = 0; c < 3; ++c) acc[ox * 3 + c] += row[static_cast<size_t>(x) * 3 + c];
-                ++count[ox];
-            }
+// Box reduction of an RGB image (values averaged as they are), fed row by row: each output row
+// is finished as its last source row arrives, so no full-size intermediate is held (an 8192²
+// RGB float picture is 768 MB). max_size <= 0: the image as it is.
+class BoxReducer {
+public:
+    BoxReducer(int w, int h, int max_size) : w_(w), h_(h) {
+        if (max_size <= 0) ow_ = w, oh_ = h;
+        else reduced_size(w, h, max_size, ow_, oh_);
+        out_ = Image(ow_, oh_, 3);
+        identity_ = ow_ == w && oh_ == h;
+        if (identity_) return;
+        acc_.assign(static_cast<size_t>(ow_) * 3, 0.0);
+        count_.assign(static_cast<size_t>(ow_), 0);
+        col_of_.resize(static_cast<size_t>(w));
+        for (int x = 0; x < w; ++x)
+            col_of_[static_cast<size_t>(x)] = static_cast<int>(static_cast<int64_t>(x) * ow_ / w);
+        y1_ = row_end(0);
+    }
+    // Rows in order, 0 to h - 1, three floats a pixel.
+    void add_row(int y, const float* rgb) {
+        if (identity_) {
+            std::copy_n(rgb, static_cast<size_t>(w_) * 3, &out_.pixels[out_.index(0, y)]);
+            return;
         }
-        for (int ox = 0; ox < ow; ++ox) {
+        while (y >= y1_) flush();
+        for (int x = 0; x < w_; ++x) {
+            const auto ox = static_cast<size_t>(col_of_[static_cast<size_t>(x)]);
+            for (size_t c = 0; c < 3; ++c) acc_[ox * 3 + c] += rgb[static_cast<size_t>(x) * 3 + c];
+            ++count_[ox];
+        }
+        if (y == h_ - 1) flush();
+    }
+    Image take() { return std::move(out_); }
+
+private:
+    int row_end(int oy) const {
+        const int y0 = static_cast<int>(static_cast<int64_t>(oy) * h_ / oh_);
+        return std::max(y0 + 1, static_cast<int>(static_cast<int64_t>(oy + 1) * h_ / oh_));
+    }
+    void flush() {
+        for (int ox = 0; ox < ow_; ++ox) {
             const auto o = static_cast<size_t>(ox);
             for (size_t c = 0; c < 3; ++c)
-                out.at(ox, oy,
-                       static_cast<int>(c)) = static_cast<float>(acc[o * 3 + c] / static_cast<double>(count[o]));
+                out_.at(ox, oy_,
+                        static_cast<int>(c)) = static_cast<float>(acc_[o * 3 + c] / static_cast<double>(count_[o]));
         }
+        std::fill(acc_.begin(), acc_.end(), 0.0);
+        std::fill(count_.begin(), count_.end(), 0);
+        y1_ = ++oy_ < oh_ ? row_end(oy_) : h_;
     }
-    return out;
-}
+
+    int w_, h_, ow_ = 0, oh_ = 0, oy_ = 0, y1_ = 0;
+    bool identity_ = true;
+    Image out_;
+    std::vector<double> acc_;
+    std::vector<size_t> count_;
+    std::vector<int> col_of_;
+};
 
 }  // namespace
 
-Image thumbnail(const Image& src, int max_size, bool srgb) {
-    Image rgb(src.width, src.height, 3);
+namespace {
+
+// The value a picture holds at index i: a float as it is, a code as the float it stands for.
+float value_at(const Image& img, size_t i) { return img.pixels[i]; }
+float value_at(const Image8& img, size_t i) { return unorm8_values()[img.pixels[i]]; }
+
+template <class T>
+Image thumbnail_of(const BasicImage<T>& src, int max_size, bool srgb) {
+    BoxReducer reduce(src.width, src.height, max_size);
+    std::vector<float> row(static_cast<size_t>(src.width) * 3);
     const Curve& dec = decode_curve();
-    const size_t n = static_cast<size_t>(src.width) * static_cast<size_t>(src.height);
     const auto sc = static_cast<size_t>(src.channels);
-    for (size_t p = 0; p < n; ++p) {
-        const float* s = &src.pixels[p * sc];
-        float v[3] = {s[0], sc > 1 ? s[1] : s[0], sc > 2 ? s[2] : (sc == 2 ? 0.f : s[0])};
-        for (float& x : v) x = srgb ? dec(x) : clamp01(x);
-        for (size_t c = 0; c < 3; ++c) rgb.pixels[p * 3 + c] = v[c];
+    for (int y = 0; y < src.height; ++y) {
+        size_t s = src.index(0, y);
+        for (size_t x = 0; x < static_cast<size_t>(src.width); ++x, s += sc) {
+            const float r = value_at(src, s);
+            float v[3] = {r, sc > 1 ? value_at(src, s + 1) : r, sc > 2 ? value_at(src, s + 2) : (sc == 2 ? 0.f : r)};
+            for (float& c : v) c = srgb ? dec(c) : clamp01(c);
+            std::copy_n(v, 3, &row[x * 3]);
+        }
+        reduce.add_row(y, row.data());
     }
-    Image out = box_reduce(rgb, max_size);
+    Image out = reduce.take();
     if (srgb) {
         const Curve& enc = encode_curve();
         for (float& x : out.pixels) x = enc(x);
@@ -109,91 +147,110 @@ Image thumbnail(const Image& src, int max_size, bool srgb) {
     return out;
 }
 
-Image channel_thumbnail(const Image& src, int channel, int max_size) {
-    Image rgb(src.width, src.height, 3);
-    const size_t n = static_cast<size_t>(src.width) * static_cast<size_t>(src.height);
+template <class T>
+Image channel_thumbnail_of(const BasicImage<T>& src, int channel, int max_size) {
+    BoxReducer reduce(src.width, src.height, max_size);
+    std::vector<float> row(static_cast<size_t>(src.width) * 3);
     const auto sc = static_cast<size_t>(src.channels);
     const auto ch = static_cast<size_t>(std::clamp(channel, 0, src.channels - 1));
-    for (size_t p = 0; p < n; ++p) {
-        const float v = clamp01(src.pixels[p * sc + ch]);
-        rgb.pixels[p * 3] = rgb.pixels[p * 3 + 1] = rgb.pixels[p * 3 + 2] = v;
+    for (int y = 0; y < src.height; ++y) {
+        const size_t s = src.index(0, y);
+        for (size_t x = 0; x < static_cast<size_t>(src.width); ++x)
+            row[x * 3] = row[x * 3 + 1] = row[x * 3 + 2] = clamp01(value_at(src, s + x * sc + ch));
+        reduce.add_row(y, row.data());
     }
-    return box_reduce(rgb, max_size);
+    return reduce.take();
+}
+
+}  // namespace
+
+Image thumbnail(const Image& src, int max_size, bool srgb) { return thumbnail_of(src, max_size, srgb); }
+Image thumbnail(const Image8& src, int max_size, bool srgb) { return thumbnail_of(src, max_size, srgb); }
+Image channel_thumbnail(const Image& src, int channel, int max_size) {
+    return channel_thumbnail_of(src, channel, max_size);
+}
+Image channel_thumbnail(const Image8& src, int channel, int max_size) {
+    return channel_thumbnail_of(src, channel, max_size);
 }
 
 float Scalar::at(int x, int y, int w, int h) const {
-    if (!image || image->empty()) return constant;
-    const int sx = image->width == w ? x : static_cast<int>(static_cast<int64_t>(x) * image->width / w);
-    const int sy = image->height == h ? y : static_cast<int>(static_cast<int64_t>(y) * image->height / h);
-    const float v = image->at(sx, sy, std::min(channel, image->channels - 1));
+    const int iw = image ? image->width : codes ? codes->width : 0;
+    const int ih = image ? image->height : codes ? codes->height : 0;
+    const int ic = image ? image->channels : codes ? codes->channels : 0;
+    if (iw == 0 || ih == 0 || ic == 0) return constant;
+    const int sx = validate::nearest_index(x, w, iw), sy = validate::nearest_index(y, h, ih);
+    const int c = std::min(channel, ic - 1);
+    const float v = image ? image->at(sx, sy, c) : unorm8_values()[codes->at(sx, sy, c)];
     return invert ? 1.f - v : v;
 }
 
-Image albedo_overlay(const Image& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
-                     const AlbedoBounds& b, AlbedoStats& stats) {
+namespace {
+template <class T>
+Image albedo_overlay_of(const BasicImage<T>& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
+                        const validate::Thresholds& t, AlbedoStats& stats, int max_size) {
     stats = {};
     const int w = albedo.width, h = albedo.height;
-    Image out(w, h, 3);
-    const Curve& dec = decode_curve();
+    const validate::AlbedoClassifier classify(t, !albedo_srgb);
+    BoxReducer reduce(w, h, max_size);
+    std::vector<float> row(static_cast<size_t>(w) * 3);
     const Curve& enc = encode_curve();
     const int cell = std::max(1, std::max(w, h) / 32);  // checkerboard of invisible pixels: 32 cells across
     const auto ac = static_cast<size_t>(albedo.channels);
-    auto put = [&out](int x, int y, const float* rgb, float scale) {
-        for (int c = 0; c < 3; ++c) out.at(x, y, c) = rgb[c] * scale;
+    // Overlay colours lie in [0, 1]: what a thumbnail's clamp would leave as it is.
+    auto put = [&row](int x, const float* rgb, float scale) {
+        for (size_t c = 0; c < 3; ++c) row[static_cast<size_t>(x) * 3 + c] = rgb[c] * scale;
     };
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             ++stats.pixels;
-            if (opacity.at(x, y, w, h) < static_cast<float>(b.opacity_visible)) {
+            // As the rules: a pixel whose opacity is below the cutoff (or not a number) is not judged.
+            const float o = opacity.at(x, y, w, h);
+            const size_t s = albedo.index(x, y);
+            const float r = value_at(albedo, s);
+            const float rgb[3] = {r, ac > 1 ? value_at(albedo, s + 1) : r, ac > 2 ? value_at(albedo, s + 2) : r};
+            const float luminance = classify.luminance(rgb);
+            const validate::AlbedoClass k = o >= t.opacity_visible
+                                                ? classify.classify(luminance, metalness.at(x, y, w, h))
+                                                : validate::AlbedoClass::uncounted;
+            if (k == validate::AlbedoClass::uncounted) {
                 const float g = ((x / cell + y / cell) % 2) ? 0.30f : 0.18f;
-                const float rgb[3] = {g, g, g};
-                put(x, y, rgb, 1.f);
+                const float grey[3] = {g, g, g};
+                put(x, grey, 1.f);
                 continue;
             }
             ++stats.visible;
-            const float* s = &albedo.pixels[albedo.index(x, y)];
-            float lin[3] = {s[0], ac > 1 ? s[1] : s[0], ac > 2 ? s[2] : s[0]};
-            for (float& v : lin) v = albedo_srgb ? dec(v) : clamp01(v);
-            const float luminance = 0.2126f * lin[0] + 0.7152f * lin[1] + 0.0722f * lin[2];
             const float shown = enc(luminance);  // display value of the luminance
-            const double srgb255 = static_cast<double>(shown) * 255.0;
-            const float m = metalness.at(x, y, w, h);
             const float grey[3] = {shown, shown, shown};
-            if (m <= static_cast<float>(b.dielectric_metalness)) {
-                ++stats.dielectric;
-                if (srgb255 < b.dielectric_min) {
-                    ++stats.dielectric_dark;
-                    put(x, y, kTooDark, 1.f);
-                } else if (srgb255 > b.dielectric_max) {
-                    ++stats.dielectric_bright;
-                    put(x, y, kTooBright, 1.f);
-                } else {
-                    put(x, y, grey, 1.f);
-                }
-            } else if (m >= static_cast<float>(b.metal_metalness)) {
-                ++stats.metal;
-                if (srgb255 < b.metal_min) {
-                    ++stats.metal_dark;
-                    put(x, y, kTooDark, 1.f);
-                } else if (srgb255 > b.metal_max) {
-                    ++stats.metal_bright;
-                    put(x, y, kTooBright, 1.f);
-                } else {
-                    put(x, y, grey, 1.f);
-                }
-            } else {
-                ++stats.blend;
-                put(x, y, kBlend, 0.35f + 0.65f * shown);
-            }
+            using C = validate::AlbedoClass;
+            const bool dark = k == C::dielectric_dark || k == C::metal_dark, bright = k == C::dielectric_bright;
+            if (k == C::blend) ++stats.blend;
+            else if (k == C::metal || k == C::metal_dark) ++stats.metal, stats.metal_dark += dark ? 1 : 0;
+            else ++stats.dielectric, stats.dielectric_dark += dark ? 1 : 0, stats.dielectric_bright += bright ? 1 : 0;
+            if (dark) put(x, kTooDark, 1.f);
+            else if (bright) put(x, kTooBright, 1.f);
+            else if (k == C::blend) put(x, kBlend, 0.35f + 0.65f * shown);
+            else put(x, grey, 1.f);
         }
+        reduce.add_row(y, row.data());
     }
-    return out;
+    return reduce.take();
+}
+}  // namespace
+
+Image albedo_overlay(const Image& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
+                     const validate::Thresholds& t, AlbedoStats& stats, int max_size) {
+    return albedo_overlay_of(albedo, albedo_srgb, metalness, opacity, t, stats, max_size);
+}
+Image albedo_overlay(const Image8& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
+                     const validate::Thresholds& t, AlbedoStats& stats, int max_size) {
+    return albedo_overlay_of(albedo, albedo_srgb, metalness, opacity, t, stats, max_size);
 }
 
-Image metalness_overlay(const Scalar& metalness, int width, int height, double dielectric, double metal,
-                        MetalnessStats& stats) {
+Image metalness_overlay(const Scalar& metalness, int width, int height, const validate::Thresholds& t,
+                        MetalnessStats& stats, int max_size) {
     stats = {};
-    Image out(width, height, 3);
+    BoxReducer reduce(width, height, max_size);
+    std::vector<float> row(static_cast<size_t>(width) * 3);
     constexpr float kHalfCode = 0.5f / 255.f;
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
@@ -207,17 +264,18 @@ Image metalness_overlay(const Scalar& metalness, int width, int height, double d
             } else if (m > 1.f - kHalfCode) {
                 ++stats.one;
                 g = 0.94f;
-            } else if (m <= static_cast<float>(dielectric) || m >= static_cast<float>(metal)) {
+            } else if (m <= t.dielectric_max || m >= t.metal_min) {  // as METALNESS_NOT_BINARY compares
                 ++stats.near_binary;
                 rgb = kNearBinary;
             } else {
                 ++stats.between;
                 rgb = kBetween;
             }
-            for (int c = 0; c < 3; ++c) out.at(x, y, c) = rgb ? rgb[c] : g;
+            for (size_t c = 0; c < 3; ++c) row[static_cast<size_t>(x) * 3 + c] = rgb ? rgb[c] : g;
         }
+        reduce.add_row(y, row.data());
     }
-    return out;
+    return reduce.take();
 }
 
 }  // namespace mf::report

@@ -6,27 +6,36 @@
 //  - thumbnails are box-filtered (each output pixel the mean of the source pixels it covers),
 //    color maps in linear light (averaging encoded values darkens fine detail), data maps as
 //    stored; never enlarged (the page scales small maps up with nearest-neighbour CSS);
-//  - overlays are computed on the albedo's full grid, pixel by pixel, then reduced like a
-//    thumbnail: a red or blue speck is a real share of pixels, not an artefact of averaging;
+//  - overlays are computed on the albedo's full grid, pixel by pixel, and reduced like a
+//    thumbnail as each row is made: a red or blue speck is a real share of pixels, not an
+//    artefact of averaging, and no full-size picture is held;
 //  - other maps are sampled on the albedo's grid by nearest neighbour (a 2x2 constant map or a
 //    smaller mask fits any size), as the validation rules do.
 #pragma once
 #include <cstddef>
 
 #include "image/image.hpp"
+#include "validate/rules.hpp"
 
 namespace mf::report {
+
+// Pictures are read as floats (Image) or, for 8-bit files, as their codes (Image8: a quarter of
+// the memory; code k read as unorm8_values()[k], the float read_image gives it, so both give the
+// same thumbnail).
 
 // An RGB thumbnail of `src` no larger than max_size on its long side. One channel is shown as
 // grey, two as (R, G, 0); a fourth channel is ignored. `srgb`: channels 0–2 are sRGB-encoded
 // color (averaged in linear light, re-encoded). Values are clamped to [0, 1].
 Image thumbnail(const Image& src, int max_size, bool srgb);
+Image thumbnail(const Image8& src, int max_size, bool srgb);
 // Channel `channel` of `src` as a grey RGB thumbnail (as stored, clamped to [0, 1]).
 Image channel_thumbnail(const Image& src, int channel, int max_size);
+Image channel_thumbnail(const Image8& src, int channel, int max_size);
 
 // One scalar read from a map's channel, or a constant where the material has no map.
 struct Scalar {
-    const Image* image = nullptr;  // nullptr: `constant` everywhere
+    const Image* image = nullptr;   // a float map, or
+    const Image8* codes = nullptr;  // an 8-bit map's codes; neither: `constant` everywhere
     int channel = 0;
     bool invert = false;  // stored as 1 - value (smoothness)
     float constant = 0.f;
@@ -34,23 +43,13 @@ struct Scalar {
     float at(int x, int y, int w, int h) const;
 };
 
-// The bounds of the albedo overlay, as sRGB-encoded luminance 0–255 (IEC 61966-2-1 curve over
-// Rec. 709 relative luminance of the linear color). Defaults: the ranges of Unity's Material
-// Validator ("Validate Albedo": 50–243 sRGB for non-metals, 186–255 for metals).
-struct AlbedoBounds {
-    double dielectric_min = 50, dielectric_max = 243;
-    double metal_min = 186, metal_max = 255;
-    // Pixel classes (as the validation rules: lib/validate/rules.hpp Thresholds): metalness at
-    // or below dielectric_metalness is dielectric, at or above metal_metalness metal; blends
-    // between are in neither class and not judged.
-    double dielectric_metalness = 0.1, metal_metalness = 0.9;
-    double opacity_visible = 0.5;  // glTF 2.0 alphaCutoff default: pixels below are not judged
-};
-
+// What the albedo overlay counted, by validate::AlbedoClass: the pixels ALBEDO_TOO_DARK,
+// ALBEDO_TOO_BRIGHT and METAL_ALBEDO_TOO_DARK count, so a share of `visible` here is the
+// finding's surface_share on the same pixels.
 struct AlbedoStats {
-    size_t pixels = 0, visible = 0;
+    size_t pixels = 0, visible = 0;  // visible: opacity at or above the cutoff, values finite
     size_t dielectric = 0, dielectric_dark = 0, dielectric_bright = 0;
-    size_t metal = 0, metal_dark = 0, metal_bright = 0;
+    size_t metal = 0, metal_dark = 0;
     size_t blend = 0;  // visible, metalness strictly between the classes
 };
 
@@ -61,11 +60,16 @@ inline constexpr float kBlend[3] = {0.85f, 0.65f, 0.15f};       // amber, scaled
 inline constexpr float kBetween[3] = {0.90f, 0.10f, 0.80f};     // magenta: metalness strictly between the classes
 inline constexpr float kNearBinary[3] = {0.98f, 0.70f, 0.55f};  // peach: within a class but not exactly 0 or 1
 
-// The albedo's false-colour overlay at its full size: red = darker than its class allows, blue =
-// brighter, grey (its luminance) = in range, amber = a blend (not judged), checkerboard = not
-// visible (opacity below the cutoff). `albedo_srgb`: channels 0–2 are sRGB-encoded (else linear).
+// The albedo's false-colour overlay, reduced as a thumbnail to at most `max_size` on its long
+// side while it is made (0: its full size; never held at full size otherwise): each pixel
+// classed as the rules class it (validate/albedo_class.hpp, under `t`): red = darker than its
+// class allows, blue = brighter, grey (its luminance) = in range, amber = a blend (not judged),
+// checkerboard = not visible (opacity below t.opacity_visible). `albedo_srgb`: channels 0–2 are
+// sRGB-encoded (else linear).
 Image albedo_overlay(const Image& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
-                     const AlbedoBounds& bounds, AlbedoStats& stats);
+                     const validate::Thresholds& t, AlbedoStats& stats, int max_size = 0);
+Image albedo_overlay(const Image8& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
+                     const validate::Thresholds& t, AlbedoStats& stats, int max_size = 0);
 
 struct MetalnessStats {
     size_t pixels = 0, zero = 0, one = 0;
@@ -73,9 +77,10 @@ struct MetalnessStats {
     size_t between = 0;      // strictly between the classes: what METALNESS_NOT_BINARY counts
 };
 
-// Metalness that is neither 0 nor 1, at the map's full size: black = 0, white = 1 (within half an
-// 8-bit code), peach = near 0 or 1, magenta = between `dielectric` and `metal` (the rule's band).
-Image metalness_overlay(const Scalar& metalness, int width, int height, double dielectric, double metal,
-                        MetalnessStats& stats);
+// Metalness that is neither 0 nor 1, reduced as albedo_overlay is (0: the map's full size): black = 0, white = 1
+// (within half an 8-bit code), peach = near 0 or 1, magenta = between t.dielectric_max and t.metal_min
+// (METALNESS_NOT_BINARY's band).
+Image metalness_overlay(const Scalar& metalness, int width, int height, const validate::Thresholds& t,
+                        MetalnessStats& stats, int max_size = 0);
 
 }  // namespace mf::report

@@ -6,9 +6,12 @@
 #include <map>
 #include <span>
 
+#include "core/budget.hpp"
 #include "core/files.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "core/text.hpp"
+#include "core/version.hpp"
 #include "report/html.hpp"
 
 namespace mf::report {
@@ -16,11 +19,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using manifest::Channel;
-
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
 
 std::string safe_component(const std::string& name) {
     std::string s;
@@ -34,14 +32,8 @@ std::string safe_component(const std::string& name) {
     return s;
 }
 
-std::string fixed(double v, int digits) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-    return buf;
-}
-
 std::string percent(size_t part, size_t whole) {
-    return whole ? fixed(100.0 * static_cast<double>(part) / static_cast<double>(whole), 1) + " %" : "—";
+    return whole ? mf::percent(static_cast<double>(part) / static_cast<double>(whole)) : "—";
 }
 
 // Inside `dir` lexically (no absolute path, no ".."): a manifest must not make the report read
@@ -136,7 +128,7 @@ private:
         }
         const std::string hash = sha256_hex(bytes);
         if (const auto it = written_.find(hash); it != written_.end()) return it->second;
-        if (!write_file_atomic(opt_.out / stem_ / name, bytes, error)) {
+        if (!write_file_under(opt_.out, stem_ + "/" + name, bytes, error)) {
             problem(error);
             return std::nullopt;
         }
@@ -146,7 +138,9 @@ private:
         return pic;
     }
 
-    bool read(const fs::path& file, Image& image, std::string& error) {
+    // An 8-bit file is kept as its codes (a quarter of the memory of floats: an 8192² RGBA map
+    // is 256 MB, not 1 GB), any other as floats.
+    bool read(const fs::path& file, Decoded& image, std::string& error) {
         if (const auto why = not_a_regular_file(file)) {
             error = file.string() + ": " + *why;
             return false;
@@ -157,27 +151,46 @@ private:
         ImageInfo info;
         return read_image(in, image, info, error);
     }
+    static Image thumbnail_of(const Decoded& d, int max_size, bool srgb) {
+        return d.is_codes() ? thumbnail(d.codes, max_size, srgb) : thumbnail(d.floats, max_size, srgb);
+    }
+    static Image channel_thumbnail_of(const Decoded& d, int channel, int max_size) {
+        return d.is_codes() ? channel_thumbnail(d.codes, channel, max_size)
+                            : channel_thumbnail(d.floats, channel, max_size);
+    }
+    // Channel `ch` of `d` alone, codes or floats as `d` holds it.
+    static std::shared_ptr<Decoded> plane_of(const Decoded& d, int ch) {
+        auto plane = std::make_shared<Decoded>();
+        auto copy = [&](const auto& src, auto& dst) {
+            dst = std::remove_reference_t<decltype(dst)>(src.width, src.height, 1);
+            for (size_t p = 0; p < dst.pixels.size(); ++p)
+                dst.pixels[p] = src.pixels[p * static_cast<size_t>(src.channels) + static_cast<size_t>(ch)];
+        };
+        if (d.is_codes()) copy(d.codes, plane->codes);
+        else copy(d.floats, plane->floats);
+        return plane;
+    }
 
     std::optional<Pic> preview_pic(const fs::path& folder, const std::string& name) {
         const auto file = preview_file(folder, m_.name);
         if (!file) return std::nullopt;
-        Image image;
+        Decoded image;
         std::string error;
         if (!read(*file, image, error)) {
             problem(error);
             return std::nullopt;
         }
-        return write_pic(thumbnail(image, opt_.thumb_size, true), name);
+        return write_pic(thumbnail_of(image, opt_.thumb_size, true), name);
     }
 
     // Thumbnails of one output; `keep` receives the decoded image when the overlays need it.
-    OutputPics output_pics(const manifest::Output& o, const fs::path& base, const std::string& prefix, Image* keep) {
+    OutputPics output_pics(const manifest::Output& o, const fs::path& base, const std::string& prefix, Decoded* keep) {
         OutputPics pics;
         if (!opt_.allow_outside && !inside(o.file)) {
             pics.problem = "\"" + o.file + "\" lies outside the manifest's folder (allow it with --allow-outside)";
             return pics;
         }
-        Image image;
+        Decoded image;
         std::string error;
         if (!read(base / o.file, image, error)) {
             pics.problem = error;
@@ -189,16 +202,16 @@ private:
             if (c.key != "RGB") packed = true;
         }
         std::string stem = safe_component(fs::path(o.file).stem().string());
-        for (int n = 2; !taken_.insert(lower(prefix + stem)).second; ++n)
+        for (int n = 2; !taken_.insert(ascii_lower(prefix + stem)).second; ++n)
             stem = safe_component(fs::path(o.file).stem().string()) + "_" + std::to_string(n);
-        if (auto p = write_pic(thumbnail(image, opt_.thumb_size, o.srgb && color_rgb), prefix + stem + ".png"))
+        if (auto p = write_pic(thumbnail_of(image, opt_.thumb_size, o.srgb && color_rgb), prefix + stem + ".png"))
             pics.main = *p;
         if (packed) {
             for (const Channel& c : o.channels) {
                 if (c.key == "RGB" || c.kind == Channel::Kind::constant || c.kind == Channel::Kind::unused) continue;
                 const int ch = channel_index(c.key);
-                if (ch >= image.channels) continue;
-                if (auto p = write_pic(channel_thumbnail(image, ch, std::max(16, opt_.thumb_size / 4)),
+                if (ch >= image.channels()) continue;
+                if (auto p = write_pic(channel_thumbnail_of(image, ch, std::max(16, opt_.thumb_size / 4)),
                                        prefix + stem + "." + c.key + ".png"))
                     pics.channels.emplace_back(c.key, *p);
             }
@@ -214,25 +227,25 @@ private:
                 if ((c.kind == Channel::Kind::role) &&
                     (c.role == Role::albedo || c.role == Role::metalness || c.role == Role::opacity))
                     needed = true;
-            Image image;
+            Decoded image;
             OutputPics pics = output_pics(o, dir_, "out-", needed ? &image : nullptr);
             if (!pics.problem.empty()) problem(pics.problem);
             out_pics_.push_back(std::move(pics));
-            if (image.empty()) continue;
+            if (image.width() == 0) continue;
+            bool albedo = false;
             for (const Channel& c : o.channels) {
                 if (c.kind != Channel::Kind::role) continue;
                 if (c.role == Role::albedo && c.key == "RGB") {
-                    albedo_ = std::make_shared<Image>(image);
+                    albedo = true;
                     albedo_srgb_ = o.srgb;
                     if (!sheet_pic_ && !out_pics_.back().main.rel.empty()) sheet_pic_ = out_pics_.back().main;
                 } else if (c.role == Role::metalness || c.role == Role::opacity) {
-                    auto plane = std::make_shared<Image>(image.width, image.height, 1);
-                    const int ch = std::min(channel_index(c.key), image.channels - 1);
-                    for (int y = 0; y < image.height; ++y)
-                        for (int x = 0; x < image.width; ++x) plane->at(x, y) = image.at(x, y, ch);
-                    (c.role == Role::metalness ? metalness_ : opacity_) = plane;
+                    const int ch = std::min(channel_index(c.key), image.channels() - 1);
+                    (c.role == Role::metalness ? metalness_ : opacity_) = plane_of(image, ch);
                 }
             }
+            // Its last use: moved, never copied.
+            if (albedo) albedo_ = std::make_shared<Decoded>(std::move(image));
         }
     }
 
@@ -240,7 +253,7 @@ private:
         for (const manifest::Input& in : m_.inputs) {
             if (m_.archive) break;  // entries of a .zip are not files: the card says so
             const fs::path file = dir_ / m_.source / in.file;
-            Image image;
+            Decoded image;
             std::string error;
             if (!read(file, image, error)) {
                 problem("source " + error);
@@ -248,19 +261,20 @@ private:
                 continue;
             }
             const bool srgb = is_color_role(in.role) && in.color_space == "sRGB";
-            auto p = write_pic(thumbnail(image, opt_.thumb_size, srgb),
+            auto p = write_pic(thumbnail_of(image, opt_.thumb_size, srgb),
                                "src-" + std::string(role_name(in.role)) + ".png");
             source_pics_.push_back(p.value_or(Pic{}));
         }
     }
 
-    static Scalar scalar_of(const std::shared_ptr<Image>& plane, const manifest::Material& m, Role role,
+    static Scalar scalar_of(const std::shared_ptr<Decoded>& plane, const manifest::Material& m, Role role,
                             float fallback) {
         Scalar s;
         s.constant = fallback;
         for (const manifest::Constant& c : m.constants)
             if (c.role == role && !c.value.empty()) s.constant = c.value[0];
-        s.image = plane.get();
+        if (plane && plane->is_codes()) s.codes = &plane->codes;
+        else if (plane) s.image = &plane->floats;
         return s;
     }
 
@@ -268,18 +282,21 @@ private:
         if (albedo_) {
             const Scalar metal = scalar_of(metalness_, m_, Role::metalness, 0.f);
             const Scalar opacity = scalar_of(opacity_, m_, Role::opacity, 1.f);
-            const Image o = albedo_overlay(*albedo_, albedo_srgb_, metal, opacity, opt_.bounds, albedo_stats_);
-            albedo_pic_ = write_pic(thumbnail(o, opt_.thumb_size, false), "albedo-range.png");
+            const validate::Thresholds& t = *opt_.thresholds;
+            albedo_pic_ = write_pic(albedo_->is_codes() ? albedo_overlay(albedo_->codes, albedo_srgb_, metal, opacity,
+                                                                         t, albedo_stats_, opt_.thumb_size)
+                                                        : albedo_overlay(albedo_->floats, albedo_srgb_, metal, opacity,
+                                                                         t, albedo_stats_, opt_.thumb_size),
+                                    "albedo-range.png");
         }
         // A constant metalness written into a channel (glTF's B = 0) is no map to judge.
         const bool constant_metal = std::any_of(m_.constants.begin(), m_.constants.end(),
                                                 [](const manifest::Constant& c) { return c.role == Role::metalness; });
         if (metalness_ && !constant_metal) {
             const Scalar metal = scalar_of(metalness_, m_, Role::metalness, 0.f);
-            const Image o = metalness_overlay(metal, metalness_->width, metalness_->height,
-                                              opt_.bounds.dielectric_metalness, opt_.bounds.metal_metalness,
-                                              metal_stats_);
-            metal_pic_ = write_pic(thumbnail(o, opt_.thumb_size, false), "metalness.png");
+            metal_pic_ = write_pic(metalness_overlay(metal, metalness_->width(), metalness_->height(), *opt_.thresholds,
+                                                     metal_stats_, opt_.thumb_size),
+                                   "metalness.png");
         }
         albedo_.reset();
         metalness_.reset();
@@ -388,9 +405,9 @@ private:
         for (const auto& i : m_.inputs)
             if (i.role == Role::normal) in = &i;
         if (!in) return;
-        std::optional<NormalConvention> out;
+        const manifest::Output* out = nullptr;
         for (const auto& o : m_.outputs)
-            if (o.normal_convention) out = o.normal_convention;
+            if (o.normal_convention) out = &o;
         h += "<h3>Normal convention</h3>\n<p class=\"verdict\">";
         const manifest::NormalFacts facts = in->normal.value_or(manifest::NormalFacts{});
         h += "read as <b class=\"conv\">" + std::string(convention_name(facts.convention)) + "</b>";
@@ -403,11 +420,8 @@ private:
             h += ", undecided";
         }
         if (out) {
-            h += "; written as <b>" + std::string(convention_name(*out)) + "</b>";
-            const bool flipped = std::any_of(m_.findings.begin(), m_.findings.end(), [](const Finding& f) {
-                return f.code == code::normal_convention_converted;
-            });
-            h += flipped ? " (green flipped)" : " (green kept)";
+            h += "; written as <b>" + std::string(convention_name(*out->normal_convention)) + "</b>";
+            h += out->normal_converted_from ? " (green flipped)" : " (green kept)";
         }
         h += "</p>\n";
         // The evidence: every finding about the convention with its measured figures.
@@ -449,20 +463,25 @@ private:
     void checks_html(std::string& h) const {
         if (!albedo_pic_ && !metal_pic_) return;
         h += "<h3>Physically plausible ranges</h3>\n<div class=\"checks\">\n";
-        const AlbedoBounds& b = opt_.bounds;
+        const validate::Thresholds& t = *opt_.thresholds;
         if (albedo_pic_) {
+            // The shares are the findings' (surface_share: of the visible albedo), counted by the
+            // rules' own classifier under the run's thresholds (manifest "thresholds").
             const AlbedoStats& s = albedo_stats_;
             h += "<figure class=\"overlay albedo-range\">" + img(*albedo_pic_, m_.name + " albedo range") +
-                 "<figcaption>albedo luminance: dielectric " + fixed(b.dielectric_min, 0) + "–" +
-                 fixed(b.dielectric_max, 0) + " sRGB, metal " + fixed(b.metal_min, 0) + "–" + fixed(b.metal_max, 0) +
-                 " sRGB<br><span class=\"key dark\"></span> too dark: " +
-                 percent(s.dielectric_dark + s.metal_dark, s.visible) +
-                 " <span class=\"key bright\"></span> too bright: " +
-                 percent(s.dielectric_bright + s.metal_bright, s.visible) +
-                 " <span class=\"key blend\"></span> blend (not judged): " + percent(s.blend, s.visible) +
-                 "<br>dielectric " + percent(s.dielectric, s.visible) + " (dark " +
-                 percent(s.dielectric_dark, s.dielectric) + ", bright " + percent(s.dielectric_bright, s.dielectric) +
-                 "), metal " + percent(s.metal, s.visible) + " (dark " + percent(s.metal_dark, s.metal) + ")" +
+                 "<figcaption>albedo luminance, as the rules judge it: dielectric " + fixed(t.albedo_min_srgb, 0) +
+                 "–" + fixed(t.albedo_max_srgb, 0) + " sRGB, metal from " + fixed(t.metal_albedo_min_srgb, 0) +
+                 " sRGB<br><span class=\"key dark\"></span> too dark: dielectric <span class=\"share\" "
+                 "data-code=\"ALBEDO_TOO_DARK\">" +
+                 percent(s.dielectric_dark, s.visible) +
+                 "</span>, metal <span class=\"share\" data-code=\"METAL_ALBEDO_TOO_DARK\">" +
+                 percent(s.metal_dark, s.visible) +
+                 "</span> <span class=\"key bright\"></span> too bright: <span class=\"share\" "
+                 "data-code=\"ALBEDO_TOO_BRIGHT\">" +
+                 percent(s.dielectric_bright, s.visible) +
+                 "</span> <span class=\"key blend\"></span> blend (not judged): " + percent(s.blend, s.visible) +
+                 " <span class=\"meta\">(of the visible albedo)</span><br>dielectric " +
+                 percent(s.dielectric, s.visible) + ", metal " + percent(s.metal, s.visible) +
                  (s.visible < s.pixels ? ", not visible " + percent(s.pixels - s.visible, s.pixels) : std::string()) +
                  "</figcaption></figure>\n";
         }
@@ -471,8 +490,8 @@ private:
             h += "<figure class=\"overlay metalness\">" + img(*metal_pic_, m_.name + " metalness") +
                  "<figcaption>metalness: 0 " + percent(s.zero, s.pixels) + ", 1 " + percent(s.one, s.pixels) +
                  "<br><span class=\"key near\"></span> near 0 or 1: " + percent(s.near_binary, s.pixels) +
-                 " <span class=\"key between\"></span> between " + fixed(b.dielectric_metalness, 2) + " and " +
-                 fixed(b.metal_metalness, 2) + ": " + percent(s.between, s.pixels) + "</figcaption></figure>\n";
+                 " <span class=\"key between\"></span> between " + fixed(t.dielectric_max, 2) + " and " +
+                 fixed(t.metal_min, 2) + ": " + percent(s.between, s.pixels) + "</figcaption></figure>\n";
         } else {
             std::string value = "0";
             for (const manifest::Constant& c : m_.constants)
@@ -544,7 +563,7 @@ private:
     std::optional<Pic> preview_, compare_preview_, sheet_pic_, albedo_pic_, metal_pic_;
     std::vector<OutputPics> out_pics_, compare_pics_;
     std::vector<Pic> source_pics_;
-    std::shared_ptr<Image> albedo_, metalness_, opacity_;
+    std::shared_ptr<Decoded> albedo_, metalness_, opacity_;
     bool albedo_srgb_ = true;
     AlbedoStats albedo_stats_;
     MetalnessStats metal_stats_;
@@ -664,7 +683,7 @@ std::vector<std::string> material_stems(const std::vector<std::string>& names) {
     for (const std::string& name : names) {
         const std::string base = safe_component(name);
         std::string s = base;
-        for (int n = 2; !taken.insert(lower(s)).second; ++n) {
+        for (int n = 2; !taken.insert(ascii_lower(s)).second; ++n) {
             std::string suffix = "_";  // appended: see temp_name (core/files.cpp), GCC 12 -O3 -Wrestrict
             suffix.append(std::to_string(n));
             s = base.substr(0, std::min(base.size(), 96 - suffix.size())) + suffix;
@@ -685,10 +704,66 @@ std::optional<fs::path> preview_file(const fs::path& dir, const std::string& nam
     return file;
 }
 
-bool write_report(const Options& opt, Result& result, std::string& error) {
+namespace {
+
+// What a material's job holds at most: the largest of its outputs being read, the albedo kept
+// for the overlay, and the metalness and opacity planes; 8-bit files as their codes, others as
+// floats (as read() keeps them).
+uint64_t decoded_bytes(const manifest::Material& m) {
+    uint64_t largest = 0, albedo = 0, plane = 0;
+    for (const manifest::Output& o : m.outputs) {
+        uint64_t channels = 0;
+        for (const Channel& c : o.channels) channels += c.key.size();
+        const uint64_t sample = o.bit_depth <= 8 ? 1 : sizeof(float);
+        const uint64_t pixels = uint64_t(std::max(o.width, 0)) * uint64_t(std::max(o.height, 0));
+        const uint64_t bytes = pixels * std::max<uint64_t>(channels, 1) * sample;
+        largest = std::max(largest, bytes);
+        for (const Channel& c : o.channels)
+            if (c.kind == Channel::Kind::role && c.role == Role::albedo) albedo = bytes;
+        plane = std::max(plane, pixels * sample);
+    }
+    return largest + albedo + 2 * plane;
+}
+
+// The report folder may be neither the output folder of the manifest (which holds what the
+// manifest lists) nor a material's source folder or a folder inside one: the next ingest of
+// the library would take the report's pictures for material maps.
+std::string report_folder_conflict(const fs::path& out, const fs::path& manifest_dir, const manifest::Manifest& m) {
+    std::error_code ec;
+    const fs::path o = fs::weakly_canonical(fs::absolute(out, ec), ec);
+    const fs::path d = fs::weakly_canonical(fs::absolute(manifest_dir, ec), ec);
+    auto within = [](const fs::path& a, const fs::path& b) {
+        const fs::path rel = a.lexically_relative(b);
+        return !rel.empty() && *rel.begin() != "..";
+    };
+    if (o == d)
+        return out.string() + " is the output folder of " + (manifest_dir / "manifest.json").string() +
+               "; give the report a folder of its own (e.g. " + (manifest_dir / "report").string() + ")";
+    for (const auto& mm : m.materials) {
+        if (mm.source.empty() || mm.archive) continue;
+        const fs::path src = fs::weakly_canonical(fs::absolute(manifest_dir / mm.source, ec), ec);
+        if (within(o, src))
+            return out.string() + " lies in the source folder of the material '" + mm.name + "' (" + src.string() +
+                   "): the next ingest would take the report's pictures for material maps; give the report a folder "
+                   "outside the material sets";
+    }
+    return {};
+}
+
+}  // namespace
+
+bool write_report(const Options& options, Result& result, std::string& error) {
     result = {};
+    Options opt = options;
     auto m = manifest::read_manifest(opt.manifest.string(), error);
     if (!m) return false;
+    if (!opt.thresholds) {  // the run's (older manifests: the defaults it then had)
+        opt.thresholds = validate::thresholds_from(m->thresholds, error);
+        if (!opt.thresholds) {
+            error = opt.manifest.string() + ": " + error;
+            return false;
+        }
+    }
     std::optional<manifest::Manifest> other;
     std::map<std::string, const manifest::Material*> other_by_name;
     if (opt.compare) {
@@ -698,6 +773,12 @@ bool write_report(const Options& opt, Result& result, std::string& error) {
     }
     const fs::path dir = opt.manifest.parent_path();
     const fs::path other_dir = opt.compare ? opt.compare->parent_path() : fs::path{};
+    if (std::string why = report_folder_conflict(opt.out, dir, *m); !why.empty()) {
+        error = why;
+        return false;
+    }
+    std::error_code mkdir_error;
+    fs::create_directories(opt.out, mkdir_error);  // the folder itself; what is below it: write_file_under
     std::vector<std::string> names;
     for (const auto& mm : m->materials) names.push_back(mm.name);
     const std::vector<std::string> stems = material_stems(names);
@@ -709,7 +790,17 @@ bool write_report(const Options& opt, Result& result, std::string& error) {
                                                      it == other_by_name.end() ? nullptr : it->second, other_dir,
                                                      other ? other->preset : std::string()));
     }
-    parallel_for(jobs.size(), opt.jobs, [&](size_t i) { jobs[i]->run(); });
+    // A stop asked by a signal: no new material starts, and no page is written that would name
+    // pictures of materials never done (the CLI exits 130/143).
+    MemoryBudget budget(opt.memory_budget);
+    parallel_for(jobs.size(), opt.jobs, [&](size_t i) {
+        const BudgetLease lease(&budget, decoded_bytes(m->materials[i]));
+        if (!stop_requested()) jobs[i]->run();
+    });
+    if (stop_requested()) {
+        error = "stopped before the end; no index.html written";
+        return false;
+    }
 
     std::set<std::string> codes;
     std::map<std::string, std::array<size_t, 2>> by_code;  // code -> (findings, materials)
@@ -728,7 +819,10 @@ bool write_report(const Options& opt, Result& result, std::string& error) {
     const auto counts = manifest::count_findings(*m);
     std::string h;
     h.reserve(jobs.size() * 8192 + 65536);
-    h += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+    // The generator names the page as matforge's: a walk of an input never reads its folder.
+    h += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"generator\" content=\"" +
+         escape(std::string(kGenerator)) +
+         "\">\n"
          // Nothing but this folder's pictures and the inline style and script: the page must open
          // the same from disk, from a CI artifact or with no network at all.
          "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src 'self' file: data:; "
@@ -785,9 +879,10 @@ bool write_report(const Options& opt, Result& result, std::string& error) {
     auto bytes = [](const std::string& s) {
         return std::span(reinterpret_cast<const unsigned char*>(s.data()), s.size());
     };
-    if (!write_file_atomic(result.index, bytes(h), error)) return false;
+    // Never through a link in the report folder: a file outside -o is never written.
+    if (!write_file_under(opt.out, "index.html", bytes(h), error)) return false;
     const std::string rules = rules_page(codes);
-    return write_file_atomic(opt.out / "rules.html", bytes(rules), error);
+    return write_file_under(opt.out, "rules.html", bytes(rules), error);
 }
 
 }  // namespace mf::report

@@ -2,9 +2,9 @@
 // the repository (a CI artifact, a copied folder) still explains every finding it links to.
 #include <cctype>
 
+#include "core/catalog.hpp"
 #include "report/html.hpp"
 #include "report/report.hpp"
-#include "validate/rules.hpp"
 
 namespace mf::report {
 namespace {
@@ -12,7 +12,7 @@ namespace {
 #include "rules_md_embedded.inc"
 
 std::string anchor_of(std::string_view code) {
-    if (const auto* r = validate::find_rule(code)) return std::string(r->anchor);
+    if (const auto* r = find_code(code)) return std::string(r->anchor);
     std::string a;
     for (const char c : code) a += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return a;
@@ -39,7 +39,7 @@ std::string rules_page(const std::set<std::string>& codes) {
     // Codes rules.md has no row for (other stages' codes, named in its prose), catalog order
     // first, then any other code the manifest holds.
     std::string others;
-    auto add = [&](const std::string& code, const validate::RuleInfo* r) {
+    auto add = [&](const std::string& code, const CodeInfo* r) {
         const std::string id = anchor_of(code);
         if (ids.count(id)) return;
         ids.insert(id);
@@ -50,8 +50,8 @@ std::string rules_page(const std::set<std::string>& codes) {
                                    "\"Finding codes\", says when")) +
                   "</td></tr>\n";
     };
-    for (const auto& r : validate::rule_catalog()) add(std::string(r.code), &r);
-    for (const std::string& c : codes) add(c, validate::find_rule(c));
+    for (const auto& r : finding_catalog()) add(std::string(r.code), &r);
+    for (const std::string& c : codes) add(c, find_code(c));
     std::string html =
         "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">\n"

@@ -3,10 +3,13 @@
 // texture, one array element, alpha mode), then every mip level, largest first.
 #include <cstring>
 
+#include "texture/bytes.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {
 namespace {
+using bytes::get32;
+using bytes::put32;
 
 constexpr uint32_t kMagic = 0x20534444;       // "DDS "
 constexpr uint32_t kFourccDx10 = 0x30315844;  // "DX10"
@@ -35,15 +38,6 @@ const Dxgi* dxgi_of(const BlockFormatInfo* f) {
     for (const auto& d : kDxgi)
         if (d.block == f->name) return &d;
     return nullptr;
-}
-
-void put32(std::vector<uint8_t>& out, uint32_t v) {
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
-uint32_t get32(std::span<const uint8_t> b, size_t at) {
-    uint32_t v = 0;
-    for (size_t i = 0; i < 4; ++i) v |= static_cast<uint32_t>(b[at + i]) << (8 * i);
-    return v;
 }
 
 }  // namespace

@@ -5,19 +5,15 @@
 #include <cstdio>
 #include <numbers>
 
+#include "core/catalog.hpp"
 #include "core/parallel.hpp"
+#include "core/text.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {
 namespace {
 
 double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
-
-std::string fixed(double v, int digits) {
-    std::array<char, 32> buf{};
-    std::snprintf(buf.data(), buf.size(), "%.*f", digits, v);
-    return buf.data();
-}
 
 // Channel index (in file order) of the first channel holding `role` (smoothness counts as
 // roughness), -1 when none; `smoothness` tells which.
@@ -114,14 +110,11 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     // Direct3D 11 creates a BC texture only when its top level is a multiple of 4 wide and high.
     if (preset.format == "dds" && (level0.width % 4 || level0.height % 4)) {
         const int w4 = (level0.width + 3) / 4 * 4, h4 = (level0.height + 3) / 4 * 4;
-        out.findings.push_back({std::string(code::resized),
-                                Severity::info,
-                                "",
-                                "",
-                                "output '" + o.suffix + "': " + std::to_string(level0.width) + "x" +
-                                    std::to_string(level0.height) + " resampled to " + std::to_string(w4) + "x" +
-                                    std::to_string(h4) + " (Direct3D 11 BC textures are multiples of 4)",
-                                {{"from", {level0.width, level0.height}}, {"to", {w4, h4}}}});
+        out.findings.push_back(finding(code::resized, "", "",
+                                       "output '" + o.suffix + "': " + std::to_string(level0.width) + "x" +
+                                           std::to_string(level0.height) + " resampled to " + std::to_string(w4) + "x" +
+                                           std::to_string(h4) + " (Direct3D 11 BC textures are multiples of 4)",
+                                       {{"from", {level0.width, level0.height}}, {"to", {w4, h4}}}));
         level0 = resize(level0, kinds, w4, h4);
     }
 
@@ -216,11 +209,11 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
         const std::string role = written.empty() || written[0].kind != ChannelSpec::Kind::role
                                      ? ""
                                      : std::string(role_name(written[0].role));
-        out.findings.push_back({std::string(code::encoding_error_exceeded), Severity::warning, role, "",
-                                "output '" + o.suffix + "' level " + std::to_string(i) + " (" +
-                                    std::to_string(e.width) + "x" + std::to_string(e.height) + ", " +
-                                    std::string(f->name) + "): " + what,
-                                figures});
+        out.findings.push_back(finding(code::encoding_error_exceeded, role, "",
+                                       "output '" + o.suffix + "' level " + std::to_string(i) + " (" +
+                                           std::to_string(e.width) + "x" + std::to_string(e.height) + ", " +
+                                           std::string(f->name) + "): " + what,
+                                       figures));
         break;
     }
 

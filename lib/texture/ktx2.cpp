@@ -8,10 +8,15 @@
 #include <cstring>
 #include <numeric>
 
+#include "texture/bytes.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {
 namespace {
+using bytes::get32;
+using bytes::get64;
+using bytes::put32;
+using bytes::set64;
 
 constexpr std::array<uint8_t, 12> kIdentifier{0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
 constexpr uint32_t kSchemeNone = 0, kSchemeZstd = 2;
@@ -44,23 +49,6 @@ const Vk* vk_of(const BlockFormatInfo* f) {
     for (const auto& v : kVk)
         if (v.block == f->name) return &v;
     return nullptr;
-}
-
-void put32(std::vector<uint8_t>& out, uint32_t v) {
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
-void set64(std::vector<uint8_t>& out, size_t at, uint64_t v) {
-    for (size_t i = 0; i < 8; ++i) out[at + i] = static_cast<uint8_t>(v >> (8 * i));
-}
-uint32_t get32(std::span<const uint8_t> b, size_t at) {
-    uint32_t v = 0;
-    for (size_t i = 0; i < 4; ++i) v |= static_cast<uint32_t>(b[at + i]) << (8 * i);
-    return v;
-}
-uint64_t get64(std::span<const uint8_t> b, size_t at) {
-    uint64_t v = 0;
-    for (size_t i = 0; i < 8; ++i) v |= static_cast<uint64_t>(b[at + i]) << (8 * i);
-    return v;
 }
 
 // The data format descriptor of a block-compressed format, as the Khronos dfdutils

@@ -64,18 +64,18 @@ Taps make_taps(int src, int dst, MipFilter filter) {
             continue;
         }
         // Kaiser-windowed sinc, half-width 3 destination texels, alpha 4.
-        constexpr double kWidth = 3.0, kAlpha = 4.0;
+        constexpr double kHalfWidth = 3.0, kAlpha = 4.0;
         const double center = (i + 0.5) * scale;
-        const auto lo = static_cast<int>(std::floor(center - kWidth * scale)),
-                   hi = static_cast<int>(std::ceil(center + kWidth * scale));
+        const auto lo = static_cast<int>(std::floor(center - kHalfWidth * scale)),
+                   hi = static_cast<int>(std::ceil(center + kHalfWidth * scale));
         double sum = 0.0;
         std::vector<std::pair<int, double>> raw;
         for (int s = lo; s <= hi; ++s) {
             const double x = (s + 0.5 - center) / scale;
-            if (std::abs(x) >= kWidth) continue;
+            if (std::abs(x) >= kHalfWidth) continue;
             const double px = std::numbers::pi * x;
             const double sinc = std::abs(x) < 1e-9 ? 1.0 : std::sin(px) / px;
-            const double r = x / kWidth;
+            const double r = x / kHalfWidth;
             const double w = sinc * bessel_i0(kAlpha * std::sqrt(1.0 - r * r)) / bessel_i0(kAlpha);
             raw.emplace_back(((s % src) + src) % src, w);
             sum += w;

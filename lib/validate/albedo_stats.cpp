@@ -5,37 +5,10 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/text.hpp"
 #include "validate/map_stats.hpp"
 
 namespace mf::validate::detail {
-namespace {
-
-std::string fmt0(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
-}
-std::string pct(double share) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * share);
-    return buf;
-}
-
-}  // namespace
-
-AlbedoStats::AlbedoStats(const Thresholds& t, bool linear_input) : t_(t), linear_input_(linear_input) {
-    auto lin = [](double srgb255) { return srgb_to_linear(static_cast<float>(srgb255 / 255.0)); };
-    dark_lin_ = lin(t.albedo_min_srgb);
-    bright_lin_ = lin(t.albedo_max_srgb);
-    metal_dark_lin_ = lin(t.metal_albedo_min_srgb);
-    for (int k = 0; k < 256; ++k) edges_[k] = lin(k + 0.5);
-    edges_[256] = std::numeric_limits<float>::infinity();
-    for (size_t b = 0; b <= kBuckets; ++b) {
-        const float lo = static_cast<float>(b) / static_cast<float>(kBuckets);
-        first_code_[b] = static_cast<uint16_t>(std::lower_bound(edges_.begin(), edges_.end(), lo) - edges_.begin());
-    }
-    decode_ = srgb_decode_table().data();
-}
 
 double AlbedoStats::Class::percentile(double p) const {
     if (n == 0) return 0.0;
@@ -64,36 +37,32 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
                               {"measure", "luminance, sRGB-encoded, 0-255"}};
     };
     auto add = [&](std::string_view code, std::string msg, nlohmann::json fig) {
-        Finding f;
-        f.code = std::string(code);
-        f.role = "albedo";
-        f.file = file;
-        f.message = std::move(msg);
-        f.figures = std::move(fig);
-        out.push_back(std::move(f));
+        out.push_back(finding(code, "albedo", file, std::move(msg), std::move(fig)));
     };
     // Shares are of the visible albedo; with a metalness mask the share of the class is given too.
     auto amount = [&](const Class& c, long long count, const std::string& cls, const std::string& comparison) {
         if (!has_metal_mask)
-            return pct(ratio(count, visible_)) +
+            return percent(ratio(count, visible_)) +
                    " of the visible albedo (no metalness map: all taken as dielectric) is " + comparison + " (median " +
-                   fmt0(c.percentile(0.5)) + ")";
-        return pct(ratio(count, visible_)) + " of the visible albedo is " + cls + " and " + comparison + " (" +
-               pct(ratio(count, c.n)) + " of the " + std::to_string(c.n) + " " + cls + " pixels; median " +
-               fmt0(c.percentile(0.5)) + ")";
+                   fixed(c.percentile(0.5), 0) + ")";
+        return percent(ratio(count, visible_)) + " of the visible albedo is " + cls + " and " + comparison + " (" +
+               percent(ratio(count, c.n)) + " of the " + std::to_string(c.n) + " " + cls + " pixels; median " +
+               fixed(c.percentile(0.5), 0) + ")";
     };
     const Class& d = dielectric_;
     if (d.n > 0) {
         const double dark = ratio(d.below, visible_), bright = ratio(d.above, visible_);
         if (dark > t_.albedo_max_share)
             add(code::albedo_too_dark,
-                file + ": " + amount(d, d.below, "dielectric", "darker than " + fmt0(t_.albedo_min_srgb) + " sRGB") +
+                file + ": " +
+                    amount(d, d.below, "dielectric", "darker than " + fixed(t_.albedo_min_srgb, 0) + " sRGB") +
                     "; no real dielectric is that dark — keep shadows and cavities out of the "
                     "albedo (they belong in occlusion)",
                 figures(d, d.below, t_.albedo_min_srgb));
         if (bright > t_.albedo_max_share)
             add(code::albedo_too_bright,
-                file + ": " + amount(d, d.above, "dielectric", "brighter than " + fmt0(t_.albedo_max_srgb) + " sRGB") +
+                file + ": " +
+                    amount(d, d.above, "dielectric", "brighter than " + fixed(t_.albedo_max_srgb, 0) + " sRGB") +
                     "; even fresh snow reflects less — remove baked lighting or highlights",
                 figures(d, d.above, t_.albedo_max_srgb));
     }
@@ -103,7 +72,7 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
         if (dark > t_.metal_albedo_max_share)
             add(code::metal_albedo_too_dark,
                 file + ": " +
-                    amount(m, m.below, "metallic", "darker than " + fmt0(t_.metal_albedo_min_srgb) + " sRGB") +
+                    amount(m, m.below, "metallic", "darker than " + fixed(t_.metal_albedo_min_srgb, 0) + " sRGB") +
                     "; raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
                     "or its metalness is wrong",
                 figures(m, m.below, t_.metal_albedo_min_srgb));

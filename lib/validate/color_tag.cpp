@@ -1,4 +1,5 @@
 #include "validate/color_tag.hpp"
+#include "core/text.hpp"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -17,13 +18,8 @@ uint32_t be32(const unsigned char* p) {
     return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
 }
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-    return s;
-}
-
 ColorTag classify_name(const std::string& name) {
-    const std::string l = lower(name);
+    const std::string l = ascii_lower(name);
     if (l.find("srgb") != std::string::npos) return ColorTag::srgb;
     if (l.find("linear") != std::string::npos || l == "raw" || l.find("scene_linear") != std::string::npos)
         return ColorTag::linear;
@@ -116,7 +112,8 @@ ColorTagInfo read_color_tag(const InputFile& in) {
     if (cs.empty()) return {};
     // Readers that state a color space for every file (EXR: linear; JPEG and WebP: sRGB, the
     // format's assumption, not a tag the file carries) say nothing about this file.
-    if ((fmt == "openexr" && lower(cs) == "linear") || ((fmt == "jpeg" || fmt == "webp") && lower(cs) == "srgb"))
+    if ((fmt == "openexr" && ascii_lower(cs) == "linear") ||
+        ((fmt == "jpeg" || fmt == "webp") && ascii_lower(cs) == "srgb"))
         return {};
     return {classify_name(cs), "oiio:ColorSpace", cs};
 }

@@ -6,15 +6,10 @@
 #include <limits>
 #include <utility>
 
+#include "core/text.hpp"
+
 namespace mf::validate::detail {
 namespace {
-
-std::string fmt(double v, int digits = 3) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-    return buf;
-}
-std::string pct(double share) { return fmt(100.0 * share, 1) + " %"; }
 
 // Roles whose values must lie in [0, 1] (normals: [−1, 1] when stored signed). Height and
 // emissive are unbounded (displacement in scene units, HDR emission).
@@ -269,6 +264,13 @@ void MapStats::normal_band(long long n, const float* px) {
     normal_srgb_sum_x += ssx, normal_srgb_sum_y += ssy, normal_srgb_sum_length += ssl;
 }
 
+bool MapStats::normal_invalid() const {
+    if (!is_normal()) return false;
+    if (channels < 2) return true;
+    const NormalSummary s = normal_summary();
+    return !s.gamma_encoded && !s.invalid.empty();
+}
+
 nlohmann::json NormalSummary::figures() const {
     nlohmann::json j{{"mean_x", mean_x},
                      {"mean_y", mean_y},
@@ -323,15 +325,15 @@ NormalSummary MapStats::normal_summary() const {
     if (!s.gamma_encoded) {
         // Each test on its own names a kind of wrong map; the message lists every one that fails.
         if (s.upward_share < t.normal_min_upward_share)
-            s.invalid.push_back("only " + pct(s.upward_share) +
+            s.invalid.push_back("only " + percent(s.upward_share) +
                                 " of the vectors lie within 45 degrees of +Z (a tangent-space map: most)");
         if (std::abs(s.mean_x) > t.normal_max_mean_xy || std::abs(s.mean_y) > t.normal_max_mean_xy)
-            s.invalid.push_back("X/Y average (" + fmt(s.mean_x) + ", " + fmt(s.mean_y) +
+            s.invalid.push_back("X/Y average (" + fixed(s.mean_x, 3) + ", " + fixed(s.mean_y, 3) +
                                 "), not about 0 (codes about 128)");
         if (s.negative_z_share > t.normal_max_negative_z_share)
-            s.invalid.push_back(pct(s.negative_z_share) + " point into the surface (Z < 0)");
+            s.invalid.push_back(percent(s.negative_z_share) + " point into the surface (Z < 0)");
         if (s.gray_share > t.normal_max_gray_share)
-            s.invalid.push_back("R = G = B in " + pct(s.gray_share) + " of the pixels (a greyscale map)");
+            s.invalid.push_back("R = G = B in " + percent(s.gray_share) + " of the pixels (a greyscale map)");
     }
     s.not_unit_length = s.invalid.empty() && s.bad_length_share > t.normal_max_bad_length_share;
     return s;
@@ -341,13 +343,7 @@ void MapStats::findings(std::vector<Finding>& out) const {
     const std::string file = input.name.empty() ? input.file.display : input.name;
     const std::string role = std::string(role_name(input.role));
     auto add = [&](std::string_view code, std::string r, std::string msg, nlohmann::json fig) {
-        Finding f;
-        f.code = std::string(code);
-        f.role = std::move(r);
-        f.file = file;
-        f.message = std::move(msg);
-        f.figures = std::move(fig);
-        out.push_back(std::move(f));
+        out.push_back(finding(code, std::move(r), file, std::move(msg), std::move(fig)));
     };
     if (pixels == 0) return;
     const int nc = std::min(channels, 4);
@@ -369,9 +365,9 @@ void MapStats::findings(std::vector<Finding>& out) const {
     const double oor = ratio(out_of_range_pixels, pixels);
     if (out_of_range_pixels > 0 && oor > t.out_of_range_max_share) {
         add(code::out_of_range_values, role,
-            file + ": " + pct(oor) + " of pixels hold " + role + " values outside [" + (is_normal() ? "-1" : "0") +
-                ", 1] (min " + fmt(*std::min_element(min.begin(), min.begin() + nc)) + ", max " +
-                fmt(*std::max_element(max.begin(), max.begin() + nc)) + "); they will be clamped",
+            file + ": " + percent(oor) + " of pixels hold " + role + " values outside [" + (is_normal() ? "-1" : "0") +
+                ", 1] (min " + fixed(*std::min_element(min.begin(), min.begin() + nc), 3) + ", max " +
+                fixed(*std::max_element(max.begin(), max.begin() + nc), 3) + "); they will be clamped",
             {{"pixels", out_of_range_pixels},
              {"share", oor},
              {"min", channel_array(min)},
@@ -384,8 +380,8 @@ void MapStats::findings(std::vector<Finding>& out) const {
         const double tol = is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance;
         if (share > t.grayscale_max_share) {
             add(code::not_grayscale, role,
-                file + ": " + role + " is a scalar map but its R, G and B differ by more than " + fmt(tol * 255, 0) +
-                    "/255 in " + pct(share) + " of pixels (largest difference " + fmt(gray_max_diff * 255, 0) +
+                file + ": " + role + " is a scalar map but its R, G and B differ by more than " + fixed(tol * 255, 0) +
+                    "/255 in " + percent(share) + " of pixels (largest difference " + fixed(gray_max_diff * 255, 0) +
                     "/255); matforge uses R — check that the file is not a packed or color map",
                 {{"share", share},
                  {"max_difference", gray_max_diff},
@@ -424,7 +420,7 @@ void MapStats::findings(std::vector<Finding>& out) const {
             std::string where = file;
             if (traits(input.role).packed) where = "channel " + std::string(channel_letter(chs[0])) + " of " + file;
             std::string vtext;
-            for (size_t i = 0; i < value.size(); ++i) vtext += (i ? ", " : "") + fmt(value[i].get<double>());
+            for (size_t i = 0; i < value.size(); ++i) vtext += (i ? ", " : "") + fixed(value[i].get<double>(), 3);
             add(code::constant_map, std::string(role_name(r)),
                 where + " holds one value (" + vtext + "); a constant or a 2x2 map does the same",
                 {{"value", value}, {"range", range}, {"tolerance", tol}, {"channels", [&] {
@@ -444,8 +440,8 @@ void MapStats::findings(std::vector<Finding>& out) const {
             add(code::metalness_not_binary, "metalness",
                 (traits(input.role).packed ? "channel " + std::string(channel_letter(metal_channel)) + " of "
                                            : std::string()) +
-                    file + ": " + pct(share) + " of pixels have metalness between " + fmt(t.dielectric_max, 2) +
-                    " and " + fmt(t.metal_min, 2) +
+                    file + ": " + percent(share) + " of pixels have metalness between " + fixed(t.dielectric_max, 2) +
+                    " and " + fixed(t.metal_min, 2) +
                     "; real surfaces are metal or not — use grey only for transitions (rust, dirt)",
                 {{"share_between", share},
                  {"share_dielectric", ratio(metal_dielectric, total)},
@@ -463,8 +459,8 @@ void MapStats::findings(std::vector<Finding>& out) const {
             const int oc = std::min(opacity_channel, 3);
             add(code::opacity_all_transparent, "opacity",
                 (alpha ? "the alpha of " + file + " (the set's opacity: it has no opacity map)" : file) + ": " +
-                    pct(share) + " of pixels have opacity at most " + fmt(t.opacity_invisible_max, 2) + " (max " +
-                    fmt(max[oc]) +
+                    percent(share) + " of pixels have opacity at most " + fixed(t.opacity_invisible_max, 2) + " (max " +
+                    fixed(max[oc], 3) +
                     "): the whole material would be invisible — if the map stores transparency, "
                     "invert it; if it is empty, remove it",
                 {{"invisible_share", share},
@@ -479,7 +475,7 @@ void MapStats::findings(std::vector<Finding>& out) const {
     // NORMAL_Z_RECONSTRUCTED
     if (is_normal() && rebuilds_z()) {
         const std::string what = channels == 2 ? "two channels (X, Y)"
-                                               : "a blue channel holding one value (B = " + fmt(max[2]) + ")";
+                                               : "a blue channel holding one value (B = " + fixed(max[2], 3) + ")";
         add(code::normal_z_reconstructed, role,
             file + ": stored with " + what + ", as BC5 exports leave it: Z is reconstructed as sqrt(1 - x² - y²)",
             {{"channels", channels},
@@ -504,11 +500,11 @@ void MapStats::findings(std::vector<Finding>& out) const {
                 g["min_upward_share"] = t.normal_min_upward_share;
                 g["max_decoded_length_error"] = t.normal_gamma_max_decoded_length_error;
                 add(code::normal_gamma_encoded, role,
-                    file + ": stored sRGB/gamma-encoded: mean R, G = " + fmt(127.5 * (s.mean_x + 1), 1) + ", " +
-                        fmt(127.5 * (s.mean_y + 1), 1) + " instead of about 128 (X/Y centred at " +
-                        fmt(0.5 * (s.mean_x + 1), 2) + ", " + fmt(0.5 * (s.mean_y + 1), 2) +
-                        ", not 0.5); decoded with the sRGB curve they average " + fmt(s.srgb_mean_x, 2) + ", " +
-                        fmt(s.srgb_mean_y, 2) + " with mean length " + fmt(s.srgb_mean_length, 2) +
+                    file + ": stored sRGB/gamma-encoded: mean R, G = " + fixed(127.5 * (s.mean_x + 1), 1) + ", " +
+                        fixed(127.5 * (s.mean_y + 1), 1) + " instead of about 128 (X/Y centred at " +
+                        fixed(0.5 * (s.mean_x + 1), 2) + ", " + fixed(0.5 * (s.mean_y + 1), 2) +
+                        ", not 0.5); decoded with the sRGB curve they average " + fixed(s.srgb_mean_x, 2) + ", " +
+                        fixed(s.srgb_mean_y, 2) + " with mean length " + fixed(s.srgb_mean_length, 2) +
                         " — re-export it as linear data (no sRGB conversion)",
                     g);
             } else if (!s.invalid.empty()) {
@@ -529,8 +525,8 @@ void MapStats::findings(std::vector<Finding>& out) const {
                 g["length_tolerance"] = t.normal_length_tolerance;
                 g["max_bad_length_share"] = t.normal_max_bad_length_share;
                 add(code::normal_not_unit_length, role,
-                    file + ": vectors not unit length (mean |2c-1| = " + fmt(s.mean_length) + ", " +
-                        pct(s.bad_length_share) + " off by > " + fmt(t.normal_length_tolerance, 1) +
+                    file + ": vectors not unit length (mean |2c-1| = " + fixed(s.mean_length, 3) + ", " +
+                        percent(s.bad_length_share) + " off by > " + fixed(t.normal_length_tolerance, 1) +
                         "); renormalized on ingest",
                     g);
             }

@@ -80,6 +80,8 @@ struct MapStats {
 
     bool is_normal() const { return input.role == Role::normal; }
     NormalSummary normal_summary() const;  // meaningful for normal maps of ≥ 2 channels
+    // A normal map that is not a tangent-space normal map: what raises NORMAL_INVALID.
+    bool normal_invalid() const;
     double mean(int c) const {
         if (finite[c] == 0) return 0.0;
         const double total = code_scale > 0.f ? static_cast<double>(code_sum[c]) / code_scale : sum[c];

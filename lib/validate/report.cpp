@@ -16,7 +16,7 @@ namespace {
 // The codes validate_set() evaluates: a JUnit test case each, per material.
 std::vector<std::string> default_rules() {
     std::vector<std::string> v;
-    for (const auto& r : rule_catalog()) {
+    for (const auto& r : finding_catalog()) {
         if (r.code == code::missing_map) break;  // the rest are other stages' codes
         v.emplace_back(r.code);
     }
@@ -309,18 +309,18 @@ std::string write_sarif(const Report& r) {
         return s == Severity::error ? "error" : s == Severity::warning ? "warning" : "note";
     };
     std::vector<std::string> ids;
-    for (const auto& rule : rule_catalog()) ids.emplace_back(rule.code);
+    for (const auto& rule : finding_catalog()) ids.emplace_back(rule.code);
     std::set<std::string> extra;
     for (const auto& m : r.materials)
         for (const auto& f : m.findings)
-            if (!find_rule(f.code)) extra.insert(f.code);
+            if (!find_code(f.code)) extra.insert(f.code);
     for (const auto& f : r.failures)
-        if (!find_rule(f.code)) extra.insert(f.code);
+        if (!find_code(f.code)) extra.insert(f.code);
     ids.insert(ids.end(), extra.begin(), extra.end());
 
     nlohmann::json rules = nlohmann::json::array();
     for (const auto& id : ids) {
-        const RuleInfo* info = find_rule(id);
+        const CodeInfo* info = find_code(id);
         nlohmann::json d{{"id", id},
                          {"shortDescription", {{"text", info ? std::string(info->title) : id}}},
                          {"defaultConfiguration", {{"level", level(info ? info->severity : Severity::warning)}}}};

@@ -74,10 +74,11 @@ std::optional<Severity> parse_severity(const nlohmann::json& v) {
     return std::nullopt;
 }
 
-bool known_code(std::string_view c) { return find_rule(c) != nullptr; }
+bool known_code(std::string_view c) { return find_code(c) != nullptr; }
 
 // An input not read or an output not written is never a pass: no configuration switches these
 // off, lowers them or suppresses them (a "*" suppression leaves them too).
+// Inputs that fail (INPUT_NOT_FOUND, UNSAFE_PATH) are failures, never findings: no rule applies.
 bool protected_code(std::string_view c) { return c == code::unreadable_file || c == code::output_write_failed; }
 std::string protected_message(std::string_view c) {
     return "rules: " + std::string(c) +
@@ -91,80 +92,6 @@ std::pair<double, double> threshold_range(std::string_view name) {
 
 }  // namespace
 
-const std::vector<RuleInfo>& rule_catalog() {
-    // Order: set-level, per-file value checks, PBR plausibility, normal maps, tags, then the
-    // codes other stages emit (listed so reports can describe them).
-    static const std::vector<RuleInfo> c{
-        {code::unreadable_file, Severity::error, "File is corrupt, truncated, empty or not an image",
-         "unreadable_file"},
-        {code::resolution_mismatch, Severity::warning, "Maps of one set differ in size", "resolution_mismatch"},
-        {code::nonfinite_values, Severity::error, "NaN or Inf values in a map", "nonfinite_values"},
-        {code::out_of_range_values, Severity::warning, "Float data outside [0, 1] where the role allows none",
-         "out_of_range_values"},
-        {code::not_grayscale, Severity::warning, "Scalar map stored with differing channels", "not_grayscale"},
-        {code::constant_map, Severity::info, "Map holds one value (replaceable by a constant)", "constant_map"},
-        {code::metalness_not_binary, Severity::warning, "Too much metalness strictly between 0 and 1",
-         "metalness_not_binary"},
-        {code::albedo_too_dark, Severity::warning, "Dielectric albedo darker than any real material",
-         "albedo_too_dark"},
-        {code::albedo_too_bright, Severity::warning, "Dielectric albedo brighter than any real material",
-         "albedo_too_bright"},
-        {code::metal_albedo_too_dark, Severity::warning, "Metallic areas darker than any real metal",
-         "metal_albedo_too_dark"},
-        {code::opacity_all_transparent, Severity::error, "Opacity makes the whole material invisible",
-         "opacity_all_transparent"},
-        {code::normal_invalid, Severity::error,
-         "Not a tangent-space normal map (height, color or object-space map; one channel)", "normal_invalid"},
-        {code::normal_gamma_encoded, Severity::error,
-         "Normal map stored sRGB/gamma-encoded (X/Y centred near 0.74, not 0.5)", "normal_gamma_encoded"},
-        {code::normal_not_unit_length, Severity::info, "Normal vectors not unit length (renormalized on ingest)",
-         "normal_not_unit_length"},
-        {code::normal_z_reconstructed, Severity::info, "Two-channel normal map: Z reconstructed from X and Y",
-         "normal_z_reconstructed"},
-        {code::normal_convention_mismatch, Severity::warning,
-         "Normal map content contradicts the GL/DX convention its name states", "normal_convention_mismatch"},
-        {code::normal_convention_unknown, Severity::warning, "Neither name nor content decides GL vs DX",
-         "normal_convention_unknown"},
-        // info: maps are read by role, so a tag never changes what ingest makes of the pixels.
-        {code::color_space_mismatch, Severity::info,
-         "Data map tagged as color, or color map tagged as data (the tag is ignored)", "color_space_mismatch"},
-        // Emitted by discovery / ingest, not by validate_set().
-        {code::missing_map, Severity::info, "A role the preset needs has no map", "missing_map"},
-        {code::ambiguous_map, Severity::info, "Several files could be one role", "ambiguous_map"},
-        {code::unrecognized_file, Severity::info, "An image in the set matches no role", "unrecognized_file"},
-        {code::gloss_inverted, Severity::info, "A gloss map became roughness", "gloss_inverted"},
-        {code::packed_input_unpacked, Severity::info, "A packed input was split into roles", "packed_input_unpacked"},
-        {code::normal_convention_converted, Severity::info, "Green channel flipped to the preset's convention",
-         "normal_convention_converted"},
-        {code::names_merged, Severity::warning,
-         "Two spellings of a material name were grouped as one material (info when only tags differ)", "names_merged"},
-        {code::duplicate_input, Severity::info, "A folder or archive reached through two inputs was read once",
-         "duplicate_input"},
-        {code::duplicate_entry, Severity::warning, "An archive holds two entries of one name; the first is used",
-         "duplicate_entry"},
-        {code::multipart_image, Severity::warning,
-         "A file holds several images (EXR parts, TIFF pages); the first is used", "multipart_image"},
-        {code::orientation_ignored, Severity::warning,
-         "An EXIF/TIFF orientation is not applied: the map is used as stored", "orientation_ignored"},
-        {code::aspect_mismatch, Severity::error,
-         "A map's aspect ratio is more than 2x off the set's: not stretched, not used", "aspect_mismatch"},
-        {code::output_too_large, Severity::warning,
-         "An output is wider or taller than 16384 pixels, more than engines and GPUs import", "output_too_large"},
-        {code::encoding_error_exceeded, Severity::warning,
-         "A block-compressed level decodes with more error than the preset's bound", "encoding_error_exceeded"},
-        {code::material_file_skipped, Severity::info,
-         "The preset's glTF material file was not written: this run's normal maps are not glTF's +Y",
-         "material_file_skipped"},
-    };
-    return c;
-}
-
-const RuleInfo* find_rule(std::string_view c) {
-    for (const auto& r : rule_catalog())
-        if (r.code == c) return &r;
-    return nullptr;
-}
-
 Thresholds strict_thresholds() {
     Thresholds t;
     t.albedo_min_srgb = 50.0;   // PBR Guide part 2: strict lower bound
@@ -174,7 +101,7 @@ Thresholds strict_thresholds() {
 
 Severity RuleConfig::severity_of(std::string_view c) const {
     if (auto it = severity.find(c); it != severity.end()) return it->second;
-    if (const RuleInfo* r = find_rule(c)) return r->severity;
+    if (const CodeInfo* r = find_code(c)) return r->severity;
     return Severity::warning;
 }
 
@@ -394,9 +321,32 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
     return cfg;
 }
 
+ThresholdTable threshold_table(const Thresholds& t) {
+    ThresholdTable table;
+    for (const auto& p : params()) table[std::string(p.code)][std::string(p.name)] = t.*(p.member);
+    return table;
+}
+
+std::optional<Thresholds> thresholds_from(const ThresholdTable& table, std::string& error, const Thresholds& base) {
+    Thresholds t = base;
+    for (const auto& entry : table)
+        for (const auto& [name, value] : entry.second) {
+            const std::string& code = entry.first;
+            const std::string& key = name;  // clang 14 captures no structured binding
+            const auto it = std::find_if(params().begin(), params().end(),
+                                         [&](const Param& p) { return p.code == code && p.name == key; });
+            if (it == params().end()) {
+                error = "thresholds: " + code + " has no threshold '" + key + "'";
+                return std::nullopt;
+            }
+            t.*(it->member) = value;
+        }
+    return t;
+}
+
 nlohmann::json describe(const RuleConfig& cfg) {
     nlohmann::json rules = nlohmann::json::object();
-    for (const auto& r : rule_catalog()) {
+    for (const auto& r : finding_catalog()) {
         nlohmann::json e;
         e["severity"] = severity_name(cfg.severity_of(r.code));
         e["enabled"] = cfg.enabled(r.code);

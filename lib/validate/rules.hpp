@@ -1,8 +1,9 @@
-// Validation rules: their catalog (code, default severity, description), their thresholds, and
-// the configuration a preset's "validate" block or `--rules FILE` gives them.
+// Validation rules: their thresholds and the configuration a preset's "validate" block or
+// `--rules FILE` gives them.
 //
 // Conventions of this module (decided once here):
-//  - a rule is named by its finding code (core/findings.hpp); a code never changes meaning;
+//  - a rule is named by its finding code (core/findings.hpp), whose default severity, title
+//    and docs anchor are core/catalog.hpp's; a code never changes meaning;
 //  - every threshold has a documented default and source (docs/rules.md; citations also at the
 //    member below); `preset: "strict"` swaps in the stricter published numbers;
 //  - suppressions remove findings of one code for materials whose name matches a glob
@@ -16,21 +17,10 @@
 #include <string_view>
 #include <vector>
 
+#include "core/catalog.hpp"
 #include "core/findings.hpp"
 
 namespace mf::validate {
-
-// One entry of the rule catalog.
-struct RuleInfo {
-    std::string_view code;
-    Severity severity;        // default severity
-    std::string_view title;   // one line, used as SARIF shortDescription and JUnit text
-    std::string_view anchor;  // section of docs/rules.md
-};
-
-// Every code validate_set() can emit, in a fixed order (the order findings are sorted by).
-const std::vector<RuleInfo>& rule_catalog();
-const RuleInfo* find_rule(std::string_view code);
 
 // Numbers the rules compare against. Values are in the units named; "share" is a fraction of
 // the pixels the rule looks at (0.05 = 5 %). Sources: docs/rules.md.
@@ -137,6 +127,15 @@ struct RuleConfig {
     static std::optional<RuleConfig> from_json(const nlohmann::json& j, std::string& error,
                                                const RuleConfig& base = RuleConfig{});
 };
+
+// Every threshold by the names a rules file gives it ({CODE: {name: value}}): how a manifest
+// records the run's (manifest::Manifest::thresholds), so a later reader (the report) judges as
+// the run did. thresholds_from() reads such a table back over `base`; nullopt + `error` naming
+// the entry when a code or name is unknown.
+using ThresholdTable = std::map<std::string, std::map<std::string, double>>;
+ThresholdTable threshold_table(const Thresholds& t);
+std::optional<Thresholds> thresholds_from(const ThresholdTable& table, std::string& error,
+                                          const Thresholds& base = Thresholds{});
 
 // The defaults and threshold names per code, as JSON (for `matforge presets show` and docs).
 nlohmann::json describe(const RuleConfig& cfg);

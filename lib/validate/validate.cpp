@@ -18,11 +18,6 @@ using detail::MapStats;
 
 std::string display_name(const MapInput& m) { return m.name.empty() ? m.file.display : m.name; }
 
-// Nearest-neighbour index of destination coordinate i (of n) in a source of size m.
-int nearest(int i, int n, int m) {
-    return std::min(m - 1, static_cast<int>((static_cast<int64_t>(2 * i + 1) * m) / (2 * int64_t{n})));
-}
-
 struct Source {
     int map = -1;     // index into maps
     int channel = 0;  // channel holding the value
@@ -59,19 +54,16 @@ void resolution_findings(const std::vector<MapInput>& maps, const std::vector<bo
         if (!counted(i)) continue;
         const auto& m = maps[i];
         if (m.info.width == ref.first && m.info.height == ref.second) continue;
-        Finding f;
-        f.code = std::string(code::resolution_mismatch);
-        f.role = std::string(role_name(m.role));
-        f.file = display_name(m);
-        f.message = f.file + " is " + std::to_string(m.info.width) + "x" + std::to_string(m.info.height) +
-                    " but the other maps of the set are " + std::to_string(ref.first) + "x" +
-                    std::to_string(ref.second) + "; it will be resampled";
-        f.figures = {{"width", m.info.width},
-                     {"height", m.info.height},
-                     {"reference_width", ref.first},
-                     {"reference_height", ref.second},
-                     {"sizes", sizes}};
-        out.push_back(std::move(f));
+        const std::string file = display_name(m);
+        out.push_back(finding(code::resolution_mismatch, std::string(role_name(m.role)), file,
+                              file + " is " + std::to_string(m.info.width) + "x" + std::to_string(m.info.height) +
+                                  " but the other maps of the set are " + std::to_string(ref.first) + "x" +
+                                  std::to_string(ref.second) + "; it will be resampled",
+                              {{"width", m.info.width},
+                               {"height", m.info.height},
+                               {"reference_width", ref.first},
+                               {"reference_height", ref.second},
+                               {"sizes", sizes}}));
     }
 }
 
@@ -106,6 +98,7 @@ struct SetRun {
     std::vector<std::unique_ptr<MapStats>> stats;
     std::vector<std::unique_ptr<BandStream>> streams;
     std::vector<Finding> found;
+    std::optional<NormalVerdict> verdict;  // pass 2's, judged once the normal map is known valid
     SetValidation result;
 
     SetRun(const std::vector<MapInput>& m, const RuleConfig& c, const ValidateOptions& o)
@@ -196,7 +189,7 @@ struct SetRun {
         auto xmap = [&](const Source& s, std::vector<int>& v) {
             if (s.map < 0) return;
             v.resize(static_cast<size_t>(ai.width));
-            for (int x = 0; x < ai.width; ++x) v[static_cast<size_t>(x)] = nearest(x, ai.width, info(s).width);
+            for (int x = 0; x < ai.width; ++x) v[static_cast<size_t>(x)] = nearest_index(x, ai.width, info(s).width);
         };
         xmap(metal, mx);
         xmap(opacity, ox);
@@ -205,10 +198,10 @@ struct SetRun {
         for (int y = 0; y < ai.height; ++y) {
             const float* a = row_of(albedo, y);
             if (!a) break;
-            const float* m = metal.map >= 0 ? row_of(metal, nearest(y, ai.height, info(metal).height)) : nullptr;
+            const float* m = metal.map >= 0 ? row_of(metal, nearest_index(y, ai.height, info(metal).height)) : nullptr;
             const float* o = opacity.map == albedo.map ? a
-                             : opacity.map >= 0        ? row_of(opacity, nearest(y, ai.height, info(opacity).height))
-                                                       : nullptr;
+                             : opacity.map >= 0 ? row_of(opacity, nearest_index(y, ai.height, info(opacity).height))
+                                                : nullptr;
             for (int x = 0; x < ai.width; ++x) {
                 if (o) {
                     const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3]
@@ -231,7 +224,8 @@ struct SetRun {
         std::vector<int> hx;
         if (wh) {
             hx.resize(static_cast<size_t>(ni.width));
-            for (int x = 0; x < ni.width; ++x) hx[static_cast<size_t>(x)] = nearest(x, ni.width, info(height).width);
+            for (int x = 0; x < ni.width; ++x)
+                hx[static_cast<size_t>(x)] = nearest_index(x, ni.width, info(height).width);
         }
         const int hc = wh ? info(height).channels : 0;
         for (int y = 0; y < ni.height; ++y) {
@@ -240,23 +234,25 @@ struct SetRun {
             // The reader thread decided the decoding on the first band, before this row.
             const MapStats& ns = *stats[static_cast<size_t>(normal.map)];
             decode_normal_row(n, ni.channels, ni.width, ns.normal_signed == 1, xyz.data(), ns.rebuilds_z());
-            const float* h = wh ? row_of(height, nearest(y, ni.height, info(height).height)) : nullptr;
+            const float* h = wh ? row_of(height, nearest_index(y, ni.height, info(height).height)) : nullptr;
             if (h)
                 for (int x = 0; x < ni.width; ++x)
                     hrow[static_cast<size_t>(x)] = h[hx[static_cast<size_t>(x)] * hc + height.channel];
             det.add_row(xyz.data(), h ? hrow.data() : nullptr);
         }
-        convention_findings(det.verdict());
+        verdict = det.verdict();
     }
 
+    // The normal map's convention from its name and pass 2's verdict, and its findings:
     // NORMAL_CONVENTION_MISMATCH (the name and the content disagree) and _UNKNOWN (neither
-    // decides; a flat map has no convention to decide), emitted here only.
-    void convention_findings(const NormalVerdict& verdict) {
+    // decides; a flat map has no convention to decide), emitted here only, and only for a map
+    // that is a normal map (`valid`: NORMAL_INVALID says all of one that is not).
+    void convention_findings(const NormalVerdict& content, bool valid) {
         const MapInput& m = maps[static_cast<size_t>(normal.map)];
         NormalCheck nc;
         nc.file = display_name(m);
         nc.name = m.name_convention;
-        nc.content = verdict;
+        nc.content = content;
         const double need = t.normal_convention_min_confidence;
         const bool decided = nc.content.convention != NormalConvention::unknown && nc.content.confidence >= need;
         if (nc.name != NormalConvention::unknown) {
@@ -275,14 +271,12 @@ struct SetRun {
         fig["min_confidence"] = need;
         const std::string percent = std::to_string(static_cast<int>(std::lround(nc.content.confidence * 100)));
         auto emit = [&](std::string_view code, std::string message) {
-            Finding f;
-            f.code = std::string(code);
-            f.role = "normal";
-            f.file = nc.file;
-            f.message = std::move(message);
-            f.figures = fig;
-            found.push_back(std::move(f));
+            found.push_back(finding(code, "normal", nc.file, std::move(message), fig));
         };
+        if (!valid) {
+            result.normal = std::move(nc);
+            return;
+        }
         if (nc.name != NormalConvention::unknown && decided && nc.content.convention != nc.name)
             emit(code::normal_convention_mismatch,
                  nc.file + ": the name says " + std::string(convention_name(nc.name)) + " but the content says " +
@@ -313,11 +307,10 @@ struct SetRun {
             result.albedo_alpha_min = stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
         for (size_t i = 0; i < maps.size(); ++i) {
             if (!readable[i]) {
-                Finding f;
-                f.code = std::string(code::unreadable_file);
-                f.role = std::string(role_name(maps[i].role));
-                f.file = display_name(maps[i]);
-                f.message = read_errors[i].empty() ? f.file + ": could not be read" : read_errors[i];
+                const std::string file = display_name(maps[i]);
+                Finding f = finding(code::unreadable_file, std::string(role_name(maps[i].role)), file,
+                                    read_errors[i].empty() ? file + ": could not be read" : read_errors[i]);
+                result.unreadable.emplace(f.file, f.message);
                 found.push_back(std::move(f));
                 continue;
             }
@@ -325,24 +318,16 @@ struct SetRun {
         }
         resolution_findings(maps, readable, found);
         // A map that is not a normal map has no green convention: NORMAL_INVALID says it all.
-        if (result.normal) {
-            const std::string nf = result.normal->file;
-            const bool invalid = std::any_of(found.begin(), found.end(), [&](const Finding& f) {
-                return f.code == code::normal_invalid && f.file == nf;
-            });
-            if (invalid)
-                std::erase_if(found, [&](const Finding& f) {
-                    return f.file == nf &&
-                           (f.code == code::normal_convention_mismatch || f.code == code::normal_convention_unknown);
-                });
+        if (verdict) {
+            const auto n = static_cast<size_t>(normal.map);
+            convention_findings(*verdict, readable[n] && !stats[n]->normal_invalid());
         }
     }
 
     // Severities, disabled codes and suppressions; then the stable order (the rule catalog's).
     SetValidation finish() {
-        for (auto& f : found) f.severity = cfg.severity_of(f.code);
         result.suppressed = apply_config(found, opt.material, cfg);
-        const auto& cat = rule_catalog();
+        const auto& cat = finding_catalog();
         auto rank = [&](const Finding& f) {
             for (size_t i = 0; i < cat.size(); ++i)
                 if (cat[i].code == f.code) return i;

@@ -15,7 +15,10 @@
 //  - output: findings sorted by catalog order (rules.hpp), then map order; severities come from
 //    the RuleConfig; suppressed/disabled codes are dropped (and counted).
 #pragma once
+#include <algorithm>
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -78,8 +81,18 @@ struct SetValidation {
     // The routed normal map stores X and Y only (two channels, or an empty blue): ingest
     // rebuilds Z from them, as the rules did (NORMAL_Z_RECONSTRUCTED).
     bool normal_z_rebuilt = false;
+    // The maps that could not be read (a truncated file reads its header, not its pixels):
+    // MapInput::name (the file, when unnamed) -> the reader's error. Each has its UNREADABLE_FILE.
+    std::map<std::string, std::string> unreadable;
     int suppressed = 0;  // findings removed by "ignore"/"suppress"/"off"
 };
+
+// The nearest-neighbour index of destination coordinate i (of n) in a source of size m (pixel
+// centres matched): how the rules sample a mask of another size on a map's grid, and the
+// report's overlays as they do.
+inline int nearest_index(int i, int n, int m) {
+    return std::min(m - 1, static_cast<int>((static_cast<int64_t>(2 * i + 1) * m) / (2 * int64_t{n})));
+}
 
 SetValidation validate_set(const std::vector<MapInput>& maps, const RuleConfig& cfg, const ValidateOptions& opt = {});
 

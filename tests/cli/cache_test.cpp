@@ -81,14 +81,22 @@ TEST(Cache, WarmRunRestoresTheSameBytesAsARunWithoutIt) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
     EXPECT_EQ(bytes_of(work / "other/manifest.json"), bytes_of(work / "plain/manifest.json"));
-    // Without --cache and $MATFORGE_CACHE: hidden beside the output folder (same file system,
-    // skipped by input walks), the output folder itself left to what the manifest lists.
-    r = run_env("MATFORGE_CACHE=", "ingest " + q(in) + " -o " + q(work / "mine/"));
+    // Without --cache and $MATFORGE_CACHE: the user's cache folder (XDG), never beside or inside
+    // the output folder or the input tree; ~/.cache/matforge when $XDG_CACHE_HOME is unset.
+    r = run_env("MATFORGE_CACHE= XDG_CACHE_HOME=" + q(work / "xdg"), "ingest " + q(in) + " -o " + q(work / "mine/"));
     ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_TRUE(fs::is_directory(work / ".mine.matforge-cache/ac")) << r.output;
+    EXPECT_TRUE(fs::is_directory(work / "xdg/matforge/ac")) << r.output;
     EXPECT_EQ(cache_line(r.output), std::make_pair(0, 2)) << r.output;
+    EXPECT_FALSE(fs::exists(work / ".mine.matforge-cache"));
     for (const auto& e : fs::directory_iterator(work / "mine"))
         EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
+    r = run_env("MATFORGE_CACHE= XDG_CACHE_HOME= HOME=" + q(work / "home"),
+                "ingest " + q(in) + " -o " + q(work / "mine2"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::is_directory(work / "home/.cache/matforge/ac")) << r.output;
+    r = run_env("MATFORGE_CACHE= XDG_CACHE_HOME=" + q(work / "xdg"), "cache stats");
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("2 records"), std::string::npos) << r.output;
     // Its blobs are hard links to the outputs: no second copy on disk.
     EXPECT_EQ(fs::hard_link_count(work / "mine/Net004A/Net004A_basecolor.png"), 2u);
 }
@@ -196,11 +204,14 @@ TEST(Cache, CorruptRecordIsRecomputedAndSaid) {
 TEST(Cache, UnusableCacheNeverFailsARun) {
     const fs::path work = temp_dir("unusable");
     const fs::path in = two_sets(work);
-    write_text(work / "not-a-folder", "x");
-    const auto r = run("ingest " + q(in) + " -o " + q(work / "out") + " --cache " + q(work / "not-a-folder"));
+    // A cache whose layout cannot be made (its `cas` is a file): the run goes on without it.
+    const fs::path broken = work / "broken";
+    write_text(broken / "version", "matforge cache 1\n");
+    write_text(broken / "cas", "x");
+    const auto r = run("ingest " + q(in) + " -o " + q(work / "out") + " --cache " + q(broken));
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("running without the cache"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find((work / "not-a-folder").string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find((broken / "cas").string()), std::string::npos) << r.output;
     ASSERT_EQ(run("ingest " + q(in) + " -o " + q(work / "plain") + " --no-cache").code, 0);
     EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "plain/manifest.json"));
     // --cache and --no-cache together is a usage error.

@@ -25,7 +25,7 @@ struct RunResult {
 // Runs `matforge ARGS` through the shell (ARGS quoted with q()), with `env` (VAR=value ...)
 // prepended. A JSON report printed to stdout goes to the schema spool like the files.
 inline RunResult run_env(const std::string& env, const std::string& args) {
-    const auto p = mf::testbin::spawn({"/bin/sh", "-c", env + " exec " + std::string(MATFORGE_BIN) + " " + args});
+    const auto p = mf::testbin::spawn({"/bin/sh", "-c", env + " exec " + mf::testenv::bin() + " " + args});
     if (args.find("--report json") != std::string::npos && args.find("--report-file") == std::string::npos)
         mf::testbin::spool_text(p.output, "stdout");
     return {p.signal ? -1 : p.code, p.output};
@@ -35,7 +35,7 @@ inline RunResult run(const std::string& args) { return run_env("", args); }
 
 inline std::string q(const fs::path& p) { return std::string("'").append(p.string()).append("'"); }
 
-inline fs::path samples() { return fs::path(MATFORGE_SOURCE_DIR) / "sample_materials"; }
+inline fs::path samples() { return mf::testenv::source_dir() / "sample_materials"; }
 
 // A fresh, empty temporary folder per test.
 inline fs::path temp_dir(const std::string& name) {

@@ -106,6 +106,18 @@ TEST(IngestErrors, UsageErrorsExitTwo) {
     EXPECT_NE(r.output.find("matforge ingest: "), std::string::npos) << r.output;
 }
 
+// --version: the version on the first line (scripts and bench/*/run.sh read it), then every
+// library that reads inputs or decides output bytes, with a version number, as loaded.
+TEST(IngestErrors, VersionNamesTheLibraries) {
+    const auto r = run("--version");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.substr(0, r.output.find('\n')), "matforge " MATFORGE_VERSION) << r.output;
+    for (const char* lib : {"OpenImageIO 2.", "png:libpng", "OpenColorIO 2.", "squish ", "astcenc ", "zstd 1.",
+                            "libzip 1.", "OpenSSL 3.", "Vulkan headers 1.3.", "CLI11 2."})
+        EXPECT_NE(r.output.find(lib), std::string::npos) << lib << " in:\n" << r.output;
+    EXPECT_EQ(r.output.find("unknown"), std::string::npos) << "a package version CMake did not find:\n" << r.output;
+}
+
 TEST(IngestErrors, MissingInputIsAFailureNotACrash) {
     const fs::path out = temp_dir("out");
     const auto r = run("ingest /nonexistent/folder " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out));

@@ -37,7 +37,7 @@ struct CleanupOutputs : ::testing::Environment {
                            ("matforge-cli-samples-" + std::string(p) + "-" + std::to_string(::getpid())));
     }
 };
-[[maybe_unused]] auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new CleanupOutputs);
+[[maybe_unused]] auto* const kCleanupOutputs = ::testing::AddGlobalTestEnvironment(new CleanupOutputs);
 
 mf::Image input_pixels(const std::string& rel) { return read_pixels(samples() / rel); }
 

@@ -59,7 +59,7 @@ void expect_parity(const fs::path& input, const fs::path& work, size_t min_mater
 TEST(Parity, IngestAndValidateAgreeOnTheSamples) { expect_parity(samples(), temp_dir("samples"), 4); }
 
 TEST(Parity, IngestAndValidateAgreeOnTheRealCorpus) {
-    const fs::path corpus = fs::path(MATFORGE_CORPUS_DIR) / "real";
+    const fs::path corpus = mf::testenv::corpus_dir() / "real";
     ASSERT_TRUE(fs::is_directory(corpus)) << corpus << ": the real-material corpus is missing";
     expect_parity(corpus, temp_dir("corpus"), 15);
 }
@@ -89,15 +89,56 @@ TEST(Parity, OneFindingPerFactForAnUndecidedNormalMap) {
     EXPECT_EQ(unknown, 1) << manifest.dump(2);
 }
 
+namespace {
+// A 128 x 128 map of noise (its PNG does not compress to a few bytes), as `file`, cut to its
+// first half when `truncated`: the header reads, the pixels do not.
+void noise_map(const fs::path& file, int channels, bool truncated) {
+    mf::Image img(128, 128, channels);
+    uint32_t s = 777;
+    for (float& v : img.pixels) {
+        s = s * 1664525u + 1013904223u;
+        v = 0.3f + 0.4f * static_cast<float>((s >> 8) & 0xFF) / 255.f;
+    }
+    write_png(file, img);
+    if (truncated) fs::resize_file(file, fs::file_size(file) / 2);
+}
+}  // namespace
+
+TEST(Parity, ATruncatedMapIsMissingForBothCommands) {
+    // validate reads a map's header first and its pixels later: a truncated roughness is
+    // unreadable and missing (a constant generated) for validate as for ingest, which decodes it
+    // at once; with a readable copy beside it both take the copy.
+    const fs::path work = temp_dir("truncated");
+    noise_map(work / "in/Cut/Cut_albedo.png", 3, false);
+    noise_map(work / "in/Cut/Cut_roughness.png", 1, true);
+    expect_parity(work / "in", work, 1);
+    json mat = read_json(work / "out/manifest.json")["materials"][0];
+    EXPECT_TRUE(has_finding(mat, "UNREADABLE_FILE", "roughness")) << mat.dump(2);
+    EXPECT_TRUE(has_finding(mat, "MISSING_MAP", "roughness")) << mat.dump(2);
+    EXPECT_FALSE(mat["inputs"].contains("roughness")) << mat.dump(2);
+
+    const fs::path copy = temp_dir("truncated-copy");
+    noise_map(copy / "in/Cut/Cut_albedo.png", 3, false);
+    noise_map(copy / "in/Cut/Cut_roughness.png", 1, true);
+    noise_map(copy / "in/Cut/Cut_roughness.tif", 1, false);
+    expect_parity(copy / "in", copy, 1);
+    mat = read_json(copy / "out/manifest.json")["materials"][0];
+    EXPECT_TRUE(has_finding(mat, "UNREADABLE_FILE", "roughness")) << mat.dump(2);
+    EXPECT_FALSE(has_finding(mat, "MISSING_MAP", "roughness")) << mat.dump(2);
+    ASSERT_TRUE(mat["inputs"].contains("roughness")) << mat.dump(2);
+    EXPECT_EQ(mat["inputs"]["roughness"]["file"], "Cut_roughness.tif");
+}
+
 TEST(Parity, SchemaSpoolReceivesWhatTheRunsWrote) {
     // The schema check at the end of the suite sees this test's manifest (the spool works).
     const fs::path work = temp_dir("spool");
     ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "out") + " -q").code, 0);
-    const fs::path spool(MATFORGE_SCHEMA_SPOOL);
+    const std::optional<fs::path> spool = mf::testenv::schema_spool();
+    ASSERT_TRUE(spool) << "ctest sets MATFORGE_SCHEMA_SPOOL for the tests that run the binary";
     mf::testbin::spool_folder(work, "Parity.spool");
     const std::string mine = "Parity.spool-" + std::to_string(::getpid()) + "-";
     int found = 0;
-    for (const auto& e : fs::directory_iterator(spool))
+    for (const auto& e : fs::directory_iterator(*spool))
         if (e.path().filename().string().rfind(mine, 0) == 0) {
             ++found;
             EXPECT_NE(read_json(e.path()).value("manifest_version", 0), 0) << e.path();

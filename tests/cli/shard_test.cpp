@@ -65,18 +65,24 @@ TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
 TEST(Shard, MergeRefusesPartsOfDifferentRuns) {
     const fs::path work = temp_dir("refuse");
     const std::string in = q(samples());
+    // Parts of other runs are copied into run a's folder (merge takes parts from one folder).
+    int copies = 0;
     auto shard = [&](const std::string& out, const std::string& which, const std::string& extra = "") {
         const auto r = run("ingest " + in + " -o " + q(work / out) + " -q --shard " + which + extra);
         EXPECT_EQ(r.code, 0) << r.output;
-        return q(work / out /
-                 ("manifest.shard-" + which.substr(0, which.find('/')) + "-of-" + which.substr(which.find('/') + 1) +
-                  ".json"));
+        const fs::path part = work / out /
+                              ("manifest.shard-" + which.substr(0, which.find('/')) + "-of-" +
+                               which.substr(which.find('/') + 1) + ".json");
+        if (out == "a") return q(part);
+        const fs::path copy = work / "a" / ("other-" + std::to_string(++copies) + ".json");
+        fs::copy_file(part, copy);
+        return q(copy);
     };
     auto refused = [&](const std::string& parts, const std::string& says) {
-        const auto r = run("merge " + parts + " -o " + q(work / "m.json"));
+        const auto r = run("merge " + parts + " -o " + q(work / "a/m.json"));
         EXPECT_EQ(r.code, 2) << r.output;
         EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
-        EXPECT_FALSE(fs::exists(work / "m.json"));
+        EXPECT_FALSE(fs::exists(work / "a/m.json"));
     };
     const std::string a0 = shard("a", "0/2"), a1 = shard("a", "1/2");
     // Another preset by name.
@@ -93,10 +99,84 @@ TEST(Shard, MergeRefusesPartsOfDifferentRuns) {
     refused(a0 + " " + a0, "shard 0 of 2 is given twice");
     refused(a0 + " " + shard("d", "1/3"), "shard count \"2\" vs \"3\"");
     ASSERT_EQ(run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "e") + " -q").code, 0);
-    refused(a0 + " " + q(work / "e/manifest.json"), "is not the manifest of a shard");
+    fs::copy_file(work / "e/manifest.json", work / "a/e.json");
+    refused(a0 + " " + q(work / "a/e.json"), "is not the manifest of a shard");
+    // The shard of another library: the same preset and split, other sets.
+    const fs::path lib = work / "lib";
+    fs::copy(samples(), lib, fs::copy_options::recursive);
+    fs::remove_all(lib / "flat_two_sets");  // another library: two sets fewer
+    EXPECT_EQ(run("ingest " + q(lib) + " -o " + q(work / "f") + " -q --shard 1/2").code, 0);
+    fs::copy_file(work / "f/manifest.shard-1-of-2.json", work / "a/f.json");
+    refused(a0 + " " + q(work / "a/f.json"), "made from other libraries, or from one that changed");
+    // Where the merged manifest goes: never over a part, always beside the parts.
+    {
+        const std::string before = bytes_of(work / "a/manifest.shard-1-of-2.json");
+        const auto r = run("merge " + a0 + " " + a1 + " -o " + a1);
+        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_NE(r.output.find("is one of the parts"), std::string::npos) << r.output;
+        EXPECT_EQ(bytes_of(work / "a/manifest.shard-1-of-2.json"), before);
+    }
+    {
+        const auto r = run("merge " + a0 + " " + a1 + " -o " + q(work / "elsewhere/manifest.json"));
+        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_NE(r.output.find("is not in the folder of the part"), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(work / "elsewhere"));
+    }
     // The right parts, in any order: merged.
     EXPECT_EQ(run("merge " + a1 + " " + a0 + " -o " + q(work / "a/manifest.json")).code, 0);
     EXPECT_EQ(run("ingest " + in + " -o " + q(work / "x") + " --shard 3/3").code, 2);
+}
+
+// A set added to the library after shard 1 ran and before shard 0 (the new split moves sets
+// between shards): merge refuses instead of writing a manifest that silently lacks sets.
+TEST(Shard, LibraryChangedBetweenShardsIsRefused) {
+    const fs::path work = temp_dir("changed");
+    const fs::path lib = work / "lib";
+    fs::copy(samples(), lib, fs::copy_options::recursive);
+    const fs::path later = work / "later";
+    fs::rename(lib / "Metal_Damaged_001_SD", later);
+    ASSERT_EQ(run("ingest " + q(lib) + " -o " + q(work / "out") + " -q --shard 1/2").code, 0);
+    fs::rename(later, lib / "Metal_Damaged_001_SD");
+    ASSERT_EQ(run("ingest " + q(lib) + " -o " + q(work / "out") + " -q --shard 0/2").code, 0);
+    const auto r = run("merge " + q(work / "out/manifest.shard-0-of-2.json") + " " +
+                       q(work / "out/manifest.shard-1-of-2.json") + " -o " + q(work / "out/manifest.json"));
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("changed between the shards' runs"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(work / "out/manifest.json"));
+    // Shard 1 run again on the library as it is now: merged, and complete.
+    ASSERT_EQ(run("ingest " + q(lib) + " -o " + q(work / "out") + " -q --shard 1/2").code, 0);
+    ASSERT_EQ(run("merge " + q(work / "out/manifest.shard-0-of-2.json") + " " +
+                  q(work / "out/manifest.shard-1-of-2.json") + " -o " + q(work / "out/manifest.json"))
+                  .code,
+              0);
+    EXPECT_EQ(read_json(work / "out/manifest.json")["materials"].size(), 4u);
+}
+
+// A hand-edited part: an output listed outside the folder, or with bytes it does not have.
+TEST(Shard, MergeChecksEveryListedFile) {
+    const fs::path work = temp_dir("listed");
+    for (const char* s : {"0/2", "1/2"})
+        ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work / "out") + " -q --shard " + s).code, 0);
+    const fs::path p0 = work / "out/manifest.shard-0-of-2.json", p1 = work / "out/manifest.shard-1-of-2.json";
+    const std::string original = bytes_of(p0);
+    auto merge = [&] { return run("merge " + q(p0) + " " + q(p1) + " -o " + q(work / "out/manifest.json")); };
+    json j = json::parse(original);
+    const std::string file = j["materials"][0]["outputs"][0]["file"];
+    j["materials"][0]["outputs"][0]["file"] = "../../escaped.png";
+    std::ofstream(p0) << j.dump(2);
+    auto r = merge();
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("is not a path inside the output folder"), std::string::npos) << r.output;
+    j = json::parse(original);
+    j["materials"][0]["outputs"][0]["sha256"] = std::string(64, '0');
+    std::ofstream(p0) << j.dump(2);
+    r = merge();
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(file + ": its bytes do not hash"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(work / "out/manifest.json"));
+    std::ofstream(p0) << original;
+    r = merge();
+    EXPECT_EQ(r.code, 0) << r.output;
 }
 
 TEST(Shard, ActionKeysFollowContentAndConfigurationOnly) {

@@ -48,7 +48,7 @@ struct CleanupSynthetic : ::testing::Environment {
             if (e.path().filename().string().rfind(mine, 0) == 0) fs::remove_all(e.path(), ec);
     }
 };
-[[maybe_unused]] auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new CleanupSynthetic);
+[[maybe_unused]] auto* const kCleanupSynthetic = ::testing::AddGlobalTestEnvironment(new CleanupSynthetic);
 
 const std::vector<std::string> kTiles{"Tiles101"};
 

@@ -22,6 +22,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "test_env.hpp"
+
 namespace mf::testbin {
 namespace fs = std::filesystem;
 
@@ -100,22 +102,18 @@ inline void register_test_dir(const fs::path& d) {
 // Copies `text` (a JSON document matforge wrote) into the spool when it is a manifest or a
 // validate report.
 inline void spool_text(const std::string& text, const std::string& label) {
-#ifdef MATFORGE_SCHEMA_SPOOL
-    if (text.find("\"generator\": \"matforge ") == std::string::npos ||
+    const std::optional<fs::path> spool = mf::testenv::schema_spool();
+    if (!spool || text.find("\"generator\": \"matforge ") == std::string::npos ||
         (text.find("\"manifest_version\"") == std::string::npos &&
          text.find("\"report_version\"") == std::string::npos))
         return;
     static std::atomic<int> n{0};
     std::error_code ec;
-    fs::create_directories(MATFORGE_SCHEMA_SPOOL, ec);
+    fs::create_directories(*spool, ec);
     std::string name = label + "-" + std::to_string(::getpid()) + "-" + std::to_string(n++) + ".json";
     for (char& c : name)
         if (c == '/' || c == ' ') c = '_';
-    std::ofstream(fs::path(MATFORGE_SCHEMA_SPOOL) / name, std::ios::binary) << text;
-#else
-    (void)text;
-    (void)label;
-#endif
+    std::ofstream(*spool / name, std::ios::binary) << text;
 }
 
 // Every manifest.json and JSON report under `dir` (symlinks not followed) into the spool.

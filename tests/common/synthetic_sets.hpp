@@ -16,7 +16,7 @@ namespace mf::testbin {
 // Writes the named sets (every set when `sets` is empty) into `dir`.
 inline ::testing::AssertionResult generate_synthetic(const std::filesystem::path& dir,
                                                      const std::vector<std::string>& sets = {}) {
-    std::vector<std::string> argv{MATFORGE_GEN_SAMPLES, dir.string()};
+    std::vector<std::string> argv{mf::testenv::gen_samples(), dir.string()};
     argv.insert(argv.end(), sets.begin(), sets.end());
     const Proc p = spawn(argv, 120);
     if (p.code == 0 && !p.hung) return ::testing::AssertionSuccess();

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -28,6 +29,18 @@ inline mf::Image read_pixels(const std::filesystem::path& p) {
     in.display = p.string();
     EXPECT_TRUE(mf::read_image(in, img, info, err)) << err;
     return img;
+}
+
+// Every regular file under `dir` (relative path, '/'-separated) with its bytes: a folder's
+// state before and after a command, compared whole.
+inline std::map<std::string, std::string> files_under(const std::filesystem::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+        if (e.is_regular_file()) {
+            std::ifstream f(e.path(), std::ios::binary);
+            files[std::filesystem::relative(e.path(), dir).generic_string()] = {std::istreambuf_iterator<char>(f), {}};
+        }
+    return files;
 }
 
 }  // namespace mf::testfiles

@@ -6,7 +6,7 @@
 #include "core/allocator.hpp"
 
 // Sanitizer builds replace malloc (mallopt and mallinfo2 are no-ops there).
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__GLIBC__) && !defined(MATFORGE_SANITIZE_BUILD)
 #include <malloc.h>
 
 TEST(Allocator, LargeBlocksComeFromTheHeapAndAreReused) {

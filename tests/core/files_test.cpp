@@ -7,16 +7,13 @@
 
 #include "core/files.hpp"
 #include "core/findings.hpp"
+#include "core/json.hpp"
+#include "core_util.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-fs::path fresh_dir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("matforge-test-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+using coretest::fresh_dir;
 std::vector<unsigned char> bytes_of(std::string_view s) { return {s.begin(), s.end()}; }
 }  // namespace
 
@@ -97,4 +94,16 @@ TEST(Findings, JsonRoundTrip) {
     EXPECT_FALSE(mf::finding_from_json({{"severity", "info"}}, error));
     EXPECT_FALSE(mf::finding_from_json({{"code", "X"}, {"severity", "info"}, {"figures", 2}}, error));
     EXPECT_EQ(mf::worst({f, {"X", mf::Severity::error, "", "", "", {}}}), mf::Severity::error);
+}
+
+// What no document of ours may hold is refused while parsing, naming the file and the problem.
+TEST(ParseJson, RefusesDuplicateMembersAndNulCharacters) {
+    std::string error;
+    EXPECT_TRUE(mf::parse_json(R"({"a": {"x": 1}, "b": {"x": 2}})", "ok.json", error)) << error;
+    EXPECT_FALSE(mf::parse_json(R"({"material": {"roughness": 0.2, "roughness": 0.9}})", "scene.json", error));
+    EXPECT_EQ(error, "scene.json: the member \"roughness\" is given twice in one object");
+    EXPECT_FALSE(mf::parse_json(R"({"albedo": "maps/a\u0000../../etc/passwd"})", "scene.json", error));
+    EXPECT_EQ(error, "scene.json: the string \"maps/a\\u0000…\" holds a NUL character");
+    EXPECT_FALSE(mf::parse_json(R"({"a\u0000b": 1})", "k.json", error));
+    EXPECT_NE(error.find("holds a NUL character"), std::string::npos) << error;
 }

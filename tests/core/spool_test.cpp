@@ -11,17 +11,13 @@
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "core/spool.hpp"
+#include "core_util.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-fs::path fresh_dir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("matforge-test-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+using coretest::fresh_dir;
 size_t entries_in(const fs::path& d) {
     return static_cast<size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
 }

@@ -2,6 +2,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "core/text.hpp"
 
@@ -34,6 +35,37 @@ TEST(Utf8OrReplacement, MaximalSubpartsAsInTheUnicodeStandard) {
     EXPECT_EQ(mf::utf8_or_replacement("\x61\xF1\x80\x80\xE1\x80\xC2\x62\x80\x63\x80\xBF\x64"),
               "a" + R + R + R + "b" + R + "c" + R + R + "d");
     EXPECT_EQ(mf::utf8_or_replacement("ok\xE2\x82"), "ok" + R);  // truncated at the end
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Nearest, TyposFindTheirWordOthersNothing) {
+    const std::vector<std::string> commands{"ingest", "validate", "preview", "report", "plan", "merge", "cache"};
+    EXPECT_EQ(mf::nearest("injest", commands), "ingest");
+    EXPECT_EQ(mf::nearest("INGEST", commands), "ingest");
+    EXPECT_EQ(mf::nearest("valdate", commands), "validate");
+    EXPECT_EQ(mf::nearest("prevew", commands), "preview");
+    EXPECT_EQ(mf::nearest("frobnicate", commands), "");
+    EXPECT_EQ(mf::nearest("x", commands), "");
+    EXPECT_EQ(mf::nearest("--presett", {"--preset", "--jobs", "--out"}), "--preset");
+}
+
+TEST(TerminalSafe, ControlCharactersAreWrittenAsEscapes) {
+    EXPECT_EQ(mf::terminal_safe("plain Caf\xC3\xA9 \t tab"), "plain Caf\xC3\xA9 \t tab");
+    EXPECT_EQ(mf::terminal_safe("a\x1b]0;title\x07z"), "a\\x1b]0;title\\x07z");
+    EXPECT_EQ(mf::terminal_safe("del\x7f c1\xC2\x9b"), "del\\x7f c1\\x9b");
+    EXPECT_EQ(mf::terminal_safe("two\nlines"), "two\\x0alines");
+    EXPECT_EQ(mf::terminal_safe("two\nlines", true), "two\nlines");
+    EXPECT_EQ(mf::terminal_safe(std::string("nul\0!", 5)), "nul\\x00!");
+}
+
+TEST(Numbers, FixedAndPercent) {
+    EXPECT_EQ(mf::fixed(2.0 / 3.0, 3), "0.667");
+    EXPECT_EQ(mf::fixed(-0.5, 0), "-0");
+    EXPECT_EQ(mf::percent(0.1234), "12.3 %");
+    EXPECT_EQ(mf::ascii_lower("Net004A_Color.JPG \xC3\x89"), "net004a_color.jpg \xC3\x89");
 }
 
 }  // namespace

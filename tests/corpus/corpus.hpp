@@ -16,10 +16,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "test_env.hpp"
+
 namespace corpus {
 namespace fs = std::filesystem;
 
-inline fs::path dir() { return fs::path(MATFORGE_CORPUS_DIR); }
+inline fs::path dir() { return mf::testenv::corpus_dir(); }
 
 // truth.json, or nullptr after failing the calling test with what is missing (never a skip: a
 // CI without the corpus must say so).
@@ -33,7 +35,7 @@ inline const nlohmann::json* truth() {
     }();
     if (!t) {
         ADD_FAILURE() << "the real-material corpus is missing: no readable " << (dir() / "truth.json")
-                      << " (configure with -DMATFORGE_CORPUS_DIR=<folder holding truth.json and real/>)";
+                      << " (tests/data/corpus in the repository)";
         return nullptr;
     }
     return &*t;
@@ -46,7 +48,7 @@ struct RunResult {
 
 inline RunResult run(const std::string& args) {
     RunResult r;
-    const std::string cmd = std::string(MATFORGE_BIN) + " " + args + " 2>&1";
+    const std::string cmd = mf::testenv::bin() + " " + args + " 2>&1";
     FILE* p = ::popen(cmd.c_str(), "r");
     if (!p) return r;
     std::array<char, 4096> buf{};

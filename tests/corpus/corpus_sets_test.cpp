@@ -294,7 +294,7 @@ TEST(RealCorpus, BatchOutputNamesTheSetsThatNeedAttention) {
     const path tmp = corpus::temp_dir("attention");
     const path bad = corpus::dir() / "real/polyhaven_broken_wall_1k_jpg+webp";
     const path good = corpus::dir() / "real/ambientcg_Net004A_1K-JPG";
-    const std::string cmd = std::string(MATFORGE_BIN) + " ingest " + corpus::q(bad) + " " + corpus::q(good) + " -o " +
+    const std::string cmd = mf::testenv::bin() + " ingest " + corpus::q(bad) + " " + corpus::q(good) + " -o " +
                             corpus::q(tmp / "out") + " --no-cache";
     const std::string log = (tmp / "tty.log").string();
     const int status =

@@ -162,7 +162,7 @@ TEST_F(Hostile, DeepJsonPreset) {
     const fs::path preset = temp_dir("preset") / "deep.json";
     // A valid preset with one unknown member 100,000 levels deep: `presets show` used to print it
     // with a recursive dump (a stack overflow).
-    std::string gltf = text_of(fs::path(MATFORGE_SOURCE_DIR) / "presets" / "gltf.json");
+    std::string gltf = text_of(mf::testenv::source_dir() / "presets" / "gltf.json");
     gltf.erase(gltf.find_last_of('}'));
     write_text(preset, deep_json(gltf + ", \"x_deep\": ", 100000, "}"));
     for (const auto& argv :
@@ -976,4 +976,28 @@ TEST_F(Hostile, PngWithHugeTextChunk) {
     expect_good_done();
     EXPECT_LT(p.maxrss_kb, 400 * 1024) << "a 150 MB text chunk was kept (peak " << p.maxrss_kb / 1024 << " MB)";
     EXPECT_EQ((*mat("Odd"))["inputs"]["roughness"]["width"], 16);
+}
+
+// report stopped by a signal ends as ingest does: exit 130/143, no temporary left, no index.html
+// naming pictures of materials never done; a rerun writes the whole report.
+TEST_F(Hostile, ReportInterruptedBySignal) {
+    for (int s = 0; s < 8; ++s)
+        write_bytes(in / ("Set" + std::to_string(s)) / ("Set" + std::to_string(s) + "_Color.png"),
+                    encode(gradient(1024, 1024, 3)));
+    ASSERT_EQ(spawn({bin(), "ingest", in.string(), "-o", out.string(), "--quiet"}).code, 0);
+    const fs::path report = temp_dir("report");
+    for (const int sig : {SIGINT, SIGTERM}) {
+        fs::remove_all(report);
+        Background run({bin(), "report", (out / "manifest.json").string(), "-o", report.string(), "--jobs", "1"});
+        ASSERT_TRUE(Background::until([&] { return fs::exists(report / "Good"); }, 60));
+        run.signal(sig);
+        const Proc p = run.wait();
+        EXPECT_EQ(p.signal, 0) << "died of the signal instead of stopping";
+        EXPECT_EQ(p.code, sig == SIGINT ? 130 : 143) << p.output;
+        EXPECT_NE(p.output.find("matforge report: interrupted"), std::string::npos) << p.output;
+        EXPECT_TRUE(temp_files_under(report).empty());
+        EXPECT_FALSE(fs::exists(report / "index.html"));
+    }
+    ASSERT_EQ(spawn({bin(), "report", (out / "manifest.json").string(), "-o", report.string(), "--quiet"}).code, 0);
+    EXPECT_TRUE(fs::exists(report / "index.html"));
 }

@@ -3,7 +3,10 @@
 // hostile_test.cpp (inputs that break readers) and hardening_test.cpp (issue #16's classes).
 #pragma once
 #include <OpenImageIO/imageio.h>
+
 #include <zip.h>
+#include <cstdlib>
+#include <string>
 
 #include <sys/stat.h>
 
@@ -183,12 +186,33 @@ inline void write_zip(const fs::path& p, const std::vector<ZipEntry>& entries, b
 inline bool is_root() { return ::geteuid() == 0; }
 
 // A private mount namespace (root, or an unprivileged user namespace) for tmpfs output disks:
-// the mount vanishes with the process, whatever happens to the test.
-inline bool can_mount_tmpfs() {
+// the mount vanishes with the process, whatever happens to the test. Empty when one can be
+// made, else why not (a chroot or an unprivileged container: "unshare: cannot change root
+// filesystem propagation").
+inline std::string tmpfs_unavailable() {
     const Proc p = spawn({"unshare", is_root() ? "-m" : "-rm", "sh", "-c",
                           "d=$(mktemp -d) && mount -t tmpfs -o size=64k tmpfs \"$d\" && umount \"$d\" && rmdir \"$d\""},
                          30);
-    return p.code == 0;
+    if (p.code == 0) return {};
+    return "this machine cannot mount a tmpfs in a private mount namespace (needs root or unprivileged user "
+           "namespaces, outside a chroot): " +
+           p.output;
+}
+
+// .ci/run sets MATFORGE_REQUIRE_PRIVILEGED=1 on its machines, which allow it: there a test that
+// needs a privilege fails instead of skipping, so CI cannot lose it quietly.
+inline bool privileged_tests_required() {
+    const char* v = std::getenv("MATFORGE_REQUIRE_PRIVILEGED");
+    return v != nullptr && std::string(v) == "1";
 }
 
 }  // namespace mfh
+
+// Skips the calling test, with the reason, where no tmpfs can be mounted (fails it under CI).
+#define MFH_REQUIRE_TMPFS()                                                   \
+    do {                                                                      \
+        if (const std::string why = mfh::tmpfs_unavailable(); !why.empty()) { \
+            if (mfh::privileged_tests_required()) FAIL() << why;              \
+            GTEST_SKIP() << why;                                              \
+        }                                                                     \
+    } while (false)

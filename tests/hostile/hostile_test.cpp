@@ -554,7 +554,7 @@ TEST_F(Hostile, OutputFileIsAFolder) {
 
 // Read-only output disk: a read-only tmpfs in a private mount namespace.
 TEST_F(Hostile, ReadOnlyOutputDisk) {
-    ASSERT_TRUE(can_mount_tmpfs()) << "needs root or unprivileged user namespaces (unshare -rm)";
+    MFH_REQUIRE_TMPFS();
     fs::create_directories(out);
     const Proc p = spawn({"unshare", is_root() ? "-m" : "-rm", "sh", "-c",
                           "mount -t tmpfs -o size=1m,ro tmpfs \"$0\" && exec \"$1\" ingest \"$2\" -o \"$0\" --quiet",
@@ -570,7 +570,7 @@ TEST_F(Hostile, ReadOnlyOutputDisk) {
 // fit (OUTPUT_WRITE_FAILED naming it, its temporary removed), the small set and the manifest do:
 // its textures, its glTF and mesh buffer (~124 KiB), library.gltf's, and matforge's bookkeeping.
 TEST_F(Hostile, FullOutputDisk) {
-    ASSERT_TRUE(can_mount_tmpfs()) << "needs root or unprivileged user namespaces (unshare -rm)";
+    MFH_REQUIRE_TMPFS();
     mf::Image noise(768, 768, 3);
     uint32_t s = 1;
     for (float& v : noise.pixels) v = static_cast<float>((s = s * 1664525u + 1013904223u) >> 24) / 255.f;
@@ -645,4 +645,22 @@ TEST_F(Hostile, MisnamedFilesInParallelSets) {
             EXPECT_EQ((*m)["inputs"]["metalness"]["bit_depth"], 16);
         }
     }
+}
+
+// A small zip holding a huge entry: 300 MiB of zeros named like a map, and a valid PNG followed
+// by 8 MiB of zeros. Judged by the entry's first MiB, never inflated whole: a finding naming the
+// entry and what is wrong with it, memory far below the bomb limit.
+TEST_F(Hostile, ZipEntryLargerThanItsImageIsNotRead) {
+    Bytes zeros(size_t{300} << 20, 0);
+    Bytes padded = valid_png();
+    padded.resize(padded.size() + (size_t{8} << 20), 0);
+    write_zip(in / "Zeros.zip", {{"Zeros_Color.png", encode(gradient(16, 16, 3))},
+                                 {"Zeros_Roughness.png", std::move(zeros)},
+                                 {"Zeros_Normal.png", std::move(padded)}});
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_good_done();
+    expect_finding("Zeros", "UNREADABLE_FILE", "Zeros_Roughness.png", "bytes was not read");
+    expect_finding("Zeros", "UNREADABLE_FILE", "Zeros_Normal.png", "more than any encoding of it needs");
+    EXPECT_LT(p.maxrss_kb, kBombRssLimitKb);
 }

@@ -41,7 +41,7 @@ inline Proc spawn(const std::vector<std::string>& argv, double deadline_s = 120,
     return mf::testbin::spawn(argv, deadline_s, kill_after_s);
 }
 
-inline std::string bin() { return MATFORGE_BIN; }
+inline std::string bin() { return mf::testenv::bin(); }
 
 // A matforge run in the background, for what spawn() cannot do: signal it (SIGINT, SIGSTOP)
 // while it works, or run a second one beside it. wait() reaps it (a deadline: a hang is killed

@@ -10,7 +10,7 @@
 
 namespace {
 
-std::shared_ptr<const mf::ColorContext> ctx() { return mf::testcolor::color_context(); }
+using mf::testcolor::color_context;
 
 const char* const kPresets[] = {"gltf", "godot", "separate", "unity-hdrp", "unity-urp", "unreal"};
 
@@ -92,7 +92,7 @@ TEST(Codes, QuantizeGivesBackEveryCodeAndItsInverse) {
 // Every output of `preset` from codes planes, through pack_output8 and through the float path
 // (pack_output of the planes' floats, quantized): the same codes.
 void expect_same_outputs(const mf::Preset& preset, const mf::Planes& code_planes, const std::string& what) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     mf::Planes float_planes;
     for (const auto& [role, p] : code_planes) float_planes[role] = {mf::plane_floats(role, p), p.encoding};
@@ -158,7 +158,7 @@ TEST(Codes, PackOutput8EqualsTheFloatPathForEveryPresetAndCode) {
 }
 
 TEST(Codes, PackOutput8DeclinesWhatNeedsFloats) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     std::string err;
     auto preset = mf::load_preset("gltf", err);
@@ -190,7 +190,7 @@ TEST(Codes, PackOutput8DeclinesWhatNeedsFloats) {
 }
 
 TEST(Codes, FitPlaneKeepsCodesAtTheirSizeAndDecodesToResample) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     mf::RolePlane n;
     n.codes = codes(3, normal_code);
@@ -221,7 +221,7 @@ TEST(Codes, FitPlaneKeepsCodesAtTheirSizeAndDecodesToResample) {
 }
 
 TEST(Codes, SrgbLookupEqualsTheProcessorForEveryCode) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     const std::vector<float>& lut = c->srgb_codes_to_linear();
     ASSERT_EQ(lut.size(), 256u) << "the built-in config converts channel by channel";

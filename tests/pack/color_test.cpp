@@ -6,15 +6,9 @@
 #include "color/color.hpp"
 #include "color/srgb.hpp"
 #include "image/image.hpp"
+#include "test_color.hpp"
 
-namespace {
-std::shared_ptr<const mf::ColorContext> ctx() {
-    std::string err;
-    auto c = mf::ColorContext::create(err);
-    EXPECT_TRUE(c) << err;
-    return c;
-}
-}  // namespace
+using mf::testcolor::color_context;
 
 TEST(SrgbFormula, ReferencePoints) {
     // IEC 61966-2-1: the segments meet at 0.04045 (encoded) / 0.0031308 (linear).
@@ -28,7 +22,7 @@ TEST(SrgbFormula, ReferencePoints) {
 }
 
 TEST(OcioColor, DecodeMatchesIecFormula) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     mf::Image img(1024, 1, 3);
     for (int i = 0; i < 1024; ++i)
@@ -46,7 +40,7 @@ TEST(OcioColor, DecodeMatchesIecFormula) {
 // where IEC 61966-2-1 states 12.92: encoded values differ by up to ~1e-5 just above the break,
 // 0.003 of an 8-bit code and under one 16-bit code.
 TEST(OcioColor, EncodeMatchesIecFormula) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     std::vector<float> rgb;
     for (int i = 0; i <= 1000; ++i) {
@@ -62,7 +56,7 @@ TEST(OcioColor, EncodeMatchesIecFormula) {
 
 TEST(OcioColor, EightBitRoundTripIsExact) {
     // Every sRGB code decoded to linear float and encoded again lands on the same code.
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     mf::Image img(256, 1, 3);
     for (int i = 0; i < 256; ++i)
@@ -73,7 +67,7 @@ TEST(OcioColor, EightBitRoundTripIsExact) {
 }
 
 TEST(OcioColor, SixteenBitEncodeWithinOneCode) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     std::vector<float> rgb;
     for (int i = 0; i <= 4096; ++i) {
@@ -88,7 +82,7 @@ TEST(OcioColor, SixteenBitEncodeWithinOneCode) {
 }
 
 TEST(OcioColor, AlphaUntouched) {
-    auto c = ctx();
+    auto c = color_context();
     ASSERT_TRUE(c);
     mf::Image img(1, 1, 4);
     img.pixels = {0.5f, 0.5f, 0.5f, 0.25f};

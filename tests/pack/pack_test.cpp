@@ -10,7 +10,7 @@
 
 namespace {
 
-std::shared_ptr<const mf::ColorContext> ctx() { return mf::testcolor::color_context(); }
+using mf::testcolor::color_context;
 
 // A 2x1 set with distinct, known values per role and texel.
 mf::Planes make_planes(bool with_metal = true) {
@@ -48,7 +48,7 @@ Packed pack(const std::string& preset_name, const std::string& suffix, const mf:
     for (const auto& o : preset->outputs)
         if (o.suffix == suffix) {
             const auto size = mf::output_size(o, planes, *preset);
-            return {mf::pack_output(o, planes, *preset, size, *ctx()), mf::effective_channels(o, planes)};
+            return {mf::pack_output(o, planes, *preset, size, *color_context()), mf::effective_channels(o, planes)};
         }
     ADD_FAILURE() << "no output " << suffix << " in " << preset_name;
     return {};
@@ -212,7 +212,7 @@ TEST(PackSeparate, ConstantMetalnessIsTwoByTwo) {
         const auto size = mf::output_size(o, planes, *preset);
         EXPECT_EQ(size.width, 2);
         EXPECT_EQ(size.height, 2);
-        const auto img = mf::pack_output(o, planes, *preset, size, *ctx());
+        const auto img = mf::pack_output(o, planes, *preset, size, *color_context());
         for (float v : img.pixels) EXPECT_EQ(v, 0.f);
     }
     const auto r = pack("separate", "roughness", planes);
@@ -247,7 +247,7 @@ TEST(Normals, TwoChannelRebuildsZ) {
 
 TEST(Resample, LinearLightForColor) {
     // A black/white checker averaged in linear light is 0.5 linear = sRGB 188, not 128.
-    auto c = ctx();
+    auto c = color_context();
     mf::RolePlane plane;
     plane.image = mf::Image(2, 2, 3);
     plane.image.pixels = {0, 0, 0, 1, 1, 1, 1, 1, 1, 0, 0, 0};

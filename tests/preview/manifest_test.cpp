@@ -10,9 +10,11 @@
 #include <sstream>
 #include <thread>
 
+#include "core/files.hpp"
 #include "core/json.hpp"
 #include "manifest/spool.hpp"
 #include "preview/preview.hpp"
+#include "test_env.hpp"
 #include "vulkan_fixture.hpp"
 
 namespace mf::preview {
@@ -141,7 +143,7 @@ TEST(Manifest, TextMadeOneMaterialAtATimeIsTheWholeDump) {
     }
     m.failures.push_back({"in/broken", "UNREADABLE_FILE", "truncated"});
     m.library.push_back({"library.gltf", "gltf", std::string(64, 'b')});
-    m.shard = manifest::Manifest::Shard{1, 3, std::string(64, 'c')};
+    m.shard = manifest::Manifest::Shard{1, 3, std::string(64, 'c'), std::string(64, 'e'), 3};
     EXPECT_EQ(manifest::manifest_text(m), json_text(manifest::to_json(m)));
 }
 
@@ -189,46 +191,88 @@ TEST(Manifest, SpooledMaterialsWriteTheSameBytes) {
     fs::remove_all(dir);
 }
 
+// A material of sample_material(i) whose files are in `dir`, with their real sha256 (merge
+// checks every file a part lists).
+manifest::Material material_on_disk(const fs::path& dir, int i) {
+    manifest::Material m = sample_material(i);
+    auto put = [&](const std::string& rel, std::string& sha) {
+        const std::string bytes = "the bytes of " + rel;
+        fs::create_directories((dir / rel).parent_path());
+        std::ofstream(dir / rel, std::ios::binary) << bytes;
+        sha = sha256_hex(std::span(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()));
+    };
+    for (auto& o : m.outputs) put(o.file, o.sha256);
+    for (auto& f : m.material_files) put(f.file, f.sha256);
+    return m;
+}
+
 // merge_shards reads the shards' manifests one material at a time: the merged manifest is the
-// bytes of the unsharded one; a material in two shards and a shard missing are refused by name.
+// bytes of the unsharded one; a material in two shards, a shard missing, a part of another plan,
+// a part lacking a material and a file that is not what the part says are refused by name.
 TEST(Manifest, MergeOfSpooledShardsIsTheWholeRun) {
     const fs::path dir = temp_dir("merge");
     manifest::Manifest whole;
     whole.generator = "matforge 0.1.0";
     whole.preset = "gltf";
-    for (int i = 0; i < 9; ++i) whole.materials.push_back(sample_material(i));
+    for (int i = 0; i < 9; ++i) whole.materials.push_back(material_on_disk(dir, i));
+    const std::string plan(64, 'e');
+    auto write_part = [&](const fs::path& file, const manifest::Manifest& part) {
+        std::ofstream(file) << manifest::manifest_text(part);
+        return file.string();
+    };
     std::vector<std::string> paths;
     for (int s = 0; s < 3; ++s) {
         manifest::Manifest part = whole;
         part.materials.clear();
-        for (int i = s; i < 9; i += 3) part.materials.push_back(sample_material(i));
+        for (int i = s; i < 9; i += 3) part.materials.push_back(whole.materials[static_cast<size_t>(i)]);
         part.failures.push_back({"in/bad" + std::to_string(s % 2), "UNREADABLE_FILE", "truncated"});
-        part.shard = manifest::Manifest::Shard{s, 3, std::string(64, 'c')};
-        paths.push_back((dir / ("manifest.shard-" + std::to_string(s) + "-of-3.json")).string());
-        std::ofstream(paths.back()) << manifest::manifest_text(part);
+        part.shard = manifest::Manifest::Shard{s, 3, std::string(64, 'c'), plan, 3};
+        paths.push_back(write_part(dir / ("manifest.shard-" + std::to_string(s) + "-of-3.json"), part));
     }
     whole.failures = {{"in/bad0", "UNREADABLE_FILE", "truncated"}, {"in/bad1", "UNREADABLE_FILE", "truncated"}};
     std::string error;
     auto spool = manifest::MaterialSpool::open(dir, error);
     ASSERT_TRUE(spool) << error;
-    const auto head = manifest::merge_shards(paths, *spool, error);
+    const auto head = manifest::merge_shards(paths, dir, *spool, error);
     ASSERT_TRUE(head) << error;
     std::string text;
     ASSERT_TRUE(spool->write_manifest(
         *head, [&](std::string_view p) { return text.append(p), true; }, error));
     EXPECT_EQ(text, manifest::manifest_text(whole));
 
-    auto twice = manifest::MaterialSpool::open(dir, error);
+    auto refused = [&](std::vector<std::string> parts, const std::string& says) {
+        std::string e;
+        auto sp = manifest::MaterialSpool::open(dir, e);
+        EXPECT_FALSE(manifest::merge_shards(parts, dir, *sp, e)) << says;
+        EXPECT_NE(e.find(says), std::string::npos) << e;
+        return e;
+    };
     manifest::Manifest extra = whole;
-    extra.materials = {sample_material(4)};  // Set4 is shard 1's
+    extra.materials = {whole.materials[4]};  // Set4 is shard 1's
     extra.failures.clear();
-    extra.shard = manifest::Manifest::Shard{0, 3, std::string(64, 'c')};
-    std::ofstream(dir / "extra.json") << manifest::manifest_text(extra);
-    EXPECT_FALSE(manifest::merge_shards({(dir / "extra.json").string(), paths[1], paths[2]}, *twice, error));
-    EXPECT_EQ(error, "material \"Set4\" is in both " + (dir / "extra.json").string() + " and " + paths[1]);
-    auto missing = manifest::MaterialSpool::open(dir, error);
-    EXPECT_FALSE(manifest::merge_shards({paths[0], paths[2]}, *missing, error));
-    EXPECT_NE(error.find("shard(s) 1 of 3 missing"), std::string::npos) << error;
+    extra.shard = manifest::Manifest::Shard{0, 3, std::string(64, 'c'), plan, 1};
+    EXPECT_EQ(refused({write_part(dir / "extra.json", extra), paths[1], paths[2]}, "is in both"),
+              "material \"Set4\" is in both " + (dir / "extra.json").string() + " and " + paths[1]);
+    refused({paths[0], paths[2]}, "shard(s) 1 of 3 missing");
+    // A shard of another plan (the library changed between the shards' runs).
+    manifest::Manifest other = whole;
+    other.materials = {whole.materials[1], whole.materials[4], whole.materials[7]};
+    other.failures.clear();
+    other.shard = manifest::Manifest::Shard{1, 3, std::string(64, 'c'), std::string(64, 'f'), 3};
+    refused({paths[0], write_part(dir / "other.json", other), paths[2]}, "changed between the shards' runs");
+    // A part that lost a material (given 3 sets, lists 2 and no failure).
+    manifest::Manifest short_part = other;
+    short_part.materials.pop_back();
+    short_part.shard->plan = plan;
+    refused({paths[0], write_part(dir / "short.json", short_part), paths[2]},
+            "holds 2 materials and 0 failures for the 3 sets");
+    // A file whose bytes changed, and a file outside the folder.
+    std::ofstream(dir / "Set4/Set4_basecolor.png", std::ios::binary) << "edited";
+    refused({paths[0], paths[1], paths[2]}, "material \"Set4\": Set4/Set4_basecolor.png: its bytes do not hash");
+    manifest::Manifest outside = other;
+    outside.shard->plan = plan;
+    outside.materials[0].outputs[0].file = "../elsewhere.png";
+    refused({paths[0], write_part(dir / "outside.json", outside), paths[2]}, "is not a path inside the output folder");
     fs::remove_all(dir);
 }
 
@@ -326,6 +370,10 @@ TEST(Manifest, BadManifestsAreErrorsNamingTheMember) {
             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "color_space": 1}]}]})",
             R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "normal_convention": {}}]}]})",
             R"({"manifest_version": 1, "materials": [{"name": "x", "status": "fine"}]})",
+            R"({"manifest_version": 1, "materials": [], "thresholds": []})",
+            R"({"manifest_version": 1, "materials": [], "thresholds": {"ALBEDO_TOO_DARK": 30}})",
+            R"({"manifest_version": 1, "materials": [], "thresholds": {"ALBEDO_TOO_DARK": {"min_srgb": "30"}}})",
+            R"({"manifest_version": 1, "materials": [{"name": "x", "outputs": [{"file": "a.png", "normal_converted_from": "up"}]}]})",
             R"({"manifest_version": 1, "materials": [{"name": "x", "findings": [{"code": "X", "severity": "fatal"}]}]})",
         }) {
         error.clear();
@@ -446,7 +494,7 @@ TEST_F(PresetInvariance, EveryShippedPresetPreviewsTheSameImage) {
 
     std::vector<std::pair<std::string, render::Frame>> frames;
     std::vector<fs::path> presets;
-    for (const auto& entry : fs::directory_iterator(fs::path(MATFORGE_SOURCE_DIR) / "presets"))
+    for (const auto& entry : fs::directory_iterator(mf::testenv::source_dir() / "presets"))
         if (entry.path().extension() == ".json") presets.push_back(entry.path());
     std::sort(presets.begin(), presets.end());
     for (const fs::path& file : presets) {

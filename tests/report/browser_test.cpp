@@ -17,7 +17,7 @@ constexpr const char* kChromium = "/usr/bin/chromium";
                << kChromium
                << " is missing: tests/report needs headless Chromium (Debian package `chromium`; "
                   "scripts/bootstrap.sh installs it, CI has it)";
-    const auto p = mf::testbin::spawn({"node", std::string(MATFORGE_SOURCE_DIR) + "/scripts/browser-check.mjs",
+    const auto p = mf::testbin::spawn({"node", mf::testenv::source_dir().string() + "/scripts/browser-check.mjs",
                                        "--page", (r.report / "index.html").string(), "--manifest", r.manifest.string(),
                                        "--screenshot", shot.string(), "--timeout", "150"},
                                       200);

@@ -7,6 +7,7 @@
 
 #include "color/srgb.hpp"
 #include "core/files.hpp"
+#include "core/text.hpp"
 #include "report/html.hpp"
 #include "report/images.hpp"
 #include "report/report.hpp"
@@ -19,12 +20,7 @@ namespace {
 
 int code8(float v) { return static_cast<int>(mf::quantize8(v)); }
 
-std::map<std::string, std::string> files_under(const fs::path& dir) {
-    std::map<std::string, std::string> out;
-    for (const auto& e : fs::recursive_directory_iterator(dir))
-        if (e.is_regular_file()) out[fs::relative(e.path(), dir).generic_string()] = read_text(e.path());
-    return out;
-}
+using mf::testfiles::files_under;
 
 }  // namespace
 
@@ -159,7 +155,8 @@ TEST_F(SampleReportTest, ASecondRunWritesTheSameBytesAndRewritesNothing) {
 TEST_F(SampleReportTest, AlbedoOverlayMarksTooDarkPixelsRed) {
     // Net004A: a dark net on a cut-out (ALBEDO_TOO_DARK, opacity in the albedo's alpha, no
     // metalness map: all dielectric). A thumbnail pixel whose whole box of source pixels is
-    // visible, dielectric and darker than 50 sRGB is exactly red; one whose box is in range is grey.
+    // visible, dielectric and darker than 30 sRGB (the rule's bound) is exactly red; one whose box
+    // is in range is grey.
     const auto* mat = [&]() -> const nlohmann::json* {
         for (const auto& m : manifest_["materials"])
             if (m["name"] == "Net004A") return &m;
@@ -193,8 +190,8 @@ TEST_F(SampleReportTest, AlbedoOverlayMarksTooDarkPixelsRed) {
             const double s = mf::linear_to_srgb(lin) * 255.0;
             const bool ok = albedo.at(x, y, 3) >= 0.55f && orm.at(x, y, 2) <= 0.05f;  // visible, dielectric
             const auto box = static_cast<size_t>(row_of[static_cast<size_t>(y)] * ow + x * ow / w);
-            if (!(ok && s < 45)) not_dark[box] = 1;
-            if (!(ok && s > 55 && s < 238)) not_in_range[box] = 1;
+            if (!(ok && s < 28)) not_dark[box] = 1;
+            if (!(ok && s > 32 && s < 238)) not_in_range[box] = 1;
         }
     }
     int dark_boxes = 0, grey_boxes = 0;
@@ -214,7 +211,9 @@ TEST_F(SampleReportTest, AlbedoOverlayMarksTooDarkPixelsRed) {
             }
         }
     }
-    EXPECT_GT(dark_boxes, 100) << "Net004A has a dark net: many wholly dark boxes";
+    // 51 % of the visible net is darker than 30 sRGB, but a box of the thin net mostly holds a
+    // hole or a lighter pixel too: few boxes are wholly dark.
+    EXPECT_GE(dark_boxes, 5) << "Net004A has a dark net: some wholly dark boxes";
     std::printf("Net004A overlay: %d wholly dark boxes red, %d wholly in-range boxes grey\n", dark_boxes, grey_boxes);
     // The legend names the red.
     const std::string card = card_of(read_text(r_.report / "index.html"), "Net004A");
@@ -255,8 +254,81 @@ TEST(ReportCli, DarkHalfOfAnAlbedoIsRedInTheOverlay) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(code8(overlay.at(x, 5, c)), 128, 1) << x;
     }
     const std::string html = read_text(work / "report/index.html");
-    EXPECT_NE(html.find("<span class=\"key dark\"></span> too dark: 50.0 %"), std::string::npos);
+    EXPECT_NE(html.find("<span class=\"key dark\"></span> too dark: dielectric <span class=\"share\" "
+                        "data-code=\"ALBEDO_TOO_DARK\">50.0 %</span>"),
+              std::string::npos);
     EXPECT_NE(html.find("data-code=\"ALBEDO_TOO_DARK\""), std::string::npos);
+}
+
+// The overlay's shares are the findings' (issue 25): on every set of the real corpus, each share
+// the legend gives under a rule's code is that finding's surface_share, as the finding's message
+// writes it; where the rule raised nothing, the share is within its max_share.
+TEST(ReportCli, OverlaySharesAreTheFindingsOnTheRealCorpus) {
+    const fs::path work = temp_dir("corpus");
+    const fs::path corpus = mf::testenv::corpus_dir() / "real";
+    ASSERT_TRUE(matforge({"ingest", corpus.string(), "-o", (work / "out").string(), "--fail-on", "never", "-q"}));
+    ASSERT_TRUE(matforge({"report", (work / "out/manifest.json").string(), "-o", (work / "report").string(),
+                          "--no-sources", "-q"}));
+    const auto manifest = read_json(work / "out/manifest.json");
+    const std::string html = read_text(work / "report/index.html");
+    const double max_share = manifest["thresholds"]["ALBEDO_TOO_DARK"]["max_share"];
+    int compared = 0, raised = 0;
+    for (const auto& m : manifest["materials"]) {
+        const std::string name = m["name"];
+        const std::string card = card_of(html, escape(name));
+        ASSERT_FALSE(card.empty()) << name;
+        for (const std::string code : {"ALBEDO_TOO_DARK", "ALBEDO_TOO_BRIGHT", "METAL_ALBEDO_TOO_DARK"}) {
+            const std::string key = "data-code=\"" + code + "\">";
+            const size_t at = card.find(key);
+            if (at == std::string::npos) continue;  // no albedo map: no overlay
+            const std::string shown = card.substr(at + key.size(), card.find("</span>", at) - at - key.size());
+            const auto f = std::find_if(m["findings"].begin(), m["findings"].end(),
+                                        [&](const auto& x) { return x["code"] == code; });
+            if (f != m["findings"].end()) {
+                EXPECT_EQ(shown, mf::percent((*f)["figures"]["surface_share"].get<double>())) << name << " " << code;
+                EXPECT_NE((*f)["message"].get<std::string>().find(shown), std::string::npos) << name << " " << code;
+                ++raised;
+            } else if (shown != "—") {  // "—": no pixel visible (OPACITY_ALL_TRANSPARENT), nothing judged
+                EXPECT_LE(std::stod(shown), 100.0 * max_share + 0.05) << name << " " << code;
+            }
+            ++compared;
+        }
+    }
+    EXPECT_GE(compared, 3 * 14);
+    EXPECT_GE(raised, 2) << "the corpus has dark albedos (Metal_Rusted_010, Net004A)";
+}
+
+// "written as dx (green flipped)" is a fact of the output (normal_converted_from), not read out
+// of a finding a rules file can switch off.
+TEST(ReportCli, AFlippedGreenChannelIsReportedWithItsFindingOff) {
+    const fs::path work = temp_dir("flipped");
+    const fs::path set = mf::testenv::corpus_dir() / "real/polyhaven_brown_planks_09_1k_jpg+webp";
+    std::ofstream(work / "rules.json") << R"({"rules": {"NORMAL_CONVENTION_CONVERTED": "off"}})";
+    ASSERT_TRUE(matforge({"ingest", set.string(), "-o", (work / "out").string(), "--normal-convention", "dx", "--rules",
+                          (work / "rules.json").string(), "-q"}));
+    const auto manifest = read_json(work / "out/manifest.json");
+    ASSERT_EQ(manifest["materials"].size(), 1u);
+    const auto& mat = manifest["materials"][0];
+    for (const auto& f : mat["findings"]) EXPECT_NE(f["code"], "NORMAL_CONVENTION_CONVERTED");
+    int flipped = 0;
+    for (const auto& o : mat["outputs"])
+        if (o.contains("normal_converted_from")) {
+            EXPECT_EQ(o["normal_converted_from"], "gl");
+            EXPECT_EQ(o["normal_convention"], "dx");
+            ++flipped;
+        }
+    EXPECT_EQ(flipped, 1);
+    ASSERT_TRUE(matforge({"report", (work / "out/manifest.json").string(), "-o", (work / "report").string(), "-q"}));
+    const std::string html = read_text(work / "report/index.html");
+    EXPECT_NE(html.find("; written as <b>dx</b> (green flipped)"), std::string::npos);
+    // The same set kept in its own convention says so.
+    ASSERT_TRUE(matforge({"ingest", set.string(), "-o", (work / "kept").string(), "-q"}));
+    const auto kept = read_json(work / "kept/manifest.json");  // held: a loop over a temporary's member dangles
+    for (const auto& o : kept["materials"][0]["outputs"]) EXPECT_FALSE(o.contains("normal_converted_from"));
+    ASSERT_TRUE(matforge({"report", (work / "kept/manifest.json").string(), "-o", (work / "kept-report").string(),
+                          "-q"}));
+    EXPECT_NE(read_text(work / "kept-report/index.html").find("; written as <b>gl</b> (green kept)"),
+              std::string::npos);
 }
 
 TEST(ReportCli, UnreadableManifestIsAUsageError) {
@@ -266,4 +338,64 @@ TEST(ReportCli, UnreadableManifestIsAUsageError) {
     EXPECT_TRUE(matforge({"report", (work / "none.json").string(), "-o", (work / "r").string(), "--previews",
                           (work / "missing").string()},
                          2));
+}
+
+// The report writes only inside -o, never through a link there: a link named like one of its
+// files (or folders) pointing outside is refused with the link named, the target untouched.
+TEST(ReportCli, NeverWritesThroughALinkInItsFolder) {
+    const fs::path work = temp_dir("links");
+    const fs::path set = samples() / "Metal_Damaged_001_SD";
+    ASSERT_TRUE(matforge({"ingest", set.string(), "-o", (work / "out").string(), "-q"}));
+    std::ofstream(work / "victim.html") << "the user's page";
+    fs::create_directories(work / "victims");
+    fs::create_directories(work / "report");
+    fs::create_symlink(work / "victim.html", work / "report/index.html");
+    fs::create_symlink(work / "victims", work / "report/Metal_Damaged_001");
+    EXPECT_TRUE(matforge({"report", (work / "out/manifest.json").string(), "-o", (work / "report").string(), "-q"}, 1));
+    EXPECT_EQ(read_text(work / "victim.html"), "the user's page");
+    EXPECT_TRUE(fs::is_empty(work / "victims"));
+}
+
+// The report's folder is its own: not the ingest output folder (which holds what the manifest
+// lists), not inside a material's source set (the next ingest would read its pictures as maps).
+TEST(ReportCli, ReportFolderIsNeverInASetOrTheOutputFolder) {
+    const fs::path work = temp_dir("placement");
+    fs::create_directories(work / "lib");
+    fs::copy(samples() / "Net004A_1K-JPG", work / "lib/Net004A_1K-JPG", fs::copy_options::recursive);
+    ASSERT_TRUE(matforge({"ingest", (work / "lib").string(), "-o", (work / "out").string(), "-q"}));
+    const fs::path manifest = work / "out/manifest.json";
+    for (const fs::path& bad : {work / "lib/Net004A_1K-JPG", work / "lib/Net004A_1K-JPG/report", work / "out"}) {
+        EXPECT_TRUE(matforge({"report", manifest.string(), "-o", bad.string(), "-q"}, 2)) << bad;
+        EXPECT_FALSE(fs::exists(bad / "index.html")) << bad;
+    }
+    EXPECT_TRUE(matforge({"report", manifest.string(), "-o", (work / "out/report").string(), "-q"}));
+    EXPECT_TRUE(matforge({"report", manifest.string(), "-o", (work / "lib/report").string(), "-q"}));
+}
+
+// Memory is bounded by what a material needs as it is written: an 8-bit picture is held as its
+// codes, thumbnails and overlays are reduced row by row, materials lease from a budget as
+// ingest's sets do. A 4096² material (RGBA albedo, ORM): the report's peak stays far below the
+// 910 MB that float pictures and their full-size copies took (issue 24's measurement).
+TEST(ReportCli, MemoryIsBoundedByTheMaterialsCodes) {
+    const fs::path work = temp_dir("memory");
+    const int n = 4096;
+    mf::Image8 albedo(n, n, 4), rough(n, n, 1), metal(n, n, 1);
+    uint32_t s = 7;
+    for (auto* img : {&albedo, &rough, &metal})
+        for (uint8_t& v : img->pixels) v = static_cast<uint8_t>((s = s * 1664525u + 1013904223u) >> 24);
+    for (size_t p = 3; p < albedo.pixels.size(); p += 4) albedo.pixels[p] = 255;
+    fs::create_directories(work / "src/Big");
+    for (const auto& [file, img] : {std::pair{"Big_Color.png", &albedo}, std::pair{"Big_Roughness.png", &rough},
+                                    std::pair{"Big_Metalness.png", &metal}}) {
+        std::vector<unsigned char> bytes;
+        std::string err;
+        ASSERT_TRUE(mf::encode_image(*img, mf::EncodeOptions{"png", 8}, bytes, err)) << err;
+        ASSERT_TRUE(mf::write_file_atomic(work / "src/Big" / file, bytes, err)) << err;
+    }
+    ASSERT_TRUE(matforge({"ingest", (work / "src").string(), "-o", (work / "out").string(), "-q", "--no-cache"}));
+    const auto p = mf::testbin::spawn({mf::testenv::bin(), "report", (work / "out/manifest.json").string(), "-o",
+                                       (work / "report").string(), "-q", "--jobs", "2"});
+    ASSERT_EQ(p.code, 0) << p.output;
+    EXPECT_LT(p.maxrss_kb, 400 * 1024) << "peak resident memory of the report";
+    EXPECT_TRUE(fs::exists(work / "report/Big/albedo-range.png"));
 }

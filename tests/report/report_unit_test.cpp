@@ -104,8 +104,8 @@ size_t count(const std::string& s, const std::string& what) {
 
 TEST(RulesPage, EveryCatalogCodeLinksToItsOwnRow) {
     const std::string page = mf::report::rules_page({});
-    ASSERT_GT(mf::validate::rule_catalog().size(), 10u);
-    for (const auto& r : mf::validate::rule_catalog()) {
+    ASSERT_GT(mf::finding_catalog().size(), 10u);
+    for (const auto& r : mf::finding_catalog()) {
         const std::string code(r.code);
         const std::string link = mf::report::rule_link(code);
         ASSERT_EQ(link.rfind("rules.html#", 0), 0u) << link;
@@ -155,7 +155,7 @@ TEST(AlbedoOverlay, ClassifiesEachPixelByMetalnessAndLuminance) {
     m.image = &metalness;
     o.image = &opacity;
     mf::report::AlbedoStats st;
-    const mf::Image out = mf::report::albedo_overlay(albedo, true, m, o, mf::report::AlbedoBounds{}, st);
+    const mf::Image out = mf::report::albedo_overlay(albedo, true, m, o, mf::validate::Thresholds{}, st);
     ASSERT_EQ(out.width, 7);
     auto is = [&](int x, const float* rgb) {
         return out.at(x, 0, 0) == rgb[0] && out.at(x, 0, 1) == rgb[1] && out.at(x, 0, 2) == rgb[2];

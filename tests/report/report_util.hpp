@@ -22,7 +22,7 @@ using mf::testfiles::read_pixels;
 
 // Runs `matforge ARGS...` (no shell); a failure message carries the output.
 inline ::testing::AssertionResult matforge(const std::vector<std::string>& args, int want = 0) {
-    std::vector<std::string> argv{MATFORGE_BIN};
+    std::vector<std::string> argv{mf::testenv::bin()};
     argv.insert(argv.end(), args.begin(), args.end());
     const auto p = mf::testbin::spawn(argv, 300);
     if (!p.hung && p.signal == 0 && p.code == want) return ::testing::AssertionSuccess();
@@ -33,7 +33,7 @@ inline ::testing::AssertionResult matforge(const std::vector<std::string>& args,
                                          << p.output;
 }
 
-inline fs::path samples() { return fs::path(MATFORGE_SOURCE_DIR) / "sample_materials"; }
+inline fs::path samples() { return mf::testenv::source_dir() / "sample_materials"; }
 
 // A fresh, empty folder per test (its manifests go to the schema spool when the test ends).
 inline fs::path temp_dir(const std::string& name) {

@@ -27,15 +27,15 @@ namespace mtt {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-inline fs::path samples() { return fs::path(MATFORGE_SOURCE_DIR) / "sample_materials"; }
-inline fs::path corpus() { return fs::path(MATFORGE_CORPUS_DIR) / "real"; }
+inline fs::path samples() { return mf::testenv::source_dir() / "sample_materials"; }
+inline fs::path corpus() { return mf::testenv::corpus_dir() / "real"; }
 
 struct Run {
     int code = -1;
     std::string output;
 };
 inline Run matforge(const std::vector<std::string>& args) {
-    std::vector<std::string> argv{MATFORGE_BIN};
+    std::vector<std::string> argv{mf::testenv::bin()};
     argv.insert(argv.end(), args.begin(), args.end());
     const auto p = mf::testbin::spawn(argv, 600);
     return {p.signal ? -1 : p.code, p.output};
@@ -67,15 +67,15 @@ inline std::vector<uint8_t> read_bytes(const fs::path& p) {
 // Runs `node SCRIPT NPM_DIR FILES...` (tests/texture/checkers) and parses one JSON line per file.
 inline std::vector<json> node_checker(const std::string& script, const std::vector<fs::path>& files) {
     static const bool installed = [] {
-        const auto p = mf::testbin::spawn({std::string(MATFORGE_SOURCE_DIR) + "/scripts/npm-checkers.sh",
-                                           MATFORGE_NPM_DIR},
+        const auto p = mf::testbin::spawn({mf::testenv::source_dir().string() + "/scripts/npm-checkers.sh",
+                                           mf::testenv::npm_dir().string()},
                                           300);
         EXPECT_EQ(p.code, 0) << "scripts/npm-checkers.sh: " << p.output;
         return p.code == 0;
     }();
     if (!installed) return {};
-    std::vector<std::string> argv{"node", std::string(MATFORGE_SOURCE_DIR) + "/tests/texture/checkers/" + script,
-                                  MATFORGE_NPM_DIR};
+    std::vector<std::string> argv{"node", mf::testenv::source_dir().string() + "/tests/texture/checkers/" + script,
+                                  mf::testenv::npm_dir().string()};
     for (const auto& f : files) argv.push_back(f.string());
     const auto p = mf::testbin::spawn(argv, 300);
     EXPECT_EQ(p.code, 0) << p.output;

@@ -29,7 +29,7 @@ Image8 make(int w, int h, int c, const std::function<std::array<uint8_t, 4>(int,
 
 uint8_t code(double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
 
-const mf::BlockFormatInfo& fmt(const char* name) { return *mf::block_format_info(name); }
+const mf::BlockFormatInfo& block_format(const char* name) { return *mf::block_format_info(name); }
 
 // A smooth, textured image: what block codecs meet in material maps.
 Image8 smooth(int w, int h, int c) {
@@ -187,7 +187,7 @@ TEST_P(Codec, RoundTripsSmoothContent) {
     const Image8 img = smooth(64, 48, c.channels);
     for (const auto effort : {mt::Effort::fast, mt::Effort::normal}) {
         mt::CodecOptions o;
-        o.format = &fmt(c.format);
+        o.format = &block_format(c.format);
         o.srgb = c.srgb;
         o.effort = effort;
         std::vector<uint8_t> blocks;
@@ -222,7 +222,7 @@ TEST(Codec, Bc4AndBc5DecodeToTheRightChannels) {
     // Flat blocks: exact values, R from X and G from Y, as a GPU returns them (B 0, A 1).
     const Image8 xy = make(8, 4, 2, [](int, int) { return std::array<uint8_t, 4>{40, 210, 0, 0}; });
     mt::CodecOptions o;
-    o.format = &fmt("bc5");
+    o.format = &block_format("bc5");
     std::vector<uint8_t> blocks;
     std::string err;
     ASSERT_TRUE(mt::encode_level(xy, o, blocks, err)) << err;
@@ -232,7 +232,7 @@ TEST(Codec, Bc4AndBc5DecodeToTheRightChannels) {
     EXPECT_EQ(back.at(5, 2, 1), 210);
     EXPECT_EQ(back.at(5, 2, 2), 0);
     EXPECT_EQ(back.at(5, 2, 3), 255);
-    o.format = &fmt("bc4");
+    o.format = &block_format("bc4");
     const Image8 r = make(5, 3, 1, [](int, int) { return std::array<uint8_t, 4>{123, 0, 0, 0}; });
     ASSERT_TRUE(mt::encode_level(r, o, blocks, err)) << err;
     ASSERT_TRUE(mt::decode_level(blocks, 5, 3, o, back, err)) << err;
@@ -247,7 +247,7 @@ TEST(Codec, BcDecodeRoundsAsTheSpecs) {
     // c0 = (28, 17, 20), c1 = (1, 2, 1); texels 0..3 take indices 0..3.
     const std::array<uint8_t, 8> bc1{0x34, 0xE2, 0x41, 0x08, 0xE4, 0xE4, 0xE4, 0xE4};
     mt::CodecOptions o;
-    o.format = &fmt("bc1");
+    o.format = &block_format("bc1");
     Image8 back;
     std::string err;
     ASSERT_TRUE(mt::decode_level(bc1, 4, 4, o, back, err)) << err;
@@ -261,7 +261,7 @@ TEST(Codec, BcDecodeRoundsAsTheSpecs) {
     // BC4 of a0 = 8, a1 = 0: 6/7 a0 + 1/7 a1 (index 2, texel 1) is 7 (6.86; truncated 6),
     // 1/7 a0 + 6/7 a1 (index 7, texel 15) is 1.
     const std::array<uint8_t, 8> bc4{8, 0, 0x10, 0, 0, 0, 0, 0xE0};
-    o.format = &fmt("bc4");
+    o.format = &block_format("bc4");
     ASSERT_TRUE(mt::decode_level(bc4, 4, 4, o, back, err)) << err;
     EXPECT_EQ(back.at(0, 0, 0), 8);
     EXPECT_EQ(back.at(1, 0, 0), 7);
@@ -277,7 +277,7 @@ TEST(Codec, NormalXyRebuildsZForTheAngle) {
         return std::array<uint8_t, 4>{code(nx * 0.5 + 0.5), code(0.5), code(nz * 0.5 + 0.5), 0};
     });
     mt::CodecOptions o;
-    o.format = &fmt("bc5");
+    o.format = &block_format("bc5");
     o.normal_xy = true;
     std::vector<uint8_t> blocks;
     std::string err;
@@ -307,7 +307,7 @@ namespace {
 
 mt::GpuTexture texture_of(const char* format, bool srgb, int w, int h) {
     mt::GpuTexture t;
-    t.format = &fmt(format);
+    t.format = &block_format(format);
     t.srgb = srgb;
     for (int i = 0; i < mt::mip_count(w, h); ++i) {
         const int lw = std::max(1, w >> i), lh = std::max(1, h >> i);

@@ -18,6 +18,25 @@ TEST(RuleConfig, DefaultsAreTheCitedNumbers) {
     EXPECT_EQ(cfg.severity_of(mf::code::albedo_too_dark), mf::Severity::warning);
 }
 
+TEST(RuleConfig, ThresholdTableRoundTripsEveryThreshold) {
+    // What a manifest records of the run's thresholds gives back the same numbers, the strict
+    // ones too; a code or name no rule has is an error naming it.
+    for (const mv::Thresholds& t : {mv::Thresholds{}, mv::strict_thresholds()}) {
+        const mv::ThresholdTable table = mv::threshold_table(t);
+        EXPECT_EQ(table.at("ALBEDO_TOO_DARK").at("min_srgb"), t.albedo_min_srgb);
+        EXPECT_EQ(table.at("METAL_ALBEDO_TOO_DARK").at("metal_min"), t.metal_min);
+        std::string error;
+        const auto back = mv::thresholds_from(table, error, mv::Thresholds{.albedo_min_srgb = 1, .albedo_max_srgb = 2});
+        ASSERT_TRUE(back) << error;
+        EXPECT_EQ(mv::threshold_table(*back), table);
+    }
+    std::string error;
+    EXPECT_FALSE(mv::thresholds_from({{"ALBEDO_TOO_DARK", {{"min_srg", 3.0}}}}, error));
+    EXPECT_NE(error.find("min_srg"), std::string::npos) << error;
+    EXPECT_FALSE(mv::thresholds_from({{"NO_SUCH_CODE", {{"max_share", 0.1}}}}, error));
+    EXPECT_NE(error.find("NO_SUCH_CODE"), std::string::npos) << error;
+}
+
 TEST(RuleConfig, ParsesEveryForm) {
     std::string err;
     auto cfg = mv::RuleConfig::from_json(json::parse(R"({
@@ -101,6 +120,6 @@ TEST(RuleConfig, ApplyConfigToOtherStagesFindings) {
 
 TEST(RuleConfig, DescribeListsEveryRule) {
     const json d = mv::describe(mv::RuleConfig{});
-    for (const auto& r : mv::rule_catalog()) EXPECT_TRUE(d.at("rules").contains(std::string(r.code)));
+    for (const auto& r : mf::finding_catalog()) EXPECT_TRUE(d.at("rules").contains(std::string(r.code)));
     EXPECT_EQ(d.at("rules").at("ALBEDO_TOO_DARK").at("min_srgb"), 30.0);
 }

@@ -414,7 +414,7 @@ TEST(ValidateSets, FindingsAreDeterministicAndOrdered) {
     const auto r1 = s.run();
     const auto r2 = s.run({}, "Test", 7);
     ASSERT_EQ(dump(r1.findings), dump(r2.findings));
-    const auto& cat = mv::rule_catalog();
+    const auto& cat = mf::finding_catalog();
     auto rank = [&](const std::string& c) {
         for (size_t i = 0; i < cat.size(); ++i)
             if (cat[i].code == c) return i;

@@ -42,12 +42,16 @@ std::string mib(uint64_t b) { return std::to_string((b + (1u << 19)) >> 20) + " 
 ExitCode run_cache(const CacheArgs& a) {
     const auto folder = cache_folder(a.dir);
     if (!folder)
-        return fail("cache",
-                    "name the cache: --cache DIR or $MATFORGE_CACHE (ingest's own default is .OUT.matforge-cache "
-                    "beside its output folder OUT)");
+        return fail("cache", "name the cache: --cache DIR or $MATFORGE_CACHE (no $HOME or $XDG_CACHE_HOME names "
+                             "the default, ~/.cache/matforge)");
     const std::string dir = folder->string();
+    std::error_code ec;
+    if (a.dir.empty() && !std::filesystem::exists(*folder, ec)) {  // the default, before any ingest
+        std::cout << dir << ": no cache yet\n";
+        return ExitCode::ok;
+    }
     std::string error;
-    auto cache = Cache::open(dir, error);
+    auto cache = Cache::open(dir, error);  // only a folder with the cache's marker: never a user's
     if (!cache) return fail("cache", error);
     if (a.action == "stats") {
         const auto s = cache->stats();
@@ -60,27 +64,35 @@ ExitCode run_cache(const CacheArgs& a) {
     const auto removed = cache->prune(*max, std::chrono::seconds(a.grace));
     std::cout << dir << ": removed " << removed.records << " records and " << removed.blobs << " blobs ("
               << mib(removed.blob_bytes) << ")\n";
+    if (removed.failed)
+        return fail("cache",
+                    std::to_string(removed.failed) + " files the limit evicts could not be removed (" + removed.error +
+                        ")",
+                    ExitCode::findings);
     return ExitCode::ok;
 }
 
-const Register reg{{"cache", 45,
-                    [](CLI::App& sub) -> std::function<ExitCode()> {
-                        auto a = std::make_shared<CacheArgs>();
-                        sub.add_option("action", a->action, "stats | prune")
-                            ->check(CLI::IsMember({"stats", "prune"}))
-                            ->capture_default_str();
-                        sub.add_option("--cache", a->dir, "the cache folder (default: $MATFORGE_CACHE)");
-                        sub.add_option("--max-size", a->max_size,
-                                       "prune: keep the most recently used records within this size (K, M, G, T)")
-                            ->capture_default_str();
-                        sub.add_option("--grace", a->grace,
-                                       "prune: blobs younger than this many seconds stay even when no record names "
-                                       "them (a run may be about to record them)")
-                            ->check(CLI::Range(0, 1 << 30))
-                            ->capture_default_str();
-                        return [a] { return run_cache(*a); };
-                    },
-                    "show the ingest cache's size, or evict the least recently used entries"}};
+const Register register_cache{
+    {"cache", 45,
+     [](CLI::App& sub) -> std::function<ExitCode()> {
+         auto a = std::make_shared<CacheArgs>();
+         sub.add_option("action", a->action, "stats | prune")
+             ->check(CLI::IsMember({"stats", "prune"}))
+             ->capture_default_str();
+         sub.add_option(
+             "--cache", a->dir,
+             "the cache folder (default: ingest's, $MATFORGE_CACHE, else $XDG_CACHE_HOME/matforge or ~/.cache/matforge)");
+         sub.add_option("--max-size", a->max_size,
+                        "prune: keep the most recently used records within this size (K, M, G, T)")
+             ->capture_default_str();
+         sub.add_option("--grace", a->grace,
+                        "prune: blobs younger than this many seconds stay even when no record names "
+                        "them (a run may be about to record them)")
+             ->check(CLI::Range(0, 1 << 30))
+             ->capture_default_str();
+         return [a] { return run_cache(*a); };
+     },
+     "show the ingest cache's size, or evict the least recently used entries"}};
 
 }  // namespace
 }  // namespace mf::cli

@@ -1,12 +1,15 @@
 // matforge ingest <input>... -o <out-dir> [--preset NAME|FILE] [--jobs N] [--fail-on ...]
 #include <unistd.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 
 #include "command.hpp"
 #include "options.hpp"
+#include "process/cache.hpp"
 #include "process/ingest.hpp"
+#include "process/sets.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
 #include "stop.hpp"
@@ -23,6 +26,8 @@ struct IngestArgs {
 };
 
 ExitCode run_ingest(const IngestArgs& a) {
+    // Nothing to read (a typo'd folder): stop before anything is created.
+    if (std::string why = no_usable_input({a.inputs.begin(), a.inputs.end()}); !why.empty()) return fail("ingest", why);
     std::string error = output_overlaps_input(a.out_dir, {a.inputs.begin(), a.inputs.end()});
     if (!error.empty()) return fail("ingest", error);
     auto preset = load_preset(a.preset, error);
@@ -36,7 +41,16 @@ ExitCode run_ingest(const IngestArgs& a) {
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
     opt.force = a.force;
-    if (!a.no_cache) opt.cache_dir = cache_folder(a.cache, a.out_dir);
+    if (!a.no_cache) opt.cache_dir = cache_folder(a.cache);
+    if (opt.cache_dir) {
+        const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+        if (std::string why = cache_overlaps(*opt.cache_dir, a.out_dir, inputs); !why.empty())
+            return fail("ingest", why);
+        // A folder the user named must be a cache (or new); the default one, if foreign, is left
+        // alone with a warning and the run goes on without it (process/ingest.cpp).
+        const bool named = !a.cache.empty() || std::getenv("MATFORGE_CACHE") != nullptr;
+        if (std::string why = Cache::unusable(*opt.cache_dir); named && !why.empty()) return fail("ingest", why);
+    }
     if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
     if (!a.shard.empty()) {
         opt.shard = parse_shard(a.shard);
@@ -47,7 +61,8 @@ ExitCode run_ingest(const IngestArgs& a) {
     const bool tty = ::isatty(STDERR_FILENO) && !a.quiet;
     if (tty) {
         opt.progress = [](size_t done, size_t total, const std::string& name, const MaterialResult& r) {
-            std::cerr << "\r\033[K[" << done << "/" << total << "] " << name << " " << set_status(r) << std::flush;
+            std::cerr << "\r\033[K[" << done << "/" << total << "] " << terminal_safe(name) << " " << set_status(r)
+                      << std::flush;
             if (done == total) std::cerr << "\n";
         };
     }
@@ -81,7 +96,7 @@ ExitCode run_ingest(const IngestArgs& a) {
     return verdict_exit(validate::run_fails(summarize(r), fail_on_of(a.fail_on)));
 }
 
-const Register reg{
+const Register register_ingest{
     {"ingest", 10,
      [](CLI::App& sub) -> std::function<ExitCode()> {
          auto a = std::make_shared<IngestArgs>();
@@ -102,10 +117,9 @@ const Register reg{
                         "lists them); writes manifest.shard-I-of-N.json for `matforge merge`");
          add_fail_on(sub, a->fail_on);
          sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
-         auto* cache =
-             sub.add_option("--cache", a->cache,
-                            "result cache folder (default $MATFORGE_CACHE, else .OUT.matforge-cache beside the output "
-                            "folder): unchanged sets are restored, not recomputed");
+         auto* cache = sub.add_option("--cache", a->cache,
+                                      "result cache folder (default $MATFORGE_CACHE, else $XDG_CACHE_HOME/matforge or "
+                                      "~/.cache/matforge): unchanged sets are restored, not recomputed");
          sub.add_flag("--no-cache", a->no_cache, "compute every set; read and write no cache")->excludes(cache);
          sub.add_flag("--force", a->force,
                       "replace a manifest.json matforge did not write, and files in the way of outputs "

@@ -23,13 +23,26 @@ ExitCode run_merge(const MergeArgs& a) {
     // The manifest's paths are relative to its folder: the library goes there, built from the
     // materials' .gltf files the shards wrote. The materials pass through a temporary file there
     // (manifest/spool.hpp): the merge of 100,000 sets holds an index, not their entries.
-    const std::filesystem::path dir = std::filesystem::absolute(a.out).parent_path();
-    std::string error;
+    namespace fs = std::filesystem;
     std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
+    const fs::path out = fs::weakly_canonical(fs::absolute(a.out, ec), ec);
+    const fs::path dir = out.parent_path();
+    for (const auto& part : a.inputs)  // the merged manifest never replaces one of its parts
+        if (fs::weakly_canonical(fs::absolute(part, ec), ec) == out)
+            return fail("merge", "-o " + a.out + " is one of the parts; name the run's manifest.json");
+    // The parts' paths, like the merged manifest's, are relative to the output folder the shards
+    // wrote: the merged manifest goes there, beside them.
+    for (const auto& part : a.inputs)
+        if (const fs::path p = fs::weakly_canonical(fs::absolute(part, ec), ec); p.parent_path() != dir)
+            return fail("merge", "-o " + a.out + " is not in the folder of the part " + part + " (" +
+                                     p.parent_path().string() +
+                                     "): the merged manifest goes beside its parts, whose paths are relative to it");
+    // The materials pass through a temporary file there (manifest/spool.hpp): the merge of
+    // 100,000 sets holds an index, not their entries.
+    std::string error;
     auto spool = manifest::MaterialSpool::open(dir, error);
     if (!spool) return fail("merge", error, ExitCode::findings);
-    auto merged = manifest::merge_shards(a.inputs, *spool, error);
+    auto merged = manifest::merge_shards(a.inputs, dir, *spool, error);
     if (!merged) return fail("merge", error);
     if (!write_library(
             spool->entries(), dir,
@@ -47,7 +60,7 @@ ExitCode run_merge(const MergeArgs& a) {
     return ExitCode::ok;
 }
 
-const Register reg{
+const Register register_merge{
     {"merge", 35,
      [](CLI::App& sub) -> std::function<ExitCode()> {
          auto a = std::make_shared<MergeArgs>();

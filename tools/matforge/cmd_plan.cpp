@@ -7,6 +7,7 @@
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "core/version.hpp"
+#include "process/sets.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
 
@@ -20,6 +21,7 @@ struct PlanArgs {
 };
 
 ExitCode run_plan(const PlanArgs& a) {
+    if (std::string why = no_usable_input({a.inputs.begin(), a.inputs.end()}); !why.empty()) return fail("plan", why);
     std::string error;
     auto preset = load_preset(a.preset, error);
     if (!preset) return fail("plan", error);
@@ -28,7 +30,11 @@ ExitCode run_plan(const PlanArgs& a) {
     auto color = ColorContext::create(error);
     if (!color) return fail("plan", error);
     std::vector<InputFailure> failures;
-    const auto sets = find_material_sets({a.inputs.begin(), a.inputs.end()}, {}, failures);
+    const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+    std::vector<std::string> skipped;
+    const auto sets = find_material_sets(inputs, {}, failures, nullptr, &skipped);
+    for (const std::string& n : skipped) say("plan", "note: " + n);
+    if (std::string why = written_file_conflict(a.out, inputs, sets); !why.empty()) return fail("plan", "-o " + why);
     const std::string context = context_digest(*preset, *rules, *color);
     std::vector<uint64_t> bytes;
     bytes.reserve(sets.size());
@@ -51,8 +57,15 @@ ExitCode run_plan(const PlanArgs& a) {
     }
     nlohmann::json fl = nlohmann::json::array();
     for (const auto& f : failures) fl.push_back(to_json(f));
-    const nlohmann::json plan{{"plan_version", 1},  {"generator", kGenerator}, {"preset", preset->name},
-                              {"context", context}, {"shards", a.shards},      {"sets", list},
+    // `plan`: what every shard's manifest records (process/work.hpp plan_digest); merge refuses
+    // parts of different plans.
+    const nlohmann::json plan{{"plan_version", 1},
+                              {"generator", kGenerator},
+                              {"preset", preset->name},
+                              {"context", context},
+                              {"plan", plan_digest(sets, bytes, shard, a.shards, context)},
+                              {"shards", a.shards},
+                              {"sets", list},
                               {"failures", fl}};
     const std::string text = json_text(plan);
     if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
@@ -60,22 +73,22 @@ ExitCode run_plan(const PlanArgs& a) {
     return unreadable ? ExitCode::findings : ExitCode::ok;
 }
 
-const Register reg{{"plan", 15,
-                    [](CLI::App& sub) -> std::function<ExitCode()> {
-                        auto a = std::make_shared<PlanArgs>();
-                        sub.add_option("inputs", a->inputs,
-                                       "material folders, .zip files, or folders of many (recursive)")
-                            ->required();
-                        sub.add_option("-o,--out", a->out, "the work list (JSON)")->required();
-                        sub.add_option("--preset", a->preset, "preset the keys are for (shipped name or JSON file)")
-                            ->capture_default_str();
-                        sub.add_option("--rules", a->rules_file, "rule configuration the keys are for (docs/rules.md)");
-                        sub.add_option("--shards", a->shards, "number of shards to assign the sets to (1..100000)")
-                            ->check(CLI::Range(1, 100000))
-                            ->capture_default_str();
-                        return [a] { return run_plan(*a); };
-                    },
-                    "the deterministic work list: sets, sizes, action keys, shards"}};
+const Register register_plan{
+    {"plan", 15,
+     [](CLI::App& sub) -> std::function<ExitCode()> {
+         auto a = std::make_shared<PlanArgs>();
+         sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
+             ->required();
+         sub.add_option("-o,--out", a->out, "the work list (JSON)")->required();
+         sub.add_option("--preset", a->preset, "preset the keys are for (shipped name or JSON file)")
+             ->capture_default_str();
+         sub.add_option("--rules", a->rules_file, "rule configuration the keys are for (docs/rules.md)");
+         sub.add_option("--shards", a->shards, "number of shards to assign the sets to (1..100000)")
+             ->check(CLI::Range(1, 100000))
+             ->capture_default_str();
+         return [a] { return run_plan(*a); };
+     },
+     "the deterministic work list: sets, sizes, action keys, shards"}};
 
 }  // namespace
 }  // namespace mf::cli

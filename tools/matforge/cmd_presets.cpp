@@ -32,16 +32,16 @@ ExitCode run_presets(const PresetsArgs& a) {
     return ExitCode::ok;
 }
 
-const Register reg{{"presets", 40,
-                    [](CLI::App& sub) -> std::function<ExitCode()> {
-                        auto a = std::make_shared<PresetsArgs>();
-                        sub.add_option("action", a->action, "list | show")
-                            ->check(CLI::IsMember({"list", "show"}))
-                            ->capture_default_str();
-                        sub.add_option("name", a->name, "preset name or JSON file (for show)");
-                        return [a] { return run_presets(*a); };
-                    },
-                    "list the shipped presets or print one"}};
+const Register register_presets{{"presets", 40,
+                                 [](CLI::App& sub) -> std::function<ExitCode()> {
+                                     auto a = std::make_shared<PresetsArgs>();
+                                     sub.add_option("action", a->action, "list | show")
+                                         ->check(CLI::IsMember({"list", "show"}))
+                                         ->capture_default_str();
+                                     sub.add_option("name", a->name, "preset name or JSON file (for show)");
+                                     return [a] { return run_presets(*a); };
+                                 },
+                                 "list the shipped presets or print one"}};
 
 }  // namespace
 }  // namespace mf::cli

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <deque>
 #include <functional>
 #include <future>
@@ -20,6 +21,7 @@
 #include <set>
 
 #include "command.hpp"
+#include "core/text.hpp"
 #include "preview/preview.hpp"
 
 namespace mf::cli {
@@ -45,13 +47,8 @@ std::string unique_stem(const std::string& name, std::set<std::string>& taken) {
         if (c == '/' || c == '\\' || c == ':' || c == '*' || c == '?' || c == '"' || c == '<' || c == '>' || c == '|')
             c = '_';
     if (s.empty() || s == "." || s == "..") s = "material";
-    auto key = [](std::string k) {
-        std::transform(k.begin(), k.end(), k.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        return k;
-    };
     std::string candidate = s;
-    for (int n = 2; !taken.insert(key(candidate)).second; ++n) candidate = s + "_" + std::to_string(n);
+    for (int n = 2; !taken.insert(ascii_lower(candidate)).second; ++n) candidate = s + "_" + std::to_string(n);
     return candidate;
 }
 
@@ -197,6 +194,8 @@ ExitCode run_preview(const PreviewArgs& a) {
     co.validation = a.validation;
     if (a.validation) co.log = std::make_shared<render::MessageLog>();
     ExitCode status = ExitCode::ok;
+    const auto started = std::chrono::steady_clock::now();
+    size_t rendered = 0, failed = 0;
     std::vector<preview::SheetTile> tiles;
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
@@ -274,6 +273,7 @@ ExitCode run_preview(const PreviewArgs& a) {
                 pending.pop_front();
                 const Job& job = (*jobs)[reported++];
                 for (const std::string& line : o.lines) say("preview", line);
+                ++(o.failed ? failed : rendered);
                 if (o.failed) status = ExitCode::findings;
                 else if (!a.contact_sheet.empty())
                     tiles.push_back({job.name, scene.width, scene.height, std::move(o.rgba8)});
@@ -365,10 +365,15 @@ ExitCode run_preview(const PreviewArgs& a) {
         if (!preview::write_png(file, w, h, sheet, error)) return fail("preview", error, ExitCode::findings);
         if (!quiet) say("preview", "contact sheet: " + file.string());
     }
+    // One line on success too, as ingest and report say theirs (scripts may ignore it).
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    say("preview", std::to_string(rendered) + " rendered" +
+                       (failed ? ", " + std::to_string(failed) + " failed" : std::string()) + " in " + fixed(secs, 1) +
+                       " s: " + a.out + (a.contact_sheet.empty() ? "" : ", " + a.contact_sheet));
     return status;
 }
 
-const Register reg{
+const Register register_preview{
     {"preview", 30,
      [](CLI::App& sub) -> std::function<ExitCode()> {
          auto a = std::make_shared<PreviewArgs>();

@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "report/report.hpp"
+#include "stop.hpp"
 
 namespace mf::cli {
 namespace {
@@ -42,7 +43,10 @@ ExitCode run_report(const ReportArgs& a) {
     const auto start = std::chrono::steady_clock::now();
     report::Result r;
     std::string error;
-    if (!report::write_report(o, r, error)) {
+    install_stop_handlers();
+    const bool written = report::write_report(o, r, error);
+    if (stop_requested()) return interrupted("report", "stopped before the end; no index.html written");
+    if (!written) {
         // An unreadable manifest is a usage error (as for preview); a page that cannot be written is 1.
         const bool written_part = !r.index.empty();
         return fail("report", error, written_part ? ExitCode::findings : ExitCode::usage);
@@ -58,7 +62,7 @@ ExitCode run_report(const ReportArgs& a) {
     return r.problems.empty() ? ExitCode::ok : ExitCode::findings;
 }
 
-const Register reg{
+const Register register_report{
     {"report", 32,
      [](CLI::App& sub) -> std::function<ExitCode()> {
          auto a = std::make_shared<ReportArgs>();

@@ -6,6 +6,7 @@
 #include "command.hpp"
 #include "core/files.hpp"
 #include "options.hpp"
+#include "process/sets.hpp"
 #include "process/validate_batch.hpp"
 #include "stop.hpp"
 
@@ -19,18 +20,26 @@ struct ValidateArgs {
 };
 
 ExitCode run_validate(const ValidateArgs& a) {
+    if (std::string why = no_usable_input({a.inputs.begin(), a.inputs.end()}); !why.empty())
+        return fail("validate", why);
     std::string error;
     auto preset = load_preset(a.preset, error);
     if (!preset) return fail("validate", error);
     auto rules = load_rule_config(*preset, a.rules_file, error);
     if (!rules) return fail("validate", error);
+    const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+    if (!a.report_file.empty()) {  // checked before anything is read: the report never replaces an input
+        std::vector<InputFailure> ignored;
+        const std::string why = written_file_conflict(a.report_file, inputs, find_material_sets(inputs, {}, ignored));
+        if (!why.empty()) return fail("validate", "--report-file " + why);
+    }
     ValidateBatchOptions opt;
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
     install_stop_handlers();
-    const validate::Report report = validate_inputs(std::vector<std::filesystem::path>(a.inputs.begin(),
-                                                                                       a.inputs.end()),
-                                                    *preset, opt);
+    std::vector<std::string> notes;
+    const validate::Report report = validate_inputs(inputs, *preset, opt, &notes);
+    for (const std::string& n : notes) say("validate", "note: " + n);
     if (stop_requested()) return interrupted("validate", "stopped before the end; no report is written");
     std::vector<std::string> names;
     for (const auto& m : report.materials) names.push_back(m.name);
@@ -40,7 +49,7 @@ ExitCode run_validate(const ValidateArgs& a) {
     if (a.report == "json") text = validate::write_json(report);
     else if (a.report == "junit") text = validate::write_junit(report, fail_on);
     else if (a.report == "sarif") text = validate::write_sarif(report);
-    else text = validate::write_text(report, fail_on);
+    else text = terminal_safe(validate::write_text(report, fail_on), true);  // read in terminals
     if (a.report_file.empty()) {
         std::cout << text;
         if (!text.empty() && text.back() != '\n') std::cout << "\n";
@@ -51,7 +60,7 @@ ExitCode run_validate(const ValidateArgs& a) {
     return verdict_exit(validate::run_fails(validate::summarize(report), fail_on));
 }
 
-const Register reg{
+const Register register_validate{
     {"validate", 20,
      [](CLI::App& sub) -> std::function<ExitCode()> {
          auto a = std::make_shared<ValidateArgs>();

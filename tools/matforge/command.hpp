@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/findings.hpp"
+#include "core/text.hpp"
 #include "validate/report.hpp"
 
 namespace mf::cli {
@@ -37,9 +38,10 @@ struct Register {
     explicit Register(Command c) { registry().push_back(std::move(c)); }
 };
 
-// "matforge <command>: <message>" on stderr.
+// "matforge <command>: <message>" on stderr ("matforge: " without a command), control
+// characters escaped: a file name holding ESC or BEL never reaches the terminal raw.
 inline void say(std::string_view command, const std::string& message) {
-    std::cerr << "matforge " << command << ": " << message << "\n";
+    std::cerr << "matforge" << (command.empty() ? "" : " ") << command << ": " << terminal_safe(message, true) << "\n";
 }
 // say() and return `code`: the shape of every early exit.
 inline ExitCode fail(std::string_view command, const std::string& message, ExitCode code = ExitCode::usage) {

@@ -20,18 +20,16 @@ inline void add_fail_on(CLI::App& sub, std::string& fail_on) {
 }
 
 // The ingest cache's folder: `given` (--cache), else $MATFORGE_CACHE (one shared by runs,
-// shards, machines), else `.<out>.matforge-cache` beside the output folder `out`: on the same
-// file system (blobs are hard links to the outputs, no second copy), outside the output folder
-// (which holds only what the manifest lists), and hidden, so a walk of an input folder that
-// holds the output skips it. nullopt when `out` is empty (the cache command without --cache).
-inline std::optional<std::filesystem::path> cache_folder(const std::string& given,
-                                                         const std::filesystem::path& out = {}) {
+// shards, machines), else the user's cache folder, $XDG_CACHE_HOME/matforge or
+// ~/.cache/matforge (the XDG base directory convention): never inside the repository or an
+// input tree unless asked. nullopt when none can be named (no $HOME): the run has no cache.
+inline std::optional<std::filesystem::path> cache_folder(const std::string& given) {
     if (!given.empty()) return std::filesystem::path(given);
     if (const char* c = std::getenv("MATFORGE_CACHE"); c && *c) return std::filesystem::path(c);
-    if (out.empty()) return std::nullopt;
-    std::filesystem::path o = std::filesystem::absolute(out).lexically_normal();
-    if (!o.has_filename()) o = o.parent_path();  // "out/" names the folder out
-    return o.parent_path() / ("." + o.filename().string() + ".matforge-cache");
+    // The specification: a relative $XDG_CACHE_HOME is invalid and is ignored.
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x == '/') return std::filesystem::path(x) / "matforge";
+    if (const char* h = std::getenv("HOME"); h && *h == '/') return std::filesystem::path(h) / ".cache" / "matforge";
+    return std::nullopt;
 }
 
 inline validate::FailOn fail_on_of(const std::string& name) {

@@ -1,0 +1,24 @@
+#include "validate/albedo_class.hpp"
+
+#include <limits>
+
+#include "validate/map_stats.hpp"
+
+namespace mf::validate {
+
+AlbedoClassifier::AlbedoClassifier(const Thresholds& t, bool linear_input)
+    : linear_input_(linear_input), dielectric_max_(t.dielectric_max), metal_min_(t.metal_min) {
+    auto lin = [](double srgb255) { return detail::srgb_to_linear(static_cast<float>(srgb255 / 255.0)); };
+    dark_lin_ = lin(t.albedo_min_srgb);
+    bright_lin_ = lin(t.albedo_max_srgb);
+    metal_dark_lin_ = lin(t.metal_albedo_min_srgb);
+    for (int k = 0; k < 256; ++k) edges_[k] = lin(k + 0.5);
+    edges_[256] = std::numeric_limits<float>::infinity();
+    for (size_t b = 0; b <= kBuckets; ++b) {
+        const float lo = static_cast<float>(b) / static_cast<float>(kBuckets);
+        first_code_[b] = static_cast<uint16_t>(std::lower_bound(edges_.begin(), edges_.end(), lo) - edges_.begin());
+    }
+    decode_ = detail::srgb_decode_table().data();
+}
+
+}  // namespace mf::validate

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Builds the Debian package matforge_<version>_<arch>.deb (CPack, cmake/MatforgePackage.cmake:
+# the runtime dependencies found by dpkg-shlibdeps, plus the Vulkan loader and Mesa's drivers,
+# which matforge loads at run time).
+#   scripts/package.sh OUTDIR            build it into OUTDIR (from a Release build in
+#                                        build-package/: the binary only, no tests)
+#   scripts/package.sh OUTDIR --check    then install it with apt, run ingest, validate,
+#                                        preview (lavapipe) and report on sample_materials/
+#                                        through /usr/bin/matforge, and remove it again
+#                                        (root or sudo; refused when a matforge package is
+#                                        already installed, which is not ours to remove)
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+out=${1:?usage: scripts/package.sh OUTDIR [--check]}
+check=${2:-}
+# shellcheck source=bootstrap.sh
+source "$root/scripts/bootstrap.sh"
+install_set build
+build=$root/build-package
+# The configuration scripts/demo.sh builds, so CI compiles that one too.
+configure_release "$build"
+build_quietly "$build" matforge
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+(cd "$build" && cpack -G DEB -B "$out" >"$build/cpack.log" 2>&1) || { cat "$build/cpack.log" >&2; exit 1; }
+rm -rf "$out/_CPack_Packages"
+deb=$(ls -t "$out"/matforge_*.deb | head -n 1)
+echo "package: $deb" >&2
+dpkg-deb --field "$deb" Package Version Architecture Depends | sed 's/^/package:   /' >&2
+[[ $check == --check ]] || exit 0
+
+sudo=""
+((EUID == 0)) || sudo="sudo"
+if dpkg-query -W -f='${Status}' matforge 2>/dev/null | grep -q "install ok installed"; then
+  echo "package: a matforge package is installed already; not replacing it (remove it first)" >&2
+  exit 2
+fi
+work=$(mktemp -d /tmp/matforge-package.XXXXXX)
+remove() {
+  local rc=$?
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get remove -y -q matforge >"$work/remove.log" 2>&1 || true
+  rm -rf "$work"
+  exit "$rc"
+}
+trap remove EXIT
+$sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "$deb" >"$work/install.log" 2>&1 ||
+  { cat "$work/install.log" >&2; exit 1; }
+mf=/usr/bin/matforge
+[[ -x $mf ]] || { echo "package: no $mf after installing $deb" >&2; exit 1; }
+"$mf" --version | sed 's/^/package:   /' >&2
+# The installed binary, not the build tree's: the samples through every command. A cache of its
+# own, so nothing is restored from the tests' runs.
+export MATFORGE_CACHE=$work/cache
+"$mf" ingest "$root/sample_materials" -o "$work/out" -q
+"$mf" validate "$root/sample_materials" --report json --report-file "$work/validate.json" --fail-on never
+"$mf" preview "$work/out/manifest.json" -o "$work/preview" --device cpu --contact-sheet "$work/contact_sheet.png"
+"$mf" report "$work/out/manifest.json" -o "$work/report" --previews "$work/preview"
+n=$(python3 -c 'import json, sys; print(len(json.load(open(sys.argv[1]))["materials"]))' "$work/out/manifest.json")
+previews=$(find "$work/preview" -name '*.png' | wc -l)
+for f in "$work/validate.json" "$work/contact_sheet.png" "$work/report/index.html"; do
+  [[ -s $f ]] || { echo "package: the installed matforge wrote no $f" >&2; exit 1; }
+done
+((n >= 4 && previews == n)) || { echo "package: $n materials, $previews previews" >&2; exit 1; }
+trap - EXIT
+$sudo env DEBIAN_FRONTEND=noninteractive apt-get remove -y -q matforge >"$work/remove.log" 2>&1 ||
+  { cat "$work/remove.log" >&2; exit 1; }
+[[ ! -e $mf ]] || { echo "package: $mf is still there after apt-get remove" >&2; exit 1; }
+rm -rf "$work"
+echo "package: installed, ran ingest, validate, preview and report on $n materials through $mf, removed" >&2
