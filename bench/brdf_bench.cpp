@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "brdf_reference.hpp"
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "render/brdf_harness.hpp"
 #include "render/render.hpp"
 

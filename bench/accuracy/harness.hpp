@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 
 namespace mf::bench {
 

@@ -12,7 +12,7 @@
 #include <memory>
 
 #include "brdf_reference.hpp"
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "harness.hpp"
 
 namespace mf::bench {

@@ -10,7 +10,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "harness.hpp"
 #include "image/image.hpp"
 
@@ -248,14 +248,14 @@ std::vector<Variant> quantize_variants(const Config& c) {
         const char* tag;
         EncodeOptions opt;
     };
-    const Fmt fmts[] = {{"8-bit PNG", "8-BIT", {"png", 8}},
-                        {"16-bit PNG", "16-BIT", {"png", 16}},
-                        {"half EXR", "HALF", {"exr", 16}},
-                        {"float EXR", "FLOAT", {"exr", 32}}};
+    const Fmt fmts[] = {{"8-bit PNG", "8-BIT", {mf::FileFormat::png, 8}},
+                        {"16-bit PNG", "16-BIT", {mf::FileFormat::png, 16}},
+                        {"half EXR", "HALF", {mf::FileFormat::exr, 16}},
+                        {"float EXR", "FLOAT", {mf::FileFormat::exr, 32}}};
     std::vector<Variant> out;
     for (bool is_albedo : {true, false}) {
         for (const Fmt& f : fmts) {
-            const bool srgb_file = is_albedo && f.opt.format == "png";
+            const bool srgb_file = is_albedo && f.opt.format == mf::FileFormat::png;
             // What the file receives: sRGB-encoded albedo in integer files, linear otherwise.
             auto src = std::make_shared<Image>(is_albedo ? *albedo : *rough);
             if (srgb_file)
@@ -263,7 +263,7 @@ std::vector<Variant> quantize_variants(const Config& c) {
             std::vector<unsigned char> bytes;
             std::string err;
             if (!encode_image(*src, f.opt, bytes, err)) throw std::runtime_error(err);
-            const Image back = read_back(bytes, f.opt.format);
+            const Image back = read_back(bytes, std::string(mf::word(f.opt.format)));
             Acc lin, codes;
             const Image& ref = is_albedo ? *albedo : *rough;
             for (size_t i = 0; i < ref.pixels.size(); ++i) {
@@ -279,7 +279,7 @@ std::vector<Variant> quantize_variants(const Config& c) {
                 r.pixels[i] = srgb_file ? static_cast<float>(linear_to_srgb(static_cast<double>(ramp[i]))) : ramp[i];
             std::vector<unsigned char> rb;
             encode_image(r, f.opt, rb, err);
-            const int band = longest_band(read_back(rb, f.opt.format).pixels);
+            const int band = longest_band(read_back(rb, std::string(mf::word(f.opt.format))).pixels);
 
             Variant v;
             v.knob = is_albedo ? "quantize: albedo" : "quantize: roughness";

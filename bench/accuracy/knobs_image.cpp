@@ -12,7 +12,7 @@
 
 #include "brdf_reference.hpp"
 #include "color/color.hpp"
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "harness.hpp"
 #include "image/image.hpp"
 #include "pack/pack.hpp"

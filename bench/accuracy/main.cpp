@@ -242,7 +242,7 @@ int main(int argc, char** argv) {
         const mf::Image img = mf::bench::draw_plot(spec, series);
         std::vector<unsigned char> bytes;
         std::string err;
-        if (!mf::encode_image(img, {"png", 8}, bytes, err)) {
+        if (!mf::encode_image(img, {mf::FileFormat::png, 8}, bytes, err)) {
             std::cerr << "accuracy_bench: plot: " << err << "\n";
             return 1;
         }

@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
     const mf::Image img = mf::bench::draw_plot(spec, series);
     std::vector<unsigned char> bytes;
     std::string err;
-    if (!mf::encode_image(img, {"png", 8}, bytes, err)) {
+    if (!mf::encode_image(img, {mf::FileFormat::png, 8}, bytes, err)) {
         std::cerr << "plot_csv: " << out << ": " << err << "\n";
         return 1;
     }

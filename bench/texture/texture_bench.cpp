@@ -83,7 +83,7 @@ int encode(int argc, char** argv) {
     mf::texture::CodecOptions opt;
     opt.format = mf::block_format_info(argv[4]);
     if (!opt.format) return fail(std::string("unknown format ") + argv[4] + " (" + mf::block_format_names() + ")");
-    const auto effort = mf::texture::effort_from_name(argv[5]);
+    const auto effort = mf::from_word<mf::Effort>(argv[5]);
     if (!effort) return fail(std::string("unknown effort ") + argv[5]);
     opt.effort = *effort;
     opt.srgb = srgb && opt.format->has_srgb;
@@ -142,7 +142,7 @@ int decode(int argc, char** argv) {
     if (!mf::texture::decode_level(t.levels[0].data, t.levels[0].width, t.levels[0].height, opt, rgba, error))
         return fail(in + ": " + error);
     std::vector<unsigned char> png;
-    if (!mf::encode_image(rgba, {"png", 8}, png, error)) return fail(error);
+    if (!mf::encode_image(rgba, {mf::FileFormat::png, 8}, png, error)) return fail(error);
     if (!mf::write_file_atomic(out, png, error)) return fail(error);
     return 0;
 }

@@ -10,7 +10,7 @@ const std::vector<CodeInfo>& finding_catalog() {
     static const std::vector<CodeInfo> c{
         {code::unreadable_file, Severity::error, "File is corrupt, truncated, empty or not an image",
          "finding sets, decoding", "unreadable_file"},
-        {code::resolution_mismatch, Severity::warning, "Maps of one set differ in size", "rules",
+        {code::resolution_mismatch, Severity::warning, "A map is resampled to the set's size", "planning",
          "resolution_mismatch"},
         {code::nonfinite_values, Severity::error, "NaN or Inf values in a map", "rules", "nonfinite_values"},
         {code::out_of_range_values, Severity::warning, "Float data outside [0, 1] where the role allows none", "rules",
@@ -67,7 +67,7 @@ const std::vector<CodeInfo>& finding_catalog() {
         {code::aspect_mismatch, Severity::error,
          "A map's aspect ratio is more than 2x off the set's: not stretched, not used", "planning", "aspect_mismatch"},
         {code::output_too_large, Severity::warning,
-         "An output is wider or taller than 16384 pixels, more than engines and GPUs import", "writing",
+         "An output is wider or taller than engines and GPUs import (its figures give the limit)", "writing",
          "output_too_large"},
         {code::encoding_error_exceeded, Severity::warning,
          "A block-compressed level decodes with more error than the preset's bound", "encoding",

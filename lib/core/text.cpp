@@ -134,4 +134,23 @@ std::string fixed(double v, int digits) {
 
 std::string percent(double share) { return fixed(100.0 * share, 1) + " %"; }
 
+std::string markup_escape(std::string_view raw) {
+    const std::string s = utf8_or_replacement(raw);
+    std::string out;
+    out.reserve(s.size() + s.size() / 8);
+    for (const char c : s) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&#39;"; break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') out += "\xEF\xBF\xBD";
+                else out += c;
+        }
+    }
+    return out;
+}
+
 }  // namespace mf

@@ -21,6 +21,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/limits.hpp"
+#include "preset/vocabulary.hpp"
+
 namespace mf {
 
 template <class T>
@@ -71,8 +74,9 @@ struct ImageInfo {
     std::vector<std::pair<std::string, std::string>> notes;
 };
 
-// Largest image matforge agrees to decode (decompression-bomb guard): 16384² pixels, 8 channels.
-inline constexpr int64_t kMaxPixels = int64_t{16384} * 16384;
+// Largest image matforge agrees to decode (decompression-bomb guard): kMaxImageSide² pixels,
+// 8 channels.
+inline constexpr int64_t kMaxPixels = int64_t{kMaxImageSide} * kMaxImageSide;
 inline constexpr int kMaxChannels = 8;
 
 // Header only (cheap). Returns nullopt and sets `error` when the file is not a readable image.
@@ -99,8 +103,8 @@ bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string
                 const std::function<void(int y0, int rows, const float* pixels)>& fn);
 
 struct EncodeOptions {
-    std::string format = "png";  // png | exr | tif | tga
-    int bit_depth = 8;           // 8 or 16 for png/tif/tga; 16 (half) or 32 for exr
+    FileFormat format = FileFormat::png;  // png | exr | tif | tga (no blocks: lib/texture writes dds, ktx2)
+    int bit_depth = 8;                    // 8 or 16 for png/tif/tga; 16 (half) or 32 for exr
 };
 
 // Encodes `img` (values already in the output encoding, [0,1] for integer formats) to bytes,

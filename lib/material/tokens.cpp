@@ -4,6 +4,8 @@
 #include <array>
 #include <charconv>
 
+#include "core/limits.hpp"
+
 namespace mf::naming {
 
 std::string lower_copy(std::string_view s) {
@@ -83,7 +85,7 @@ int resolution_pixels(std::string_view low) {
         return w >= 16 && h >= 16 && w <= 65536 && h <= 65536 ? std::max(w, h) : 0;
     }
     const int n = parse_int(low);
-    return n >= 256 && n <= 16384 && (n & (n - 1)) == 0 ? n : 0;
+    return n >= 256 && n <= kMaxImageSide && (n & (n - 1)) == 0 ? n : 0;
 }
 
 namespace {

@@ -455,7 +455,7 @@ Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& prese
 
 std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
                                    const ColorContext& color) {
-    if (o.bit_depth != 8 || preset.format == "exr") return std::nullopt;  // 8-bit integer formats only
+    if (o.bit_depth != 8 || preset.format == FileFormat::exr) return std::nullopt;  // 8-bit integer formats only
     for (const auto& c : effective_channels(o, planes)) {
         const auto it = planes.find(c.role);
         if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused || it == planes.end())

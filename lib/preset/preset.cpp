@@ -144,7 +144,7 @@ std::string Preset::output_path(const std::string& material, const OutputSpec& o
     };
     replace_all("{material}", material);
     replace_all("{suffix}", o.suffix);
-    replace_all("{ext}", format);
+    replace_all("{ext}", std::string(word(format)));
     return s;
 }
 
@@ -159,10 +159,9 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
         const auto nc = convention_from_name(j.value("normal_convention", "gl"));
         if (!nc || *nc == NormalConvention::unknown) return fail(error, "normal_convention must be gl or dx");
         p.normal_convention = *nc;
-        p.format = j.value("format", "png");
-        if (p.format != "png" && p.format != "exr" && p.format != "tif" && p.format != "tga" &&
-            !is_block_container(p.format))
-            return fail(error, "format must be png, exr, tif, tga, dds or ktx2");
+        const auto format = from_word<FileFormat>(j.value("format", "png"));
+        if (!format) return fail(error, "format must be " + word_list<FileFormat>());
+        p.format = *format;
         const auto max_size = int_field(j, "max_size", 0, 0, 65536);
         const auto constant_size = int_field(j, "constant_size", 2, 1, 64);
         if (!max_size || !constant_size)
@@ -204,7 +203,7 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
         for (const auto& o : j.at("outputs")) {
             OutputSpec spec;
             if (!parse_output(o, spec, error)) return false;
-            if (p.format == "exr" && spec.bit_depth == 8)
+            if (p.format == FileFormat::exr && spec.bit_depth == 8)
                 return fail(error, "output '" + spec.suffix + "': exr outputs need bit_depth 16 (half) or 32");
             p.outputs.push_back(std::move(spec));
         }

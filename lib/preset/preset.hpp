@@ -10,8 +10,11 @@
 #include "core/findings.hpp"
 #include "material/channel.hpp"
 #include "material/roles.hpp"
+#include "preset/vocabulary.hpp"
 
 namespace mf {
+
+struct BlockFormatInfo;  // preset/texture_fields.hpp
 
 // What one channel (or the RGB triple) of an output holds, as the preset asks for it.
 struct ChannelSpec : Channel {
@@ -25,9 +28,9 @@ struct OutputSpec {
     bool always = true;                 // false: written only when one of its roles has a map
     std::vector<ChannelSpec> channels;  // in file channel order (RGB counts as three)
     // Block-compressed containers (format dds | ktx2; lib/preset/texture_fields.cpp checks them).
-    std::string block_format;                               // "bc1", "bc3", "bc4", "bc5", "astc-6x6", ...
-    std::string block_format_alpha;                         // used instead when the written output has 4 channels
-    std::string effort;                                     // per output; "" = the preset's
+    const BlockFormatInfo* block_format = nullptr;          // bc1, bc3, bc4, bc5, astc-6x6, ...
+    const BlockFormatInfo* block_format_alpha = nullptr;    // used instead when the written output has 4 channels
+    std::optional<Effort> effort;                           // per output; nullopt = the preset's
     std::optional<double> min_psnr_db, max_mean_angle_deg;  // error bounds of the decoded levels
     int channel_count() const;
     std::vector<Role> roles() const;  // the roles it reads (roughness for smoothness)
@@ -37,7 +40,7 @@ struct Preset {
     std::string name, description, engine_convention;
     std::vector<std::string> sources;
     NormalConvention normal_convention = NormalConvention::gl;
-    std::string format = "png";
+    FileFormat format = FileFormat::png;
     int max_size = 0;       // 0 = no limit; larger maps are downsampled
     int constant_size = 2;  // size of an output made only of constants
     std::string file_pattern = "{material}/{material}_{suffix}.{ext}";
@@ -46,23 +49,20 @@ struct Preset {
     std::map<Role, Severity> missing_severity;  // roles whose absence is reported
     std::vector<OutputSpec> outputs;
     // Block-compressed containers and material files (lib/preset/texture_fields.cpp).
-    bool mips = false;                      // full mip chains (dds, ktx2)
-    std::string mip_filter = "kaiser";      // "box" | "kaiser"
-    std::string effort = "normal";          // "fast" | "normal" | "thorough"
-    std::string supercompression = "none";  // ktx2: "none" | "zstd"
+    bool mips = false;  // full mip chains (dds, ktx2)
+    MipFilter mip_filter = MipFilter::kaiser;
+    Effort effort = Effort::normal;
+    Supercompression supercompression = Supercompression::none;  // ktx2 only
     int zstd_level = 19;
     bool toksvig = false;       // roughness mips widened by the normal mips' spread
     float alpha_cutoff = 0.5f;  // alpha test of opacity (coverage kept per mip; glTF alphaCutoff)
-    std::string material_file;  // "" | "gltf": a material file per set and library.gltf
-    nlohmann::json validate = nlohmann::json::object();  // rule overrides for validate
-    nlohmann::json source_json;                          // as loaded
+    MaterialFileKind material_file = MaterialFileKind::none;  // gltf: a material file per set and library.gltf
+    nlohmann::json validate = nlohmann::json::object();       // rule overrides for validate
+    nlohmann::json source_json;                               // as loaded
 
     float default_value(Role r) const;
     std::string output_path(const std::string& material, const OutputSpec& o) const;
 };
-
-// The block-compressed formats ("dds", "ktx2"): outputs carry mip levels of GPU blocks.
-bool is_block_container(const std::string& format);
 
 // Parses a preset document; false + `error` naming the field on any problem.
 bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error);

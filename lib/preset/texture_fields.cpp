@@ -32,8 +32,15 @@ std::optional<bool> bool_field(const nlohmann::json& j, const char* key, bool de
     return j.at(key).get<bool>();
 }
 
-bool one_of(const std::string& v, std::initializer_list<const char*> allowed) {
-    return std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return v == a; });
+// Field `key` of `j` as a word of E (`def` when absent); false + `error` naming the field.
+template <class E>
+bool word_field(const nlohmann::json& j, const char* key, E& out, const std::string& where, std::string& error) {
+    if (!j.contains(key)) return true;
+    const auto& v = j.at(key);
+    const auto e = v.is_string() ? from_word<E>(v.get<std::string>()) : std::nullopt;
+    if (!e) return fail(error, where + key + " must be " + word_list<E>());
+    out = *e;
+    return true;
 }
 
 // "RGB albedo", "R roughness, G metalness": what an output writes, for messages.
@@ -65,43 +72,41 @@ std::vector<int> written_counts(const OutputSpec& o) {
 }
 
 bool check_block_format(const Preset& p, const OutputSpec& o, const std::string& where, std::string& error) {
-    for (const std::string* name : {&o.block_format, &o.block_format_alpha}) {
-        if (name->empty()) continue;
-        const std::string field = where + (name == &o.block_format ? "block_format" : "block_format_alpha");
-        const BlockFormatInfo* f = block_format_info(*name);
-        if (!f) return fail(error, field + ": unknown block format '" + *name + "' (" + block_format_names() + ")");
-        if (p.format == "dds" && !f->in_dds)
-            return fail(error, field + ": " + *name +
+    for (const BlockFormatInfo* f : {o.block_format, o.block_format_alpha}) {
+        if (!f) continue;
+        const std::string field = where + (f == o.block_format ? "block_format" : "block_format_alpha");
+        const std::string name(f->name);
+        if (p.format == FileFormat::dds && !f->in_dds)
+            return fail(error, field + ": " + name +
                                    " has no DXGI format; DDS carries bc1, bc3, bc4 and bc5 (ASTC goes in ktx2)");
         if (f->hdr && o.bit_depth == 8)
             return fail(error,
-                        field + ": " + *name + " encodes float (HDR) samples; this output is 8-bit (bit_depth 8)");
+                        field + ": " + name + " encodes float (HDR) samples; this output is 8-bit (bit_depth 8)");
         if (f->hdr)
             return fail(error,
-                        field + ": " + *name + ": ASTC HDR outputs are not supported (8-bit LDR block formats only)");
+                        field + ": " + name + ": ASTC HDR outputs are not supported (8-bit LDR block formats only)");
         if (o.bit_depth != 8)
             return fail(error, field + ": block formats store 8-bit samples; bit_depth must be 8, not " +
                                    std::to_string(o.bit_depth));
         if (o.srgb && !f->has_srgb)
-            return fail(error, field + ": " + *name +
+            return fail(error, field + ": " + name +
                                    " has no sRGB variant; use it for linear data (color_space linear) or pick bc1/bc3");
     }
     for (int n : written_counts(o)) {
-        const std::string& name = block_format_for(o, n);
-        const std::string field = where + (&name == &o.block_format ? "block_format" : "block_format_alpha");
-        const BlockFormatInfo* f = block_format_info(name);
+        const BlockFormatInfo* f = block_format_for(o, n);
+        const std::string field = where + (f == o.block_format ? "block_format" : "block_format_alpha");
+        const std::string name(f->name);
         // BC5 stores a normal's X and Y; the engine rebuilds Z (the only 3-channel output it takes).
         const bool xy_normal = f->name == "bc5" && n == 3 && is_rgb_normal(o);
         const bool fits = xy_normal ||
                           (n <= f->channels && (f->name != "bc4" || n == 1) && (f->name != "bc5" || n == 2));
         if (!fits)
-            return fail(error,
-                        field + ": " + name + " stores " + std::to_string(f->channels) + " channel" +
-                            (f->channels == 1 ? "" : "s") + "; this output writes " + std::to_string(n) + " (" +
-                            layout(o, n) + ")" +
-                            (n == 4 && o.block_format_alpha.empty() ? ": set block_format_alpha (bc3) for it" : ""));
+            return fail(error, field + ": " + name + " stores " + std::to_string(f->channels) + " channel" +
+                                   (f->channels == 1 ? "" : "s") + "; this output writes " + std::to_string(n) + " (" +
+                                   layout(o, n) + ")" +
+                                   (n == 4 && !o.block_format_alpha ? ": set block_format_alpha (bc3) for it" : ""));
     }
-    if (!o.block_format_alpha.empty() && written_counts(o).back() != 4)
+    if (o.block_format_alpha && written_counts(o).back() != 4)
         return fail(error, where + "block_format_alpha: this output never writes 4 channels");
     return true;
 }
@@ -112,8 +117,9 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
 // material's slots cannot reference cannot get a .gltf.
 bool check_gltf_layout(const Preset& p, std::string& error) {
     const std::string where = "material_file gltf: ";
-    if (p.format != "png")
-        return fail(error, where + "glTF 2.0 textures are PNG or JPEG (core); this preset writes " + p.format);
+    if (p.format != FileFormat::png)
+        return fail(error, where + "glTF 2.0 textures are PNG or JPEG (core); this preset writes " +
+                               std::string(word(p.format)));
     auto find = [&](Role r) -> std::pair<const OutputSpec*, const ChannelSpec*> {
         for (const auto& o : p.outputs)
             for (const auto& c : o.channels)
@@ -145,8 +151,6 @@ bool check_gltf_layout(const Preset& p, std::string& error) {
 
 }  // namespace
 
-bool is_block_container(const std::string& format) { return format == "dds" || format == "ktx2"; }
-
 const BlockFormatInfo* block_format_info(std::string_view name) {
     for (const auto& f : kFormats)
         if (f.name == name) return &f;
@@ -159,8 +163,8 @@ std::string block_format_names() {
     return s;
 }
 
-const std::string& block_format_for(const OutputSpec& o, int written_channels) {
-    return written_channels == 4 && !o.block_format_alpha.empty() ? o.block_format_alpha : o.block_format;
+const BlockFormatInfo* block_format_for(const OutputSpec& o, int written_channels) {
+    return written_channels == 4 && o.block_format_alpha ? o.block_format_alpha : o.block_format;
 }
 
 bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error) {
@@ -170,17 +174,14 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
     if (!mips || !toksvig) return fail(error, "mips and toksvig must be true or false");
     p.mips = *mips;
     p.toksvig = *toksvig;
-    if (p.mips && !container) return fail(error, "mips: needs format dds or ktx2 (" + p.format + " holds one level)");
+    const std::string format(word(p.format));
+    if (p.mips && !container) return fail(error, "mips: needs format dds or ktx2 (" + format + " holds one level)");
     if (p.toksvig && !p.mips) return fail(error, "toksvig: adjusts the roughness of mip levels; set mips true");
-    p.mip_filter = j.value("mip_filter", p.mip_filter);
-    if (!one_of(p.mip_filter, {"box", "kaiser"})) return fail(error, "mip_filter must be box or kaiser");
-    p.effort = j.value("effort", p.effort);
-    if (!one_of(p.effort, {"fast", "normal", "thorough"}))
-        return fail(error, "effort must be fast, normal or thorough");
-    p.supercompression = j.value("supercompression", p.supercompression);
-    if (!one_of(p.supercompression, {"none", "zstd"})) return fail(error, "supercompression must be none or zstd");
-    if (p.supercompression == "zstd" && p.format != "ktx2")
-        return fail(error, "supercompression: zstd is a KTX2 scheme; this preset writes " + p.format);
+    if (!word_field(j, "mip_filter", p.mip_filter, "", error) || !word_field(j, "effort", p.effort, "", error) ||
+        !word_field(j, "supercompression", p.supercompression, "", error))
+        return false;
+    if (p.supercompression == Supercompression::zstd && p.format != FileFormat::ktx2)
+        return fail(error, "supercompression: zstd is a KTX2 scheme; this preset writes " + format);
     if (j.contains("zstd_level")) {
         const auto level = json_int(j.at("zstd_level"), 1, 22);
         if (!level) return fail(error, "zstd_level must be an integer within 1..22");
@@ -192,12 +193,10 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
             return fail(error, "alpha_cutoff must be a number between 0 and 1 (exclusive)");
         p.alpha_cutoff = *cut;
     }
-    p.material_file = j.value("material_file", std::string());
-    if (p.material_file == "none") p.material_file.clear();
-    if (!p.material_file.empty() && p.material_file != "gltf") return fail(error, "material_file must be gltf or none");
-    if (p.format == "dds" && !j.contains("constant_size"))
+    if (!word_field(j, "material_file", p.material_file, "", error)) return false;
+    if (p.format == FileFormat::dds && !j.contains("constant_size"))
         p.constant_size = 4;  // the smallest BC texture D3D11 creates
-    if (container && p.constant_size % 4 != 0 && p.format == "dds")
+    if (container && p.constant_size % 4 != 0 && p.format == FileFormat::dds)
         return fail(error, "constant_size: Direct3D 11 creates BC textures whose top level is a multiple of 4; use 4");
 
     const nlohmann::json& outs = j.at("outputs");
@@ -205,11 +204,21 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
         OutputSpec& o = p.outputs[i];
         const nlohmann::json& oj = outs[i];
         const std::string where = "outputs[" + std::to_string(i) + "] ('" + o.suffix + "'): ";
-        o.block_format = oj.value("block_format", std::string());
-        o.block_format_alpha = oj.value("block_format_alpha", std::string());
-        o.effort = oj.value("effort", std::string());
-        if (!o.effort.empty() && !one_of(o.effort, {"fast", "normal", "thorough"}))
-            return fail(error, where + "effort must be fast, normal or thorough");
+        for (const char* key : {"block_format", "block_format_alpha"}) {
+            if (!oj.contains(key)) continue;
+            const auto& v = oj.at(key);
+            const BlockFormatInfo* f = v.is_string() ? block_format_info(v.get<std::string>()) : nullptr;
+            if (!f)
+                return fail(error, where + key + ": unknown block format " +
+                                       (v.is_string() ? "'" + v.get<std::string>() + "'" : v.dump()) + " (" +
+                                       block_format_names() + ")");
+            (std::string_view(key) == "block_format" ? o.block_format : o.block_format_alpha) = f;
+        }
+        Effort effort{};
+        if (oj.contains("effort")) {
+            if (!word_field(oj, "effort", effort, where, error)) return false;
+            o.effort = effort;
+        }
         for (const char* key : {"min_psnr_db", "max_mean_angle_deg"}) {
             if (!oj.contains(key)) continue;
             const bool psnr = std::string_view(key) == "min_psnr_db";
@@ -223,17 +232,17 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
                 return fail(error, where + key + ": error bounds apply to block-compressed outputs (dds, ktx2)");
         }
         if (!container) {
-            if (!o.block_format.empty() || !o.block_format_alpha.empty())
+            if (o.block_format || o.block_format_alpha)
                 return fail(error,
-                            where + "block_format: needs format dds or ktx2 (this preset writes " + p.format + ")");
+                            where + "block_format: needs format dds or ktx2 (this preset writes " + format + ")");
             continue;
         }
-        if (o.block_format.empty())
+        if (!o.block_format)
             return fail(error,
-                        where + "block_format: required with format " + p.format + " (" + block_format_names() + ")");
+                        where + "block_format: required with format " + format + " (" + block_format_names() + ")");
         if (!check_block_format(p, o, where, error)) return false;
     }
-    return p.material_file != "gltf" || check_gltf_layout(p, error);
+    return p.material_file != MaterialFileKind::gltf || check_gltf_layout(p, error);
 }
 
 }  // namespace mf

@@ -26,8 +26,9 @@ const BlockFormatInfo* block_format_info(std::string_view name);
 std::string block_format_names();
 
 // The block format an output is encoded with when it is written with `written_channels`
-// channels: block_format_alpha for 4 when the preset gives one, else block_format.
-const std::string& block_format_for(const OutputSpec& o, int written_channels);
+// channels: block_format_alpha for 4 when the preset gives one, else block_format (nullptr for
+// an output of a format without blocks).
+const BlockFormatInfo* block_format_for(const OutputSpec& o, int written_channels);
 
 // Reads the fields above from preset document `j` into `p` (whose outputs are already parsed, in
 // the document's order) and checks them against the format and the channel layouts. False +

@@ -105,7 +105,7 @@ bool write_png(const std::filesystem::path& file, uint32_t width, uint32_t heigh
     Image8 rgb(static_cast<int>(width), static_cast<int>(height), 3);
     for (size_t p = 0; p < size_t{width} * height; ++p) std::memcpy(&rgb.pixels[3 * p], &rgba8[4 * p], 3);
     std::vector<unsigned char> bytes;
-    const bool ok = encode_image(rgb, EncodeOptions{"png", 8}, bytes, error);
+    const bool ok = encode_image(rgb, EncodeOptions{FileFormat::png, 8}, bytes, error);
     return write_encoded(file, ok, bytes, error);
 }
 
@@ -114,7 +114,7 @@ bool write_exr(const std::filesystem::path& file, uint32_t width, uint32_t heigh
     Image rgb(static_cast<int>(width), static_cast<int>(height), 3);
     for (size_t p = 0; p < size_t{width} * height; ++p) std::memcpy(&rgb.pixels[3 * p], &rgba32f[4 * p], 12);
     std::vector<unsigned char> bytes;
-    const bool ok = encode_image(rgb, EncodeOptions{"exr", 32}, bytes, error);
+    const bool ok = encode_image(rgb, EncodeOptions{FileFormat::exr, 32}, bytes, error);
     return write_encoded(file, ok, bytes, error);
 }
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json.hpp"
+#include "core/limits.hpp"
 #include "preview/preview.hpp"
 
 namespace mf::preview {
@@ -76,8 +77,8 @@ void check_keys(const json& obj, const std::string& where, std::initializer_list
 }
 
 uint32_t dimension(const json& j, const std::string& where) {
-    if (!j.is_number_integer() || j.get<int64_t>() < 1 || j.get<int64_t>() > 16384)
-        fail(where, "expected an integer in 1..16384, got " + j.dump());
+    if (!j.is_number_integer() || j.get<int64_t>() < 1 || j.get<int64_t>() > kMaxImageSide)
+        fail(where, "expected an integer in 1.." + std::to_string(kMaxImageSide) + ", got " + j.dump());
     return static_cast<uint32_t>(j.get<int64_t>());
 }
 

@@ -188,13 +188,15 @@ std::string Cache::unusable(const fs::path& dir) {
     if (!fs::is_directory(fs::status(dir, ec)))
         return dir.string() + ": not a folder; a cache is a folder matforge makes";
     if (has_marker(dir)) return {};
-    // Empty, or holding only the marker another run is writing (create() writes it before
-    // anything else): a cache being made, by us or by a concurrent shard.
+    // Empty, or holding only the marker another run is writing: a cache being made, by us or by
+    // a concurrent shard. create() writes the marker before anything else, so anything else in
+    // the folder with the marker now present was made by such a run after our first look.
     fs::directory_iterator it(dir, ec);
     if (ec) return dir.string() + ": cannot list it (" + ec.message() + ")";
     for (; it != fs::directory_iterator(); it.increment(ec)) {
         const std::string name = it->path().filename().string();
         if (name.starts_with("." + std::string(kMarkerName) + kTempMarker) && temp_owner(name)) continue;
+        if (has_marker(dir)) return {};
         return dir.string() + ": not a matforge cache (it holds " + name +
                " and no cache marker): matforge writes and removes nothing there; name an empty or new folder";
     }

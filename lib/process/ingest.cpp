@@ -12,6 +12,7 @@
 #include "core/files.hpp"
 #include "core/interrupt.hpp"
 #include "core/json.hpp"
+#include "core/limits.hpp"
 #include "core/parallel.hpp"
 #include "core/version.hpp"
 #include "manifest/spool.hpp"
@@ -68,7 +69,7 @@ float normalize_hdr_emissive(Planes& planes, const Preset& preset) {
     for (const auto& o : preset.outputs) {
         const auto roles = o.roles();
         if (std::find(roles.begin(), roles.end(), Role::emissive) != roles.end())
-            integer_output = integer_output || (preset.format != "exr" && o.bit_depth != 32);
+            integer_output = integer_output || (preset.format != FileFormat::exr && o.bit_depth != 32);
     }
     Image& img = it->second.image;
     float brightest = 0.f;
@@ -288,7 +289,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         e.width = size.width;
         e.height = size.height;
         e.bit_depth = o.bit_depth;
-        e.format = preset_.format;
+        e.format = std::string(word(preset_.format));
         e.sha256 = sha256_hex(bytes);
         if (!gpu) return Written{std::move(e), std::nullopt, {}};
         e.width = gpu->width;
@@ -316,19 +317,17 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                                          preset_.output_path(src.name, *wanted[i]) + ": " + e.what());
         }
     });
-    // GPUs and engines import at most 16384 pixels a side (Vulkan's and D3D12's image limit on
-    // most devices, Unreal's and Unity's largest texture): a larger output is written, and said so.
-    constexpr int kEngineMaxSide = 16384;
+    // GPUs and engines import at most kMaxImageSide pixels a side (core/limits.hpp): a larger
+    // output is written, and said so.
     for (const auto& r : written)
-        if (r.entry && std::max(r.entry->width, r.entry->height) > kEngineMaxSide) {
+        if (r.entry && std::max(r.entry->width, r.entry->height) > kMaxImageSide) {
             plan.findings.push_back(finding(
                 code::output_too_large, "", "",
                 r.entry->file + " is " + std::to_string(r.entry->width) + "x" + std::to_string(r.entry->height) +
-                    ": wider or taller than " + std::to_string(kEngineMaxSide) +
+                    ": wider or taller than " + std::to_string(kMaxImageSide) +
                     " pixels, which engines and GPUs do not import; downsample the source or set "
                     "the preset's max_size",
-                {{"size", {r.entry->width, r.entry->height}}, {"limit", kEngineMaxSide}}));
-            validate::apply_config(plan.findings, src.name, opt_.rules);
+                {{"size", {r.entry->width, r.entry->height}}, {"limit", kMaxImageSide}}));
             break;
         }
 
@@ -341,7 +340,6 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         }
         for (auto& f : r.notes) plan.findings.push_back(std::move(f));
     }
-    validate::apply_config(plan.findings, src.name, opt_.rules);  // the encoder's findings too
     m.name = src.name;
     m.source = source_of(src, opt_.out_dir);
     if (src.is_zip) m.archive = relative_to(src.root, opt_.out_dir);
@@ -349,7 +347,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     m.status = plan.partial ? manifest::Status::partial : manifest::Status::ok;
     m.inputs = manifest_inputs(plan);
     m.constants = std::move(plan.constants);
-    m.findings = std::move(plan.findings);
+    m.findings = reported_findings(std::move(plan.findings), src.name, opt_.rules);
     m.emissive_strength = emissive_strength;
     write_material_files(
         preset_, planes,

@@ -26,7 +26,7 @@ bool write_pair(const gltf::Files& files, const std::string& gltf_rel, const std
 }  // namespace
 
 void write_material_files(const Preset& preset, const Planes& planes, const WriteFile& write, manifest::Material& m) {
-    if (preset.material_file != "gltf") return;
+    if (preset.material_file != MaterialFileKind::gltf) return;
     const std::string gltf_rel = m.name + "/" + m.name + ".gltf", bin_rel = m.name + "/" + m.name + ".bin";
     // --normal-convention dx: the PNGs as asked, but no glTF (its normal textures are +Y).
     for (const auto& o : m.outputs)

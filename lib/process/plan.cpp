@@ -321,12 +321,9 @@ void decide_size(SetPlan& plan) {
         w = largest->w;
         h = largest->h;
     }
-    std::set<std::string> refused;  // files left out for their shape
     for (const Map& m : maps) {
         if (tiny(m) || fits(w, h, m.w, m.h)) continue;
-        const Candidate& c = plan.inputs.at(m.role);
-        refused.insert(c.file);
-        const std::string file = c.file;
+        const std::string file = plan.inputs.at(m.role).file;
         plan.findings.push_back(make_finding(code::aspect_mismatch, m.role, file,
                                              file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) +
                                                  ", a shape more than 2x off the set's " + std::to_string(w) + "x" +
@@ -339,39 +336,21 @@ void decide_size(SetPlan& plan) {
         if (std::none_of(plan.inputs.begin(), plan.inputs.end(), [&](const auto& i) { return i.second.file == file; }))
             plan.decoded.erase(file);
     }
-    // RESOLUTION_MISMATCH (validate) compared every map, the refused ones too: a finding about a
-    // refused map, or one measuring a kept map against a refused map's size ("… are 1xN; it will
-    // be resampled"), no longer says what happens. The latter is said again against the set's size.
-    if (!refused.empty()) {
-        std::set<std::pair<int, int>> refused_sizes;
-        for (const Map& m : maps)
-            if (!tiny(m) && !fits(w, h, m.w, m.h)) refused_sizes.insert({m.w, m.h});
-        std::set<std::string> restate;  // kept files whose finding is dropped
-        auto stale = [&](const Finding& f) {
-            if (f.code != code::resolution_mismatch) return false;
-            if (refused.count(f.file)) return true;
-            const auto& g = f.figures;
-            if (!g.is_object() || !g.contains("reference_width") || !g.contains("reference_height")) return false;
-            const auto& rw = g["reference_width"];
-            const auto& rh = g["reference_height"];
-            if (!rw.is_number_integer() || !rh.is_number_integer() ||
-                !refused_sizes.count({rw.get<int>(), rh.get<int>()}))
-                return false;
-            restate.insert(f.file);
-            return true;
-        };
-        plan.findings.erase(std::remove_if(plan.findings.begin(), plan.findings.end(), stale), plan.findings.end());
-        for (const Map& m : maps) {
-            const auto in = plan.inputs.find(m.role);
-            if (in == plan.inputs.end() || !restate.count(in->second.file) || (m.w == w && m.h == h)) continue;
-            const std::string& file = in->second.file;
-            plan.findings.push_back(
-                make_finding(code::resolution_mismatch, m.role, file,
-                             file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " +
-                                 std::to_string(w) + "x" + std::to_string(h) + " (" +
-                                 plan.inputs.at(largest->role).file + "); it will be resampled",
-                             {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}}));
-        }
+    // RESOLUTION_MISMATCH: here, where the set's size is decided, for each kept map that is
+    // resampled to it (the refused ones are not used at all: ASPECT_MISMATCH said so).
+    nlohmann::json sizes = nlohmann::json::object();
+    for (const Map& m : maps)
+        if (const auto in = plan.inputs.find(m.role); in != plan.inputs.end()) sizes[in->second.file] = {m.w, m.h};
+    std::set<std::string> said;
+    for (const Map& m : maps) {
+        const auto in = plan.inputs.find(m.role);
+        if (in == plan.inputs.end() || (m.w == w && m.h == h) || !said.insert(in->second.file).second) continue;
+        const std::string& file = in->second.file;
+        plan.findings.push_back(make_finding(
+            code::resolution_mismatch, m.role, file,
+            file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " + std::to_string(w) +
+                "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file + "); it will be resampled",
+            {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}, {"sizes", sizes}}));
     }
     plan.width = w;
     plan.height = h;
@@ -469,8 +448,6 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     auto missing = missing_map_findings(preset, available, written_roles(preset, available), plan.constants,
                                         opt.mode == PlanMode::decode);
     plan.findings.insert(plan.findings.end(), missing.begin(), missing.end());
-
-    validate::apply_config(plan.findings, src.name, *opt.rules);  // suppressions reach every finding
     return plan;
 }
 
@@ -484,6 +461,12 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
         if (newly_failed.empty()) return plan;
         failed.merge(newly_failed);
     }
+}
+
+std::vector<Finding> reported_findings(std::vector<Finding> findings, const std::string& material,
+                                       const validate::RuleConfig& rules) {
+    validate::apply_config(findings, material, rules);
+    return findings;
 }
 
 std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {

@@ -1,10 +1,10 @@
 // plan_set: the front half of every command, decided once per material set. It discovers the
 // files' roles, reads the chosen maps (falling back to the next candidate), routes every output
 // role to its input (material/routing), runs every validation rule, judges the normal map's
-// convention, decides the set's size and what the preset must generate for missing roles, and
-// applies the rules config. `ingest` = plan -> planes -> outputs -> manifest; `validate` =
-// plan -> report. Every finding these stages raise comes from here (or from validate_set, which
-// this calls), once.
+// convention, and decides the set's size and what the preset must generate for missing roles.
+// `ingest` = plan -> planes -> outputs -> manifest; `validate` = plan -> report. Every finding
+// these stages raise comes from here (or from validate_set, which this calls), once, at its
+// catalog severity; reported_findings() applies the rules config to them, once per set.
 #pragma once
 #include <map>
 #include <memory>
@@ -64,6 +64,13 @@ struct SetPlan {
 };
 
 SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt);
+
+// The set's findings as reported (the manifest entry, validate's reports): the plan's, with any
+// ingest added while writing and encoding, and the rules config (disabled codes, severity
+// overrides, suppressions) applied. Its one application: after every stage has raised its
+// findings, so no stage decides on a finding the config would drop or lower.
+std::vector<Finding> reported_findings(std::vector<Finding> findings, const std::string& material,
+                                       const validate::RuleConfig& rules);
 
 // The manifest entry's inputs of a plan (role order).
 std::vector<manifest::Input> manifest_inputs(const SetPlan& plan);

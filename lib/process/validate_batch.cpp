@@ -31,7 +31,7 @@ SetOutcome validate_one(const MaterialSource& src, const Preset& preset, const v
     out.report.convention = plan.convention;
     out.report.inputs = manifest_inputs(plan);
     out.report.constants = std::move(plan.constants);
-    out.report.findings = std::move(plan.findings);
+    out.report.findings = reported_findings(std::move(plan.findings), src.name, rules);
     return out;
 }
 

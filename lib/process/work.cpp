@@ -1,6 +1,5 @@
 #include "process/work.hpp"
 
-#include <openssl/evp.h>
 #include <algorithm>
 #include <cctype>
 #include <numeric>
@@ -14,29 +13,18 @@
 namespace mf {
 namespace {
 
-// Incremental SHA-256 (OpenSSL's EVP interface): the key hashes the files' digests in order.
+// The key's hash: core's SHA-256 over fields each ended by a newline, so ("ab", "c") never
+// hashes as ("a", "bc").
 class Hasher {
 public:
-    Hasher() : ctx_(EVP_MD_CTX_new()) { EVP_DigestInit_ex(ctx_, EVP_sha256(), nullptr); }
-    ~Hasher() { EVP_MD_CTX_free(ctx_); }
-    Hasher(const Hasher&) = delete;
-    Hasher& operator=(const Hasher&) = delete;
     void add(std::string_view s) {
-        EVP_DigestUpdate(ctx_, s.data(), s.size());
-        EVP_DigestUpdate(ctx_, "\n", 1);  // field separator: ("ab","c") never hashes as ("a","bc")
+        sha_.update(s);
+        sha_.update("\n");
     }
-    std::string hex() {
-        unsigned char md[EVP_MAX_MD_SIZE];
-        unsigned int n = 0;
-        EVP_DigestFinal_ex(ctx_, md, &n);
-        static const char* digits = "0123456789abcdef";
-        std::string out;
-        for (unsigned int i = 0; i < n; ++i) out += {digits[md[i] >> 4], digits[md[i] & 15]};
-        return out;
-    }
+    std::string hex() { return sha_.hex(); }
 
 private:
-    EVP_MD_CTX* ctx_;
+    Sha256 sha_;
 };
 
 }  // namespace

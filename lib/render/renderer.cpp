@@ -10,6 +10,7 @@
 
 #include <utility>
 
+#include "core/limits.hpp"
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 
@@ -92,8 +93,8 @@ const std::string& GpuMaterial::name() const { return impl_->name; }
 const std::string& GpuMaterial::variant() const { return impl_->variant; }
 
 Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(std::move(s)) {
-    if (scene.width == 0 || scene.height == 0 || scene.width > 16384 || scene.height > 16384)
-        throw Error("image size must be 1..16384 pixels a side");
+    if (scene.width == 0 || scene.height == 0 || scene.width > kMaxImageSide || scene.height > kMaxImageSide)
+        throw Error("image size must be 1.." + std::to_string(kMaxImageSide) + " pixels a side");
     if (scene.lights.size() > kMaxLights) throw Error("at most " + std::to_string(kMaxLights) + " lights");
     if (scene.supersample < 1 || scene.supersample > 4) throw Error("supersample must be 1..4 samples a side");
     if (scene.msaa != 1 && scene.msaa != 2 && scene.msaa != 4 && scene.msaa != 8)

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "color/srgb.hpp"  // header-only, standard library only
+#include "core/srgb.hpp"  // header-only, standard library only
 #include "render/internal.hpp"
 
 namespace mf::render::detail {

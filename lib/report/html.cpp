@@ -18,22 +18,6 @@ std::string_view trim(std::string_view s) {
     return s;
 }
 
-std::string escape_valid(std::string_view s) {  // `s` already valid UTF-8
-    std::string out;
-    out.reserve(s.size() + s.size() / 8);
-    for (const char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
 // Where a Markdown link goes once rules.md is rules.html: its own anchors stay, other .md files
 // are not beside the report (nullopt: text only), web links stay.
 std::optional<std::string> link_target(std::string_view url) {
@@ -53,14 +37,14 @@ std::string inline_html(std::string_view s) {
     while (i < s.size()) {
         const char c = s[i];
         if (c == '\\' && i + 1 < s.size() && std::ispunct(static_cast<unsigned char>(s[i + 1]))) {
-            out += escape_valid(s.substr(i + 1, 1));
+            out += markup_escape(s.substr(i + 1, 1));
             i += 2;
             continue;
         }
         if (c == '`') {
             const size_t end = s.find('`', i + 1);
             if (end != std::string_view::npos) {
-                out += "<code>" + escape_valid(s.substr(i + 1, end - i - 1)) + "</code>";
+                out += "<code>" + markup_escape(s.substr(i + 1, end - i - 1)) + "</code>";
                 i = end + 1;
                 continue;
             }
@@ -87,13 +71,13 @@ std::string inline_html(std::string_view s) {
             if (end != std::string_view::npos) {
                 const std::string text = inline_html(s.substr(i + 1, close - i - 1));
                 if (const auto target = link_target(s.substr(close + 2, end - close - 2)))
-                    out += "<a href=\"" + escape_valid(*target) + "\">" + text + "</a>";
+                    out += "<a href=\"" + markup_escape(*target) + "\">" + text + "</a>";
                 else out += text;
                 i = end + 1;
                 continue;
             }
         }
-        out += escape_valid(s.substr(i, 1));
+        out += markup_escape(s.substr(i, 1));
         ++i;
     }
     return out;
@@ -151,10 +135,6 @@ int heading_level(std::string_view line) {
 
 }  // namespace
 
-std::string escape(std::string_view s) { return escape_valid(utf8_or_replacement(s)); }
-
-std::string url_path(std::string_view path) { return percent_encode_path(path); }
-
 std::string heading_slug(std::string_view heading) {
     std::string out;
     for (const char ch : heading) {
@@ -198,12 +178,13 @@ std::string markdown_to_html(std::string_view markdown, const MarkdownOptions& o
         } else if (const int level = heading_level(t)) {
             const std::string_view text = trim(t.substr(static_cast<size_t>(level)));
             const std::string lv = std::to_string(level);
-            html += "<h" + lv + " id=\"" + escape_valid(unique_id(heading_slug(utf8_or_replacement(text)))) + "\">" +
+            html += "<h" + lv + " id=\"" + markup_escape(unique_id(heading_slug(utf8_or_replacement(text)))) + "\">" +
                     inline_html(utf8_or_replacement(text)) + "</h" + lv + ">\n";
             ++i;
         } else if (starts_with(t, "```")) {
             html += "<pre><code>";
-            for (++i; i < lines.size() && !starts_with(trim(lines[i]), "```"); ++i) html += escape(lines[i]) + "\n";
+            for (++i; i < lines.size() && !starts_with(trim(lines[i]), "```"); ++i)
+                html += markup_escape(lines[i]) + "\n";
             html += "</code></pre>\n";
             ++i;
         } else if (starts_with(t, "|") && i + 1 < lines.size() && is_separator_row(lines[i + 1])) {
@@ -220,7 +201,7 @@ std::string markdown_to_html(std::string_view markdown, const MarkdownOptions& o
                     if (!id.empty() && ids.count(id)) id.clear();  // a code in two tables: the first row
                     if (!id.empty()) ids.insert(id);
                 }
-                html += id.empty() ? "<tr>" : "<tr id=\"" + escape_valid(id) + "\">";
+                html += id.empty() ? "<tr>" : "<tr id=\"" + markup_escape(id) + "\">";
                 for (const std::string& c : cells) html += "<td>" + inline_html(c) + "</td>";
                 html += "</tr>\n";
             }

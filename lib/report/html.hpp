@@ -1,8 +1,8 @@
 // HTML text for the report: escaping, and the small Markdown subset docs/rules.md is written in.
 //
 // Conventions of this module (decided once here):
-//  - every text that reaches the page goes through escape() (names come from the file system:
-//    bytes, made valid UTF-8 with U+FFFD first, then escaped for text and attribute contexts);
+//  - every text that reaches the page goes through mf::markup_escape() (core/text.hpp): names
+//    come from the file system as bytes; every link path through mf::percent_encode_path();
 //  - the page loads nothing from the network: no external script, style, font or image.
 #pragma once
 #include <set>
@@ -10,14 +10,6 @@
 #include <string_view>
 
 namespace mf::report {
-
-// `s` as valid UTF-8 (U+FFFD for ill-formed bytes) with & < > " ' escaped: safe in element text
-// and in a double- or single-quoted attribute value.
-std::string escape(std::string_view s);
-
-// A relative URL path from safe file-name components ('/'-separated): every byte outside
-// [A-Za-z0-9._~/-] percent-encoded.
-std::string url_path(std::string_view path);
 
 // The anchor GitHub gives a Markdown heading: lower case, letters/digits/'-'/'_' kept, spaces
 // to '-', everything else dropped ("Normal convention (GL vs DX)" -> "normal-convention-gl-vs-dx").

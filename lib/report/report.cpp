@@ -67,9 +67,9 @@ struct Pic {
 };
 
 std::string img(const Pic& p, const std::string& alt, const std::string& cls = "") {
-    return "<img loading=\"lazy\" decoding=\"async\" src=\"" + url_path(p.rel) + "\" width=\"" +
-           std::to_string(p.width) + "\" height=\"" + std::to_string(p.height) + "\" alt=\"" + escape(alt) + "\"" +
-           (cls.empty() ? "" : " class=\"" + cls + "\"") + ">";
+    return "<img loading=\"lazy\" decoding=\"async\" src=\"" + percent_encode_path(p.rel) + "\" width=\"" +
+           std::to_string(p.width) + "\" height=\"" + std::to_string(p.height) + "\" alt=\"" + markup_escape(alt) +
+           "\"" + (cls.empty() ? "" : " class=\"" + cls + "\"") + ">";
 }
 
 // The work of one material: its pictures and its card.
@@ -122,7 +122,7 @@ private:
         }
         std::vector<unsigned char> bytes;
         std::string error;
-        if (!encode_image(grey ? one : image, EncodeOptions{"png", 8}, bytes, error)) {
+        if (!encode_image(grey ? one : image, EncodeOptions{FileFormat::png, 8}, bytes, error)) {
             problem(error);
             return std::nullopt;
         }
@@ -319,9 +319,9 @@ private:
         const auto worst_sev = worst(m_.findings);
         const std::string sev = worst_sev ? std::string(severity_name(*worst_sev)) : "none";
         std::string& h = card_html;
-        h += "<section class=\"card sev-" + sev + "\" id=\"" + id + "\" data-material=\"" + escape(m_.name) +
+        h += "<section class=\"card sev-" + sev + "\" id=\"" + id + "\" data-material=\"" + markup_escape(m_.name) +
              "\" data-worst=\"" + sev + "\" data-index=\"" + std::to_string(index_) + "\">\n";
-        h += "<h2><a href=\"#" + id + "\">" + escape(m_.name) + "</a> <span class=\"badge status-" +
+        h += "<h2><a href=\"#" + id + "\">" + markup_escape(m_.name) + "</a> <span class=\"badge status-" +
              std::string(manifest::status_name(m_.status)) + "\">" + std::string(manifest::status_name(m_.status)) +
              "</span>";
         size_t counts[3] = {0, 0, 0};
@@ -347,21 +347,21 @@ private:
         const Pic* tile = preview_ ? &*preview_ : (sheet_pic_ ? &*sheet_pic_ : nullptr);
         sheet_html = "<a class=\"tile sev-" + sev + "\" href=\"#" + id + "\">" +
                      (tile ? img(*tile, m_.name) : std::string("<span class=\"noimg\"></span>")) + "<span>" +
-                     escape(m_.name) + "</span></a>\n";
+                     markup_escape(m_.name) + "</span></a>\n";
     }
 
     void sources_html(std::string& h) const {
-        h += "<h3>Sources</h3>\n<p class=\"meta\"><code>" + escape(m_.source) + "</code>";
-        if (m_.archive) h += " in archive <code>" + escape(*m_.archive) + "</code>";
-        h += " · naming <code>" + escape(m_.convention) + "</code></p>\n";
+        h += "<h3>Sources</h3>\n<p class=\"meta\"><code>" + markup_escape(m_.source) + "</code>";
+        if (m_.archive) h += " in archive <code>" + markup_escape(*m_.archive) + "</code>";
+        h += " · naming <code>" + markup_escape(m_.convention) + "</code></p>\n";
         h += "<table class=\"inputs\"><thead><tr><th>role</th><th>file</th><th>rule</th><th>size</th><th>encoding</th>"
              "</tr></thead><tbody>\n";
         for (const manifest::Input& in : m_.inputs) {
             h += "<tr class=\"input\" data-role=\"" + std::string(role_name(in.role)) + "\"><td>" +
-                 std::string(role_name(in.role)) + "</td><td><code>" + escape(in.file) + "</code></td><td>" +
-                 escape(in.rule) + "</td><td>" + std::to_string(in.width) + "×" + std::to_string(in.height) + "×" +
-                 std::to_string(in.channels) + ", " + std::to_string(in.bit_depth) + "-bit" +
-                 (in.is_float ? " float" : "") + "</td><td>" + escape(in.color_space) + "</td></tr>\n";
+                 std::string(role_name(in.role)) + "</td><td><code>" + markup_escape(in.file) + "</code></td><td>" +
+                 markup_escape(in.rule) + "</td><td>" + std::to_string(in.width) + "×" + std::to_string(in.height) +
+                 "×" + std::to_string(in.channels) + ", " + std::to_string(in.bit_depth) + "-bit" +
+                 (in.is_float ? " float" : "") + "</td><td>" + markup_escape(in.color_space) + "</td></tr>\n";
         }
         for (const manifest::Constant& c : m_.constants) {
             std::string v;
@@ -381,9 +381,9 @@ private:
     static void output_figure(std::string& h, const manifest::Output& o, const OutputPics& pics) {
         h += "<figure class=\"output\">";
         if (!pics.main.rel.empty()) h += img(pics.main, o.file);
-        else h += "<span class=\"noimg\" title=\"" + escape(pics.problem) + "\">not shown</span>";
-        h += "<figcaption><code>" + escape(fs::path(o.file).filename().string()) + "</code><br>" +
-             std::to_string(o.width) + "×" + std::to_string(o.height) + " " + escape(o.format) + " " +
+        else h += "<span class=\"noimg\" title=\"" + markup_escape(pics.problem) + "\">not shown</span>";
+        h += "<figcaption><code>" + markup_escape(fs::path(o.file).filename().string()) + "</code><br>" +
+             std::to_string(o.width) + "×" + std::to_string(o.height) + " " + markup_escape(o.format) + " " +
              std::to_string(o.bit_depth) + "-bit " + (o.srgb ? "sRGB" : "linear");
         if (o.normal_convention) h += " · normal " + std::string(convention_name(*o.normal_convention));
         h += "<table class=\"layout\">";
@@ -392,7 +392,7 @@ private:
             return channel_index(a.key) < channel_index(b.key);
         });
         for (const Channel& c : channels) {
-            h += "<tr><th>" + escape(c.key) + "</th><td>" + escape(channel_text(c)) + "</td><td>";
+            h += "<tr><th>" + markup_escape(c.key) + "</th><td>" + markup_escape(channel_text(c)) + "</td><td>";
             for (const auto& [key, pic] : pics.channels)
                 if (key == c.key) h += img(pic, o.file + " " + key, "chan");
             h += "</td></tr>";
@@ -414,7 +414,7 @@ private:
         if (facts.source == "name") h += ", from the file name";
         else if (facts.source == "content") {
             h += ", from the pixels";
-            if (!facts.method.empty()) h += " (" + escape(facts.method) + ")";
+            if (!facts.method.empty()) h += " (" + markup_escape(facts.method) + ")";
             if (facts.confidence) h += ", confidence " + fixed(*facts.confidence, 2);
         } else {
             h += ", undecided";
@@ -427,8 +427,8 @@ private:
         // The evidence: every finding about the convention with its measured figures.
         for (const Finding& f : m_.findings) {
             if (f.code.rfind("NORMAL_CONVENTION", 0) != 0) continue;
-            h += "<div class=\"evidence\"><a href=\"" + rule_link(f.code) + "\">" + escape(f.code) +
-                 "</a>: " + escape(f.message) + figures_html(f.figures) + "</div>\n";
+            h += "<div class=\"evidence\"><a href=\"" + rule_link(f.code) + "\">" + markup_escape(f.code) +
+                 "</a>: " + markup_escape(f.message) + figures_html(f.figures) + "</div>\n";
         }
     }
 
@@ -436,8 +436,8 @@ private:
         if (!figures.is_object() || figures.empty()) return {};
         std::string h = "<details><summary>figures</summary><table class=\"figures\">";
         for (const auto& [k, v] : figures.items())
-            h += "<tr><th>" + escape(k) + "</th><td>" +
-                 escape(v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) + "</td></tr>";
+            h += "<tr><th>" + markup_escape(k) + "</th><td>" +
+                 markup_escape(v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) + "</td></tr>";
         return h + "</table></details>";
     }
 
@@ -451,11 +451,12 @@ private:
              "</thead><tbody>\n";
         for (const Finding& f : m_.findings) {
             const std::string sev(severity_name(f.severity));
-            h += "<tr class=\"finding sev-" + sev + "\" data-code=\"" + escape(f.code) + "\" data-severity=\"" + sev +
-                 "\"><td><span class=\"badge sev-" + sev + "\">" + sev + "</span></td><td><a href=\"" +
-                 rule_link(f.code) + "\">" + escape(f.code) + "</a></td><td>" + escape(f.role) + "</td><td>" +
-                 escape(f.message) + (f.file.empty() ? "" : " <code>" + escape(f.file) + "</code>") +
-                 figures_html(f.figures) + "</td></tr>\n";
+            h += "<tr class=\"finding sev-" + sev + "\" data-code=\"" + markup_escape(f.code) + "\" data-severity=\"" +
+                 sev + "\"><td><span class=\"badge sev-" + sev + "\">" + sev + "</span></td><td><a href=\"" +
+                 rule_link(f.code) + "\">" + markup_escape(f.code) + "</a></td><td>" + markup_escape(f.role) +
+                 "</td><td>" + markup_escape(f.message) +
+                 (f.file.empty() ? "" : " <code>" + markup_escape(f.file) + "</code>") + figures_html(f.figures) +
+                 "</td></tr>\n";
         }
         h += "</tbody></table>\n";
     }
@@ -511,7 +512,8 @@ private:
             const manifest::Input& in = m_.inputs[i];
             if (source_pics_[i].rel.empty()) continue;
             h += "<div class=\"pair\"><figure>" + img(source_pics_[i], in.file) + "<figcaption>source " +
-                 std::string(role_name(in.role)) + ": <code>" + escape(in.file) + "</code></figcaption></figure>";
+                 std::string(role_name(in.role)) + ": <code>" + markup_escape(in.file) +
+                 "</code></figcaption></figure>";
             // The outputs this input's roles went into.
             std::vector<Role> roles{in.role};
             if (const auto layout = packed_layout(in.role); traits(in.role).packed)
@@ -527,20 +529,20 @@ private:
                                                });
                 if (!holds || out_pics_[k].main.rel.empty()) continue;
                 h += "<span class=\"arrow\">→</span><figure>" + img(out_pics_[k].main, m_.outputs[k].file) +
-                     "<figcaption>output <code>" + escape(fs::path(m_.outputs[k].file).filename().string()) +
+                     "<figcaption>output <code>" + markup_escape(fs::path(m_.outputs[k].file).filename().string()) +
                      "</code></figcaption></figure>";
             }
             h += "</div>\n";
         }
         if (other_) {
-            h += "<h4>" + escape(other_preset_) + " (--compare)</h4>\n<div class=\"pair\">";
+            h += "<h4>" + markup_escape(other_preset_) + " (--compare)</h4>\n<div class=\"pair\">";
             if (preview_ || compare_preview_) {
                 if (preview_)
                     h += "<figure>" + img(*preview_, "preview") +
                          "<figcaption>this report's preset</figcaption></figure>";
                 if (compare_preview_)
                     h += "<figure>" + img(*compare_preview_, "compare preview") + "<figcaption>" +
-                         escape(other_preset_) + "</figcaption></figure>";
+                         markup_escape(other_preset_) + "</figcaption></figure>";
             }
             h += "</div>\n<div class=\"outputs\">";
             for (size_t k = 0; k < other_->outputs.size(); ++k) output_figure(h, other_->outputs[k], compare_pics_[k]);
@@ -821,7 +823,7 @@ bool write_report(const Options& options, Result& result, std::string& error) {
     h.reserve(jobs.size() * 8192 + 65536);
     // The generator names the page as matforge's: a walk of an input never reads its folder.
     h += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"generator\" content=\"" +
-         escape(std::string(kGenerator)) +
+         markup_escape(std::string(kGenerator)) +
          "\">\n"
          // Nothing but this folder's pictures and the inline style and script: the page must open
          // the same from disk, from a CI artifact or with no network at all.
@@ -829,13 +831,13 @@ bool write_report(const Options& options, Result& result, std::string& error) {
          "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
          "<title>matforge report — " +
-         escape(opt.manifest.string()) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body data-page-size=\"" +
-         std::to_string(std::max(1, opt.page_size)) +
-         "\">\n<header>\n<h1>matforge report</h1>\n<div class=\"meta\"><code>" + escape(opt.manifest.string()) +
-         "</code> · preset <b>" + escape(m->preset) + "</b> · normals " +
-         std::string(convention_name(m->normal_convention)) + " · " + escape(m->generator) +
-         (other ? " · compared with <code>" + escape(opt.compare->string()) + "</code> (preset " +
-                      escape(other->preset) + ")"
+         markup_escape(opt.manifest.string()) + "</title>\n<style>\n" + kStyle +
+         "</style>\n</head>\n<body data-page-size=\"" + std::to_string(std::max(1, opt.page_size)) +
+         "\">\n<header>\n<h1>matforge report</h1>\n<div class=\"meta\"><code>" + markup_escape(opt.manifest.string()) +
+         "</code> · preset <b>" + markup_escape(m->preset) + "</b> · normals " +
+         std::string(convention_name(m->normal_convention)) + " · " + markup_escape(m->generator) +
+         (other ? " · compared with <code>" + markup_escape(opt.compare->string()) + "</code> (preset " +
+                      markup_escape(other->preset) + ")"
                 : std::string()) +
          "</div>\n<div class=\"summary\" id=\"summary\">" + std::to_string(m->materials.size()) + " materials · " +
          std::to_string(counts[2]) + " error · " + std::to_string(counts[1]) + " warning · " +
@@ -847,17 +849,17 @@ bool write_report(const Options& options, Result& result, std::string& error) {
         h += "<h2>Inputs that could not be processed</h2>\n<table class=\"failures\"><thead><tr><th>source</th>"
              "<th>code</th><th>message</th></tr></thead><tbody>\n";
         for (const auto& f : m->failures)
-            h += "<tr class=\"failure\" data-code=\"" + escape(f.code) + "\"><td><code>" + escape(f.source) +
-                 "</code></td><td><a href=\"" + rule_link(f.code) + "\">" + escape(f.code) + "</a></td><td>" +
-                 escape(f.message) + "</td></tr>\n";
+            h += "<tr class=\"failure\" data-code=\"" + markup_escape(f.code) + "\"><td><code>" +
+                 markup_escape(f.source) + "</code></td><td><a href=\"" + rule_link(f.code) + "\">" +
+                 markup_escape(f.code) + "</a></td><td>" + markup_escape(f.message) + "</td></tr>\n";
         h += "</tbody></table>\n";
     }
     if (!by_code.empty()) {
         h += "<details><summary>Findings by code</summary><table class=\"by-code\"><thead><tr><th>code</th><th>findings"
              "</th><th>materials</th></tr></thead><tbody>\n";
         for (const auto& [c, n] : by_code)
-            h += "<tr><td><a href=\"" + rule_link(c) + "\">" + escape(c) + "</a></td><td>" + std::to_string(n[0]) +
-                 "</td><td>" + std::to_string(n[1]) + "</td></tr>\n";
+            h += "<tr><td><a href=\"" + rule_link(c) + "\">" + markup_escape(c) + "</a></td><td>" +
+                 std::to_string(n[0]) + "</td><td>" + std::to_string(n[1]) + "</td></tr>\n";
         h += "</tbody></table></details>\n";
     }
     h += "<h2 id=\"contact-sheet\">Contact sheet</h2>\n<div class=\"sheet\">\n";

@@ -3,6 +3,7 @@
 #include <cctype>
 
 #include "core/catalog.hpp"
+#include "core/text.hpp"
 #include "report/html.hpp"
 #include "report/report.hpp"
 
@@ -29,7 +30,7 @@ std::string row_anchor(std::string_view code) {
 
 }  // namespace
 
-std::string rule_link(const std::string& code) { return "rules.html#" + url_path(anchor_of(code)); }
+std::string rule_link(const std::string& code) { return "rules.html#" + percent_encode_path(anchor_of(code)); }
 
 std::string rules_page(const std::set<std::string>& codes) {
     std::set<std::string> ids;
@@ -43,9 +44,9 @@ std::string rules_page(const std::set<std::string>& codes) {
         const std::string id = anchor_of(code);
         if (ids.count(id)) return;
         ids.insert(id);
-        others += "<tr id=\"" + escape(id) + "\"><td><code>" + escape(code) + "</code></td><td>" +
+        others += "<tr id=\"" + markup_escape(id) + "\"><td><code>" + markup_escape(code) + "</code></td><td>" +
                   (r ? std::string(severity_name(r->severity)) : std::string("—")) + "</td><td>" +
-                  (r ? escape(r->title)
+                  (r ? markup_escape(r->title)
                      : std::string("reported by ingest or set finding; docs/interface.md, "
                                    "\"Finding codes\", says when")) +
                   "</td></tr>\n";

@@ -160,13 +160,6 @@ Image8 to_rgba(const Image8& img) {
 
 }  // namespace
 
-std::optional<Effort> effort_from_name(const std::string& name) {
-    if (name == "fast") return Effort::fast;
-    if (name == "normal") return Effort::normal;
-    if (name == "thorough") return Effort::thorough;
-    return std::nullopt;
-}
-
 size_t level_bytes(const BlockFormatInfo& f, int width, int height) {
     const auto bx = static_cast<size_t>((width + f.block_width - 1) / f.block_width);
     const auto by = static_cast<size_t>((height + f.block_height - 1) / f.block_height);

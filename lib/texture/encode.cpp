@@ -92,9 +92,10 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     const std::vector<ChannelSpec> written = effective_channels(o, planes);
     int n = 0;
     for (const auto& c : written) n += c.key == "RGB" ? 3 : 1;
-    const BlockFormatInfo* f = block_format_info(block_format_for(o, n));
+    const BlockFormatInfo* f = block_format_for(o, n);
     if (!f) {
-        error = "unknown block format '" + block_format_for(o, n) + "'";
+        error = "output '" + o.suffix + "': no block format (the preset writes " + std::string(word(preset.format)) +
+                ")";
         return false;
     }
     // Level 0: the codes a PNG of this output would hold.
@@ -108,7 +109,7 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     const bool normal = std::find(kinds.begin(), kinds.end(), ChannelKind::normal) != kinds.end();
 
     // Direct3D 11 creates a BC texture only when its top level is a multiple of 4 wide and high.
-    if (preset.format == "dds" && (level0.width % 4 || level0.height % 4)) {
+    if (preset.format == FileFormat::dds && (level0.width % 4 || level0.height % 4)) {
         const int w4 = (level0.width + 3) / 4 * 4, h4 = (level0.height + 3) / 4 * 4;
         out.findings.push_back(finding(code::resized, "", "",
                                        "output '" + o.suffix + "': " + std::to_string(level0.width) + "x" +
@@ -121,7 +122,7 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     std::vector<Image8> chain;
     if (preset.mips) {
         MipOptions mo;
-        mo.filter = preset.mip_filter == "box" ? MipFilter::box : MipFilter::kaiser;
+        mo.filter = preset.mip_filter;
         mo.alpha_cutoff = preset.alpha_cutoff;
         Image normals;
         if (preset.toksvig && planes.count(Role::normal)) {
@@ -139,7 +140,7 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     CodecOptions codec;
     codec.format = f;
     codec.srgb = o.srgb && f->has_srgb;
-    codec.effort = effort_from_name(o.effort.empty() ? preset.effort : o.effort).value_or(Effort::normal);
+    codec.effort = o.effort.value_or(preset.effort);
     codec.normal_xy = normal && f->name == "bc5";
     codec.mask = !o.srgb && !normal && n > 1;
     const int compared = std::min(n, f->channels);
@@ -221,16 +222,16 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     out.height = tex.levels[0].height;
     out.block_format = std::string(f->name);
     out.normal_xy = codec.normal_xy;
-    if (preset.format == "dds") {
+    if (preset.format == FileFormat::dds) {
         out.gpu_format = dxgi_format_name(tex);
         out.bytes = write_dds(tex);
     } else {
         out.gpu_format = vk_format_name(tex);
         Ktx2Options ko;
-        ko.zstd = preset.supercompression == "zstd";
+        ko.zstd = preset.supercompression == Supercompression::zstd;
         ko.zstd_level = preset.zstd_level;
         ko.writer = ctx.writer;
-        if (ko.zstd) out.supercompression = "zstd";
+        if (ko.zstd) out.supercompression = std::string(word(Supercompression::zstd));
         if (!write_ktx2(tex, ko, out.bytes, error)) return false;
     }
     return true;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {

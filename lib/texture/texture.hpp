@@ -43,8 +43,6 @@ enum class ChannelKind : uint8_t {
 // normal for an RGB normal, alpha_tested for an opacity channel when `cutout`, data otherwise.
 std::vector<ChannelKind> channel_kinds(const std::vector<ChannelSpec>& written, bool srgb, bool cutout);
 
-enum class MipFilter { box, kaiser };
-
 struct MipOptions {
     // box: the mean of the 2x2 (or 3-wide at odd sizes) footprint. kaiser: a Kaiser-windowed
     // sinc (half-width 3 destination texels, alpha 4, NVIDIA Texture Tools' default), sharper and
@@ -76,9 +74,6 @@ AlphaUse classify_opacity(const Image& opacity);
 
 // ---------------------------------------------------------------------------------------------
 // Block codecs
-
-enum class Effort { fast, normal, thorough };
-std::optional<Effort> effort_from_name(const std::string& name);
 
 struct CodecOptions {
     const BlockFormatInfo* format = nullptr;

@@ -2,13 +2,14 @@
 
 #include <limits>
 
+#include "core/srgb.hpp"
 #include "validate/map_stats.hpp"
 
 namespace mf::validate {
 
 AlbedoClassifier::AlbedoClassifier(const Thresholds& t, bool linear_input)
     : linear_input_(linear_input), dielectric_max_(t.dielectric_max), metal_min_(t.metal_min) {
-    auto lin = [](double srgb255) { return detail::srgb_to_linear(static_cast<float>(srgb255 / 255.0)); };
+    auto lin = [](double srgb255) { return mf::srgb_to_linear(static_cast<float>(srgb255 / 255.0)); };
     dark_lin_ = lin(t.albedo_min_srgb);
     bright_lin_ = lin(t.albedo_max_srgb);
     metal_dark_lin_ = lin(t.metal_albedo_min_srgb);

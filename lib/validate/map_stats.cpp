@@ -6,6 +6,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/srgb.hpp"
 #include "core/text.hpp"
 
 namespace mf::validate::detail {
@@ -21,9 +22,6 @@ const char* channel_letter(int c) {
 }
 
 }  // namespace
-
-float srgb_to_linear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
-float linear_to_srgb(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f; }
 
 const std::vector<float>& srgb_decode_table() {
     static const std::vector<float> lut = [] {
@@ -339,21 +337,34 @@ NormalSummary MapStats::normal_summary() const {
     return s;
 }
 
+void MapStats::Emit::operator()(std::string_view code, std::string r, std::string msg, nlohmann::json fig) const {
+    out.push_back(finding(code, std::move(r), file, std::move(msg), std::move(fig)));
+}
+
+// Each rule group below is a stage of findings(), in this order (findings of one code keep the
+// order they are raised in; validate_set then sorts by catalog order).
 void MapStats::findings(std::vector<Finding>& out) const {
-    const std::string file = input.name.empty() ? input.file.display : input.name;
-    const std::string role = std::string(role_name(input.role));
-    auto add = [&](std::string_view code, std::string r, std::string msg, nlohmann::json fig) {
-        out.push_back(finding(code, std::move(r), file, std::move(msg), std::move(fig)));
-    };
     if (pixels == 0) return;
+    const Emit add{input.name.empty() ? input.file.display : input.name, std::string(role_name(input.role)), out};
+    value_findings(add);
+    grayscale_findings(add);
+    constant_findings(add);
+    metalness_findings(add);
+    opacity_findings(add);
+    normal_findings(add);
+    tag_findings(add);
+}
+
+// NONFINITE_VALUES, OUT_OF_RANGE_VALUES.
+void MapStats::value_findings(const Emit& add) const {
+    const std::string& file = add.file;
+    const std::string& role = add.role;
     const int nc = std::min(channels, 4);
     auto channel_array = [&](const std::array<double, 4>& a) {
         nlohmann::json j = nlohmann::json::array();
         for (int c = 0; c < nc; ++c) j.push_back(std::isfinite(a[c]) ? nlohmann::json(a[c]) : nlohmann::json());
         return j;
     };
-
-    // NONFINITE_VALUES
     if (nan + inf > 0 && ratio(nan + inf, samples) > t.nonfinite_max_share) {
         add(code::nonfinite_values, role,
             file + ": " + std::to_string(nan) + " NaN and " + std::to_string(inf) +
@@ -374,7 +385,12 @@ void MapStats::findings(std::vector<Finding>& out) const {
              {"max", channel_array(max)},
              {"epsilon", t.range_epsilon}});
     }
-    // NOT_GRAYSCALE
+}
+
+// NOT_GRAYSCALE.
+void MapStats::grayscale_findings(const Emit& add) const {
+    const std::string& file = add.file;
+    const std::string& role = add.role;
     if (scalar_role() && channels >= 3) {
         const double share = ratio(gray_differing, pixels);
         const double tol = is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance;
@@ -391,48 +407,53 @@ void MapStats::findings(std::vector<Finding>& out) const {
                  {"jpeg", is_jpeg}});
         }
     }
-    // CONSTANT_MAP: per channel group (packed inputs: per channel role)
-    {
-        const double tol = is_jpeg ? t.constant_tolerance_jpeg : t.constant_tolerance;
-        std::vector<std::pair<std::vector<int>, Role>> groups;
-        if (traits(input.role).packed) {
-            for (int c = 0; c < std::min(channels, 3); ++c)
-                if (auto r = channel_role(input.role, c)) groups.push_back({{c}, *r});
-        } else if (scalar_role()) {
-            groups.push_back({{0}, input.role});
-        } else {
-            std::vector<int> g;
-            for (int c = 0; c < std::min(channels, 3); ++c) g.push_back(c);
-            groups.emplace_back(std::move(g), input.role);
-        }
-        for (const auto& group : groups) {
-            // Named, not a structured binding: the lambda below captures chs (clang < 16 cannot).
-            const std::vector<int>& chs = group.first;
-            const Role r = group.second;
-            bool constant = true;
-            nlohmann::json value = nlohmann::json::array(), range = nlohmann::json::array();
-            for (int c : chs) {
-                if (finite[c] == 0 || max[c] - min[c] > tol) constant = false;
-                value.push_back(mean(c));
-                range.push_back(finite[c] ? max[c] - min[c] : 0.0);
-            }
-            if (!constant) continue;
-            std::string where = file;
-            if (traits(input.role).packed) where = "channel " + std::string(channel_letter(chs[0])) + " of " + file;
-            std::string vtext;
-            for (size_t i = 0; i < value.size(); ++i) vtext += (i ? ", " : "") + fixed(value[i].get<double>(), 3);
-            add(code::constant_map, std::string(role_name(r)),
-                where + " holds one value (" + vtext + "); a constant or a 2x2 map does the same",
-                {{"value", value}, {"range", range}, {"tolerance", tol}, {"channels", [&] {
-                                                                              nlohmann::json a =
-                                                                                  nlohmann::json::array();
-                                                                              for (int c : chs)
-                                                                                  a.push_back(channel_letter(c));
-                                                                              return a;
-                                                                          }()}});
-        }
+}
+
+// CONSTANT_MAP: per channel group (packed inputs: per channel role).
+void MapStats::constant_findings(const Emit& add) const {
+    const std::string& file = add.file;
+    const double tol = is_jpeg ? t.constant_tolerance_jpeg : t.constant_tolerance;
+    std::vector<std::pair<std::vector<int>, Role>> groups;
+    if (traits(input.role).packed) {
+        for (int c = 0; c < std::min(channels, 3); ++c)
+            if (auto r = channel_role(input.role, c)) groups.push_back({{c}, *r});
+    } else if (scalar_role()) {
+        groups.push_back({{0}, input.role});
+    } else {
+        std::vector<int> g;
+        for (int c = 0; c < std::min(channels, 3); ++c) g.push_back(c);
+        groups.emplace_back(std::move(g), input.role);
     }
-    // METALNESS_NOT_BINARY
+    for (const auto& group : groups) {
+        // Named, not a structured binding: the lambda below captures chs (clang < 16 cannot).
+        const std::vector<int>& chs = group.first;
+        const Role r = group.second;
+        bool constant = true;
+        nlohmann::json value = nlohmann::json::array(), range = nlohmann::json::array();
+        for (int c : chs) {
+            if (finite[c] == 0 || max[c] - min[c] > tol) constant = false;
+            value.push_back(mean(c));
+            range.push_back(finite[c] ? max[c] - min[c] : 0.0);
+        }
+        if (!constant) continue;
+        std::string where = file;
+        if (traits(input.role).packed) where = "channel " + std::string(channel_letter(chs[0])) + " of " + file;
+        std::string vtext;
+        for (size_t i = 0; i < value.size(); ++i) vtext += (i ? ", " : "") + fixed(value[i].get<double>(), 3);
+        add(code::constant_map, std::string(role_name(r)),
+            where + " holds one value (" + vtext + "); a constant or a 2x2 map does the same",
+            {{"value", value}, {"range", range}, {"tolerance", tol}, {"channels", [&] {
+                                                                          nlohmann::json a = nlohmann::json::array();
+                                                                          for (int c : chs)
+                                                                              a.push_back(channel_letter(c));
+                                                                          return a;
+                                                                      }()}});
+    }
+}
+
+// METALNESS_NOT_BINARY.
+void MapStats::metalness_findings(const Emit& add) const {
+    const std::string& file = add.file;
     if (metal_channel >= 0) {
         const long long total = metal_dielectric + metal_metal + metal_between;
         const double share = ratio(metal_between, total);
@@ -451,7 +472,11 @@ void MapStats::findings(std::vector<Finding>& out) const {
                  {"max_share", t.metalness_max_intermediate_share}});
         }
     }
-    // OPACITY_ALL_TRANSPARENT
+}
+
+// OPACITY_ALL_TRANSPARENT.
+void MapStats::opacity_findings(const Emit& add) const {
+    const std::string& file = add.file;
     if (opacity_channel >= 0 && opacity_channel < channels) {
         const double share = ratio(opacity_invisible, pixels);
         if (share > t.opacity_max_invisible_share) {
@@ -472,8 +497,14 @@ void MapStats::findings(std::vector<Finding>& out) const {
                  {"max_share", t.opacity_max_invisible_share}});
         }
     }
-    // NORMAL_Z_RECONSTRUCTED
-    if (is_normal() && rebuilds_z()) {
+}
+
+// NORMAL_Z_RECONSTRUCTED, NORMAL_INVALID, NORMAL_GAMMA_ENCODED, NORMAL_NOT_UNIT_LENGTH.
+void MapStats::normal_findings(const Emit& add) const {
+    if (!is_normal()) return;
+    const std::string& file = add.file;
+    const std::string& role = add.role;
+    if (rebuilds_z()) {
         const std::string what = channels == 2 ? "two channels (X, Y)"
                                                : "a blue channel holding one value (B = " + fixed(max[2], 3) + ")";
         add(code::normal_z_reconstructed, role,
@@ -482,57 +513,59 @@ void MapStats::findings(std::vector<Finding>& out) const {
              {"blue_min", channels >= 3 ? min[2] : 0.0},
              {"blue_max", channels >= 3 ? max[2] : 0.0}});
     }
-    // NORMAL_INVALID, NORMAL_GAMMA_ENCODED, NORMAL_NOT_UNIT_LENGTH
-    if (is_normal()) {
-        if (channels < 2) {
-            add(code::normal_invalid, role,
-                file + ": a one-channel image cannot be a tangent-space normal map (is it a "
-                       "height or bump map?)",
-                {{"channels", channels}});
-        } else {
-            const NormalSummary s = normal_summary();
-            nlohmann::json fig = s.figures();
-            fig["decoding"] = normal_signed == 1 ? "signed" : "2c-1";
-            if (s.gamma_encoded) {
-                nlohmann::json g = fig;
-                g["min_stored_mean_xy"] = t.normal_gamma_min_stored_mean_xy;
-                g["max_mean_xy"] = t.normal_max_mean_xy;
-                g["min_upward_share"] = t.normal_min_upward_share;
-                g["max_decoded_length_error"] = t.normal_gamma_max_decoded_length_error;
-                add(code::normal_gamma_encoded, role,
-                    file + ": stored sRGB/gamma-encoded: mean R, G = " + fixed(127.5 * (s.mean_x + 1), 1) + ", " +
-                        fixed(127.5 * (s.mean_y + 1), 1) + " instead of about 128 (X/Y centred at " +
-                        fixed(0.5 * (s.mean_x + 1), 2) + ", " + fixed(0.5 * (s.mean_y + 1), 2) +
-                        ", not 0.5); decoded with the sRGB curve they average " + fixed(s.srgb_mean_x, 2) + ", " +
-                        fixed(s.srgb_mean_y, 2) + " with mean length " + fixed(s.srgb_mean_length, 2) +
-                        " — re-export it as linear data (no sRGB conversion)",
-                    g);
-            } else if (!s.invalid.empty()) {
-                std::string why;
-                for (const auto& w : s.invalid) why += (why.empty() ? "" : "; ") + w;
-                nlohmann::json g = fig;
-                g["min_upward_share"] = t.normal_min_upward_share;
-                g["max_mean_xy"] = t.normal_max_mean_xy;
-                g["max_negative_z_share"] = t.normal_max_negative_z_share;
-                g["max_gray_share"] = t.normal_max_gray_share;
-                add(code::normal_invalid, role,
-                    file + ": not a tangent-space normal map: " + why +
-                        " — is it a height, color or object-space map named as normal?",
-                    g);
-            }
-            if (s.not_unit_length) {
-                nlohmann::json g = fig;
-                g["length_tolerance"] = t.normal_length_tolerance;
-                g["max_bad_length_share"] = t.normal_max_bad_length_share;
-                add(code::normal_not_unit_length, role,
-                    file + ": vectors not unit length (mean |2c-1| = " + fixed(s.mean_length, 3) + ", " +
-                        percent(s.bad_length_share) + " off by > " + fixed(t.normal_length_tolerance, 1) +
-                        "); renormalized on ingest",
-                    g);
-            }
-        }
+    if (channels < 2) {
+        add(code::normal_invalid, role,
+            file + ": a one-channel image cannot be a tangent-space normal map (is it a "
+                   "height or bump map?)",
+            {{"channels", channels}});
+        return;
     }
-    // COLOR_SPACE_MISMATCH (tags)
+    const NormalSummary s = normal_summary();
+    nlohmann::json fig = s.figures();
+    fig["decoding"] = normal_signed == 1 ? "signed" : "2c-1";
+    // The summary's figures and the thresholds the finding was judged by.
+    auto with = [&fig](const nlohmann::json& thresholds) {
+        nlohmann::json g = fig;
+        g.update(thresholds);
+        return g;
+    };
+    if (s.gamma_encoded) {
+        add(code::normal_gamma_encoded, role,
+            file + ": stored sRGB/gamma-encoded: mean R, G = " + fixed(127.5 * (s.mean_x + 1), 1) + ", " +
+                fixed(127.5 * (s.mean_y + 1), 1) + " instead of about 128 (X/Y centred at " +
+                fixed(0.5 * (s.mean_x + 1), 2) + ", " + fixed(0.5 * (s.mean_y + 1), 2) +
+                ", not 0.5); decoded with the sRGB curve they average " + fixed(s.srgb_mean_x, 2) + ", " +
+                fixed(s.srgb_mean_y, 2) + " with mean length " + fixed(s.srgb_mean_length, 2) +
+                " — re-export it as linear data (no sRGB conversion)",
+            with({{"min_stored_mean_xy", t.normal_gamma_min_stored_mean_xy},
+                  {"max_mean_xy", t.normal_max_mean_xy},
+                  {"min_upward_share", t.normal_min_upward_share},
+                  {"max_decoded_length_error", t.normal_gamma_max_decoded_length_error}}));
+    } else if (!s.invalid.empty()) {
+        std::string why;
+        for (const auto& w : s.invalid) why += (why.empty() ? "" : "; ") + w;
+        add(code::normal_invalid, role,
+            file + ": not a tangent-space normal map: " + why +
+                " — is it a height, color or object-space map named as normal?",
+            with({{"min_upward_share", t.normal_min_upward_share},
+                  {"max_mean_xy", t.normal_max_mean_xy},
+                  {"max_negative_z_share", t.normal_max_negative_z_share},
+                  {"max_gray_share", t.normal_max_gray_share}}));
+    }
+    if (s.not_unit_length) {
+        add(code::normal_not_unit_length, role,
+            file + ": vectors not unit length (mean |2c-1| = " + fixed(s.mean_length, 3) + ", " +
+                percent(s.bad_length_share) + " off by > " + fixed(t.normal_length_tolerance, 1) +
+                "); renormalized on ingest",
+            with({{"length_tolerance", t.normal_length_tolerance},
+                  {"max_bad_length_share", t.normal_max_bad_length_share}}));
+    }
+}
+
+// COLOR_SPACE_MISMATCH (the file's color tag against the role).
+void MapStats::tag_findings(const Emit& add) const {
+    const std::string& file = add.file;
+    const std::string& role = add.role;
     const ColorTag tag = input.color_tag.tag;
     const bool color = is_color_role(input.role);
     nlohmann::json tagfig{{"tag", color_tag_name(tag)},

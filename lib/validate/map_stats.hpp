@@ -12,11 +12,8 @@ namespace mf::validate::detail {
 // a / b as a fraction (0 when b is 0).
 inline double ratio(long long a, long long b) { return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0.0; }
 
-// IEC 61966-2-1 sRGB transfer functions (exact piecewise curve).
-float srgb_to_linear(float v);
-float linear_to_srgb(float v);
-// srgb_to_linear of every 16-bit code k / 65535 (an 8-bit code k is the 16-bit code 257 k):
-// exact for integer files, a lookup instead of a pow per sample.
+// mf::srgb_to_linear (core/srgb.hpp) of every 16-bit code k / 65535 (an 8-bit code k is the
+// 16-bit code 257 k): exact for integer files, a lookup instead of a pow per sample.
 const std::vector<float>& srgb_decode_table();
 
 // What a normal map's statistics say (NORMAL_INVALID, NORMAL_GAMMA_ENCODED,
@@ -75,8 +72,21 @@ struct MapStats {
     void add_band(int y0, int rows, const float* px);
     void normal_band(long long n, const float* px);  // add_band's normal-map part
 
-    // Findings that depend on this map alone (severity/enable applied later).
+    // Findings that depend on this map alone, at their catalog severity: the rule groups below,
+    // in order.
     void findings(std::vector<Finding>& out) const;
+    struct Emit {  // adds a finding about this map's file
+        std::string file, role;
+        std::vector<Finding>& out;
+        void operator()(std::string_view code, std::string r, std::string msg, nlohmann::json fig) const;
+    };
+    void value_findings(const Emit& add) const;
+    void grayscale_findings(const Emit& add) const;
+    void constant_findings(const Emit& add) const;
+    void metalness_findings(const Emit& add) const;
+    void opacity_findings(const Emit& add) const;
+    void normal_findings(const Emit& add) const;
+    void tag_findings(const Emit& add) const;
 
     bool is_normal() const { return input.role == Role::normal; }
     NormalSummary normal_summary() const;  // meaningful for normal maps of ≥ 2 channels

@@ -198,26 +198,6 @@ std::string write_text(const Report& r, FailOn fail_on) {
     return out;
 }
 
-std::string xml_escape(std::string_view raw) {
-    const std::string s = utf8_or_replacement(raw);  // XML must be well-formed UTF-8
-    std::string o;
-    o.reserve(s.size());
-    for (unsigned char c : s) {
-        switch (c) {
-            case '&': o += "&amp;"; break;
-            case '<': o += "&lt;"; break;
-            case '>': o += "&gt;"; break;
-            case '"': o += "&quot;"; break;
-            case '\'': o += "&apos;"; break;
-            default:
-                // XML 1.0 §2.2 forbids C0 controls other than tab, LF, CR, even escaped.
-                if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') o += "\xEF\xBF\xBD";  // U+FFFD
-                else o += static_cast<char>(c);
-        }
-    }
-    return o;
-}
-
 std::string write_junit(const Report& r, FailOn fail_on) {
     // One <testsuite> per material, one <testcase> per rule evaluated on it: a dashboard shows
     // which rule failed for which material, and a passing rule as a passing test.
@@ -242,13 +222,14 @@ std::string write_junit(const Report& r, FailOn fail_on) {
         for (const auto& k : cases) fail += k.failing.empty() ? 0 : 1;
         total += static_cast<int>(cases.size());
         total_fail += fail;
-        body += "  <testsuite name=\"" + xml_escape(m.name) + "\" tests=\"" + std::to_string(cases.size()) +
+        body += "  <testsuite name=\"" + markup_escape(m.name) + "\" tests=\"" + std::to_string(cases.size()) +
                 "\" failures=\"" + std::to_string(fail) + "\" errors=\"0\" skipped=\"0\">\n";
-        body += "    <properties>\n      <property name=\"source\" value=\"" + xml_escape(m.source) +
+        body += "    <properties>\n      <property name=\"source\" value=\"" + markup_escape(m.source) +
                 "\"/>\n    </properties>\n";
         const std::string classname = "matforge.validate." + m.name;
         for (const auto& k : cases) {
-            body += "    <testcase name=\"" + xml_escape(k.name) + "\" classname=\"" + xml_escape(classname) + "\"";
+            body += "    <testcase name=\"" + markup_escape(k.name) + "\" classname=\"" + markup_escape(classname) +
+                    "\"";
             if (k.failing.empty() && k.passing.empty()) {
                 body += "/>\n";
                 continue;
@@ -259,13 +240,13 @@ std::string write_junit(const Report& r, FailOn fail_on) {
                 for (const Finding* f : k.failing)
                     text += finding_line(*f) + (f->file.empty() ? "" : " (" + join_path(m.source, f->file) + ")") +
                             "\n";
-                body += "      <failure type=\"" + xml_escape(k.name) + "\" message=\"" +
-                        xml_escape(k.failing.front()->message) + "\">" + xml_escape(text) + "</failure>\n";
+                body += "      <failure type=\"" + markup_escape(k.name) + "\" message=\"" +
+                        markup_escape(k.failing.front()->message) + "\">" + markup_escape(text) + "</failure>\n";
             }
             if (!k.passing.empty()) {
                 std::string text;
                 for (const Finding* f : k.passing) text += finding_line(*f) + "\n";
-                body += "      <system-out>" + xml_escape(text) + "</system-out>\n";
+                body += "      <system-out>" + markup_escape(text) + "</system-out>\n";
             }
             body += "    </testcase>\n";
         }
@@ -275,9 +256,9 @@ std::string write_junit(const Report& r, FailOn fail_on) {
         body += "  <testsuite name=\"inputs\" tests=\"" + std::to_string(r.failures.size()) +
                 "\" failures=\"0\" errors=\"" + std::to_string(r.failures.size()) + "\" skipped=\"0\">\n";
         for (const auto& f : r.failures)
-            body += "    <testcase name=\"" + xml_escape(f.source) + "\" classname=\"matforge.validate.inputs\">\n" +
-                    "      <error type=\"" + xml_escape(f.code) + "\" message=\"" + xml_escape(f.message) + "\"/>\n" +
-                    "    </testcase>\n";
+            body += "    <testcase name=\"" + markup_escape(f.source) + "\" classname=\"matforge.validate.inputs\">\n" +
+                    "      <error type=\"" + markup_escape(f.code) + "\" message=\"" + markup_escape(f.message) +
+                    "\"/>\n" + "    </testcase>\n";
         body += "  </testsuite>\n";
         total += static_cast<int>(r.failures.size());
         total_err += static_cast<int>(r.failures.size());
@@ -285,21 +266,6 @@ std::string write_junit(const Report& r, FailOn fail_on) {
     return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"matforge validate\" tests=\"" +
            std::to_string(total) + "\" failures=\"" + std::to_string(total_fail) + "\" errors=\"" +
            std::to_string(total_err) + "\">\n" + body + "</testsuites>\n";
-}
-
-std::string uri_encode_path(std::string_view p) {
-    // RFC 3986 path: unreserved characters and '/' stay, everything else is percent-encoded.
-    static const char* hex = "0123456789ABCDEF";
-    std::string o;
-    for (unsigned char c : p) {
-        if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') o += static_cast<char>(c);
-        else {
-            o += '%';
-            o += hex[c >> 4];
-            o += hex[c & 15];
-        }
-    }
-    return o;
 }
 
 std::string write_sarif(const Report& r) {
@@ -331,7 +297,7 @@ std::string write_sarif(const Report& r) {
         return static_cast<int>(std::find(ids.begin(), ids.end(), id) - ids.begin());
     };
     auto location = [](const std::string& path) {
-        std::string uri = uri_encode_path(path);
+        std::string uri = percent_encode_path(path);
         if (!path.empty() && path.front() == '/') uri = "file://" + uri;
         return nlohmann::json::array({{{"physicalLocation", {{"artifactLocation", {{"uri", uri}}}}}}});
     };

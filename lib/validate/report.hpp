@@ -65,8 +65,4 @@ std::string write_text(const Report& r, FailOn fail_on);
 std::string write_junit(const Report& r, FailOn fail_on);
 std::string write_sarif(const Report& r);
 
-// Helpers exposed for tests.
-std::string xml_escape(std::string_view raw);
-std::string uri_encode_path(std::string_view path);
-
 }  // namespace mf::validate

@@ -140,8 +140,9 @@ std::optional<Thresholds> thresholds_from(const ThresholdTable& table, std::stri
 // The defaults and threshold names per code, as JSON (for `matforge presets show` and docs).
 nlohmann::json describe(const RuleConfig& cfg);
 
-// Applies disabled codes, severity overrides and suppressions to findings made elsewhere (the
-// lead's MISSING_MAP, UNREADABLE_FILE, …). Returns how many findings were suppressed.
+// Applies disabled codes, severity overrides and suppressions to a set's findings; protected
+// codes (UNREADABLE_FILE, …) are never dropped nor lowered. Called once per set, over every
+// stage's findings (process/plan.hpp reported_findings). Returns how many were dropped.
 int apply_config(std::vector<Finding>& findings, std::string_view material, const RuleConfig& cfg);
 
 // Glob match with '*' and '?', case-sensitive.

@@ -30,43 +30,6 @@ int first_readable(const std::vector<MapInput>& maps, const std::vector<bool>& r
     return -1;
 }
 
-// RESOLUTION_MISMATCH: every map whose size differs from the most common size (ties: the
-// largest), so the message names the odd ones out.
-void resolution_findings(const std::vector<MapInput>& maps, const std::vector<bool>& readable,
-                         std::vector<Finding>& out) {
-    // Alternates are never resampled into the set: their sizes do not count.
-    auto counted = [&](size_t i) { return readable[i] && !maps[i].alternate; };
-    std::map<std::pair<int, int>, int> counts;
-    for (size_t i = 0; i < maps.size(); ++i)
-        if (counted(i)) ++counts[{maps[i].info.width, maps[i].info.height}];
-    if (counts.size() < 2) return;
-    std::pair<int, int> ref{0, 0};
-    int best = -1;
-    for (const auto& [size, n] : counts)
-        if (n > best || (n == best && int64_t{size.first} * size.second > int64_t{ref.first} * ref.second)) {
-            best = n;
-            ref = size;
-        }
-    nlohmann::json sizes = nlohmann::json::object();
-    for (size_t i = 0; i < maps.size(); ++i)
-        if (counted(i)) sizes[display_name(maps[i])] = {maps[i].info.width, maps[i].info.height};
-    for (size_t i = 0; i < maps.size(); ++i) {
-        if (!counted(i)) continue;
-        const auto& m = maps[i];
-        if (m.info.width == ref.first && m.info.height == ref.second) continue;
-        const std::string file = display_name(m);
-        out.push_back(finding(code::resolution_mismatch, std::string(role_name(m.role)), file,
-                              file + " is " + std::to_string(m.info.width) + "x" + std::to_string(m.info.height) +
-                                  " but the other maps of the set are " + std::to_string(ref.first) + "x" +
-                                  std::to_string(ref.second) + "; it will be resampled",
-                              {{"width", m.info.width},
-                               {"height", m.info.height},
-                               {"reference_width", ref.first},
-                               {"reference_height", ref.second},
-                               {"sizes", sizes}}));
-    }
-}
-
 }  // namespace
 
 std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name, NormalConvention name_convention,
@@ -316,7 +279,6 @@ struct SetRun {
             }
             stats[i]->findings(found);
         }
-        resolution_findings(maps, readable, found);
         // A map that is not a normal map has no green convention: NORMAL_INVALID says it all.
         if (verdict) {
             const auto n = static_cast<size_t>(normal.map);
@@ -324,9 +286,9 @@ struct SetRun {
         }
     }
 
-    // Severities, disabled codes and suppressions; then the stable order (the rule catalog's).
+    // The stable order (the catalog's). The rules config is applied by the caller, once over
+    // every stage's findings (process/plan.hpp reported_findings).
     SetValidation finish() {
-        result.suppressed = apply_config(found, opt.material, cfg);
         const auto& cat = finding_catalog();
         auto rank = [&](const Finding& f) {
             for (size_t i = 0; i < cat.size(); ++i)

@@ -12,8 +12,9 @@
 //    albedo's grid; normal with height on the normal's grid), resampled by nearest neighbour
 //    when sizes differ. Peak memory ≈ one band per map plus a few rows: an 8K set validates in
 //    tens of MB;
-//  - output: findings sorted by catalog order (rules.hpp), then map order; severities come from
-//    the RuleConfig; suppressed/disabled codes are dropped (and counted).
+//  - output: findings sorted by catalog order (core/catalog.hpp), then map order, at their
+//    catalog severity; the RuleConfig's thresholds decide them, its switches (off, severity
+//    overrides, suppressions) are the caller's to apply, once per set (apply_config).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -84,7 +85,6 @@ struct SetValidation {
     // The maps that could not be read (a truncated file reads its header, not its pixels):
     // MapInput::name (the file, when unnamed) -> the reader's error. Each has its UNREADABLE_FILE.
     std::map<std::string, std::string> unreadable;
-    int suppressed = 0;  // findings removed by "ignore"/"suppress"/"off"
 };
 
 // The nearest-neighbour index of destination coordinate i (of n) in a source of size m (pixel

@@ -125,9 +125,9 @@ inline void write_text(const fs::path& p, const std::string& s) {
 inline void write_png(const fs::path& p, const mf::Image& img, int bits = 8) {
     std::vector<unsigned char> bytes;
     std::string err;
-    ASSERT_TRUE(mf::encode_image(img, {p.extension() == ".exr" ? "exr" : p.extension().string().substr(1), bits}, bytes,
-                                 err))
-        << err;
+    const auto format = mf::from_word<mf::FileFormat>(p.extension().string().substr(1));
+    ASSERT_TRUE(format) << p << ": not a format encode_image writes";
+    ASSERT_TRUE(mf::encode_image(img, {*format, bits}, bytes, err)) << err;
     ASSERT_TRUE(mf::write_file_atomic(p, bytes, err)) << err;
 }
 

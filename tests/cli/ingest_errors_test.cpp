@@ -24,7 +24,7 @@ TEST(IngestErrors, CorruptFilesAreReportedAndOtherSetsComplete) {
     write_text(in / "Mixed" / "Mixed_Metalness.png", "");
     std::vector<unsigned char> png;
     std::string err;
-    ASSERT_TRUE(mf::encode_image(gradient(16, 16, 3), {"png", 8}, png, err));
+    ASSERT_TRUE(mf::encode_image(gradient(16, 16, 3), {mf::FileFormat::png, 8}, png, err));
     write_text(in / "Mixed" / "Mixed_NormalGL.png",
                std::string(png.begin(), png.begin() + static_cast<long>(png.size() / 2)));
     // A set where nothing is readable.

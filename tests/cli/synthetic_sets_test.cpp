@@ -129,20 +129,25 @@ TEST(SyntheticSets, GlossInvertedAndLargestAlbedoChosen) {
     EXPECT_EQ((*orm)["width"], 256) << "all maps brought to the largest size";
 }
 
-TEST(SyntheticSets, ResolutionMismatchIsAWarningOnTheOddFile) {
-    // MarbleTiles0017's 2K albedo differs in size from its other maps: a warning located on it.
+TEST(SyntheticSets, ResolutionMismatchNamesEachResampledMap) {
+    // MarbleTiles0017's albedo is 2K (256 px here), its other maps 1K (128 px): the set is the
+    // albedo's size, so the 1K maps the preset uses are resampled, and each gets the warning; the
+    // albedo, at the set's size, none (the rules once put it on the albedo, the odd one out).
     const auto r = run("validate " + q(synthetic({"MarbleTiles0017"}) / "MarbleTiles0017") + " --report sarif");
     ASSERT_EQ(r.code, 0) << r.output;
     const auto j = nlohmann::json::parse(r.output);
-    bool found = false;
+    std::set<std::string> on;
     for (const auto& res : j["runs"][0]["results"]) {
         if (res["ruleId"] != "RESOLUTION_MISMATCH") continue;
-        found = true;
         const std::string uri = res["locations"][0]["physicalLocation"]["artifactLocation"]["uri"];
-        EXPECT_NE(uri.find("MarbleTiles0017_COL_2K.jpg"), std::string::npos) << uri;
+        on.insert(uri.substr(uri.rfind('/') + 1));
         EXPECT_EQ(res["level"], "warning");
+        EXPECT_NE(res["message"]["text"].get<std::string>().find("but the set is 256x256 (MarbleTiles0017_COL_2K.jpg)"),
+                  std::string::npos)
+            << res.dump();
     }
-    EXPECT_TRUE(found);
+    EXPECT_EQ(on, (std::set<std::string>{"MarbleTiles0017_AO_1K.jpg", "MarbleTiles0017_DISP_1K.jpg",
+                                         "MarbleTiles0017_GLOSS_1K.jpg", "MarbleTiles0017_NRM_1K.jpg"}));
     EXPECT_EQ(run("validate " + q(synthetic({"MarbleTiles0017"})) + " --fail-on warning").code, 1);
 }
 

@@ -69,3 +69,13 @@ TEST(Numbers, FixedAndPercent) {
 }
 
 }  // namespace
+
+// One escaper for the report page and JUnit: every reference both HTML and XML read, ill-formed
+// bytes and forbidden controls as U+FFFD, tab/LF/CR and valid UTF-8 kept.
+TEST(Text, MarkupEscape) {
+    EXPECT_EQ(mf::markup_escape("a<b>&\"'c"), "a&lt;b&gt;&amp;&quot;&#39;c");
+    EXPECT_EQ(mf::markup_escape(std::string("x\x01y\x1fz", 5)), "x\xEF\xBF\xBDy\xEF\xBF\xBDz");
+    EXPECT_EQ(mf::markup_escape("t\tn\nr\r"), "t\tn\nr\r");
+    EXPECT_EQ(mf::markup_escape("caf\xC3\xA9 \xFF"), "caf\xC3\xA9 \xEF\xBF\xBD");
+    EXPECT_EQ(mf::markup_escape(""), "");
+}

@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 
+#include "core/srgb.hpp"
 #include "corpus.hpp"
 #include "image/image.hpp"
 #include "validate/map_stats.hpp"
@@ -133,10 +134,10 @@ const std::vector<Measured>& measured() {
                         Map enc = m, lin = m;
                         enc.population = "gamma";
                         enc.name = file + " (sRGB-encoded copy)";
-                        enc.img = recode(m.img, [](float c) { return md::linear_to_srgb(c); });
+                        enc.img = recode(m.img, [](float c) { return mf::linear_to_srgb(c); });
                         lin.population = "wrong";
                         lin.name = file + " (linearized copy)";
-                        lin.img = recode(m.img, [](float c) { return md::srgb_to_linear(c); });
+                        lin.img = recode(m.img, [](float c) { return mf::srgb_to_linear(c); });
                         maps.push_back(std::move(enc));
                         maps.push_back(std::move(lin));
                     }

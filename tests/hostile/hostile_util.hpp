@@ -24,6 +24,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include "core/files.hpp"
 #include "image/image.hpp"
 #include "run_binary.hpp"
@@ -176,10 +178,25 @@ inline mf::Image gradient(int w, int h, int c) {
     return img;
 }
 
+// `img` as a file of `format`: a format presets write through encode_image, a JPEG (which
+// vendors ship and no preset writes) through OpenImageIO's own writer.
 inline Bytes encode(const mf::Image& img, const std::string& format = "png", int bits = 8) {
     Bytes b;
     std::string err;
-    EXPECT_TRUE(mf::encode_image(img, {format, bits}, b, err)) << err;
+    if (const auto f = mf::from_word<mf::FileFormat>(format)) {
+        EXPECT_TRUE(mf::encode_image(img, {*f, bits}, b, err)) << err;
+        return b;
+    }
+    EXPECT_EQ(format, "jpg") << "a fixture format this helper writes";
+    std::vector<uint8_t> q(img.pixels.size());
+    for (size_t i = 0; i < q.size(); ++i) q[i] = mf::quantize8(img.pixels[i]);
+    const fs::path tmp = fs::temp_directory_path() / ("matforge-fixture-" + std::to_string(::getpid()) + ".jpg");
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    const OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::UINT8);
+    EXPECT_TRUE(out && out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, q.data()) &&
+                out->close());
+    b = read_bytes(tmp);
+    fs::remove(tmp);
     return b;
 }
 

@@ -45,7 +45,7 @@ TEST(AllocationFailure, DecodingSaysOutOfMemoryAndNamesTheFile) {
     mf::Image img(512, 512, 3, 0.5f);
     std::vector<unsigned char> bytes;
     std::string error;
-    ASSERT_TRUE(mf::encode_image(img, {"png", 8}, bytes, error)) << error;
+    ASSERT_TRUE(mf::encode_image(img, {mf::FileFormat::png, 8}, bytes, error)) << error;
     ASSERT_TRUE(mf::write_file_atomic(file, bytes, error)) << error;
     mf::InputFile in;
     in.path = file;

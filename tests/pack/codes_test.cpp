@@ -38,7 +38,7 @@ TEST(Codes, Unorm8ValuesAreWhatReadImageGives) {
     for (int k = 0; k < 256; ++k) all.pixels[static_cast<size_t>(k)] = static_cast<uint8_t>(k);
     std::vector<unsigned char> png;
     std::string err;
-    ASSERT_TRUE(mf::encode_image(all, {"png", 8}, png, err)) << err;
+    ASSERT_TRUE(mf::encode_image(all, {mf::FileFormat::png, 8}, png, err)) << err;
     mf::InputFile in;
     in.display = "all-codes.png";
     in.bytes = std::make_shared<const std::vector<unsigned char>>(png);
@@ -65,7 +65,7 @@ TEST(Codes, FloatFilesAnd16BitFilesStayFloat) {
         mf::Image img(3, 2, 3, 0.25f);
         std::vector<unsigned char> bytes;
         std::string err;
-        ASSERT_TRUE(mf::encode_image(img, {format, depth}, bytes, err)) << err;
+        ASSERT_TRUE(mf::encode_image(img, {*mf::from_word<mf::FileFormat>(format), depth}, bytes, err)) << err;
         mf::InputFile in;
         in.display = std::string("f.") + format;
         in.bytes = std::make_shared<const std::vector<unsigned char>>(bytes);
@@ -179,7 +179,7 @@ TEST(Codes, PackOutput8DeclinesWhatNeedsFloats) {
     EXPECT_FALSE(mf::pack_output8(*orm, mixed, *preset, {256, 256}, *c));
     // An EXR output (half or float samples), whatever its declared depth.
     mf::Preset exr = *preset;
-    exr.format = "exr";
+    exr.format = mf::FileFormat::exr;
     EXPECT_FALSE(mf::pack_output8(*orm, planes, exr, {256, 256}, *c));
     // A plane not at the output's size (fit_plane resamples it in floats first).
     EXPECT_FALSE(mf::pack_output8(*orm, planes, *preset, {128, 128}, *c));

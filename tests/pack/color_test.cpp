@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "color/color.hpp"
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "image/image.hpp"
 #include "test_color.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "pack/pack.hpp"
 #include "test_color.hpp"
 

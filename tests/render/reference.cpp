@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "../stability/brdf_reference.hpp"
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 
 namespace mf::test {
 

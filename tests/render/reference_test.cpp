@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "reference.hpp"
 #include "vulkan_fixture.hpp"
 

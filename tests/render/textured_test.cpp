@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "reference.hpp"
 #include "vulkan_fixture.hpp"
 

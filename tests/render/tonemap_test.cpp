@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "vulkan_fixture.hpp"
 
 namespace mf::test {

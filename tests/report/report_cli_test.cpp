@@ -5,8 +5,8 @@
 #include <map>
 #include <set>
 
-#include "color/srgb.hpp"
 #include "core/files.hpp"
+#include "core/srgb.hpp"
 #include "core/text.hpp"
 #include "report/html.hpp"
 #include "report/images.hpp"
@@ -14,7 +14,7 @@
 #include "report_util.hpp"
 
 using namespace mfr;
-using mf::report::escape;
+using mf::markup_escape;
 
 namespace {
 
@@ -35,9 +35,10 @@ TEST_F(SampleReportTest, EveryMaterialHasItsCardAndEveryFindingItsRow) {
     size_t total = 0;
     for (const auto& m : manifest_["materials"]) {
         const std::string name = m["name"];
-        const std::string card = card_of(html, escape(name));
+        const std::string card = card_of(html, markup_escape(name));
         ASSERT_FALSE(card.empty()) << "no card for " << name;
-        EXPECT_NE(card.find("<h2><a href=\"#m-" + name + "\">" + escape(name) + "</a>"), std::string::npos) << name;
+        EXPECT_NE(card.find("<h2><a href=\"#m-" + name + "\">" + markup_escape(name) + "</a>"), std::string::npos)
+            << name;
         EXPECT_NE(card.find("src=\"" + name + "/preview.png\""), std::string::npos) << name << ": no preview";
         EXPECT_NE(html.find("<a class=\"tile"), std::string::npos);
         // The rows of this card, each matched to one finding of the manifest.
@@ -51,7 +52,7 @@ TEST_F(SampleReportTest, EveryMaterialHasItsCardAndEveryFindingItsRow) {
             const std::string link = "<a href=\"" + mf::report::rule_link(code) + "\">" + code + "</a>";
             const auto it = std::find_if(rows.begin(), rows.end(), [&](const std::string& r) {
                 return r.find("data-code=\"" + code + "\"") != std::string::npos && r.find(link) != std::string::npos &&
-                       r.find(escape(message)) != std::string::npos;
+                       r.find(markup_escape(message)) != std::string::npos;
             });
             EXPECT_NE(it, rows.end()) << name << ": no row for " << code << " \"" << message << "\"";
             if (it != rows.end()) rows.erase(it);
@@ -233,7 +234,7 @@ TEST(ReportCli, DarkHalfOfAnAlbedoIsRedInTheOverlay) {
          {std::pair{"Dark_basecolor.png", &albedo}, std::pair{"Dark_roughness.png", &rough}}) {
         std::vector<unsigned char> bytes;
         std::string err;
-        ASSERT_TRUE(mf::encode_image(*img, mf::EncodeOptions{"png", 8}, bytes, err)) << err;
+        ASSERT_TRUE(mf::encode_image(*img, mf::EncodeOptions{mf::FileFormat::png, 8}, bytes, err)) << err;
         fs::create_directories(work / "src/Dark");
         ASSERT_TRUE(mf::write_file_atomic(work / "src/Dark" / file, bytes, err)) << err;
     }
@@ -275,7 +276,7 @@ TEST(ReportCli, OverlaySharesAreTheFindingsOnTheRealCorpus) {
     int compared = 0, raised = 0;
     for (const auto& m : manifest["materials"]) {
         const std::string name = m["name"];
-        const std::string card = card_of(html, escape(name));
+        const std::string card = card_of(html, markup_escape(name));
         ASSERT_FALSE(card.empty()) << name;
         for (const std::string code : {"ALBEDO_TOO_DARK", "ALBEDO_TOO_BRIGHT", "METAL_ALBEDO_TOO_DARK"}) {
             const std::string key = "data-code=\"" + code + "\">";
@@ -389,7 +390,7 @@ TEST(ReportCli, MemoryIsBoundedByTheMaterialsCodes) {
                                     std::pair{"Big_Metalness.png", &metal}}) {
         std::vector<unsigned char> bytes;
         std::string err;
-        ASSERT_TRUE(mf::encode_image(*img, mf::EncodeOptions{"png", 8}, bytes, err)) << err;
+        ASSERT_TRUE(mf::encode_image(*img, mf::EncodeOptions{mf::FileFormat::png, 8}, bytes, err)) << err;
         ASSERT_TRUE(mf::write_file_atomic(work / "src/Big" / file, bytes, err)) << err;
     }
     ASSERT_TRUE(matforge({"ingest", (work / "src").string(), "-o", (work / "out").string(), "-q", "--no-cache"}));

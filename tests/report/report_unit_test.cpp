@@ -6,6 +6,7 @@
 #include <cctype>
 #include <set>
 
+#include "core/text.hpp"
 #include "report/html.hpp"
 #include "report/images.hpp"
 #include "report/report.hpp"
@@ -131,9 +132,9 @@ TEST(RulesPage, CodesOfOtherStagesGetARowToo) {
 }
 
 TEST(Html, EscapesAndUrlPaths) {
-    EXPECT_EQ(mf::report::escape("<a href=\"x\">&'</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
-    EXPECT_EQ(mf::report::escape("bad \xff byte"), "bad \xef\xbf\xbd byte");
-    EXPECT_EQ(mf::report::url_path("a b/c#d?.png"), "a%20b/c%23d%3F.png");
+    EXPECT_EQ(mf::markup_escape("<a href=\"x\">&'</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
+    EXPECT_EQ(mf::markup_escape("bad \xff byte"), "bad \xef\xbf\xbd byte");
+    EXPECT_EQ(mf::percent_encode_path("a b/c#d?.png"), "a%20b/c%23d%3F.png");
 }
 
 // ---- overlays

@@ -1,5 +1,5 @@
 // Colour transforms at the edges: 0, 1, negatives, NaN, ±Inf, denormals and values above 1,
-// through the exact IEC 61966-2-1 functions (lib/color/srgb.hpp) and the OpenColorIO context,
+// through the exact IEC 61966-2-1 functions (lib/core/srgb.hpp) and the OpenColorIO context,
 // then through pack_output + quantize to the codes a file gets.
 //
 // Intended behaviour (what the assertions pin down):
@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "color/color.hpp"
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "image/image.hpp"
 #include "pack/pack.hpp"
 #include "preset/preset.hpp"
@@ -243,7 +243,7 @@ TEST(ColorEdges, PackOutputGivesDefinedCodes) {
         std::vector<unsigned char> bytes;
         std::string e;
         for (int bits : {8, 16}) {
-            EXPECT_TRUE(mf::encode_image(out, {"png", bits}, bytes, e)) << e;
+            EXPECT_TRUE(mf::encode_image(out, {mf::FileFormat::png, bits}, bytes, e)) << e;
             EXPECT_FALSE(bytes.empty());
         }
     }

@@ -50,7 +50,7 @@ TEST(GlossRoundTrip, SmoothnessChannelThroughPresetAndFile) {
     planes[mf::Role::metalness].image = mf::Image(4, 1, 1);
     planes[mf::Role::metalness].image.pixels = {0.f, 1.f, 0.f, 1.f};
     const auto out = mf::pack_output(*mask, planes, *preset, {4, 1}, *color_context());
-    const mf::Image back = encode_and_read(out, {"png", 8});
+    const mf::Image back = encode_and_read(out, {mf::FileFormat::png, 8});
     ASSERT_EQ(back.channels, 4);
     const int expected_smooth[] = {255, 0, 254, 1};
     const int expected_metal[] = {0, 255, 0, 255};
@@ -80,7 +80,7 @@ TEST(PackRoundTrip, OrmBoundaryCodesSurviveEightAndSixteenBit) {
     std::reverse(planes[mf::Role::metalness].image.pixels.begin(), planes[mf::Role::metalness].image.pixels.end());
     const auto out = mf::pack_output(*orm, planes, *preset, {static_cast<int>(values.size()), 1}, *color_context());
     for (int bits : {8, 16}) {
-        const mf::Image back = encode_and_read(out, {"png", bits});
+        const mf::Image back = encode_and_read(out, {mf::FileFormat::png, bits});
         ASSERT_EQ(back.channels, 3);
         for (int x = 0; x < out.width; ++x)
             for (int c = 0; c < 3; ++c) {
@@ -124,7 +124,7 @@ TEST(NormalRoundTrip, EncodeDecodeWithinOneCode) {
             EXPECT_LE(c, 1.f);
         }
         // Through an 8-bit file and back.
-        const mf::Image back = encode_and_read(enc, {"png", 8});
+        const mf::Image back = encode_and_read(enc, {mf::FileFormat::png, 8});
         mf::Image dec;
         mf::decode_normal(back, conv, dec);
         const mf::Image re = mf::encode_normal(dec, conv);
@@ -149,14 +149,14 @@ TEST(NormalRoundTrip, DxToGlTwiceIsIdentityWithinACode) {
             if (r2 <= 1.0) dirs.push_back({float(x), float(y), float(std::sqrt(1.0 - r2))});
         }
     const mf::Image dx_codes = encode_and_read(mf::encode_normal(vectors_image(dirs), NormalConvention::dx),
-                                               {"png", 8});
+                                               {mf::FileFormat::png, 8});
     mf::Image cur = dx_codes;
     for (int round = 0; round < 2; ++round) {
         mf::Image n;
         mf::decode_normal(cur, NormalConvention::dx, n);
-        const mf::Image gl = encode_and_read(mf::encode_normal(n, NormalConvention::gl), {"png", 8});
+        const mf::Image gl = encode_and_read(mf::encode_normal(n, NormalConvention::gl), {mf::FileFormat::png, 8});
         mf::decode_normal(gl, NormalConvention::gl, n);
-        cur = encode_and_read(mf::encode_normal(n, NormalConvention::dx), {"png", 8});
+        cur = encode_and_read(mf::encode_normal(n, NormalConvention::dx), {mf::FileFormat::png, 8});
     }
     int worst = 0;
     for (size_t i = 0; i < cur.pixels.size(); ++i)
@@ -214,7 +214,7 @@ TEST(NormalRoundTrip, TwoChannelOutsideUnitDisc) {
 TEST(NormalRoundTrip, SixteenBitIsTighter) {
     const auto dirs = boundary_normals();
     const mf::Image enc = mf::encode_normal(vectors_image(dirs), NormalConvention::gl);
-    const mf::Image back = encode_and_read(enc, {"png", 16});
+    const mf::Image back = encode_and_read(enc, {mf::FileFormat::png, 16});
     mf::Image dec;
     mf::decode_normal(back, NormalConvention::gl, dec);
     for (size_t i = 0; i < dirs.size(); ++i) {

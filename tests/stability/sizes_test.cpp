@@ -7,7 +7,7 @@
 #include <cmath>
 #include <tuple>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "pack/pack.hpp"
 #include "stability_util.hpp"
 
@@ -169,7 +169,7 @@ TEST(OddSizes, PackEncodeReadBackEveryGltfOutput) {
             ASSERT_EQ(out.height, d.h);
             expect_all_finite(out, o.suffix.c_str());
             for (auto [format, bits] : {std::pair<const char*, int>{"png", 8}, {"png", 16}, {"exr", 16}, {"tif", 8}}) {
-                const mf::Image back = encode_and_read(out, {format, bits});
+                const mf::Image back = encode_and_read(out, {*mf::from_word<mf::FileFormat>(format), bits});
                 ASSERT_EQ(back.width, d.w) << format;
                 ASSERT_EQ(back.height, d.h) << format;
                 ASSERT_EQ(back.channels, out.channels) << format;
@@ -188,7 +188,7 @@ TEST(OddSizes, PackEncodeReadBackEveryGltfOutput) {
         // The decoded normal plane round-trips through its 8-bit file within a code's angle.
         const mf::Image enc = mf::encode_normal(planes[mf::Role::normal].image, preset->normal_convention);
         mf::Image dec;
-        mf::decode_normal(encode_and_read(enc, {"png", 8}), preset->normal_convention, dec);
+        mf::decode_normal(encode_and_read(enc, {mf::FileFormat::png, 8}), preset->normal_convention, dec);
         for (size_t i = 0; i < dec.pixels.size(); i += 3) {
             const auto& a = planes[mf::Role::normal].image.pixels;
             EXPECT_GT(a[i] * dec.pixels[i] + a[i + 1] * dec.pixels[i + 1] + a[i + 2] * dec.pixels[i + 2], 0.9998f);
@@ -208,7 +208,7 @@ TEST(OddSizes, ConstantTwoByTwoAndOneByOneMetalness) {
         const mf::Size s = mf::output_size(o, none, *preset);
         EXPECT_EQ(s.width, preset->constant_size);
         const mf::Image out = mf::pack_output(o, none, *preset, s, *ctx);
-        const mf::Image back = encode_and_read(out, {"png", o.bit_depth == 16 ? 16 : 8});
+        const mf::Image back = encode_and_read(out, {mf::FileFormat::png, o.bit_depth == 16 ? 16 : 8});
         EXPECT_EQ(back.width, s.width);
         expect_all_finite(back, o.suffix.c_str());
     }

@@ -19,15 +19,15 @@ inline Image encode_and_read(const Image& img, const EncodeOptions& opt) {
     std::vector<unsigned char> bytes;
     std::string err;
     if (!encode_image(img, opt, bytes, err)) {
-        ADD_FAILURE() << "encode " << opt.format << "/" << opt.bit_depth << ": " << err;
+        ADD_FAILURE() << "encode " << mf::word(opt.format) << "/" << opt.bit_depth << ": " << err;
         return {};
     }
     InputFile in;
-    in.display = "roundtrip." + opt.format;
+    in.display = "roundtrip." + std::string(mf::word(opt.format));
     in.bytes = std::make_shared<const std::vector<unsigned char>>(std::move(bytes));
     Image out;
     ImageInfo info;
-    if (!read_image(in, out, info, err)) ADD_FAILURE() << "read back " << opt.format << ": " << err;
+    if (!read_image(in, out, info, err)) ADD_FAILURE() << "read back " << mf::word(opt.format) << ": " << err;
     return out;
 }
 

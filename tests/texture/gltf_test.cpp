@@ -4,7 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "color/srgb.hpp"
+#include "core/srgb.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;
@@ -161,7 +161,7 @@ TEST(Gltf, HdrEmissiveKeepsItsHueAndStrength) {
     auto write = [](const mf::Image& img, const fs::path& file, const std::string& format, int bits) {
         std::vector<unsigned char> bytes;
         std::string err;
-        ASSERT_TRUE(mf::encode_image(img, {format, bits}, bytes, err)) << err;
+        ASSERT_TRUE(mf::encode_image(img, {*mf::from_word<mf::FileFormat>(format), bits}, bytes, err)) << err;
         ASSERT_TRUE(mf::write_file_atomic(file, bytes, err)) << err;
     };
     write(mf::Image(16, 16, 3, 0.02f), set / "Lamp_Color.png", "png", 8);

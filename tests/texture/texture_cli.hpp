@@ -154,7 +154,7 @@ inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Ima
         cutout = mf::texture::classify_opacity(a) == mf::texture::AlphaUse::cutout;
     }
     mf::texture::MipOptions o;
-    o.filter = filter == "box" ? mf::texture::MipFilter::box : mf::texture::MipFilter::kaiser;
+    o.filter = filter == "box" ? mf::MipFilter::box : mf::MipFilter::kaiser;
     return mf::texture::make_mips(level0, mf::texture::channel_kinds(written, output["color_space"] == "sRGB", cutout),
                                   o);
 }

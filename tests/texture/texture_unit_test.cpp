@@ -5,8 +5,8 @@
 #include <cstring>
 #include <random>
 
-#include "color/srgb.hpp"
 #include "core/json.hpp"
+#include "core/srgb.hpp"
 #include "gltf/gltf.hpp"
 #include "preset/preset.hpp"
 #include "preset/texture_fields.hpp"
@@ -66,7 +66,7 @@ TEST(Mips, ColorIsFilteredInLinearLight) {
         const uint8_t v = (x + y) % 2 ? 255 : 0;
         return std::array<uint8_t, 4>{v, v, v, 0};
     });
-    for (const auto filter : {mt::MipFilter::box, mt::MipFilter::kaiser}) {
+    for (const auto filter : {mf::MipFilter::box, mf::MipFilter::kaiser}) {
         mt::MipOptions o;
         o.filter = filter;
         const auto srgb = mt::make_mips(checker, std::vector<mt::ChannelKind>(3, mt::ChannelKind::srgb_color), o);
@@ -89,7 +89,7 @@ TEST(Mips, ConstantsStayConstantAndBoxIsTheMean) {
         return std::array<uint8_t, 4>{uint8_t(x * 40 + y * 20), 0, 0, 0};
     });
     mt::MipOptions box;
-    box.filter = mt::MipFilter::box;
+    box.filter = mf::MipFilter::box;
     const auto chain = mt::make_mips(ramp, {mt::ChannelKind::data}, box);
     EXPECT_EQ(chain[1].at(0, 0), 30);   // (0 + 40 + 20 + 60) / 4
     EXPECT_EQ(chain[1].at(1, 0), 110);  // (80 + 120 + 100 + 140) / 4
@@ -151,7 +151,7 @@ TEST(Mips, ToksvigWidensRoughnessWhereNormalsSpread) {
         }
     const Image8 rough = make(w, w, 1, [](int, int) { return std::array<uint8_t, 4>{code(0.3), 0, 0, 0}; });
     mt::MipOptions o;
-    o.filter = mt::MipFilter::box;
+    o.filter = mf::MipFilter::box;
     o.roughness_channel = 0;
     o.normals = &tilted;
     const auto widened = mt::make_mips(rough, {mt::ChannelKind::data}, o);
@@ -185,7 +185,7 @@ class Codec : public ::testing::TestWithParam<CodecCase> {};
 TEST_P(Codec, RoundTripsSmoothContent) {
     const CodecCase c = GetParam();
     const Image8 img = smooth(64, 48, c.channels);
-    for (const auto effort : {mt::Effort::fast, mt::Effort::normal}) {
+    for (const auto effort : {mf::Effort::fast, mf::Effort::normal}) {
         mt::CodecOptions o;
         o.format = &block_format(c.format);
         o.srgb = c.srgb;
@@ -460,17 +460,67 @@ TEST(PresetFields, ImpossibleFormatsNameTheField) {
     EXPECT_EQ(preset_error("ktx2", R"({"suffix": "n", "channels": {"RGB": "normal"}, "block_format": "bc5"})"), "");
 }
 
+// The vocabulary is typed once at load: each word reads back as its enumerator, anything else
+// is refused naming the field and every word, and the typed fields reach the preset.
+TEST(PresetFields, VocabularyIsTypedOnceAtLoad) {
+    auto round_trip = [](auto e) { EXPECT_EQ(mf::from_word<decltype(e)>(mf::word(e)), e) << mf::word(e); };
+    for (auto f : {mf::FileFormat::png, mf::FileFormat::exr, mf::FileFormat::tif, mf::FileFormat::tga,
+                   mf::FileFormat::dds, mf::FileFormat::ktx2})
+        round_trip(f);
+    for (auto e : {mf::Effort::fast, mf::Effort::normal, mf::Effort::thorough}) round_trip(e);
+    round_trip(mf::MipFilter::box), round_trip(mf::MipFilter::kaiser);
+    round_trip(mf::Supercompression::zstd), round_trip(mf::MaterialFileKind::gltf);
+    EXPECT_FALSE(mf::from_word<mf::FileFormat>("PNG"));
+    EXPECT_FALSE(mf::from_word<mf::Effort>(""));
+    EXPECT_EQ(mf::word_list<mf::FileFormat>(), "png, exr, tif, tga, dds or ktx2");
+    EXPECT_EQ(mf::word_list<mf::MipFilter>(), "box or kaiser");
+    auto has = [](const std::string& error, const std::string& what) {
+        EXPECT_NE(error.find(what), std::string::npos) << error;
+    };
+    has(preset_error("webp", kAlbedo + "}"), "format must be png, exr, tif, tga, dds or ktx2");
+    const std::string bc1 = kAlbedo + R"(, "block_format": "bc1")";
+    has(preset_error("dds", bc1 + "}", R"("mips": true, "mip_filter": "lanczos",)"),
+        "mip_filter must be box or kaiser");
+    has(preset_error("dds", bc1 + "}", R"("effort": 3,)"), "effort must be fast, normal or thorough");
+    has(preset_error("dds", bc1 + R"(, "effort": "max"})"),
+        "outputs[0] ('c'): effort must be fast, normal or thorough");
+    has(preset_error("ktx2", bc1 + "}", R"("supercompression": "lz4",)"), "supercompression must be none or zstd");
+    has(preset_error("png", kAlbedo + "}", R"("material_file": "usd",)"), "material_file must be none or gltf");
+    has(preset_error("dds", kAlbedo + R"(, "block_format": 1})"), "unknown block format 1");
+    const std::string text = R"({"name": "t", "format": "ktx2", "mips": true, "mip_filter": "box", "effort": "fast",
+        "supercompression": "zstd", "outputs": [)" +
+                             kAlbedo + R"(, "block_format": "bc1", "effort": "thorough"},
+        {"suffix": "o", "color_space": "srgb", "channels": {"RGB": "albedo", "A": "opacity"}, "block_format": "bc1",
+         "block_format_alpha": "bc3"}]})";
+    std::string error;
+    const auto j = mf::parse_json(text, "preset", error);
+    ASSERT_TRUE(j) << error;
+    mf::Preset p;
+    ASSERT_TRUE(mf::parse_preset(*j, p, error)) << error;
+    EXPECT_EQ(p.format, mf::FileFormat::ktx2);
+    EXPECT_EQ(p.mip_filter, mf::MipFilter::box);
+    EXPECT_EQ(p.effort, mf::Effort::fast);
+    EXPECT_EQ(p.supercompression, mf::Supercompression::zstd);
+    EXPECT_EQ(p.material_file, mf::MaterialFileKind::none);
+    ASSERT_EQ(p.outputs.size(), 2u);
+    EXPECT_EQ(p.outputs[0].effort, mf::Effort::thorough);
+    EXPECT_FALSE(p.outputs[1].effort);
+    EXPECT_EQ(mf::block_format_for(p.outputs[1], 3)->name, "bc1");
+    EXPECT_EQ(mf::block_format_for(p.outputs[1], 4)->name, "bc3");
+    EXPECT_EQ(p.output_path("M", p.outputs[0]), "M/M_c.ktx2");
+}
+
 TEST(PresetFields, ShippedGpuPresetsParse) {
     for (const char* name : {"d3d11", "vulkan-ktx2", "vulkan-ktx2-astc", "gltf"}) {
         std::string error;
         const auto p = mf::load_preset(name, error);
         ASSERT_TRUE(p) << error;
         if (std::string(name) == "gltf") {
-            EXPECT_EQ(p->material_file, "gltf");
+            EXPECT_EQ(p->material_file, mf::MaterialFileKind::gltf);
             continue;
         }
         EXPECT_TRUE(p->mips) << name;
-        for (const auto& o : p->outputs) EXPECT_FALSE(o.block_format.empty()) << name << " " << o.suffix;
+        for (const auto& o : p->outputs) EXPECT_TRUE(o.block_format) << name << " " << o.suffix;
     }
 }
 

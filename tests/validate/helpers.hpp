@@ -88,8 +88,11 @@ struct MemSet {
         opt.material = material;
         opt.reader = reader();
         opt.band_rows = band_rows;
-        return mf::validate::validate_set(inputs, cfg, opt);
+        auto res = mf::validate::validate_set(inputs, cfg, opt);
+        dropped = mf::validate::apply_config(res.findings, material, cfg);  // as plan's reported_findings
+        return res;
     }
+    mutable int dropped = 0;  // by the last run()'s rules config
 };
 
 inline Image constant(int w, int h, std::vector<float> v) {

@@ -17,7 +17,7 @@ namespace {
 
 mf::InputFile encode(const Image& img, const std::string& name, const std::string& format = "png", int bits = 8) {
     mf::EncodeOptions opt;
-    opt.format = format;
+    opt.format = *mf::from_word<mf::FileFormat>(format);
     opt.bit_depth = bits;
     auto bytes = std::make_shared<std::vector<unsigned char>>();
     std::string err;

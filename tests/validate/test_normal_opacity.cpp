@@ -3,6 +3,7 @@
 // surface; the severity of a color tag on a data map.
 #include <gtest/gtest.h>
 
+#include "core/srgb.hpp"
 #include "helpers.hpp"
 #include "validate/map_stats.hpp"
 
@@ -60,7 +61,7 @@ TEST(NormalMaps, ShortVectorsAreInfoAndNotInvalid) {
 TEST(NormalMaps, GammaEncodedIsAnErrorOfItsOwn) {
     auto s = clean_set(128);
     const Image n = *s.images.at("T_normal_gl.png");
-    const Image g = recode(n, [](float c) { return mv::detail::linear_to_srgb(c); });
+    const Image g = recode(n, [](float c) { return mf::linear_to_srgb(c); });
     s.add(Role::normal, "T_normal_gl.png", g, false, NormalConvention::gl);
     const auto res = s.run();
     const mf::Finding* f = find(res.findings, code::normal_gamma_encoded);
@@ -76,7 +77,7 @@ TEST(NormalMaps, GammaEncodedIsAnErrorOfItsOwn) {
     // The encoding is monotonic: the slopes keep their signs and the GL verdict stands.
     EXPECT_FALSE(has_code(res.findings, code::normal_convention_mismatch)) << dump(res.findings);
     // The same map decoded back is clean again.
-    const Image back = recode(g, [](float c) { return mv::detail::srgb_to_linear(c); });
+    const Image back = recode(g, [](float c) { return mf::srgb_to_linear(c); });
     s.add(Role::normal, "T_normal_gl.png", back, false, NormalConvention::gl);
     const auto r2 = s.run();
     EXPECT_FALSE(has_code(r2.findings, code::normal_gamma_encoded)) << dump(r2.findings);

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/json.hpp"
+#include "core/text.hpp"
 #include "validate/report.hpp"
 
 namespace mv = mf::validate;
@@ -234,7 +235,7 @@ TEST(Report, ShowsWhatWasDecided) {
 }
 
 TEST(Report, Escaping) {
-    EXPECT_EQ(mv::xml_escape("a<b>&\"'"), "a&lt;b&gt;&amp;&quot;&apos;");
-    EXPECT_EQ(mv::xml_escape(std::string("\x01")), "\xEF\xBF\xBD");
-    EXPECT_EQ(mv::uri_encode_path("a b/c#d.png"), "a%20b/c%23d.png");
+    EXPECT_EQ(mf::markup_escape("a<b>&\"'"), "a&lt;b&gt;&amp;&quot;&#39;");
+    EXPECT_EQ(mf::markup_escape(std::string("\x01")), "\xEF\xBF\xBD");
+    EXPECT_EQ(mf::percent_encode_path("a b/c#d.png"), "a%20b/c%23d.png");
 }

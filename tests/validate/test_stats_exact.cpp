@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/srgb.hpp"
 #include "validate/albedo_stats.hpp"
 #include "validate/map_stats.hpp"
 
@@ -19,7 +20,7 @@ namespace {
 size_t reference_code(float y) {
     static const std::array<float, 256> edges = [] {
         std::array<float, 256> e{};
-        for (int k = 0; k < 256; ++k) e[k] = md::srgb_to_linear(static_cast<float>((k + 0.5) / 255.0));
+        for (int k = 0; k < 256; ++k) e[k] = mf::srgb_to_linear(static_cast<float>((k + 0.5) / 255.0));
         return e;
     }();
     return std::min<size_t>(static_cast<size_t>(std::lower_bound(edges.begin(), edges.end(), y) - edges.begin()), 255);
@@ -29,7 +30,7 @@ TEST(StatsExact, AlbedoCodeEqualsBinarySearchAtEveryEdgeAndBetween) {
     const md::AlbedoStats acc(mv::Thresholds{}, false);
     std::vector<float> ys = {0.f, 1e-30f, 1e-7f, 0.5f, 1.f, 1.0001f, 2.f, 1e30f};
     for (int k = 0; k < 256; ++k) {  // each edge, and the floats either side of it
-        const float e = md::srgb_to_linear(static_cast<float>((k + 0.5) / 255.0));
+        const float e = mf::srgb_to_linear(static_cast<float>((k + 0.5) / 255.0));
         ys.insert(ys.end(), {e, std::nextafter(e, 0.f), std::nextafter(e, 2.f)});
     }
     for (int b = 0; b <= 4096; ++b) {  // each bucket boundary of the coarse table, and either side

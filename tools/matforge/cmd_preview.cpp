@@ -21,6 +21,7 @@
 #include <set>
 
 #include "command.hpp"
+#include "core/limits.hpp"
 #include "core/text.hpp"
 #include "preview/preview.hpp"
 
@@ -417,8 +418,9 @@ const Register register_preview{
                         "faster); default: the scene's (lookdev auto, reference and scene files raster)")
              ->check(CLI::IsMember({"auto", "raster", "compute"}));
          sub.add_option("--size", a->size,
-                        "image width and height in pixels, 1..16384 (default: the scene's, else 512)")
-             ->check(CLI::Range(1, 16384));
+                        "image width and height in pixels, 1.." + std::to_string(kMaxImageSide) +
+                            " (default: the scene's, else 512)")
+             ->check(CLI::Range(1, kMaxImageSide));
          sub.add_option("--shape", a->shape,
                         "sphere | cube | plane | shaderball (a sphere girdled by a tilted ring: convex, concave and "
                         "saddle parts); default: the scene's, else sphere")
