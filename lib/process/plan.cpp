@@ -232,7 +232,15 @@ void route(SetPlan& plan, const validate::SetValidation& checked) {
             return std::find(u.begin(), u.end(), out) != u.end();
         });
     const auto op = plan.routes.find(Role::opacity);
-    if (op == plan.routes.end() || !op->second.from_alpha) return;
+    if (op == plan.routes.end()) return;
+    // An opacity that hides the whole surface is not what the artist meant (3dtextures.me ships
+    // all-black placeholders): not applied, the material stays opaque (OPACITY_ALL_TRANSPARENT).
+    // The file keeps its role in the manifest's inputs: it is the set's opacity map, unused.
+    if (checked.opacity_invisible) {
+        plan.routes.erase(op);
+        return;
+    }
+    if (!op->second.from_alpha) return;
     if (!checked.albedo_alpha_min || !(*checked.albedo_alpha_min < 0.999)) {
         plan.routes.erase(op);
         return;

@@ -321,9 +321,12 @@ private:
         std::string& h = card_html;
         h += "<section class=\"card sev-" + sev + "\" id=\"" + id + "\" data-material=\"" + markup_escape(m_.name) +
              "\" data-worst=\"" + sev + "\" data-index=\"" + std::to_string(index_) + "\">\n";
-        h += "<h2><a href=\"#" + id + "\">" + markup_escape(m_.name) + "</a> <span class=\"badge status-" +
-             std::string(manifest::status_name(m_.status)) + "\">" + std::string(manifest::status_name(m_.status)) +
-             "</span>";
+        h += "<h2><a href=\"#" + id + "\">" + markup_escape(m_.name) + "</a>";
+        // The status badge says whether every output was written; "ok" beside an error would read
+        // as "the material is fine": the error badge alone says it then.
+        if (m_.status != manifest::Status::ok || worst_sev != Severity::error)
+            h += " <span class=\"badge status-" + std::string(manifest::status_name(m_.status)) + "\">" +
+                 std::string(manifest::status_name(m_.status)) + "</span>";
         size_t counts[3] = {0, 0, 0};
         for (const Finding& f : m_.findings) ++counts[static_cast<int>(f.severity)];
         for (int s = 2; s >= 0; --s)

@@ -474,20 +474,26 @@ void MapStats::metalness_findings(const Emit& add) const {
     }
 }
 
+bool MapStats::all_transparent() const {
+    return opacity_channel >= 0 && opacity_channel < channels &&
+           ratio(opacity_invisible, pixels) > t.opacity_max_invisible_share;
+}
+
 // OPACITY_ALL_TRANSPARENT.
 void MapStats::opacity_findings(const Emit& add) const {
     const std::string& file = add.file;
-    if (opacity_channel >= 0 && opacity_channel < channels) {
+    if (all_transparent()) {
         const double share = ratio(opacity_invisible, pixels);
-        if (share > t.opacity_max_invisible_share) {
+        {
             const bool alpha = input.role != Role::opacity;
             const int oc = std::min(opacity_channel, 3);
             add(code::opacity_all_transparent, "opacity",
                 (alpha ? "the alpha of " + file + " (the set's opacity: it has no opacity map)" : file) + ": " +
                     percent(share) + " of pixels have opacity at most " + fixed(t.opacity_invisible_max, 2) + " (max " +
                     fixed(max[oc], 3) +
-                    "): the whole material would be invisible — if the map stores transparency, "
-                    "invert it; if it is empty, remove it",
+                    "): it would make the whole material invisible, so it is not applied (the material is "
+                    "written opaque) — if the map stores transparency, invert it; if it is a placeholder, remove "
+                    "it",
                 {{"invisible_share", share},
                  {"invisible_max", t.opacity_invisible_max},
                  {"below_cutoff_share", ratio(opacity_below_cutoff, pixels)},

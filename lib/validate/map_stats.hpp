@@ -89,6 +89,9 @@ struct MapStats {
     void tag_findings(const Emit& add) const;
 
     bool is_normal() const { return input.role == Role::normal; }
+    // The set's opacity held here (opacity_channel) hides the whole surface: OPACITY_ALL_TRANSPARENT,
+    // and the plan leaves it out.
+    bool all_transparent() const;
     NormalSummary normal_summary() const;  // meaningful for normal maps of ≥ 2 channels
     // A normal map that is not a tangent-space normal map: what raises NORMAL_INVALID.
     bool normal_invalid() const;

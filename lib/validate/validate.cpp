@@ -268,6 +268,8 @@ struct SetRun {
         // The albedo's alpha: the plan keeps it as the opacity only when some texel is below opaque.
         if (opacity.map >= 0 && opacity.map == albedo.map && readable[static_cast<size_t>(albedo.map)])
             result.albedo_alpha_min = stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
+        if (opacity.map >= 0 && readable[static_cast<size_t>(opacity.map)])
+            result.opacity_invisible = stats[static_cast<size_t>(opacity.map)]->all_transparent();
         for (size_t i = 0; i < maps.size(); ++i) {
             if (!readable[i]) {
                 const std::string file = display_name(maps[i]);

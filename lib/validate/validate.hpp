@@ -79,6 +79,9 @@ struct SetValidation {
     // The smallest finite value of the albedo's alpha channel, when the albedo has one and no
     // opacity map exists (routing's opacity-from-alpha); nullopt otherwise.
     std::optional<double> albedo_alpha_min;
+    // The set's opacity (its opacity map, or the albedo's alpha standing in) would make the whole
+    // surface invisible (OPACITY_ALL_TRANSPARENT): the plan does not apply it.
+    bool opacity_invisible = false;
     // The routed normal map stores X and Y only (two channels, or an empty blue): ingest
     // rebuilds Z from them, as the rules did (NORMAL_Z_RECONSTRUCTED).
     bool normal_z_rebuilt = false;

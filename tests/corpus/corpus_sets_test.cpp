@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "corpus.hpp"
+#include "test_files.hpp"
 
 namespace {
 
@@ -314,5 +315,46 @@ TEST(RealCorpus, BatchOutputNamesTheSetsThatNeedAttention) {
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_EQ(r.output.find("broken_wall errors"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("sets with errors: broken_wall"), std::string::npos) << r.output;
+    std::filesystem::remove_all(tmp);
+}
+
+// 3dtextures.me ships an all-black `_opacity` placeholder with Sci-Fi_Wall_014: applied, it made
+// the material invisible (glTF alphaMode MASK, alpha 0 everywhere) and the report card said "ok"
+// beside "1 error". The map keeps its role (the manifest's inputs) and is not applied: the base color is written
+// without alpha, the glTF material is opaque, the error names the file and says so, and no "ok" badge sits beside it.
+TEST(RealCorpus, PlaceholderOpacityIsNotApplied) {
+    const path tmp = corpus::temp_dir("placeholder");
+    const path set = corpus::dir() / "real/3dtextures_Sci-Fi_Wall_014";
+    const auto r = corpus::run("ingest " + corpus::q(set) + " -o " + corpus::q(tmp / "out") +
+                               " --preset gltf --no-cache");
+    EXPECT_EQ(r.code, 1) << r.output;  // the error stays: the set ships a broken file
+    const nlohmann::json m = mf::testfiles::read_json(tmp / "out/manifest.json");
+    ASSERT_EQ(m["materials"].size(), 1u) << m.dump(1);
+    const nlohmann::json& mat = m["materials"][0];
+    EXPECT_EQ(mat["inputs"]["opacity"]["file"], "Sci-Fi_Wall_014_opacity.jpg") << "its role, unused";
+    int said = 0;
+    for (const auto& f : mat["findings"])
+        if (f["code"] == "OPACITY_ALL_TRANSPARENT") {
+            ++said;
+            EXPECT_EQ(f["file"], "Sci-Fi_Wall_014_opacity.jpg");
+            EXPECT_EQ(f["severity"], "error");
+            EXPECT_NE(f["message"].get<std::string>().find("not applied (the material is written opaque)"),
+                      std::string::npos)
+                << f.dump();
+        }
+    EXPECT_EQ(said, 1) << mat["findings"].dump(1);
+    const std::string base = mat["name"].get<std::string>() + "/" + mat["name"].get<std::string>() + "_basecolor.png";
+    EXPECT_EQ(mf::testfiles::read_pixels(tmp / "out" / base).channels, 3) << base;
+    const nlohmann::json gltf = mf::testfiles::read_json(tmp / "out" / mat["name"].get<std::string>() /
+                                                         (mat["name"].get<std::string>() + ".gltf"));
+    const nlohmann::json& material = gltf["materials"][0];
+    EXPECT_EQ(material.value("alphaMode", "OPAQUE"), "OPAQUE") << material.dump();
+    // The report card: the error badge, and no "ok" status badge beside it.
+    const auto rep = corpus::run("report " + corpus::q(tmp / "out/manifest.json") + " -o " + corpus::q(tmp / "report"));
+    ASSERT_EQ(rep.code, 0) << rep.output;
+    std::ifstream page(tmp / "report/index.html");
+    const std::string html((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+    EXPECT_NE(html.find("1 error</span>"), std::string::npos);
+    EXPECT_EQ(html.find("badge status-ok"), std::string::npos);
     std::filesystem::remove_all(tmp);
 }
