@@ -209,6 +209,7 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
     for (const auto& s : sidecars) sidecar_files.try_emplace(s.source, &s);
 
     std::vector<Finding> unrecognized;
+    std::vector<std::pair<std::string, size_t>> untagged;  // images whose names state no role, their finding
     std::vector<RoleTag> tags;
     std::map<Role, std::vector<Ranked>> by_role;
     auto add_candidate = [&](Candidate c) {
@@ -249,6 +250,7 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
             continue;
         }
         if (!a.tag) {
+            untagged.emplace_back(file, unrecognized.size());
             unrecognized.push_back(unrecognized_finding(file, "no role tag in the name"));
             continue;
         }
@@ -256,6 +258,28 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
         tags.push_back(std::move(*a.tag));
     }
     out.convention = vote_convention(tags);
+    // An untagged image named as the set beside tagged maps of that name ("Platform2.jpg" beside
+    // "PLatform2_Normal.jpg" and "Platform2_disp.jpg": tutorial and hand-made game folders) is
+    // the colour map, when the set has no other and it is the only such file. Names compare as
+    // case-insensitive file systems compare them. Not in an ambientCG download: its untagged
+    // "<id>.png" beside "<id>_1K-JPG_*" is the vendor's preview render, at the maps' size.
+    if (!by_role.count(Role::albedo) && untagged.size() == 1 && out.convention != "ambientcg") {
+        const auto& [file, finding_at] = untagged.front();
+        const std::string stem = lower_copy(material_stem(file));
+        const bool sibling = !stem.empty() && std::any_of(by_role.begin(), by_role.end(), [&](const auto& role_ranked) {
+            return std::any_of(role_ranked.second.begin(), role_ranked.second.end(), [&](const Ranked& r) {
+                return r.cand.match.sidecar.empty() && lower_copy(material_stem(r.cand.file)) == stem;
+            });
+        });
+        if (sibling) {
+            NameMatch m;
+            m.role = Role::albedo;
+            m.family = "untagged";
+            m.rule = "untagged:the set's name, beside its tagged maps";
+            add_candidate({file, m, {}});
+            unrecognized.erase(unrecognized.begin() + static_cast<std::ptrdiff_t>(finding_at));
+        }
+    }
 
     std::map<Role, Ambiguity> ambiguities;
     std::map<Role, std::string> chosen_file;

@@ -1,0 +1,81 @@
+// Folders someone named by hand (issue 26): real CC0 pixels from the corpus, renamed the way
+// tutorials and hand-made game folders name them, through the binary.
+#include "cli_util.hpp"
+
+using namespace mft;
+
+namespace {
+
+fs::path corpus_set(const std::string& name) { return mf::testenv::corpus_dir() / "real" / name; }
+
+// The manifest entry of the only material of an ingest of `set`.
+nlohmann::json ingest_one(const fs::path& set, const fs::path& out) {
+    const auto r = run("ingest " + q(set) + " -o " + q(out) + " --preset gltf --no-cache -q");
+    EXPECT_LE(r.code, 1) << r.output;
+    const nlohmann::json m = read_json(out / "manifest.json");
+    EXPECT_EQ(m["materials"].size(), 1u) << m.dump(1);
+    return m["materials"].empty() ? nlohmann::json() : m["materials"][0];
+}
+
+bool has_code(const nlohmann::json& mat, const std::string& code, const std::string& role = "") {
+    for (const auto& f : mat["findings"])
+        if (f["code"] == code && (role.empty() || f.value("role", "") == role)) return true;
+    return false;
+}
+
+}  // namespace
+
+// `Platform2.jpg` beside `PLatform2_Normal.jpg` and `Platform2_disp.png` (another letter case):
+// the untagged file named as the set is its colour map, not an unrecognized file beside a grey
+// constant albedo and a false MISSING_MAP.
+TEST(HandNamed, UntaggedFileNamedAsTheSetIsItsColourMap) {
+    const fs::path work = temp_dir("untagged");
+    const fs::path src = corpus_set("3dtextures_Metal_Damaged_001_SD");
+    const fs::path set = work / "Platform2";
+    fs::create_directories(set);
+    fs::copy_file(src / "Metal_Damaged_001_basecolor.jpg", set / "Platform2.jpg");
+    fs::copy_file(src / "Metal_Damaged_001_normal.jpg", set / "PLatform2_Normal.jpg");
+    fs::copy_file(src / "Metal_Damaged_001_height.png", set / "Platform2_disp.png");
+    const nlohmann::json mat = ingest_one(set, work / "out");
+    EXPECT_EQ(mat["inputs"]["albedo"]["file"], "Platform2.jpg") << mat["inputs"].dump(1);
+    EXPECT_EQ(mat["inputs"]["albedo"]["rule"], "untagged:the set's name, beside its tagged maps");
+    EXPECT_FALSE(has_code(mat, "MISSING_MAP", "albedo")) << mat["findings"].dump(1);
+    EXPECT_FALSE(has_code(mat, "UNRECOGNIZED_FILE")) << mat["findings"].dump(1);
+    EXPECT_FALSE(mat["constants"].contains("albedo"));
+    // The base color holds the file's pixels, not a constant.
+    const mf::Image base = read_pixels(work / "out" / mat["outputs"][0]["file"].get<std::string>());
+    const mf::Image want = read_pixels(set / "Platform2.jpg");
+    ASSERT_EQ(base.width, want.width);
+    for (int x = 0; x < base.width; x += 97)
+        EXPECT_NEAR(base.at(x, base.height / 2, 0), want.at(x, want.height / 2, 0), 1.5 / 255) << x;
+}
+
+// Not when the name is someone else's, when two untagged files compete, when the set has its
+// colour map, or in an ambientCG download (its untagged "<id>.png" is the vendor's preview).
+TEST(HandNamed, UntaggedFilesStayUnrecognizedOtherwise) {
+    const fs::path work = temp_dir("untagged-not");
+    const fs::path src = corpus_set("3dtextures_Metal_Damaged_001_SD");
+    auto make = [&](const std::string& name, const std::vector<std::pair<std::string, std::string>>& files) {
+        const fs::path set = work / name;
+        fs::create_directories(set);
+        for (const auto& [from, to] : files) fs::copy_file(src / from, set / to);
+        return set;
+    };
+    const std::string color = "Metal_Damaged_001_basecolor.jpg", normal = "Metal_Damaged_001_normal.jpg";
+    for (const fs::path& set :
+         {make("Other", {{color, "Crate.jpg"}, {normal, "Platform_Normal.jpg"}}),
+          make("Two", {{color, "Platform.jpg"}, {color, "Platform.png"}, {normal, "Platform_Normal.jpg"}}),
+          make("Has", {{color, "Platform.jpg"}, {color, "Platform_Color.jpg"}, {normal, "Platform_Normal.jpg"}})}) {
+        const nlohmann::json mat = ingest_one(set, work / ("out-" + set.filename().string()));
+        EXPECT_TRUE(has_code(mat, "UNRECOGNIZED_FILE")) << set << mat["findings"].dump(1);
+        if (set.filename() == "Has") EXPECT_EQ(mat["inputs"]["albedo"]["file"], "Platform_Color.jpg");
+        else EXPECT_FALSE(mat["inputs"].contains("albedo")) << set;
+    }
+    const fs::path ambient = work / "Net004A_1K-JPG";
+    fs::create_directories(ambient);
+    for (const char* f : {"Net004A.png", "Net004A_1K-JPG_NormalGL.jpg", "Net004A_1K-JPG_Roughness.jpg"})
+        fs::copy_file(corpus_set("ambientcg_Net004A_1K-JPG") / f, ambient / f);
+    const nlohmann::json mat = ingest_one(ambient, work / "out-ambient");
+    EXPECT_FALSE(mat["inputs"].contains("albedo")) << mat["inputs"].dump(1);
+    EXPECT_TRUE(has_code(mat, "UNRECOGNIZED_FILE")) << mat["findings"].dump(1);
+}
