@@ -29,7 +29,7 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
 // report page, JUnit): ill-formed UTF-8 and the C0 controls other than tab, LF and CR (XML 1.0
 // §2.2 forbids them even escaped; HTML calls them parse errors) as U+FFFD, and & < > " ' as
 // references (&#39;, which HTML 4 and XML both read, for ').
-std::string markup_escape(std::string_view s);
+std::string markup_escape(std::string_view raw);
 
 // `s` for a terminal: every control character (C0, DEL, C1 as UTF-8) written as \xNN, so a file
 // name holding ESC or BEL cannot clear the screen or retitle the terminal. Printable text and

@@ -18,11 +18,13 @@ using naming::extension_of;
 using naming::lower_copy;
 using naming::RoleTag;
 
-// Lossless first, then lossy; the order of the header's contract (exr tif png tga bmp webp jpg),
-// with the other readable formats placed by how much they lose.
+// Lossless first, then lossy; the order of the header's contract (exr tif png tga bmp jpg webp),
+// with the other readable formats placed by how much they lose. WebP after JPEG: no vendor ships
+// WebP (ambientCG, Poly Haven, 3dtextures.me, Textures.com: JPEG or PNG), so a WebP beside a JPEG
+// of the same map is a copy someone re-encoded from it.
 int format_rank(std::string_view file) {
-    static constexpr std::array<std::string_view, 12> kOrder{"exr", "tif", "tiff", "png", "tga",  "bmp",
-                                                             "psd", "hdr", "webp", "jpg", "jpeg", "dds"};
+    static constexpr std::array<std::string_view, 12> kOrder{"exr", "tif", "tiff", "png",  "tga",  "bmp",
+                                                             "psd", "hdr", "jpg",  "jpeg", "webp", "dds"};
     const auto ext = lower_copy(extension_of(file));
     const auto it = std::find(kOrder.begin(), kOrder.end(), ext);
     int rank = static_cast<int>(it - kOrder.begin());
@@ -74,9 +76,13 @@ std::string why_first(const Ranked& a, const Ranked& b, const ChoicePolicy& poli
                    ? "it is the smallest above the size limit (" + std::to_string(a.size) + " px vs " +
                          std::to_string(b.size) + " px)"
                    : "it is the largest (" + std::to_string(a.size) + " px vs " + std::to_string(b.size) + " px)";
-    if (a.format != b.format)
-        return "its format (" + lower_copy(extension_of(a.cand.file)) + ") ranks above " +
-               lower_copy(extension_of(b.cand.file)) + " (lossless first)";
+    if (a.format != b.format) {
+        const std::string fa = lower_copy(extension_of(a.cand.file)), fb = lower_copy(extension_of(b.cand.file));
+        return "its format (" + fa + ") ranks above " + fb +
+               (fb == "webp" && (fa == "jpg" || fa == "jpeg")
+                    ? " (the vendor's own: no vendor ships WebP, so a WebP twin is a re-encoded copy)"
+                    : " (lossless first)");
+    }
     if (a.depth != b.depth)
         return "higher bit depth (" + std::to_string(a.depth) + " vs " + std::to_string(b.depth) + ")";
     return "equal otherwise; first by name";

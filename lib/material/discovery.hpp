@@ -156,8 +156,8 @@ struct SetDiscovery {
 // Classify the files of one set, choose one file per input role deterministically, and resolve
 // which file feeds each output role. Ranking: for normals, the policy's convention first, then
 // any known convention, then unknown; then the largest size within max_size (from the header,
-// else the name's hint); then lossless over lossy (exr tif png tga bmp webp jpg); then higher
-// bit depth; then byte-wise name order. A dedicated map beats a packed one for the same role;
+// else the name's hint); then lossless over lossy (exr tif png tga bmp jpg webp: a WebP twin of
+// a JPEG is a re-encoded copy); then higher bit depth; then byte-wise name order. A dedicated map beats a packed one for the same role;
 // roughness beats gloss. Every choice among several candidates gets one AMBIGUOUS_MAP (info)
 // per role naming all candidates, the chosen one and why. `header` may return nullopt.
 // `sidecars`: sidecar_roles() of the set's sidecar files. A file a sidecar names takes the

@@ -1,5 +1,7 @@
 // Folders someone named by hand (issue 26): real CC0 pixels from the corpus, renamed the way
 // tutorials and hand-made game folders name them, through the binary.
+#include <OpenImageIO/imageio.h>
+
 #include "cli_util.hpp"
 
 using namespace mft;
@@ -78,4 +80,35 @@ TEST(HandNamed, UntaggedFilesStayUnrecognizedOtherwise) {
     const nlohmann::json mat = ingest_one(ambient, work / "out-ambient");
     EXPECT_FALSE(mat["inputs"].contains("albedo")) << mat["inputs"].dump(1);
     EXPECT_TRUE(has_code(mat, "UNRECOGNIZED_FILE")) << mat["findings"].dump(1);
+}
+
+// A folder holding Poly Haven's JPEGs and a WebP twin of each at the same size (someone's
+// re-encoded copy: Poly Haven ships no WebP): the vendor's JPEG is chosen, and the choice says why.
+TEST(HandNamed, VendorJpegBeatsItsWebpTwin) {
+    const fs::path work = temp_dir("webp-twin");
+    const fs::path src = corpus_set("polyhaven_brown_planks_09_1k_jpg+webp");
+    const fs::path set = work / "brown_planks_09";
+    fs::create_directories(set);
+    for (const char* f : {"brown_planks_09_diff_1k", "brown_planks_09_nor_gl_1k", "brown_planks_09_arm_1k"}) {
+        const fs::path jpg = set / (std::string(f) + ".jpg");
+        fs::copy_file(src / jpg.filename(), jpg);
+        const mf::Image img = read_pixels(jpg);
+        std::vector<uint8_t> codes(img.pixels.size());
+        for (size_t i = 0; i < codes.size(); ++i) codes[i] = mf::quantize8(img.pixels[i]);
+        const fs::path webp = set / (std::string(f) + ".webp");
+        auto out = OIIO::ImageOutput::create(webp.string());
+        ASSERT_TRUE(out);
+        const OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::UINT8);
+        ASSERT_TRUE(out->open(webp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, codes.data()) &&
+                    out->close());
+    }
+    const nlohmann::json mat = ingest_one(set, work / "out");
+    EXPECT_EQ(mat["inputs"]["albedo"]["file"], "brown_planks_09_diff_1k.jpg");
+    EXPECT_EQ(mat["inputs"]["normal"]["file"], "brown_planks_09_nor_gl_1k.jpg");
+    bool said = false;
+    for (const auto& f : mat["findings"])
+        if (f["code"] == "AMBIGUOUS_MAP" && f["role"] == "albedo")
+            said = f["message"].get<std::string>().find("its format (jpg) ranks above webp (the vendor's own") !=
+                   std::string::npos;
+    EXPECT_TRUE(said) << mat["findings"].dump(1);
 }
