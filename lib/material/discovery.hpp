@@ -157,11 +157,13 @@ struct SetDiscovery {
 // which file feeds each output role. Ranking: for normals, the policy's convention first, then
 // any known convention, then unknown; then the largest size within max_size (from the header,
 // else the name's hint); then lossless over lossy (exr tif png tga bmp jpg webp: a WebP twin of
-// a JPEG is a re-encoded copy); then higher bit depth; then byte-wise name order. A dedicated map beats a packed one
-// for the same role; roughness beats gloss. Every choice among several candidates gets one AMBIGUOUS_MAP (info) per
-// role naming all candidates, the chosen one and why. `header` may return nullopt. `sidecars`: sidecar_roles() of the
-// set's sidecar files. A file a sidecar names takes the sidecar's role (a Megascans JSON before a glTF, then the order
-// given); a sidecar that named at least one file of the set is not reported, one that named none is UNRECOGNIZED_FILE.
+// a JPEG is a re-encoded copy); then higher bit depth; then byte-wise name order. A dedicated
+// map beats a packed one for the same role; roughness beats gloss. Every choice among several
+// candidates gets one AMBIGUOUS_MAP (info) per role naming all candidates, the chosen one and
+// why. `header` may return nullopt. `sidecars`: sidecar_roles() of the set's sidecar files. A
+// file a sidecar names takes the sidecar's role (a Megascans JSON before a glTF, then the order
+// given); a sidecar that named at least one file of the set is not reported, one that named none
+// is UNRECOGNIZED_FILE.
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
                           const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars = {});

@@ -303,9 +303,12 @@ TEST(NamingGaps, LargerJpegOriginalBeatsSmallerWebp) {
                             HasSubstr("it is the largest (1024 px vs " + std::to_string(c.webp_size) + " px)"));
             }
         }
-        // Without headers the names are equal and WebP's format ranks first: the header decides.
+        // Without headers the names are equal: the vendor's JPEG ranks above its WebP twin.
         const auto blind = discover_set(files, nullptr, ChoicePolicy{});
-        EXPECT_EQ(chosen_file(blind, Role::albedo), c.set + "_diff_1k.webp");
+        EXPECT_EQ(chosen_file(blind, Role::albedo), c.set + "_diff_1k.jpg");
+        const auto* f = find_finding(blind, code::ambiguous_map, role_name(Role::albedo));
+        ASSERT_NE(f, nullptr);
+        EXPECT_THAT(f->message, HasSubstr("its format (jpg) ranks above webp (the vendor's own"));
     }
 }
 
