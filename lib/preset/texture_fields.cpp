@@ -32,7 +32,8 @@ std::optional<bool> bool_field(const nlohmann::json& j, const char* key, bool de
     return j.at(key).get<bool>();
 }
 
-// Field `key` of `j` as a word of E (`def` when absent); false + `error` naming the field.
+// Field `key` of `j`, when present, as a word of E into `out` (left as it is when absent);
+// false + `error` naming the field.
 template <class E>
 bool word_field(const nlohmann::json& j, const char* key, E& out, const std::string& where, std::string& error) {
     if (!j.contains(key)) return true;

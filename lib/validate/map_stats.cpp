@@ -482,27 +482,24 @@ bool MapStats::all_transparent() const {
 // OPACITY_ALL_TRANSPARENT.
 void MapStats::opacity_findings(const Emit& add) const {
     const std::string& file = add.file;
-    if (all_transparent()) {
-        const double share = ratio(opacity_invisible, pixels);
-        {
-            const bool alpha = input.role != Role::opacity;
-            const int oc = std::min(opacity_channel, 3);
-            add(code::opacity_all_transparent, "opacity",
-                (alpha ? "the alpha of " + file + " (the set's opacity: it has no opacity map)" : file) + ": " +
-                    percent(share) + " of pixels have opacity at most " + fixed(t.opacity_invisible_max, 2) + " (max " +
-                    fixed(max[oc], 3) +
-                    "): it would make the whole material invisible, so it is not applied (the material is "
-                    "written opaque) — if the map stores transparency, invert it; if it is a placeholder, remove "
-                    "it",
-                {{"invisible_share", share},
-                 {"invisible_max", t.opacity_invisible_max},
-                 {"below_cutoff_share", ratio(opacity_below_cutoff, pixels)},
-                 {"cutoff", t.opacity_visible},
-                 {"max", max[oc]},
-                 {"channel", channel_letter(oc)},
-                 {"max_share", t.opacity_max_invisible_share}});
-        }
-    }
+    if (!all_transparent()) return;
+    const double share = ratio(opacity_invisible, pixels);
+    const bool alpha = input.role != Role::opacity;
+    const int oc = std::min(opacity_channel, 3);
+    add(code::opacity_all_transparent, "opacity",
+        (alpha ? "the alpha of " + file + " (the set's opacity: it has no opacity map)" : file) + ": " +
+            percent(share) + " of pixels have opacity at most " + fixed(t.opacity_invisible_max, 2) + " (max " +
+            fixed(max[oc], 3) +
+            "): it would make the whole material invisible, so it is not applied (the material is "
+            "written opaque) — if the map stores transparency, invert it; if it is a placeholder, remove "
+            "it",
+        {{"invisible_share", share},
+         {"invisible_max", t.opacity_invisible_max},
+         {"below_cutoff_share", ratio(opacity_below_cutoff, pixels)},
+         {"cutoff", t.opacity_visible},
+         {"max", max[oc]},
+         {"channel", channel_letter(oc)},
+         {"max_share", t.opacity_max_invisible_share}});
 }
 
 // NORMAL_Z_RECONSTRUCTED, NORMAL_INVALID, NORMAL_GAMMA_ENCODED, NORMAL_NOT_UNIT_LENGTH.
