@@ -2,9 +2,11 @@
 # GoogleTest program, discovered by ctest. Every test gets a ctest label: `unit` (in-process) or
 # `integration` (RUNS_BINARY), and `slow` when its name matches one of the SLOW regular
 # expressions (anchored; each with its reason in the caller's CMakeLists.txt): the sanitizer
-# stage of scripts/test.sh runs `ctest -LE slow`, the release stage runs everything. LOCK: its tests never run at the same time as another test holding that
-# ctest RESOURCE_LOCK (tests that share costly results through the test cache: the first
-# computes, the others restore, instead of all computing at once under ctest -j).
+# stage of scripts/test.sh runs `ctest -LE slow`, and the release stage before it only `-L slow`
+# (scripts/test.sh alone runs everything in release). LOCK: its tests never run at the same time
+# as another test holding that ctest RESOURCE_LOCK (tests that share costly results through the
+# test cache: the first computes, the others restore, instead of all computing at once under
+# ctest -j).
 # RUNS_BINARY: the tests run the matforge binary (MATFORGE_BIN) and can generate synthetic
 # sets (MATFORGE_GEN_SAMPLES, tests/common/synthetic_sets.hpp), and every manifest and
 # validate report they leave behind is copied to the schema spool (tests/common/run_binary.hpp),

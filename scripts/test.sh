@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test (ctest).
 #   scripts/test.sh                       release build (gcc) in build/: every test
-#   MATFORGE_SANITIZE=1 scripts/test.sh   then the sanitizer build (clang-14, build-asan/:
-#                                         ASan + UBSan + LSan; the libFuzzer targets of
-#                                         scripts/fuzz.sh are built in the same tree) running
-#                                         every test not labelled `slow` (each slow test says
-#                                         why in its tests/*/CMakeLists.txt); any sanitizer
-#                                         report fails its test
+#   MATFORGE_SANITIZE=1 scripts/test.sh   every test once: the release build runs those
+#                                         labelled `slow` (each says why in its
+#                                         tests/*/CMakeLists.txt), then the sanitizer build
+#                                         (clang-14, build-asan/: ASan + UBSan + LSan; the
+#                                         libFuzzer targets of scripts/fuzz.sh are built in the
+#                                         same tree) runs all the others; any sanitizer report
+#                                         fails its test
 # Each stage prints its time. Tests read their paths from ctest (tests/common/test_env.hpp).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -20,7 +21,10 @@ build_quietly "$root/build"
 "$root/scripts/npm-checkers.sh" "$root/build/npm"  # glTF-Validator and ktx-parse for tests/texture
 echo "test: release build $((SECONDS - t0)) s" >&2
 t0=$SECONDS
-ctest --test-dir "$root/build" --output-on-failure -j"$(nproc)" --timeout 900
+# With the sanitizer stage to follow, the release build runs only what that stage leaves out.
+release_only=()
+[[ ${MATFORGE_SANITIZE:-0} == 1 ]] && release_only=(-L slow)
+ctest --test-dir "$root/build" --output-on-failure -j"$(nproc)" --timeout 900 "${release_only[@]}"
 echo "test: release tests $((SECONDS - t0)) s" >&2
 
 if [[ ${MATFORGE_SANITIZE:-0} == 1 ]]; then
