@@ -93,14 +93,17 @@ build_quietly() {
 # translation unit, up to 16 at a time: headers parsed and templates instantiated once a batch,
 # half the compile time of one unit per file; scripts/tidy.sh keeps one unit per file). ccache,
 # when installed, with paths taken relative to the clone, so two clones share the cache (CI:
-# .ci/run points CCACHE_DIR outside the clone).
+# .ci/run points CCACHE_DIR outside the clone). A unity source includes each file by its
+# absolute path, which lands in __FILE__ (every GoogleTest assertion) and the debug information:
+# -ffile-prefix-map writes those relative to the clone, so a clone elsewhere still hits the cache.
 configure() {
   local build=$1
   shift
   mkdir -p "$build"
   local launcher=()
   if command -v ccache >/dev/null; then
-    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
+      "-DCMAKE_CXX_FLAGS=-ffile-prefix-map=$root/=" "-DCMAKE_C_FLAGS=-ffile-prefix-map=$root/=")
   fi
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMATFORGE_WERROR=ON \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 \

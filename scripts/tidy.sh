@@ -51,8 +51,10 @@ def key(item):
     flags = [a for a in flags if a != "-c" and not a.endswith(e["file"])]
     pp = subprocess.run(["clang++-14", *flags, "-Wno-unknown-warning-option", "-E", "-o", "-",
                          os.path.join(e["directory"], e["file"])], cwd=e["directory"], capture_output=True)
+    # The prefix map (scripts/bootstrap.sh) renames paths in outputs only; it is not in the key.
+    keyed = [a for a in flags if not a.startswith("-ffile-prefix-map=")]
     h = hashlib.sha256()
-    for part in (version.encode(), config, relative(" ".join(flags)).encode(), f.encode(),
+    for part in (version.encode(), config, relative(" ".join(keyed)).encode(), f.encode(),
                  relative(pp.stdout.decode("utf-8", "replace")).encode(), str(pp.returncode).encode()):
         h.update(hashlib.sha256(part).digest())
     return h.hexdigest()
