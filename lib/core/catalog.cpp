@@ -94,8 +94,7 @@ const CodeInfo* find_code(std::string_view c) {
     return nullptr;
 }
 
-Finding finding(std::string_view code, std::string role, std::string file, std::string message,
-                nlohmann::json figures) {
+Finding finding(std::string_view code, std::string role, std::string file, std::string message, Figures figures) {
     const CodeInfo* info = find_code(code);
     // A code outside the catalog would reach reports with no severity, title or docs: a bug here.
     if (!info) throw std::logic_error("finding code " + std::string(code) + " is not in the catalog");

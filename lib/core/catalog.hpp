@@ -30,7 +30,6 @@ const CodeInfo* find_code(std::string_view code);
 
 // A finding of `code` at its catalog severity: the one way to make one. A code not in the
 // catalog throws std::logic_error (a reader could not describe it).
-Finding finding(std::string_view code, std::string role, std::string file, std::string message,
-                nlohmann::json figures = nlohmann::json::object());
+Finding finding(std::string_view code, std::string role, std::string file, std::string message, Figures figures = {});
 
 }  // namespace mf

@@ -1,6 +1,8 @@
 #include "core/findings.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <nlohmann/json.hpp>
 
 namespace mf {
 
@@ -20,6 +22,37 @@ std::optional<Severity> severity_from_name(std::string_view name) {
     return std::nullopt;
 }
 
+std::optional<double> figure_number(const Figures& figures, std::string_view name) {
+    const auto it = figures.find(name);
+    if (it == figures.end()) return std::nullopt;
+    if (const auto* i = std::get_if<std::int64_t>(&it->second)) return static_cast<double>(*i);
+    if (const auto* d = std::get_if<double>(&it->second)) return *d;
+    return std::nullopt;
+}
+
+std::optional<std::string> figure_string(const Figures& figures, std::string_view name) {
+    const auto it = figures.find(name);
+    if (it == figures.end()) return std::nullopt;
+    if (const auto* s = std::get_if<std::string>(&it->second)) return *s;
+    return std::nullopt;
+}
+
+namespace {
+nlohmann::json value_json(const FigureValue& v) {
+    return std::visit([](const auto& x) { return nlohmann::json(x); }, v);
+}
+}  // namespace
+
+std::string figure_text(const FigureValue& v) {
+    return value_json(v).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+nlohmann::json to_json(const Figures& figures) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [name, v] : figures) j[name] = value_json(v);
+    return j;
+}
+
 nlohmann::json to_json(const Finding& f) {
     nlohmann::json j;
     j["code"] = f.code;
@@ -27,7 +60,7 @@ nlohmann::json to_json(const Finding& f) {
     if (!f.role.empty()) j["role"] = f.role;
     if (!f.file.empty()) j["file"] = f.file;
     j["message"] = f.message;
-    if (!f.figures.empty()) j["figures"] = f.figures;
+    if (!f.figures.empty()) j["figures"] = to_json(f.figures);
     return j;
 }
 
@@ -44,6 +77,32 @@ std::optional<std::string> string_member(const nlohmann::json& j, const char* ke
         return std::nullopt;
     }
     return it->get<std::string>();
+}
+// A figure as written by to_json: a flag, a number, a text, or a list of numbers or of texts.
+std::optional<FigureValue> figure_from_json(const nlohmann::json& v) {
+    if (v.is_boolean()) return v.get<bool>();
+    if (v.is_number_unsigned()) {
+        const auto u = v.get<std::uint64_t>();
+        if (u > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) return static_cast<double>(u);
+        return static_cast<std::int64_t>(u);
+    }
+    if (v.is_number_integer()) return v.get<std::int64_t>();
+    if (v.is_number_float()) return v.get<double>();
+    if (v.is_string()) return v.get<std::string>();
+    if (!v.is_array()) return std::nullopt;
+    if (std::all_of(v.begin(), v.end(), [](const nlohmann::json& e) { return e.is_number_integer(); })) {
+        std::vector<std::int64_t> counts;
+        for (const auto& e : v) counts.push_back(e.get<std::int64_t>());
+        return counts;
+    }
+    if (std::all_of(v.begin(), v.end(), [](const nlohmann::json& e) { return e.is_number(); })) {
+        std::vector<double> numbers;
+        for (const auto& e : v) numbers.push_back(e.get<double>());
+        return numbers;
+    }
+    if (std::all_of(v.begin(), v.end(), [](const nlohmann::json& e) { return e.is_string(); }))
+        return v.get<std::vector<std::string>>();
+    return std::nullopt;
 }
 }  // namespace
 
@@ -74,7 +133,15 @@ std::optional<Finding> finding_from_json(const nlohmann::json& j, std::string& e
             error = "\"figures\" is not an object";
             return std::nullopt;
         }
-        f.figures = *fig;
+        for (const auto& [name, v] : fig->items()) {
+            auto value = figure_from_json(v);
+            if (!value) {
+                error = "figure \"" + name + "\" is not a flag, a number, a text or a list of numbers or texts";
+                return std::nullopt;
+            }
+            f.figures[name] = Figure{};
+            static_cast<FigureValue&>(f.figures[name]) = std::move(*value);
+        }
     }
     return f;
 }

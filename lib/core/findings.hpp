@@ -1,10 +1,15 @@
 // Findings: the coded, stable results every stage reports (docs/interface.md "Finding codes").
 // A code never changes meaning; new checks get new codes.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace mf {
@@ -63,15 +68,51 @@ inline constexpr std::string_view material_file_skipped =
     "MATERIAL_FILE_SKIPPED";  // the preset's glTF not written (dx normals)
 }  // namespace code
 
+// A measured value behind a finding: a flag, a count, a measure, a word, or a list of counts,
+// measures or words. Written to JSON as held (3, 3.0, "gl", [2048, 1024], [0.5, 0.5]) and read
+// back the same.
+using FigureValue = std::variant<bool, std::int64_t, double, std::string, std::vector<std::int64_t>,
+                                 std::vector<double>, std::vector<std::string>>;
+
+// A FigureValue made from what the rules measure in: any integer is a count, float a measure,
+// characters a text, a braced list of integers {w, h} counts.
+struct Figure : FigureValue {
+    Figure() = default;
+    Figure(bool b) : FigureValue(b) {}
+    template <class T>
+    requires(std::is_integral_v<T> && !std::is_same_v<T, bool>) Figure(T v)
+        : FigureValue(static_cast<std::int64_t>(v)) {}
+    Figure(double v) : FigureValue(v) {}
+    Figure(float v) : FigureValue(double{v}) {}
+    Figure(std::string s) : FigureValue(std::move(s)) {}
+    Figure(std::string_view s) : FigureValue(std::string(s)) {}
+    Figure(const char* s) : FigureValue(std::string(s)) {}
+    Figure(std::initializer_list<std::int64_t> counts) : FigureValue(std::vector<std::int64_t>(counts)) {}
+    Figure(std::vector<std::int64_t> counts) : FigureValue(std::move(counts)) {}
+    Figure(std::vector<double> measures) : FigureValue(std::move(measures)) {}
+    Figure(const std::vector<float>& measures) : FigureValue(std::vector<double>(measures.begin(), measures.end())) {}
+    Figure(std::vector<std::string> words) : FigureValue(std::move(words)) {}
+};
+// A finding's figures by name, in name order (the order they are written in).
+using Figures = std::map<std::string, Figure, std::less<>>;
+
+// The number a figure holds (a count or a measure); nullopt when absent or not a number.
+std::optional<double> figure_number(const Figures& figures, std::string_view name);
+// The text a figure holds; nullopt when absent or not text.
+std::optional<std::string> figure_string(const Figures& figures, std::string_view name);
+// A figure as its JSON text (the report's figure tables).
+std::string figure_text(const FigureValue& v);
+
 struct Finding {
     std::string code;
     Severity severity = Severity::info;
-    std::string role;                                   // empty when no role applies
-    std::string file;                                   // input file (relative to the set's source) when one applies
-    std::string message;                                // a sentence a person can act on
-    nlohmann::json figures = nlohmann::json::object();  // measured values behind the finding
+    std::string role;     // empty when no role applies
+    std::string file;     // input file (relative to the set's source) when one applies
+    std::string message;  // a sentence a person can act on
+    Figures figures;      // measured values behind the finding
 };
 
+nlohmann::json to_json(const Figures& figures);
 nlohmann::json to_json(const Finding& f);
 // nullopt + `error` naming the member when `j` is not a finding (a code and a known severity).
 std::optional<Finding> finding_from_json(const nlohmann::json& j, std::string& error);

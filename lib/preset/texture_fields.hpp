@@ -3,7 +3,7 @@
 // combination that cannot be written (BC5 for a 3-channel color, ASTC in a DDS, an sRGB BC4,
 // mips in a PNG) is refused here, naming the field, before any set is read.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 

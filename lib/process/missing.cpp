@@ -63,10 +63,8 @@ std::vector<Finding> missing_map_findings(const Preset& preset, const std::set<R
         }
         const auto sev = preset.missing_severity.find(r);
         if (sev == preset.missing_severity.end()) continue;
-        nlohmann::json figures = nlohmann::json::object();
-        if (made)
-            figures["generated"] = made->value.size() == 1 ? nlohmann::json(made->value[0])
-                                                           : nlohmann::json(made->value);
+        Figures figures;
+        if (made) figures["generated"] = made->value.size() == 1 ? Figure(made->value[0]) : Figure(made->value);
         Finding f = finding(code::missing_map, rname, "", "no " + rname + " map; " + what, std::move(figures));
         f.severity = sev->second;  // the preset's missing_severity decides (docs/interface.md "Finding codes")
         findings.push_back(std::move(f));

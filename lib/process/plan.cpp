@@ -25,8 +25,7 @@ struct Files {
     }
 };
 
-Finding make_finding(std::string_view code, Role role, std::string file, std::string msg,
-                     nlohmann::json figures = nlohmann::json::object()) {
+Finding make_finding(std::string_view code, Role role, std::string file, std::string msg, Figures figures = {}) {
     return finding(code, std::string(role_name(role)), std::move(file), std::move(msg), std::move(figures));
 }
 
@@ -346,9 +345,12 @@ void decide_size(SetPlan& plan) {
     }
     // RESOLUTION_MISMATCH: here, where the set's size is decided, for each kept map that is
     // resampled to it (the refused ones are not used at all: ASPECT_MISMATCH said so).
-    nlohmann::json sizes = nlohmann::json::object();
+    std::map<std::string, std::string> sizes;  // by file name, as the figure lists them
     for (const Map& m : maps)
-        if (const auto in = plan.inputs.find(m.role); in != plan.inputs.end()) sizes[in->second.file] = {m.w, m.h};
+        if (const auto in = plan.inputs.find(m.role); in != plan.inputs.end())
+            sizes[in->second.file] = in->second.file + " " + std::to_string(m.w) + "x" + std::to_string(m.h);
+    std::vector<std::string> size_list;
+    for (const auto& [file, text] : sizes) size_list.push_back(text);
     std::set<std::string> said;
     for (const Map& m : maps) {
         const auto in = plan.inputs.find(m.role);
@@ -358,7 +360,7 @@ void decide_size(SetPlan& plan) {
             code::resolution_mismatch, m.role, file,
             file + " is " + std::to_string(m.w) + "x" + std::to_string(m.h) + " but the set is " + std::to_string(w) +
                 "x" + std::to_string(h) + " (" + plan.inputs.at(largest->role).file + "); it will be resampled",
-            {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}, {"sizes", sizes}}));
+            {{"width", m.w}, {"height", m.h}, {"reference_width", w}, {"reference_height", h}, {"sizes", size_list}}));
     }
     plan.width = w;
     plan.height = h;

@@ -185,7 +185,7 @@ void add_groups(const std::string& fallback, const std::vector<std::string>& fil
         if (g.merge) {
             // Spellings that differ only in resolution/format tags are one material at several
             // sizes (info); a difference of case or separators may be two materials (warning).
-            nlohmann::json figures{{"spellings", g.merge->spellings}, {"files", g.merge->files}};
+            Figures figures{{"spellings", g.merge->spellings}, {"files", g.merge->files}};
             Finding f = finding(code::names_merged, "", g.merge->files.empty() ? "" : g.merge->files.front(),
                                 g.merge->message, std::move(figures));
             if (!g.merge->spelling_differs) f.severity = Severity::info;  // the catalog's one exception (its title)

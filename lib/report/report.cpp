@@ -435,12 +435,11 @@ private:
         }
     }
 
-    static std::string figures_html(const nlohmann::json& figures) {
-        if (!figures.is_object() || figures.empty()) return {};
+    static std::string figures_html(const Figures& figures) {
+        if (figures.empty()) return {};
         std::string h = "<details><summary>figures</summary><table class=\"figures\">";
-        for (const auto& [k, v] : figures.items())
-            h += "<tr><th>" + markup_escape(k) + "</th><td>" +
-                 markup_escape(v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) + "</td></tr>";
+        for (const auto& [k, v] : figures)
+            h += "<tr><th>" + markup_escape(k) + "</th><td>" + markup_escape(figure_text(v)) + "</td></tr>";
         return h + "</table></details>";
     }
 

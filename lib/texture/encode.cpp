@@ -192,10 +192,10 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
         const bool psnr_low = e.psnr_db && o.min_psnr_db && *e.psnr_db < *o.min_psnr_db;
         const bool angle_high = e.mean_angle_deg && o.max_mean_angle_deg && *e.mean_angle_deg > *o.max_mean_angle_deg;
         if (!psnr_low && !angle_high) continue;
-        nlohmann::json figures = {{"block_format", std::string(f->name)},
-                                  {"level", i},
-                                  {"width", e.width},
-                                  {"height", e.height}};
+        Figures figures = {{"block_format", std::string(f->name)},
+                           {"level", static_cast<std::int64_t>(i)},
+                           {"width", e.width},
+                           {"height", e.height}};
         std::string what;
         if (psnr_low) {
             figures["psnr_db"] = *e.psnr_db;

@@ -24,19 +24,19 @@ double AlbedoStats::Class::percentile(double p) const {
 void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask,
                            std::vector<Finding>& out) const {
     auto figures = [&](const Class& c, long long count, double threshold) {
-        return nlohmann::json{{"share", ratio(count, c.n)},
-                              {"surface_share", ratio(count, visible_)},
-                              {"pixels", c.n},
-                              {"visible_pixels", visible_},
-                              {"threshold_srgb", threshold},
-                              {"p1_srgb", c.percentile(0.01)},
-                              {"median_srgb", c.percentile(0.5)},
-                              {"p99_srgb", c.percentile(0.99)},
-                              {"metalness_mask", has_metal_mask},
-                              {"opacity_mask", has_opacity_mask},
-                              {"measure", "luminance, sRGB-encoded, 0-255"}};
+        return Figures{{"share", ratio(count, c.n)},
+                       {"surface_share", ratio(count, visible_)},
+                       {"pixels", c.n},
+                       {"visible_pixels", visible_},
+                       {"threshold_srgb", threshold},
+                       {"p1_srgb", c.percentile(0.01)},
+                       {"median_srgb", c.percentile(0.5)},
+                       {"p99_srgb", c.percentile(0.99)},
+                       {"metalness_mask", has_metal_mask},
+                       {"opacity_mask", has_opacity_mask},
+                       {"measure", "luminance, sRGB-encoded, 0-255"}};
     };
-    auto add = [&](std::string_view code, std::string msg, nlohmann::json fig) {
+    auto add = [&](std::string_view code, std::string msg, Figures fig) {
         out.push_back(finding(code, "albedo", file, std::move(msg), std::move(fig)));
     };
     // Shares are of the visible albedo; with a metalness mask the share of the class is given too.

@@ -269,17 +269,17 @@ bool MapStats::normal_invalid() const {
     return !s.gamma_encoded && !s.invalid.empty();
 }
 
-nlohmann::json NormalSummary::figures() const {
-    nlohmann::json j{{"mean_x", mean_x},
-                     {"mean_y", mean_y},
-                     {"mean_z", mean_z},
-                     {"mean_length", mean_length},
-                     {"std_x", std_x},
-                     {"std_y", std_y},
-                     {"bad_length_share", bad_length_share},
-                     {"negative_z_share", negative_z_share},
-                     {"upward_share", upward_share},
-                     {"gray_share", gray_share}};
+Figures NormalSummary::figures() const {
+    Figures j{{"mean_x", mean_x},
+              {"mean_y", mean_y},
+              {"mean_z", mean_z},
+              {"mean_length", mean_length},
+              {"std_x", std_x},
+              {"std_y", std_y},
+              {"bad_length_share", bad_length_share},
+              {"negative_z_share", negative_z_share},
+              {"upward_share", upward_share},
+              {"gray_share", gray_share}};
     if (srgb_measured) {
         j["srgb_decoded_mean_x"] = srgb_mean_x;
         j["srgb_decoded_mean_y"] = srgb_mean_y;
@@ -337,7 +337,7 @@ NormalSummary MapStats::normal_summary() const {
     return s;
 }
 
-void MapStats::Emit::operator()(std::string_view code, std::string r, std::string msg, nlohmann::json fig) const {
+void MapStats::Emit::operator()(std::string_view code, std::string r, std::string msg, Figures fig) const {
     out.push_back(finding(code, std::move(r), file, std::move(msg), std::move(fig)));
 }
 
@@ -360,11 +360,7 @@ void MapStats::value_findings(const Emit& add) const {
     const std::string& file = add.file;
     const std::string& role = add.role;
     const int nc = std::min(channels, 4);
-    auto channel_array = [&](const std::array<double, 4>& a) {
-        nlohmann::json j = nlohmann::json::array();
-        for (int c = 0; c < nc; ++c) j.push_back(std::isfinite(a[c]) ? nlohmann::json(a[c]) : nlohmann::json());
-        return j;
-    };
+    auto channel_list = [&](const std::array<double, 4>& a) { return std::vector<double>(a.begin(), a.begin() + nc); };
     if (nan + inf > 0 && ratio(nan + inf, samples) > t.nonfinite_max_share) {
         add(code::nonfinite_values, role,
             file + ": " + std::to_string(nan) + " NaN and " + std::to_string(inf) +
@@ -379,11 +375,15 @@ void MapStats::value_findings(const Emit& add) const {
             file + ": " + percent(oor) + " of pixels hold " + role + " values outside [" + (is_normal() ? "-1" : "0") +
                 ", 1] (min " + fixed(*std::min_element(min.begin(), min.begin() + nc), 3) + ", max " +
                 fixed(*std::max_element(max.begin(), max.begin() + nc), 3) + "); they will be clamped",
-            {{"pixels", out_of_range_pixels},
-             {"share", oor},
-             {"min", channel_array(min)},
-             {"max", channel_array(max)},
-             {"epsilon", t.range_epsilon}});
+            [&] {
+                Figures fig{{"pixels", out_of_range_pixels}, {"share", oor}, {"epsilon", t.range_epsilon}};
+                // A channel with no finite value has no extremes to state (NONFINITE_VALUES says so).
+                if (std::all_of(finite.begin(), finite.begin() + nc, [](auto n) { return n > 0; })) {
+                    fig["min"] = channel_list(min);
+                    fig["max"] = channel_list(max);
+                }
+                return fig;
+            }());
     }
 }
 
@@ -429,8 +429,10 @@ void MapStats::constant_findings(const Emit& add) const {
         const std::vector<int>& chs = group.first;
         const Role r = group.second;
         bool constant = true;
-        nlohmann::json value = nlohmann::json::array(), range = nlohmann::json::array();
+        std::vector<double> value, range;
+        std::vector<std::string> letters;
         for (int c : chs) {
+            letters.emplace_back(channel_letter(c));
             if (finite[c] == 0 || max[c] - min[c] > tol) constant = false;
             value.push_back(mean(c));
             range.push_back(finite[c] ? max[c] - min[c] : 0.0);
@@ -439,15 +441,10 @@ void MapStats::constant_findings(const Emit& add) const {
         std::string where = file;
         if (traits(input.role).packed) where = "channel " + std::string(channel_letter(chs[0])) + " of " + file;
         std::string vtext;
-        for (size_t i = 0; i < value.size(); ++i) vtext += (i ? ", " : "") + fixed(value[i].get<double>(), 3);
+        for (size_t i = 0; i < value.size(); ++i) vtext += (i ? ", " : "") + fixed(value[i], 3);
         add(code::constant_map, std::string(role_name(r)),
             where + " holds one value (" + vtext + "); a constant or a 2x2 map does the same",
-            {{"value", value}, {"range", range}, {"tolerance", tol}, {"channels", [&] {
-                                                                          nlohmann::json a = nlohmann::json::array();
-                                                                          for (int c : chs)
-                                                                              a.push_back(channel_letter(c));
-                                                                          return a;
-                                                                      }()}});
+            {{"value", value}, {"range", range}, {"tolerance", tol}, {"channels", letters}});
     }
 }
 
@@ -524,12 +521,12 @@ void MapStats::normal_findings(const Emit& add) const {
         return;
     }
     const NormalSummary s = normal_summary();
-    nlohmann::json fig = s.figures();
-    fig["decoding"] = normal_signed == 1 ? "signed" : "2c-1";
+    Figures fig = s.figures();
+    fig["decoding"] = std::string(normal_signed == 1 ? "signed" : "2c-1");
     // The summary's figures and the thresholds the finding was judged by.
-    auto with = [&fig](const nlohmann::json& thresholds) {
-        nlohmann::json g = fig;
-        g.update(thresholds);
+    auto with = [&fig](const Figures& thresholds) {
+        Figures g = fig;
+        for (const auto& [name, v] : thresholds) g.insert_or_assign(name, v);
         return g;
     };
     if (s.gamma_encoded) {
@@ -571,9 +568,9 @@ void MapStats::tag_findings(const Emit& add) const {
     const std::string& role = add.role;
     const ColorTag tag = input.color_tag.tag;
     const bool color = is_color_role(input.role);
-    nlohmann::json tagfig{{"tag", color_tag_name(tag)},
-                          {"tag_source", input.color_tag.source},
-                          {"tag_value", input.color_tag.value}};
+    Figures tagfig{{"tag", color_tag_name(tag)},
+                   {"tag_source", input.color_tag.source},
+                   {"tag_value", input.color_tag.value}};
     if (!color && (tag == ColorTag::srgb || tag == ColorTag::other)) {
         // An ICC profile of any name on a data map is a color statement too.
         tagfig["expected"] = "linear";

@@ -30,7 +30,7 @@ struct NormalSummary {
     bool gamma_encoded = false;
     std::vector<std::string> invalid;  // why it is not a tangent-space normal map (empty: it is)
     bool not_unit_length = false;
-    nlohmann::json figures() const;
+    Figures figures() const;
 };
 
 struct MapStats {
@@ -78,7 +78,7 @@ struct MapStats {
     struct Emit {  // adds a finding about this map's file
         std::string file, role;
         std::vector<Finding>& out;
-        void operator()(std::string_view code, std::string r, std::string msg, nlohmann::json fig) const;
+        void operator()(std::string_view code, std::string r, std::string msg, Figures fig) const;
     };
     void value_findings(const Emit& add) const;
     void grayscale_findings(const Emit& add) const;

@@ -186,15 +186,18 @@ NormalVerdict NormalConventionDetector::verdict() const {
     const Impl& I = *impl_;
     double best_curl = 0, best_hy = 0, best_hx = 0;
     int curl_scale = 0, height_scale = 0;
-    nlohmann::json levels = nlohmann::json::array();
+    // Each pyramid level's evidence, one list a figure (level_scale[i] is level i's).
+    std::vector<std::int64_t> level_scale, level_samples;
+    std::vector<double> level_r_curl, level_r_x, level_r_y;
     int scale = 1;
     for (const Level& L : I.levels) {
-        nlohmann::json lj{{"scale", scale}, {"samples", L.curl.n}, {"r_curl", L.curl.r()}};
+        level_scale.push_back(scale);
+        level_samples.push_back(static_cast<std::int64_t>(L.curl.n));
+        level_r_curl.push_back(L.curl.r());
         if (I.with_height) {
-            lj["r_x"] = L.cx.r();
-            lj["r_y"] = L.cy.r();
+            level_r_x.push_back(L.cx.r());
+            level_r_y.push_back(L.cy.r());
         }
-        levels.push_back(lj);
         if (L.curl.n >= I.opt.min_samples) {
             // Only levels whose terms carry energy vote (a flat map has no evidence).
             if (L.curl.xx > 0 && L.curl.yy > 0 && std::abs(L.curl.r()) > std::abs(best_curl)) {
@@ -209,7 +212,13 @@ NormalVerdict NormalConventionDetector::verdict() const {
         }
         scale *= 2;
     }
-    v.figures["levels"] = levels;
+    v.figures["level_scale"] = std::move(level_scale);
+    v.figures["level_samples"] = std::move(level_samples);
+    v.figures["level_r_curl"] = std::move(level_r_curl);
+    if (I.with_height) {
+        v.figures["level_r_x"] = std::move(level_r_x);
+        v.figures["level_r_y"] = std::move(level_r_y);
+    }
     const double cc = curl_confidence(best_curl);
     v.figures["r_curl"] = best_curl;
     v.figures["curl_scale"] = curl_scale;

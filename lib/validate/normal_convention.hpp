@@ -19,7 +19,6 @@
 // Confidence in [0, 1] maps the absolute correlations (docs/rules.md "Normal convention").
 #pragma once
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "image/image.hpp"
@@ -44,7 +43,7 @@ struct NormalVerdict {
     NormalConvention leaning = NormalConvention::unknown;
     std::string method = "none";  // "height+curl", "curl", "none"
     bool flat = false;            // no relief: the convention does not matter (see DetectorOptions)
-    nlohmann::json figures = nlohmann::json::object();
+    Figures figures;
 };
 
 // Decodes one row of a normal map to unit-free (x, y, z) triples. `channels`: 2 (z rebuilt as

@@ -311,7 +311,7 @@ std::string write_sarif(const Report& r) {
                                {"locations", location(join_path(m.source, f.file))}};
             nlohmann::json props{{"material", m.name}};
             if (!f.role.empty()) props["role"] = f.role;
-            if (!f.figures.empty()) props["figures"] = f.figures;
+            if (!f.figures.empty()) props["figures"] = to_json(f.figures);
             res["properties"] = props;
             results.push_back(res);
         }

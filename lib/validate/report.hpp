@@ -5,7 +5,7 @@
 // same input: no timestamps, materials and findings in the order given, rules in catalog
 // order); JSON and SARIF end with a newline.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <string_view>

@@ -11,7 +11,7 @@
 //  - configuration errors are returned as text (the CLI maps them to exit code 2), never thrown.
 #pragma once
 #include <map>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <string_view>

@@ -225,7 +225,7 @@ struct SetRun {
             nc.resolved = nc.content.convention;
             nc.source = "content";
         }
-        nlohmann::json fig = nc.content.figures;
+        Figures fig = nc.content.figures;
         fig["name_convention"] = convention_name(nc.name);
         fig["content_convention"] = convention_name(nc.content.convention);
         fig["leaning"] = convention_name(nc.content.leaning);

@@ -2,6 +2,7 @@
 // stage and docs anchor: every code constant of core/findings.hpp is in it once, and
 // docs/interface.md's "Finding codes" table and docs/rules.md's rule rows say what it says.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cctype>
 #include <fstream>
@@ -103,6 +104,46 @@ TEST(Catalog, AFindingTakesItsSeverityFromTheCatalog) {
     const mf::Finding f = mf::finding(mf::code::albedo_too_dark, "albedo", "a.png", "dark", {{"share", 0.5}});
     EXPECT_EQ(f.code, "ALBEDO_TOO_DARK");
     EXPECT_EQ(f.severity, mf::Severity::warning);
-    EXPECT_EQ(f.figures.at("share"), 0.5);
+    EXPECT_EQ(mf::to_json(f.figures).at("share"), 0.5);
     EXPECT_THROW((void)mf::finding("NO_SUCH_CODE", "", "", ""), std::logic_error);
+}
+
+// Figures are typed where they are made (a count, a measure, a flag, a text, lists of them) and a
+// manifest's JSON reads back to the same values, so a merge or a report rewrites the same bytes.
+TEST(Catalog, FiguresAreTypedAndReadBackAsWritten) {
+    const size_t level = 3;
+    const std::vector<float> rgb{0.25f, 0.5f, 1.0f};
+    mf::Figures fig{{"level", level},
+                    {"share", 0.125},
+                    {"flat", false},
+                    {"decoding", "2c-1"},
+                    {"from", {2048, 1024}},
+                    {"value", rgb},
+                    {"channels", std::vector<std::string>{"R", "G"}}};
+    EXPECT_TRUE(std::holds_alternative<std::int64_t>(fig.at("level")));
+    EXPECT_TRUE(std::holds_alternative<std::string>(fig.at("decoding")));  // characters are text, not a flag
+    EXPECT_TRUE(std::holds_alternative<std::vector<std::int64_t>>(fig.at("from")));
+    EXPECT_EQ(mf::figure_number(fig, "level"), 3.0);
+    EXPECT_EQ(mf::figure_number(fig, "share"), 0.125);
+    EXPECT_FALSE(mf::figure_number(fig, "decoding"));
+    EXPECT_EQ(mf::figure_string(fig, "decoding"), "2c-1");
+    EXPECT_EQ(mf::figure_text(fig.at("from")), "[2048,1024]");
+    EXPECT_EQ(mf::figure_text(fig.at("value")), "[0.25,0.5,1.0]");
+
+    const mf::Finding f = mf::finding(mf::code::constant_map, "roughness", "r.png", "m", fig);
+    const std::string text = mf::to_json(f).dump();
+    EXPECT_NE(text.find(R"("level":3,)"), std::string::npos) << text;
+    EXPECT_NE(text.find(R"("from":[2048,1024])"), std::string::npos) << text;
+    std::string error;
+    const auto back = mf::finding_from_json(nlohmann::json::parse(text), error);
+    ASSERT_TRUE(back) << error;
+    EXPECT_EQ(mf::to_json(*back).dump(), text);
+    EXPECT_TRUE(std::holds_alternative<double>(back->figures.at("share")));
+    EXPECT_TRUE(std::holds_alternative<std::vector<double>>(back->figures.at("value")));
+
+    // What no rule writes is refused with the figure named, not guessed at.
+    EXPECT_FALSE(mf::finding_from_json(
+        {{"code", "X"}, {"severity", "info"}, {"figures", {{"sizes", {{"a.png", {1, 2}}}}}}}, error));
+    EXPECT_NE(error.find("\"sizes\""), std::string::npos) << error;
+    EXPECT_FALSE(mf::finding_from_json({{"code", "X"}, {"severity", "info"}, {"figures", {{"n", nullptr}}}}, error));
 }

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -85,7 +86,7 @@ TEST(Findings, JsonRoundTrip) {
     ASSERT_TRUE(g) << error;
     EXPECT_EQ(g->code, f.code);
     EXPECT_EQ(g->role, "metalness");
-    EXPECT_EQ(g->figures["generated"], 0.0);
+    EXPECT_EQ(mf::to_json(g->figures).at("generated"), 0.0);
     // Malformed findings are refused naming the member, never a JSON type_error.
     EXPECT_FALSE(mf::finding_from_json({{"code", "X"}, {"severity", "fatal"}}, error));
     EXPECT_NE(error.find("fatal"), std::string::npos);

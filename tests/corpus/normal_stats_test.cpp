@@ -5,6 +5,7 @@
 // real maps must pass, the others fail, each threshold with a margin; the table is printed
 // (docs/rules.md quotes it).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -201,23 +202,25 @@ void check_classification() {
                                     : !s.invalid.empty() ? "INVALID"
                                     : s.not_unit_length  ? "short"
                                                          : "ok";
-        const double slope = std::max(m.v.figures.value("slope_std_x", 0.0), m.v.figures.value("slope_std_y", 0.0));
+        const double slope = std::max(mf::to_json(m.v.figures).value("slope_std_x", 0.0),
+                                      mf::to_json(m.v.figures).value("slope_std_y", 0.0));
         std::printf(
             "%-58s %-6s %+7.3f %+7.3f %+6.3f %6.3f %6.3f %6.3f %6.3f %6.3f | %+7.3f %+7.3f %6.3f | %+6.3f %6.3f %s\n",
             m.map->name.substr(0, 58).c_str(), m.map->population.c_str(), s.mean_x, s.mean_y, s.mean_z, s.upward_share,
             s.negative_z_share, s.gray_share, s.mean_length, s.bad_length_share, s.srgb_mean_x, s.srgb_mean_y,
-            s.srgb_mean_length, m.v.figures.value("r_height_x", 0.0), slope, verdict.c_str());
+            s.srgb_mean_length, mf::to_json(m.v.figures).value("r_height_x", 0.0), slope, verdict.c_str());
         if (m.map->population == "real") {
             ++real;
-            EXPECT_TRUE(s.invalid.empty()) << m.map->name << ": " << s.figures().dump();
+            EXPECT_TRUE(s.invalid.empty()) << m.map->name << ": " << mf::to_json(s.figures()).dump();
             EXPECT_FALSE(s.gamma_encoded) << m.map->name;
             EXPECT_FALSE(m.v.flat) << m.map->name;
         } else if (m.map->population == "gamma") {
             ++gamma;
-            EXPECT_TRUE(s.gamma_encoded) << m.map->name << ": " << s.figures().dump();
+            EXPECT_TRUE(s.gamma_encoded) << m.map->name << ": " << mf::to_json(s.figures()).dump();
         } else {
             ++wrong;
-            EXPECT_FALSE(s.invalid.empty()) << m.map->name << " passes as a normal map: " << s.figures().dump();
+            EXPECT_FALSE(s.invalid.empty())
+                << m.map->name << " passes as a normal map: " << mf::to_json(s.figures()).dump();
             EXPECT_FALSE(s.gamma_encoded) << m.map->name;
         }
     }
@@ -237,7 +240,8 @@ void check_margins() {
     for (const auto& m : measured()) {
         const auto& s = m.s;
         const double mxy = std::max(std::abs(s.mean_x), std::abs(s.mean_y));
-        const double slope = std::max(m.v.figures.value("slope_std_x", 0.0), m.v.figures.value("slope_std_y", 0.0));
+        const double slope = std::max(mf::to_json(m.v.figures).value("slope_std_x", 0.0),
+                                      mf::to_json(m.v.figures).value("slope_std_y", 0.0));
         const std::string& pop = m.map->population;
         const bool height = m.map->height != nullptr;
         if (pop == "real") {
@@ -249,7 +253,7 @@ void check_margins() {
             bad_real.add(s.bad_length_share);
             slope_real.add(slope);
             real_srgb.add(std::max(std::abs(s.srgb_mean_x), std::abs(s.srgb_mean_y)));
-            if (height) hx_real.add(m.v.figures.value("r_height_x", 0.0));
+            if (height) hx_real.add(mf::to_json(m.v.figures).value("r_height_x", 0.0));
         } else if (pop == "gamma") {
             g_stored.add(std::min(s.mean_x, s.mean_y));
             g_dec.add(std::max(std::abs(s.srgb_mean_x), std::abs(s.srgb_mean_y)));
@@ -261,12 +265,12 @@ void check_margins() {
             negz_wrong.add(s.negative_z_share);
             grey_wrong.add(s.gray_share);
             if (height && m.map->name.find("copy") == std::string::npos)
-                hx_wrong.add(m.v.figures.value("r_height_x", 0.0));
+                hx_wrong.add(mf::to_json(m.v.figures).value("r_height_x", 0.0));
             // Each map that is not a normal map fails some test by a margin of 1.5x.
             const bool clear = s.upward_share * 1.5 <= t.normal_min_upward_share || mxy >= 1.5 * t.normal_max_mean_xy ||
                                s.negative_z_share >= 1.5 * t.normal_max_negative_z_share ||
                                s.gray_share >= 1.5 * t.normal_max_gray_share;
-            EXPECT_TRUE(clear) << m.map->name << " fails no test by 1.5x: " << s.figures().dump();
+            EXPECT_TRUE(clear) << m.map->name << " fails no test by 1.5x: " << mf::to_json(s.figures()).dump();
         }
     }
     std::printf("\nreal (20): upward %.3f..%.3f, max(|mean x|, |mean y|) %.3f..%.3f, negative z %.4f..%.4f, grey "

@@ -65,7 +65,8 @@ inline std::vector<std::string> keys(const SetDiscovery& d) {
 // The UNRECOGNIZED_FILE reason given for `file`, "" when there is none.
 inline std::string unrecognized_reason(const SetDiscovery& d, const std::string& file) {
     for (const auto& f : d.findings)
-        if (f.code == code::unrecognized_file && f.file == file) return f.figures.value("reason", "?");
+        if (f.code == code::unrecognized_file && f.file == file)
+            return mf::figure_string(f.figures, "reason").value_or("?");
     return "";
 }
 

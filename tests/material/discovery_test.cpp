@@ -1,5 +1,6 @@
 // Discovery tables: realistic file names of each family → roles, conventions, choices, findings.
 #include "material/discovery.hpp"
+#include <nlohmann/json.hpp>
 #include "material/routing.hpp"
 
 #include <gmock/gmock.h>
@@ -428,8 +429,8 @@ TEST(DiscoverSet, AmbientCG) {
     ASSERT_NE(amb, nullptr);
     EXPECT_THAT(amb->message, HasSubstr("Bricks059_1K-PNG_NormalDX.png"));
     EXPECT_THAT(amb->message, HasSubstr("preset"));
-    EXPECT_EQ(amb->figures.at("chosen"), "Bricks059_1K-PNG_NormalGL.png");
-    EXPECT_EQ(amb->figures.at("candidates"),
+    EXPECT_EQ(mf::to_json(amb->figures).at("chosen"), "Bricks059_1K-PNG_NormalGL.png");
+    EXPECT_EQ(mf::to_json(amb->figures).at("candidates"),
               nlohmann::json({"Bricks059_1K-PNG_NormalGL.png", "Bricks059_1K-PNG_NormalDX.png"}));
     EXPECT_THAT(d.findings[1].message, HasSubstr("no role tag in the name"));
     EXPECT_THAT(d.findings[2].message, HasSubstr("not an image"));
@@ -466,14 +467,15 @@ TEST(DiscoverSet, PolyHavenPackedAndDedicated) {
     const auto* r = finding(d, code::ambiguous_map, "roughness");
     ASSERT_NE(r, nullptr);
     EXPECT_THAT(r->message, HasSubstr("dedicated roughness map beats the packed orm"));
-    EXPECT_EQ(r->figures.at("candidates"),
+    EXPECT_EQ(mf::to_json(r->figures).at("candidates"),
               nlohmann::json({"brick_wall_001_rough_1k.exr", "brick_wall_001_arm_1k.exr"}));
     expect_all_info(d);
 
     // Preferring DX picks the other normal.
     const auto dx = discover_set(files, kNoHeaders, policy(NC::dx));
     EXPECT_EQ(chosen(dx, Role::normal), "brick_wall_001_nor_dx_1k.exr");
-    EXPECT_EQ(finding(dx, code::ambiguous_map, "normal")->figures.at("chosen"), "brick_wall_001_nor_dx_1k.exr");
+    EXPECT_EQ(mf::to_json(finding(dx, code::ambiguous_map, "normal")->figures).at("chosen"),
+              "brick_wall_001_nor_dx_1k.exr");
 }
 
 TEST(DiscoverSet, PolyHavenArmOnlyFeedsThreeRoles) {
@@ -539,7 +541,7 @@ TEST(DiscoverSet, MegascansRoughnessBeatsGloss) {
                             "UNRECOGNIZED_FILE  rock_sfjmafua.json", "UNRECOGNIZED_FILE  rock_sfjmafua_Preview.png"));
     const auto* r = finding(d, code::ambiguous_map, "roughness");
     EXPECT_THAT(r->message, HasSubstr("roughness map beats a gloss map"));
-    EXPECT_EQ(r->figures.at("candidates"),
+    EXPECT_EQ(mf::to_json(r->figures).at("candidates"),
               nlohmann::json({"rock_sfjmafua_2K_Roughness.jpg", "rock_sfjmafua_2K_Gloss.jpg"}));
 }
 
@@ -567,7 +569,7 @@ TEST(DiscoverSet, MegascansDedicatedBeatsOrt) {
                             "translucency<-plant_x_2K_Translucency.jpg(translucency)"));
     EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP roughness plant_x_2K_Roughness.jpg",
                                              "AMBIGUOUS_MAP translucency plant_x_2K_Translucency.jpg"));
-    EXPECT_EQ(finding(d, code::ambiguous_map, "roughness")->figures.at("candidates"),
+    EXPECT_EQ(mf::to_json(finding(d, code::ambiguous_map, "roughness")->figures).at("candidates"),
               nlohmann::json({"plant_x_2K_Roughness.jpg", "plant_x_2K_ORT.png", "plant_x_2K_Gloss.jpg"}));
 }
 
@@ -763,8 +765,8 @@ TEST(DiscoverSet, ChoiceTable) {
         ASSERT_NE(f, nullptr);
         EXPECT_EQ(f->severity, Severity::info);
         EXPECT_EQ(f->file, c.expected);
-        EXPECT_EQ(f->figures.at("chosen"), c.expected);
-        EXPECT_EQ(f->figures.at("candidates").size(), c.files.size());
+        EXPECT_EQ(mf::to_json(f->figures).at("chosen"), c.expected);
+        EXPECT_EQ(mf::to_json(f->figures).at("candidates").size(), c.files.size());
         EXPECT_THAT(f->message, HasSubstr(c.why));
         for (const auto& file : c.files) EXPECT_THAT(f->message, HasSubstr(file));
         EXPECT_EQ(d.findings.size(), 1u);

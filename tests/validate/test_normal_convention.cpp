@@ -1,6 +1,7 @@
 // The GL/DX detector on generated height→normal pairs: both conventions, with and without the
 // height map, with noise, at several frequencies. Accuracy must reach 95 %.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 
@@ -71,7 +72,7 @@ TEST(NormalConvention, NoiseAndFlatMapsAreUnknown) {
             n.at(x, y, 2) = 1.f;
         }
     auto v = mv::detect_normal_convention(n);
-    EXPECT_EQ(v.convention, NormalConvention::unknown) << v.figures.dump();
+    EXPECT_EQ(v.convention, NormalConvention::unknown) << mf::to_json(v.figures).dump();
     const Image flat = constant(128, 128, {0.5f, 0.5f, 1.f});
     v = mv::detect_normal_convention(flat);
     EXPECT_EQ(v.convention, NormalConvention::unknown);
@@ -90,7 +91,7 @@ TEST(NormalConvention, HeightOfAnotherSizeAndTwoChannelMaps) {
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) h2.at(x, y) = h.at(2 * x, 2 * y);
     auto v = mv::detect_normal_convention(n, &h2);
-    EXPECT_EQ(v.convention, NormalConvention::dx) << v.figures.dump();
+    EXPECT_EQ(v.convention, NormalConvention::dx) << mf::to_json(v.figures).dump();
     // Two-channel (BC5-like) map: Z rebuilt from X and Y.
     Image rg(128, 128, 2);
     for (int y = 0; y < 128; ++y)
@@ -99,7 +100,7 @@ TEST(NormalConvention, HeightOfAnotherSizeAndTwoChannelMaps) {
             rg.at(x, y, 1) = n.at(x, y, 1);
         }
     v = mv::detect_normal_convention(rg);
-    EXPECT_EQ(v.convention, NormalConvention::dx) << v.figures.dump();
+    EXPECT_EQ(v.convention, NormalConvention::dx) << mf::to_json(v.figures).dump();
 }
 
 TEST(NormalConvention, StreamingEqualsWholeImage) {

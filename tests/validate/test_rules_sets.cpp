@@ -1,5 +1,6 @@
 // One tiny bad set per rule (the code fires) and a clean set (nothing fires).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
 
@@ -55,8 +56,8 @@ TEST(ValidateSets, NonfiniteValues) {
     ASSERT_TRUE(has_code(res.findings, code::nonfinite_values)) << dump(res.findings);
     for (const auto& f : res.findings)
         if (f.code == code::nonfinite_values) {
-            EXPECT_EQ(f.figures.at("nan"), 1);
-            EXPECT_EQ(f.figures.at("inf"), 1);
+            EXPECT_EQ(mf::to_json(f.figures).at("nan"), 1);
+            EXPECT_EQ(mf::to_json(f.figures).at("inf"), 1);
             EXPECT_EQ(f.severity, mf::Severity::error);
         }
 }
@@ -78,8 +79,8 @@ TEST(ValidateSets, OutOfRangeOnlyForFloatAndBoundedRoles) {
         if (f.code == code::out_of_range_values) {
             ++n;
             EXPECT_EQ(f.role, "roughness");
-            EXPECT_NEAR(f.figures.at("share").get<double>(), 8.0 / 64.0, 1e-9);
-            EXPECT_NEAR(f.figures.at("max")[0].get<double>(), 1.5, 1e-6);
+            EXPECT_NEAR(mf::to_json(f.figures).at("share").get<double>(), 8.0 / 64.0, 1e-9);
+            EXPECT_NEAR(mf::to_json(f.figures).at("max")[0].get<double>(), 1.5, 1e-6);
         }
     EXPECT_EQ(n, 1) << dump(res.findings);
 }
@@ -111,7 +112,7 @@ TEST(ValidateSets, NotGrayscaleWithJpegTolerance) {
     ASSERT_TRUE(has_code(res.findings, code::not_grayscale));
     for (const auto& f : res.findings)
         if (f.code == code::not_grayscale) {
-            EXPECT_GT(f.figures.at("share").get<double>(), 0.9);
+            EXPECT_GT(mf::to_json(f.figures).at("share").get<double>(), 0.9);
         }
 }
 
@@ -127,7 +128,7 @@ TEST(ValidateSets, ConstantMapPerChannelOfPackedInput) {
     EXPECT_EQ(res.findings.size(), 1u) << dump(res.findings);
     EXPECT_EQ(res.findings[0].role, "metalness");
     EXPECT_EQ(res.findings[0].severity, mf::Severity::info);
-    EXPECT_EQ(res.findings[0].figures.at("value")[0], 0.0);
+    EXPECT_EQ(mf::to_json(res.findings[0].figures).at("value")[0], 0.0);
 
     // ORM with a constant B: the finding names the channel and the role it holds.
     s.remove("T_metallic.png");
@@ -158,7 +159,7 @@ TEST(ValidateSets, MetalnessNotBinary) {
     ASSERT_TRUE(has_code(res.findings, code::metalness_not_binary)) << dump(res.findings);
     for (const auto& f : res.findings)
         if (f.code == code::metalness_not_binary) {
-            EXPECT_NEAR(f.figures.at("share_between").get<double>(), 0.5, 1e-9);
+            EXPECT_NEAR(mf::to_json(f.figures).at("share_between").get<double>(), 0.5, 1e-9);
         }
     // The blend area is left out of the albedo statistics: no albedo finding.
     EXPECT_FALSE(has_code(res.findings, code::albedo_too_bright));
@@ -176,9 +177,9 @@ TEST(ValidateSets, AlbedoTooDarkAndTooBright) {
     for (const auto& f : res.findings)
         if (f.code == code::albedo_too_dark) {
             // 32×64 dark pixels of the 64×64 − 32×32 dielectric ones.
-            EXPECT_NEAR(f.figures.at("share").get<double>(), 2048.0 / 3072.0, 1e-9);
-            EXPECT_EQ(f.figures.at("threshold_srgb"), 30.0);
-            EXPECT_TRUE(f.figures.at("metalness_mask").get<bool>());
+            EXPECT_NEAR(mf::to_json(f.figures).at("share").get<double>(), 2048.0 / 3072.0, 1e-9);
+            EXPECT_EQ(mf::to_json(f.figures).at("threshold_srgb"), 30.0);
+            EXPECT_TRUE(mf::to_json(f.figures).at("metalness_mask").get<bool>());
         }
     // 40 sRGB passes the tolerant bound (30) and fails the strict one (50).
     for (int y = 0; y < 64; ++y)
@@ -256,8 +257,8 @@ TEST(ValidateSets, MetalAlbedoTooDark) {
     EXPECT_FALSE(has_code(res.findings, code::albedo_too_dark));
     for (const auto& f : res.findings)
         if (f.code == code::metal_albedo_too_dark) {
-            EXPECT_EQ(f.figures.at("pixels"), 1024);
-            EXPECT_NEAR(f.figures.at("median_srgb").get<double>(), 89.0, 1.0);
+            EXPECT_EQ(mf::to_json(f.figures).at("pixels"), 1024);
+            EXPECT_NEAR(mf::to_json(f.figures).at("median_srgb").get<double>(), 89.0, 1.0);
         }
 }
 
@@ -272,7 +273,7 @@ TEST(ValidateSets, NormalInvalid) {
     ASSERT_TRUE(has_code(res.findings, code::normal_invalid)) << dump(res.findings);
     for (const auto& f : res.findings)
         if (f.code == code::normal_invalid) {
-            EXPECT_NEAR(f.figures.at("negative_z_share").get<double>(), 0.25, 1e-9);
+            EXPECT_NEAR(mf::to_json(f.figures).at("negative_z_share").get<double>(), 0.25, 1e-9);
             EXPECT_EQ(f.severity, mf::Severity::error);
         }
     // A height map named as a normal map: lengths far from 1.
@@ -286,7 +287,7 @@ TEST(ValidateSets, NormalInvalid) {
     ASSERT_TRUE(has_code(res.findings, code::normal_invalid)) << dump(res.findings);
     for (const auto& f : res.findings)
         if (f.code == code::normal_invalid) {
-            EXPECT_GT(f.figures.at("bad_length_share").get<double>(), 0.5);
+            EXPECT_GT(mf::to_json(f.figures).at("bad_length_share").get<double>(), 0.5);
         }
 }
 
@@ -306,8 +307,8 @@ TEST(ValidateSets, NormalConventionMismatchFromContent) {
         EXPECT_EQ(res.normal->content.method, with_height ? "height+curl" : "curl");
         for (const auto& f : res.findings)
             if (f.code == code::normal_convention_mismatch) {
-                EXPECT_GE(f.figures.at("confidence").get<double>(), 0.6);
-                EXPECT_EQ(f.figures.at("name_convention"), "gl");
+                EXPECT_GE(mf::to_json(f.figures).at("confidence").get<double>(), 0.6);
+                EXPECT_EQ(mf::to_json(f.figures).at("name_convention"), "gl");
             }
     }
 }
@@ -347,14 +348,14 @@ TEST(ValidateSets, ColorSpaceMismatchFromTags) {
     ASSERT_TRUE(has_code(res.findings, code::color_space_mismatch)) << dump(res.findings);
     EXPECT_EQ(res.findings.size(), 1u);
     EXPECT_EQ(res.findings[0].role, "roughness");
-    EXPECT_EQ(res.findings[0].figures.at("tag_source"), "png:sRGB");
+    EXPECT_EQ(mf::to_json(res.findings[0].figures).at("tag_source"), "png:sRGB");
     // The reverse: an 8-bit albedo tagged linear.
     s.input("T_roughness.png")->color_tag = {};
     s.input("T_albedo.png")->color_tag = {mv::ColorTag::linear, "png:gAMA", "gamma 1.00"};
     res = s.run();
     ASSERT_EQ(res.findings.size(), 1u) << dump(res.findings);
     EXPECT_EQ(res.findings[0].code, code::color_space_mismatch);
-    EXPECT_EQ(res.findings[0].figures.at("expected"), "srgb");
+    EXPECT_EQ(mf::to_json(res.findings[0].figures).at("expected"), "srgb");
     // Albedo tagged sRGB is right; roughness tagged linear is right.
     s.input("T_albedo.png")->color_tag = {mv::ColorTag::srgb, "png:sRGB", "sRGB"};
     s.input("T_roughness.png")->color_tag = {mv::ColorTag::linear, "png:gAMA", "gamma 1.00"};
