@@ -151,37 +151,52 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
     if (opt_.normal_override) preset_.normal_convention = *opt_.normal_override;
 }
 
-struct Ingestor::CacheLog {
+struct Ingestor::Run {
+    explicit Run(OutputFolder& f) : folder(f) {}
+    // The output folder, ours for the run (lock, journal, files that are not ours refused:
+    // process/output_dir.hpp): every file of the run is written through it.
+    OutputFolder& folder;
+    // The outputs whose paths another output claimed first: material -> suffix -> why.
+    std::map<std::string, std::map<std::string, std::string>> refused;
+    // The digest of everything but a set's files (process/work.hpp context_digest): the cache's
+    // keys and a shard's run.
+    std::string context;
+    Cache* cache = nullptr;  // null: no cache (--no-cache, or it could not be opened)
     std::mutex mutex;
     std::atomic<size_t> hits{0}, misses{0};
-    std::atomic<bool> off{false};  // after a store failed: the cache is off for the rest of the run
-    std::vector<std::string> problems;
-    void problem(std::string p) {
+    std::atomic<bool> cache_off{false};  // after a store failed: the cache is off for the rest of the run
+    std::vector<std::string> cache_problems;
+    // Sets inside compute() now: a set with a worker left idle (the batch's tail, or a single
+    // set) decodes and encodes on two threads; with every worker busy, on one.
+    std::atomic<int> in_flight{0};
+
+    bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
+        return folder.write(rel, bytes, error);
+    }
+    void cache_problem(std::string p) {
         std::lock_guard<std::mutex> lock(mutex);
-        problems.push_back(std::move(p));
+        cache_problems.push_back(std::move(p));
     }
 };
 
-MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget) const {
+MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, Run& run) const {
     // Sets whose outputs another set claimed first are computed (the refusals are this run's).
-    const bool cacheable = cache_ && !cache_log_->off && !refused_.count(src.name);
+    const bool cacheable = run.cache && !run.cache_off && !run.refused.count(src.name);
     std::string key_error;
-    const std::optional<std::string> key = cacheable ? action_key(src, context_, key_error,
+    const std::optional<std::string> key = cacheable ? action_key(src, run.context, key_error,
                                                                   [&](const InputFile& in, std::string& e) {
-                                                                      return cache_->digest(in, e);
+                                                                      return run.cache->digest(in, e);
                                                                   })
                                                      : std::nullopt;
+    auto write = [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+        return run.write(rel, b, e);
+    };
     if (key) {
         std::vector<std::string> corrupt;
-        auto hit = cache_->restore(
-            *key, src.name, opt_.out_dir,
-            [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-                return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
-            },
-            corrupt);
-        for (auto& c : corrupt) cache_log_->problem(src.display + ": " + c + "; the set was computed again");
+        auto hit = run.cache->restore(*key, src.name, opt_.out_dir, write, corrupt);
+        for (auto& c : corrupt) run.cache_problem(src.display + ": " + c + "; the set was computed again");
         if (hit) {
-            ++cache_log_->hits;
+            ++run.hits;
             MaterialResult res;
             res.entry = std::move(hit->entry);
             res.entry.source = source_of(src, opt_.out_dir);
@@ -189,34 +204,34 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
             return res;
         }
     }
-    MaterialResult res = compute(src, budget);
+    MaterialResult res = compute(src, budget, run);
     if (!key) return res;
-    ++cache_log_->misses;
+    ++run.misses;
     // Only complete results are kept: a set with an output that could not be written, or one
     // stopped by a signal, is computed again next time.
     const bool complete = !res.failure && res.entry.status == manifest::Status::ok && !stop_requested();
     std::string error;
-    if (complete && !cache_log_->off && !cache_->store(*key, res.entry, opt_.out_dir, error) &&
-        !cache_log_->off.exchange(true))
-        cache_log_->problem(cache_->dir().string() + ": cannot store results (" + error +
-                            "); the cache is off for the rest of this run");
+    if (complete && !run.cache_off && !run.cache->store(*key, res.entry, opt_.out_dir, error) &&
+        !run.cache_off.exchange(true))
+        run.cache_problem(run.cache->dir().string() + ": cannot store results (" + error +
+                          "); the cache is off for the rest of this run");
     return res;
 }
 
-MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget) const {
+MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget, Run& run) const {
     struct InFlight {  // counts this set as running until it returns or throws
         std::atomic<int>& n;
         explicit InFlight(std::atomic<int>& c) : n(c) { ++n; }
         ~InFlight() { --n; }
         InFlight(const InFlight&) = delete;
         InFlight& operator=(const InFlight&) = delete;
-    } in_flight(in_flight_);
+    } in_flight(run.in_flight);
     MaterialResult res;
     // A set running while a worker is idle (alone, or at the batch's tail) decodes its maps and
     // encodes its outputs on two threads, so a re-ingest of one changed set keeps both cores busy;
     // with every worker busy that would only oversubscribe.
     const int workers = opt_.jobs > 0 ? opt_.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-    const bool idle_worker = in_flight_.load() < workers;
+    const bool idle_worker = run.in_flight.load() < workers;
     SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget, idle_worker});
     if (plan.failure) {
         res.failure = std::move(plan.failure);
@@ -247,7 +262,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         const fs::path rel_path = fs::path(rel).lexically_normal();
         if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..")
             return failed("output path '" + rel + "' leaves the output folder; skipped");
-        if (const auto m = refused_.find(src.name); m != refused_.end())
+        if (const auto m = run.refused.find(src.name); m != run.refused.end())
             if (const auto why = m->second.find(o.suffix); why != m->second.end())
                 return failed(why->second + "; not written");
         if (stop_requested()) return failed(rel + ": not written (interrupted)");
@@ -270,12 +285,10 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
             encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
                               : encode_image(pack_output(o, planes, preset_, size, *color_), enc, bytes, err);
         }
-        // Written under the output folder without following links; through the run's folder
-        // (journal, files that are not ours refused) when run() set one.
+        // Written through the run's folder: under it, never through a link, journalled.
         const std::string file = rel_path.generic_string();
         if (!encoded) return failed(rel + ": " + err);
-        if (!(folder_ ? folder_->write(file, bytes, err) : write_file_under(opt_.out_dir, file, bytes, err)))
-            return failed(err.rfind(file, 0) == 0 ? err : rel + ": " + err);
+        if (!run.write(file, bytes, err)) return failed(err.rfind(file, 0) == 0 ? err : rel + ": " + err);
         manifest::Output e;
         e.file = rel_path.generic_string();
         e.srgb = o.srgb;
@@ -351,8 +364,8 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     m.emissive_strength = emissive_strength;
     write_material_files(
         preset_, planes,
-        [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-            return folder_ ? folder_->write(rel, b, e) : write_file_under(opt_.out_dir, rel, b, e);
+        [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+            return run.write(rel, b, e);
         },
         m);
     return res;
@@ -402,40 +415,25 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     // Every output path is claimed before any set runs, in set order: two outputs that would be
     // one file (a preset pattern that leaves names equal, names that differ in case only) are
     // refused the same way every run, and none is written twice.
-    refused_.clear();
+    Run run{*folder};
     for (const std::string& own : {opt_.manifest_name, folder->lock_name(), folder->journal_name()})
         folder->claim(own, "");
     for (const auto& set : sets)
         for (const auto& o : preset_.outputs) {
             const std::string rel = preset_.output_path(set.name, o);
             if (std::string why = folder->claim(rel, set.name); !why.empty())
-                refused_[set.name][o.suffix] = rel + ": " + why;
+                run.refused[set.name][o.suffix] = rel + ": " + why;
         }
     if (!folder->begin(result.error)) return result;
-    folder_ = folder.get();
     // The cache never fails a run: one that cannot be opened is a problem reported, then off.
     std::optional<Cache> cache;
-    CacheLog cache_log;
-    context_ = context_digest(preset_, opt_.rules, *color_);  // the cache's keys and a shard's run
+    run.context = context_digest(preset_, opt_.rules, *color_);
     if (opt_.cache_dir) {
         std::string error;
         cache = Cache::create(*opt_.cache_dir, error);
-        if (cache) {
-            cache_ = &*cache;
-            cache_log_ = &cache_log;
-        } else {
-            result.cache_problems.push_back(error + "; running without the cache");
-        }
+        if (cache) run.cache = &*cache;
+        else result.cache_problems.push_back(error + "; running without the cache");
     }
-    struct Reset {  // process() outside run() writes without a folder or a cache
-        const Ingestor& self;
-        ~Reset() {
-            self.folder_ = nullptr;
-            self.refused_.clear();
-            self.cache_ = nullptr;
-            self.cache_log_ = nullptr;
-        }
-    } reset{*this};
 
     // Each set's entry goes to the spool (a temporary file) when the set is done: the run holds a
     // tally and the file names of each set, not its entry, and the manifest is written from the
@@ -454,7 +452,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         if (stop_requested()) return;  // a signal asked to stop: no new set starts
         MaterialResult r;
         try {
-            r = process(sets[i], opt_.memory_budget ? &budget : nullptr);
+            r = process(sets[i], opt_.memory_budget ? &budget : nullptr, run);
         } catch (const std::bad_alloc&) {  // exhaustion in one set must not stop the others
             r = MaterialResult{};
             r.failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
@@ -490,7 +488,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     m.normal_convention = preset_.normal_convention;
     m.thresholds = validate::threshold_table(opt_.rules.thresholds);
     if (opt_.shard)
-        m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, context_, plan,
+        m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, run.context, plan,
                                             static_cast<int>(sets.size())};
     for (auto& f : source_failures) {
         f.source = relative_to(f.source, opt_.out_dir);
@@ -504,9 +502,9 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         return std::tie(a.source, a.code, a.message) < std::tie(b.source, b.code, b.message);
     });
 
-    result.cache_hits = cache_log.hits;
-    result.cache_misses = cache_log.misses;
-    for (auto& p : cache_log.problems) result.cache_problems.push_back(std::move(p));
+    result.cache_hits = run.hits;
+    result.cache_misses = run.misses;
+    for (auto& p : run.cache_problems) result.cache_problems.push_back(std::move(p));
     if (stop_requested()) {  // stopped: the journal stays, no manifest (the next run finishes the job)
         result.interrupted = true;
         return result;

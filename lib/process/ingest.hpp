@@ -2,7 +2,6 @@
 // Per set: plan_set (decode mode) -> canonical planes -> packed outputs written atomically ->
 // the set's manifest entry; the batch writes manifest.json last.
 #pragma once
-#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -72,37 +71,24 @@ struct IngestResult {
     std::vector<std::string> cache_problems;
 };
 
-class OutputFolder;
-class Cache;
-
 class Ingestor {
 public:
     Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt);
 
-    // One set; thread-safe. Validates it (every rule, from the decoded pixels: each file is
-    // decoded once), converts and packs it, writes its outputs under out_dir.
-    MaterialResult process(const MaterialSource& src, MemoryBudget* budget = nullptr) const;
-    // Finds the sets, processes them in parallel, writes manifest.json atomically.
+    // Finds the sets, processes them in parallel, writes manifest.json atomically. Thread-safe:
+    // everything a run changes lives in its Run, not in the Ingestor.
     IngestResult run(const std::vector<std::filesystem::path>& inputs) const;
 
 private:
     Preset preset_;
     std::shared_ptr<const ColorContext> color_;
     IngestOptions opt_;
-    // Sets inside compute() now: a set with a worker left idle (the batch's tail, or a single
-    // set) decodes and encodes on two threads; with every worker busy, on one.
-    mutable std::atomic<int> in_flight_{0};
-    // Set by run() for the sets it processes: the folder (lock, journal, ownership of files) and
-    // the outputs whose paths another output claimed first (material -> suffix -> why).
-    mutable OutputFolder* folder_ = nullptr;
-    mutable std::map<std::string, std::map<std::string, std::string>> refused_;
-    // Set by run() when a cache is in use: the cache, the digest of everything but the set's
-    // files (process/work.hpp context_digest), and what it did.
-    mutable Cache* cache_ = nullptr;
-    mutable std::string context_;
-    struct CacheLog;
-    mutable CacheLog* cache_log_ = nullptr;
-    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget) const;
+    struct Run;  // one run()'s state, shared by the sets it processes (ingest.cpp)
+    // One set of `run`: restored from the run's cache, or computed. Validates it (every rule,
+    // from the decoded pixels: each file is decoded once), converts and packs it, and writes
+    // its outputs through the run's output folder.
+    MaterialResult process(const MaterialSource& src, MemoryBudget* budget, Run& run) const;
+    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget, Run& run) const;
 };
 
 }  // namespace mf

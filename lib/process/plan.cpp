@@ -350,6 +350,7 @@ void decide_size(SetPlan& plan) {
         if (const auto in = plan.inputs.find(m.role); in != plan.inputs.end())
             sizes[in->second.file] = in->second.file + " " + std::to_string(m.w) + "x" + std::to_string(m.h);
     std::vector<std::string> size_list;
+    size_list.reserve(sizes.size());
     for (const auto& [file, text] : sizes) size_list.push_back(text);
     std::set<std::string> said;
     for (const Map& m : maps) {

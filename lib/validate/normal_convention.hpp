@@ -21,6 +21,7 @@
 #include <memory>
 #include <string>
 
+#include "core/findings.hpp"
 #include "image/image.hpp"
 #include "material/roles.hpp"
 

@@ -64,11 +64,14 @@ TEST(Interrupt, KilledAtRandomPointsThenRerunIsIdentical) {
     std::mt19937 rng(20240611);  // fixed: a failure names its delay and reproduces
     std::uniform_real_distribution<double> u(0.0, 1.0);
     int killed = 0, mid_run = 0;
-    for (int i = 0; i < kPoints; ++i) {
+    // Twelve stratified points; then, while fewer than three landed among the writes (a loaded
+    // machine stretches decoding and start-up unevenly), up to twelve more anywhere after the
+    // start-up, so the check below judges the program and not the machine's load.
+    for (int i = 0; i < kPoints || (mid_run < 3 && i < 2 * kPoints); ++i) {
         // Stratified: point i falls in the i-th twelfth of the run after its fixed start-up
         // cost (the first point may land inside it).
         const double start = i == 0 ? 0.0 : 0.8 * startup;
-        double delay = start + (duration - start) * (i + u(rng)) / kPoints;
+        double delay = start + (duration - start) * (i < kPoints ? (i + u(rng)) / kPoints : u(rng));
         std::string when;
         Proc k;
         // A run can beat the reference's time (load varies): then the same point comes earlier.
@@ -94,7 +97,7 @@ TEST(Interrupt, KilledAtRandomPointsThenRerunIsIdentical) {
         EXPECT_EQ(tree_hashes(work), ref) << when << ": the rerun differs from the uninterrupted run";
         EXPECT_TRUE(temp_files_under(work).empty()) << when;
     }
-    EXPECT_GE(killed, 10) << "the points must land before the run ends";
+    EXPECT_GE(killed, 10) << "the points must land before the run ends";  // of at least twelve
     EXPECT_GE(mid_run, 3) << "some kills must land while outputs are being written";
 
     // Repeated interrupts on one folder, then one rerun.

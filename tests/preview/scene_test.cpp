@@ -1,5 +1,6 @@
 // Scene files and --light specs.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <fstream>

@@ -1,5 +1,6 @@
 // RuleConfig: defaults, presets, --rules FILE parsing, suppressions, severity overrides.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "validate/rules.hpp"
 
