@@ -131,6 +131,7 @@ constexpr Rule kGeneric[] = {
     {"colour", albedo, kU, Case::any, false, "colour"},
     {"normal gl", normal, kGL, Case::any, false, "normal_gl"},
     {"normal opengl", normal, kGL, Case::any, false, "normal_opengl"},
+    {"normal ogl", normal, kGL, Case::any, false, "normal_ogl"},  // FreePBR's "-normal-ogl"
     {"normal dx", normal, kDX, Case::any, false, "normal_dx"},
     {"normal directx", normal, kDX, Case::any, false, "normal_directx"},
     {"normalgl", normal, kGL, Case::any, false, "normalgl"},

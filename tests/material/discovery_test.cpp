@@ -217,6 +217,9 @@ TEST(ClassifyName, Generic) {
         {"STONE_NORMAL_DX.PNG", Role::normal, "generic", "generic:normal_dx", NC::dx},
         {"Crate_Normal_GL.png", Role::normal, "generic", "generic:normal_gl", NC::gl},
         {"crate_normal_opengl.png", Role::normal, "generic", "", NC::gl},
+        // FreePBR names the convention in the file name: evidence, not only the pixels.
+        {"bamboo-wood-semigloss-normal-ogl.png", Role::normal, "generic", "generic:normal_ogl", NC::gl},
+        {"bamboo-wood-semigloss-normal-dx.png", Role::normal, "generic", "generic:normal_dx", NC::dx},
         {"stone_height.png", Role::height, "generic", "generic:height"},
         {"stone_emission.png", Role::emissive, "generic", "generic:emission"},
         {"leaf_alpha.png", Role::opacity, "generic", "generic:alpha"},
