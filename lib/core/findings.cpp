@@ -139,7 +139,6 @@ std::optional<Finding> finding_from_json(const nlohmann::json& j, std::string& e
                 error = "figure \"" + name + "\" is not a flag, a number, a text or a list of numbers or texts";
                 return std::nullopt;
             }
-            f.figures[name] = Figure{};
             static_cast<FigureValue&>(f.figures[name]) = std::move(*value);
         }
     }
