@@ -16,8 +16,8 @@
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
 #include "process/sets.hpp"
-#include "validate/report.hpp"
 #include "validate/rules.hpp"
+#include "validate/verdict.hpp"
 
 namespace mf {
 

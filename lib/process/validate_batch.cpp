@@ -6,6 +6,7 @@
 #include "core/interrupt.hpp"
 #include "core/json.hpp"
 #include "core/parallel.hpp"
+#include "core/version.hpp"
 #include "process/plan.hpp"
 #include "process/sets.hpp"
 
@@ -13,7 +14,7 @@ namespace mf {
 namespace {
 
 struct SetOutcome {
-    validate::MaterialReport report;
+    manifest::Material report;
     bool failed = false;
     std::string failure;
 };
@@ -31,6 +32,7 @@ SetOutcome validate_one(const MaterialSource& src, const Preset& preset, const v
     out.report.convention = plan.convention;
     out.report.inputs = manifest_inputs(plan);
     out.report.constants = std::move(plan.constants);
+    out.report.status = plan.partial ? manifest::Status::partial : manifest::Status::ok;
     out.report.findings = reported_findings(std::move(plan.findings), src.name, rules);
     return out;
 }
@@ -56,9 +58,13 @@ std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const
     return layered;
 }
 
-validate::Report validate_inputs(const std::vector<std::filesystem::path>& inputs, const Preset& preset,
-                                 const ValidateBatchOptions& opt, std::vector<std::string>* notes) {
-    validate::Report report;
+manifest::Manifest validate_inputs(const std::vector<std::filesystem::path>& inputs, const Preset& preset,
+                                   const ValidateBatchOptions& opt, std::vector<std::string>* notes) {
+    manifest::Manifest report;
+    report.generator = std::string(kGenerator);
+    report.preset = preset.name;
+    report.normal_convention = preset.normal_convention;
+    report.thresholds = validate::threshold_table(opt.rules.thresholds);
     std::vector<InputFailure> source_failures;
     const auto sets = find_material_sets(inputs, {}, source_failures, nullptr, notes);
     std::vector<SetOutcome> outcomes(sets.size());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <span>
 
@@ -250,6 +251,10 @@ private:
     }
 
     void read_sources() {
+        // A material with no outputs (validate's) is judged on its sources, as the rules judged
+        // it: the albedo, metalness and opacity maps as stored (a packed input's channels are
+        // not unpacked here; the page names the maps it read).
+        const bool judge_sources = m_.outputs.empty();
         for (const manifest::Input& in : m_.inputs) {
             if (m_.archive) break;  // entries of a .zip are not files: the card says so
             const fs::path file = dir_ / m_.source / in.file;
@@ -264,6 +269,13 @@ private:
             auto p = write_pic(thumbnail_of(image, opt_.thumb_size, srgb),
                                "src-" + std::string(role_name(in.role)) + ".png");
             source_pics_.push_back(p.value_or(Pic{}));
+            if (!judge_sources) continue;
+            if (in.role == Role::albedo) {
+                albedo_srgb_ = srgb;
+                albedo_ = std::make_shared<Decoded>(std::move(image));
+            } else if (in.role == Role::metalness || in.role == Role::opacity) {
+                (in.role == Role::metalness ? metalness_ : opacity_) = plane_of(image, 0);
+            }
         }
     }
 
@@ -472,8 +484,9 @@ private:
             // rules' own classifier under the run's thresholds (manifest "thresholds").
             const AlbedoStats& s = albedo_stats_;
             h += "<figure class=\"overlay albedo-range\">" + img(*albedo_pic_, m_.name + " albedo range") +
-                 "<figcaption>albedo luminance, as the rules judge it: dielectric " + fixed(t.albedo_min_srgb, 0) +
-                 "–" + fixed(t.albedo_max_srgb, 0) + " sRGB, metal from " + fixed(t.metal_albedo_min_srgb, 0) +
+                 "<figcaption>albedo luminance" + std::string(m_.outputs.empty() ? " of the source map" : "") +
+                 ", as the rules judge it: dielectric " + fixed(t.albedo_min_srgb, 0) + "–" +
+                 fixed(t.albedo_max_srgb, 0) + " sRGB, metal from " + fixed(t.metal_albedo_min_srgb, 0) +
                  " sRGB<br><span class=\"key dark\"></span> too dark: dielectric <span class=\"share\" "
                  "data-code=\"ALBEDO_TOO_DARK\">" +
                  percent(s.dielectric_dark, s.visible) +
@@ -732,21 +745,24 @@ uint64_t decoded_bytes(const manifest::Material& m) {
 // The report folder may be neither the output folder of the manifest (which holds what the
 // manifest lists) nor a material's source folder or a folder inside one: the next ingest of
 // the library would take the report's pictures for material maps.
-std::string report_folder_conflict(const fs::path& out, const fs::path& manifest_dir, const manifest::Manifest& m) {
+fs::path canonical_or_self(const fs::path& p) {
     std::error_code ec;
-    const fs::path o = fs::weakly_canonical(fs::absolute(out, ec), ec);
-    const fs::path d = fs::weakly_canonical(fs::absolute(manifest_dir, ec), ec);
-    auto within = [](const fs::path& a, const fs::path& b) {
-        const fs::path rel = a.lexically_relative(b);
-        return !rel.empty() && *rel.begin() != "..";
-    };
-    if (o == d)
-        return out.string() + " is the output folder of " + (manifest_dir / "manifest.json").string() +
-               "; give the report a folder of its own (e.g. " + (manifest_dir / "report").string() + ")";
+    return fs::weakly_canonical(fs::absolute(p, ec), ec);
+}
+
+std::string output_folder_conflict(const fs::path& out, const fs::path& manifest_dir) {
+    if (canonical_or_self(out) != canonical_or_self(manifest_dir)) return {};
+    return out.string() + " is the output folder of " + (manifest_dir / "manifest.json").string() +
+           "; give the report a folder of its own (e.g. " + (manifest_dir / "report").string() + ")";
+}
+
+std::string source_folder_conflict(const fs::path& out, const fs::path& sources_dir, const manifest::Manifest& m) {
+    const fs::path o = canonical_or_self(out);
     for (const auto& mm : m.materials) {
         if (mm.source.empty() || mm.archive) continue;
-        const fs::path src = fs::weakly_canonical(fs::absolute(manifest_dir / mm.source, ec), ec);
-        if (within(o, src))
+        const fs::path src = canonical_or_self(sources_dir / mm.source);
+        const fs::path rel = o.lexically_relative(src);
+        if (!rel.empty() && *rel.begin() != "..")
             return out.string() + " lies in the source folder of the material '" + mm.name + "' (" + src.string() +
                    "): the next ingest would take the report's pictures for material maps; give the report a folder "
                    "outside the material sets";
@@ -754,17 +770,40 @@ std::string report_folder_conflict(const fs::path& out, const fs::path& manifest
     return {};
 }
 
-}  // namespace
+// A report replaces only what a report wrote: a folder that holds anything must hold our marker
+// (written before the first picture, so an interrupted report's folder is ours too) or our page
+// (index.html naming matforge as its generator: reports before the marker), so a user's folder
+// is never written into.
+constexpr const char* kMarker = ".matforge-report";
+constexpr std::string_view kMarkerText = "a matforge report folder: matforge report rewrites what is here\n";
 
-bool write_report(const Options& options, Result& result, std::string& error) {
+std::string foreign_report_folder(const fs::path& out) {
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(out, ec)) || fs::is_empty(out, ec)) return {};
+    if (fs::is_regular_file(fs::symlink_status(out / kMarker, ec))) return {};
+    const fs::path index = out / "index.html";
+    if (fs::is_regular_file(fs::symlink_status(index, ec))) {
+        std::ifstream f(index, std::ios::binary);
+        std::string head(4096, '\0');
+        f.read(head.data(), static_cast<std::streamsize>(head.size()));
+        head.resize(static_cast<size_t>(f.gcount()));
+        if (head.find("<meta name=\"generator\" content=\"matforge ") != std::string::npos) return {};
+    }
+    return out.string() + " holds files that no matforge report wrote; give the report an empty or new folder "
+                          "(or one an earlier report wrote)";
+}
+
+// The page of `m`, whose sources are relative to `dir` (see write_report).
+bool write_page(const Options& options, const manifest::Manifest& m_in, const fs::path& dir, Result& result,
+                std::string& error) {
     result = {};
     Options opt = options;
-    auto m = manifest::read_manifest(opt.manifest.string(), error);
-    if (!m) return false;
+    const manifest::Manifest* m = &m_in;
+    const std::string label = opt.manifest.empty() ? std::string("matforge validate") : opt.manifest.string();
     if (!opt.thresholds) {  // the run's (older manifests: the defaults it then had)
         opt.thresholds = validate::thresholds_from(m->thresholds, error);
         if (!opt.thresholds) {
-            error = opt.manifest.string() + ": " + error;
+            error = label + ": " + error;
             return false;
         }
     }
@@ -775,14 +814,21 @@ bool write_report(const Options& options, Result& result, std::string& error) {
         if (!other) return false;
         for (const auto& om : other->materials) other_by_name[om.name] = &om;
     }
-    const fs::path dir = opt.manifest.parent_path();
     const fs::path other_dir = opt.compare ? opt.compare->parent_path() : fs::path{};
-    if (std::string why = report_folder_conflict(opt.out, dir, *m); !why.empty()) {
+    if (std::string why = source_folder_conflict(opt.out, dir, *m); !why.empty()) {
+        error = why;
+        return false;
+    }
+    if (std::string why = foreign_report_folder(opt.out); !why.empty()) {
         error = why;
         return false;
     }
     std::error_code mkdir_error;
     fs::create_directories(opt.out, mkdir_error);  // the folder itself; what is below it: write_file_under
+    if (!write_file_under(opt.out, kMarker,
+                          std::span(reinterpret_cast<const unsigned char*>(kMarkerText.data()), kMarkerText.size()),
+                          error))
+        return false;
     std::vector<std::string> names;
     for (const auto& mm : m->materials) names.push_back(mm.name);
     const std::vector<std::string> stems = material_stems(names);
@@ -833,9 +879,9 @@ bool write_report(const Options& options, Result& result, std::string& error) {
          "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
          "<title>matforge report — " +
-         markup_escape(opt.manifest.string()) + "</title>\n<style>\n" + kStyle +
-         "</style>\n</head>\n<body data-page-size=\"" + std::to_string(std::max(1, opt.page_size)) +
-         "\">\n<header>\n<h1>matforge report</h1>\n<div class=\"meta\"><code>" + markup_escape(opt.manifest.string()) +
+         markup_escape(label) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body data-page-size=\"" +
+         std::to_string(std::max(1, opt.page_size)) +
+         "\">\n<header>\n<h1>matforge report</h1>\n<div class=\"meta\"><code>" + markup_escape(label) +
          "</code> · preset <b>" + markup_escape(m->preset) + "</b> · normals " +
          std::string(convention_name(m->normal_convention)) + " · " + markup_escape(m->generator) +
          (other ? " · compared with <code>" + markup_escape(opt.compare->string()) + "</code> (preset " +
@@ -887,6 +933,27 @@ bool write_report(const Options& options, Result& result, std::string& error) {
     if (!write_file_under(opt.out, "index.html", bytes(h), error)) return false;
     const std::string rules = rules_page(codes);
     return write_file_under(opt.out, "rules.html", bytes(rules), error);
+}
+
+}  // namespace
+
+bool write_report(const Options& options, Result& result, std::string& error) {
+    result = {};
+    const auto m = manifest::read_manifest(options.manifest.string(), error);
+    if (!m) return false;
+    const fs::path dir = options.manifest.parent_path();
+    if (std::string why = output_folder_conflict(options.out, dir); !why.empty()) {
+        error = why;
+        return false;
+    }
+    return write_page(options, *m, dir, result, error);
+}
+
+bool write_report(const Options& options, const manifest::Manifest& m, const fs::path& sources_dir, Result& result,
+                  std::string& error) {
+    Options opt = options;
+    opt.manifest.clear();
+    return write_page(opt, m, sources_dir, result, error);
 }
 
 }  // namespace mf::report

@@ -55,6 +55,11 @@ struct Result {
 // Writes the report. False + `error` when the manifest (or --compare's) cannot be read or
 // index.html cannot be written; problems with single pictures go to Result::problems.
 bool write_report(const Options& options, Result& result, std::string& error);
+// The same page over a manifest that is no file (`matforge validate`'s: no outputs, so the
+// overlays judge the source maps): its sources are relative to `sources_dir`; options.manifest
+// is ignored (the page is titled "matforge validate").
+bool write_report(const Options& options, const manifest::Manifest& m, const std::filesystem::path& sources_dir,
+                  Result& result, std::string& error);
 
 // The folder name of each material in order: its name with characters outside [A-Za-z0-9._-]
 // as '_', no leading '.', at most 96 bytes, unique compared without case and never "index.html"

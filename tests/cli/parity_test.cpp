@@ -145,3 +145,42 @@ TEST(Parity, SchemaSpoolReceivesWhatTheRunsWrote) {
         }
     EXPECT_EQ(found, 1);
 }
+
+// ingest --report writes validate's reports from the manifest it wrote, with the sources rebased
+// to where the user stands: on the samples its SARIF names the same results at the same files
+// as validate's (but for the writing stage's codes), and every location is a file that exists.
+TEST(Parity, IngestReportsAsValidateDoes) {
+    const fs::path work = temp_dir("sarif");
+    const auto in = run("ingest " + q(samples()) + " -o " + q(work / "out") +
+                        " --fail-on never -q --report sarif --report-file " + q(work / "ingest.sarif"));
+    ASSERT_EQ(in.code, 0) << in.output;
+    const auto va = run("validate " + q(samples()) + " --report sarif --report-file " + q(work / "validate.sarif") +
+                        " --fail-on never");
+    ASSERT_EQ(va.code, 0) << va.output;
+    using Result = std::tuple<std::string, std::string, std::string, std::string>;  // rule, level, uri, material
+    auto results = [](const json& sarif) {
+        std::multiset<Result> r;
+        for (const auto& x : sarif["runs"][0]["results"])
+            if (x["ruleId"] != "OUTPUT_WRITE_FAILED")
+                r.insert({x["ruleId"].get<std::string>(), x["level"].get<std::string>(),
+                          x["locations"][0]["physicalLocation"]["artifactLocation"]["uri"].get<std::string>(),
+                          x["properties"]["material"].get<std::string>()});
+        return r;
+    };
+    const json a = read_json(work / "ingest.sarif"), b = read_json(work / "validate.sarif");
+    EXPECT_EQ(results(a), results(b));
+    EXPECT_GE(results(a).size(), 4u);
+    EXPECT_EQ(a["runs"][0]["artifacts"], b["runs"][0]["artifacts"]) << "the same inputs, roles and verdicts";
+    for (const auto& [rule, level, uri, material] : results(a)) {
+        ASSERT_EQ(uri.rfind("file://", 0), 0u) << uri;
+        std::string path = uri.substr(7);
+        for (size_t p; (p = path.find("%20")) != std::string::npos;) path.replace(p, 3, " ");
+        EXPECT_TRUE(fs::exists(path)) << rule << " " << uri;
+    }
+    // The report file is checked before anything is read: never an input.
+    const fs::path victim = samples() / "Net004A_1K-JPG/Net004A_1K-JPG_Color.jpg";
+    const auto bad = run("ingest " + q(samples()) + " -o " + q(work / "out2") + " -q --report json --report-file " +
+                         q(victim));
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_FALSE(fs::exists(work / "out2"));
+}

@@ -342,19 +342,32 @@ TEST(ReportCli, UnreadableManifestIsAUsageError) {
 }
 
 // The report writes only inside -o, never through a link there: a link named like one of its
-// files (or folders) pointing outside is refused with the link named, the target untouched.
+// files (or folders) pointing outside is refused, the target untouched. A folder that holds
+// anything a report did not write is refused before anything is written (exit 2).
 TEST(ReportCli, NeverWritesThroughALinkInItsFolder) {
     const fs::path work = temp_dir("links");
     const fs::path set = samples() / "Metal_Damaged_001_SD";
     ASSERT_TRUE(matforge({"ingest", set.string(), "-o", (work / "out").string(), "-q"}));
+    const std::string manifest = (work / "out/manifest.json").string();
     std::ofstream(work / "victim.html") << "the user's page";
     fs::create_directories(work / "victims");
     fs::create_directories(work / "report");
     fs::create_symlink(work / "victim.html", work / "report/index.html");
-    fs::create_symlink(work / "victims", work / "report/Metal_Damaged_001");
-    EXPECT_TRUE(matforge({"report", (work / "out/manifest.json").string(), "-o", (work / "report").string(), "-q"}, 1));
+    EXPECT_TRUE(matforge({"report", manifest, "-o", (work / "report").string(), "-q"}, 2));
     EXPECT_EQ(read_text(work / "victim.html"), "the user's page");
+    EXPECT_EQ(fs::directory_iterator(work / "report")->path().filename(), "index.html") << "nothing written";
+    // A folder an earlier report wrote, whose material folder became a link: refused there.
+    fs::remove(work / "report/index.html");
+    ASSERT_TRUE(matforge({"report", manifest, "-o", (work / "report").string(), "-q"}));
+    fs::remove_all(work / "report/Metal_Damaged_001");
+    fs::create_symlink(work / "victims", work / "report/Metal_Damaged_001");
+    EXPECT_TRUE(matforge({"report", manifest, "-o", (work / "report").string(), "-q"}, 1));
     EXPECT_TRUE(fs::is_empty(work / "victims"));
+    // A user's folder with a file of theirs: refused, untouched.
+    fs::create_directories(work / "docs");
+    std::ofstream(work / "docs/index.html") << "<html>the user's own page</html>";
+    EXPECT_TRUE(matforge({"report", manifest, "-o", (work / "docs").string(), "-q"}, 2));
+    EXPECT_EQ(read_text(work / "docs/index.html"), "<html>the user's own page</html>");
 }
 
 // The report's folder is its own: not the ingest output folder (which holds what the manifest
@@ -399,4 +412,58 @@ TEST(ReportCli, MemoryIsBoundedByTheMaterialsCodes) {
     ASSERT_EQ(p.code, 0) << p.output;
     EXPECT_LT(p.maxrss_kb, 400 * 1024) << "peak resident memory of the report";
     EXPECT_TRUE(fs::exists(work / "report/Big/albedo-range.png"));
+}
+
+// validate writes the same page (its manifest has no outputs): each set's card with its
+// findings, and the albedo overlay judged on the source maps, its shares the findings'.
+TEST(ReportCli, ValidateWritesThePageWithTheFindingsShares) {
+    const fs::path work = temp_dir("validate-html");
+    const fs::path corpus = mf::testenv::corpus_dir() / "real";
+    const fs::path sets[] = {corpus / "3dtextures_Metal_Rusted_010", corpus / "ambientcg_Net004A_1K-JPG",
+                             corpus / "polyhaven_brown_planks_09_1k_jpg+webp"};
+    std::vector<std::string> args{"validate"};
+    for (const auto& s : sets) args.push_back(s.string());
+    for (const std::string& a : std::vector<std::string>{"--report", "json", "--report-file",
+                                                         (work / "v.json").string(), "--fail-on", "never"})
+        args.push_back(a);
+    ASSERT_TRUE(matforge(args));
+    args.erase(args.end() - 5, args.end());
+    for (const std::string& a :
+         std::vector<std::string>{"html", "--report-file", (work / "page").string(), "--fail-on", "never"})
+        args.push_back(a);
+    ASSERT_TRUE(matforge(args));
+    const auto report = read_json(work / "v.json");
+    const std::string html = read_text(work / "page/index.html");
+    EXPECT_NE(html.find("<title>matforge report — matforge validate</title>"), std::string::npos);
+    ASSERT_EQ(report["materials"].size(), 3u);
+    int raised = 0;
+    for (const auto& m : report["materials"]) {
+        const std::string card = card_of(html, markup_escape(m["name"].get<std::string>()));
+        ASSERT_FALSE(card.empty()) << m["name"];
+        EXPECT_NE(card.find("albedo luminance of the source map"), std::string::npos) << m["name"];
+        for (const auto& f : m["findings"]) {
+            EXPECT_NE(card.find("data-code=\"" + f["code"].get<std::string>() + "\""), std::string::npos)
+                << m["name"] << " " << f["code"];
+            if (!f["figures"].contains("surface_share")) continue;
+            const std::string key = "class=\"share\" data-code=\"" + f["code"].get<std::string>() + "\">";
+            const size_t at = card.find(key);
+            ASSERT_NE(at, std::string::npos) << m["name"] << " " << f["code"];
+            EXPECT_EQ(card.substr(at + key.size(), card.find("</span>", at) - at - key.size()),
+                      mf::percent(f["figures"]["surface_share"].get<double>()))
+                << m["name"] << " " << f["code"];
+            ++raised;
+        }
+    }
+    EXPECT_GE(raised, 2) << "Metal_Rusted_010 and Net004A have dark albedos";
+    // The page needs a folder: without --report-file it is a usage error, and nothing is read.
+    EXPECT_TRUE(matforge({"validate", sets[0].string(), "--report", "html"}, 2));
+    // Never in a set's folder (the next run would read its pictures as maps).
+    EXPECT_TRUE(matforge({"validate", sets[0].string(), "--report", "html", "--report-file",
+                          (work / "copy").string()}));
+    fs::create_directories(work / "lib");
+    fs::copy(sets[0], work / "lib/set", fs::copy_options::recursive);
+    EXPECT_TRUE(matforge({"validate", (work / "lib").string(), "--report", "html", "--report-file",
+                          (work / "lib/set/page").string()},
+                         2));
+    EXPECT_FALSE(fs::exists(work / "lib/set/page"));
 }

@@ -1,4 +1,6 @@
 // matforge ingest <input>... -o <out-dir> [--preset NAME|FILE] [--jobs N] [--fail-on ...]
+//                 [--report text|json|junit|sarif|html [--report-file F]]
+// The report is written from the manifest the run wrote, by validate's writers (lib/report).
 #include <unistd.h>
 
 #include <cstdlib>
@@ -6,12 +8,15 @@
 #include <memory>
 
 #include "command.hpp"
+#include "core/files.hpp"
 #include "options.hpp"
 #include "process/cache.hpp"
 #include "process/ingest.hpp"
 #include "process/sets.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
+#include "report/formats.hpp"
+#include "report/report.hpp"
 #include "stop.hpp"
 #include "summary.hpp"
 
@@ -20,16 +25,58 @@ namespace {
 
 struct IngestArgs {
     std::vector<std::string> inputs;
-    std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file, shard, cache;
+    std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file, shard, cache, report, report_file;
     int jobs = 0;
     bool quiet = false, force = false, no_cache = false;
 };
+
+// --report: the manifest just written, read back, through the writers validate uses; the
+// sources as paths from here (the manifest keeps them relative to its folder). Empty or why not.
+std::string write_ingest_report(const IngestArgs& a, const std::filesystem::path& manifest_file) {
+    std::string error;
+    if (a.report == "html") {
+        report::Options o;
+        o.manifest = manifest_file;
+        o.out = a.report_file;
+        report::Result r;
+        if (!report::write_report(o, r, error)) return error;
+        for (const std::string& p : r.problems) say("ingest", "report: " + p);
+        return {};
+    }
+    auto m = manifest::read_manifest(manifest_file.string(), error);
+    if (!m) return error;
+    report::rebase_sources(*m, manifest_file.parent_path());
+    const auto format = report::format_from_name(a.report).value_or(report::Format::text);
+    std::string text = report::write_findings(*m, format, fail_on_of(a.fail_on));
+    if (format == report::Format::text) text = terminal_safe(text, true);
+    if (a.report_file.empty()) {
+        std::cout << text;
+        if (!text.empty() && text.back() != '\n') std::cout << "\n";
+        return {};
+    }
+    if (!write_file_atomic(a.report_file, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()),
+                           error))
+        return error;
+    return {};
+}
 
 ExitCode run_ingest(const IngestArgs& a) {
     // Nothing to read (a typo'd folder): stop before anything is created.
     if (std::string why = no_usable_input({a.inputs.begin(), a.inputs.end()}); !why.empty()) return fail("ingest", why);
     std::string error = output_overlaps_input(a.out_dir, {a.inputs.begin(), a.inputs.end()});
     if (!error.empty()) return fail("ingest", error);
+    if (!a.report_file.empty() && a.report.empty()) return fail("ingest", "--report-file needs --report FORMAT");
+    if (a.report == "html" && a.report_file.empty()) return fail("ingest", "--report html needs --report-file FOLDER");
+    if (!a.report_file.empty()) {  // checked before anything is read: the report never replaces an input
+        const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+        std::vector<InputFailure> ignored;
+        const bool html = a.report == "html";
+        const std::filesystem::path written = html ? std::filesystem::path(a.report_file) / "index.html"
+                                                   : std::filesystem::path(a.report_file);
+        std::string why = written_file_conflict(written, inputs, find_material_sets(inputs, a.out_dir, ignored));
+        if (why.empty() && html) why = output_overlaps_input(a.report_file, inputs);
+        if (!why.empty()) return fail("ingest", "--report-file " + why);
+    }
     auto preset = load_preset(a.preset, error);
     if (!preset) return fail("ingest", error);
     auto rules = load_rule_config(*preset, a.rules_file, error);
@@ -93,6 +140,11 @@ ExitCode run_ingest(const IngestArgs& a) {
                           " info; manifest: " + (std::filesystem::path(a.out_dir) / opt.manifest_name).string());
         print_attention("ingest", r);
     }
+    if (!a.report.empty()) {
+        if (std::string why = write_ingest_report(a, a.out_dir / std::filesystem::path(opt.manifest_name));
+            !why.empty())
+            return fail("ingest", why);
+    }
     return verdict_exit(validate::run_fails(summarize(r), fail_on_of(a.fail_on)));
 }
 
@@ -116,6 +168,12 @@ const Register register_ingest{
                         "I/N: process only shard I of N (sets assigned by size, as `matforge plan --shards N` "
                         "lists them); writes manifest.shard-I-of-N.json for `matforge merge`");
          add_fail_on(sub, a->fail_on);
+         sub.add_option("--report", a->report,
+                        "also write the run's findings as validate does (from the manifest written): text, json, "
+                        "junit, sarif, or html (a `matforge report` page)")
+             ->check(CLI::IsMember({"text", "json", "junit", "sarif", "html"}));
+         sub.add_option("--report-file", a->report_file,
+                        "write the --report here instead of stdout (html: a folder, index.html in it)");
          sub.add_flag("-q,--quiet", a->quiet, "no progress or summary on stderr");
          auto* cache = sub.add_option("--cache", a->cache,
                                       "result cache folder (default $MATFORGE_CACHE, else $XDG_CACHE_HOME/matforge or "

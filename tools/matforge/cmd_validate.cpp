@@ -1,5 +1,7 @@
-// matforge validate <input>... [--preset NAME|FILE] [--report text|json|junit|sarif]
+// matforge validate <input>... [--preset NAME|FILE] [--report text|json|junit|sarif|html]
 //                   [--report-file F] [--rules FILE] [--fail-on ...] [--jobs N]
+// Every report is written by lib/report from the run's manifest (no outputs): the same writers
+// as ingest's --report and `matforge report`'s page.
 #include <iostream>
 #include <memory>
 
@@ -8,6 +10,8 @@
 #include "options.hpp"
 #include "process/sets.hpp"
 #include "process/validate_batch.hpp"
+#include "report/formats.hpp"
+#include "report/report.hpp"
 #include "stop.hpp"
 
 namespace mf::cli {
@@ -28,9 +32,14 @@ ExitCode run_validate(const ValidateArgs& a) {
     auto rules = load_rule_config(*preset, a.rules_file, error);
     if (!rules) return fail("validate", error);
     const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+    const bool html = a.report == "html";
+    if (html && a.report_file.empty()) return fail("validate", "--report html needs --report-file FOLDER");
     if (!a.report_file.empty()) {  // checked before anything is read: the report never replaces an input
         std::vector<InputFailure> ignored;
-        const std::string why = written_file_conflict(a.report_file, inputs, find_material_sets(inputs, {}, ignored));
+        const std::filesystem::path written = html ? std::filesystem::path(a.report_file) / "index.html"
+                                                   : std::filesystem::path(a.report_file);
+        std::string why = written_file_conflict(written, inputs, find_material_sets(inputs, {}, ignored));
+        if (why.empty() && html) why = output_overlaps_input(a.report_file, inputs);
         if (!why.empty()) return fail("validate", "--report-file " + why);
     }
     ValidateBatchOptions opt;
@@ -38,18 +47,25 @@ ExitCode run_validate(const ValidateArgs& a) {
     opt.rules = std::move(*rules);
     install_stop_handlers();
     std::vector<std::string> notes;
-    const validate::Report report = validate_inputs(inputs, *preset, opt, &notes);
+    const manifest::Manifest report = validate_inputs(inputs, *preset, opt, &notes);
     for (const std::string& n : notes) say("validate", "note: " + n);
     if (stop_requested()) return interrupted("validate", "stopped before the end; no report is written");
     std::vector<std::string> names;
     for (const auto& m : report.materials) names.push_back(m.name);
     report_unmatched_suppressions("validate", opt.rules, names);
     const auto fail_on = fail_on_of(a.fail_on);
-    std::string text;
-    if (a.report == "json") text = validate::write_json(report);
-    else if (a.report == "junit") text = validate::write_junit(report, fail_on);
-    else if (a.report == "sarif") text = validate::write_sarif(report);
-    else text = terminal_safe(validate::write_text(report, fail_on), true);  // read in terminals
+    const bool fails = validate::run_fails(validate::summarize(report), fail_on);
+    if (html) {
+        report::Options o;
+        o.out = a.report_file;
+        report::Result r;
+        if (!report::write_report(o, report, {}, r, error)) return fail("validate", error);
+        for (const std::string& p : r.problems) say("validate", "report: " + p);
+        return verdict_exit(fails);
+    }
+    const auto format = report::format_from_name(a.report).value_or(report::Format::text);
+    std::string text = report::write_findings(report, format, fail_on);
+    if (format == report::Format::text) text = terminal_safe(text, true);  // read in terminals
     if (a.report_file.empty()) {
         std::cout << text;
         if (!text.empty() && text.back() != '\n') std::cout << "\n";
@@ -57,7 +73,7 @@ ExitCode run_validate(const ValidateArgs& a) {
                                   std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error)) {
         return fail("validate", error);
     }
-    return verdict_exit(validate::run_fails(validate::summarize(report), fail_on));
+    return verdict_exit(fails);
 }
 
 const Register register_validate{
@@ -69,9 +85,10 @@ const Register register_validate{
          sub.add_option("--preset", a->preset, "preset whose needs (MISSING_MAP) and validate block apply")
              ->capture_default_str();
          sub.add_option("--report", a->report, "report format")
-             ->check(CLI::IsMember({"text", "json", "junit", "sarif"}))
+             ->check(CLI::IsMember({"text", "json", "junit", "sarif", "html"}))
              ->capture_default_str();
-         sub.add_option("--report-file", a->report_file, "write the report here instead of stdout");
+         sub.add_option("--report-file", a->report_file,
+                        "write the report here instead of stdout (html: a folder, index.html in it)");
          sub.add_option("--rules", a->rules_file,
                         "JSON rule configuration: thresholds, severities, suppressions (docs/rules.md)");
          sub.add_option("-j,--jobs", a->jobs, "sets validated in parallel (0 = all cores)")

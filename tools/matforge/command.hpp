@@ -12,7 +12,7 @@
 
 #include "core/findings.hpp"
 #include "core/text.hpp"
-#include "validate/report.hpp"
+#include "validate/verdict.hpp"
 
 namespace mf::cli {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "validate/report.hpp"
+#include "validate/verdict.hpp"
 
 namespace mf::cli {
 

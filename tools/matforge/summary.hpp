@@ -6,7 +6,7 @@
 #include "command.hpp"
 #include "manifest/manifest.hpp"
 #include "process/ingest.hpp"
-#include "validate/report.hpp"
+#include "validate/verdict.hpp"
 
 namespace mf::cli {
 

@@ -1,4 +1,4 @@
-#include "validate/report.hpp"
+#include "report/formats.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,11 +6,17 @@
 #include <cstdio>
 #include <set>
 
+#include "core/catalog.hpp"
 #include "core/json.hpp"
 #include "core/text.hpp"
-#include "validate/rules.hpp"
+#include "core/version.hpp"
 
-namespace mf::validate {
+namespace mf::report {
+
+using validate::FailOn;
+using validate::fails;
+using validate::Summary;
+
 namespace {
 
 // The codes validate_set() evaluates: a JUnit test case each, per material.
@@ -30,7 +36,7 @@ std::string join_path(const std::string& source, const std::string& file) {
 }
 
 // "  albedo      Bricks_Color.png  [ambientcg:_Color]" per input, the normal verdict, constants.
-std::string decisions_text(const MaterialReport& m) {
+std::string decisions_text(const manifest::Material& m) {
     std::string out = m.convention.empty() ? "" : "  naming: " + m.convention + "\n";
     for (const auto& in : m.inputs) {
         std::string role(role_name(in.role));
@@ -70,61 +76,9 @@ std::string finding_line(const Finding& f) {
 
 }  // namespace
 
-std::optional<FailOn> fail_on_from_name(std::string_view n) {
-    if (n == "error") return FailOn::error;
-    if (n == "warning") return FailOn::warning;
-    if (n == "info") return FailOn::info;
-    if (n == "never") return FailOn::never;
-    return std::nullopt;
-}
-
-std::string_view fail_on_name(FailOn f) {
-    switch (f) {
-        case FailOn::info: return "info";
-        case FailOn::warning: return "warning";
-        case FailOn::error: return "error";
-        case FailOn::never: break;
-    }
-    return "never";
-}
-
-bool fails(Severity s, FailOn f) {
-    switch (f) {
-        case FailOn::never: return false;
-        case FailOn::info: return true;
-        case FailOn::warning: return s >= Severity::warning;
-        case FailOn::error: return s >= Severity::error;
-    }
-    return false;
-}
-
-void add_material(Summary& s, const std::vector<Finding>& findings) {
-    bool incomplete = false;
-    for (const auto& f : findings) {
-        if (f.severity == Severity::error) ++s.error;
-        else if (f.severity == Severity::warning) ++s.warning;
-        else ++s.info;
-        incomplete = incomplete || f.code == code::unreadable_file || f.code == code::output_write_failed;
-    }
-    s.incomplete += incomplete ? 1 : 0;
-}
-
-Summary summarize(const Report& r) {
-    Summary s;
-    for (const auto& m : r.materials) add_material(s, m.findings);
-    s.failures = static_cast<int>(r.failures.size());
-    return s;
-}
-
-bool run_fails(const Summary& s, FailOn f) {
-    if (s.failures > 0 || s.incomplete > 0) return true;
-    return (s.error > 0 && fails(Severity::error, f)) || (s.warning > 0 && fails(Severity::warning, f)) ||
-           (s.info > 0 && fails(Severity::info, f));
-}
-
 namespace {
 
-nlohmann::json material_json(const MaterialReport& m) {
+nlohmann::json material_json(const manifest::Material& m) {
     nlohmann::json fs = nlohmann::json::array();
     for (const auto& f : m.findings) fs.push_back(to_json(f));
     return {{"name", m.name},
@@ -136,34 +90,34 @@ nlohmann::json material_json(const MaterialReport& m) {
 }
 
 // The report without its materials (an empty array in their place).
-nlohmann::json report_head(const Report& r) {
+nlohmann::json report_head(const manifest::Manifest& r) {
     nlohmann::json j;
     j["report_version"] = 1;
-    j["generator"] = "matforge " + r.tool_version;
+    j["generator"] = std::string(kGenerator);
     j["materials"] = nlohmann::json::array();
     nlohmann::json fl = nlohmann::json::array();
     for (const auto& f : r.failures) fl.push_back({{"source", f.source}, {"code", f.code}, {"message", f.message}});
     j["failures"] = fl;
-    const Summary s = summarize(r);
+    const Summary s = validate::summarize(r);
     j["summary"] = {{"error", s.error}, {"warning", s.warning}, {"info", s.info}, {"failures", s.failures}};
     return j;
 }
 
 }  // namespace
 
-nlohmann::json report_json(const Report& r) {
+nlohmann::json report_json(const manifest::Manifest& r) {
     nlohmann::json j = report_head(r);
     for (const auto& m : r.materials) j["materials"].push_back(material_json(m));
     return j;
 }
 
 // One material at a time: a report of 50,000 sets holds its text, not a JSON tree of it.
-std::string write_json(const Report& r) {
+std::string write_json(const manifest::Manifest& r) {
     return json_text_with_array(report_head(r), "materials", r.materials.size(),
                                 [&](size_t i) { return material_json(r.materials[i]); });
 }
 
-std::string write_text(const Report& r, FailOn fail_on) {
+std::string write_text(const manifest::Manifest& r, FailOn fail_on) {
     std::string out;
     size_t code_w = 0;
     for (const auto& m : r.materials)
@@ -188,7 +142,7 @@ std::string write_text(const Report& r, FailOn fail_on) {
         for (const auto& f : r.failures) out += "  " + f.source + "  " + f.code + "  " + f.message + "\n";
         out += "\n";
     }
-    const Summary s = summarize(r);
+    const Summary s = validate::summarize(r);
     const bool failed = run_fails(s, fail_on);
     out += std::to_string(r.materials.size()) + " material(s): " + std::to_string(s.error) + " error(s), " +
            std::to_string(s.warning) + " warning(s), " + std::to_string(s.info) + " info";
@@ -198,7 +152,7 @@ std::string write_text(const Report& r, FailOn fail_on) {
     return out;
 }
 
-std::string write_junit(const Report& r, FailOn fail_on) {
+std::string write_junit(const manifest::Manifest& r, FailOn fail_on) {
     // One <testsuite> per material, one <testcase> per rule evaluated on it: a dashboard shows
     // which rule failed for which material, and a passing rule as a passing test.
     struct Case {
@@ -208,7 +162,7 @@ std::string write_junit(const Report& r, FailOn fail_on) {
     std::string body;
     int total = 0, total_fail = 0, total_err = 0;
     for (const auto& m : r.materials) {
-        std::vector<std::string> rules = m.rules.empty() ? default_rules() : m.rules;
+        std::vector<std::string> rules = default_rules();
         for (const auto& f : m.findings)
             if (std::find(rules.begin(), rules.end(), f.code) == rules.end()) rules.push_back(f.code);
         std::vector<Case> cases;
@@ -268,7 +222,7 @@ std::string write_junit(const Report& r, FailOn fail_on) {
            std::to_string(total_err) + "\">\n" + body + "</testsuites>\n";
 }
 
-std::string write_sarif(const Report& r) {
+std::string write_sarif(const manifest::Manifest& r) {
     // SARIF 2.1.0 (OASIS, 2020): §3.13 sarifLog, §3.19 tool, §3.49 reportingDescriptor,
     // §3.27 result, §3.28 location, §3.4 artifactLocation. Levels: error, warning, note.
     auto level = [](Severity s) {
@@ -341,8 +295,8 @@ std::string write_sarif(const Report& r) {
     nlohmann::json run{{"tool",
                         {{"driver",
                           {{"name", "matforge"},
-                           {"semanticVersion", r.tool_version},
-                           {"version", r.tool_version},
+                           {"semanticVersion", std::string(kVersion)},
+                           {"version", std::string(kVersion)},
                            {"rules", rules}}}}},
                        {"artifacts", artifacts},
                        {"properties", {{"materials", decided}}},
@@ -353,4 +307,32 @@ std::string write_sarif(const Report& r) {
     return json_text(log);
 }
 
-}  // namespace mf::validate
+std::optional<Format> format_from_name(std::string_view n) {
+    if (n == "text") return Format::text;
+    if (n == "json") return Format::json;
+    if (n == "junit") return Format::junit;
+    if (n == "sarif") return Format::sarif;
+    return std::nullopt;
+}
+
+std::string write_findings(const manifest::Manifest& m, Format format, FailOn fail_on) {
+    switch (format) {
+        case Format::json: return write_json(m);
+        case Format::junit: return write_junit(m, fail_on);
+        case Format::sarif: return write_sarif(m);
+        case Format::text: break;
+    }
+    return write_text(m, fail_on);
+}
+
+void rebase_sources(manifest::Manifest& m, const std::filesystem::path& manifest_dir) {
+    auto rebase = [&](std::string& source) {
+        std::string s = (manifest_dir / source).lexically_normal().generic_string();
+        while (s.size() > 1 && s.back() == '/') s.pop_back();  // "a/b/" from a source of "."
+        source = s.empty() ? "." : s;
+    };
+    for (auto& mm : m.materials) rebase(mm.source);
+    for (auto& f : m.failures) rebase(f.source);
+}
+
+}  // namespace mf::report

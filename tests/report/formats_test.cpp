@@ -1,5 +1,6 @@
-// Report writers: JSON shape (docs/validate-report.md), JUnit parsed as XML (libxml2), SARIF
-// 2.1.0 required fields, text grouping, exit codes.
+// The findings reports (lib/report/formats.hpp) over a manifest: JSON shape
+// (docs/validate-report.md), JUnit parsed as XML (libxml2), SARIF 2.1.0 required fields, text
+// grouping; the verdict and exit codes (validate/verdict.hpp); sources rebased.
 #include <gtest/gtest.h>
 #include <libxml/parser.h>
 #include <libxml/tree.h>
@@ -8,9 +9,10 @@
 
 #include "core/json.hpp"
 #include "core/text.hpp"
-#include "validate/report.hpp"
+#include "report/formats.hpp"
 
 namespace mv = mf::validate;
+namespace mr = mf::report;
 using nlohmann::json;
 
 namespace {
@@ -26,9 +28,9 @@ mf::Finding finding(std::string code, mf::Severity s, std::string role, std::str
     return f;
 }
 
-mv::Report sample() {
-    mv::Report r;
-    mv::MaterialReport bricks;
+mf::manifest::Manifest sample() {
+    mf::manifest::Manifest r;
+    mf::manifest::Material bricks;
     bricks.name = "Bricks059";
     bricks.source = "in/Bricks059 1K";
     bricks.findings = {finding("ALBEDO_TOO_DARK", mf::Severity::warning, "albedo", "Bricks059_Color.png",
@@ -46,7 +48,7 @@ mv::Report sample() {
     bricks.inputs.push_back(normal);
     bricks.constants.push_back({mf::Role::metalness, {0.f}});
     r.materials.push_back(std::move(bricks));
-    mv::MaterialReport clean;
+    mf::manifest::Material clean;
     clean.name = "Clean";
     clean.source = "in/Clean";
     r.materials.push_back(std::move(clean));
@@ -79,7 +81,7 @@ std::string attr(xmlNodePtr n, const char* name) {
 }  // namespace
 
 TEST(Report, JsonShape) {
-    const json j = json::parse(mv::write_json(sample()));
+    const json j = json::parse(mr::write_json(sample()));
     EXPECT_EQ(j.at("report_version"), 1);
     ASSERT_EQ(j.at("materials").size(), 2u);
     const json& m = j.at("materials")[0];
@@ -90,14 +92,14 @@ TEST(Report, JsonShape) {
     for (const char* k : {"code", "severity", "role", "file", "message", "figures"}) EXPECT_TRUE(f.contains(k)) << k;
     EXPECT_EQ(j.at("failures")[0].at("code"), "UNREADABLE_FILE");
     EXPECT_EQ(j.at("summary"), (json{{"error", 1}, {"warning", 1}, {"info", 1}, {"failures", 1}}));
-    EXPECT_EQ(mv::write_json(sample()), mv::write_json(sample())) << "deterministic";
+    EXPECT_EQ(mr::write_json(sample()), mr::write_json(sample())) << "deterministic";
     // Written one material at a time, the bytes of the whole tree's dump (none, one, two).
-    mv::Report r = sample();
-    EXPECT_EQ(mv::write_json(r), mf::json_text(mv::report_json(r)));
+    mf::manifest::Manifest r = sample();
+    EXPECT_EQ(mr::write_json(r), mf::json_text(mr::report_json(r)));
     r.materials.pop_back();
-    EXPECT_EQ(mv::write_json(r), mf::json_text(mv::report_json(r)));
+    EXPECT_EQ(mr::write_json(r), mf::json_text(mr::report_json(r)));
     r.materials.clear();
-    EXPECT_EQ(mv::write_json(r), mf::json_text(mv::report_json(r)));
+    EXPECT_EQ(mr::write_json(r), mf::json_text(mr::report_json(r)));
 }
 
 TEST(Report, Verdict) {
@@ -121,7 +123,7 @@ TEST(Report, Verdict) {
 }
 
 TEST(Report, TextGroupedByMaterial) {
-    const std::string t = mv::write_text(sample(), mv::FailOn::error);
+    const std::string t = mr::write_text(sample(), mv::FailOn::error);
     const auto b = t.find("Bricks059  (in/Bricks059 1K)");
     const auto c = t.find("Clean  (in/Clean)");
     ASSERT_NE(b, std::string::npos) << t;
@@ -134,7 +136,7 @@ TEST(Report, TextGroupedByMaterial) {
 }
 
 TEST(Report, JUnitParsesAsXmlWithOneCasePerMaterialAndRule) {
-    const std::string x = mv::write_junit(sample(), mv::FailOn::warning);
+    const std::string x = mr::write_junit(sample(), mv::FailOn::warning);
     XmlDoc d;
     d.doc = xmlReadMemory(x.data(), static_cast<int>(x.size()), "junit.xml", nullptr, XML_PARSE_NONET);
     ASSERT_NE(d.doc, nullptr) << x;
@@ -170,7 +172,7 @@ TEST(Report, JUnitParsesAsXmlWithOneCasePerMaterialAndRule) {
     ASSERT_EQ(input_cases.size(), 1u);
     EXPECT_EQ(children(input_cases[0], "error").size(), 1u);
     // At --fail-on error only the error fails.
-    const std::string x2 = mv::write_junit(sample(), mv::FailOn::error);
+    const std::string x2 = mr::write_junit(sample(), mv::FailOn::error);
     XmlDoc d2;
     d2.doc = xmlReadMemory(x2.data(), static_cast<int>(x2.size()), "junit.xml", nullptr, XML_PARSE_NONET);
     ASSERT_NE(d2.doc, nullptr);
@@ -178,7 +180,7 @@ TEST(Report, JUnitParsesAsXmlWithOneCasePerMaterialAndRule) {
 }
 
 TEST(Report, SarifRequiredFields) {
-    const json s = json::parse(mv::write_sarif(sample()));
+    const json s = json::parse(mr::write_sarif(sample()));
     EXPECT_EQ(s.at("version"), "2.1.0");
     EXPECT_TRUE(s.at("$schema").get<std::string>().find("sarif-2.1.0") != std::string::npos);
     ASSERT_EQ(s.at("runs").size(), 1u);
@@ -211,7 +213,7 @@ TEST(Report, SarifRequiredFields) {
 }
 
 TEST(Report, ShowsWhatWasDecided) {
-    const json j = json::parse(mv::write_json(sample()));
+    const json j = json::parse(mr::write_json(sample()));
     const json& m = j.at("materials")[0];
     EXPECT_EQ(m.at("convention"), "ambientcg");
     EXPECT_EQ(m.at("inputs").at("normal").at("file"), "Bricks059_Normal.png");
@@ -219,13 +221,13 @@ TEST(Report, ShowsWhatWasDecided) {
     EXPECT_EQ(m.at("inputs").at("normal").at("normal_convention_source"), "content");
     EXPECT_EQ(m.at("inputs").at("normal").at("normal_convention_method"), "height+curl");
     EXPECT_EQ(m.at("constants").at("metalness"), 0.0);
-    const std::string text = mv::write_text(sample(), mv::FailOn::error);
+    const std::string text = mr::write_text(sample(), mv::FailOn::error);
     EXPECT_NE(text.find("normal              Bricks059_Normal.png  [ambientcg:_Normal]  dx (from the content: "
                         "height+curl test, confidence 87 %)"),
               std::string::npos)
         << text;
     EXPECT_NE(text.find("generated on ingest: metalness 0"), std::string::npos) << text;
-    const json sarif = json::parse(mv::write_sarif(sample()));
+    const json sarif = json::parse(mr::write_sarif(sample()));
     const json& run = sarif.at("runs")[0];
     ASSERT_EQ(run.at("artifacts").size(), 1u);
     EXPECT_EQ(run.at("artifacts")[0].at("location").at("uri"), "in/Bricks059%201K/Bricks059_Normal.png");
@@ -238,4 +240,21 @@ TEST(Report, Escaping) {
     EXPECT_EQ(mf::markup_escape("a<b>&\"'"), "a&lt;b&gt;&amp;&quot;&#39;");
     EXPECT_EQ(mf::markup_escape(std::string("\x01")), "\xEF\xBF\xBD");
     EXPECT_EQ(mf::percent_encode_path("a b/c#d.png"), "a%20b/c%23d.png");
+}
+
+TEST(Report, SourcesRebasedToWhereTheReaderStands) {
+    // An ingest manifest keeps sources relative to its folder; its reports name them from here.
+    mf::manifest::Manifest m = sample();
+    m.materials[0].source = "../in/Bricks059 1K";
+    m.materials[1].source = ".";
+    mr::rebase_sources(m, "out/gltf");
+    EXPECT_EQ(m.materials[0].source, "out/in/Bricks059 1K");
+    EXPECT_EQ(m.materials[1].source, "out/gltf");
+    EXPECT_EQ(m.failures[0].source, "out/gltf/in/Broken.zip");
+    const json s = json::parse(mr::write_sarif(m));
+    EXPECT_EQ(s.at("runs")[0].at("results")[0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"],
+              "out/in/Bricks059%201K/Bricks059_Color.png");
+    EXPECT_EQ(mr::format_from_name("sarif"), mr::Format::sarif);
+    EXPECT_FALSE(mr::format_from_name("html")) << "the page is report.hpp's, not a findings format";
+    EXPECT_EQ(mr::write_findings(m, mr::Format::junit, mv::FailOn::error), mr::write_junit(m, mv::FailOn::error));
 }
