@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# run.sh: what the ingest cache (lib/process/cache.hpp) saves. Builds nothing.
+# run.sh: what the ingest cache (lib/store/cache.hpp) saves. Builds nothing.
 #
 #   bench/cache/run.sh [BUILD_DIR (build)] [--quick] [--work DIR] [--results DIR] [--tiny N]
 #

@@ -17,8 +17,8 @@ struct CodeInfo {
     Severity severity;       // default severity
     std::string_view title;  // one line: SARIF shortDescription, JUnit text, rules.html
     // What raises it (docs/interface.md "Finding codes", column "raised by"): "finding sets"
-    // (lib/process/sets), "discovery" (lib/material: names to roles), "decoding" (reading a map),
-    // "rules" (lib/validate), "planning" (lib/process/plan: routes, sizes, conversions),
+    // (lib/sets), "discovery" (lib/material: names to roles), "decoding" (reading a map),
+    // "rules" (lib/validate), "planning" (lib/plan: routes, sizes, conversions),
     // "encoding" (lib/texture), "writing" (ingest's outputs); two joined by ", ".
     std::string_view stage;
     std::string_view anchor;  // section of docs/rules.md (rules.html's row id)

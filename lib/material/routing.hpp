@@ -1,5 +1,5 @@
 // Routing: which input map feeds each output role. Decided here and nowhere else: the set
-// planner (lib/process/plan) and the validator (lib/validate) both call route_roles(), so ingest
+// planner (lib/plan) and the validator (lib/validate) both call route_roles(), so ingest
 // and validate always judge the same maps.
 //
 // Preference, for every output role: its dedicated map, then a packed input holding it (orm,

@@ -1,6 +1,7 @@
 // The layer between the renderer core (lib/render) and files: scene files, manifest materials
-// turned into renderer materials, texture and environment files, contact sheets. The command
-// itself (options, the render loop, exit codes) is tools/matforge/cmd_preview.cpp.
+// turned into renderer materials, texture and environment files, contact sheets. The render
+// loop over many materials is batch.hpp; the command (options, exit codes) is
+// tools/matforge/cmd_preview.cpp.
 //
 // Conventions of this module (decided once here):
 //  - errors are returned, never thrown: nullopt / false and `error`, naming the file (and the

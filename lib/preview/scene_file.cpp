@@ -99,204 +99,225 @@ SceneMaterial::Map map_ref(const json& j, const std::filesystem::path& base, con
     return m;
 }
 
+// The stages of parse_scene_or_throw: one per key of the scene file, each reading its object
+// into the scene (or the scene file) and throwing SceneError naming the key on a bad value.
+
+void read_image(const json& img, const std::string& name, render::Scene& sc) {
+    check_keys(img, name + ": image", {"width", "height", "supersample", "msaa", "shading"});
+    if (const json* v = find(img, "supersample")) {
+        const auto n = json_int(*v, 1, 4);
+        if (!n) fail(name + ": image.supersample", "must be an integer 1..4, got " + v->dump());
+        sc.supersample = static_cast<uint32_t>(*n);
+    }
+    if (const json* v = find(img, "msaa")) {
+        const auto n = json_int(*v, 1, 8);
+        if (!n || (*n & (*n - 1)) != 0) fail(name + ": image.msaa", "must be 1, 2, 4 or 8, got " + v->dump());
+        sc.msaa = static_cast<uint32_t>(*n);
+    }
+    if (const json* v = find(img, "shading")) {
+        const auto sh = v->is_string() ? render::parse_shading(v->get<std::string>()) : std::nullopt;
+        if (!sh) fail(name + ": image.shading", "must be \"auto\", \"raster\" or \"compute\", got " + v->dump());
+        sc.shading = *sh;
+    }
+    if (const json* w = find(img, "width")) sc.width = dimension(*w, name + ": image.width");
+    if (const json* h = find(img, "height")) sc.height = dimension(*h, name + ": image.height");
+}
+
+void read_camera(const json& cam, const std::string& name, render::Scene& sc) {
+    const std::string w = name + ": camera";
+    check_keys(cam, w, {"position", "target", "up", "yfov_deg"});
+    if (const json* v = find(cam, "position")) sc.camera.position = vec3(*v, w + ".position");
+    if (const json* v = find(cam, "target")) sc.camera.target = vec3(*v, w + ".target");
+    if (const json* v = find(cam, "up")) sc.camera.up = vec3(*v, w + ".up");
+    if (const json* v = find(cam, "yfov_deg")) {
+        sc.camera.yfov_deg = number(*v, w + ".yfov_deg");
+        if (!(sc.camera.yfov_deg > 0.f && sc.camera.yfov_deg < 180.f)) fail(w + ".yfov_deg", "must be in (0, 180)");
+    }
+    // A camera at its target looks nowhere; an up along the view has no "up" to keep.
+    const render::Vec3 p = sc.camera.position, t = sc.camera.target, u = sc.camera.up;
+    const float d[3] = {t[0] - p[0], t[1] - p[1], t[2] - p[2]};
+    const float dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+    if (!(dd > 0.f)) fail(w, "position and target are the same point: the camera has no direction to look in");
+    if (!(uu > 0.f)) fail(w + ".up", "must not be [0, 0, 0]");
+    const float cx = d[1] * u[2] - d[2] * u[1], cy = d[2] * u[0] - d[0] * u[2], cz = d[0] * u[1] - d[1] * u[0];
+    if (!(cx * cx + cy * cy + cz * cz > 1e-12f * dd * uu))
+        fail(w + ".up", "is parallel to the direction from position to target: choose an up that is not");
+}
+
+void read_shape(const json& sh, const std::string& name, SceneFile& out) {
+    render::Scene& sc = out.scene;
+    const std::string w = name + ": shape";
+    check_keys(sh, w, {"type", "radius", "size"});
+    if (const json* t = find(sh, "type")) {
+        const std::string type = t->is_string() ? t->get<std::string>() : "";
+        const auto shape = parse_shape(type);
+        if (!shape) fail(w + ".type", "expected \"sphere\", \"cube\", \"plane\" or \"shaderball\", got " + t->dump());
+        sc.shape.type = *shape;
+    }
+    sc.shape.size = default_shape_size(sc.shape.type);
+    const json* size = find(sh, sc.shape.type == render::ShapeType::sphere ? "radius" : "size");
+    if (!size) size = find(sh, "size");
+    if (!size) size = find(sh, "radius");
+    if (size) {
+        sc.shape.size = number(*size, w + ".radius/size");
+        if (!(sc.shape.size > 0.f)) fail(w, "size must be positive");
+        out.shape_size_given = true;
+    }
+}
+
+void read_lights(const json& lights, const std::string& name, render::Scene& sc) {
+    if (!lights.is_array()) fail(name + ": lights", "expected an array");
+    if (lights.size() > render::kMaxLights)
+        fail(name + ": lights", "at most " + std::to_string(render::kMaxLights) + " lights");
+    sc.lights.clear();
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const json& l = lights[i];
+        const std::string w = name + ": lights[" + std::to_string(i) + "]";
+        check_keys(l, w, {"type", "direction", "position", "color", "intensity"});
+        render::Light light;
+        const json* t = find(l, "type");
+        if (t && !t->is_string()) fail(w + ".type", "expected \"directional\" or \"point\"");
+        const std::string type = t ? t->get<std::string>() : "directional";
+        if (type == "directional") {
+            light.type = render::LightType::directional;
+            if (const json* d = find(l, "direction")) light.direction = vec3(*d, w + ".direction");
+            const auto& d = light.direction;
+            if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-12f) fail(w + ".direction", "zero length");
+        } else if (type == "point") {
+            light.type = render::LightType::point;
+            const json* p = find(l, "position");
+            if (!p) fail(w, "a point light needs a position");
+            light.position = vec3(*p, w + ".position");
+            light.intensity = 10.f;
+        } else {
+            fail(w + ".type", "expected \"directional\" or \"point\"");
+        }
+        if (const json* c = find(l, "color")) light.color = color(*c, w + ".color");
+        if (const json* v = find(l, "intensity")) light.intensity = number(*v, w + ".intensity");
+        if (light.intensity < 0.f) fail(w + ".intensity", "must not be negative");
+        sc.lights.push_back(light);
+    }
+}
+
+void read_environment(const json& env, const std::filesystem::path& base, const std::string& name, SceneFile& out) {
+    const std::string w = name + ": environment";
+    check_keys(env, w, {"file", "intensity"});
+    const json* f = find(env, "file");
+    if (!f || !f->is_string()) fail(w, "needs \"file\"");
+    out.environment = base / f->get<std::string>();
+    if (const json* v = find(env, "intensity"))
+        out.environment_intensity = number_in(*v, w + ".intensity", 0.f, std::numeric_limits<float>::max());
+}
+
+SceneMaterial read_material(const json& m, const std::filesystem::path& base, const std::string& name) {
+    const std::string w = name + ": material";
+    check_keys(m, w, {"albedo", "roughness", "metalness", "emissive", "maps", "normal_convention"});
+    SceneMaterial sm;
+    if (const json* v = find(m, "albedo")) sm.albedo = color(*v, w + ".albedo", 1.f);
+    if (const json* v = find(m, "emissive")) sm.emissive = color(*v, w + ".emissive");
+    if (const json* v = find(m, "roughness")) sm.roughness = number_in(*v, w + ".roughness", 0.f, 1.f);
+    if (const json* v = find(m, "metalness")) sm.metalness = number_in(*v, w + ".metalness", 0.f, 1.f);
+    if (const json* v = find(m, "normal_convention")) {
+        if (*v != "gl" && *v != "dx") fail(w + ".normal_convention", "expected \"gl\" or \"dx\"");
+        sm.normal_convention = *v == "dx" ? NormalConvention::dx : NormalConvention::gl;
+    }
+    if (const json* maps = find(m, "maps")) {
+        const std::string wm = w + ".maps";
+        check_keys(*maps, wm, {"albedo", "normal", "roughness", "metalness", "occlusion", "emissive", "opacity"});
+        auto get = [&](const char* role, std::optional<SceneMaterial::Map>& dst) {
+            if (const json* v = find(*maps, role)) dst = map_ref(*v, base, wm + "." + role);
+        };
+        get("albedo", sm.albedo_map);
+        get("normal", sm.normal_map);
+        get("roughness", sm.roughness_map);
+        get("metalness", sm.metalness_map);
+        get("occlusion", sm.occlusion_map);
+        get("emissive", sm.emissive_map);
+        get("opacity", sm.opacity_map);
+    }
+    return sm;
+}
+
+void read_output(const json& o, const std::string& name, render::OutputOptions& output) {
+    const std::string w = name + ": output";
+    check_keys(o, w, {"transfer", "exposure", "tonemap"});
+    if (const json* t = find(o, "tonemap")) {
+        const auto tm = t->is_string() ? render::parse_tonemap(t->get<std::string>()) : std::nullopt;
+        if (!tm) fail(w + ".tonemap", "expected \"none\", \"neutral\" or \"aces\"");
+        output.tonemap = *tm;
+    }
+    if (const json* t = find(o, "transfer")) {
+        if (*t == "srgb") output.transfer = render::Transfer::srgb;
+        else if (*t == "linear") output.transfer = render::Transfer::linear;
+        else fail(w + ".transfer", "expected \"srgb\" or \"linear\"");
+    }
+    if (const json* e = find(o, "exposure")) {
+        output.exposure = number(*e, w + ".exposure");
+        if (output.exposure < 0.f) fail(w + ".exposure", "must not be negative");
+    }
+}
+
+void read_ground(const json& g, const std::string& name, render::Scene& sc) {
+    const std::string w = name + ": ground";
+    if (g.is_boolean()) {
+        sc.ground.enabled = g.get<bool>();
+    } else {
+        if (!g.is_object())
+            fail(w, "expected true, false or {\"albedo\", \"roughness\", \"light_deg\"}, got " + g.dump());
+        check_keys(g, w, {"albedo", "roughness", "light_deg"});
+        sc.ground.enabled = true;
+        if (const json* v = find(g, "albedo")) sc.ground.albedo = number_in(*v, w + ".albedo", 0.f, 1.f);
+        if (const json* v = find(g, "roughness")) sc.ground.roughness = number_in(*v, w + ".roughness", 0.f, 1.f);
+        if (const json* v = find(g, "light_deg")) sc.ground.light_deg = number_in(*v, w + ".light_deg", 0.1f, 45.f);
+    }
+}
+
+void read_uv(const json& uv, const std::string& name, SceneFile& out) {
+    const std::string w = name + ": uv";
+    check_keys(uv, w, {"scale", "offset", "aspect"});
+    if (const json* v = find(uv, "scale")) {
+        if (v->is_number()) {
+            out.uv_scale[0] = out.uv_scale[1] = number_in(*v, w + ".scale", 1e-3f, 1e3f);
+        } else {
+            if (!v->is_array() || v->size() != 2) fail(w + ".scale", "expected a number or [u, v], got " + v->dump());
+            out.uv_scale = {number_in((*v)[0], w + ".scale", 1e-3f, 1e3f),
+                            number_in((*v)[1], w + ".scale", 1e-3f, 1e3f)};
+        }
+    }
+    if (const json* v = find(uv, "offset")) {
+        if (!v->is_array() || v->size() != 2) fail(w + ".offset", "expected [u, v], got " + v->dump());
+        out.uv_offset = {number_in((*v)[0], w + ".offset", -1e3f, 1e3f),
+                         number_in((*v)[1], w + ".offset", -1e3f, 1e3f)};
+    }
+    if (const json* v = find(uv, "aspect")) {
+        if (*v != "keep" && *v != "stretch") fail(w + ".aspect", "expected \"keep\" or \"stretch\"");
+        out.keep_aspect = *v == "keep";
+    }
+}
+
+void read_brdf(const json& b, const std::string& name, render::Scene& sc) {
+    const auto brdf = b.is_string() ? render::parse_brdf(b.get<std::string>()) : std::nullopt;
+    if (!brdf) fail(name + ": brdf", "expected \"standard\", \"accurate\" or \"assignment\"");
+    sc.brdf = *brdf;
+}
+
 SceneFile parse_scene_or_throw(const json& j, const std::filesystem::path& base, const std::string& name) {
     SceneFile out = reference_scene();  // a scene file says what it wants on top of the reference
     render::Scene& sc = out.scene;
     check_keys(j, name,
                {"image", "camera", "shape", "background", "lights", "environment", "material", "output", "brdf", "uv",
                 "ground"});
-    if (const json* img = find(j, "image")) {
-        check_keys(*img, name + ": image", {"width", "height", "supersample", "msaa", "shading"});
-        if (const json* v = find(*img, "supersample")) {
-            const auto n = json_int(*v, 1, 4);
-            if (!n) fail(name + ": image.supersample", "must be an integer 1..4, got " + v->dump());
-            sc.supersample = static_cast<uint32_t>(*n);
-        }
-        if (const json* v = find(*img, "msaa")) {
-            const auto n = json_int(*v, 1, 8);
-            if (!n || (*n & (*n - 1)) != 0) fail(name + ": image.msaa", "must be 1, 2, 4 or 8, got " + v->dump());
-            sc.msaa = static_cast<uint32_t>(*n);
-        }
-        if (const json* v = find(*img, "shading")) {
-            const auto sh = v->is_string() ? render::parse_shading(v->get<std::string>()) : std::nullopt;
-            if (!sh) fail(name + ": image.shading", "must be \"auto\", \"raster\" or \"compute\", got " + v->dump());
-            sc.shading = *sh;
-        }
-        if (const json* w = find(*img, "width")) sc.width = dimension(*w, name + ": image.width");
-        if (const json* h = find(*img, "height")) sc.height = dimension(*h, name + ": image.height");
-    }
-    if (const json* cam = find(j, "camera")) {
-        const std::string w = name + ": camera";
-        check_keys(*cam, w, {"position", "target", "up", "yfov_deg"});
-        if (const json* v = find(*cam, "position")) sc.camera.position = vec3(*v, w + ".position");
-        if (const json* v = find(*cam, "target")) sc.camera.target = vec3(*v, w + ".target");
-        if (const json* v = find(*cam, "up")) sc.camera.up = vec3(*v, w + ".up");
-        if (const json* v = find(*cam, "yfov_deg")) {
-            sc.camera.yfov_deg = number(*v, w + ".yfov_deg");
-            if (!(sc.camera.yfov_deg > 0.f && sc.camera.yfov_deg < 180.f)) fail(w + ".yfov_deg", "must be in (0, 180)");
-        }
-        // A camera at its target looks nowhere; an up along the view has no "up" to keep.
-        const render::Vec3 p = sc.camera.position, t = sc.camera.target, u = sc.camera.up;
-        const float d[3] = {t[0] - p[0], t[1] - p[1], t[2] - p[2]};
-        const float dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-        if (!(dd > 0.f)) fail(w, "position and target are the same point: the camera has no direction to look in");
-        if (!(uu > 0.f)) fail(w + ".up", "must not be [0, 0, 0]");
-        const float cx = d[1] * u[2] - d[2] * u[1], cy = d[2] * u[0] - d[0] * u[2], cz = d[0] * u[1] - d[1] * u[0];
-        if (!(cx * cx + cy * cy + cz * cz > 1e-12f * dd * uu))
-            fail(w + ".up", "is parallel to the direction from position to target: choose an up that is not");
-    }
-    if (const json* sh = find(j, "shape")) {
-        const std::string w = name + ": shape";
-        check_keys(*sh, w, {"type", "radius", "size"});
-        if (const json* t = find(*sh, "type")) {
-            const std::string type = t->is_string() ? t->get<std::string>() : "";
-            const auto shape = parse_shape(type);
-            if (!shape)
-                fail(w + ".type", "expected \"sphere\", \"cube\", \"plane\" or \"shaderball\", got " + t->dump());
-            sc.shape.type = *shape;
-        }
-        sc.shape.size = default_shape_size(sc.shape.type);
-        const json* size = find(*sh, sc.shape.type == render::ShapeType::sphere ? "radius" : "size");
-        if (!size) size = find(*sh, "size");
-        if (!size) size = find(*sh, "radius");
-        if (size) {
-            sc.shape.size = number(*size, w + ".radius/size");
-            if (!(sc.shape.size > 0.f)) fail(w, "size must be positive");
-            out.shape_size_given = true;
-        }
-    }
-    if (const json* bg = find(j, "background")) sc.background = color(*bg, name + ": background");
-    if (const json* lights = find(j, "lights")) {
-        if (!lights->is_array()) fail(name + ": lights", "expected an array");
-        if (lights->size() > render::kMaxLights)
-            fail(name + ": lights", "at most " + std::to_string(render::kMaxLights) + " lights");
-        sc.lights.clear();
-        for (size_t i = 0; i < lights->size(); ++i) {
-            const json& l = (*lights)[i];
-            const std::string w = name + ": lights[" + std::to_string(i) + "]";
-            check_keys(l, w, {"type", "direction", "position", "color", "intensity"});
-            render::Light light;
-            const json* t = find(l, "type");
-            if (t && !t->is_string()) fail(w + ".type", "expected \"directional\" or \"point\"");
-            const std::string type = t ? t->get<std::string>() : "directional";
-            if (type == "directional") {
-                light.type = render::LightType::directional;
-                if (const json* d = find(l, "direction")) light.direction = vec3(*d, w + ".direction");
-                const auto& d = light.direction;
-                if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-12f) fail(w + ".direction", "zero length");
-            } else if (type == "point") {
-                light.type = render::LightType::point;
-                const json* p = find(l, "position");
-                if (!p) fail(w, "a point light needs a position");
-                light.position = vec3(*p, w + ".position");
-                light.intensity = 10.f;
-            } else {
-                fail(w + ".type", "expected \"directional\" or \"point\"");
-            }
-            if (const json* c = find(l, "color")) light.color = color(*c, w + ".color");
-            if (const json* v = find(l, "intensity")) light.intensity = number(*v, w + ".intensity");
-            if (light.intensity < 0.f) fail(w + ".intensity", "must not be negative");
-            sc.lights.push_back(light);
-        }
-    }
-    if (const json* env = find(j, "environment")) {
-        const std::string w = name + ": environment";
-        check_keys(*env, w, {"file", "intensity"});
-        const json* f = find(*env, "file");
-        if (!f || !f->is_string()) fail(w, "needs \"file\"");
-        out.environment = base / f->get<std::string>();
-        if (const json* v = find(*env, "intensity"))
-            out.environment_intensity = number_in(*v, w + ".intensity", 0.f, std::numeric_limits<float>::max());
-    }
-    if (const json* m = find(j, "material")) {
-        const std::string w = name + ": material";
-        check_keys(*m, w, {"albedo", "roughness", "metalness", "emissive", "maps", "normal_convention"});
-        SceneMaterial sm;
-        if (const json* v = find(*m, "albedo")) sm.albedo = color(*v, w + ".albedo", 1.f);
-        if (const json* v = find(*m, "emissive")) sm.emissive = color(*v, w + ".emissive");
-        if (const json* v = find(*m, "roughness")) sm.roughness = number_in(*v, w + ".roughness", 0.f, 1.f);
-        if (const json* v = find(*m, "metalness")) sm.metalness = number_in(*v, w + ".metalness", 0.f, 1.f);
-        if (const json* v = find(*m, "normal_convention")) {
-            if (*v != "gl" && *v != "dx") fail(w + ".normal_convention", "expected \"gl\" or \"dx\"");
-            sm.normal_convention = *v == "dx" ? NormalConvention::dx : NormalConvention::gl;
-        }
-        if (const json* maps = find(*m, "maps")) {
-            const std::string wm = w + ".maps";
-            check_keys(*maps, wm, {"albedo", "normal", "roughness", "metalness", "occlusion", "emissive", "opacity"});
-            auto get = [&](const char* role, std::optional<SceneMaterial::Map>& dst) {
-                if (const json* v = find(*maps, role)) dst = map_ref(*v, base, wm + "." + role);
-            };
-            get("albedo", sm.albedo_map);
-            get("normal", sm.normal_map);
-            get("roughness", sm.roughness_map);
-            get("metalness", sm.metalness_map);
-            get("occlusion", sm.occlusion_map);
-            get("emissive", sm.emissive_map);
-            get("opacity", sm.opacity_map);
-        }
-        out.material = sm;
-    }
-    if (const json* o = find(j, "output")) {
-        const std::string w = name + ": output";
-        check_keys(*o, w, {"transfer", "exposure", "tonemap"});
-        if (const json* t = find(*o, "tonemap")) {
-            const auto tm = t->is_string() ? render::parse_tonemap(t->get<std::string>()) : std::nullopt;
-            if (!tm) fail(w + ".tonemap", "expected \"none\", \"neutral\" or \"aces\"");
-            out.output.tonemap = *tm;
-        }
-        if (const json* t = find(*o, "transfer")) {
-            if (*t == "srgb") out.output.transfer = render::Transfer::srgb;
-            else if (*t == "linear") out.output.transfer = render::Transfer::linear;
-            else fail(w + ".transfer", "expected \"srgb\" or \"linear\"");
-        }
-        if (const json* e = find(*o, "exposure")) {
-            out.output.exposure = number(*e, w + ".exposure");
-            if (out.output.exposure < 0.f) fail(w + ".exposure", "must not be negative");
-        }
-    }
-    if (const json* g = find(j, "ground")) {
-        const std::string w = name + ": ground";
-        if (g->is_boolean()) {
-            sc.ground.enabled = g->get<bool>();
-        } else {
-            if (!g->is_object())
-                fail(w, "expected true, false or {\"albedo\", \"roughness\", \"light_deg\"}, got " + g->dump());
-            check_keys(*g, w, {"albedo", "roughness", "light_deg"});
-            sc.ground.enabled = true;
-            if (const json* v = find(*g, "albedo")) sc.ground.albedo = number_in(*v, w + ".albedo", 0.f, 1.f);
-            if (const json* v = find(*g, "roughness")) sc.ground.roughness = number_in(*v, w + ".roughness", 0.f, 1.f);
-            if (const json* v = find(*g, "light_deg"))
-                sc.ground.light_deg = number_in(*v, w + ".light_deg", 0.1f, 45.f);
-        }
-    }
-    if (const json* uv = find(j, "uv")) {
-        const std::string w = name + ": uv";
-        check_keys(*uv, w, {"scale", "offset", "aspect"});
-        if (const json* v = find(*uv, "scale")) {
-            if (v->is_number()) {
-                out.uv_scale[0] = out.uv_scale[1] = number_in(*v, w + ".scale", 1e-3f, 1e3f);
-            } else {
-                if (!v->is_array() || v->size() != 2)
-                    fail(w + ".scale", "expected a number or [u, v], got " + v->dump());
-                out.uv_scale = {number_in((*v)[0], w + ".scale", 1e-3f, 1e3f),
-                                number_in((*v)[1], w + ".scale", 1e-3f, 1e3f)};
-            }
-        }
-        if (const json* v = find(*uv, "offset")) {
-            if (!v->is_array() || v->size() != 2) fail(w + ".offset", "expected [u, v], got " + v->dump());
-            out.uv_offset = {number_in((*v)[0], w + ".offset", -1e3f, 1e3f),
-                             number_in((*v)[1], w + ".offset", -1e3f, 1e3f)};
-        }
-        if (const json* v = find(*uv, "aspect")) {
-            if (*v != "keep" && *v != "stretch") fail(w + ".aspect", "expected \"keep\" or \"stretch\"");
-            out.keep_aspect = *v == "keep";
-        }
-    }
-    if (const json* b = find(j, "brdf")) {
-        const auto brdf = b->is_string() ? render::parse_brdf(b->get<std::string>()) : std::nullopt;
-        if (!brdf) fail(name + ": brdf", "expected \"standard\", \"accurate\" or \"assignment\"");
-        sc.brdf = *brdf;
-    }
+    if (const json* v = find(j, "image")) read_image(*v, name, sc);
+    if (const json* v = find(j, "camera")) read_camera(*v, name, sc);
+    if (const json* v = find(j, "shape")) read_shape(*v, name, out);
+    if (const json* v = find(j, "background")) sc.background = color(*v, name + ": background");
+    if (const json* v = find(j, "lights")) read_lights(*v, name, sc);
+    if (const json* v = find(j, "environment")) read_environment(*v, base, name, out);
+    if (const json* v = find(j, "material")) out.material = read_material(*v, base, name);
+    if (const json* v = find(j, "output")) read_output(*v, name, out.output);
+    if (const json* v = find(j, "ground")) read_ground(*v, name, sc);
+    if (const json* v = find(j, "uv")) read_uv(*v, name, out);
+    if (const json* v = find(j, "brdf")) read_brdf(*v, name, sc);
     return out;
 }
 

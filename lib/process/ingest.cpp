@@ -17,12 +17,12 @@
 #include "core/version.hpp"
 #include "manifest/spool.hpp"
 #include "pack/pack.hpp"
+#include "plan/plan.hpp"
 #include "preset/texture_fields.hpp"
-#include "process/cache.hpp"
 #include "process/material_file.hpp"
-#include "process/output_dir.hpp"
-#include "process/plan.hpp"
 #include "process/work.hpp"
+#include "store/cache.hpp"
+#include "store/output_dir.hpp"
 #include "texture/texture.hpp"
 
 namespace mf {
@@ -154,7 +154,7 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
 struct Ingestor::Run {
     explicit Run(OutputFolder& f) : folder(f) {}
     // The output folder, ours for the run (lock, journal, files that are not ours refused:
-    // process/output_dir.hpp): every file of the run is written through it.
+    // store/output_dir.hpp): every file of the run is written through it.
     OutputFolder& folder;
     // The outputs whose paths another output claimed first: material -> suffix -> why.
     std::map<std::string, std::map<std::string, std::string>> refused;
@@ -218,6 +218,106 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     return res;
 }
 
+namespace {
+
+// One output of a set: what writing it needs of its set and its run.
+struct OutputJob {
+    const Preset& preset;
+    const ColorContext& color;
+    const SetPlan& plan;
+    const Planes& planes;
+    const std::string& set_name;
+    Size size;                                          // the set's size (the planes')
+    const std::map<std::string, std::string>* refused;  // output suffix -> why it may not be written
+    std::function<bool(const std::string& rel, std::span<const unsigned char>, std::string& error)>
+        write;  // the run's folder
+};
+
+struct Written {
+    std::optional<manifest::Output> entry;  // set when written
+    std::optional<Finding> failure;
+    std::vector<Finding> notes;  // block-compressed outputs: resized top level, error over the bound
+};
+
+// Packs, encodes and writes one output through the run's folder; its manifest entry, or why not.
+Written write_output(const OutputSpec& o, const OutputJob& job) {
+    auto failed = [](std::string msg) {
+        return Written{std::nullopt, finding(code::output_write_failed, "", "", std::move(msg)), {}};
+    };
+    const std::string rel = job.preset.output_path(job.set_name, o);
+    const fs::path rel_path = fs::path(rel).lexically_normal();
+    if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..")
+        return failed("output path '" + rel + "' leaves the output folder; skipped");
+    if (job.refused)
+        if (const auto why = job.refused->find(o.suffix); why != job.refused->end())
+            return failed(why->second + "; not written");
+    if (stop_requested()) return failed(rel + ": not written (interrupted)");
+    const auto roles = o.roles();
+    const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return job.planes.count(r) > 0; });
+    const Size size = any_map ? job.size : Size{job.preset.constant_size, job.preset.constant_size};
+    std::vector<unsigned char> bytes;
+    std::string err;
+    bool encoded = false;
+    std::optional<texture::EncodedOutput> gpu;  // dds, ktx2: the mip levels in GPU blocks (lib/texture)
+    if (is_block_container(job.preset.format)) {
+        gpu.emplace();
+        encoded = texture::encode_output(o, job.planes, size, {&job.preset, &job.color, std::string(kGenerator), 1},
+                                         *gpu, err);
+        bytes = std::move(gpu->bytes);
+    } else {
+        // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
+        std::optional<Image8> packed8 = pack_output8(o, job.planes, job.preset, size, job.color);
+        const EncodeOptions enc{job.preset.format, o.bit_depth};
+        encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
+                          : encode_image(pack_output(o, job.planes, job.preset, size, job.color), enc, bytes, err);
+    }
+    // Written through the run's folder: under it, never through a link, journalled.
+    const std::string file = rel_path.generic_string();
+    if (!encoded) return failed(rel + ": " + err);
+    if (!job.write(file, bytes, err)) return failed(err.rfind(file, 0) == 0 ? err : rel + ": " + err);
+    manifest::Output e;
+    e.file = rel_path.generic_string();
+    e.srgb = o.srgb;
+    e.channels = manifest_channels(effective_channels(o, job.planes));
+    if (std::find(roles.begin(), roles.end(), Role::normal) != roles.end()) {
+        e.normal_convention = job.preset.normal_convention;
+        // The one owner of "the green channel was flipped" (the report reads it here).
+        if (job.plan.routes.count(Role::normal) && job.plan.normal_from() != job.preset.normal_convention)
+            e.normal_converted_from = job.plan.normal_from();
+    }
+    e.width = size.width;
+    e.height = size.height;
+    e.bit_depth = o.bit_depth;
+    e.format = std::string(word(job.preset.format));
+    e.sha256 = sha256_hex(bytes);
+    if (!gpu) return Written{std::move(e), std::nullopt, {}};
+    e.width = gpu->width;
+    e.height = gpu->height;
+    e.block_format = gpu->block_format;
+    e.gpu_format = gpu->gpu_format;
+    e.supercompression = gpu->supercompression;
+    e.normal_z_reconstructed = gpu->normal_xy;
+    e.levels = std::move(gpu->levels);
+    return Written{std::move(e), std::nullopt, std::move(gpu->findings)};
+}
+
+// GPUs and engines import at most kMaxImageSide pixels a side (core/limits.hpp): a larger
+// output is written, and said so (once a set: the first such output).
+std::optional<Finding> too_large(const std::vector<Written>& written) {
+    for (const auto& r : written)
+        if (r.entry && std::max(r.entry->width, r.entry->height) > kMaxImageSide)
+            return finding(code::output_too_large, "", "",
+                           r.entry->file + " is " + std::to_string(r.entry->width) + "x" +
+                               std::to_string(r.entry->height) + ": wider or taller than " +
+                               std::to_string(kMaxImageSide) +
+                               " pixels, which engines and GPUs do not import; downsample the source or set "
+                               "the preset's max_size",
+                           {{"size", {r.entry->width, r.entry->height}}, {"limit", kMaxImageSide}});
+    return std::nullopt;
+}
+
+}  // namespace
+
 MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget, Run& run) const {
     struct InFlight {  // counts this set as running until it returns or throws
         std::atomic<int>& n;
@@ -243,82 +343,27 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     const float emissive_strength = normalize_hdr_emissive(planes, preset_);
 
     // Pack, encode, write.
-    const fs::path mat_dir = opt_.out_dir / src.name;
-    remove_stale_temps(mat_dir);
-    struct Written {
-        std::optional<manifest::Output> entry;  // set when written
-        std::optional<Finding> failure;
-        std::vector<Finding> notes;  // block-compressed outputs: resized top level, error over the bound
-    };
+    remove_stale_temps(opt_.out_dir / src.name);
     std::vector<const OutputSpec*> wanted;
     for (const auto& o : preset_.outputs)
         if (output_needed(o, planes)) wanted.push_back(&o);
     std::vector<Written> written(wanted.size());
-    auto write_output = [&](const OutputSpec& o) -> Written {
-        auto failed = [](std::string msg) {
-            return Written{std::nullopt, finding(code::output_write_failed, "", "", std::move(msg)), {}};
-        };
-        const std::string rel = preset_.output_path(src.name, o);
-        const fs::path rel_path = fs::path(rel).lexically_normal();
-        if (rel_path.is_absolute() || rel_path.empty() || *rel_path.begin() == "..")
-            return failed("output path '" + rel + "' leaves the output folder; skipped");
-        if (const auto m = run.refused.find(src.name); m != run.refused.end())
-            if (const auto why = m->second.find(o.suffix); why != m->second.end())
-                return failed(why->second + "; not written");
-        if (stop_requested()) return failed(rel + ": not written (interrupted)");
-        const auto roles = o.roles();
-        const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
-        const Size size = any_map ? Size{w, h} : Size{preset_.constant_size, preset_.constant_size};
-        std::vector<unsigned char> bytes;
-        std::string err;
-        bool encoded = false;
-        std::optional<texture::EncodedOutput> gpu;  // dds, ktx2: the mip levels in GPU blocks (lib/texture)
-        if (is_block_container(preset_.format)) {
-            gpu.emplace();
-            encoded = texture::encode_output(o, planes, size, {&preset_, color_.get(), std::string(kGenerator), 1},
-                                             *gpu, err);
-            bytes = std::move(gpu->bytes);
-        } else {
-            // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
-            std::optional<Image8> packed8 = pack_output8(o, planes, preset_, size, *color_);
-            const EncodeOptions enc{preset_.format, o.bit_depth};
-            encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
-                              : encode_image(pack_output(o, planes, preset_, size, *color_), enc, bytes, err);
-        }
-        // Written through the run's folder: under it, never through a link, journalled.
-        const std::string file = rel_path.generic_string();
-        if (!encoded) return failed(rel + ": " + err);
-        if (!run.write(file, bytes, err)) return failed(err.rfind(file, 0) == 0 ? err : rel + ": " + err);
-        manifest::Output e;
-        e.file = rel_path.generic_string();
-        e.srgb = o.srgb;
-        e.channels = manifest_channels(effective_channels(o, planes));
-        if (std::find(roles.begin(), roles.end(), Role::normal) != roles.end()) {
-            e.normal_convention = preset_.normal_convention;
-            // The one owner of "the green channel was flipped" (the report reads it here).
-            if (plan.routes.count(Role::normal) && plan.normal_from() != preset_.normal_convention)
-                e.normal_converted_from = plan.normal_from();
-        }
-        e.width = size.width;
-        e.height = size.height;
-        e.bit_depth = o.bit_depth;
-        e.format = std::string(word(preset_.format));
-        e.sha256 = sha256_hex(bytes);
-        if (!gpu) return Written{std::move(e), std::nullopt, {}};
-        e.width = gpu->width;
-        e.height = gpu->height;
-        e.block_format = gpu->block_format;
-        e.gpu_format = gpu->gpu_format;
-        e.supercompression = gpu->supercompression;
-        e.normal_z_reconstructed = gpu->normal_xy;
-        e.levels = std::move(gpu->levels);
-        return Written{std::move(e), std::nullopt, std::move(gpu->findings)};
-    };
+    const auto refused = run.refused.find(src.name);
+    const OutputJob job{preset_,
+                        *color_,
+                        plan,
+                        planes,
+                        src.name,
+                        Size{w, h},
+                        refused == run.refused.end() ? nullptr : &refused->second,
+                        [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+                            return run.write(rel, b, e);
+                        }};
     // Outputs are packed and encoded on two threads (each output on one: deflate is serial) when
     // a worker is idle (above).
     parallel_for(wanted.size(), idle_worker ? 2 : 1, [&](size_t i) {
         try {
-            written[i] = write_output(*wanted[i]);
+            written[i] = write_output(*wanted[i], job);
         } catch (const std::bad_alloc&) {  // parallel_for's fn must not throw
             written[i].failure = finding(code::output_write_failed, "", "",
                                          preset_.output_path(src.name, *wanted[i]) +
@@ -330,19 +375,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                                          preset_.output_path(src.name, *wanted[i]) + ": " + e.what());
         }
     });
-    // GPUs and engines import at most kMaxImageSide pixels a side (core/limits.hpp): a larger
-    // output is written, and said so.
-    for (const auto& r : written)
-        if (r.entry && std::max(r.entry->width, r.entry->height) > kMaxImageSide) {
-            plan.findings.push_back(finding(
-                code::output_too_large, "", "",
-                r.entry->file + " is " + std::to_string(r.entry->width) + "x" + std::to_string(r.entry->height) +
-                    ": wider or taller than " + std::to_string(kMaxImageSide) +
-                    " pixels, which engines and GPUs do not import; downsample the source or set "
-                    "the preset's max_size",
-                {{"size", {r.entry->width, r.entry->height}}, {"limit", kMaxImageSide}}));
-            break;
-        }
+    if (auto f = too_large(written)) plan.findings.push_back(std::move(*f));
 
     manifest::Material& m = res.entry;
     for (auto& r : written) {  // preset order, whatever finished first
@@ -371,19 +404,57 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     return res;
 }
 
+namespace {
+
+// The output folder, made when missing. Empty, or why it cannot be (a link to nothing).
+std::string make_output_folder(const fs::path& out) {
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(out, ec)) && !fs::exists(out, ec))
+        return out.string() + ": a symbolic link to " + fs::read_symlink(out, ec).string() +
+               ", which does not exist; create its target or choose another output folder";
+    fs::create_directories(out, ec);
+    if (ec || !fs::is_directory(out, ec))
+        return out.string() + ": cannot create the output folder (" + ec.message() + ")";
+    return {};
+}
+
+// Keeps the sets of shard (index, count) only (process/work: stable, balanced by size); returns
+// the digest of the library's split, which every shard of the run records.
+std::string keep_shard(std::vector<MaterialSource>& sets, std::pair<int, int> shard, const std::string& context) {
+    std::vector<uint64_t> bytes;
+    bytes.reserve(sets.size());
+    for (const auto& s : sets) bytes.push_back(set_bytes(s));
+    const std::vector<int> assigned = assign_shards(sets, bytes, shard.second);
+    std::string plan = plan_digest(sets, bytes, assigned, shard.second, context);
+    std::vector<MaterialSource> mine;
+    for (size_t i = 0; i < sets.size(); ++i)
+        if (assigned[i] == shard.first) mine.push_back(std::move(sets[i]));
+    sets = std::move(mine);
+    return plan;
+}
+
+// Every output path is claimed before any set runs, in set order: two outputs that would be
+// one file (a preset pattern that leaves names equal, names that differ in case only) are
+// refused the same way every run, and none is written twice. Returns set -> suffix -> why not.
+std::map<std::string, std::map<std::string, std::string>> claim_outputs(OutputFolder& folder, const Preset& preset,
+                                                                        const std::string& manifest_name,
+                                                                        const std::vector<MaterialSource>& sets) {
+    std::map<std::string, std::map<std::string, std::string>> refused;
+    for (const std::string& own : {manifest_name, folder.lock_name(), folder.journal_name()}) folder.claim(own, "");
+    for (const auto& set : sets)
+        for (const auto& o : preset.outputs) {
+            const std::string rel = preset.output_path(set.name, o);
+            if (std::string why = folder.claim(rel, set.name); !why.empty())
+                refused[set.name][o.suffix] = rel + ": " + why;
+        }
+    return refused;
+}
+
+}  // namespace
+
 IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     IngestResult result;
-    std::error_code ec;
-    if (fs::is_symlink(fs::symlink_status(opt_.out_dir, ec)) && !fs::exists(opt_.out_dir, ec)) {
-        result.error = opt_.out_dir.string() + ": a symbolic link to " + fs::read_symlink(opt_.out_dir, ec).string() +
-                       ", which does not exist; create its target or choose another output folder";
-        return result;
-    }
-    fs::create_directories(opt_.out_dir, ec);
-    if (ec || !fs::is_directory(opt_.out_dir, ec)) {
-        result.error = opt_.out_dir.string() + ": cannot create the output folder (" + ec.message() + ")";
-        return result;
-    }
+    if (result.error = make_output_folder(opt_.out_dir); !result.error.empty()) return result;
     std::vector<InputFailure> source_failures;
     std::string conflict;
     std::vector<std::string> skipped;  // earlier output folders in the inputs: said as notes
@@ -394,40 +465,19 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         result.usage_error = true;
         return result;
     }
-    // The folder is ours from here to the end (lock, journal): process/output_dir.hpp.
+    // The folder is ours from here to the end (lock, journal): store/output_dir.hpp.
     std::unique_ptr<OutputFolder> folder = OutputFolder::open({opt_.out_dir, opt_.manifest_name, opt_.force},
                                                               result.error, result.usage_error);
     if (!folder) return result;
     remove_stale_temps(opt_.out_dir);  // a killed run's, never a running one's
-    std::string plan;                  // a shard's: the digest of the library's split (merge checks the parts)
-    if (opt_.shard) {                  // this shard's sets only (process/work: stable, balanced by size)
-        std::vector<uint64_t> bytes;
-        bytes.reserve(sets.size());
-        for (const auto& s : sets) bytes.push_back(set_bytes(s));
-        const std::vector<int> shard = assign_shards(sets, bytes, opt_.shard->second);
-        plan = plan_digest(sets, bytes, shard, opt_.shard->second, context_digest(preset_, opt_.rules, *color_));
-        std::vector<MaterialSource> mine;
-        for (size_t i = 0; i < sets.size(); ++i)
-            if (shard[i] == opt_.shard->first) mine.push_back(std::move(sets[i]));
-        sets = std::move(mine);
-    }
-
-    // Every output path is claimed before any set runs, in set order: two outputs that would be
-    // one file (a preset pattern that leaves names equal, names that differ in case only) are
-    // refused the same way every run, and none is written twice.
     Run run{*folder};
-    for (const std::string& own : {opt_.manifest_name, folder->lock_name(), folder->journal_name()})
-        folder->claim(own, "");
-    for (const auto& set : sets)
-        for (const auto& o : preset_.outputs) {
-            const std::string rel = preset_.output_path(set.name, o);
-            if (std::string why = folder->claim(rel, set.name); !why.empty())
-                run.refused[set.name][o.suffix] = rel + ": " + why;
-        }
+    run.context = context_digest(preset_, opt_.rules, *color_);
+    // A shard's: the digest of the library's split (merge checks the parts).
+    const std::string plan = opt_.shard ? keep_shard(sets, *opt_.shard, run.context) : std::string();
+    run.refused = claim_outputs(*folder, preset_, opt_.manifest_name, sets);
     if (!folder->begin(result.error)) return result;
     // The cache never fails a run: one that cannot be opened is a problem reported, then off.
     std::optional<Cache> cache;
-    run.context = context_digest(preset_, opt_.rules, *color_);
     if (opt_.cache_dir) {
         std::string error;
         cache = Cache::create(*opt_.cache_dir, error);

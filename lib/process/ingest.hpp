@@ -15,7 +15,7 @@
 #include "core/findings.hpp"
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
-#include "process/sets.hpp"
+#include "sets/sets.hpp"
 #include "validate/rules.hpp"
 #include "validate/verdict.hpp"
 
@@ -40,9 +40,9 @@ struct IngestOptions {
     std::optional<std::pair<int, int>> shard;
     std::string manifest_name = "manifest.json";
     // --force: replace a manifest.json matforge did not write, and files in the way of outputs
-    // that no earlier run of ours wrote (process/output_dir.hpp).
+    // that no earlier run of ours wrote (store/output_dir.hpp).
     bool force = false;
-    // The result cache (process/cache.hpp): an unchanged set (same file contents, preset, rules,
+    // The result cache (store/cache.hpp): an unchanged set (same file contents, preset, rules,
     // OCIO config, matforge version) is restored from it instead of decoded and encoded again.
     // nullopt: no cache (--no-cache).
     std::optional<std::filesystem::path> cache_dir;

@@ -7,8 +7,8 @@
 #include "core/json.hpp"
 #include "core/parallel.hpp"
 #include "core/version.hpp"
-#include "process/plan.hpp"
-#include "process/sets.hpp"
+#include "plan/plan.hpp"
+#include "sets/sets.hpp"
 
 namespace mf {
 namespace {

@@ -14,7 +14,7 @@
 
 #include "color/color.hpp"
 #include "preset/preset.hpp"
-#include "process/sets.hpp"
+#include "sets/sets.hpp"
 #include "validate/rules.hpp"
 
 namespace mf {

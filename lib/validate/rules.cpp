@@ -137,188 +137,174 @@ bool glob_match(std::string_view p, std::string_view t) {
     return pi == p.size();
 }
 
+namespace {
+
+// The stages of RuleConfig::from_json: each reads one key of the rules object into `cfg` and
+// returns why it cannot (empty: read). Messages name the key and the code as a user wrote them.
+using Json = nlohmann::json;
+
+void disable(RuleConfig& cfg, const std::string& c) {
+    if (cfg.enabled(c)) cfg.disabled.push_back(c);
+}
+void enable(RuleConfig& cfg, const std::string& c) { std::erase(cfg.disabled, c); }
+
+// "preset": "strict" | "tolerant" resets the thresholds the rest of the object then adjusts.
+std::string read_preset(const Json& p, RuleConfig& cfg) {
+    if (p == "strict") cfg.thresholds = strict_thresholds();
+    else if (p == "tolerant") cfg.thresholds = Thresholds{};
+    else return "rules: \"preset\" must be \"tolerant\" or \"strict\"";
+    return {};
+}
+
+// A protected code (an invisible material, a corrupt file) may only be raised to error or kept on.
+std::string read_protected_rule(const std::string& c, const Json& rv) {
+    bool raise_only = rv == "error" || rv == true || rv == "on" || rv.is_object();
+    if (rv.is_object())
+        for (const auto& [k, kv] : rv.items())
+            raise_only = raise_only && ((k == "severity" && kv == "error") || (k == "enabled" && kv == true));
+    return raise_only ? std::string() : protected_message(c);
+}
+
+// "rules".CODE.NAME = number: one threshold of the code, within its range.
+std::string read_threshold(const std::string& c, const std::string& name, const Json& v, RuleConfig& cfg) {
+    const auto it = std::find_if(params().begin(), params().end(),
+                                 [&](const Param& p) { return p.code == c && p.name == name; });
+    if (it == params().end()) return "rules: \"" + c + "\" has no threshold \"" + name + "\"";
+    const auto [lo, hi] = threshold_range(name);
+    if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
+        return "rules: \"" + c + "\"." + name + " must be a number within " + json_number(lo) + ".." + json_number(hi);
+    cfg.thresholds.*(it->member) = v.get<double>();
+    return {};
+}
+
+// "rules".CODE: "off" | "on" | true | false | a severity | {"severity", "enabled", thresholds...}.
+std::string read_rule(const std::string& c, const Json& rv, RuleConfig& cfg) {
+    if (protected_code(c)) return read_protected_rule(c, rv);
+    if (!known_code(c)) return "rules: unknown finding code \"" + c + "\"";
+    std::string expected = "rules: \"" + c + "\": expected \"off\", a severity or an object";
+    if (rv.is_string() || rv.is_boolean()) {
+        if (rv == "off" || rv == false) disable(cfg, c);
+        else if (rv == true || rv == "on") enable(cfg, c);
+        else if (auto s = parse_severity(rv)) {
+            cfg.severity[c] = *s;
+            enable(cfg, c);
+        } else {
+            return expected;
+        }
+        return {};
+    }
+    if (!rv.is_object()) return expected;
+    for (const auto& [name, v] : rv.items()) {
+        if (name == "severity") {
+            const auto s = parse_severity(v);
+            if (!s) return "rules: \"" + c + "\".severity must be error, warning or info";
+            cfg.severity[c] = *s;
+        } else if (name == "enabled") {
+            if (!v.is_boolean()) return "rules: \"" + c + "\".enabled must be true or false";
+            if (v.get<bool>()) enable(cfg, c);
+            else disable(cfg, c);
+        } else if (std::string why = read_threshold(c, name, v, cfg); !why.empty()) {
+            return why;
+        }
+    }
+    return {};
+}
+
+std::string read_rules(const Json& val, RuleConfig& cfg) {
+    if (!val.is_object()) return "rules: \"rules\" must be an object keyed by finding code";
+    for (const auto& [c, rv] : val.items())
+        if (std::string why = read_rule(c, rv, cfg); !why.empty()) return why;
+    return {};
+}
+
+// "severityOverrides": {CODE: severity} (the older spelling of "rules").
+std::string read_severity_overrides(const Json& val, RuleConfig& cfg) {
+    if (!val.is_object()) return "rules: \"severityOverrides\" must be an object";
+    for (const auto& [c, v] : val.items()) {
+        const auto s = parse_severity(v);
+        if (protected_code(c)) {
+            if (s != Severity::error) return protected_message(c);
+            continue;
+        }
+        if (!known_code(c) || !s) return "rules: bad severityOverrides entry \"" + c + "\"";
+        cfg.severity[c] = *s;
+    }
+    return {};
+}
+
+// "ignore": [CODE, ...] switched off.
+std::string read_ignore(const Json& val, RuleConfig& cfg) {
+    if (!val.is_array()) return "rules: \"ignore\" must be an array of finding codes";
+    for (const auto& v : val) {
+        if (v.is_string() && protected_code(v.get<std::string>())) return protected_message(v.get<std::string>());
+        if (!v.is_string() || !known_code(v.get<std::string>()))
+            return "rules: \"ignore\" holds an unknown finding code";
+        disable(cfg, v.get<std::string>());
+    }
+    return {};
+}
+
+// One "suppress" entry: {"code": CODE or "*", "material": glob, "reason": text}.
+std::string read_suppression(const Json& v, Suppression& s) {
+    if (!v.is_object() || !v.contains("code") || !v.at("code").is_string())
+        return "rules: each \"suppress\" entry needs a \"code\"";
+    s.code = v.at("code").get<std::string>();
+    if (protected_code(s.code)) return protected_message(s.code);
+    if (s.code != "*" && !known_code(s.code))
+        return "rules: \"suppress\" names unknown finding code \"" + s.code + "\"";
+    if (v.contains("material")) {
+        if (!v.at("material").is_string()) return "rules: \"suppress\".material must be a string (glob)";
+        s.material = v.at("material").get<std::string>();
+    }
+    if (v.contains("reason") && v.at("reason").is_string()) s.reason = v.at("reason").get<std::string>();
+    for (const auto& item : v.items())
+        if (item.key() != "code" && item.key() != "material" && item.key() != "reason")
+            return "rules: unknown key \"" + item.key() + "\" in a \"suppress\" entry";
+    return {};
+}
+
+std::string read_suppress(const Json& val, RuleConfig& cfg) {
+    if (!val.is_array()) return "rules: \"suppress\" must be an array";
+    for (const auto& v : val) {
+        Suppression s;
+        if (std::string why = read_suppression(v, s); !why.empty()) return why;
+        cfg.suppressions.push_back(std::move(s));
+    }
+    return {};
+}
+
+// Bounds that contradict each other would make a rule fire on everything or on nothing.
+std::string check_bounds(const Thresholds& t) {
+    if (t.albedo_min_srgb > t.albedo_max_srgb)
+        return "rules: ALBEDO_TOO_DARK.min_srgb (" + json_number(t.albedo_min_srgb) +
+               ") is above ALBEDO_TOO_BRIGHT.max_srgb (" + json_number(t.albedo_max_srgb) + ")";
+    if (t.dielectric_max > t.metal_min)
+        return "rules: dielectric_max (" + json_number(t.dielectric_max) + ") is above metal_min (" +
+               json_number(t.metal_min) + ")";
+    return {};
+}
+
+}  // namespace
+
 std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::string& error, const RuleConfig& base) {
-    RuleConfig cfg = base;
     if (!j.is_object()) {
         error = "rules configuration must be a JSON object";
         return std::nullopt;
     }
-    auto disable = [&cfg](const std::string& c) {
-        if (cfg.enabled(c)) cfg.disabled.push_back(c);
-    };
-    auto enable = [&cfg](const std::string& c) { std::erase(cfg.disabled, c); };
+    RuleConfig cfg = base;
     // "preset" first: it resets the thresholds the rest of the object then adjusts.
-    if (j.contains("preset")) {
-        const auto& p = j.at("preset");
-        if (p == "strict") cfg.thresholds = strict_thresholds();
-        else if (p == "tolerant") cfg.thresholds = Thresholds{};
-        else {
-            error = "rules: \"preset\" must be \"tolerant\" or \"strict\"";
-            return std::nullopt;
-        }
-    }
-    for (const auto& [key, val] : j.items()) {
+    error = j.contains("preset") ? read_preset(j.at("preset"), cfg) : std::string();
+    for (auto it = j.begin(); error.empty() && it != j.end(); ++it) {
+        const std::string& key = it.key();
         if (key == "preset" || key == "$comment" || key == "description") continue;
-        if (key == "rules") {
-            if (!val.is_object()) {
-                error = "rules: \"rules\" must be an object keyed by finding code";
-                return std::nullopt;
-            }
-            for (const auto& [c, rv] : val.items()) {
-                if (protected_code(c)) {
-                    bool raise_only = rv == "error" || rv == true || rv == "on" || rv.is_object();
-                    if (rv.is_object())
-                        for (const auto& [k, kv] : rv.items())
-                            raise_only = raise_only &&
-                                         ((k == "severity" && kv == "error") || (k == "enabled" && kv == true));
-                    if (!raise_only) {
-                        error = protected_message(c);
-                        return std::nullopt;
-                    }
-                    continue;
-                }
-                if (!known_code(c)) {
-                    error = "rules: unknown finding code \"" + c + "\"";
-                    return std::nullopt;
-                }
-                if (rv.is_string() || rv.is_boolean()) {
-                    if (rv == "off" || rv == false) disable(c);
-                    else if (rv == true || rv == "on") enable(c);
-                    else if (auto s = parse_severity(rv)) {
-                        cfg.severity[c] = *s;
-                        enable(c);
-                    } else {
-                        error = "rules: \"" + c + "\": expected \"off\", a severity or an object";
-                        return std::nullopt;
-                    }
-                    continue;
-                }
-                if (!rv.is_object()) {
-                    error = "rules: \"" + c + "\": expected \"off\", a severity or an object";
-                    return std::nullopt;
-                }
-                for (const auto& [name, v] : rv.items()) {
-                    if (name == "severity") {
-                        auto s = parse_severity(v);
-                        if (!s) {
-                            error = "rules: \"" + c + "\".severity must be error, warning or info";
-                            return std::nullopt;
-                        }
-                        cfg.severity[c] = *s;
-                    } else if (name == "enabled") {
-                        if (!v.is_boolean()) {
-                            error = "rules: \"" + c + "\".enabled must be true or false";
-                            return std::nullopt;
-                        }
-                        if (v.get<bool>()) enable(c);
-                        else disable(c);
-                    } else {
-                        // Init-captures: clang < 16 cannot capture the structured bindings c and name.
-                        auto it = std::find_if(params().begin(), params().end(),
-                                               [&rule = c, &threshold = name](const Param& p) {
-                                                   return p.code == rule && p.name == threshold;
-                                               });
-                        if (it == params().end()) {
-                            error = "rules: \"" + c + "\" has no threshold \"" + name + "\"";
-                            return std::nullopt;
-                        }
-                        const auto [lo, hi] = threshold_range(name);
-                        if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi)) {
-                            error = "rules: \"" + c + "\"." + name + " must be a number within " + json_number(lo) +
-                                    ".." + json_number(hi);
-                            return std::nullopt;
-                        }
-                        cfg.thresholds.*(it->member) = v.get<double>();
-                    }
-                }
-            }
-        } else if (key == "severityOverrides") {
-            if (!val.is_object()) {
-                error = "rules: \"severityOverrides\" must be an object";
-                return std::nullopt;
-            }
-            for (const auto& [c, v] : val.items()) {
-                auto s = parse_severity(v);
-                if (protected_code(c) && s != Severity::error) {
-                    error = protected_message(c);
-                    return std::nullopt;
-                }
-                if (protected_code(c)) continue;
-                if (!known_code(c) || !s) {
-                    error = "rules: bad severityOverrides entry \"" + c + "\"";
-                    return std::nullopt;
-                }
-                cfg.severity[c] = *s;
-            }
-        } else if (key == "ignore") {
-            if (!val.is_array()) {
-                error = "rules: \"ignore\" must be an array of finding codes";
-                return std::nullopt;
-            }
-            for (const auto& v : val) {
-                if (v.is_string() && protected_code(v.get<std::string>())) {
-                    error = protected_message(v.get<std::string>());
-                    return std::nullopt;
-                }
-                if (!v.is_string() || !known_code(v.get<std::string>())) {
-                    error = "rules: \"ignore\" holds an unknown finding code";
-                    return std::nullopt;
-                }
-                disable(v.get<std::string>());
-            }
-        } else if (key == "suppress") {
-            if (!val.is_array()) {
-                error = "rules: \"suppress\" must be an array";
-                return std::nullopt;
-            }
-            for (const auto& v : val) {
-                if (!v.is_object() || !v.contains("code") || !v.at("code").is_string()) {
-                    error = "rules: each \"suppress\" entry needs a \"code\"";
-                    return std::nullopt;
-                }
-                Suppression s;
-                s.code = v.at("code").get<std::string>();
-                if (protected_code(s.code)) {
-                    error = protected_message(s.code);
-                    return std::nullopt;
-                }
-                if (s.code != "*" && !known_code(s.code)) {
-                    error = "rules: \"suppress\" names unknown finding code \"" + s.code + "\"";
-                    return std::nullopt;
-                }
-                if (v.contains("material")) {
-                    if (!v.at("material").is_string()) {
-                        error = "rules: \"suppress\".material must be a string (glob)";
-                        return std::nullopt;
-                    }
-                    s.material = v.at("material").get<std::string>();
-                }
-                if (v.contains("reason") && v.at("reason").is_string()) s.reason = v.at("reason").get<std::string>();
-                for (const auto& [k, unused] : v.items()) {
-                    (void)unused;
-                    if (k != "code" && k != "material" && k != "reason") {
-                        error = "rules: unknown key \"" + k + "\" in a \"suppress\" entry";
-                        return std::nullopt;
-                    }
-                }
-                cfg.suppressions.push_back(std::move(s));
-            }
-        } else {
-            error = "rules: unknown key \"" + key + "\"";
-            return std::nullopt;
-        }
+        if (key == "rules") error = read_rules(*it, cfg);
+        else if (key == "severityOverrides") error = read_severity_overrides(*it, cfg);
+        else if (key == "ignore") error = read_ignore(*it, cfg);
+        else if (key == "suppress") error = read_suppress(*it, cfg);
+        else error = "rules: unknown key \"" + key + "\"";
     }
-    // Bounds that contradict each other would make a rule fire on everything or on nothing.
-    if (cfg.thresholds.albedo_min_srgb > cfg.thresholds.albedo_max_srgb) {
-        error = "rules: ALBEDO_TOO_DARK.min_srgb (" + json_number(cfg.thresholds.albedo_min_srgb) +
-                ") is above ALBEDO_TOO_BRIGHT.max_srgb (" + json_number(cfg.thresholds.albedo_max_srgb) + ")";
-        return std::nullopt;
-    }
-    if (cfg.thresholds.dielectric_max > cfg.thresholds.metal_min) {
-        error = "rules: dielectric_max (" + json_number(cfg.thresholds.dielectric_max) + ") is above metal_min (" +
-                json_number(cfg.thresholds.metal_min) + ")";
-        return std::nullopt;
-    }
+    if (error.empty()) error = check_bounds(cfg.thresholds);
+    if (!error.empty()) return std::nullopt;
     return cfg;
 }
 

@@ -142,7 +142,7 @@ nlohmann::json describe(const RuleConfig& cfg);
 
 // Applies disabled codes, severity overrides and suppressions to a set's findings; protected
 // codes (UNREADABLE_FILE, …) are never dropped nor lowered. Called once per set, over every
-// stage's findings (process/plan.hpp reported_findings). Returns how many were dropped.
+// stage's findings (plan/plan.hpp reported_findings). Returns how many were dropped.
 int apply_config(std::vector<Finding>& findings, std::string_view material, const RuleConfig& cfg);
 
 // Glob match with '*' and '?', case-sensitive.

@@ -289,7 +289,7 @@ struct SetRun {
     }
 
     // The stable order (the catalog's). The rules config is applied by the caller, once over
-    // every stage's findings (process/plan.hpp reported_findings).
+    // every stage's findings (plan/plan.hpp reported_findings).
     SetValidation finish() {
         const auto& cat = finding_catalog();
         auto rank = [&](const Finding& f) {

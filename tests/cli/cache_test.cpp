@@ -1,4 +1,4 @@
-// The ingest cache (lib/process/cache.hpp) through the binary: an unchanged set is restored with
+// The ingest cache (lib/store/cache.hpp) through the binary: an unchanged set is restored with
 // the same bytes as a run without the cache, a changed file recomputes its set only, a corrupt
 // blob or an unusable cache never fails a run, and `matforge cache` reports and prunes it.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// ingest and validate decide once (process/plan): on the same sets they report the same
+// ingest and validate decide once (plan/plan): on the same sets they report the same
 // findings, code by code, and no finding twice. Run on the bundled samples and on every set of
 // the real-material corpus.
 #include <cmath>

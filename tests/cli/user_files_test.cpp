@@ -8,7 +8,7 @@
 #include <thread>
 
 #include "cli_util.hpp"
-#include "process/cache.hpp"
+#include "store/cache.hpp"
 
 using namespace mft;
 

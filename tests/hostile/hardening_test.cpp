@@ -10,7 +10,7 @@
 
 #include "hostile_fixture.hpp"
 #include "pack/pack.hpp"
-#include "process/sets.hpp"
+#include "sets/sets.hpp"
 
 using namespace mfh;
 

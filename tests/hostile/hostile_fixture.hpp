@@ -62,7 +62,7 @@ protected:
         EXPECT_TRUE(fs::is_regular_file(out / "Good" / "Good_basecolor.png"));
         EXPECT_TRUE(fs::is_regular_file(out / "Good" / "Good_orm.png"));
         EXPECT_TRUE(temp_files_under(out).empty());
-        // A finished run leaves neither its lock nor its journal (process/output_dir.hpp).
+        // A finished run leaves neither its lock nor its journal (store/output_dir.hpp).
         EXPECT_FALSE(fs::exists(fs::symlink_status(out / ".manifest.json.lock")));
         EXPECT_FALSE(fs::exists(fs::symlink_status(out / ".manifest.json.journal")));
     }

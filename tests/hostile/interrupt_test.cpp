@@ -19,7 +19,7 @@ std::vector<std::string> ingest_args(const fs::path& in, const fs::path& out, co
 }
 
 // A killed run's own state, not an output: its lock (holding its pid) and its journal (the files
-// it wrote, for the next run); a finished run removes both (process/output_dir.hpp).
+// it wrote, for the next run); a finished run removes both (store/output_dir.hpp).
 bool run_state(const std::string& rel) { return rel == ".manifest.json.lock" || rel == ".manifest.json.journal"; }
 
 // Every file under a final name is complete: byte-identical to the uninterrupted run's.

@@ -1,12 +1,12 @@
 // matforge cache stats|prune [--cache DIR] [--max-size SIZE]
-// The ingest cache (lib/process/cache.hpp): how big it is, and least-recently-used eviction.
+// The ingest cache (lib/store/cache.hpp): how big it is, and least-recently-used eviction.
 #include <chrono>
 #include <cstdlib>
 #include <memory>
 
 #include "command.hpp"
 #include "options.hpp"
-#include "process/cache.hpp"
+#include "store/cache.hpp"
 
 namespace mf::cli {
 namespace {

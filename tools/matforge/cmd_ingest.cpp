@@ -10,14 +10,14 @@
 #include "command.hpp"
 #include "core/files.hpp"
 #include "options.hpp"
-#include "process/cache.hpp"
 #include "process/ingest.hpp"
-#include "process/sets.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
 #include "report/formats.hpp"
 #include "report/report.hpp"
+#include "sets/sets.hpp"
 #include "stop.hpp"
+#include "store/cache.hpp"
 #include "summary.hpp"
 
 namespace mf::cli {

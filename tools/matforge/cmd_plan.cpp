@@ -7,9 +7,9 @@
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "core/version.hpp"
-#include "process/sets.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
+#include "sets/sets.hpp"
 
 namespace mf::cli {
 namespace {

@@ -3,26 +3,23 @@
 //   [--contact-sheet FILE.png] [--device auto|gpu|cpu] [--brdf standard|accurate|assignment]
 //   [--aa N|msaaN] [--textures fast|exact] [--shading auto|raster|compute] [--allow-outside]
 //   [--vk-validation]
-// Options -> scene -> materials -> images: every material is loaded, uploaded, rendered and
-// written in manifest order; one that fails is reported and the others are still rendered. A
-// pipeline: while material i renders (on the device, or lavapipe's threads), materials i+1 and
-// i+2 are read and their textures prepared on other threads, and material i-1's image is encoded
-// and written on another. Messages come out in manifest order, as one loop would say them.
+// Options -> scene -> materials -> images: the options become a scene (build_scene), the
+// manifest's materials (or the scene's own) jobs, and lib/preview's batch renders them
+// (preview/batch.hpp: the pipeline, messages in manifest order); this file maps the outcome to
+// the exit code and writes the contact sheet.
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <chrono>
-#include <deque>
 #include <functional>
-#include <future>
 #include <memory>
 #include <optional>
-#include <set>
 
 #include "command.hpp"
 #include "core/limits.hpp"
 #include "core/text.hpp"
+#include "preview/batch.hpp"
 #include "preview/preview.hpp"
 
 namespace mf::cli {
@@ -38,27 +35,6 @@ struct PreviewArgs {
     std::vector<std::string> lights;
     std::string format = "png", device = "auto";
     bool validation = false, allow_outside = false, ground = false;
-};
-
-// A material name as a file name: path separators and characters shells trip on become '_';
-// names that meet case-insensitively (A, a) get _2, _3 … so no preview overwrites another.
-std::string unique_stem(const std::string& name, std::set<std::string>& taken) {
-    std::string s = name;
-    for (char& c : s)
-        if (c == '/' || c == '\\' || c == ':' || c == '*' || c == '?' || c == '"' || c == '<' || c == '>' || c == '|')
-            c = '_';
-    if (s.empty() || s == "." || s == "..") s = "material";
-    std::string candidate = s;
-    for (int n = 2; !taken.insert(ascii_lower(candidate)).second; ++n) candidate = s + "_" + std::to_string(n);
-    return candidate;
-}
-
-struct Job {
-    std::string name, stem;
-    // `samples`: the device's block formats (DDS/KTX2 outputs go up as written where it takes them).
-    std::function<std::optional<render::Material>(const preview::BlockSupport& samples, std::vector<std::string>& notes,
-                                                  std::string& error)>
-        load;
 };
 
 // The scene with the command line's overrides applied; nullopt after printing a usage error.
@@ -132,50 +108,12 @@ std::optional<preview::SceneFile> build_scene(const PreviewArgs& a) {
 }
 
 // The materials to render: the manifest's, or the scene file's own. nullopt after a usage error.
-std::optional<std::vector<Job>> build_jobs(const PreviewArgs& a, const preview::SceneFile& sf) {
-    std::vector<Job> jobs;
-    std::set<std::string> stems;
-    if (!a.manifest.empty()) {
-        std::string error;
-        auto m = manifest::read_manifest(a.manifest, error);
-        if (!m) {
-            say("preview", error);
-            return std::nullopt;
-        }
-        const std::filesystem::path dir = std::filesystem::path(a.manifest).parent_path();
-        const preview::MaterialOptions mo{a.allow_outside, {}};
-        for (manifest::Material& mm : m->materials) {
-            const std::string stem = unique_stem(mm.name, stems);
-            jobs.push_back({mm.name, stem,
-                            [mm = std::move(mm), dir, mo, &sf](const preview::BlockSupport& samples,
-                                                               std::vector<std::string>& notes,
-                                                               std::string& err) -> std::optional<render::Material> {
-                                preview::MaterialOptions o = mo;
-                                o.samples = samples;
-                                auto mat = preview::load_material(mm, dir, o, notes, err);
-                                if (mat && sf.material && !preview::apply_scene_material(*sf.material, *mat, err))
-                                    return std::nullopt;
-                                if (mat) preview::place_textures(sf, *mat);
-                                return mat;
-                            }});
-        }
-        if (jobs.empty()) say("preview", "note: " + a.manifest + " lists no materials");
-        return jobs;
-    }
-    if (!sf.material) {
-        say("preview", a.scene + ": without a manifest the scene must hold a \"material\"");
-        return std::nullopt;
-    }
-    const std::string name = std::filesystem::path(a.scene).stem().string();
-    jobs.push_back({name, unique_stem(name, stems),
-                    [name, &sf](const preview::BlockSupport&, std::vector<std::string>&,
-                                std::string& err) -> std::optional<render::Material> {
-                        render::Material m;
-                        m.name = name;
-                        if (!preview::apply_scene_material(*sf.material, m, err)) return std::nullopt;
-                        preview::place_textures(sf, m);
-                        return m;
-                    }});
+std::optional<std::vector<preview::Job>> build_jobs(const PreviewArgs& a, const preview::SceneFile& sf) {
+    std::string error;
+    auto jobs = a.manifest.empty() ? preview::scene_jobs(a.scene, sf, error)
+                                   : preview::manifest_jobs(a.manifest, sf, a.allow_outside, error);
+    if (!jobs) say("preview", error);
+    else if (!a.manifest.empty() && jobs->empty()) say("preview", "note: " + a.manifest + " lists no materials");
     return jobs;
 }
 
@@ -186,191 +124,47 @@ ExitCode run_preview(const PreviewArgs& a) {
     if (!sf) return ExitCode::usage;
     const auto jobs = build_jobs(a, *sf);
     if (!jobs) return ExitCode::usage;
-    // Progress on a terminal, quiet otherwise (scripts read the exit code and the files).
-    const bool quiet = !::isatty(STDERR_FILENO);
-    const render::Scene& scene = sf->scene;
 
-    render::ContextOptions co;
-    co.device = *render::parse_device_kind(a.device);  // CLI11 checked the name
-    co.validation = a.validation;
-    if (a.validation) co.log = std::make_shared<render::MessageLog>();
-    ExitCode status = ExitCode::ok;
-    const auto started = std::chrono::steady_clock::now();
-    size_t rendered = 0, failed = 0;
-    std::vector<preview::SheetTile> tiles;
+    preview::BatchOptions opt;
+    opt.context.device = *render::parse_device_kind(a.device);  // CLI11 checked the name
+    opt.context.validation = a.validation;
+    if (a.validation) opt.context.log = std::make_shared<render::MessageLog>();
+    opt.out = a.out;
+    opt.format = a.format;
+    opt.contact_sheet = !a.contact_sheet.empty();
+    // Progress on a terminal, quiet otherwise (scripts read the exit code and the files).
+    opt.progress = ::isatty(STDERR_FILENO);
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
-
-    // What one material comes to: its messages in the order one loop would say them, whether it
-    // failed, and its 8-bit image for the contact sheet.
-    struct Outcome {
-        std::vector<std::string> lines;
-        bool failed = false;
-        std::vector<uint8_t> rgba8;
-    };
-    // The reading half, on a worker thread: files decoded, textures converted and their mips made
-    // (render::Renderer::prepare makes no Vulkan call that needs the renderer's thread).
-    struct Loaded {
-        std::optional<render::PreparedMaterial> prepared;
-        std::vector<std::string> notes;
-        std::string error;
-    };
+    const auto started = std::chrono::steady_clock::now();
+    preview::BatchResult r;
     try {
-        // The first material is read while the device starts and the scene's load-time passes
-        // run (the studio environment's prefiltering): the reading waits for the renderer only
-        // where it needs it, to know a GPU texture file's formats and to prepare the textures.
-        std::optional<render::Context> context;
-        std::optional<render::Renderer> renderer;
-        std::promise<void> made_early;
-        const std::shared_future<void> ready = made_early.get_future().share();
-        auto load = [&renderer, &ready, &jobs](size_t i) {
-            Loaded l;
-            try {
-                auto m = (*jobs)[i].load(
-                    [&](uint32_t f) {
-                        ready.get();
-                        return renderer->samples(f);
-                    },
-                    l.notes, l.error);
-                if (m) {
-                    ready.get();
-                    l.prepared = renderer->prepare(*m);
-                }
-            } catch (const std::exception& e) {  // this material's textures (or the renderer); the others go on
-                l.error = e.what();
-            }
-            return l;
-        };
-        std::deque<std::future<Loaded>> loading;
-        size_t launched = 0;
-        if (!jobs->empty()) loading.push_back(std::async(std::launch::async, load, launched++));
-        // Destroyed before `loading` (which waits for the readers): unset, it wakes them.
-        std::promise<void> made = std::move(made_early);
-        try {
-            context.emplace(co);
-            if (!quiet)
-                say("preview", context->info().name + (context->info().cpu ? " (CPU)" : "") + ", " +
-                                   std::to_string(scene.width) + "x" + std::to_string(scene.height) + ", " +
-                                   std::to_string(jobs->size()) + " material(s)");
-            renderer.emplace(*context, scene);
-            made.set_value();
-        } catch (...) {
-            made.set_exception(std::current_exception());
-            throw;
-        }
-        for (const std::string& n : renderer->take_notes()) say("preview", "note: " + n);
-        auto done = [](Outcome o) {
-            std::promise<Outcome> p;
-            p.set_value(std::move(o));
-            return p.get_future();
-        };
-        // Outcomes in manifest order, said as they complete; at most `keep` left in flight (the
-        // last material's image may still be being written while the next one renders).
-        std::deque<std::future<Outcome>> pending;
-        size_t reported = 0;
-        auto flush = [&](size_t keep) {
-            while (pending.size() > keep) {
-                Outcome o = pending.front().get();
-                pending.pop_front();
-                const Job& job = (*jobs)[reported++];
-                for (const std::string& line : o.lines) say("preview", line);
-                ++(o.failed ? failed : rendered);
-                if (o.failed) status = ExitCode::findings;
-                else if (!a.contact_sheet.empty())
-                    tiles.push_back({job.name, scene.width, scene.height, std::move(o.rgba8)});
-            }
-        };
-        // Reading runs ahead, so that it has work while the device renders (on lavapipe, whose
-        // passes are not all multithreaded, it fills idle cores): two materials ahead, one where
-        // the last material's textures took more than 128 MB (4K maps), none past 512 MB (8K:
-        // each in memory alone, as without the pipeline). The first is read alone, to know.
-        for (size_t i = 0; i < jobs->size(); ++i) {
-            if (launched == i) loading.push_back(std::async(std::launch::async, load, launched++));
-            const Job& job = (*jobs)[i];
-            Loaded l = loading.front().get();
-            loading.pop_front();
-            const size_t bytes = l.prepared ? l.prepared->bytes() : 0;
-            const size_t ahead = bytes > (size_t{512} << 20) ? 0 : bytes > (size_t{128} << 20) ? 1 : 2;
-            for (; launched < jobs->size() && launched <= i + ahead; ++launched)
-                loading.push_back(std::async(std::launch::async, load, launched));
-            Outcome o;
-            for (const std::string& n : l.notes) o.lines.push_back("note: " + n);
-            if (!l.prepared) {
-                o.lines.push_back(job.name + ": " + l.error);
-                o.failed = true;
-                pending.push_back(done(std::move(o)));
-                flush(1);
-                continue;
-            }
-            try {
-                const render::GpuMaterial gm = renderer->upload(std::move(*l.prepared));
-                for (const std::string& n : renderer->take_notes()) o.lines.push_back(job.name + ": note: " + n);
-                std::vector<uint8_t> rgba8;
-                std::vector<float> rgba32f;
-                if (a.format == "png" || !a.contact_sheet.empty()) rgba8 = renderer->render(gm, sf->output).rgba8;
-                if (a.format != "png") {
-                    render::OutputOptions lin;
-                    lin.format = render::PixelFormat::rgba32f;
-                    rgba32f = renderer->render(gm, lin).rgba32f;
-                }
-                // Encoded and written on a thread of its own while the next material renders.
-                const std::filesystem::path out = std::filesystem::path(a.out) / (job.stem + "." + a.format);
-                const std::string progress = "[" + std::to_string(i + 1) + "/" + std::to_string(jobs->size()) + "] ";
-                pending.push_back(std::async(std::launch::async, [&a, &scene, &job, out, progress, quiet,
-                                                                  o = std::move(o), rgba8 = std::move(rgba8),
-                                                                  rgba32f = std::move(rgba32f)]() mutable {
-                    std::string error;
-                    bool written = false;
-                    try {
-                        written = a.format == "png"
-                                      ? preview::write_png(out, scene.width, scene.height, rgba8, error)
-                                      : preview::write_exr(out, scene.width, scene.height, rgba32f, error);
-                    } catch (const std::exception& e) {
-                        error = e.what();
-                    }
-                    if (!written) {
-                        o.lines.push_back(job.name + ": " + error);
-                        o.failed = true;
-                    } else if (!quiet) {
-                        o.lines.push_back(progress + out.string());
-                    }
-                    o.rgba8 = std::move(rgba8);
-                    return std::move(o);
-                }));
-            } catch (const render::NoDeviceError&) {
-                throw;
-            } catch (const std::exception& e) {  // this material's upload or draw failed; the others go on
-                o.lines.push_back(job.name + ": " + e.what());
-                o.failed = true;
-                pending.push_back(done(std::move(o)));
-            }
-            flush(1);
-        }
-        flush(0);
+        r = preview::render_batch(*sf, *jobs, opt, [](const std::string& line) { say("preview", line); });
     } catch (const render::NoDeviceError& e) {
         return fail("preview", e.what());
     } catch (const std::exception& e) {
         return fail("preview", e.what(), ExitCode::findings);
     }
-    if (co.log) {
-        for (const std::string& msg : co.log->messages()) say("preview", "vulkan validation: " + msg);
-        if (co.log->count() > 0) status = ExitCode::findings;
+    ExitCode status = r.failed ? ExitCode::findings : ExitCode::ok;
+    if (const auto& log = opt.context.log) {
+        for (const std::string& msg : log->messages()) say("preview", "vulkan validation: " + msg);
+        if (log->count() > 0) status = ExitCode::findings;
     }
-    if (!a.contact_sheet.empty() && !tiles.empty()) {
+    if (opt.contact_sheet && !r.tiles.empty()) {
         uint32_t w = 0, h = 0;
         std::vector<uint8_t> sheet;
-        preview::compose_contact_sheet(tiles, w, h, sheet);
+        preview::compose_contact_sheet(r.tiles, w, h, sheet);
         const std::filesystem::path file(a.contact_sheet);
         if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ec);
         std::string error;
         if (!preview::write_png(file, w, h, sheet, error)) return fail("preview", error, ExitCode::findings);
-        if (!quiet) say("preview", "contact sheet: " + file.string());
+        if (opt.progress) say("preview", "contact sheet: " + file.string());
     }
     // One line on success too, as ingest and report say theirs (scripts may ignore it).
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    say("preview", std::to_string(rendered) + " rendered" +
-                       (failed ? ", " + std::to_string(failed) + " failed" : std::string()) + " in " + fixed(secs, 1) +
-                       " s: " + a.out + (a.contact_sheet.empty() ? "" : ", " + a.contact_sheet));
+    say("preview", std::to_string(r.rendered) + " rendered" +
+                       (r.failed ? ", " + std::to_string(r.failed) + " failed" : std::string()) + " in " +
+                       fixed(secs, 1) + " s: " + a.out + (a.contact_sheet.empty() ? "" : ", " + a.contact_sheet));
     return status;
 }
 

@@ -8,10 +8,10 @@
 #include "command.hpp"
 #include "core/files.hpp"
 #include "options.hpp"
-#include "process/sets.hpp"
 #include "process/validate_batch.hpp"
 #include "report/formats.hpp"
 #include "report/report.hpp"
+#include "sets/sets.hpp"
 #include "stop.hpp"
 
 namespace mf::cli {

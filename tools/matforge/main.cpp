@@ -9,8 +9,8 @@
 #include "core/text.hpp"
 #include "core/version.hpp"
 #include "image/image.hpp"
-#include "process/sets.hpp"
 #include "render/render.hpp"
+#include "sets/sets.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::cli {

@@ -1,4 +1,4 @@
-#include "process/sets.hpp"
+#include "sets/sets.hpp"
 
 #include <zip.h>
 

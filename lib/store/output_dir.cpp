@@ -1,4 +1,4 @@
-#include "process/output_dir.hpp"
+#include "store/output_dir.hpp"
 
 #include <algorithm>
 #include <cerrno>

@@ -1,4 +1,4 @@
-#include "process/plan.hpp"
+#include "plan/plan.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -7,7 +7,7 @@
 #include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "core/parallel.hpp"
-#include "process/missing.hpp"
+#include "plan/missing.hpp"
 #include "validate/validate.hpp"
 
 namespace mf {

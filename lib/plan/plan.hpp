@@ -19,7 +19,7 @@
 #include "material/discovery.hpp"
 #include "material/routing.hpp"
 #include "preset/preset.hpp"
-#include "process/sets.hpp"
+#include "sets/sets.hpp"
 #include "validate/rules.hpp"
 
 namespace mf {

@@ -1,4 +1,4 @@
-#include "process/cache.hpp"
+#include "store/cache.hpp"
 
 #include <sys/stat.h>
 

@@ -1,4 +1,4 @@
-#include "process/missing.hpp"
+#include "plan/missing.hpp"
 
 #include <algorithm>
 #include <cstdio>
