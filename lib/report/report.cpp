@@ -13,6 +13,7 @@
 #include "core/parallel.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
+#include "report/card.hpp"
 #include "report/html.hpp"
 
 namespace mf::report {
@@ -33,44 +34,11 @@ std::string safe_component(const std::string& name) {
     return s;
 }
 
-std::string percent(size_t part, size_t whole) {
-    return whole ? mf::percent(static_cast<double>(part) / static_cast<double>(whole)) : "—";
-}
-
 // Inside `dir` lexically (no absolute path, no ".."): a manifest must not make the report read
 // files elsewhere unless its user allows it (as preview does).
 bool inside(const fs::path& rel) {
     const auto n = rel.lexically_normal();
     return !n.is_absolute() && !n.empty() && *n.begin() != "..";
-}
-
-std::string channel_text(const Channel& c) {
-    switch (c.kind) {
-        case Channel::Kind::role: return std::string(role_name(c.role));
-        case Channel::Kind::smoothness: return "smoothness (1 − roughness)";
-        case Channel::Kind::constant: return "constant " + fixed(c.value, 3);
-        case Channel::Kind::unused: return "unused";
-    }
-    return "unused";
-}
-
-int channel_index(const std::string& key) {
-    if (key == "G") return 1;
-    if (key == "B") return 2;
-    if (key == "A") return 3;
-    return 0;  // R, RGB
-}
-
-// One picture written beside index.html.
-struct Pic {
-    std::string rel;  // relative to index.html
-    int width = 0, height = 0;
-};
-
-std::string img(const Pic& p, const std::string& alt, const std::string& cls = "") {
-    return "<img loading=\"lazy\" decoding=\"async\" src=\"" + percent_encode_path(p.rel) + "\" width=\"" +
-           std::to_string(p.width) + "\" height=\"" + std::to_string(p.height) + "\" alt=\"" + markup_escape(alt) +
-           "\"" + (cls.empty() ? "" : " class=\"" + cls + "\"") + ">";
 }
 
 // The work of one material: its pictures and its card.
@@ -88,7 +56,7 @@ public:
           other_preset_(std::move(other_preset)) {}
 
     void run() {
-        if (opt_.previews) preview_ = preview_pic(*opt_.previews, "preview.png");
+        if (opt_.previews) pics_.preview = preview_pic(*opt_.previews, "preview.png");
         read_outputs();
         if (opt_.sources) read_sources();
         overlays();
@@ -101,12 +69,6 @@ public:
     size_t images = 0;
 
 private:
-    struct OutputPics {
-        Pic main;
-        std::vector<std::pair<std::string, Pic>> channels;  // key -> grey picture
-        std::string problem;
-    };
-
     void problem(const std::string& what) { problems.push_back(m_.name + ": " + what); }
 
     // A picture as an 8-bit PNG in this material's folder: grey pictures as one channel (a third
@@ -231,7 +193,7 @@ private:
             Decoded image;
             OutputPics pics = output_pics(o, dir_, "out-", needed ? &image : nullptr);
             if (!pics.problem.empty()) problem(pics.problem);
-            out_pics_.push_back(std::move(pics));
+            pics_.outputs.push_back(std::move(pics));
             if (image.width() == 0) continue;
             bool albedo = false;
             for (const Channel& c : o.channels) {
@@ -239,7 +201,7 @@ private:
                 if (c.role == Role::albedo && c.key == "RGB") {
                     albedo = true;
                     albedo_srgb_ = o.srgb;
-                    if (!sheet_pic_ && !out_pics_.back().main.rel.empty()) sheet_pic_ = out_pics_.back().main;
+                    if (!pics_.sheet && !pics_.outputs.back().main.rel.empty()) pics_.sheet = pics_.outputs.back().main;
                 } else if (c.role == Role::metalness || c.role == Role::opacity) {
                     const int ch = std::min(channel_index(c.key), image.channels() - 1);
                     (c.role == Role::metalness ? metalness_ : opacity_) = plane_of(image, ch);
@@ -262,13 +224,13 @@ private:
             std::string error;
             if (!read(file, image, error)) {
                 problem("source " + error);
-                source_pics_.emplace_back();
+                pics_.sources.emplace_back();
                 continue;
             }
             const bool srgb = is_color_role(in.role) && in.color_space == "sRGB";
             auto p = write_pic(thumbnail_of(image, opt_.thumb_size, srgb),
                                "src-" + std::string(role_name(in.role)) + ".png");
-            source_pics_.push_back(p.value_or(Pic{}));
+            pics_.sources.push_back(p.value_or(Pic{}));
             if (!judge_sources) continue;
             if (in.role == Role::albedo) {
                 albedo_srgb_ = srgb;
@@ -295,20 +257,20 @@ private:
             const Scalar metal = scalar_of(metalness_, m_, Role::metalness, 0.f);
             const Scalar opacity = scalar_of(opacity_, m_, Role::opacity, 1.f);
             const validate::Thresholds& t = *opt_.thresholds;
-            albedo_pic_ = write_pic(albedo_->is_codes() ? albedo_overlay(albedo_->codes, albedo_srgb_, metal, opacity,
-                                                                         t, albedo_stats_, opt_.thumb_size)
-                                                        : albedo_overlay(albedo_->floats, albedo_srgb_, metal, opacity,
-                                                                         t, albedo_stats_, opt_.thumb_size),
-                                    "albedo-range.png");
+            pics_.albedo = write_pic(albedo_->is_codes() ? albedo_overlay(albedo_->codes, albedo_srgb_, metal, opacity,
+                                                                          t, pics_.albedo_stats, opt_.thumb_size)
+                                                         : albedo_overlay(albedo_->floats, albedo_srgb_, metal, opacity,
+                                                                          t, pics_.albedo_stats, opt_.thumb_size),
+                                     "albedo-range.png");
         }
         // A constant metalness written into a channel (glTF's B = 0) is no map to judge.
         const bool constant_metal = std::any_of(m_.constants.begin(), m_.constants.end(),
                                                 [](const manifest::Constant& c) { return c.role == Role::metalness; });
         if (metalness_ && !constant_metal) {
             const Scalar metal = scalar_of(metalness_, m_, Role::metalness, 0.f);
-            metal_pic_ = write_pic(metalness_overlay(metal, metalness_->width(), metalness_->height(), *opt_.thresholds,
-                                                     metal_stats_, opt_.thumb_size),
-                                   "metalness.png");
+            pics_.metalness = write_pic(metalness_overlay(metal, metalness_->width(), metalness_->height(),
+                                                          *opt_.thresholds, pics_.metal_stats, opt_.thumb_size),
+                                        "metalness.png");
         }
         albedo_.reset();
         metalness_.reset();
@@ -316,254 +278,18 @@ private:
     }
 
     void compare() {
-        if (opt_.compare_previews) compare_preview_ = preview_pic(*opt_.compare_previews, "compare-preview.png");
+        if (opt_.compare_previews) pics_.compare_preview = preview_pic(*opt_.compare_previews, "compare-preview.png");
         for (const manifest::Output& o : other_->outputs) {
             OutputPics pics = output_pics(o, other_dir_, "compare-", nullptr);
             if (!pics.problem.empty()) problem("--compare: " + pics.problem);
-            compare_pics_.push_back(std::move(pics));
+            pics_.compare.push_back(std::move(pics));
         }
     }
-
-    // ---- HTML ----
 
     void card() {
-        const std::string id = "m-" + stem_;
-        const auto worst_sev = worst(m_.findings);
-        const std::string sev = worst_sev ? std::string(severity_name(*worst_sev)) : "none";
-        std::string& h = card_html;
-        h += "<section class=\"card sev-" + sev + "\" id=\"" + id + "\" data-material=\"" + markup_escape(m_.name) +
-             "\" data-worst=\"" + sev + "\" data-index=\"" + std::to_string(index_) + "\">\n";
-        h += "<h2><a href=\"#" + id + "\">" + markup_escape(m_.name) + "</a>";
-        // The status badge says whether every output was written; "ok" beside an error would read
-        // as "the material is fine": the error badge alone says it then.
-        if (m_.status != manifest::Status::ok || worst_sev != Severity::error)
-            h += " <span class=\"badge status-" + std::string(manifest::status_name(m_.status)) + "\">" +
-                 std::string(manifest::status_name(m_.status)) + "</span>";
-        size_t counts[3] = {0, 0, 0};
-        for (const Finding& f : m_.findings) ++counts[static_cast<int>(f.severity)];
-        for (int s = 2; s >= 0; --s)
-            if (counts[s])
-                h += " <span class=\"badge sev-" + std::string(severity_name(static_cast<Severity>(s))) + "\">" +
-                     std::to_string(counts[s]) + " " + std::string(severity_name(static_cast<Severity>(s))) + "</span>";
-        h += "</h2>\n<div class=\"cols\">\n<div class=\"col\">\n";
-        sources_html(h);
-        normal_html(h);
-        findings_html(h);
-        h += "</div>\n<div class=\"col\">\n";
-        if (preview_)
-            h += "<figure class=\"preview\">" + img(*preview_, m_.name + " preview") +
-                 "<figcaption>preview</figcaption></figure>\n";
-        outputs_html(h);
-        h += "</div>\n</div>\n";
-        checks_html(h);
-        before_after_html(h);
-        h += "</section>\n";
-
-        const Pic* tile = preview_ ? &*preview_ : (sheet_pic_ ? &*sheet_pic_ : nullptr);
-        sheet_html = "<a class=\"tile sev-" + sev + "\" href=\"#" + id + "\">" +
-                     (tile ? img(*tile, m_.name) : std::string("<span class=\"noimg\"></span>")) + "<span>" +
-                     markup_escape(m_.name) + "</span></a>\n";
-    }
-
-    void sources_html(std::string& h) const {
-        h += "<h3>Sources</h3>\n<p class=\"meta\"><code>" + markup_escape(m_.source) + "</code>";
-        if (m_.archive) h += " in archive <code>" + markup_escape(*m_.archive) + "</code>";
-        h += " · naming <code>" + markup_escape(m_.convention) + "</code></p>\n";
-        h += "<table class=\"inputs\"><thead><tr><th>role</th><th>file</th><th>rule</th><th>size</th><th>encoding</th>"
-             "</tr></thead><tbody>\n";
-        for (const manifest::Input& in : m_.inputs) {
-            h += "<tr class=\"input\" data-role=\"" + std::string(role_name(in.role)) + "\"><td>" +
-                 std::string(role_name(in.role)) + "</td><td><code>" + markup_escape(in.file) + "</code></td><td>" +
-                 markup_escape(in.rule) + "</td><td>" + std::to_string(in.width) + "×" + std::to_string(in.height) +
-                 "×" + std::to_string(in.channels) + ", " + std::to_string(in.bit_depth) + "-bit" +
-                 (in.is_float ? " float" : "") + "</td><td>" + markup_escape(in.color_space) + "</td></tr>\n";
-        }
-        for (const manifest::Constant& c : m_.constants) {
-            std::string v;
-            for (size_t i = 0; i < c.value.size(); ++i) v += (i ? ", " : "") + fixed(c.value[i], 3);
-            h += "<tr class=\"constant\" data-role=\"" + std::string(role_name(c.role)) + "\"><td>" +
-                 std::string(role_name(c.role)) + "</td><td colspan=\"4\">no map: constant " + v + "</td></tr>\n";
-        }
-        h += "</tbody></table>\n";
-    }
-
-    void outputs_html(std::string& h) const {
-        h += "<h3>Outputs</h3>\n<div class=\"outputs\">\n";
-        for (size_t i = 0; i < m_.outputs.size(); ++i) output_figure(h, m_.outputs[i], out_pics_[i]);
-        h += "</div>\n";
-    }
-
-    static void output_figure(std::string& h, const manifest::Output& o, const OutputPics& pics) {
-        h += "<figure class=\"output\">";
-        if (!pics.main.rel.empty()) h += img(pics.main, o.file);
-        else h += "<span class=\"noimg\" title=\"" + markup_escape(pics.problem) + "\">not shown</span>";
-        h += "<figcaption><code>" + markup_escape(fs::path(o.file).filename().string()) + "</code><br>" +
-             std::to_string(o.width) + "×" + std::to_string(o.height) + " " + markup_escape(o.format) + " " +
-             std::to_string(o.bit_depth) + "-bit " + (o.srgb ? "sRGB" : "linear");
-        if (o.normal_convention) h += " · normal " + std::string(convention_name(*o.normal_convention));
-        h += "<table class=\"layout\">";
-        std::vector<Channel> channels = o.channels;  // the manifest's keys are sorted: show R, G, B, A
-        std::stable_sort(channels.begin(), channels.end(), [](const Channel& a, const Channel& b) {
-            return channel_index(a.key) < channel_index(b.key);
-        });
-        for (const Channel& c : channels) {
-            h += "<tr><th>" + markup_escape(c.key) + "</th><td>" + markup_escape(channel_text(c)) + "</td><td>";
-            for (const auto& [key, pic] : pics.channels)
-                if (key == c.key) h += img(pic, o.file + " " + key, "chan");
-            h += "</td></tr>";
-        }
-        h += "</table></figcaption></figure>\n";
-    }
-
-    void normal_html(std::string& h) const {
-        const manifest::Input* in = nullptr;
-        for (const auto& i : m_.inputs)
-            if (i.role == Role::normal) in = &i;
-        if (!in) return;
-        const manifest::Output* out = nullptr;
-        for (const auto& o : m_.outputs)
-            if (o.normal_convention) out = &o;
-        h += "<h3>Normal convention</h3>\n<p class=\"verdict\">";
-        const manifest::NormalFacts facts = in->normal.value_or(manifest::NormalFacts{});
-        h += "read as <b class=\"conv\">" + std::string(convention_name(facts.convention)) + "</b>";
-        if (facts.source == "name") h += ", from the file name";
-        else if (facts.source == "content") {
-            h += ", from the pixels";
-            if (!facts.method.empty()) h += " (" + markup_escape(facts.method) + ")";
-            if (facts.confidence) h += ", confidence " + fixed(*facts.confidence, 2);
-        } else {
-            h += ", undecided";
-        }
-        if (out) {
-            h += "; written as <b>" + std::string(convention_name(*out->normal_convention)) + "</b>";
-            h += out->normal_converted_from ? " (green flipped)" : " (green kept)";
-        }
-        h += "</p>\n";
-        // The evidence: every finding about the convention with its measured figures.
-        for (const Finding& f : m_.findings) {
-            if (f.code.rfind("NORMAL_CONVENTION", 0) != 0) continue;
-            h += "<div class=\"evidence\"><a href=\"" + rule_link(f.code) + "\">" + markup_escape(f.code) +
-                 "</a>: " + markup_escape(f.message) + figures_html(f.figures) + "</div>\n";
-        }
-    }
-
-    static std::string figures_html(const Figures& figures) {
-        if (figures.empty()) return {};
-        std::string h = "<details><summary>figures</summary><table class=\"figures\">";
-        for (const auto& [k, v] : figures)
-            h += "<tr><th>" + markup_escape(k) + "</th><td>" + markup_escape(figure_text(v)) + "</td></tr>";
-        return h + "</table></details>";
-    }
-
-    void findings_html(std::string& h) const {
-        h += "<h3>Findings</h3>\n";
-        if (m_.findings.empty()) {
-            h += "<p class=\"meta\">none</p>\n";
-            return;
-        }
-        h += "<table class=\"findings\"><thead><tr><th>severity</th><th>code</th><th>role</th><th>message</th></tr>"
-             "</thead><tbody>\n";
-        for (const Finding& f : m_.findings) {
-            const std::string sev(severity_name(f.severity));
-            h += "<tr class=\"finding sev-" + sev + "\" data-code=\"" + markup_escape(f.code) + "\" data-severity=\"" +
-                 sev + "\"><td><span class=\"badge sev-" + sev + "\">" + sev + "</span></td><td><a href=\"" +
-                 rule_link(f.code) + "\">" + markup_escape(f.code) + "</a></td><td>" + markup_escape(f.role) +
-                 "</td><td>" + markup_escape(f.message) +
-                 (f.file.empty() ? "" : " <code>" + markup_escape(f.file) + "</code>") + figures_html(f.figures) +
-                 "</td></tr>\n";
-        }
-        h += "</tbody></table>\n";
-    }
-
-    void checks_html(std::string& h) const {
-        if (!albedo_pic_ && !metal_pic_) return;
-        h += "<h3>Physically plausible ranges</h3>\n<div class=\"checks\">\n";
-        const validate::Thresholds& t = *opt_.thresholds;
-        if (albedo_pic_) {
-            // The shares are the findings' (surface_share: of the visible albedo), counted by the
-            // rules' own classifier under the run's thresholds (manifest "thresholds").
-            const AlbedoStats& s = albedo_stats_;
-            h += "<figure class=\"overlay albedo-range\">" + img(*albedo_pic_, m_.name + " albedo range") +
-                 "<figcaption>albedo luminance" + std::string(m_.outputs.empty() ? " of the source map" : "") +
-                 ", as the rules judge it: dielectric " + fixed(t.albedo_min_srgb, 0) + "–" +
-                 fixed(t.albedo_max_srgb, 0) + " sRGB, metal from " + fixed(t.metal_albedo_min_srgb, 0) +
-                 " sRGB<br><span class=\"key dark\"></span> too dark: dielectric <span class=\"share\" "
-                 "data-code=\"ALBEDO_TOO_DARK\">" +
-                 percent(s.dielectric_dark, s.visible) +
-                 "</span>, metal <span class=\"share\" data-code=\"METAL_ALBEDO_TOO_DARK\">" +
-                 percent(s.metal_dark, s.visible) +
-                 "</span> <span class=\"key bright\"></span> too bright: <span class=\"share\" "
-                 "data-code=\"ALBEDO_TOO_BRIGHT\">" +
-                 percent(s.dielectric_bright, s.visible) +
-                 "</span> <span class=\"key blend\"></span> blend (not judged): " + percent(s.blend, s.visible) +
-                 " <span class=\"meta\">(of the visible albedo)</span><br>dielectric " +
-                 percent(s.dielectric, s.visible) + ", metal " + percent(s.metal, s.visible) +
-                 (s.visible < s.pixels ? ", not visible " + percent(s.pixels - s.visible, s.pixels) : std::string()) +
-                 "</figcaption></figure>\n";
-        }
-        if (metal_pic_) {
-            const MetalnessStats& s = metal_stats_;
-            h += "<figure class=\"overlay metalness\">" + img(*metal_pic_, m_.name + " metalness") +
-                 "<figcaption>metalness: 0 " + percent(s.zero, s.pixels) + ", 1 " + percent(s.one, s.pixels) +
-                 "<br><span class=\"key near\"></span> near 0 or 1: " + percent(s.near_binary, s.pixels) +
-                 " <span class=\"key between\"></span> between " + fixed(t.dielectric_max, 2) + " and " +
-                 fixed(t.metal_min, 2) + ": " + percent(s.between, s.pixels) + "</figcaption></figure>\n";
-        } else {
-            std::string value = "0";
-            for (const manifest::Constant& c : m_.constants)
-                if (c.role == Role::metalness && !c.value.empty()) value = fixed(c.value[0], 3);
-            h += "<p class=\"meta\">metalness: no map (constant " + value + ")</p>\n";
-        }
-        h += "</div>\n";
-    }
-
-    void before_after_html(std::string& h) const {
-        const bool any_source = std::any_of(source_pics_.begin(), source_pics_.end(),
-                                            [](const Pic& p) { return !p.rel.empty(); });
-        if (!any_source && !other_ && !m_.archive) return;
-        h += "<details class=\"before-after\"><summary>Before / after</summary>\n";
-        if (m_.archive) h += "<p class=\"meta\">the sources are entries of a .zip: not shown</p>\n";
-        for (size_t i = 0; i < source_pics_.size() && i < m_.inputs.size(); ++i) {
-            const manifest::Input& in = m_.inputs[i];
-            if (source_pics_[i].rel.empty()) continue;
-            h += "<div class=\"pair\"><figure>" + img(source_pics_[i], in.file) + "<figcaption>source " +
-                 std::string(role_name(in.role)) + ": <code>" + markup_escape(in.file) +
-                 "</code></figcaption></figure>";
-            // The outputs this input's roles went into.
-            std::vector<Role> roles{in.role};
-            if (const auto layout = packed_layout(in.role); traits(in.role).packed)
-                for (const auto& r : layout)
-                    if (r) roles.push_back(*r);
-            if (in.role == Role::gloss) roles.push_back(Role::roughness);
-            for (size_t k = 0; k < m_.outputs.size(); ++k) {
-                const bool holds = std::any_of(m_.outputs[k].channels.begin(), m_.outputs[k].channels.end(),
-                                               [&](const Channel& c) {
-                                                   return (c.kind == Channel::Kind::role ||
-                                                           c.kind == Channel::Kind::smoothness) &&
-                                                          std::find(roles.begin(), roles.end(), c.role) != roles.end();
-                                               });
-                if (!holds || out_pics_[k].main.rel.empty()) continue;
-                h += "<span class=\"arrow\">→</span><figure>" + img(out_pics_[k].main, m_.outputs[k].file) +
-                     "<figcaption>output <code>" + markup_escape(fs::path(m_.outputs[k].file).filename().string()) +
-                     "</code></figcaption></figure>";
-            }
-            h += "</div>\n";
-        }
-        if (other_) {
-            h += "<h4>" + markup_escape(other_preset_) + " (--compare)</h4>\n<div class=\"pair\">";
-            if (preview_ || compare_preview_) {
-                if (preview_)
-                    h += "<figure>" + img(*preview_, "preview") +
-                         "<figcaption>this report's preset</figcaption></figure>";
-                if (compare_preview_)
-                    h += "<figure>" + img(*compare_preview_, "compare preview") + "<figcaption>" +
-                         markup_escape(other_preset_) + "</figcaption></figure>";
-            }
-            h += "</div>\n<div class=\"outputs\">";
-            for (size_t k = 0; k < other_->outputs.size(); ++k) output_figure(h, other_->outputs[k], compare_pics_[k]);
-            h += "</div>\n";
-        }
-        h += "</details>\n";
+        CardHtml c = write_card({m_, pics_, *opt_.thresholds, stem_, index_, other_, other_preset_});
+        card_html = std::move(c.card);
+        sheet_html = std::move(c.tile);
     }
 
     const Options& opt_;
@@ -577,120 +303,10 @@ private:
 
     std::set<std::string> taken_;
     std::map<std::string, Pic> written_;  // sha256 of a PNG -> where it is
-    std::optional<Pic> preview_, compare_preview_, sheet_pic_, albedo_pic_, metal_pic_;
-    std::vector<OutputPics> out_pics_, compare_pics_;
-    std::vector<Pic> source_pics_;
+    MaterialPictures pics_;
     std::shared_ptr<Decoded> albedo_, metalness_, opacity_;
     bool albedo_srgb_ = true;
-    AlbedoStats albedo_stats_;
-    MetalnessStats metal_stats_;
 };
-
-constexpr const char* kStyle =
-    "body{font:14px/1.45 system-ui,sans-serif;margin:0;color:#1b1f24;background:#f6f7f9}"
-    "header{background:#1e2a38;color:#fff;padding:12px 24px}header h1{margin:0 0 4px;font-size:20px}"
-    "header .meta{color:#c9d3de}header code{color:#fff;background:none}main{padding:12px 24px}"
-    "code{background:#eceef1;padding:0 3px;border-radius:3px;font-size:12px;word-break:break-all}"
-    "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #d5d9df;padding:2px 5px;vertical-align:top;"
-    "text-align:left}th{background:#eef1f5}a{color:#0b5cad}.meta{color:#5a6470}"
-    ".badge{display:inline-block;font-size:11px;padding:0 6px;border-radius:8px;background:#dfe3e8;vertical-align:middle;"
-    "font-weight:normal}.badge.sev-error{background:#c62828;color:#fff}.badge.sev-warning{background:#f0a000}"
-    ".badge.sev-info{background:#cfe0f5}.badge.status-partial{background:#c62828;color:#fff}"
-    ".sheet{display:grid;grid-template-columns:repeat(auto-fill,minmax(112px,1fr));gap:6px}"
-    ".tile{display:block;text-decoration:none;color:#1b1f24;background:#fff;border:2px solid #d5d9df;border-radius:4px;"
-    "padding:3px;font-size:11px;overflow:hidden;white-space:nowrap;text-overflow:ellipsis}"
-    ".tile img,.tile .noimg{display:block;width:100%;height:auto;aspect-ratio:1;object-fit:cover;background:#222}"
-    ".tile.sev-error{border-color:#c62828}.tile.sev-warning{border-color:#f0a000}"
-    ".card{background:#fff;border:1px solid #d5d9df;border-left:6px solid #9aa5b1;border-radius:4px;margin:14px 0;"
-    "padding:8px 14px}.card.sev-error{border-left-color:#c62828}.card.sev-warning{border-left-color:#f0a000}"
-    ".card.sev-info{border-left-color:#6fa3dc}.card h2{font-size:17px;margin:4px 0}.card h3{font-size:14px;margin:10px 0 4px}"
-    ".cols{display:flex;flex-wrap:wrap;gap:16px}.col{flex:1 1 420px;min-width:0}"
-    ".outputs,.checks{display:flex;flex-wrap:wrap;gap:10px}figure{margin:0}figure img{display:block;width:160px;height:auto;"
-    "image-rendering:pixelated;background:#222}.preview img{width:200px}figcaption{font-size:11px;color:#3a434d;max-width:260px}"
-    ".layout img.chan{width:40px;display:inline-block;vertical-align:middle}.layout td,.layout th{border:none;padding:1px 4px}"
-    ".overlay img{width:200px}.key{display:inline-block;width:10px;height:10px;border:1px solid #555;vertical-align:middle}"
-    ".key.dark{background:rgb(219,31,31)}.key.bright{background:rgb(41,82,235)}.key.blend{background:rgb(217,166,38)}"
-    ".key.near{background:rgb(250,179,140)}.key.between{background:rgb(230,26,204)}"
-    ".pair{display:flex;flex-wrap:wrap;align-items:center;gap:8px;margin:6px 0}.arrow{font-size:20px;color:#5a6470}"
-    ".evidence{font-size:12px;margin:2px 0}details summary{cursor:pointer;color:#0b5cad}"
-    "table.findings td:nth-child(4){max-width:520px}nav.pager{margin:10px 0;display:flex;flex-wrap:wrap;gap:4px;align-items:center}"
-    "nav.pager button{font:inherit;padding:2px 8px}nav.pager button[aria-current]{font-weight:bold;background:#1e2a38;color:#fff}"
-    ".verdict .conv{font-size:15px}\n";
-
-// Paging and filtering, plain script: without it every card is shown.
-constexpr const char* kScript = R"js(
-(function () {
-  "use strict";
-  var per = parseInt(document.body.getAttribute("data-page-size"), 10) || 50;
-  var cards = Array.prototype.slice.call(document.querySelectorAll("section.card"));
-  var pagers = Array.prototype.slice.call(document.querySelectorAll("nav.pager"));
-  var filter = document.getElementById("filter");
-  var shown = cards, page = 1;
-  function rank(c) { return {error: 3, warning: 2, info: 1}[c.getAttribute("data-worst")] || 0; }
-  function pages() { return Math.max(1, Math.ceil(shown.length / per)); }
-  function draw() {
-    var n = pages();
-    page = Math.min(Math.max(page, 1), n);
-    var first = (page - 1) * per, last = first + per;
-    cards.forEach(function (c) { c.hidden = true; });
-    shown.forEach(function (c, i) { c.hidden = i < first || i >= last; });
-    pagers.forEach(function (nav) {
-      nav.hidden = false;
-      var box = nav.querySelector(".pages");
-      box.textContent = "";
-      for (var p = 1; p <= n; p++) {
-        var b = document.createElement("button");
-        b.type = "button";
-        b.textContent = String(p);
-        b.setAttribute("data-page", String(p));
-        if (p === page) b.setAttribute("aria-current", "page");
-        box.appendChild(b);
-      }
-      nav.querySelector(".count").textContent = shown.length + " of " + cards.length + " materials, page " + page + " of " + n;
-    });
-    document.body.setAttribute("data-page", String(page));
-  }
-  function apply() {
-    var min = filter ? parseInt(filter.value, 10) : 0;
-    shown = cards.filter(function (c) { return rank(c) >= min; });
-  }
-  function go(hash) {
-    var id = decodeURIComponent((hash || "").replace(/^#/, ""));
-    var m = /^page-(\d+)$/.exec(id);
-    if (m) { page = parseInt(m[1], 10); draw(); return; }
-    var el = id ? document.getElementById(id) : null;
-    if (el && el.classList.contains("card")) {
-      var i = shown.indexOf(el);
-      if (i < 0) { if (filter) filter.value = "0"; apply(); i = shown.indexOf(el); }
-      page = Math.floor(i / per) + 1;
-      draw();
-      el.scrollIntoView();
-      return;
-    }
-    draw();
-  }
-  pagers.forEach(function (nav) {
-    nav.addEventListener("click", function (e) {
-      var p = e.target.getAttribute && e.target.getAttribute("data-page");
-      if (p) { page = parseInt(p, 10); draw(); nav.scrollIntoView(); }
-      else if (e.target.classList.contains("prev")) { page--; draw(); }
-      else if (e.target.classList.contains("next")) { page++; draw(); }
-    });
-  });
-  if (filter) {
-    filter.hidden = false;
-    filter.addEventListener("change", function () { apply(); page = 1; draw(); });
-  }
-  window.addEventListener("hashchange", function () { go(location.hash); });
-  apply();
-  go(location.hash);
-})();
-)js";
-
-std::string pager_html() {
-    return "<nav class=\"pager\" hidden><button type=\"button\" class=\"prev\">‹ previous</button><span class=\"pages\">"
-           "</span><button type=\"button\" class=\"next\">next ›</button> <span class=\"count meta\"></span></nav>\n";
-}
 
 }  // namespace
 
