@@ -66,6 +66,8 @@ inline constexpr std::string_view encoding_error_exceeded =
     "ENCODING_ERROR_EXCEEDED";  // a decoded block-compressed level over the preset's bound
 inline constexpr std::string_view material_file_skipped =
     "MATERIAL_FILE_SKIPPED";  // the preset's glTF not written (dx normals)
+inline constexpr std::string_view height_stored_as_depth =
+    "HEIGHT_STORED_AS_DEPTH";  // white = deep: written white = high
 }  // namespace code
 
 // A measured value behind a finding: a flag, a count, a measure, a word, or a list of counts,

@@ -92,6 +92,10 @@ Input input_of(const std::string& role, const json& j, const std::string& where)
         if (!f->is_boolean()) fail(where, "\"float\" is not a boolean");
         in.is_float = f->get<bool>();
     }
+    if (const json* d = member(j, "stored_as_depth")) {
+        if (!d->is_boolean()) fail(where, "\"stored_as_depth\" is not a boolean");
+        in.stored_as_depth = d->get<bool>();
+    }
     if (member(j, "normal_convention")) {
         NormalFacts n;
         n.convention = convention_of(string_of(j, "normal_convention", where, true), where);
@@ -256,6 +260,7 @@ json to_json(const Input& in) {
     j["bit_depth"] = in.bit_depth;
     j["color_space"] = in.color_space;
     if (in.is_float) j["float"] = true;
+    if (in.stored_as_depth) j["stored_as_depth"] = true;
     if (in.normal) {
         j["normal_convention"] = convention_name(in.normal->convention);
         if (!in.normal->source.empty()) j["normal_convention_source"] = in.normal->source;

@@ -41,6 +41,8 @@ struct Input {
     bool is_float = false;
     std::string color_space;            // "sRGB" | "linear" (float color) | "data"
     std::optional<NormalFacts> normal;  // normal inputs only
+    // A height map stored as depth (white = deep), read inverted (HEIGHT_STORED_AS_DEPTH).
+    bool stored_as_depth = false;
 };
 
 // One entry of Output::channels: what a channel (or the RGB triple) holds.

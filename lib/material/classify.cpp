@@ -73,9 +73,18 @@ bool case_fits(Case c, std::string_view text) {
     return false;
 }
 
+// Only tags and variant numbers after `last_token` ("_2K", "_PNG", "_01").
+bool last_word(const std::vector<Token>& tokens, size_t last_token) {
+    return std::all_of(tokens.begin() + static_cast<std::ptrdiff_t>(last_token) + 1, tokens.end(),
+                       [](const Token& t) { return t.kind != Kind::word || all_digits(t.low); });
+}
+
 bool need_met(Need need, const std::vector<Token>& tokens, size_t first_token, size_t last_token) {
     switch (need) {
         case Need::none: return true;
+        case Need::at_end: return last_word(tokens, last_token);
+        case Need::unreal_suffix: return tokens.front().text == "T" && first_token > 0 && last_word(tokens, last_token);
+        case Need::glued_at_end: return tokens[first_token].camel && last_word(tokens, last_token);
         case Need::unreal_texture:
             return tokens.front().text == "T" && first_token > 0 && tokens[first_token - 1].kind == Kind::resolution;
         case Need::res_after: return last_token + 1 < tokens.size() && tokens[last_token + 1].kind == Kind::resolution;
@@ -96,10 +105,15 @@ size_t match_length(const Rule& rule, const std::vector<Token>& tokens, const st
         if (start + n >= words.size()) return 0;
         const size_t ti = words[start + n];
         const Token& t = tokens[ti];
-        if (t.low != part) return 0;
+        // A one-word tag of two or more letters in capitals may carry a variant letter in lower
+        // case ("Rock_DISPa", "Rock_NRMb"): the tag without it.
+        const bool variant = rule.tokens.size() >= 2 && rule.tokens.find(' ') == std::string_view::npos &&
+                             t.low.size() == part.size() + 1 && t.low.starts_with(part) && is_lower(t.text.back()) &&
+                             std::all_of(t.text.begin(), t.text.end() - 1, is_upper);
+        if (t.low != part && !variant) return 0;
         // Joined: each later token must be glued to its immediate predecessor.
         if (rule.joined && n > 0 && !(t.camel && ti == words[start + n - 1] + 1)) return 0;
-        text += t.text;
+        text += variant ? t.text.substr(0, part.size()) : t.text;
         ++n;
     }
     if (!case_fits(rule.casing, text)) return 0;
@@ -125,6 +139,7 @@ Layout layout_around(const std::vector<Token>& tokens, size_t first, size_t last
     while (next < tokens.size() && tokens[next].low.starts_with("var")) ++next;
     l.res_after = next < tokens.size() && tokens[next].kind == Kind::resolution;
     l.poliigon_prefix = !tokens.empty() && tokens.front().low == "poliigon";
+    l.unreal_prefix = !tokens.empty() && tokens.front().text == "T";
     return l;
 }
 

@@ -18,7 +18,11 @@
 //    "Metal_32_Color"). Any other number ("001", "059", "600") is a word: part of the name when
 //    it stands before the role tag.
 //  - Role tag: the match ending nearest the end of the name; on a tie the longer match wins, then
-//    a family rule over the generic one ("metal_plate_diff_1k": diff, not metal).
+//    a family rule over the generic one ("metal_plate_diff_1k": diff, not metal). Short tags
+//    count only where a word would not stand: game pipelines' two-letter tags (BC NM NO RO MT
+//    EM OP) and Unreal's letters ("T_Rock_D", with the T prefix) only as the last word; "Lights"
+//    only glued to the name ("LampLights"). A capitalised tag may carry a lower-case variant
+//    letter ("Rock_DISPa" is DISP).
 //  - Clutter (never a map, reported as UNRECOGNIZED_FILE info with its kind): previews,
 //    thumbnails, swatches, icons, renders ("Material_1639": a 3dtextures.me preview), ID and other
 //    masks with no PBR role ("_mask", "_IdMap"), all-black placeholders ("_black"), and Megascans
@@ -40,7 +44,7 @@
 namespace mf {
 
 // Naming conventions a set can follow (docs/interface.md "Words": convention).
-// "ambientcg" "polyhaven" "texturescom" "megascans" "substance" "gltf" "generic"
+// "ambientcg" "polyhaven" "texturescom" "megascans" "substance" "gltf" "unreal" "generic"
 struct NameMatch {
     Role role = Role::albedo;
     std::string family;                                   // the convention whose rule matched

@@ -1,7 +1,8 @@
 // The naming rules of every family. Sources: each vendor's downloads as they are named (ambientCG
 // "<Id>_<res>-<FMT>_<Tag>", Poly Haven "<name>_<tag>_<res>", Textures.com/Poliigon legacy
 // "<Name>_<TAG>_<res>" and current "Poliigon_<Name>_<Tag>", Megascans "<id>_<res>_<Tag>" and its
-// Unreal export "T_<id>_<res>_<TAG>", Substance Painter's export presets, glTF sample models).
+// Unreal export "T_<id>_<res>_<TAG>", Substance Painter's export presets, glTF sample models,
+// Unreal's own "T_<Name>_<Suffix>").
 #include "material/families.hpp"
 
 namespace mf::naming {
@@ -90,6 +91,28 @@ constexpr Rule kMegascans[] = {
     {"b", albedo, kU, Case::upper, false, "_B", Need::unreal_texture},
     {"n", normal, kU, Case::upper, false, "_N", Need::unreal_texture},
     {"orm", orm, kU, Case::upper, false, "_ORM", Need::unreal_texture},
+};
+
+// Unreal's texture naming ("T_<Name>_<Suffix>": Epic's and the community style guides, game
+// and Marketplace folders): D or BC base color, N or NM normal, R roughness, M metallic (the
+// style guides' "mask and/or metallic": a mask map is not grayscale, which NOT_GRAYSCALE says),
+// ORM/ARM packed, E emissive, AO occlusion, H height, A opacity, S specular. B is left out: it
+// is base color in Megascans' Unreal export (with a resolution before it, above) and bump in
+// the style guides. Only with the T prefix and at the end of the name (Need::unreal_suffix).
+constexpr Rule kUnreal[] = {
+    {"d", albedo, kU, Case::upper, false, "_D", Need::unreal_suffix},
+    {"bc", albedo, kU, Case::upper, false, "_BC", Need::unreal_suffix},
+    {"n", normal, kU, Case::upper, false, "_N", Need::unreal_suffix},
+    {"nm", normal, kU, Case::upper, false, "_NM", Need::unreal_suffix},
+    {"r", roughness, kU, Case::upper, false, "_R", Need::unreal_suffix},
+    {"m", metalness, kU, Case::upper, false, "_M", Need::unreal_suffix},
+    {"orm", orm, kU, Case::upper, false, "_ORM", Need::unreal_suffix},
+    {"arm", orm, kU, Case::upper, false, "_ARM", Need::unreal_suffix},
+    {"e", emissive, kU, Case::upper, false, "_E", Need::unreal_suffix},
+    {"ao", occlusion, kU, Case::upper, false, "_AO", Need::unreal_suffix},
+    {"h", height, kU, Case::upper, false, "_H", Need::unreal_suffix},
+    {"a", opacity, kU, Case::upper, false, "_A", Need::unreal_suffix},
+    {"s", specular, kU, Case::upper, false, "_S", Need::unreal_suffix},
 };
 
 constexpr Rule kSubstance[] = {
@@ -181,17 +204,33 @@ constexpr Rule kGeneric[] = {
     {"translucency", translucency, kU, Case::any, false, "translucency"},
     {"translucent", translucency, kU, Case::any, false, "translucent"},
     {"cavity", cavity, kU, Case::any, false, "cavity"},
+    // Game pipelines' two-letter tags, only as the name's last word ("Crate_BC", "Crate_NM_2K").
+    {"bc", albedo, kU, Case::any, false, "_BC", Need::at_end},
+    {"nm", normal, kU, Case::any, false, "_NM", Need::at_end},
+    {"no", normal, kU, Case::upper, false, "_NO", Need::at_end},  // lower case "no" is a word
+    {"ro", roughness, kU, Case::any, false, "_RO", Need::at_end},
+    {"mt", metalness, kU, Case::any, false, "_MT", Need::at_end},
+    {"em", emissive, kU, Case::any, false, "_EM", Need::at_end},
+    {"op", opacity, kU, Case::any, false, "_OP", Need::at_end},
+    // Emissive maps named for what glows ("Lamp_Glow", "LampIllum"; "LampLights" glued only).
+    {"glow", emissive, kU, Case::any, false, "glow", Need::at_end},
+    {"illum", emissive, kU, Case::any, false, "illum", Need::at_end},
+    {"illumination", emissive, kU, Case::any, false, "illumination", Need::at_end},
+    {"selfillum", emissive, kU, Case::any, false, "selfillum", Need::at_end},
+    {"self illum", emissive, kU, Case::any, false, "self_illum", Need::at_end},
+    {"lights", emissive, kU, Case::any, false, "Lights (glued)", Need::glued_at_end},
 };
 
 }  // namespace
 
-const std::array<Family, 7> kFamilies{{
+const std::array<Family, 8> kFamilies{{
     {"ambientcg", kAmbientCG, [](const Layout& l) { return l.res_format_pair; }},
     {"polyhaven", kPolyHaven, [](const Layout& l) { return l.res_after; }},
     {"texturescom", kTexturesCom, [](const Layout& l) { return l.res_after || l.poliigon_prefix; }},
     {"megascans", kMegascans, [](const Layout& l) { return l.res_before; }},
     {"substance", kSubstance, [](const Layout& l) { return l.no_resolution; }},
     {"gltf", kGltf, [](const Layout& l) { return l.no_resolution; }},
+    {"unreal", kUnreal, [](const Layout& l) { return l.unreal_prefix; }},
     {"generic", kGeneric, [](const Layout&) { return false; }},
 }};
 

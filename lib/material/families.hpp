@@ -27,6 +27,17 @@ enum class Need {
     // A resolution tag right after the role tag (Poly Haven's "_alpha_1k"): for tags whose bare
     // form ("leaf_alpha") is left to the generic rules.
     res_after,
+    // The role tag is the name's last word: only resolution, format or bit-depth tags and
+    // variant numbers follow ("Rock_BC", "Rock_BC_2K", "T_Sand_BC_01"). For two-letter game
+    // tags, which elsewhere in a name are ordinary words ("Ro", "Em").
+    at_end,
+    // An Unreal texture by the engine's naming convention: the name starts with the token "T"
+    // and the role tag is its last word ("T_Rock_D", "T_Rock_ORM_2K"). Only there is a lone
+    // letter (D, N, R, M, E, H, A, S) a role.
+    unreal_suffix,
+    // Glued to the word before it by a camel-case boundary, and at the end ("LampLights"): words
+    // that with a separator are ordinary ("Street_Lights").
+    glued_at_end,
 };
 
 struct Rule {
@@ -48,6 +59,7 @@ struct Layout {
     bool res_after = false;        // "_COL_VAR1_2K", "_nor_gl_1k": Poliigon legacy, Poly Haven
     bool poliigon_prefix = false;  // "Poliigon_…": current Poliigon
     bool no_resolution = false;    // "Mat_BaseColor": Substance, glTF
+    bool unreal_prefix = false;    // "T_…": Unreal's texture prefix
 };
 
 struct Family {
@@ -57,7 +69,7 @@ struct Family {
 };
 
 // Priority order: also the tie-break when nothing else decides. The generic family is last.
-extern const std::array<Family, 7> kFamilies;
-inline constexpr size_t kGenericFamily = 6;
+extern const std::array<Family, 8> kFamilies;
+inline constexpr size_t kGenericFamily = 7;
 
 }  // namespace mf::naming

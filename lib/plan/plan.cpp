@@ -263,7 +263,12 @@ void conversion_findings(SetPlan& plan, NormalConvention target) {
                                      std::string(convention_name(target)) + " for the preset",
                                  {{"from", convention_name(from)}, {"to", convention_name(target)}}));
         }
-        if (r.invert)
+        if (r.invert && out == Role::height)
+            plan.findings.push_back(make_finding(
+                code::height_stored_as_depth, out, c.file,
+                c.file + " is stored as depth (white = deep: its slopes run against the normal map's); read "
+                         "inverted, so a height output is white = high"));
+        else if (r.invert)
             plan.findings.push_back(make_finding(code::gloss_inverted, out, c.file,
                                                  "gloss map converted to roughness (roughness = 1 - gloss)"));
         if (traits(r.from).packed) unpacked.insert(r.from);
@@ -450,6 +455,11 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     plan.normal_z_rebuilt = checked.normal_z_rebuilt;
     if (const auto n = plan.routes.find(Role::normal); n != plan.routes.end())
         plan.normal = normal_facts(plan.inputs.at(n->second.from), checked.normal);
+    // A height map the GL/DX test found stored as depth (white = deep) is read inverted: every
+    // output holds height white = high (HEIGHT_STORED_AS_DEPTH, conversion_findings).
+    if (const auto h = plan.routes.find(Role::height); h != plan.routes.end() && h->second.from == Role::height &&
+                                                       checked.normal && checked.normal->content.height_is_depth)
+        h->second.invert = true;
     conversion_findings(plan, preset.normal_convention);
     limit_size(plan, preset);
 
@@ -496,6 +506,8 @@ std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {
         in.is_float = hd.is_float;
         in.color_space = !is_color_role(role) ? "data" : hd.is_float ? "linear" : "sRGB";
         if (role == Role::normal) in.normal = plan.normal.value_or(manifest::NormalFacts{});
+        if (const auto h = plan.routes.find(Role::height); role == Role::height && h != plan.routes.end())
+            in.stored_as_depth = h->second.from == Role::height && h->second.invert;
         inputs.push_back(std::move(in));
     }
     return inputs;

@@ -227,15 +227,20 @@ NormalVerdict NormalConventionDetector::verdict() const {
     double conf = cc;
     v.method = "curl";
     if (I.with_height) {
-        // The red channel has no convention ambiguity: without a positive corr(p, ∂h/∂x) the
-        // height map may not match this normal map, so its evidence counts half.
-        double ch = height_confidence(best_hy);
-        if (!(best_hx > 0.05)) ch *= 0.5;
+        // The red channel has no convention ambiguity: without a clear corr(p, ∂h/∂x) the height
+        // map may not match this normal map, so its evidence counts half. Clearly negative, the
+        // map is depth (white = deep): inverting a height flips both correlations, so the green
+        // one read against the red one's sign is the convention's evidence either way.
+        v.height_is_depth = best_hx <= -kDepthMinCorrelation;
+        const double r_y = v.height_is_depth ? -best_hy : best_hy;
+        double ch = height_confidence(r_y);
+        if (!v.height_is_depth && !(best_hx > 0.05)) ch *= 0.5;
         v.figures["r_height_y"] = best_hy;
         v.figures["r_height_x"] = best_hx;
+        v.figures["height_is_depth"] = v.height_is_depth;
         v.figures["height_scale"] = height_scale;
         v.figures["confidence_height"] = ch;
-        const NormalConvention hdir = sign_convention(best_hy);
+        const NormalConvention hdir = sign_convention(r_y);
         v.method = "height+curl";
         if (hdir == dir || dir == NormalConvention::unknown || cc == 0.0) {
             dir = hdir != NormalConvention::unknown ? hdir : dir;

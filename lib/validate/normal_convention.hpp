@@ -10,7 +10,10 @@
 // linear filter, so it keeps both tests valid while averaging out per-pixel noise):
 //  - height test (when the set has a height/displacement map): the sign of the correlation of q
 //    with ∂h/∂row. The red channel has no GL/DX ambiguity, so corr(p, ∂h/∂x) > 0 checks that the
-//    pair belongs together; when it does not, the height evidence counts half.
+//    pair belongs together; when it does not, the height evidence counts half. A map stored as
+//    depth (white = deep: h' = −h) turns both correlations negative: their relative sign, which
+//    inversion leaves alone, decides, and corr(p, ∂h/∂x) ≤ −kDepthMinCorrelation says the map is
+//    depth (NormalVerdict::height_is_depth).
 //  - integrability (curl) test: a field of slopes that comes from a height is curl-free,
 //    ∂p/∂row = ∂q_true/∂x. Under the right convention A = ∂p/∂row and B = ∂(n_y/n_z)/∂x agree
 //    (GL: A = B, DX: A = −B); Σ(A∓B)² differ by 4ΣAB, so the sign of corr(A, B) decides. A
@@ -44,8 +47,19 @@ struct NormalVerdict {
     NormalConvention leaning = NormalConvention::unknown;
     std::string method = "none";  // "height+curl", "curl", "none"
     bool flat = false;            // no relief: the convention does not matter (see DetectorOptions)
+    // The height map is stored as depth (white = deep): its x gradient anticorrelates with the
+    // normal's red slope. Ingest writes it white = high (plan: HEIGHT_STORED_AS_DEPTH).
+    bool height_is_depth = false;
     Figures figures;
 };
+
+// corr(p, ∂h/∂x) at or below minus this: the height map is depth. On the corpus
+// (CorpusNormals.RealMapsPassOthersFailWithMargin) the matched height maps correlate in red at
+// +0.457 to +0.999, but for Metal_Rusted_010's +0.149; a map read against a height it does not
+// belong to stays within ±0.120. 0.3 is 2.5x the unrelated maps' and 1.5x under 0.457: a
+// mismatched pair is never taken for depth (which would invert the height output), and a depth
+// map as weakly tied as Metal_Rusted_010's is left as before (its evidence counts half).
+inline constexpr double kDepthMinCorrelation = 0.3;
 
 // Decodes one row of a normal map to unit-free (x, y, z) triples. `channels`: 2 (z rebuilt as
 // sqrt(1 − x² − y²), as BC5/two-channel maps), ≥ 3 (RGB, extra channels ignored). `signed_values`:

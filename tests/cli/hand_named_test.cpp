@@ -112,3 +112,65 @@ TEST(HandNamed, VendorJpegBeatsItsWebpTwin) {
                    std::string::npos;
     EXPECT_TRUE(said) << mat["findings"].dump(1);
 }
+
+// A displacement map stored as depth (white = deep) beside a normal map whose name says nothing:
+// the GL/DX test reads the pair through the relative sign of its two correlations, so a DirectX
+// normal map is still found DirectX (and converted), a GL one GL; the height is recorded as
+// depth and written white = high. Real pixels: 3dtextures.me's Metal_Damaged_001 (GL normal,
+// height map), the green flipped for DX and the height inverted for depth.
+TEST(HandNamed, DepthMapBesideADxOrGlNormalMap) {
+    const fs::path work = temp_dir("depth");
+    const fs::path src = corpus_set("3dtextures_Metal_Damaged_001_SD");
+    const mf::Image height = read_pixels(src / "Metal_Damaged_001_height.png");
+    mf::Image depth = height;
+    for (float& v : depth.pixels) v = 1.f - v;
+    for (const std::string conv : {"dx", "gl"}) {
+        SCOPED_TRACE(conv);
+        const fs::path set = work / conv / "Plate";
+        fs::create_directories(set);
+        fs::copy_file(src / "Metal_Damaged_001_basecolor.jpg", set / "Plate_Diffuse.jpg");
+        mf::Image normal = read_pixels(src / "Metal_Damaged_001_normal.jpg");
+        if (conv == "dx")
+            for (size_t i = 1; i < normal.pixels.size(); i += 3) normal.pixels[i] = 1.f - normal.pixels[i];
+        write_png(set / "Plate_nrm.png", normal);
+        write_png(set / "Plate_disp.png", depth, 16);
+        const fs::path out = work / conv / "out";
+        const auto r = run("ingest " + q(set) + " -o " + q(out) + " --preset unity-hdrp --no-cache -q");
+        ASSERT_LE(r.code, 1) << r.output;
+        const nlohmann::json m = read_json(out / "manifest.json");
+        ASSERT_EQ(m["materials"].size(), 1u);
+        const nlohmann::json& mat = m["materials"][0];
+        const nlohmann::json& in = mat["inputs"]["normal"];
+        EXPECT_EQ(in["normal_convention"], conv) << mat["findings"].dump(1);
+        EXPECT_EQ(in["normal_convention_source"], "content");
+        EXPECT_GE(in["normal_convention_confidence"].get<double>(), 0.6);
+        EXPECT_EQ(mat["inputs"]["height"]["stored_as_depth"], true) << mat["inputs"].dump(1);
+        EXPECT_TRUE(has_code(mat, "HEIGHT_STORED_AS_DEPTH", "height")) << mat["findings"].dump(1);
+        EXPECT_FALSE(has_code(mat, "NORMAL_CONVENTION_UNKNOWN")) << mat["findings"].dump(1);
+        EXPECT_FALSE(has_code(mat, "GLOSS_INVERTED"));
+        // The normal output is the preset's GL, converted from DX where the input was DX; the
+        // height output holds the original height (white = high), not the depth.
+        const nlohmann::json* nout = output_with(mat, "RGB", "normal");
+        ASSERT_NE(nout, nullptr);
+        EXPECT_EQ(nout->contains("normal_converted_from"), conv == "dx") << nout->dump();
+        const nlohmann::json* hout = output_with(mat, "R", "height");
+        ASSERT_NE(hout, nullptr) << mat["outputs"].dump(1);
+        const mf::Image written = read_pixels(out / (*hout)["file"].get<std::string>());
+        ASSERT_EQ(written.width, height.width);
+        double err = 0;
+        for (int y = 0; y < height.height; y += 7)
+            for (int x = 0; x < height.width; x += 7)
+                err = std::max(err, std::abs(double{written.at(x, y, 0)} - height.at(x, y, 0)));
+        EXPECT_LT(err, 1.0 / 255) << "the height output is white = high";
+    }
+    // The same set with the height stored white = high: no depth, no finding.
+    const fs::path set = work / "height" / "Plate";
+    fs::create_directories(set);
+    fs::copy_file(src / "Metal_Damaged_001_basecolor.jpg", set / "Plate_Diffuse.jpg");
+    fs::copy_file(src / "Metal_Damaged_001_normal.jpg", set / "Plate_nrm.jpg");
+    fs::copy_file(src / "Metal_Damaged_001_height.png", set / "Plate_disp.png");
+    const nlohmann::json mat = ingest_one(set, work / "height" / "out");
+    EXPECT_EQ(mat["inputs"]["normal"]["normal_convention"], "gl");
+    EXPECT_FALSE(mat["inputs"]["height"].contains("stored_as_depth"));
+    EXPECT_FALSE(has_code(mat, "HEIGHT_STORED_AS_DEPTH"));
+}

@@ -286,6 +286,10 @@ void check_margins() {
     std::printf("gamma-encoded (22): stored min(mean x, mean y) %.3f..%.3f, decoded max |mean| %.3f..%.3f, decoded "
                 "upward %.3f..%.3f, |decoded length - 1| %.3f..%.3f\n",
                 g_stored.lo, g_stored.hi, g_dec.lo, g_dec.hi, g_up.lo, g_up.hi, g_len.lo, g_len.hi);
+    // A map read against a height it does not belong to is never taken for depth (which would
+    // invert the height output): 2x inside kDepthMinCorrelation; a matched one, mirrored, is.
+    EXPECT_LE(2 * std::max(-hx_wrong.lo, hx_wrong.hi), mv::kDepthMinCorrelation);
+    EXPECT_GE(hx_real.hi, 1.5 * mv::kDepthMinCorrelation);
     // The real maps sit 1.5x inside every bound.
     EXPECT_GE(up_real.lo, 1.5 * t.normal_min_upward_share);
     EXPECT_LE(mxy_real.hi * 1.5, t.normal_max_mean_xy);

@@ -228,6 +228,43 @@ TEST(ClassifyName, Generic) {
     });
 }
 
+// Game pipelines: Unreal's "T_<Name>_<Suffix>", two-letter tags, emissive words glued on, a
+// variant letter after a capitalised tag.
+TEST(ClassifyName, GameAndHandNamed) {
+    check_rows({
+        {"T_Crate_D.png", Role::albedo, "unreal", "unreal:_D"},
+        {"T_Crate_BC.tga", Role::albedo, "unreal", "unreal:_BC"},
+        {"T_Crate_N.png", Role::normal, "unreal", "unreal:_N"},
+        {"T_Crate_R.png", Role::roughness, "unreal", "unreal:_R"},
+        {"T_Crate_M.png", Role::metalness, "unreal", "unreal:_M"},
+        {"T_Crate_ORM_2K.png", Role::orm, "unreal", "unreal:_ORM"},
+        {"T_Crate_E.png", Role::emissive, "unreal", "unreal:_E"},
+        {"T_Crate_AO.png", Role::occlusion, "unreal", "unreal:_AO"},
+        {"T_Crate_H.png", Role::height, "unreal", "unreal:_H"},
+        {"T_Sand_BC_01.png", Role::albedo, "unreal", "unreal:_BC"},  // a variant number after the tag
+        // Megascans' own Unreal export keeps its family (a resolution before the tag).
+        {"T_tbdpec3r_4K_N.png", Role::normal, "megascans", "megascans:_N"},
+        {"Crate_BC.png", Role::albedo, "generic", "generic:_BC"},
+        {"crate_nm_2k.png", Role::normal, "generic", "generic:_NM"},
+        {"Crate_NO.png", Role::normal, "generic", "generic:_NO"},
+        {"Crate_RO.png", Role::roughness, "generic", "generic:_RO"},
+        {"Crate_MT.png", Role::metalness, "generic", "generic:_MT"},
+        {"Crate_EM.png", Role::emissive, "generic", "generic:_EM"},
+        {"Crate_OP.png", Role::opacity, "generic", "generic:_OP"},
+        {"LampLights.png", Role::emissive, "generic", "generic:Lights (glued)"},
+        {"LampGlow.png", Role::emissive, "generic", "generic:glow"},
+        {"Lamp_Illum.png", Role::emissive, "generic", "generic:illum"},
+        {"Rock_DISPa.jpg", Role::height, "texturescom", "texturescom:_DISP"},
+        {"Rock_NRMb_2K.jpg", Role::normal, "texturescom", "texturescom:_NRM"},
+    });
+    // Where a short tag would be a word, it is none: not at the end, without the T prefix, a
+    // lone letter, "Lights" apart from the name, lower-case "no".
+    for (const std::string file : {"Crate_D.png", "Crate_M.png", "T_Crate_D_Old.png", "Crate_BC_Old.png",
+                                   "Street_Lights.png", "crate_no.png", "Rock_DISPab.jpg"})
+        EXPECT_FALSE(classify_name(file)) << file;
+    EXPECT_EQ(classify_name("Ro_Crate_Diffuse.png")->role, Role::albedo) << "the tag nearest the end";
+}
+
 // Material names that contain role words: the tag nearest the end decides.
 TEST(ClassifyName, NameTraps) {
     check_rows({

@@ -83,6 +83,33 @@ TEST(NormalConvention, NoiseAndFlatMapsAreUnknown) {
     EXPECT_EQ(v.method, "none");
 }
 
+// A height stored as depth (white = deep) flips both correlations: the relative sign decides,
+// the verdict is the same as with the height, at no less confidence, and says the map is depth.
+TEST(NormalConvention, DepthMapDecidesAsItsHeight) {
+    unsigned seed = 500;
+    for (const double freq : {4.0, 16.0})
+        for (const NormalConvention conv : {NormalConvention::gl, NormalConvention::dx}) {
+            const Image h = make_height(128, freq, ++seed);
+            const Image n = normal_from_height(h, conv, 0.15, 0.03, ++seed);
+            Image depth = h;
+            for (float& v : depth.pixels) v = 1.f - v;
+            const auto with_height = mv::detect_normal_convention(n, &h);
+            const auto with_depth = mv::detect_normal_convention(n, &depth);
+            SCOPED_TRACE(std::string(mf::convention_name(conv)) + " at " + std::to_string(freq));
+            EXPECT_EQ(with_height.convention, conv) << mf::to_json(with_height.figures).dump();
+            EXPECT_EQ(with_depth.convention, conv) << mf::to_json(with_depth.figures).dump();
+            EXPECT_FALSE(with_height.height_is_depth);
+            EXPECT_TRUE(with_depth.height_is_depth);
+            EXPECT_NEAR(with_depth.confidence, with_height.confidence, 1e-9);
+            EXPECT_EQ(with_depth.method, "height+curl");
+        }
+    // An unrelated map (noise) is no depth: no evidence either way.
+    const Image n = normal_from_height(make_height(128, 8, 900), NormalConvention::gl);
+    const Image unrelated = make_height(128, 8, 901);
+    const auto other = mv::detect_normal_convention(n, &unrelated);
+    EXPECT_FALSE(other.height_is_depth) << mf::to_json(other.figures).dump();
+}
+
 TEST(NormalConvention, HeightOfAnotherSizeAndTwoChannelMaps) {
     const Image h = make_height(128, 4, 11);
     const Image n = normal_from_height(h, NormalConvention::dx);
