@@ -153,4 +153,59 @@ std::string markup_escape(std::string_view raw) {
     return out;
 }
 
+namespace {
+
+// The small letter of code point c, for the capitals fold_case() knows; c itself otherwise.
+char32_t small_letter(char32_t c) {
+    if (c >= 0xC0 && c <= 0xDE && c != 0xD7) return c + 0x20;  // Latin-1: À–Þ but ×
+    if (c == 0x178) return 0xFF;                               // Ÿ
+    // Latin Extended-A: capital/small pairs on even/odd code points, shifted by one in two runs.
+    const bool odd_capitals = (c >= 0x139 && c <= 0x148) || (c >= 0x179 && c <= 0x17E);
+    if (c >= 0x100 && c <= 0x17F && c != 0x130 && c != 0x131 && c != 0x138 && c != 0x149 && c != 0x17F)
+        return (c % 2 == 1) == odd_capitals ? c + 1 : c;
+    if (c >= 0x391 && c <= 0x3A9 && c != 0x3A2) return c + 0x20;  // Greek Α–Ω
+    if (c >= 0x410 && c <= 0x42F) return c + 0x20;                // Cyrillic А–Я
+    if (c >= 0x400 && c <= 0x40F) return c + 0x50;                // Ѐ–Џ
+    return c;
+}
+
+void put_utf8(std::string& out, char32_t c) {
+    if (c < 0x80) {
+        out += static_cast<char>(c);
+    } else if (c < 0x800) {
+        out += static_cast<char>(0xC0 | (c >> 6));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    } else {
+        out += static_cast<char>(0xE0 | (c >> 12));
+        out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (c & 0x3F));
+    }
+}
+
+}  // namespace
+
+std::string fold_case(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (size_t i = 0; i < s.size();) {
+        const auto b = static_cast<unsigned char>(s[i]);
+        if (b < 0x80) {
+            out += b >= 'A' && b <= 'Z' ? static_cast<char>(b + 32) : static_cast<char>(b);
+            ++i;
+            continue;
+        }
+        // Two-byte sequences hold every capital folded here (U+0080–U+07FF).
+        if ((b & 0xE0) == 0xC0 && i + 1 < s.size() && (static_cast<unsigned char>(s[i + 1]) & 0xC0) == 0x80) {
+            const char32_t c = (char32_t{b & 0x1Fu} << 6) | (static_cast<unsigned char>(s[i + 1]) & 0x3Fu);
+            if (c >= 0x80) {  // not an overlong form
+                put_utf8(out, small_letter(c));
+                i += 2;
+                continue;
+            }
+        }
+        out += s[i++];
+    }
+    return out;
+}
+
 }  // namespace mf

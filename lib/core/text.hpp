@@ -20,6 +20,12 @@ std::string percent_encode_path(std::string_view path);
 // file systems compare them (file names are bytes, not text in a locale).
 std::string ascii_lower(std::string s);
 
+// Lower case for comparing names as people write them: ASCII, and in UTF-8 the capitals of
+// Latin-1 (À–Þ), Latin Extended-A (Ā–ž, Ÿ), Greek (Α–Ω) and Cyrillic (Ѐ–Я) to their small
+// letters ("BRÏCK" and "Brïck" fold alike). Other bytes, and invalid UTF-8, are kept as they
+// are. Simple one-to-one mappings only (no ß → ss): a name never grows or shrinks.
+std::string fold_case(std::string_view s);
+
 // The candidate closest to `word` (Levenshtein distance, case-insensitive) when it is close
 // enough to be a typo of it (at most a third of its letters, at least one), else "": "did you
 // mean" in usage errors (commands, options, presets).

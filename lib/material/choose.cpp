@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "core/catalog.hpp"
+#include "core/text.hpp"
 #include "material/classify.hpp"
 #include "material/discovery.hpp"
 #include "material/families.hpp"
@@ -271,10 +272,10 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
     // "<id>.png" beside "<id>_1K-JPG_*" is the vendor's preview render, at the maps' size.
     if (!by_role.count(Role::albedo) && untagged.size() == 1 && out.convention != "ambientcg") {
         const auto& [file, finding_at] = untagged.front();
-        const std::string stem = lower_copy(material_stem(file));
+        const std::string stem = fold_case(material_stem(file));
         const bool sibling = !stem.empty() && std::any_of(by_role.begin(), by_role.end(), [&](const auto& role_ranked) {
             return std::any_of(role_ranked.second.begin(), role_ranked.second.end(), [&](const Ranked& r) {
-                return r.cand.match.sidecar.empty() && lower_copy(material_stem(r.cand.file)) == stem;
+                return r.cand.match.sidecar.empty() && fold_case(material_stem(r.cand.file)) == stem;
             });
         });
         if (sibling) {

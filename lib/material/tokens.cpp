@@ -5,6 +5,7 @@
 #include <charconv>
 
 #include "core/limits.hpp"
+#include "core/text.hpp"
 
 namespace mf::naming {
 
@@ -65,10 +66,10 @@ std::string normalized_key(std::string_view s) {
             i += n;
             continue;
         }
-        out += to_lower(s[i]);
+        out += s[i];
         ++i;
     }
-    return out;
+    return fold_case(out);  // "BRÏCK WALL" and "Brïck Wall" are one name
 }
 
 int resolution_pixels(std::string_view low) {

@@ -30,7 +30,8 @@ bool contains(std::span<const std::string_view> list, std::string_view s);
 // that web downloads and hand-renamed files put between a name and its tag.
 size_t separator_at(std::string_view s, size_t i);
 
-// Lower case, every run of separators replaced by one '_' ("Wood – Planks" -> "wood_planks").
+// Case-folded (core fold_case: non-ASCII capitals too), every run of separators replaced by
+// one '_' ("Wood – Planks" -> "wood_planks", "BRÏCK" -> "brïck").
 std::string normalized_key(std::string_view s);
 
 enum class Kind {

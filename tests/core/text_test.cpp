@@ -68,6 +68,25 @@ TEST(Numbers, FixedAndPercent) {
     EXPECT_EQ(mf::ascii_lower("Net004A_Color.JPG \xC3\x89"), "net004a_color.jpg \xC3\x89");
 }
 
+// Names as people write them: non-ASCII capitals fold too, one to one, invalid bytes kept.
+TEST(Text, FoldCase) {
+    EXPECT_EQ(mf::fold_case("BR\xC3\x8F"
+                            "CK Wall"),
+              "br\xC3\xaf"
+              "ck wall");                                                // Ï -> ï
+    EXPECT_EQ(mf::fold_case("\xC3\x89T\xC3\x89"), "\xC3\xa9t\xC3\xa9");  // É -> é
+    EXPECT_EQ(mf::fold_case("\xC3\x97\xC3\x9F"), "\xC3\x97\xC3\x9F") << "× and ß stay";
+    EXPECT_EQ(mf::fold_case("\xC5\x81\xC3\xB3"
+                            "d\xC5\xBA"),
+              "\xC5\x82\xC3\xB3"
+              "d\xC5\xBA");                                                            // Łódź
+    EXPECT_EQ(mf::fold_case("\xC5\xB9"), "\xC5\xBA");                                  // Ź -> ź (odd run)
+    EXPECT_EQ(mf::fold_case("\xC5\xB8"), "\xC3\xBF");                                  // Ÿ -> ÿ
+    EXPECT_EQ(mf::fold_case("\xCE\xA9\xD0\x96\xD0\x81"), "\xCF\x89\xD0\xB6\xD1\x91");  // Ω Ж Ё
+    EXPECT_EQ(mf::fold_case("a\xC3(\xFF\xC0\x80"), "a\xC3(\xFF\xC0\x80") << "invalid and overlong kept";
+    EXPECT_EQ(mf::fold_case("\xE2\x80\x93"), "\xE2\x80\x93") << "three-byte code points kept";
+}
+
 }  // namespace
 
 // One escaper for the report page and JUnit: every reference both HTML and XML read, ill-formed

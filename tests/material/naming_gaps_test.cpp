@@ -93,8 +93,9 @@ TEST(NamingGaps, MegascansUnrealExportTags) {
         {"T_rh0ribp0_1K_ORM.jpg", Role::orm, "megascans:_ORM"},
         {"Bracken_Fern_okdr22_4K_BaseColor.jpg", Role::albedo, "megascans:_BaseColor"},
     });
-    // A lone letter is a role only in that layout: a variant letter elsewhere.
-    for (const std::string file : {"Wall_B.png", "Brick_2K_N.png", "T_Foo_N.tga", "t_x_1K_B.png", "T_x_1K_b.png"})
+    // A lone letter is a role only in that layout (or Unreal's own, "T_Foo_N": ClassifyName.GameAndHandNamed):
+    // a variant letter elsewhere.
+    for (const std::string file : {"Wall_B.png", "Brick_2K_N.png", "T_Foo_B.tga", "t_x_1K_B.png", "T_x_1K_b.png"})
         EXPECT_FALSE(classify_name(file).has_value()) << file;
     EXPECT_EQ(material_stem("T_tbdpec3r_4K_B-O.png"), "T_tbdpec3r");
 }
@@ -167,6 +168,19 @@ TEST(NamingGaps, DashesAndDotsBetweenNameAndTag) {
     EXPECT_THAT(g[0].merge->spellings, ElementsAre("Old Wood", "Old" + nbsp + "Wood"));
     // Other non-ASCII bytes are letters: they stay inside their token.
     EXPECT_EQ(material_stem("Caf\xC3\xA9_Tiles_Color.png"), "Caf\xC3\xA9_Tiles");
+    // Stems that differ only in the case of a non-ASCII letter are one material, the
+    // difference reported as a spelling.
+    const auto brick = group_files({"Br\xC3\xAF"
+                                    "ck Wall 01 " +
+                                        en + " BASECOLOR.PNG",
+                                    "BR\xC3\x8F"
+                                    "CK WALL 01 " +
+                                        en + " Roughness.png"},
+                                   "x");
+    ASSERT_EQ(brick.size(), 1u);
+    EXPECT_EQ(brick[0].files.size(), 2u);
+    ASSERT_TRUE(brick[0].merge.has_value());
+    EXPECT_TRUE(brick[0].merge->spelling_differs);
 }
 
 // ---------------------------------------------------------------------------------------------
