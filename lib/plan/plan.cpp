@@ -410,10 +410,24 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
         if (!info) return std::nullopt;
         return HeaderInfo{info->width, info->height, info->channels, info->bit_depth, info->is_float};
     };
-    const SetDiscovery d = discover_set(src.files, header, ChoicePolicy{preset.normal_convention, preset.max_size},
+    // Files the rules exclude are no candidates (an unrecognized file each, saying why).
+    std::vector<std::string> candidates;
+    std::vector<Finding> excluded;
+    for (const std::string& f : src.files) {
+        const validate::Exclusion* e = opt.rules ? opt.rules->excluded(src.name, f) : nullptr;
+        if (!e) {
+            candidates.push_back(f);
+            continue;
+        }
+        const std::string why = "excluded by the rules (\"" + e->file + "\"" +
+                                (e->reason.empty() ? std::string() : ": " + e->reason) + ")";
+        excluded.push_back(finding(code::unrecognized_file, "", f, why + "; not used as a map", {{"reason", why}}));
+    }
+    const SetDiscovery d = discover_set(candidates, header, ChoicePolicy{preset.normal_convention, preset.max_size},
                                         read_sidecars(files));
     plan.convention = d.convention;
     plan.findings = d.findings;
+    plan.findings.insert(plan.findings.end(), excluded.begin(), excluded.end());
     plan.findings.insert(plan.findings.end(), src.findings.begin(), src.findings.end());  // NAMES_MERGED, …
     plan.footprint = estimated_bytes(d);
     if (opt.mode == PlanMode::decode) plan.lease = std::make_unique<BudgetLease>(opt.budget, plan.footprint);

@@ -116,6 +116,14 @@ bool RuleConfig::suppressed(std::string_view material, std::string_view c) const
     return false;
 }
 
+const Exclusion* RuleConfig::excluded(std::string_view material, std::string_view file) const {
+    const auto slash = file.find_last_of('/');
+    const std::string_view name = slash == std::string_view::npos ? file : file.substr(slash + 1);
+    for (const auto& e : exclusions)
+        if (glob_match(e.material, material) && (glob_match(e.file, file) || glob_match(e.file, name))) return &e;
+    return nullptr;
+}
+
 bool glob_match(std::string_view p, std::string_view t) {
     // Iterative wildcard match with backtracking to the last '*': linear in practice.
     size_t pi = 0, ti = 0, star = std::string_view::npos, mark = 0;
@@ -273,6 +281,33 @@ std::string read_suppress(const Json& val, RuleConfig& cfg) {
     return {};
 }
 
+// "exclude": [glob | {"file": glob, "material": glob, "reason": text}, ...].
+std::string read_exclude(const Json& val, RuleConfig& cfg) {
+    if (!val.is_array()) return "rules: \"exclude\" must be an array of file globs or objects";
+    for (const auto& v : val) {
+        Exclusion e;
+        if (v.is_string()) {
+            e.file = v.get<std::string>();
+        } else if (v.is_object() && v.contains("file") && v.at("file").is_string()) {
+            e.file = v.at("file").get<std::string>();
+            for (const auto& item : v.items()) {
+                const std::string& k = item.key();
+                if (k == "file") continue;
+                if ((k != "material" && k != "reason") || !item.value().is_string())
+                    return "rules: an \"exclude\" entry takes \"file\", \"material\" and \"reason\" (strings), "
+                           "not \"" +
+                           k + "\"";
+                (k == "material" ? e.material : e.reason) = item.value().get<std::string>();
+            }
+        } else {
+            return "rules: each \"exclude\" entry is a file glob or an object with a \"file\" glob";
+        }
+        if (e.file.empty()) return "rules: an \"exclude\" file glob is empty";
+        cfg.exclusions.push_back(std::move(e));
+    }
+    return {};
+}
+
 // Bounds that contradict each other would make a rule fire on everything or on nothing.
 std::string check_bounds(const Thresholds& t) {
     if (t.albedo_min_srgb > t.albedo_max_srgb)
@@ -301,6 +336,7 @@ std::optional<RuleConfig> RuleConfig::from_json(const nlohmann::json& j, std::st
         else if (key == "severityOverrides") error = read_severity_overrides(*it, cfg);
         else if (key == "ignore") error = read_ignore(*it, cfg);
         else if (key == "suppress") error = read_suppress(*it, cfg);
+        else if (key == "exclude") error = read_exclude(*it, cfg);
         else error = "rules: unknown key \"" + key + "\"";
     }
     if (error.empty()) error = check_bounds(cfg.thresholds);
@@ -344,7 +380,11 @@ nlohmann::json describe(const RuleConfig& cfg) {
     nlohmann::json sup = nlohmann::json::array();
     for (const auto& s : cfg.suppressions)
         sup.push_back({{"material", s.material}, {"code", s.code}, {"reason", s.reason}});
-    return {{"rules", rules}, {"suppress", sup}};
+    nlohmann::json out{{"rules", rules}, {"suppress", sup}};
+    // Only when there are any: the digest of a run without exclusions (cache keys) is unchanged.
+    for (const auto& e : cfg.exclusions)
+        out["exclude"].push_back({{"file", e.file}, {"material", e.material}, {"reason", e.reason}});
+    return out;
 }
 
 int apply_config(std::vector<Finding>& findings, std::string_view material, const RuleConfig& cfg) {

@@ -102,11 +102,23 @@ struct Suppression {
     std::string reason;          // kept for the docs/audit; not printed in reports
 };
 
+// A file the rules say is no map (an all-black placeholder a vendor ships, a stray export):
+// discovery leaves it out, as an unrecognized file that says why.
+struct Exclusion {
+    std::string file;            // glob over the file's path in the set ('/'-separated) or its name
+    std::string material = "*";  // glob over the material name
+    std::string reason;          // said in the finding
+};
+
 struct RuleConfig {
     Thresholds thresholds;
     std::map<std::string, Severity, std::less<>> severity;  // overrides of the default severity
     std::vector<std::string> disabled;                      // codes never reported
     std::vector<Suppression> suppressions;
+    std::vector<Exclusion> exclusions;
+
+    // The first exclusion that leaves `file` (relative to the set) of `material` out, or null.
+    const Exclusion* excluded(std::string_view material, std::string_view file) const;
 
     // Effective severity of a code (override, else catalog default, else warning).
     Severity severity_of(std::string_view code) const;
@@ -122,6 +134,7 @@ struct RuleConfig {
     //              0 error, 1 warning, 2 information, 3 hint → info)
     //   "ignore": [CODE, ...]                                            (glTF Validator style)
     //   "suppress": [ {"material": glob, "code": CODE|"*", "reason": text}, ... ]
+    //   "exclude": [ glob | {"file": glob, "material": glob, "reason": text}, ... ]
     // Unknown keys, codes, threshold names or wrong types are errors (a typo must not silently
     // disable a check). Returns nullopt and sets `error` on failure.
     static std::optional<RuleConfig> from_json(const nlohmann::json& j, std::string& error,

@@ -174,3 +174,34 @@ TEST(HandNamed, DepthMapBesideADxOrGlNormalMap) {
     EXPECT_FALSE(mat["inputs"]["height"].contains("stored_as_depth"));
     EXPECT_FALSE(has_code(mat, "HEIGHT_STORED_AS_DEPTH"));
 }
+
+// --rules excludes a file by name: 3dtextures.me's all-black opacity placeholder is left out
+// (an unrecognized file saying why), so the material has no opacity at all; ingest and
+// validate alike.
+TEST(HandNamed, RulesExcludeAFileByName) {
+    const fs::path work = temp_dir("exclude");
+    const fs::path set = corpus_set("3dtextures_Fabric_polyester_003_SD");
+    write_text(work / "rules.json",
+               R"({"exclude": [{"file": "*_opacity.jpg", "reason": "the vendor's all-black placeholder"}]})");
+    const auto r = run("ingest " + q(set) + " -o " + q(work / "out") + " --rules " + q(work / "rules.json") +
+                       " --no-cache -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json mat = read_json(work / "out/manifest.json")["materials"][0];
+    EXPECT_FALSE(mat["inputs"].contains("opacity")) << mat["inputs"].dump(1);
+    EXPECT_FALSE(has_code(mat, "OPACITY_ALL_TRANSPARENT"));
+    bool said = false;
+    for (const auto& f : mat["findings"])
+        said = said || (f["code"] == "UNRECOGNIZED_FILE" && f["file"] == "Fabric_polyester_003_opacity.jpg" &&
+                        f["message"].get<std::string>().find("excluded by the rules (\"*_opacity.jpg\": the vendor's "
+                                                             "all-black placeholder)") != std::string::npos);
+    EXPECT_TRUE(said) << mat["findings"].dump(1);
+    const auto v = run("validate " + q(set) + " --rules " + q(work / "rules.json") + " --report json --report-file " +
+                       q(work / "v.json"));
+    EXPECT_EQ(v.code, 0) << v.output;
+    auto codes = [](const nlohmann::json& findings) {
+        std::vector<std::string> list;
+        for (const auto& f : findings) list.push_back(f["code"].get<std::string>() + " " + f.value("file", ""));
+        return list;
+    };
+    EXPECT_EQ(codes(read_json(work / "v.json")["materials"][0]["findings"]), codes(mat["findings"]));
+}

@@ -38,6 +38,27 @@ TEST(RuleConfig, ThresholdTableRoundTripsEveryThreshold) {
     EXPECT_NE(error.find("NO_SUCH_CODE"), std::string::npos) << error;
 }
 
+// "exclude": files that are no maps, by glob over the path or the name, per material.
+TEST(RuleConfig, ExcludesFilesByName) {
+    std::string err;
+    auto cfg = mv::RuleConfig::from_json(json::parse(R"({"exclude": ["*_preview_big.png",
+        {"file": "*_opacity.jpg", "material": "Fabric_*", "reason": "all-black placeholder"}]})"),
+                                         err);
+    ASSERT_TRUE(cfg) << err;
+    ASSERT_EQ(cfg->exclusions.size(), 2u);
+    EXPECT_EQ(cfg->excluded("Fabric_polyester_003", "Fabric_polyester_003_opacity.jpg"), &cfg->exclusions[1]);
+    EXPECT_EQ(cfg->excluded("Fabric_polyester_003", "maps/Fabric_polyester_003_opacity.jpg"), &cfg->exclusions[1])
+        << "the name, in a subfolder";
+    EXPECT_EQ(cfg->excluded("Wall", "Wall_opacity.jpg"), nullptr) << "another material";
+    EXPECT_EQ(cfg->excluded("Wall", "Wall_preview_big.png"), &cfg->exclusions[0]);
+    EXPECT_EQ(cfg->excluded("Fabric_x", "Fabric_x_Color.jpg"), nullptr);
+    EXPECT_EQ(mv::describe(*cfg).at("exclude").size(), 2u) << "part of the run's context";
+    EXPECT_FALSE(mv::describe(mv::RuleConfig{}).contains("exclude")) << "no key without exclusions";
+    for (const char* bad : {R"({"exclude": "x.png"})", R"({"exclude": [3]})", R"({"exclude": [{"material": "a"}]})",
+                            R"({"exclude": [{"file": "a", "why": "b"}]})", R"({"exclude": [""]})"})
+        EXPECT_FALSE(mv::RuleConfig::from_json(json::parse(bad), err)) << bad;
+}
+
 TEST(RuleConfig, ParsesEveryForm) {
     std::string err;
     auto cfg = mv::RuleConfig::from_json(json::parse(R"({
