@@ -52,14 +52,14 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
     const Class& d = dielectric_;
     if (d.n > 0) {
         const double dark = ratio(d.below, visible_), bright = ratio(d.above, visible_);
-        if (dark > t_.albedo_max_share)
+        if (dark > t_.albedo_dark_max_share)
             add(code::albedo_too_dark,
                 file + ": " +
                     amount(d, d.below, "dielectric", "darker than " + fixed(t_.albedo_min_srgb, 0) + " sRGB") +
                     "; no real dielectric is that dark — keep shadows and cavities out of the "
                     "albedo (they belong in occlusion)",
                 figures(d, d.below, t_.albedo_min_srgb));
-        if (bright > t_.albedo_max_share)
+        if (bright > t_.albedo_bright_max_share)
             add(code::albedo_too_bright,
                 file + ": " +
                     amount(d, d.above, "dielectric", "brighter than " + fixed(t_.albedo_max_srgb, 0) + " sRGB") +

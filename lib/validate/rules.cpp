@@ -19,11 +19,11 @@ struct Param {
 const std::vector<Param>& params() {
     static const std::vector<Param> p{
         {code::albedo_too_dark, "min_srgb", &Thresholds::albedo_min_srgb},
-        {code::albedo_too_dark, "max_share", &Thresholds::albedo_max_share},
+        {code::albedo_too_dark, "max_share", &Thresholds::albedo_dark_max_share},
         {code::albedo_too_dark, "dielectric_max", &Thresholds::dielectric_max},
         {code::albedo_too_dark, "opacity_visible", &Thresholds::opacity_visible},
         {code::albedo_too_bright, "max_srgb", &Thresholds::albedo_max_srgb},
-        {code::albedo_too_bright, "max_share", &Thresholds::albedo_max_share},
+        {code::albedo_too_bright, "max_share", &Thresholds::albedo_bright_max_share},
         {code::albedo_too_bright, "dielectric_max", &Thresholds::dielectric_max},
         {code::albedo_too_bright, "opacity_visible", &Thresholds::opacity_visible},
         {code::metal_albedo_too_dark, "min_srgb", &Thresholds::metal_albedo_min_srgb},

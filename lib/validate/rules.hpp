@@ -31,7 +31,14 @@ struct Thresholds {
     // / 243 sRGB (strict) — the bounds of Substance's "PBR Validate" node.
     double albedo_min_srgb = 30.0;
     double albedo_max_srgb = 240.0;
-    double albedo_max_share = 0.05;  // matforge: tolerate 5 % of the visible surface (crevices, decals)
+    // The share of the visible surface each may hold before it is worth a warning (matforge,
+    // docs/rules.md "Where the numbers come from"). Dark: 18 %, calibrated on real downloads —
+    // good sets hold ordinary crevices, grout and UV padding below 30 sRGB (corpus up to 3.6 %,
+    // two good hand-named sets 6.6 % and 13.5 %), the sets a technical artist fixes 22.4 % and
+    // up (Metal_Rusted_010; then 48.1, 51.0, 100 %). Bright: 5 % (good sets at most 0.01 %,
+    // OfficeCeiling005 86 %).
+    double albedo_dark_max_share = 0.18;
+    double albedo_bright_max_share = 0.05;
     // METAL_ALBEDO_TOO_DARK: raw metals reflect 70–100 % → 180–255 sRGB (same guide,
     // "Metal reflectance values"). Measured F0 agrees: Real-Time Rendering 4th ed., Table 9.2
     // (after Hoffman 2015): the darkest common metal, titanium, has luminance ~188 sRGB.
