@@ -17,10 +17,11 @@ packages_build=(
   libopenimageio-dev libopencolorio-dev libopenexr-dev libcli11-dev nlohmann-json3-dev
   openimageio-tools  # OpenImageIO's CMake package names its tools: configuring fails without them
   libzip-dev libssl-dev libsquish-dev libastcenc-dev libzstd-dev
+  libxml2-dev  # MaterialX sidecars (lib/material); the tests also parse JUnit with it
   libvulkan-dev glslc mesa-vulkan-drivers  # preview: shaders built by glslc, lavapipe without a GPU
 )
 packages_test=(
-  libgtest-dev libgmock-dev libbenchmark-dev libxml2-dev  # tests/validate parses JUnit with libxml2
+  libgtest-dev libgmock-dev libbenchmark-dev
   vulkan-validationlayers  # every GPU test fails on a validation message
   python3 python3-jsonschema  # scripts/check-schemas.py (manifest and report schemas)
   slurm-wlm munge  # scripts/cluster-demo.sh (sharded ingest on a one-node Slurm cluster)

@@ -96,6 +96,10 @@ Input input_of(const std::string& role, const json& j, const std::string& where)
         if (!d->is_boolean()) fail(where, "\"stored_as_depth\" is not a boolean");
         in.stored_as_depth = d->get<bool>();
     }
+    if (const json* u = member(j, "unused")) {
+        if (!u->is_boolean()) fail(where, "\"unused\" is not a boolean");
+        in.unused = u->get<bool>();
+    }
     if (member(j, "normal_convention")) {
         NormalFacts n;
         n.convention = convention_of(string_of(j, "normal_convention", where, true), where);
@@ -261,6 +265,7 @@ json to_json(const Input& in) {
     j["color_space"] = in.color_space;
     if (in.is_float) j["float"] = true;
     if (in.stored_as_depth) j["stored_as_depth"] = true;
+    if (in.unused) j["unused"] = true;
     if (in.normal) {
         j["normal_convention"] = convention_name(in.normal->convention);
         if (!in.normal->source.empty()) j["normal_convention_source"] = in.normal->source;

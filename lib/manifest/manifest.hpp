@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "material/channel.hpp"
 #include "material/roles.hpp"
 
@@ -43,6 +43,9 @@ struct Input {
     std::optional<NormalFacts> normal;  // normal inputs only
     // A height map stored as depth (white = deep), read inverted (HEIGHT_STORED_AS_DEPTH).
     bool stored_as_depth = false;
+    // Read and judged, but not applied: an opacity map that would hide the whole surface
+    // (OPACITY_ALL_TRANSPARENT); the material is written opaque and judged as such.
+    bool unused = false;
 };
 
 // One entry of Output::channels: what a channel (or the RGB triple) holds.
@@ -115,7 +118,7 @@ struct Manifest {
     std::vector<InputFailure> failures;  // sorted by source
     std::vector<MaterialFile> library;   // library.gltf + library.bin (preset material_file gltf)
     // The validation thresholds the run applied, by the names a rules file gives them
-    // ({CODE: {name: value}}, validate::threshold_table): a later reader judges as the run did
+    // ({CODE: {name: value}}, rules::threshold_table): a later reader judges as the run did
     // (the report's albedo overlay counts what the findings count). Empty in older manifests.
     std::map<std::string, std::map<std::string, double>> thresholds;
     // Only in the manifest of one shard (`ingest --shard I/N`): which part of which run it is.

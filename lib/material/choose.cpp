@@ -5,8 +5,8 @@
 #include <set>
 #include <tuple>
 
-#include "core/catalog.hpp"
 #include "core/text.hpp"
+#include "findings/catalog.hpp"
 #include "material/classify.hpp"
 #include "material/discovery.hpp"
 #include "material/families.hpp"
@@ -239,8 +239,20 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
         auto a = naming::analyse(file);
         const auto sc = from_sidecar.find(file);
         if (sc != from_sidecar.end() && !(a.clutter && a.clutter->kind == naming::ClutterKind::billboard)) {
+            // A sidecar of no naming family (MaterialX) that agrees with the name adds its evidence
+            // to the name's tag: the name still names the material and votes for its convention.
+            if (sc->second.family.empty() && a.tag && a.tag->match.role == sc->second.role) {
+                RoleTag t = std::move(*a.tag);
+                t.match.rule += " + " + sc->second.rule;
+                t.match.sidecar = sc->second.sidecar;
+                if (sc->second.normal != NormalConvention::unknown) t.match.normal = sc->second.normal;
+                add_candidate({file, t.match, {}});
+                tags.push_back(std::move(t));
+                continue;
+            }
             RoleTag t;
             t.match = sc->second;
+            if (t.match.family.empty()) t.match.family = naming::kFamilies[naming::kGenericFamily].name;
             // Where the name agrees on the role, what else it states stays ("_B-O": opacity in A).
             if (a.tag && a.tag->match.role == t.match.role) {
                 t.match.opacity_in_alpha = t.match.opacity_in_alpha || a.tag->match.opacity_in_alpha;

@@ -38,7 +38,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "material/roles.hpp"
 
 namespace mf {
@@ -82,8 +82,9 @@ int resolution_hint(std::string_view filename);
 // ---------------------------------------------------------------------------------------------
 // Sidecars: roles a set's own material description states.
 //
-// Which files: every `*.gltf` and `*.glb` of the set, and every `*.json` (a Megascans asset file is
-// "<id>.json" beside its maps); is_sidecar_name() says which names to read. Read at most
+// Which files: every `*.gltf` and `*.glb` of the set, every `*.json` (a Megascans asset file is
+// "<id>.json" beside its maps) and every `*.mtlx` (ambientCG ships one with each download);
+// is_sidecar_name() says which names to read. Read at most
 // kSidecarMaxBytes of each (a .glb's JSON chunk comes first, so its first bytes are enough; a
 // larger .gltf or .json is skipped: the names decide). Pass the file's path relative to the
 // set's root, '/'-separated, the same spelling as in the `files` given to discover_set: map URIs
@@ -91,9 +92,9 @@ int resolution_hint(std::string_view filename);
 
 inline constexpr size_t kSidecarMaxBytes = size_t{8} << 20;
 
-bool is_sidecar_name(std::string_view filename);  // .gltf .glb .json
+bool is_sidecar_name(std::string_view filename);  // .gltf .glb .json .mtlx
 
-enum class SidecarKind { none, gltf, megascans };
+enum class SidecarKind { none, gltf, megascans, materialx };
 
 struct SidecarMap {
     std::string file;  // relative to the set's root, '/'-separated, "." and ".." resolved
@@ -118,6 +119,13 @@ struct SidecarRoles {
 // albedo/diffuse, normal, roughness, gloss, specular, displacement/bump (height), ao (occlusion),
 // cavity, opacity, translucency and metalness have roles; others (fuzz, thickness, curvature,
 // brush, mask, transmission) are skipped.
+// MaterialX (.mtlx, read with libxml2): every surface shader's texture inputs (standard_surface,
+// gltf_pbr, open_pbr_surface, UsdPreviewSurface) and a displacement shader's, followed through
+// nodes (normalmap, extract, swizzle, convert, nodegraph outputs) to their image nodes' "file";
+// a normal map reached through a `normalmap` node is gl (MaterialX's tangent space is +Y up). A
+// file reached for two roles (a packed map split by extract nodes) is left to its name. The
+// family stays empty: a MaterialX document is no naming convention, so where the name agrees on
+// the role the name's family counts for the set's convention.
 // Never throws; content that is not one of these gives kind none and an error.
 SidecarRoles sidecar_roles(std::string_view filename, std::string_view content);
 

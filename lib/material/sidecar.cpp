@@ -1,5 +1,6 @@
 // Roles a set's own description states: glTF 2.0 materials (.gltf, .glb) and Megascans asset
-// JSON. Pure over the text; the caller reads the files (discovery.hpp says which and how much).
+// JSON here, MaterialX documents in materialx.cpp. Pure over the text; the caller reads the
+// files (discovery.hpp says which and how much).
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -7,69 +8,16 @@
 #include <cstdint>
 
 #include "material/discovery.hpp"
+#include "material/sidecar_util.hpp"
 #include "material/tokens.hpp"
 
 namespace mf {
 namespace {
 
 using nlohmann::json;
-
-int hex_value(char c) {
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    return -1;
-}
-
-// RFC 3986 percent-decoding (glTF 2.0 §2.8: URIs are encoded); a malformed escape stays as is.
-std::string percent_decode(std::string_view s) {
-    std::string out;
-    for (size_t i = 0; i < s.size(); ++i) {
-        if (s[i] == '%' && i + 2 < s.size()) {
-            const int hi = hex_value(s[i + 1]), lo = hex_value(s[i + 2]);
-            if (hi >= 0 && lo >= 0) {
-                out += static_cast<char>(hi * 16 + lo);
-                i += 2;
-                continue;
-            }
-        }
-        out += s[i];
-    }
-    return out;
-}
-
-// `uri` resolved against the folder of `sidecar` (both relative to the set's root), "." and ".."
-// applied, '\' read as '/'. nullopt for data: URIs, absolute paths and URLs, and paths that climb
-// out of the set.
-std::optional<std::string> resolve(std::string_view sidecar, std::string_view uri, bool decode) {
-    if (uri.empty() || uri.starts_with("data:") || uri.find("://") != std::string_view::npos) return std::nullopt;
-    std::string path = decode ? percent_decode(uri) : std::string(uri);
-    std::replace(path.begin(), path.end(), '\\', '/');
-    if (path.starts_with('/') || (path.size() > 1 && path[1] == ':')) return std::nullopt;  // "/x", "C:/x"
-    std::string dir(sidecar);
-    std::replace(dir.begin(), dir.end(), '\\', '/');
-    const auto slash = dir.rfind('/');
-    dir = slash == std::string::npos ? std::string() : dir.substr(0, slash + 1);
-    std::vector<std::string> parts;
-    const std::string full = dir + path;
-    size_t start = 0;
-    for (size_t p = 0; p <= full.size(); ++p) {
-        if (p < full.size() && full[p] != '/') continue;
-        const std::string part = full.substr(start, p - start);
-        start = p + 1;
-        if (part.empty() || part == ".") continue;
-        if (part == "..") {
-            if (parts.empty()) return std::nullopt;
-            parts.pop_back();
-            continue;
-        }
-        parts.push_back(part);
-    }
-    if (parts.empty()) return std::nullopt;
-    std::string out;
-    for (const auto& part : parts) out += (out.empty() ? "" : "/") + part;
-    return out;
-}
+using sidecar::add_map;
+using sidecar::read_materialx;
+using sidecar::resolve;
 
 const json* member(const json* j, const char* key) {
     if (!j || !j->is_object()) return nullptr;
@@ -85,13 +33,6 @@ std::optional<size_t> index_of(const json* j) {
 }
 
 bool is_zero_number(const json* j) { return j && j->is_number() && j->get<double>() == 0.0; }
-
-void add_map(SidecarRoles& out, std::string file, NameMatch m) {
-    for (const auto& existing : out.maps)
-        if (existing.file == file) return;  // first role wins
-    std::sort(m.unused.begin(), m.unused.end());
-    out.maps.push_back({std::move(file), std::move(m)});
-}
 
 // ---------------------------------------------------------------------------------------------
 // glTF 2.0
@@ -267,7 +208,7 @@ bool read_megascans(const json& root, std::string_view source, SidecarRoles& out
 
 bool is_sidecar_name(std::string_view filename) {
     const auto ext = naming::lower_copy(naming::extension_of(filename));
-    return ext == "gltf" || ext == "glb" || ext == "json";
+    return ext == "gltf" || ext == "glb" || ext == "json" || ext == "mtlx";
 }
 
 SidecarRoles sidecar_roles(std::string_view filename, std::string_view content) {
@@ -275,12 +216,16 @@ SidecarRoles sidecar_roles(std::string_view filename, std::string_view content) 
     out.source = std::string(filename);
     const auto ext = naming::lower_copy(naming::extension_of(filename));
     std::string_view text = content;
+    if (ext == "mtlx") {
+        read_materialx(content, filename, out);
+        return out;
+    }
     if (ext == "glb") {
         const auto chunk = glb_json(content, out.error);
         if (!chunk) return out;
         text = *chunk;
     } else if (ext != "gltf" && ext != "json") {
-        out.error = "not a .gltf, .glb or .json file";
+        out.error = "not a .gltf, .glb, .json or .mtlx file";
         return out;
     }
     const json root = json::parse(text.begin(), text.end(), nullptr, false);

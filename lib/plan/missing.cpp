@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <optional>
 
-#include "core/catalog.hpp"
+#include "findings/catalog.hpp"
 
 namespace mf {
 namespace {

@@ -4,7 +4,7 @@
 #include <set>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
 

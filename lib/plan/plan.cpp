@@ -4,9 +4,9 @@
 #include <fstream>
 #include <set>
 
-#include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "core/parallel.hpp"
+#include "findings/catalog.hpp"
 #include "plan/missing.hpp"
 #include "validate/validate.hpp"
 
@@ -414,7 +414,7 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     std::vector<std::string> candidates;
     std::vector<Finding> excluded;
     for (const std::string& f : src.files) {
-        const validate::Exclusion* e = opt.rules ? opt.rules->excluded(src.name, f) : nullptr;
+        const rules::Exclusion* e = opt.rules ? opt.rules->excluded(src.name, f) : nullptr;
         if (!e) {
             candidates.push_back(f);
             continue;
@@ -499,8 +499,8 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
 }
 
 std::vector<Finding> reported_findings(std::vector<Finding> findings, const std::string& material,
-                                       const validate::RuleConfig& rules) {
-    validate::apply_config(findings, material, rules);
+                                       const rules::RuleConfig& rules) {
+    rules::apply_config(findings, material, rules);
     return findings;
 }
 
@@ -522,6 +522,8 @@ std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {
         if (role == Role::normal) in.normal = plan.normal.value_or(manifest::NormalFacts{});
         if (const auto h = plan.routes.find(Role::height); role == Role::height && h != plan.routes.end())
             in.stored_as_depth = h->second.from == Role::height && h->second.invert;
+        // An opacity map no route reads is not applied (route(): it would hide the whole surface).
+        in.unused = role == Role::opacity && !plan.routes.count(Role::opacity);
         inputs.push_back(std::move(in));
     }
     return inputs;

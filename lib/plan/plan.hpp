@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "core/budget.hpp"
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
+#include "findings/rules.hpp"
 #include "image/image.hpp"
 #include "manifest/manifest.hpp"
 #include "material/discovery.hpp"
 #include "material/routing.hpp"
 #include "preset/preset.hpp"
 #include "sets/sets.hpp"
-#include "validate/rules.hpp"
 
 namespace mf {
 
@@ -30,8 +30,8 @@ enum class PlanMode {
 };
 
 struct PlanOptions {
-    const Preset* preset = nullptr;               // normal convention (override applied), sizes, needs
-    const validate::RuleConfig* rules = nullptr;  // thresholds, severities, suppressions
+    const Preset* preset = nullptr;            // normal convention (override applied), sizes, needs
+    const rules::RuleConfig* rules = nullptr;  // thresholds, severities, suppressions
     PlanMode mode = PlanMode::decode;
     MemoryBudget* budget = nullptr;  // decode mode: the set's decoded bytes are leased from it
     // A core of the batch is idle (a set alone, or the batch's tail): decode on two threads
@@ -70,7 +70,7 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt);
 // overrides, suppressions) applied. Its one application: after every stage has raised its
 // findings, so no stage decides on a finding the config would drop or lower.
 std::vector<Finding> reported_findings(std::vector<Finding> findings, const std::string& material,
-                                       const validate::RuleConfig& rules);
+                                       const rules::RuleConfig& rules);
 
 // The manifest entry's inputs of a plan (role order).
 std::vector<manifest::Input> manifest_inputs(const SetPlan& plan);

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "material/channel.hpp"
 #include "material/roles.hpp"
 #include "preset/vocabulary.hpp"

@@ -8,13 +8,13 @@
 #include <thread>
 #include <tuple>
 
-#include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "core/interrupt.hpp"
 #include "core/json.hpp"
 #include "core/limits.hpp"
 #include "core/parallel.hpp"
 #include "core/version.hpp"
+#include "findings/catalog.hpp"
 #include "manifest/spool.hpp"
 #include "pack/pack.hpp"
 #include "plan/plan.hpp"
@@ -536,7 +536,7 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     m.generator = std::string(kGenerator);
     m.preset = preset_.name;
     m.normal_convention = preset_.normal_convention;
-    m.thresholds = validate::threshold_table(opt_.rules.thresholds);
+    m.thresholds = rules::threshold_table(opt_.rules.thresholds);
     if (opt_.shard)
         m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, run.context, plan,
                                             static_cast<int>(sets.size())};

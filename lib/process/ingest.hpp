@@ -12,11 +12,11 @@
 
 #include "color/color.hpp"
 #include "core/budget.hpp"
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
+#include "findings/rules.hpp"
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
 #include "sets/sets.hpp"
-#include "validate/rules.hpp"
 #include "validate/verdict.hpp"
 
 namespace mf {
@@ -30,7 +30,7 @@ struct IngestOptions {
     std::filesystem::path out_dir;
     int jobs = 0;                                     // 0 = all cores
     std::optional<NormalConvention> normal_override;  // --normal-convention
-    validate::RuleConfig rules;                       // validation thresholds, severities, suppressions
+    rules::RuleConfig rules;                          // validation thresholds, severities, suppressions
     // Cap on the estimated decoded bytes of the sets in flight (0 = no cap). A set larger than
     // the cap runs alone.
     uint64_t memory_budget = uint64_t{1} << 30;

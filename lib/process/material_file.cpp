@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "core/catalog.hpp"
 #include "core/files.hpp"
+#include "findings/catalog.hpp"
 #include "gltf/gltf.hpp"
 #include "texture/texture.hpp"
 

@@ -19,7 +19,7 @@ struct SetOutcome {
     std::string failure;
 };
 
-SetOutcome validate_one(const MaterialSource& src, const Preset& preset, const validate::RuleConfig& rules) {
+SetOutcome validate_one(const MaterialSource& src, const Preset& preset, const rules::RuleConfig& rules) {
     SetOutcome out;
     SetPlan plan = plan_set(src, PlanOptions{&preset, &rules, PlanMode::stream, nullptr});
     if (plan.failure) {
@@ -39,9 +39,9 @@ SetOutcome validate_one(const MaterialSource& src, const Preset& preset, const v
 
 }  // namespace
 
-std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const std::string& rules_file,
-                                                     std::string& error) {
-    auto cfg = validate::RuleConfig::from_json(preset.validate, error);
+std::optional<rules::RuleConfig> load_rule_config(const Preset& preset, const std::string& rules_file,
+                                                  std::string& error) {
+    auto cfg = rules::RuleConfig::from_json(preset.validate, error);
     if (!cfg) {
         error = "preset '" + preset.name + "' validate block: " + error;
         return std::nullopt;
@@ -53,7 +53,7 @@ std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const
         error = "the rules file " + error;
         return std::nullopt;
     }
-    auto layered = validate::RuleConfig::from_json(*j, error, *cfg);
+    auto layered = rules::RuleConfig::from_json(*j, error, *cfg);
     if (!layered) error = rules_file + ": " + error;
     return layered;
 }
@@ -64,7 +64,7 @@ manifest::Manifest validate_inputs(const std::vector<std::filesystem::path>& inp
     report.generator = std::string(kGenerator);
     report.preset = preset.name;
     report.normal_convention = preset.normal_convention;
-    report.thresholds = validate::threshold_table(opt.rules.thresholds);
+    report.thresholds = rules::threshold_table(opt.rules.thresholds);
     std::vector<InputFailure> source_failures;
     const auto sets = find_material_sets(inputs, {}, source_failures, nullptr, notes);
     std::vector<SetOutcome> outcomes(sets.size());

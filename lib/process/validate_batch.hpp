@@ -5,21 +5,21 @@
 #include <string>
 #include <vector>
 
+#include "findings/rules.hpp"
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
-#include "validate/rules.hpp"
 
 namespace mf {
 
 struct ValidateBatchOptions {
     int jobs = 0;  // 0 = all cores
-    validate::RuleConfig rules;
+    rules::RuleConfig rules;
 };
 
 // The preset's "validate" block, then the JSON file `rules_file` (if not empty) layered over it.
 // nullopt + `error` naming the file on any problem (a configuration error: exit 2).
-std::optional<validate::RuleConfig> load_rule_config(const Preset& preset, const std::string& rules_file,
-                                                     std::string& error);
+std::optional<rules::RuleConfig> load_rule_config(const Preset& preset, const std::string& rules_file,
+                                                  std::string& error);
 
 // Sets under `inputs` validated in parallel, as a manifest with no outputs (what ingest would
 // record of each set but what it writes: the report writers take either, report/formats.hpp):

@@ -29,14 +29,14 @@ private:
 
 }  // namespace
 
-std::string context_digest(const Preset& preset, const validate::RuleConfig& rules, const ColorContext& color) {
+std::string context_digest(const Preset& preset, const rules::RuleConfig& rules, const ColorContext& color) {
     Hasher h;
     h.add(kGenerator);
     h.add(image_library_version());                                 // decodes every input, encodes PNG/TIFF/EXR outputs
     h.add(texture::encoder_versions());                             // BCn, ASTC, zstd
     h.add(preset.source_json.dump());                               // sorted keys: the same preset, the same text
     h.add(std::string(convention_name(preset.normal_convention)));  // --normal-convention overrides
-    h.add(validate::describe(rules).dump());
+    h.add(rules::describe(rules).dump());
     h.add(color.cache_id());
     return h.hex();
 }

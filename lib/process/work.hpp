@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "color/color.hpp"
+#include "findings/rules.hpp"
 #include "preset/preset.hpp"
 #include "sets/sets.hpp"
-#include "validate/rules.hpp"
 
 namespace mf {
 
 // The part of every key that does not depend on the set (hex SHA-256).
-std::string context_digest(const Preset& preset, const validate::RuleConfig& rules, const ColorContext& color);
+std::string context_digest(const Preset& preset, const rules::RuleConfig& rules, const ColorContext& color);
 
 // The SHA-256 (hex) of an input file's bytes; nullopt + `error` when it cannot be read.
 using Digest = std::function<std::optional<std::string>(const InputFile&, std::string& error)>;

@@ -214,27 +214,31 @@ private:
     void checks_html(std::string& h) const {
         if (!pics_.albedo && !pics_.metalness) return;
         h += "<h3>Physically plausible ranges</h3>\n<div class=\"checks\">\n";
-        const validate::Thresholds& t = t_;
+        const rules::Thresholds& t = t_;
         if (pics_.albedo) {
             // The shares are the findings' (surface_share: of the visible albedo), counted by the
             // rules' own classifier under the run's thresholds (manifest "thresholds").
-            const AlbedoStats& s = pics_.albedo_stats;
+            const AlbedoStats& st = pics_.albedo_stats;
+            const validate::AlbedoCounts& s = st.counts;
+            auto share = [&s](long long weighted) { return s.visible ? mf::percent(s.surface_share(weighted)) : "—"; };
+            const auto visible = static_cast<size_t>(s.visible);
             h += "<figure class=\"overlay albedo-range\">" + img(*pics_.albedo, m_.name + " albedo range") +
                  "<figcaption>albedo luminance" + std::string(m_.outputs.empty() ? " of the source map" : "") +
                  ", as the rules judge it: dielectric " + fixed(t.albedo_min_srgb, 0) + "–" +
                  fixed(t.albedo_max_srgb, 0) + " sRGB, metal from " + fixed(t.metal_albedo_min_srgb, 0) +
                  " sRGB<br><span class=\"key dark\"></span> too dark: dielectric <span class=\"share\" "
                  "data-code=\"ALBEDO_TOO_DARK\">" +
-                 percent(s.dielectric_dark, s.visible) +
-                 "</span>, metal <span class=\"share\" data-code=\"METAL_ALBEDO_TOO_DARK\">" +
-                 percent(s.metal_dark, s.visible) +
+                 share(s.dielectric_dark) +
+                 "</span>, metal <span class=\"share\" data-code=\"METAL_ALBEDO_TOO_DARK\">" + share(s.metal_dark) +
                  "</span> <span class=\"key bright\"></span> too bright: <span class=\"share\" "
                  "data-code=\"ALBEDO_TOO_BRIGHT\">" +
-                 percent(s.dielectric_bright, s.visible) +
-                 "</span> <span class=\"key blend\"></span> blend (not judged): " + percent(s.blend, s.visible) +
-                 " <span class=\"meta\">(of the visible albedo)</span><br>dielectric " +
-                 percent(s.dielectric, s.visible) + ", metal " + percent(s.metal, s.visible) +
-                 (s.visible < s.pixels ? ", not visible " + percent(s.pixels - s.visible, s.pixels) : std::string()) +
+                 share(s.dielectric_bright) +
+                 "</span> <span class=\"meta\">(of the visible albedo)</span><br>dielectric " + share(s.dielectric) +
+                 ", metal " + share(s.metal) +
+                 (s.blend > 0 ? " (metalness between the classes on " + percent(static_cast<size_t>(s.blend), visible) +
+                                    ": counted toward both by its weight, drawn mixed)"
+                              : std::string()) +
+                 (visible < st.pixels ? ", not visible " + percent(st.pixels - visible, st.pixels) : std::string()) +
                  "</figcaption></figure>\n";
         }
         if (pics_.metalness) {
@@ -305,7 +309,7 @@ private:
     std::string card_html, sheet_html;
     const manifest::Material& m_;
     const MaterialPictures& pics_;
-    const validate::Thresholds& t_;
+    const rules::Thresholds& t_;
     const std::string& stem_;
     size_t index_;
     const manifest::Material* other_;
@@ -339,7 +343,7 @@ const char* const kStyle =
     "image-rendering:pixelated;background:#222}.preview img{width:200px}figcaption{font-size:11px;color:#3a434d;max-width:260px}"
     ".layout img.chan{width:40px;display:inline-block;vertical-align:middle}.layout td,.layout th{border:none;padding:1px 4px}"
     ".overlay img{width:200px}.key{display:inline-block;width:10px;height:10px;border:1px solid #555;vertical-align:middle}"
-    ".key.dark{background:rgb(219,31,31)}.key.bright{background:rgb(41,82,235)}.key.blend{background:rgb(217,166,38)}"
+    ".key.dark{background:rgb(219,31,31)}.key.bright{background:rgb(41,82,235)}"
     ".key.near{background:rgb(250,179,140)}.key.between{background:rgb(230,26,204)}"
     ".pair{display:flex;flex-wrap:wrap;align-items:center;gap:8px;margin:6px 0}.arrow{font-size:20px;color:#5a6470}"
     ".evidence{font-size:12px;margin:2px 0}details summary{cursor:pointer;color:#0b5cad}"

@@ -39,10 +39,10 @@ struct MaterialPictures {
 struct CardInput {
     const manifest::Material& material;
     const MaterialPictures& pictures;
-    const validate::Thresholds& thresholds;  // the overlays' (the run's)
-    const std::string& stem;                 // the material's folder (material_stems)
-    size_t index;                            // its place on the page
-    const manifest::Material* other;         // --compare's entry of the same name, or null
+    const rules::Thresholds& thresholds;  // the overlays' (the run's)
+    const std::string& stem;              // the material's folder (material_stems)
+    size_t index;                         // its place on the page
+    const manifest::Material* other;      // --compare's entry of the same name, or null
     const std::string& other_preset;
 };
 

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <set>
 
-#include "core/catalog.hpp"
 #include "core/json.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
+#include "findings/catalog.hpp"
 
 namespace mf::report {
 

@@ -187,7 +187,7 @@ float Scalar::at(int x, int y, int w, int h) const {
 namespace {
 template <class T>
 Image albedo_overlay_of(const BasicImage<T>& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
-                        const validate::Thresholds& t, AlbedoStats& stats, int max_size) {
+                        const rules::Thresholds& t, AlbedoStats& stats, int max_size) {
     stats = {};
     const int w = albedo.width, h = albedo.height;
     const validate::AlbedoClassifier classify(t, !albedo_srgb);
@@ -209,27 +209,28 @@ Image albedo_overlay_of(const BasicImage<T>& albedo, bool albedo_srgb, const Sca
             const float r = value_at(albedo, s);
             const float rgb[3] = {r, ac > 1 ? value_at(albedo, s + 1) : r, ac > 2 ? value_at(albedo, s + 2) : r};
             const float luminance = classify.luminance(rgb);
-            const validate::AlbedoClass k = o >= t.opacity_visible
-                                                ? classify.classify(luminance, metalness.at(x, y, w, h))
-                                                : validate::AlbedoClass::uncounted;
-            if (k == validate::AlbedoClass::uncounted) {
+            const validate::AlbedoJudgement j = o >= t.opacity_visible
+                                                    ? classify.judge(luminance, metalness.at(x, y, w, h))
+                                                    : validate::AlbedoJudgement{};
+            if (!j.counted) {
                 const float g = ((x / cell + y / cell) % 2) ? 0.30f : 0.18f;
                 const float grey[3] = {g, g, g};
                 put(x, grey, 1.f);
                 continue;
             }
-            ++stats.visible;
+            stats.counts.add(j);
             const float shown = enc(luminance);  // display value of the luminance
-            const float grey[3] = {shown, shown, shown};
-            using C = validate::AlbedoClass;
-            const bool dark = k == C::dielectric_dark || k == C::metal_dark, bright = k == C::dielectric_bright;
-            if (k == C::blend) ++stats.blend;
-            else if (k == C::metal || k == C::metal_dark) ++stats.metal, stats.metal_dark += dark ? 1 : 0;
-            else ++stats.dielectric, stats.dielectric_dark += dark ? 1 : 0, stats.dielectric_bright += bright ? 1 : 0;
-            if (dark) put(x, kTooDark, 1.f);
-            else if (bright) put(x, kTooBright, 1.f);
-            else if (k == C::blend) put(x, kBlend, 0.35f + 0.65f * shown);
-            else put(x, grey, 1.f);
+            const float dark = static_cast<float>(j.dark_weight()) / validate::kWeightUnit;
+            const float bright = static_cast<float>(j.bright_weight()) / validate::kWeightUnit;
+            if (dark == 1.f) put(x, kTooDark, 1.f);
+            else if (bright == 1.f) put(x, kTooBright, 1.f);
+            else {
+                const float rest = 1.f - dark - bright;
+                const float mix[3] = {dark * kTooDark[0] + bright * kTooBright[0] + rest * shown,
+                                      dark * kTooDark[1] + bright * kTooBright[1] + rest * shown,
+                                      dark * kTooDark[2] + bright * kTooBright[2] + rest * shown};
+                put(x, mix, 1.f);
+            }
         }
         reduce.add_row(y, row.data());
     }
@@ -238,15 +239,15 @@ Image albedo_overlay_of(const BasicImage<T>& albedo, bool albedo_srgb, const Sca
 }  // namespace
 
 Image albedo_overlay(const Image& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
-                     const validate::Thresholds& t, AlbedoStats& stats, int max_size) {
+                     const rules::Thresholds& t, AlbedoStats& stats, int max_size) {
     return albedo_overlay_of(albedo, albedo_srgb, metalness, opacity, t, stats, max_size);
 }
 Image albedo_overlay(const Image8& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
-                     const validate::Thresholds& t, AlbedoStats& stats, int max_size) {
+                     const rules::Thresholds& t, AlbedoStats& stats, int max_size) {
     return albedo_overlay_of(albedo, albedo_srgb, metalness, opacity, t, stats, max_size);
 }
 
-Image metalness_overlay(const Scalar& metalness, int width, int height, const validate::Thresholds& t,
+Image metalness_overlay(const Scalar& metalness, int width, int height, const rules::Thresholds& t,
                         MetalnessStats& stats, int max_size) {
     stats = {};
     BoxReducer reduce(width, height, max_size);

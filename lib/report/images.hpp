@@ -14,8 +14,9 @@
 #pragma once
 #include <cstddef>
 
+#include "findings/rules.hpp"
 #include "image/image.hpp"
-#include "validate/rules.hpp"
+#include "validate/albedo_class.hpp"
 
 namespace mf::report {
 
@@ -43,33 +44,30 @@ struct Scalar {
     float at(int x, int y, int w, int h) const;
 };
 
-// What the albedo overlay counted, by validate::AlbedoClass: the pixels ALBEDO_TOO_DARK,
-// ALBEDO_TOO_BRIGHT and METAL_ALBEDO_TOO_DARK count, so a share of `visible` here is the
-// finding's surface_share on the same pixels.
+// What the albedo overlay counted: the rules' own weighted sums (validate/albedo_class.hpp), so
+// a share of the visible surface here is the finding's surface_share on the same pixels.
 struct AlbedoStats {
-    size_t pixels = 0, visible = 0;  // visible: opacity at or above the cutoff, values finite
-    size_t dielectric = 0, dielectric_dark = 0, dielectric_bright = 0;
-    size_t metal = 0, metal_dark = 0;
-    size_t blend = 0;  // visible, metalness strictly between the classes
+    size_t pixels = 0;  // every pixel, visible or not (visible: counts.visible)
+    validate::AlbedoCounts counts;
 };
 
 // Overlay colours (display values), named so the page's legend says the same.
 inline constexpr float kTooDark[3] = {0.86f, 0.12f, 0.12f};     // red
 inline constexpr float kTooBright[3] = {0.16f, 0.32f, 0.92f};   // blue
-inline constexpr float kBlend[3] = {0.85f, 0.65f, 0.15f};       // amber, scaled by luminance
 inline constexpr float kBetween[3] = {0.90f, 0.10f, 0.80f};     // magenta: metalness strictly between the classes
 inline constexpr float kNearBinary[3] = {0.98f, 0.70f, 0.55f};  // peach: within a class but not exactly 0 or 1
 
 // The albedo's false-colour overlay, reduced as a thumbnail to at most `max_size` on its long
 // side while it is made (0: its full size; never held at full size otherwise): each pixel
 // classed as the rules class it (validate/albedo_class.hpp, under `t`): red = darker than its
-// class allows, blue = brighter, grey (its luminance) = in range, amber = a blend (not judged),
+// class allows, blue = brighter, grey (its luminance) = in range; a pixel of metalness between
+// the classes mixes them by the weight of it that breaks a bound (half red: half of it too dark);
 // checkerboard = not visible (opacity below t.opacity_visible). `albedo_srgb`: channels 0–2 are
 // sRGB-encoded (else linear).
 Image albedo_overlay(const Image& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
-                     const validate::Thresholds& t, AlbedoStats& stats, int max_size = 0);
+                     const rules::Thresholds& t, AlbedoStats& stats, int max_size = 0);
 Image albedo_overlay(const Image8& albedo, bool albedo_srgb, const Scalar& metalness, const Scalar& opacity,
-                     const validate::Thresholds& t, AlbedoStats& stats, int max_size = 0);
+                     const rules::Thresholds& t, AlbedoStats& stats, int max_size = 0);
 
 struct MetalnessStats {
     size_t pixels = 0, zero = 0, one = 0;
@@ -80,7 +78,7 @@ struct MetalnessStats {
 // Metalness that is neither 0 nor 1, reduced as albedo_overlay is (0: the map's full size): black = 0, white = 1
 // (within half an 8-bit code), peach = near 0 or 1, magenta = between t.dielectric_max and t.metal_min
 // (METALNESS_NOT_BINARY's band).
-Image metalness_overlay(const Scalar& metalness, int width, int height, const validate::Thresholds& t,
+Image metalness_overlay(const Scalar& metalness, int width, int height, const rules::Thresholds& t,
                         MetalnessStats& stats, int max_size = 0);
 
 }  // namespace mf::report

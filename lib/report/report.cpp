@@ -235,7 +235,7 @@ private:
             if (in.role == Role::albedo) {
                 albedo_srgb_ = srgb;
                 albedo_ = std::make_shared<Decoded>(std::move(image));
-            } else if (in.role == Role::metalness || in.role == Role::opacity) {
+            } else if (in.role == Role::metalness || (in.role == Role::opacity && !in.unused)) {
                 (in.role == Role::metalness ? metalness_ : opacity_) = plane_of(image, 0);
             }
         }
@@ -256,7 +256,7 @@ private:
         if (albedo_) {
             const Scalar metal = scalar_of(metalness_, m_, Role::metalness, 0.f);
             const Scalar opacity = scalar_of(opacity_, m_, Role::opacity, 1.f);
-            const validate::Thresholds& t = *opt_.thresholds;
+            const rules::Thresholds& t = *opt_.thresholds;
             pics_.albedo = write_pic(albedo_->is_codes() ? albedo_overlay(albedo_->codes, albedo_srgb_, metal, opacity,
                                                                           t, pics_.albedo_stats, opt_.thumb_size)
                                                          : albedo_overlay(albedo_->floats, albedo_srgb_, metal, opacity,
@@ -417,7 +417,7 @@ bool write_page(const Options& options, const manifest::Manifest& m_in, const fs
     const manifest::Manifest* m = &m_in;
     const std::string label = opt.manifest.empty() ? std::string("matforge validate") : opt.manifest.string();
     if (!opt.thresholds) {  // the run's (older manifests: the defaults it then had)
-        opt.thresholds = validate::thresholds_from(m->thresholds, error);
+        opt.thresholds = rules::thresholds_from(m->thresholds, error);
         if (!opt.thresholds) {
             error = label + ": " + error;
             return false;

@@ -40,7 +40,7 @@ struct Options {
     bool allow_outside = false;  // read outputs that lie outside the manifest's folder
     // The thresholds the overlays judge by; nullopt: the manifest's (the run's rules), so the
     // page's shares are its findings'.
-    std::optional<validate::Thresholds> thresholds;
+    std::optional<rules::Thresholds> thresholds;
     // Decoded pixels in flight across the materials running at once, as ingest's
     // (process/ingest.hpp): a material waits for its share, and one larger than the whole runs alone.
     uint64_t memory_budget = uint64_t{1} << 30;

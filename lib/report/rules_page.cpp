@@ -2,8 +2,8 @@
 // the repository (a CI artifact, a copied folder) still explains every finding it links to.
 #include <cctype>
 
-#include "core/catalog.hpp"
 #include "core/text.hpp"
+#include "findings/catalog.hpp"
 #include "report/html.hpp"
 #include "report/report.hpp"
 

@@ -12,10 +12,10 @@
 #include <mutex>
 #include <set>
 
-#include "core/catalog.hpp"
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "core/text.hpp"
+#include "findings/catalog.hpp"
 #include "material/discovery.hpp"
 
 namespace mf {
@@ -285,8 +285,10 @@ void scan_zip(Scan& scan, const fs::path& zip_path) {
                                  shown + ": the archive holds no recognizable material maps"});
 }
 
-// Whether a glTF or Megascans sidecar in the folder names one of its images: then its maps are
-// the set's whatever their names say (file names need no role tag), and the folder is one set.
+// Whether a sidecar in the folder names one of its images: then its maps are the set's whatever
+// their names say (file names need no role tag), and the folder is one set. A MaterialX
+// document whose maps the names already group as one material (ambientCG's downloads) leaves
+// the grouping, and so the material's name, to the names.
 bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& files) {
     for (const std::string& f : files) {
         if (!is_sidecar_name(f)) continue;
@@ -297,8 +299,17 @@ bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& fi
         if (!read_file(dir / f, bytes, error)) continue;
         const SidecarRoles roles = sidecar_roles(f, std::string_view(reinterpret_cast<const char*>(bytes.data()),
                                                                      bytes.size()));
+        std::vector<std::string> named;
         for (const SidecarMap& m : roles.maps)
-            if (std::binary_search(files.begin(), files.end(), m.file)) return true;
+            if (std::binary_search(files.begin(), files.end(), m.file)) named.push_back(m.file);
+        if (named.empty()) continue;
+        if (roles.kind != SidecarKind::materialx) return true;
+        std::vector<MaterialSource> groups;
+        add_groups(dir.filename().string(), files, MaterialSource{}, groups);
+        const bool one_group = groups.size() == 1 && std::all_of(named.begin(), named.end(), [&](const std::string& n) {
+                                   return std::binary_search(groups[0].files.begin(), groups[0].files.end(), n);
+                               });
+        if (!one_group) return true;
     }
     return false;
 }

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "image/image.hpp"
 
 namespace mf {

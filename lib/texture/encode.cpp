@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "core/catalog.hpp"
 #include "core/parallel.hpp"
 #include "core/text.hpp"
+#include "findings/catalog.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {

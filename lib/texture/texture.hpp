@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "color/color.hpp"
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "image/image.hpp"
 #include "manifest/manifest.hpp"
 #include "pack/pack.hpp"

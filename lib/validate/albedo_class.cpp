@@ -7,7 +7,7 @@
 
 namespace mf::validate {
 
-AlbedoClassifier::AlbedoClassifier(const Thresholds& t, bool linear_input)
+AlbedoClassifier::AlbedoClassifier(const rules::Thresholds& t, bool linear_input)
     : linear_input_(linear_input), dielectric_max_(t.dielectric_max), metal_min_(t.metal_min) {
     auto lin = [](double srgb255) { return mf::srgb_to_linear(static_cast<float>(srgb255 / 255.0)); };
     dark_lin_ = lin(t.albedo_min_srgb);

@@ -7,6 +7,13 @@
 // Rec.709 primaries, IEC 61966-2-1), compared with the bounds decoded to linear once, so a
 // bound of 30 sRGB is the PBR Guide's "sRGB value" 30. Luminance (not the max channel) keeps
 // saturated but plausible colors (red paint, gold) inside the bounds.
+//
+// Metalness weights each pixel between the two classes instead of dropping the blends: at or
+// below dielectric_max a pixel is all dielectric, at or above metal_min all metal, and between
+// the two its metal weight rises linearly (0.5 -> half each). A map painted 0.8 everywhere is
+// then judged 7/8 as metal (it used to escape every check, issue 26 item 5), and binary maps
+// count exactly as before. Weights are integers in units of 1/kWeightUnit of a pixel, so sums
+// are exact and never depend on the order pixels are added in.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -14,37 +21,76 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "validate/rules.hpp"
+#include "findings/rules.hpp"
 
 namespace mf::validate {
 
-enum class AlbedoClass : uint8_t {
-    uncounted,          // luminance or metalness not finite
-    dielectric,         // metalness <= dielectric_max, within the bounds
-    dielectric_dark,    // ... darker than albedo_min_srgb
-    dielectric_bright,  // ... brighter than albedo_max_srgb
-    metal,              // metalness >= metal_min, within the bound
-    metal_dark,         // ... darker than metal_albedo_min_srgb
-    blend,              // metalness strictly between: no bound applies (rust, dirt on metal)
+inline constexpr long long kWeightUnit = 65536;  // one whole pixel
+
+// One pixel judged: its metal weight (the rest of kWeightUnit is dielectric) and which bounds
+// its luminance breaks. A pixel whose luminance or metalness is not finite is not counted.
+struct AlbedoJudgement {
+    bool counted = false;
+    long long metal = 0;      // 0 .. kWeightUnit
+    bool dark = false;        // below albedo_min_srgb (the dielectric bound)
+    bool bright = false;      // above albedo_max_srgb
+    bool metal_dark = false;  // below metal_albedo_min_srgb
+    long long dielectric() const { return kWeightUnit - metal; }
+    bool blend() const { return metal > 0 && metal < kWeightUnit; }
+    // The weight of the pixel that breaks a bound of its class: too dark, too bright.
+    long long dark_weight() const { return (dark ? dielectric() : 0) + (metal_dark ? metal : 0); }
+    long long bright_weight() const { return bright ? dielectric() : 0; }
+};
+
+// Weighted sums of judged pixels: what the three rules compare and the report's legend shows.
+// Shares are of the visible surface (every counted pixel), so a few dark dielectric pixels in a
+// mostly metal map (dirt in the cracks) stay a few pixels, not "80 % of the dielectric".
+struct AlbedoCounts {
+    long long visible = 0;  // whole pixels
+    long long blend = 0;    // whole pixels with metalness strictly between the classes
+    // Weighted, in units of 1/kWeightUnit of a pixel:
+    long long dielectric = 0, dielectric_dark = 0, dielectric_bright = 0, metal = 0, metal_dark = 0;
+    void add(const AlbedoJudgement& j) {
+        if (!j.counted) return;
+        ++visible;
+        blend += j.blend() ? 1 : 0;
+        dielectric += j.dielectric();
+        dielectric_dark += j.dark ? j.dielectric() : 0;
+        dielectric_bright += j.bright ? j.dielectric() : 0;
+        metal += j.metal;
+        metal_dark += j.metal_dark ? j.metal : 0;
+    }
+    // A weighted sum as a share of the visible surface.
+    double surface_share(long long weighted) const {
+        return visible > 0 ? static_cast<double>(weighted) / (static_cast<double>(visible) * kWeightUnit) : 0.0;
+    }
 };
 
 class AlbedoClassifier {
 public:
     // linear_input: the albedo's channels are linear (float files), else sRGB-encoded.
-    AlbedoClassifier(const Thresholds& t, bool linear_input);
+    AlbedoClassifier(const rules::Thresholds& t, bool linear_input);
 
     // The linear luminance of a pixel as stored. Inline: called once per albedo pixel.
     float luminance(const float* rgb) const {
         return 0.2126f * linear(rgb[0]) + 0.7152f * linear(rgb[1]) + 0.0722f * linear(rgb[2]);
     }
-    AlbedoClass classify(float y, float metalness) const {
-        if (!std::isfinite(y) || !std::isfinite(metalness)) return AlbedoClass::uncounted;
-        if (metalness <= dielectric_max_) {
-            if (y < dark_lin_) return AlbedoClass::dielectric_dark;
-            return y > bright_lin_ ? AlbedoClass::dielectric_bright : AlbedoClass::dielectric;
-        }
-        if (metalness >= metal_min_) return y < metal_dark_lin_ ? AlbedoClass::metal_dark : AlbedoClass::metal;
-        return AlbedoClass::blend;
+    AlbedoJudgement judge(float y, float metalness) const {
+        AlbedoJudgement j;
+        if (!std::isfinite(y) || !std::isfinite(metalness)) return j;
+        j.counted = true;
+        j.metal = metal_weight(metalness);
+        j.dark = j.metal < kWeightUnit && y < dark_lin_;
+        j.bright = j.metal < kWeightUnit && y > bright_lin_;
+        j.metal_dark = j.metal > 0 && y < metal_dark_lin_;
+        return j;
+    }
+    // The metal weight of a finite metalness, compared in double as MapStats'
+    // METALNESS_NOT_BINARY compares it.
+    long long metal_weight(double m) const {
+        if (m <= dielectric_max_) return 0;
+        if (m >= metal_min_) return kWeightUnit;
+        return std::llround((m - dielectric_max_) / (metal_min_ - dielectric_max_) * kWeightUnit);
     }
     // The sRGB code (0–255) of linear luminance y (finite, >= 0): the number of code edges below
     // y, as a binary search over the edges would give, from a coarse table and one branch-free step.

@@ -10,73 +10,87 @@
 
 namespace mf::validate::detail {
 
-double AlbedoStats::Class::percentile(double p) const {
-    if (n == 0) return 0.0;
-    const auto target = static_cast<long long>(std::ceil(p * static_cast<double>(n)));
+double AlbedoStats::percentile(const Histogram& hist, long long n, double p) {
+    if (n <= 0) return 0.0;
+    // The first code whose running sum reaches p of the weight. For whole-pixel weights this is
+    // the pixel-count percentile: x * kWeightUnit is exact, so acc >= p * n holds exactly when
+    // it holds for the counts.
+    const double target = p * static_cast<double>(n);
     long long acc = 0;
     for (size_t k = 0; k < hist.size(); ++k) {
         acc += hist[k];
-        if (acc >= std::max<long long>(target, 1)) return static_cast<double>(k);
+        if (static_cast<double>(acc) >= target && acc > 0) return static_cast<double>(k);
     }
     return 255.0;
 }
 
 void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask,
                            std::vector<Finding>& out) const {
-    auto figures = [&](const Class& c, long long count, double threshold) {
-        return Figures{{"share", ratio(count, c.n)},
-                       {"surface_share", ratio(count, visible_)},
-                       {"pixels", c.n},
-                       {"visible_pixels", visible_},
-                       {"threshold_srgb", threshold},
-                       {"p1_srgb", c.percentile(0.01)},
-                       {"median_srgb", c.percentile(0.5)},
-                       {"p99_srgb", c.percentile(0.99)},
-                       {"metalness_mask", has_metal_mask},
-                       {"opacity_mask", has_opacity_mask},
-                       {"measure", "luminance, sRGB-encoded, 0-255"}};
+    const AlbedoCounts& c = counts_;
+    // Weighted sums reported as pixels: whole numbers whenever the metalness map is binary.
+    auto pixels = [](long long weighted) {
+        return static_cast<long long>(std::llround(static_cast<double>(weighted) / kWeightUnit));
+    };
+    auto figures = [&](const Histogram& hist, long long n, long long count, double threshold) {
+        Figures f{{"share", n > 0 ? static_cast<double>(count) / static_cast<double>(n) : 0.0},
+                  {"surface_share", c.surface_share(count)},
+                  {"pixels", pixels(n)},
+                  {"visible_pixels", c.visible},
+                  {"threshold_srgb", threshold},
+                  {"p1_srgb", percentile(hist, n, 0.01)},
+                  {"median_srgb", percentile(hist, n, 0.5)},
+                  {"p99_srgb", percentile(hist, n, 0.99)},
+                  {"metalness_mask", has_metal_mask},
+                  {"opacity_mask", has_opacity_mask},
+                  {"measure", "luminance, sRGB-encoded, 0-255"}};
+        if (c.blend > 0) f.emplace("blend_pixels", c.blend);
+        return f;
     };
     auto add = [&](std::string_view code, std::string msg, Figures fig) {
         out.push_back(finding(code, "albedo", file, std::move(msg), std::move(fig)));
     };
     // Shares are of the visible albedo; with a metalness mask the share of the class is given too.
-    auto amount = [&](const Class& c, long long count, const std::string& cls, const std::string& comparison) {
+    auto amount = [&](const Histogram& hist, long long n, long long count, const std::string& cls,
+                      const std::string& comparison) {
+        const std::string median = fixed(percentile(hist, n, 0.5), 0);
         if (!has_metal_mask)
-            return percent(ratio(count, visible_)) +
+            return percent(c.surface_share(count)) +
                    " of the visible albedo (no metalness map: all taken as dielectric) is " + comparison + " (median " +
-                   fixed(c.percentile(0.5), 0) + ")";
-        return percent(ratio(count, visible_)) + " of the visible albedo is " + cls + " and " + comparison + " (" +
-               percent(ratio(count, c.n)) + " of the " + std::to_string(c.n) + " " + cls + " pixels; median " +
-               fixed(c.percentile(0.5), 0) + ")";
+                   median + ")";
+        const std::string weighted =
+            c.blend > 0 ? "; the " + std::to_string(c.blend) +
+                              " pixels of metalness between the classes count toward both, weighted by it"
+                        : "";
+        return percent(c.surface_share(count)) + " of the visible albedo is " + cls + " and " + comparison + " (" +
+               percent(static_cast<double>(count) / static_cast<double>(n)) + " of the " + std::to_string(pixels(n)) +
+               " " + cls + " pixels; median " + median + weighted + ")";
     };
-    const Class& d = dielectric_;
-    if (d.n > 0) {
-        const double dark = ratio(d.below, visible_), bright = ratio(d.above, visible_);
-        if (dark > t_.albedo_dark_max_share)
+    if (c.dielectric > 0) {
+        const auto& h = dielectric_hist_;
+        if (c.surface_share(c.dielectric_dark) > t_.albedo_dark_max_share)
             add(code::albedo_too_dark,
                 file + ": " +
-                    amount(d, d.below, "dielectric", "darker than " + fixed(t_.albedo_min_srgb, 0) + " sRGB") +
+                    amount(h, c.dielectric, c.dielectric_dark, "dielectric",
+                           "darker than " + fixed(t_.albedo_min_srgb, 0) + " sRGB") +
                     "; no real dielectric is that dark — keep shadows and cavities out of the "
                     "albedo (they belong in occlusion)",
-                figures(d, d.below, t_.albedo_min_srgb));
-        if (bright > t_.albedo_bright_max_share)
+                figures(h, c.dielectric, c.dielectric_dark, t_.albedo_min_srgb));
+        if (c.surface_share(c.dielectric_bright) > t_.albedo_bright_max_share)
             add(code::albedo_too_bright,
                 file + ": " +
-                    amount(d, d.above, "dielectric", "brighter than " + fixed(t_.albedo_max_srgb, 0) + " sRGB") +
+                    amount(h, c.dielectric, c.dielectric_bright, "dielectric",
+                           "brighter than " + fixed(t_.albedo_max_srgb, 0) + " sRGB") +
                     "; even fresh snow reflects less — remove baked lighting or highlights",
-                figures(d, d.above, t_.albedo_max_srgb));
+                figures(h, c.dielectric, c.dielectric_bright, t_.albedo_max_srgb));
     }
-    const Class& m = metal_;
-    if (m.n > 0) {
-        const double dark = ratio(m.below, visible_);
-        if (dark > t_.metal_albedo_max_share)
-            add(code::metal_albedo_too_dark,
-                file + ": " +
-                    amount(m, m.below, "metallic", "darker than " + fixed(t_.metal_albedo_min_srgb, 0) + " sRGB") +
-                    "; raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
-                    "or its metalness is wrong",
-                figures(m, m.below, t_.metal_albedo_min_srgb));
-    }
+    if (c.metal > 0 && c.surface_share(c.metal_dark) > t_.metal_albedo_max_share)
+        add(code::metal_albedo_too_dark,
+            file + ": " +
+                amount(metal_hist_, c.metal, c.metal_dark, "metallic",
+                       "darker than " + fixed(t_.metal_albedo_min_srgb, 0) + " sRGB") +
+                "; raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
+                "or its metalness is wrong",
+            figures(metal_hist_, c.metal, c.metal_dark, t_.metal_albedo_min_srgb));
 }
 
 }  // namespace mf::validate::detail

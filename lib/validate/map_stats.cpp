@@ -40,7 +40,7 @@ std::optional<Role> channel_role(Role input_role, int channel) {
     return input_role;
 }
 
-MapStats::MapStats(MapInput in, const ImageInfo& info, const Thresholds& th)
+MapStats::MapStats(MapInput in, const ImageInfo& info, const rules::Thresholds& th)
     : input(std::move(in)), t(th), width(info.width), height(info.height), channels(info.channels) {
     const std::string ext = input.file.extension();
     is_jpeg = ext == "jpg" || ext == "jpeg" || info.format == "jpeg";

@@ -35,7 +35,7 @@ struct NormalSummary {
 
 struct MapStats {
     MapInput input;  // copy: the stats outlive no one, and this keeps the thread self-contained
-    Thresholds t;
+    rules::Thresholds t;
     int width = 0, height = 0, channels = 0;
     bool is_jpeg = false;
 
@@ -68,7 +68,7 @@ struct MapStats {
     int opacity_channel = -1;
     long long opacity_invisible = 0, opacity_below_cutoff = 0;
 
-    MapStats(MapInput in, const ImageInfo& info, const Thresholds& th);
+    MapStats(MapInput in, const ImageInfo& info, const rules::Thresholds& th);
     void add_band(int y0, int rows, const float* px);
     void normal_band(long long n, const float* px);  // add_band's normal-map part
 

@@ -24,7 +24,7 @@
 #include <memory>
 #include <string>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "image/image.hpp"
 #include "material/roles.hpp"
 

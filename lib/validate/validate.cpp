@@ -52,9 +52,9 @@ namespace {
 // (albedo, normal) -> per-map findings -> configuration and order.
 struct SetRun {
     std::vector<MapInput> maps;
-    const RuleConfig& cfg;
+    const rules::RuleConfig& cfg;
     const ValidateOptions& opt;
-    const Thresholds& t;
+    const rules::Thresholds& t;
     std::vector<bool> readable;
     std::vector<std::string> read_errors;
     Source albedo, metal, opacity, normal, height;
@@ -64,7 +64,7 @@ struct SetRun {
     std::optional<NormalVerdict> verdict;  // pass 2's, judged once the normal map is known valid
     SetValidation result;
 
-    SetRun(const std::vector<MapInput>& m, const RuleConfig& c, const ValidateOptions& o)
+    SetRun(const std::vector<MapInput>& m, const rules::RuleConfig& c, const ValidateOptions& o)
         : maps(m),
           cfg(c),
           opt(o),
@@ -144,10 +144,15 @@ struct SetRun {
         }
     }
 
-    // Pass 1: albedo on its own grid with metalness and opacity resampled onto it.
+    // Pass 1: albedo on its own grid with metalness and opacity resampled onto it. With an
+    // opacity map the surface is also counted whole: an opacity that hides everything is not
+    // applied (OPACITY_ALL_TRANSPARENT, known once its reader finishes), and the albedo is then
+    // judged as the opaque material ingest writes.
+    std::optional<detail::AlbedoStats> albedo_visible, albedo_whole;
     void albedo_stats() {
         const ImageInfo& ai = info(albedo);
-        detail::AlbedoStats acc(t, ai.is_float);
+        albedo_visible.emplace(t, ai.is_float);
+        if (opacity.map >= 0) albedo_whole.emplace(t, ai.is_float);
         std::vector<int> mx, ox;
         auto xmap = [&](const Source& s, std::vector<int>& v) {
             if (s.map < 0) return;
@@ -166,16 +171,23 @@ struct SetRun {
                              : opacity.map >= 0 ? row_of(opacity, nearest_index(y, ai.height, info(opacity).height))
                                                 : nullptr;
             for (int x = 0; x < ai.width; ++x) {
+                const float mv = m ? m[mx[x] * mc + metal.channel] : 0.f;
+                const float* px = a + x * ai.channels;
                 if (o) {
+                    albedo_whole->add(px, mv);
                     const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3]
                                                                : o[ox[x] * oc + opacity.channel];
                     if (!(ov >= t.opacity_visible)) continue;
                 }
-                const float mv = m ? m[mx[x] * mc + metal.channel] : 0.f;
-                acc.add(a + x * ai.channels, mv);
+                albedo_visible->add(px, mv);
             }
         }
-        acc.findings(display_name(maps[static_cast<size_t>(albedo.map)]), metal.map >= 0, opacity.map >= 0, found);
+    }
+    void albedo_findings() {
+        if (!albedo_visible) return;
+        const bool masked = opacity.map >= 0 && !result.opacity_invisible;
+        (masked || !albedo_whole ? *albedo_visible : *albedo_whole)
+            .findings(display_name(maps[static_cast<size_t>(albedo.map)]), metal.map >= 0, masked, found);
     }
 
     // Pass 2: normal with height resampled onto the normal's grid -> the convention verdict.
@@ -270,6 +282,7 @@ struct SetRun {
             result.albedo_alpha_min = stats[static_cast<size_t>(albedo.map)]->min[static_cast<size_t>(opacity.channel)];
         if (opacity.map >= 0 && readable[static_cast<size_t>(opacity.map)])
             result.opacity_invisible = stats[static_cast<size_t>(opacity.map)]->all_transparent();
+        albedo_findings();
         for (size_t i = 0; i < maps.size(); ++i) {
             if (!readable[i]) {
                 const std::string file = display_name(maps[i]);
@@ -306,7 +319,8 @@ struct SetRun {
 
 }  // namespace
 
-SetValidation validate_set(const std::vector<MapInput>& maps, const RuleConfig& cfg, const ValidateOptions& opt) {
+SetValidation validate_set(const std::vector<MapInput>& maps, const rules::RuleConfig& cfg,
+                           const ValidateOptions& opt) {
     SetRun run(maps, cfg, opt);
     run.read_headers();
     run.choose_sources();

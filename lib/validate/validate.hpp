@@ -12,7 +12,7 @@
 //    albedo's grid; normal with height on the normal's grid), resampled by nearest neighbour
 //    when sizes differ. Peak memory ≈ one band per map plus a few rows: an 8K set validates in
 //    tens of MB;
-//  - output: findings sorted by catalog order (core/catalog.hpp), then map order, at their
+//  - output: findings sorted by catalog order (findings/catalog.hpp), then map order, at their
 //    catalog severity; the RuleConfig's thresholds decide them, its switches (off, severity
 //    overrides, suppressions) are the caller's to apply, once per set (apply_config).
 #pragma once
@@ -24,12 +24,12 @@
 #include <string>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
+#include "findings/rules.hpp"
 #include "image/image.hpp"
 #include "material/roles.hpp"
 #include "validate/color_tag.hpp"
 #include "validate/normal_convention.hpp"
-#include "validate/rules.hpp"
 
 namespace mf::validate {
 
@@ -97,6 +97,7 @@ inline int nearest_index(int i, int n, int m) {
     return std::min(m - 1, static_cast<int>((static_cast<int64_t>(2 * i + 1) * m) / (2 * int64_t{n})));
 }
 
-SetValidation validate_set(const std::vector<MapInput>& maps, const RuleConfig& cfg, const ValidateOptions& opt = {});
+SetValidation validate_set(const std::vector<MapInput>& maps, const rules::RuleConfig& cfg,
+                           const ValidateOptions& opt = {});
 
 }  // namespace mf::validate

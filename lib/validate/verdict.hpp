@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 #include "manifest/manifest.hpp"
 
 namespace mf::validate {

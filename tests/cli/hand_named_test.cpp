@@ -2,7 +2,10 @@
 // tutorials and hand-made game folders name them, through the binary.
 #include <OpenImageIO/imageio.h>
 
+#include <map>
+
 #include "cli_util.hpp"
+#include "core/text.hpp"
 
 using namespace mft;
 
@@ -204,4 +207,66 @@ TEST(HandNamed, RulesExcludeAFileByName) {
         return list;
     };
     EXPECT_EQ(codes(read_json(work / "v.json")["materials"][0]["findings"]), codes(mat["findings"]));
+}
+
+// Metalness painted between the classes (issue 26 item 5), on real albedos: each pixel counts
+// toward the metal and the dielectric checks by its metalness ((m - 0.1) / 0.8, so 0.8 is 7/8
+// metal), where it used to count toward neither. Poly Haven's brown planks (all below 180 sRGB)
+// painted 0.8 are a dark metal on 7/8 of the surface; 3dtextures.me's obsidian (all below
+// 30 sRGB) painted 0.5 is half a dark dielectric and half a dark metal; the planks at metalness
+// 0 stay an ordinary dielectric. validate's HTML page shows the findings' own shares.
+TEST(HandNamed, HalfMetalMapsMeetTheMetalChecks) {
+    const fs::path work = temp_dir("half-metal");
+    auto make = [&](const std::string& name, const fs::path& albedo, float metalness) {
+        const fs::path set = work / "lib" / name;
+        fs::create_directories(set);
+        fs::copy_file(albedo, set / (name + "_basecolor.jpg"));
+        const mf::Image a = read_pixels(albedo);
+        mf::Image m(a.width, a.height, 1);
+        for (float& v : m.pixels) v = metalness;
+        write_png(set / (name + "_metallic.png"), m);
+    };
+    make("Planks08", corpus_set("polyhaven_brown_planks_09_1k_jpg+webp") / "brown_planks_09_diff_1k.jpg", 204 / 255.f);
+    make("Obsidian05", corpus_set("3dtextures_Obsidian_001") / "Obsidian_001_basecolor.jpg", 128 / 255.f);
+    make("Wood0", corpus_set("polyhaven_brown_planks_09_1k_jpg+webp") / "brown_planks_09_diff_1k.jpg", 0.f);
+    const auto v = run("validate " + q(work / "lib") + " --report json --report-file " + q(work / "v.json") +
+                       " --fail-on never");
+    ASSERT_EQ(v.code, 0) << v.output;
+    const auto h = run("validate " + q(work / "lib") + " --report html --report-file " + q(work / "page") +
+                       " --fail-on never");
+    ASSERT_EQ(h.code, 0) << h.output;
+    const nlohmann::json report = read_json(work / "v.json");
+    const std::string html = bytes_of(work / "page/index.html");
+    auto share = [&](const nlohmann::json& mat, const std::string& code) -> double {
+        for (const auto& f : mat["findings"])
+            if (f["code"] == code) return f["figures"]["surface_share"].get<double>();
+        return -1;
+    };
+    std::map<std::string, nlohmann::json> by_name;
+    for (const auto& m : report["materials"]) by_name[m["name"].get<std::string>()] = m;
+    ASSERT_EQ(by_name.size(), 3u) << report.dump(1);
+    // 204/255 = 0.8: weight (0.8 - 0.1) / 0.8 = 0.875 on every pixel; 99.4 % of them darker than 180.
+    const double planks = share(by_name["Planks08"], "METAL_ALBEDO_TOO_DARK");
+    EXPECT_GT(planks, 0.85) << by_name["Planks08"].dump(1);
+    EXPECT_LE(planks, 0.875);
+    EXPECT_LT(share(by_name["Planks08"], "ALBEDO_TOO_DARK"), 0);
+    // 128/255 = 0.502: weight 0.5025 metal, 0.4975 dielectric; obsidian is darker than 30 almost everywhere.
+    EXPECT_NEAR(share(by_name["Obsidian05"], "METAL_ALBEDO_TOO_DARK"), 0.5025, 0.01);
+    EXPECT_NEAR(share(by_name["Obsidian05"], "ALBEDO_TOO_DARK"), 0.4975, 0.03);
+    EXPECT_LT(share(by_name["Wood0"], "METAL_ALBEDO_TOO_DARK"), 0);
+    EXPECT_LT(share(by_name["Wood0"], "ALBEDO_TOO_DARK"), 0) << by_name["Wood0"].dump(1);
+    for (const auto& [name, mat] : by_name) {
+        for (const auto& f : mat["findings"]) {
+            if (!f["figures"].contains("surface_share")) continue;
+            const size_t from = html.find("data-material=\"" + name + "\"");
+            ASSERT_NE(from, std::string::npos) << name;
+            const std::string card = html.substr(from, html.find("</section>", from) - from);
+            const std::string key = "data-code=\"" + f["code"].get<std::string>() + "\">";
+            const size_t at = card.find(key);
+            ASSERT_NE(at, std::string::npos) << name << " " << f["code"];
+            EXPECT_EQ(card.substr(at + key.size(), card.find("</span>", at) - at - key.size()),
+                      mf::percent(f["figures"]["surface_share"].get<double>()))
+                << name << " " << f["code"];
+        }
+    }
 }

@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include "core/files.hpp"
-#include "core/findings.hpp"
 #include "core/json.hpp"
 #include "core_util.hpp"
 
@@ -74,27 +73,6 @@ TEST(AtomicWrite, StaleTempsAreRemoved) {
     EXPECT_TRUE(fs::exists(live));
     EXPECT_TRUE(fs::exists(d / "keep.png"));
     fs::remove_all(d);
-}
-
-TEST(Findings, JsonRoundTrip) {
-    mf::Finding f{"MISSING_MAP", mf::Severity::info, "metalness", "", "no metalness map", {{"generated", 0.0}}};
-    const auto j = mf::to_json(f);
-    EXPECT_EQ(j["severity"], "info");
-    EXPECT_FALSE(j.contains("file"));
-    std::string error;
-    const auto g = mf::finding_from_json(j, error);
-    ASSERT_TRUE(g) << error;
-    EXPECT_EQ(g->code, f.code);
-    EXPECT_EQ(g->role, "metalness");
-    EXPECT_EQ(mf::to_json(g->figures).at("generated"), 0.0);
-    // Malformed findings are refused naming the member, never a JSON type_error.
-    EXPECT_FALSE(mf::finding_from_json({{"code", "X"}, {"severity", "fatal"}}, error));
-    EXPECT_NE(error.find("fatal"), std::string::npos);
-    EXPECT_FALSE(mf::finding_from_json({{"code", 3}, {"severity", "info"}}, error));
-    EXPECT_NE(error.find("code"), std::string::npos);
-    EXPECT_FALSE(mf::finding_from_json({{"severity", "info"}}, error));
-    EXPECT_FALSE(mf::finding_from_json({{"code", "X"}, {"severity", "info"}, {"figures", 2}}, error));
-    EXPECT_EQ(mf::worst({f, {"X", mf::Severity::error, "", "", "", {}}}), mf::Severity::error);
 }
 
 // What no document of ours may hold is refused while parsing, naming the file and the problem.

@@ -98,6 +98,17 @@ std::string found_role(const SetRun& r, const std::string& file) {
     return "";
 }
 
+// Whether an input's rule cites the MaterialX document `file` (its rule names an mtlx input).
+bool cited_sidecar(const SetRun& r, const std::string& file) {
+    if (!file.ends_with(".mtlx") || !r.manifest.contains("materials")) return false;
+    for (const auto& m : r.manifest.at("materials")) {
+        const json inputs = m.value("inputs", json::object());
+        for (const auto& in : inputs)
+            if (in.value("rule", "").find("mtlx:") != std::string::npos) return true;
+    }
+    return false;
+}
+
 // The manifest's normal convention for a normal input file, "" when it is not an input.
 std::string found_convention(const SetRun& r, const std::string& file) {
     if (!r.manifest.contains("materials")) return "";
@@ -150,6 +161,9 @@ void check_roles() {
             const std::string want = info.at("role").get<std::string>(), got = found_role(r, file);
             if (want == "ignore")
                 EXPECT_EQ(got, "ignore") << r.folder << "/" << file << ": truth says not a material map";
+            else if (want == "sidecar")  // read as evidence: not reported, and cited by an input's rule
+                EXPECT_TRUE(got.empty() && cited_sidecar(r, file))
+                    << r.folder << "/" << file << ": a sidecar, got " << (got.empty() ? "(none)" : got);
             else
                 EXPECT_TRUE(corpus::role_matches(want, got)) << r.folder << "/" << file << ": truth role " << want
                                                              << ", matforge " << (got.empty() ? "(none)" : got);
@@ -235,7 +249,9 @@ void print_table() {
         for (const auto& [file, info] : r.truth->at("files").items()) {
             const std::string want = info.at("role").get<std::string>(), got = found_role(r, file);
             ++total;
-            const bool ok = want == "ignore" ? got == "ignore" : corpus::role_matches(want, got);
+            const bool ok = want == "ignore"    ? got == "ignore"
+                            : want == "sidecar" ? got.empty() && cited_sidecar(r, file)
+                                                : corpus::role_matches(want, got);
             right += ok ? 1 : 0;
             if (!ok) wrong_roles += " " + file + "(" + want + "->" + (got.empty() ? "none" : got) + ")";
             if (want == "normal") {

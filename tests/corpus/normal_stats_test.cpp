@@ -75,7 +75,7 @@ Measured measure(const Map& m) {
     in.info = m.info;
     in.info.channels = m.img.channels;
     in.info.is_float = false;
-    md::MapStats st(in, in.info, mv::Thresholds{});
+    md::MapStats st(in, in.info, mf::rules::Thresholds{});
     const int band = 64;
     for (int y0 = 0; y0 < m.img.height; y0 += band)
         st.add_band(y0, std::min(band, m.img.height - y0), &m.img.pixels[m.img.index(0, y0)]);
@@ -121,7 +121,8 @@ const std::vector<Measured>& measured() {
                     gamma.push_back(p.at("file").get<std::string>());
             for (const auto& [file, info] : s.at("files").items()) {
                 const std::string role = info.at("role").get<std::string>();
-                if (role == "ignore" && (file.ends_with(".mtlx") || file.ends_with(".usdc"))) continue;
+                if ((role == "ignore" || role == "sidecar") && (file.ends_with(".mtlx") || file.ends_with(".usdc")))
+                    continue;
                 Map m;
                 m.name = file;
                 m.img = read(folder / file, m.info);
@@ -232,7 +233,7 @@ void check_classification() {
 }
 
 void check_margins() {
-    const mv::Thresholds t;
+    const mf::rules::Thresholds t;
     const double flat = mv::DetectorOptions{}.flat_max_slope_std;
     Range up_real, mxy_real, negz_real, grey_real, slope_real, len_real, bad_real, hx_real, real_srgb;
     Range up_wrong, mxy_wrong, negz_wrong, grey_wrong, hx_wrong;

@@ -298,7 +298,7 @@ TEST(SidecarRoles, UnreadableSidecarsAreReported) {
     EXPECT_THAT(bad.error, HasSubstr("neither a glTF nor a Megascans asset file"));
     EXPECT_EQ(sidecar_roles("broken.gltf", "{\"images\": [").error, "not a JSON object");
     EXPECT_EQ(sidecar_roles("list.json", "[1, 2]").error, "not a JSON object");
-    EXPECT_THAT(sidecar_roles("readme.txt", "{}").error, HasSubstr("not a .gltf, .glb or .json"));
+    EXPECT_THAT(sidecar_roles("readme.txt", "{}").error, HasSubstr("not a .gltf, .glb, .json or .mtlx"));
     const auto empty = sidecar_roles("mesh.gltf", R"({"asset": {"version": "2.0"}, "meshes": []})");
     EXPECT_EQ(empty.kind, SidecarKind::gltf);
     EXPECT_EQ(empty.error, "");
@@ -309,8 +309,125 @@ TEST(SidecarRoles, UnreadableSidecarsAreReported) {
     const auto d = discover_set({"Wood_Color.png", "notes.json", "mesh.gltf"}, nullptr, ChoicePolicy{}, {bad, empty});
     EXPECT_THAT(unrecognized_reason(d, "notes.json"), HasSubstr("sidecar not read (neither a glTF"));
     EXPECT_EQ(unrecognized_reason(d, "mesh.gltf"), "sidecar naming no map of this set");
-    for (const std::string f : {"a.gltf", "b.GLB", "c.json"}) EXPECT_TRUE(is_sidecar_name(f)) << f;
-    for (const std::string f : {"a.mtlx", "b.usdc", "c.png", "json"}) EXPECT_FALSE(is_sidecar_name(f)) << f;
+    for (const std::string f : {"a.gltf", "b.GLB", "c.json", "d.mtlx"}) EXPECT_TRUE(is_sidecar_name(f)) << f;
+    for (const std::string f : {"b.usdc", "c.png", "json"}) EXPECT_FALSE(is_sidecar_name(f)) << f;
+}
+
+// ambientCG's MaterialX document as it ships (Net004A_1K-JPG.mtlx of the corpus, trimmed of its
+// layout attributes): every map the standard_surface and the displacement shader read, the
+// normal map through a normalmap node (gl), the DX twin not named.
+constexpr const char* kAmbientCgMtlx = R"(<?xml version="1.0"?>
+<materialx version="1.38" fileprefix="./">
+  <standard_surface type="surfaceshader" name="Net004A_1K_JPG_StandardSurface">
+    <input type="float" name="specular" value="0" />
+    <input type="color3" name="base_color" nodename="Net004A_1K_JPG_Color" />
+    <input type="vector3" name="normal" nodename="normalmap" />
+    <input type="vector3" name="coat_normal" nodename="normalmap" />
+    <input type="float" name="specular_roughness" nodename="Net004A_1K_JPG_Roughness" />
+    <input type="float" name="coat_roughness" nodename="Net004A_1K_JPG_Roughness" />
+    <input type="color3" name="opacity" nodename="Net004A_1K_JPG_Opacity" />
+  </standard_surface>
+  <surfacematerial type="material" name="Net004A_1K_JPG">
+    <input type="surfaceshader" name="surfaceshader" nodename="Net004A_1K_JPG_StandardSurface" />
+    <input type="displacementshader" name="displacementshader" nodename="displacement" />
+  </surfacematerial>
+  <tiledimage type="color3" name="Net004A_1K_JPG_Color">
+    <input type="filename" name="file" colorspace="srgb_texture" value="Net004A_1K-JPG_Color.jpg" />
+  </tiledimage>
+  <tiledimage type="float" name="Net004A_1K_JPG_Displacement">
+    <input type="filename" name="file" value="Net004A_1K-JPG_Displacement.jpg" />
+  </tiledimage>
+  <displacement type="displacementshader" name="displacement">
+    <input type="float" name="displacement" nodename="Net004A_1K_JPG_Displacement" />
+  </displacement>
+  <tiledimage type="vector3" name="Net004A_1K_JPG_NormalGL">
+    <input type="filename" name="file" value="Net004A_1K-JPG_NormalGL.jpg" />
+  </tiledimage>
+  <normalmap type="vector3" name="normalmap">
+    <input type="vector3" name="in" nodename="Net004A_1K_JPG_NormalGL" />
+  </normalmap>
+  <tiledimage type="float" name="Net004A_1K_JPG_Roughness">
+    <input type="filename" name="file" value="Net004A_1K-JPG_Roughness.jpg" />
+  </tiledimage>
+  <tiledimage type="color3" name="Net004A_1K_JPG_Opacity">
+    <input type="filename" name="file" value="Net004A_1K-JPG_Opacity.jpg" />
+  </tiledimage>
+</materialx>)";
+
+TEST(SidecarRoles, MaterialXNamesEachMapsShaderInput) {
+    const auto s = sidecar_roles("Net004A_1K-JPG.mtlx", kAmbientCgMtlx);
+    EXPECT_EQ(s.kind, SidecarKind::materialx);
+    EXPECT_EQ(s.error, "");
+    std::vector<std::string> got = describe(s);
+    std::sort(got.begin(), got.end());
+    EXPECT_THAT(got, ElementsAre("Net004A_1K-JPG_Color.jpg albedo mtlx:standard_surface.base_color",
+                                 "Net004A_1K-JPG_Displacement.jpg height mtlx:displacement.displacement",
+                                 "Net004A_1K-JPG_NormalGL.jpg normal gl mtlx:standard_surface.normal",
+                                 "Net004A_1K-JPG_Opacity.jpg opacity mtlx:standard_surface.opacity",
+                                 "Net004A_1K-JPG_Roughness.jpg roughness mtlx:standard_surface.specular_roughness"));
+    // In a set: the names agree, so they keep naming the material and its convention; the
+    // rule cites both. The DX twin is still a candidate for a DirectX preset.
+    const std::vector<std::string> files{"Net004A.png",
+                                         "Net004A_1K-JPG.mtlx",
+                                         "Net004A_1K-JPG_Color.jpg",
+                                         "Net004A_1K-JPG_NormalDX.jpg",
+                                         "Net004A_1K-JPG_NormalGL.jpg",
+                                         "Net004A_1K-JPG_Roughness.jpg"};
+    const auto d = discover_set(files, nullptr, ChoicePolicy{}, {s});
+    EXPECT_EQ(d.convention, "ambientcg");
+    EXPECT_EQ(chosen_file(d, Role::normal), "Net004A_1K-JPG_NormalGL.jpg");
+    EXPECT_EQ(unrecognized_reason(d, "Net004A_1K-JPG.mtlx"), "");
+    for (const auto& c : d.choices)
+        if (c.role == Role::albedo) {
+            EXPECT_EQ(c.chosen.match.rule, "ambientcg:_Color + mtlx:standard_surface.base_color");
+        }
+    ChoicePolicy dx;
+    dx.preferred_normal = NC::dx;
+    EXPECT_EQ(chosen_file(discover_set(files, nullptr, dx, {s}), Role::normal), "Net004A_1K-JPG_NormalDX.jpg");
+}
+
+// Names that say nothing, a glTF PBR shader through a nodegraph with extract nodes (a packed
+// metal/roughness map reached for two roles is left to its name), fileprefix, and documents
+// that are not MaterialX or name paths outside the set.
+TEST(SidecarRoles, MaterialXThroughNodegraphsAndPrefixes) {
+    const auto s = sidecar_roles("mat/wall.mtlx", R"(<materialx version="1.39">
+  <nodegraph name="NG" fileprefix="tex/">
+    <image name="base" type="color3"><input name="file" type="filename" value="a.png" /></image>
+    <image name="nrm" type="vector3"><input name="file" type="filename" value="b.png" /></image>
+    <normalmap name="nm" type="vector3"><input name="in" type="vector3" nodename="nrm" /></normalmap>
+    <image name="mr" type="vector3"><input name="file" type="filename" value="c.png" /></image>
+    <extract name="m" type="float"><input name="in" type="vector3" nodename="mr" /><input name="index" type="integer" value="2" /></extract>
+    <extract name="r" type="float"><input name="in" type="vector3" nodename="mr" /><input name="index" type="integer" value="1" /></extract>
+    <image name="up" type="float"><input name="file" type="filename" value="../../../outside.png" /></image>
+    <output name="base_out" type="color3" nodename="base" />
+    <output name="n_out" type="vector3" nodename="nm" />
+    <output name="m_out" type="float" nodename="m" />
+    <output name="r_out" type="float" nodename="r" />
+    <output name="o_out" type="float" nodename="up" />
+  </nodegraph>
+  <gltf_pbr name="pbr" type="surfaceshader">
+    <input name="base_color" type="color3" nodegraph="NG" output="base_out" />
+    <input name="normal" type="vector3" nodegraph="NG" output="n_out" />
+    <input name="metallic" type="float" nodegraph="NG" output="m_out" />
+    <input name="roughness" type="float" nodegraph="NG" output="r_out" />
+    <input name="occlusion" type="float" nodegraph="NG" output="o_out" />
+  </gltf_pbr>
+</materialx>)");
+    EXPECT_EQ(s.kind, SidecarKind::materialx);
+    EXPECT_THAT(describe(s), ElementsAre("mat/tex/a.png albedo mtlx:gltf_pbr.base_color",
+                                         "mat/tex/b.png normal gl mtlx:gltf_pbr.normal"));
+    const auto d = discover_set({"mat/tex/a.png", "mat/tex/b.png", "mat/wall.mtlx"}, nullptr, ChoicePolicy{}, {s});
+    EXPECT_EQ(chosen_file(d, Role::albedo), "mat/tex/a.png");
+    EXPECT_EQ(chosen_file(d, Role::normal), "mat/tex/b.png");
+    EXPECT_EQ(unrecognized_reason(d, "mat/wall.mtlx"), "");
+    EXPECT_EQ(sidecar_roles("x.mtlx", "<materialx><oops").error, "not well-formed XML");
+    EXPECT_EQ(sidecar_roles("x.mtlx", "<svg/>").error, "not a MaterialX document (no <materialx> root)");
+    // No entity is substituted and nothing is fetched: the file value stays the literal text.
+    const auto ent = sidecar_roles("x.mtlx", R"(<?xml version="1.0"?>
+<!DOCTYPE materialx [<!ENTITY f SYSTEM "file:///etc/passwd">]>
+<materialx><standard_surface name="s" type="surfaceshader"><input name="base_color" type="color3" nodename="i" /></standard_surface>
+<image name="i" type="color3"><input name="file" type="filename" value="&f;" /></image></materialx>)");
+    EXPECT_TRUE(ent.maps.empty() || ent.maps[0].file.find("root:") == std::string::npos);
 }
 
 }  // namespace

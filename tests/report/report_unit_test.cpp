@@ -7,11 +7,11 @@
 #include <set>
 
 #include "core/text.hpp"
+#include "findings/rules.hpp"
 #include "report/html.hpp"
 #include "report/images.hpp"
 #include "report/report.hpp"
 #include "report_util.hpp"
-#include "validate/rules.hpp"
 
 using namespace mfr;
 using mf::report::material_stems;
@@ -142,7 +142,8 @@ TEST(Html, EscapesAndUrlPaths) {
 TEST(AlbedoOverlay, ClassifiesEachPixelByMetalnessAndLuminance) {
     // sRGB-encoded greys (luminance = the code): 20 (dielectric: too dark), 128 (in range),
     // 250 (too bright), 100 with metalness 1 (metal: too dark), 200 metal (in range),
-    // 128 with metalness 0.5 (blend), 128 with opacity 0.2 (not visible).
+    // 128 with metalness 0.5 (half metal: too dark for a metal, in range for a dielectric), 128
+    // with opacity 0.2 (not visible).
     const float grey[7] = {20, 128, 250, 100, 200, 128, 128};
     const float metal[7] = {0, 0, 0, 1, 1, 0.5f, 0};
     const float alpha[7] = {1, 1, 1, 1, 1, 1, 0.2f};
@@ -156,7 +157,7 @@ TEST(AlbedoOverlay, ClassifiesEachPixelByMetalnessAndLuminance) {
     m.image = &metalness;
     o.image = &opacity;
     mf::report::AlbedoStats st;
-    const mf::Image out = mf::report::albedo_overlay(albedo, true, m, o, mf::validate::Thresholds{}, st);
+    const mf::Image out = mf::report::albedo_overlay(albedo, true, m, o, mf::rules::Thresholds{}, st);
     ASSERT_EQ(out.width, 7);
     auto is = [&](int x, const float* rgb) {
         return out.at(x, 0, 0) == rgb[0] && out.at(x, 0, 1) == rgb[1] && out.at(x, 0, 2) == rgb[2];
@@ -167,17 +168,22 @@ TEST(AlbedoOverlay, ClassifiesEachPixelByMetalnessAndLuminance) {
     EXPECT_TRUE(is(2, mf::report::kTooBright));
     EXPECT_TRUE(is(3, mf::report::kTooDark));
     EXPECT_NEAR(out.at(4, 0, 1), 200 / 255.f, 1e-3f);
-    EXPECT_FALSE(is(5, mf::report::kTooDark) || is(5, mf::report::kTooBright));
-    EXPECT_GT(out.at(5, 0, 0), out.at(5, 0, 2));  // amber
+    // Half of it too dark: half red, half its grey.
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(out.at(5, 0, c), 0.5f * mf::report::kTooDark[c] + 0.5f * out.at(1, 0, c), 1e-6f);
     EXPECT_EQ(out.at(6, 0, 0), out.at(6, 0, 1));  // checkerboard grey
     EXPECT_EQ(st.pixels, 7u);
-    EXPECT_EQ(st.visible, 6u);
-    EXPECT_EQ(st.dielectric, 3u);
-    EXPECT_EQ(st.dielectric_dark, 1u);
-    EXPECT_EQ(st.dielectric_bright, 1u);
-    EXPECT_EQ(st.metal, 2u);
-    EXPECT_EQ(st.metal_dark, 1u);
-    EXPECT_EQ(st.blend, 1u);
+    // Weighted sums in units of 1/kWeightUnit of a pixel: the half-metal pixel counts half to each.
+    constexpr long long u = mf::validate::kWeightUnit;
+    const auto& n = st.counts;
+    EXPECT_EQ(n.visible, 6);
+    EXPECT_EQ(n.blend, 1);
+    EXPECT_EQ(n.dielectric, 3 * u + u / 2);
+    EXPECT_EQ(n.dielectric_dark, u);
+    EXPECT_EQ(n.dielectric_bright, u);
+    EXPECT_EQ(n.metal, 2 * u + u / 2);
+    EXPECT_EQ(n.metal_dark, u + u / 2);
+    EXPECT_DOUBLE_EQ(n.surface_share(n.metal_dark), 0.25);
 }
 
 TEST(Thumbnail, BoxFilterInLinearLightAndNeverEnlarged) {

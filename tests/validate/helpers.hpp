@@ -83,14 +83,14 @@ struct MemSet {
         };
     }
 
-    mf::validate::SetValidation run(const mf::validate::RuleConfig& cfg = {}, const std::string& material = "Test",
+    mf::validate::SetValidation run(const mf::rules::RuleConfig& cfg = {}, const std::string& material = "Test",
                                     int band_rows = 16) const {
         mf::validate::ValidateOptions opt;
         opt.material = material;
         opt.reader = reader();
         opt.band_rows = band_rows;
         auto res = mf::validate::validate_set(inputs, cfg, opt);
-        dropped = mf::validate::apply_config(res.findings, material, cfg);  // as plan's reported_findings
+        dropped = mf::rules::apply_config(res.findings, material, cfg);  // as plan's reported_findings
         return res;
     }
     mutable int dropped = 0;  // by the last run()'s rules config

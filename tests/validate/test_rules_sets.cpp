@@ -188,7 +188,7 @@ TEST(ValidateSets, AlbedoTooDarkAndTooBright) {
     s.add(Role::albedo, "T_albedo.png", a);
     EXPECT_FALSE(has_code(s.run().findings, code::albedo_too_dark));
     std::string err;
-    auto strict = mv::RuleConfig::from_json({{"preset", "strict"}}, err);
+    auto strict = mf::rules::RuleConfig::from_json({{"preset", "strict"}}, err);
     ASSERT_TRUE(strict) << err;
     EXPECT_TRUE(has_code(s.run(*strict).findings, code::albedo_too_dark));
 
@@ -381,7 +381,7 @@ TEST(ValidateSets, SuppressionsAndSeverityOverrides) {
             for (int c = 0; c < 3; ++c) a.at(x, y, c) = 0.04f;
     s.add(Role::albedo, "T_albedo.png", a);
     std::string err;
-    auto cfg = mv::RuleConfig::from_json(
+    auto cfg = mf::rules::RuleConfig::from_json(
         nlohmann::json::parse(R"({"suppress": [{"material": "Coal*", "code": "ALBEDO_TOO_DARK",
                                                "reason": "coal is that dark"}],
                                   "severityOverrides": {"ALBEDO_TOO_DARK": 0}})"),
@@ -394,7 +394,7 @@ TEST(ValidateSets, SuppressionsAndSeverityOverrides) {
     ASSERT_TRUE(has_code(res.findings, code::albedo_too_dark));
     EXPECT_EQ(res.findings[0].severity, mf::Severity::error);
     // A threshold from the config: min 5 sRGB lets it pass.
-    auto loose = mv::RuleConfig::from_json({{"rules", {{"ALBEDO_TOO_DARK", {{"min_srgb", 5}}}}}}, err);
+    auto loose = mf::rules::RuleConfig::from_json({{"rules", {{"ALBEDO_TOO_DARK", {{"min_srgb", 5}}}}}}, err);
     ASSERT_TRUE(loose) << err;
     EXPECT_FALSE(has_code(s.run(*loose).findings, code::albedo_too_dark));
 }

@@ -27,7 +27,7 @@ size_t reference_code(float y) {
 }
 
 TEST(StatsExact, AlbedoCodeEqualsBinarySearchAtEveryEdgeAndBetween) {
-    const md::AlbedoStats acc(mv::Thresholds{}, false);
+    const md::AlbedoStats acc(mf::rules::Thresholds{}, false);
     std::vector<float> ys = {0.f, 1e-30f, 1e-7f, 0.5f, 1.f, 1.0001f, 2.f, 1e30f};
     for (int k = 0; k < 256; ++k) {  // each edge, and the floats either side of it
         const float e = mf::srgb_to_linear(static_cast<float>((k + 0.5) / 255.0));
@@ -50,7 +50,7 @@ md::MapStats stats_for(int bit_depth, bool is_float, int channels) {
     mv::MapInput in;
     in.role = mf::Role::roughness;
     in.info = {4, 1, channels, bit_depth, is_float, "png", {}};
-    return md::MapStats(in, in.info, mv::Thresholds{});
+    return md::MapStats(in, in.info, mf::rules::Thresholds{});
 }
 
 TEST(StatsExact, IntegerFileMeansAreExactAndMatchTheFloatSum) {

@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/findings.hpp"
 #include "core/text.hpp"
+#include "findings/findings.hpp"
 #include "validate/verdict.hpp"
 
 namespace mf::cli {

@@ -9,7 +9,7 @@
 
 #include "command.hpp"
 #include "core/interrupt.hpp"
-#include "validate/rules.hpp"
+#include "findings/rules.hpp"
 
 namespace mf::cli {
 
@@ -31,11 +31,11 @@ inline ExitCode interrupted(std::string_view command, const std::string& what) {
 
 // Suppressions of the rules configuration whose material glob matches none of `names`: a typo
 // in a glob must not pass for a silenced finding that is merely absent.
-inline void report_unmatched_suppressions(std::string_view command, const validate::RuleConfig& rules,
+inline void report_unmatched_suppressions(std::string_view command, const rules::RuleConfig& rules,
                                           const std::vector<std::string>& names) {
     for (const auto& s : rules.suppressions) {
         bool matched = false;
-        for (const auto& n : names) matched = matched || validate::glob_match(s.material, n);
+        for (const auto& n : names) matched = matched || rules::glob_match(s.material, n);
         if (!matched)
             say(command, "note: the rules' suppression {\"material\": \"" + s.material + "\", \"code\": \"" + s.code +
                              "\"} matches no material of this run");

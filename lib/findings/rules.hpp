@@ -2,8 +2,8 @@
 // `--rules FILE` gives them.
 //
 // Conventions of this module (decided once here):
-//  - a rule is named by its finding code (core/findings.hpp), whose default severity, title
-//    and docs anchor are core/catalog.hpp's; a code never changes meaning;
+//  - a rule is named by its finding code (findings/findings.hpp), whose default severity, title
+//    and docs anchor are findings/catalog.hpp's; a code never changes meaning;
 //  - every threshold has a documented default and source (docs/rules.md; citations also at the
 //    member below); `preset: "strict"` swaps in the stricter published numbers;
 //  - suppressions remove findings of one code for materials whose name matches a glob
@@ -17,10 +17,10 @@
 #include <string_view>
 #include <vector>
 
-#include "core/catalog.hpp"
-#include "core/findings.hpp"
+#include "findings/catalog.hpp"
+#include "findings/findings.hpp"
 
-namespace mf::validate {
+namespace mf::rules {
 
 // Numbers the rules compare against. Values are in the units named; "share" is a fraction of
 // the pixels the rule looks at (0.05 = 5 %). Sources: docs/rules.md.
@@ -168,4 +168,4 @@ int apply_config(std::vector<Finding>& findings, std::string_view material, cons
 // Glob match with '*' and '?', case-sensitive.
 bool glob_match(std::string_view pattern, std::string_view text);
 
-}  // namespace mf::validate
+}  // namespace mf::rules

@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "validate/rules.hpp"
+#include "findings/rules.hpp"
 
-namespace mv = mf::validate;
+namespace mv = mf::rules;
 using nlohmann::json;
 
 TEST(RuleConfig, DefaultsAreTheCitedNumbers) {

@@ -1,4 +1,4 @@
-#include "core/catalog.hpp"
+#include "findings/catalog.hpp"
 
 #include <stdexcept>
 

@@ -1,14 +1,14 @@
 // The finding catalog: every code any stage raises, with its default severity, a title, the
 // stage that raises it and its anchor in docs/rules.md — decided here once. A finding is made
 // with finding(), which takes its severity from here; the rules configuration
-// (validate/rules.hpp: a preset's "validate" block, --rules FILE) then changes severities,
-// switches codes off and suppresses them. tests/core/catalog_test.cpp ties every code constant
-// (core/findings.hpp), this catalog and docs/interface.md's "Finding codes" table together.
+// (findings/rules.hpp: a preset's "validate" block, --rules FILE) then changes severities,
+// switches codes off and suppresses them. tests/findings/catalog_test.cpp ties every code constant
+// (findings/findings.hpp), this catalog and docs/interface.md's "Finding codes" table together.
 #pragma once
 #include <string_view>
 #include <vector>
 
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 
 namespace mf {
 

@@ -1,4 +1,4 @@
-#include "core/findings.hpp"
+#include "findings/findings.hpp"
 
 #include <algorithm>
 #include <limits>

@@ -1,5 +1,5 @@
-// The finding catalog (core/catalog.hpp) is the one owner of a code's default severity, title,
-// stage and docs anchor: every code constant of core/findings.hpp is in it once, and
+// The finding catalog (findings/catalog.hpp) is the one owner of a code's default severity, title,
+// stage and docs anchor: every code constant of findings/findings.hpp is in it once, and
 // docs/interface.md's "Finding codes" table and docs/rules.md's rule rows say what it says.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -11,7 +11,7 @@
 #include <set>
 #include <sstream>
 
-#include "core/catalog.hpp"
+#include "findings/catalog.hpp"
 #include "test_env.hpp"
 
 namespace {
@@ -48,7 +48,7 @@ std::map<std::string, std::vector<std::string>> table_rows(const std::string& md
 }  // namespace
 
 TEST(Catalog, EveryCodeConstantIsInTheCatalogOnce) {
-    const std::string header = read_source("lib/core/findings.hpp");
+    const std::string header = read_source("lib/findings/findings.hpp");
     const std::regex constant(R"re(inline constexpr std::string_view \w+ =\s*"([A-Z_]+)")re");
     std::set<std::string> constants;
     for (std::sregex_iterator it(header.begin(), header.end(), constant), end; it != end; ++it)

@@ -1,10 +1,10 @@
-#include "validate/rules.hpp"
+#include "findings/rules.hpp"
 
 #include <algorithm>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 
-namespace mf::validate {
+namespace mf::rules {
 namespace {
 
 using Member = double Thresholds::*;
@@ -407,4 +407,4 @@ int apply_config(std::vector<Finding>& findings, std::string_view material, cons
     return removed;
 }
 
-}  // namespace mf::validate
+}  // namespace mf::rules
