@@ -304,4 +304,22 @@ std::optional<ByteProducer> library_gltf(const std::vector<LibraryItem>& items, 
     });
 }
 
+RoleSource role_source(const manifest::Material& m, Role role) {
+    RoleSource s;
+    for (const manifest::Output& o : m.outputs)
+        for (const Channel& c : o.channels)
+            if (!s.output && c.kind == Channel::Kind::role && c.role == role) {
+                s.output = &o;
+                s.channel = &c;
+            }
+    if (s.output) return s;
+    for (const manifest::Constant& c : m.constants)
+        if (c.role == role && !c.value.empty()) {
+            const bool rgb = c.value.size() >= 3;
+            s.constant = {c.value[0], rgb ? c.value[1] : c.value[0], rgb ? c.value[2] : c.value[0]};
+            break;
+        }
+    return s;
+}
+
 }  // namespace mf::gltf

@@ -17,6 +17,7 @@
 //    emissiveFactor 1); factors left at their defaults of 1 (the textures carry the values);
 //  - JSON text is deterministic (sorted keys, 2-space indent): same inputs, same bytes.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -66,5 +67,15 @@ std::optional<ByteProducer> library_gltf(const std::vector<LibraryItem>& items, 
 
 // A relative path as a URI reference (RFC 3986 percent-encoding, '/' kept).
 std::string uri_of(const std::string& relative_path);
+
+// What feeds a material input of role `role`, as the glTF, MaterialX and USD files bind it: the
+// first texture channel holding the role (in the manifest's order of outputs and channels), or
+// else the constant the manifest records for it (a generated map's value, RGB for 3 numbers).
+struct RoleSource {
+    const manifest::Output* output = nullptr;  // the texture, or nullptr
+    const Channel* channel = nullptr;          // its channel ("RGB", "R", ... "A")
+    std::optional<std::array<float, 3>> constant;
+};
+RoleSource role_source(const manifest::Material& m, Role role);
 
 }  // namespace mf::gltf

@@ -5,7 +5,9 @@
 #include "core/files.hpp"
 #include "findings/catalog.hpp"
 #include "gltf/gltf.hpp"
+#include "mtlx/mtlx.hpp"
 #include "texture/texture.hpp"
+#include "usd/usd.hpp"
 
 namespace mf {
 namespace {
@@ -55,6 +57,23 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
         !write_pair(files, gltf_rel, bin_rel, write, m.material_files, error)) {
         m.findings.push_back(finding(code::output_write_failed, "", "", gltf_rel + ": " + error));
         m.status = manifest::Status::partial;
+        return;
+    }
+    // The same material for DCCs: MaterialX (gltf_pbr, the glTF's own model) and USD
+    // (UsdPreviewSurface), each beside the glTF.
+    const std::string stem = m.name + "/" + m.name;
+    const std::pair<std::string, std::string> more[] = {
+        {"mtlx", mtlx::material_mtlx(m, stem + ".mtlx", opt)},
+        {"usda", usd::material_usda(m, stem + ".usda", opt)},
+    };
+    for (const auto& [format, text] : more) {
+        const std::string rel = stem + "." + format;
+        if (!write(rel, bytes_of(text), error)) {
+            m.findings.push_back(finding(code::output_write_failed, "", "", rel + ": " + error));
+            m.status = manifest::Status::partial;
+            return;
+        }
+        m.material_files.push_back({rel, format, sha256_hex(bytes_of(text))});
     }
 }
 

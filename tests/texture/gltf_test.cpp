@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/srgb.hpp"
+#include "core/text.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;
@@ -70,9 +71,11 @@ TEST(Gltf, MaterialsReferenceTheWrittenTexturesInTheirSlots) {
     const auto& r = ingested("samples");
     for (const auto& m : r.manifest["materials"]) {
         const std::string name = m["name"];
-        ASSERT_EQ(m["material_files"].size(), 2u) << name;
+        ASSERT_EQ(m["material_files"].size(), 4u) << name;
         EXPECT_EQ(m["material_files"][0]["file"], name + "/" + name + ".gltf");
         EXPECT_EQ(m["material_files"][1]["file"], name + "/" + name + ".bin");
+        EXPECT_EQ(m["material_files"][2]["file"], name + "/" + name + ".mtlx");
+        EXPECT_EQ(m["material_files"][3]["file"], name + "/" + name + ".usda");
         for (const auto& f : m["material_files"])
             EXPECT_EQ(mf::sha256_hex(read_bytes(r.out / f["file"].get<std::string>())), f["sha256"]) << f["file"];
         const json g = mf::testfiles::read_json(r.out / name / (name + ".gltf"));
@@ -200,4 +203,162 @@ TEST(Gltf, HdrEmissiveKeepsItsHueAndStrength) {
     EXPECT_NEAR(frame.at(16, 16, 0), 4.f, 0.25f);
     EXPECT_NEAR(frame.at(16, 16, 1), 3.f, 0.2f);
     EXPECT_NEAR(frame.at(16, 16, 2), 2.f, 0.15f);
+}
+
+namespace {
+
+// The MaterialX document beside each .gltf: MaterialX's own validation with its standard
+// libraries passes it; its gltf_pbr reads every written texture, colour maps (and only they)
+// as srgb_texture, each packed channel through an extract of the channel the manifest names,
+// the normal through a normalmap node; it is listed in the manifest with its hash.
+void expect_mtlx(const Run& r) {
+    std::vector<fs::path> files;
+    std::vector<const json*> mats;
+    for (const auto& m : r.manifest["materials"])
+        for (const auto& f : m["material_files"])
+            if (f["format"] == "mtlx") {
+                files.push_back(r.out / f["file"].get<std::string>());
+                mats.push_back(&m);
+                EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(files.back()))) << files.back();
+            }
+    ASSERT_EQ(files.size(), r.manifest["materials"].size()) << "one .mtlx per material";
+    const auto reports = node_checker("mtlx_validate.cjs", files);
+    ASSERT_EQ(reports.size(), files.size());
+    static const std::map<std::string, std::string> kInput{{"albedo", "base_color"},   {"opacity", "alpha"},
+                                                           {"metalness", "metallic"},  {"roughness", "roughness"},
+                                                           {"occlusion", "occlusion"}, {"normal", "normal"},
+                                                           {"emissive", "emissive"}};
+    for (size_t i = 0; i < files.size(); ++i) {
+        const json& rep = reports[i];
+        const json& m = *mats[i];
+        SCOPED_TRACE(files[i].string());
+        EXPECT_EQ(rep["version"], "1.39.4");
+        EXPECT_TRUE(rep["valid"].get<bool>()) << rep["message"];
+        ASSERT_EQ(rep["shaders"].size(), 1u);
+        const json& sh = rep["shaders"][0];
+        EXPECT_EQ(sh["category"], "gltf_pbr");
+        EXPECT_TRUE(sh["nodedef"].get<bool>());
+        std::map<std::string, std::string> colorspace;  // file -> the colour space its image nodes read it in
+        for (const auto& img : rep["images"]) colorspace[img["file"].get<std::string>()] = img["colorspace"];
+        for (const auto& o : m["outputs"]) {
+            const std::string file = fs::path(o["file"].get<std::string>()).filename().string();
+            ASSERT_TRUE(colorspace.count(file)) << file << " is written but not used";
+            EXPECT_EQ(colorspace[file], o["color_space"] == "sRGB" ? "srgb_texture" : "") << file;
+            for (const auto& [key, role] : o["channels"].items()) {
+                const auto input = kInput.find(role.get<std::string>());
+                if (input == kInput.end()) continue;
+                ASSERT_TRUE(sh["inputs"].contains(input->second)) << role;
+                const std::string node = sh["inputs"][input->second];
+                if (key.size() == 1) {  // one channel: an extract of that channel
+                    EXPECT_EQ(rep["extracts"].value(node, std::string("?")),
+                              std::to_string(std::string("RGBA").find(key)))
+                        << role << " from " << key;
+                } else if (role == "normal") {
+                    EXPECT_TRUE(node.ends_with("_normalmap")) << node;
+                }
+            }
+        }
+    }
+}
+
+// The USD layer beside each .gltf, read by an independent parser written from the USD grammar
+// (checkers/usda_check.py): its defaultPrim is a Material whose surface is a UsdPreviewSurface;
+// every connection resolves; every written texture is read by a UsdUVTexture whose st comes
+// from a UsdPrimvarReader_float2 of "st", in sRGB for colour maps and raw for data; each
+// role's input reads the channel the manifest names; the normal is rescaled to [-1, 1].
+void expect_usda(const Run& r) {
+    std::vector<std::string> argv{"python3",
+                                  mf::testenv::source_dir().string() + "/tests/texture/checkers/usda_check.py"};
+    std::vector<const json*> mats;
+    for (const auto& m : r.manifest["materials"])
+        for (const auto& f : m["material_files"])
+            if (f["format"] == "usda") {
+                argv.push_back((r.out / f["file"].get<std::string>()).string());
+                mats.push_back(&m);
+                EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(argv.back()))) << argv.back();
+            }
+    ASSERT_EQ(mats.size(), r.manifest["materials"].size()) << "one .usda per material";
+    const auto p = mf::testbin::spawn(argv, 120);
+    ASSERT_EQ(p.code, 0) << p.output;
+    std::istringstream lines(p.output);
+    static const std::map<std::string, std::string> kInput{
+        {"albedo", "inputs:diffuseColor"},   {"opacity", "inputs:opacity"},     {"metalness", "inputs:metallic"},
+        {"roughness", "inputs:roughness"},   {"occlusion", "inputs:occlusion"}, {"normal", "inputs:normal"},
+        {"emissive", "inputs:emissiveColor"}};
+    size_t i = 0;
+    for (std::string line; std::getline(lines, line); ++i) {
+        ASSERT_LT(i, mats.size());
+        const json rep = json::parse(line);
+        const json& m = *mats[i];
+        SCOPED_TRACE(rep["file"].get<std::string>());
+        ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+        EXPECT_TRUE(rep["unresolved"].empty()) << rep["unresolved"];
+        const std::string root = "/" + rep["metadata"]["defaultPrim"].get<std::string>();
+        const json& prims = rep["prims"];
+        ASSERT_EQ(prims[root]["type"], "Material");
+        const std::string surface = prims[root]["attributes"]["outputs:surface"]["connect"]["path"];
+        const std::string shader = surface.substr(0, surface.find('.'));
+        EXPECT_EQ(prims[shader]["attributes"]["info:id"]["value"], "UsdPreviewSurface");
+        const json& in = prims[shader]["attributes"];
+        for (const auto& o : m["outputs"]) {
+            const std::string file = fs::path(o["file"].get<std::string>()).filename().string();
+            std::string reader;  // the UsdUVTexture reading this file
+            for (const auto& [path, prim] : prims.items())
+                if (prim["attributes"].contains("inputs:file") &&
+                    prim["attributes"]["inputs:file"]["value"]["asset"] == file)
+                    reader = path;
+            ASSERT_FALSE(reader.empty()) << file << " is written but not read";
+            const json& ra = prims[reader]["attributes"];
+            EXPECT_EQ(ra["info:id"]["value"], "UsdUVTexture");
+            EXPECT_EQ(ra["inputs:sourceColorSpace"]["value"], o["color_space"] == "sRGB" ? "sRGB" : "raw") << file;
+            const std::string st = ra["inputs:st"]["connect"]["path"];
+            const json& st_prim = prims[st.substr(0, st.find('.'))]["attributes"];
+            EXPECT_EQ(st_prim["info:id"]["value"], "UsdPrimvarReader_float2");
+            EXPECT_EQ(st_prim["inputs:varname"]["value"], "st");
+            for (const auto& [key, role] : o["channels"].items()) {
+                const auto input = kInput.find(role.get<std::string>());
+                if (input == kInput.end()) continue;
+                ASSERT_TRUE(in.contains(input->second)) << role;
+                const std::string want = reader +
+                                         ".outputs:" + (key == "RGB" ? std::string("rgb") : mf::ascii_lower(key));
+                EXPECT_EQ(in[input->second]["connect"]["path"], want) << role;
+                if (role == "normal") {
+                    EXPECT_EQ(ra["inputs:scale"]["value"], json::array({2.0, 2.0, 2.0, 1.0}));
+                    EXPECT_EQ(ra["inputs:bias"]["value"], json::array({-1.0, -1.0, -1.0, 0.0}));
+                }
+            }
+        }
+    }
+    EXPECT_EQ(i, mats.size());
+    // The reader is no rubber stamp: a layer whose texture prims were renamed has connections to
+    // nothing, and text that is not USD is an error.
+    const auto raw = read_bytes(argv[2]);
+    std::string text(raw.begin(), raw.end());
+    for (size_t at; (at = text.find("def Shader \"Tex_")) != std::string::npos;)
+        text.replace(at, 15, "def Shader \"Gone_");
+    write_text(r.out / "broken.usda", text);
+    write_text(r.out / "not.usda", "#usda 1.0\ndef Material \"M\" {\n  float x = @\n}\n");
+    const auto bad = mf::testbin::spawn({argv[0], argv[1], (r.out / "broken.usda").string(),
+                                         (r.out / "not.usda").string()},
+                                        60);
+    std::istringstream bl(bad.output);
+    std::string l1, l2;
+    std::getline(bl, l1);
+    std::getline(bl, l2);
+    EXPECT_FALSE(json::parse(l1)["unresolved"].empty()) << l1;
+    EXPECT_FALSE(json::parse(l2)["ok"].get<bool>()) << l2;
+    fs::remove(r.out / "broken.usda");
+    fs::remove(r.out / "not.usda");
+}
+
+}  // namespace
+
+TEST(Gltf, UsdLayerBesideEachGltfReadsEveryTexture) {
+    expect_usda(ingested("samples"));
+    expect_usda(ingested("corpus"));
+}
+
+TEST(Gltf, MaterialXBesideEachGltfPassesMaterialXValidation) {
+    expect_mtlx(ingested("samples"));
+    expect_mtlx(ingested("corpus"));
 }

@@ -1,0 +1,136 @@
+#include "mtlx/mtlx.hpp"
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "core/identifier.hpp"
+#include "core/text.hpp"
+#include "core/version.hpp"
+
+namespace mf::mtlx {
+namespace {
+
+namespace fs = std::filesystem;
+
+// gltf_pbr's input for each role, its MaterialX type, and whether the map is colour (sRGB).
+struct Slot {
+    Role role;
+    const char* input;
+    const char* type;
+    bool color;
+};
+constexpr Slot kSlots[] = {
+    {Role::albedo, "base_color", "color3", true},   {Role::opacity, "alpha", "float", false},
+    {Role::metalness, "metallic", "float", false},  {Role::roughness, "roughness", "float", false},
+    {Role::occlusion, "occlusion", "float", false}, {Role::normal, "normal", "vector3", false},
+    {Role::emissive, "emissive", "color3", true},
+};
+
+int channel_index(const std::string& key) {
+    return key == "R" ? 0 : key == "G" ? 1 : key == "B" ? 2 : key == "A" ? 3 : -1;
+}
+
+class Writer {
+public:
+    Writer(const manifest::Material& m, const std::string& mtlx_file) : m_(m), name_(scene_identifier(m.name)) {
+        base_ = fs::path(mtlx_file).parent_path();
+    }
+
+    std::string document(const gltf::MaterialOptions& opt) {
+        std::set<std::string> connected;  // gltf_pbr inputs read from a texture
+        std::string s = "  <gltf_pbr name=\"" + name_ + "_shader\" type=\"surfaceshader\">\n";
+        for (const Slot& slot : kSlots) {
+            const gltf::RoleSource src = gltf::role_source(m_, slot.role);
+            const auto node = src.output ? read(*src.output, *src.channel, slot) : std::nullopt;
+            const std::string head = "    <input name=\"" + std::string(slot.input) + "\" type=\"" + slot.type + "\" ";
+            if (node) {
+                connected.insert(slot.input);
+                s += head + "nodename=\"" + *node + "\" />\n";
+            } else if (src.constant) {
+                const auto& v = *src.constant;
+                s += head + "value=\"" +
+                     (std::string(slot.type) == "color3"
+                          ? scene_number(v[0]) + ", " + scene_number(v[1]) + ", " + scene_number(v[2])
+                          : scene_number(v[0])) +
+                     "\" />\n";
+            }
+        }
+        if (connected.count("emissive") && m_.emissive_strength != 1.f)
+            s += "    <input name=\"emissive_strength\" type=\"float\" value=\"" + scene_number(m_.emissive_strength) +
+                 "\" />\n";
+        if (connected.count("alpha")) {
+            s += "    <input name=\"alpha_mode\" type=\"integer\" value=\"" +
+                 std::to_string(opt.alpha_mode == gltf::AlphaMode::mask    ? 1
+                                : opt.alpha_mode == gltf::AlphaMode::blend ? 2
+                                                                           : 0) +
+                 "\" />\n";
+            if (opt.alpha_mode == gltf::AlphaMode::mask)
+                s += "    <input name=\"alpha_cutoff\" type=\"float\" value=\"" + scene_number(opt.alpha_cutoff) +
+                     "\" />\n";
+        }
+        s += "  </gltf_pbr>\n";
+        s += "  <surfacematerial name=\"" + name_ + "\" type=\"material\">\n";
+        s += "    <input name=\"surfaceshader\" type=\"surfaceshader\" nodename=\"" + name_ + "_shader\" />\n";
+        s += "  </surfacematerial>\n";
+        return "<?xml version=\"1.0\"?>\n<!-- " + markup_escape(std::string(kGenerator)) + ": " +
+               markup_escape(m_.name) + " -->\n<materialx version=\"1.39\">\n" + nodes_ + s + "</materialx>\n";
+    }
+
+private:
+    // The image node reading `o` as `type` (once per file and type).
+    std::string image(const manifest::Output& o, const std::string& type, bool color) {
+        const std::string key = o.file + "|" + type;
+        if (const auto it = images_.find(key); it != images_.end()) return it->second;
+        const std::string node = "img_" + scene_identifier(fs::path(o.file).stem().string()) +
+                                 (type == "color4" ? "_rgba" : "");
+        const std::string file = fs::path(o.file).lexically_relative(base_).generic_string();
+        nodes_ += "  <image name=\"" + node + "\" type=\"" + type +
+                  "\">\n    <input name=\"file\" type=\"filename\" value=\"" + markup_escape(file) + "\"" +
+                  (color ? " colorspace=\"srgb_texture\"" : "") + " />\n  </image>\n";
+        images_[key] = node;
+        return node;
+    }
+
+    // The node a gltf_pbr input connects to for channel `c` of `o`.
+    std::optional<std::string> read(const manifest::Output& o, const Channel& c, const Slot& slot) {
+        const std::string role(role_name(c.role));
+        if (c.key == "RGB") {
+            const std::string img = image(o, slot.type, slot.color);
+            if (c.role != Role::normal) return img;
+            const std::string node = name_ + "_normalmap";
+            nodes_ += "  <normalmap name=\"" + node +
+                      "\" type=\"vector3\">\n    <input name=\"in\" type=\"vector3\" nodename=\"" + img +
+                      "\" />\n  </normalmap>\n";
+            return node;
+        }
+        const int index = channel_index(c.key);
+        if (index < 0 || std::string(slot.type) != "float") return std::nullopt;
+        // A single channel of a packed (or RGBA) texture: read it whole, as data unless it is the
+        // base color's own file (its RGB is sRGB; the alpha channel is linear either way).
+        const bool rgba = index == 3;
+        const std::string img = rgba ? image(o, "color4", o.srgb) : image(o, "vector3", false);
+        const std::string node = name_ + "_" + role;
+        nodes_ += "  <extract name=\"" + node + "\" type=\"float\">\n    <input name=\"in\" type=\"" +
+                  std::string(rgba ? "color4" : "vector3") + "\" nodename=\"" + img +
+                  "\" />\n    <input name=\"index\" type=\"integer\" value=\"" + std::to_string(index) +
+                  "\" />\n  </extract>\n";
+        return node;
+    }
+
+    const manifest::Material& m_;
+    std::string name_;
+    fs::path base_;
+    std::string nodes_;
+    std::map<std::string, std::string> images_;
+};
+
+}  // namespace
+
+std::string material_mtlx(const manifest::Material& m, const std::string& mtlx_file, const gltf::MaterialOptions& opt) {
+    return Writer(m, mtlx_file).document(opt);
+}
+
+}  // namespace mf::mtlx

@@ -1,0 +1,127 @@
+#include "usd/usd.hpp"
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "core/identifier.hpp"
+#include "core/version.hpp"
+
+namespace mf::usd {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Slot {
+    Role role;
+    const char* input;  // UsdPreviewSurface input
+    const char* type;   // its USD type
+    bool color;
+};
+constexpr Slot kSlots[] = {
+    {Role::albedo, "diffuseColor", "color3f", true},    {Role::opacity, "opacity", "float", false},
+    {Role::metalness, "metallic", "float", false},      {Role::roughness, "roughness", "float", false},
+    {Role::occlusion, "occlusion", "float", false},     {Role::normal, "normal", "normal3f", false},
+    {Role::emissive, "emissiveColor", "color3f", true},
+};
+
+// USD string and asset literals: '"' and '\' escaped; '@' cannot be escaped in an @asset@ path.
+std::string usd_string(const std::string& s) {
+    std::string out = "\"";
+    for (const char c : s) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "\"";
+}
+
+class Writer {
+public:
+    Writer(const manifest::Material& m, const std::string& usda_file)
+        : m_(m), name_(scene_identifier(m.name)), base_(fs::path(usda_file).parent_path()) {}
+
+    std::string layer(const gltf::MaterialOptions& opt) {
+        std::set<std::string> connected;  // UsdPreviewSurface inputs read from a texture
+        std::string s = "    def Shader \"Surface\"\n    {\n        uniform token info:id = \"UsdPreviewSurface\"\n";
+        for (const Slot& slot : kSlots) {
+            const gltf::RoleSource src = gltf::role_source(m_, slot.role);
+            const std::string head = "        " + std::string(slot.type) + " inputs:" + slot.input;
+            const std::string out = src.output ? output_of(*src.channel, slot) : "";
+            const std::string tex = out.empty() ? "" : texture(*src.output, slot.role);
+            if (!tex.empty()) {
+                connected.insert(slot.input);
+                s += head + ".connect = </" + name_ + "/" + tex + ".outputs:" + out + ">\n";
+            } else if (src.constant) {
+                const auto& v = *src.constant;
+                s += head + " = " +
+                     (std::string(slot.type) == "float"
+                          ? scene_number(v[0])
+                          : "(" + scene_number(v[0]) + ", " + scene_number(v[1]) + ", " + scene_number(v[2]) + ")") +
+                     "\n";
+            }
+        }
+        if (connected.count("opacity") && opt.alpha_mode != gltf::AlphaMode::opaque)
+            s += "        float inputs:opacityThreshold = " +
+                 (opt.alpha_mode == gltf::AlphaMode::mask ? scene_number(opt.alpha_cutoff) : std::string("0")) + "\n";
+        s += "        int inputs:useSpecularWorkflow = 0\n        token outputs:surface\n    }\n\n";
+        s += "    def Shader \"TexCoord\"\n    {\n        uniform token info:id = \"UsdPrimvarReader_float2\"\n"
+             "        string inputs:varname = \"st\"\n        float2 outputs:result\n    }\n";
+        return "#usda 1.0\n(\n    defaultPrim = " + usd_string(name_) +
+               "\n    doc = " + usd_string(std::string(kGenerator) + ": " + m_.name) +
+               "\n    metersPerUnit = 1\n    upAxis = \"Y\"\n)\n\n" + "def Material " + usd_string(name_) +
+               "\n{\n    token outputs:surface.connect = </" + name_ + "/Surface.outputs:surface>\n\n" + s + textures_ +
+               "}\n";
+    }
+
+private:
+    // The reader output a channel goes through ("rgb", "r" ... "a"), "" when it cannot feed the
+    // slot (three channels into a float input, one into a colour).
+    static std::string output_of(const Channel& c, const Slot& slot) {
+        const std::string out = c.key == "RGB" ? "rgb"
+                                : c.key == "R" ? "r"
+                                : c.key == "G" ? "g"
+                                : c.key == "B" ? "b"
+                                : c.key == "A" ? "a"
+                                               : "";
+        return out.empty() || (out == "rgb") != (std::string(slot.type) != "float") ? "" : out;
+    }
+
+    // The UsdUVTexture prim reading `o` (once per file), "" for a file whose path USD cannot hold.
+    std::string texture(const manifest::Output& o, Role role) {
+        if (const auto it = textures_of_.find(o.file); it != textures_of_.end()) return it->second;
+        const std::string file = fs::path(o.file).lexically_relative(base_).generic_string();
+        if (file.find('@') != std::string::npos) return textures_of_[o.file] = "";
+        const std::string prim = "Tex_" + scene_identifier(fs::path(o.file).stem().string());
+        std::string t = "\n    def Shader " + usd_string(prim) +
+                        "\n    {\n        uniform token info:id = \"UsdUVTexture\"\n" +
+                        "        asset inputs:file = @" + file + "@\n" + "        token inputs:sourceColorSpace = \"" +
+                        (o.srgb ? "sRGB" : "raw") + "\"\n        float2 inputs:st.connect = </" + name_ +
+                        "/TexCoord.outputs:result>\n        token inputs:wrapS = \"repeat\"\n"
+                        "        token inputs:wrapT = \"repeat\"\n";
+        if (role == Role::normal)
+            t += "        float4 inputs:scale = (2, 2, 2, 1)\n        float4 inputs:bias = (-1, -1, -1, 0)\n";
+        else if (role == Role::emissive && m_.emissive_strength != 1.f) {
+            const std::string k = scene_number(m_.emissive_strength);
+            t += "        float4 inputs:scale = (" + k + ", " + k + ", " + k + ", 1)\n";
+        }
+        t += "        float3 outputs:rgb\n        float outputs:r\n        float outputs:g\n        float outputs:b\n"
+             "        float outputs:a\n    }\n";
+        textures_ += t;
+        return textures_of_[o.file] = prim;
+    }
+
+    const manifest::Material& m_;
+    std::string name_;
+    fs::path base_;
+    std::string textures_;
+    std::map<std::string, std::string> textures_of_;
+};
+
+}  // namespace
+
+std::string material_usda(const manifest::Material& m, const std::string& usda_file, const gltf::MaterialOptions& opt) {
+    return Writer(m, usda_file).layer(opt);
+}
+
+}  // namespace mf::usd

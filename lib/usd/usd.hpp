@@ -1,0 +1,30 @@
+// USD text layers of a set's written textures (<material>/<material>.usda), beside the glTF and
+// the MaterialX document: a UsdPreviewSurface material any USD host opens (usdview, Omniverse,
+// Houdini Solaris, Maya, Blender built with USD). No USD library is packaged in Debian: the text
+// is written here and checked by an independent parser (tests/texture/checkers/usda_check.py).
+//
+// Conventions of this module (decided once here):
+//  - `def Material "<name>"` is the layer's defaultPrim; under it a `UsdPreviewSurface` shader
+//    ("Surface"), one `UsdPrimvarReader_float2` reading the primvar "st" ("TexCoord"), and one
+//    `UsdUVTexture` per written texture ("Tex_<stem>"), all connected by absolute paths;
+//  - `sourceColorSpace` "sRGB" on the colour maps (base color, emissive), "raw" on data maps;
+//  - a packed texture's channels through the reader's `outputs:r/g/b/a`; the normal map through
+//    `outputs:rgb` with scale (2, 2, 2, 1) and bias (-1, -1, -1, 0) (UsdPreviewSurface expects a
+//    tangent-space normal in [-1, 1]; st's origin is bottom-left, +Y up as the gltf preset
+//    writes it); an emissive scaled down to fit [0, 1] gets its strength back as the reader's
+//    scale;
+//  - the opacity: `opacityThreshold` = the cutoff for a cutout, 0 for a blend;
+//  - asset paths relative to the layer; text deterministic.
+#pragma once
+#include <string>
+
+#include "gltf/gltf.hpp"
+#include "manifest/manifest.hpp"
+
+namespace mf::usd {
+
+// The layer of `m` written at `usda_file` (relative to the manifest's folder), with the glTF's
+// alpha mode and cutoff.
+std::string material_usda(const manifest::Material& m, const std::string& usda_file, const gltf::MaterialOptions& opt);
+
+}  // namespace mf::usd
