@@ -17,16 +17,16 @@ namespace fs = std::filesystem;
 
 // gltf_pbr's input for each role, its MaterialX type, and whether the map is colour (sRGB).
 struct Slot {
-    Role role;
     const char* input;
     const char* type;
+    Role role;
     bool color;
 };
 constexpr Slot kSlots[] = {
-    {Role::albedo, "base_color", "color3", true},   {Role::opacity, "alpha", "float", false},
-    {Role::metalness, "metallic", "float", false},  {Role::roughness, "roughness", "float", false},
-    {Role::occlusion, "occlusion", "float", false}, {Role::normal, "normal", "vector3", false},
-    {Role::emissive, "emissive", "color3", true},
+    {"base_color", "color3", Role::albedo, true},   {"alpha", "float", Role::opacity, false},
+    {"metallic", "float", Role::metalness, false},  {"roughness", "float", Role::roughness, false},
+    {"occlusion", "float", Role::occlusion, false}, {"normal", "vector3", Role::normal, false},
+    {"emissive", "color3", Role::emissive, true},
 };
 
 int channel_index(const std::string& key) {
@@ -84,8 +84,8 @@ private:
     std::string image(const manifest::Output& o, const std::string& type, bool color) {
         const std::string key = o.file + "|" + type;
         if (const auto it = images_.find(key); it != images_.end()) return it->second;
-        const std::string node = "img_" + scene_identifier(fs::path(o.file).stem().string()) +
-                                 (type == "color4" ? "_rgba" : "");
+        std::string node = "img_" + scene_identifier(fs::path(o.file).stem().string()) +
+                           (type == "color4" ? "_rgba" : "");
         const std::string file = fs::path(o.file).lexically_relative(base_).generic_string();
         nodes_ += "  <image name=\"" + node + "\" type=\"" + type +
                   "\">\n    <input name=\"file\" type=\"filename\" value=\"" + markup_escape(file) + "\"" +
@@ -100,7 +100,7 @@ private:
         if (c.key == "RGB") {
             const std::string img = image(o, slot.type, slot.color);
             if (c.role != Role::normal) return img;
-            const std::string node = name_ + "_normalmap";
+            std::string node = name_ + "_normalmap";
             nodes_ += "  <normalmap name=\"" + node +
                       "\" type=\"vector3\">\n    <input name=\"in\" type=\"vector3\" nodename=\"" + img +
                       "\" />\n  </normalmap>\n";
@@ -112,7 +112,7 @@ private:
         // base color's own file (its RGB is sRGB; the alpha channel is linear either way).
         const bool rgba = index == 3;
         const std::string img = rgba ? image(o, "color4", o.srgb) : image(o, "vector3", false);
-        const std::string node = name_ + "_" + role;
+        std::string node = name_ + "_" + role;
         nodes_ += "  <extract name=\"" + node + "\" type=\"float\">\n    <input name=\"in\" type=\"" +
                   std::string(rgba ? "color4" : "vector3") + "\" nodename=\"" + img +
                   "\" />\n    <input name=\"index\" type=\"integer\" value=\"" + std::to_string(index) +

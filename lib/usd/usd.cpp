@@ -14,16 +14,16 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Slot {
-    Role role;
     const char* input;  // UsdPreviewSurface input
     const char* type;   // its USD type
+    Role role;
     bool color;
 };
 constexpr Slot kSlots[] = {
-    {Role::albedo, "diffuseColor", "color3f", true},    {Role::opacity, "opacity", "float", false},
-    {Role::metalness, "metallic", "float", false},      {Role::roughness, "roughness", "float", false},
-    {Role::occlusion, "occlusion", "float", false},     {Role::normal, "normal", "normal3f", false},
-    {Role::emissive, "emissiveColor", "color3f", true},
+    {"diffuseColor", "color3f", Role::albedo, true},    {"opacity", "float", Role::opacity, false},
+    {"metallic", "float", Role::metalness, false},      {"roughness", "float", Role::roughness, false},
+    {"occlusion", "float", Role::occlusion, false},     {"normal", "normal3f", Role::normal, false},
+    {"emissiveColor", "color3f", Role::emissive, true},
 };
 
 // USD string and asset literals: '"' and '\' escaped; '@' cannot be escaped in an @asset@ path.
@@ -47,8 +47,9 @@ public:
         for (const Slot& slot : kSlots) {
             const gltf::RoleSource src = gltf::role_source(m_, slot.role);
             const std::string head = "        " + std::string(slot.type) + " inputs:" + slot.input;
-            const std::string out = src.output ? output_of(*src.channel, slot) : "";
-            const std::string tex = out.empty() ? "" : texture(*src.output, slot.role);
+            std::string out, tex;
+            if (src.output && src.channel && !(out = output_of(*src.channel, slot)).empty())
+                tex = texture(*src.output, slot.role);
             if (!tex.empty()) {
                 connected.insert(slot.input);
                 s += head + ".connect = </" + name_ + "/" + tex + ".outputs:" + out + ">\n";
