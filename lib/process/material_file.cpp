@@ -104,6 +104,26 @@ bool write_library(const std::vector<manifest::MaterialSpool::Entry>& materials,
     }
     library.push_back({"library.gltf", "gltf", sha.hex()});
     library.push_back({"library.bin", "bin", sha256_hex(bin)});
+    // library.usda: every material's layer, which write_material_files writes beside its .gltf
+    // under the same stem.
+    std::vector<usd::LibraryItem> layers;
+    layers.reserve(items.size());
+    for (const auto& it : items)
+        layers.push_back({it.name, std::filesystem::path(it.gltf_file).replace_extension(".usda").generic_string()});
+    Sha256 usda_sha;
+    if (!write_stream(
+            "library.usda",
+            [&](const ByteSink& sink) {
+                return usd::library_usda(layers, [&](std::string_view piece) {
+                    usda_sha.update(piece);
+                    return sink(piece);
+                });
+            },
+            error)) {
+        error = "library.usda: " + error;
+        return false;
+    }
+    library.push_back({"library.usda", "usda", usda_sha.hex()});
     return true;
 }
 

@@ -125,4 +125,21 @@ std::string material_usda(const manifest::Material& m, const std::string& usda_f
     return Writer(m, usda_file).layer(opt);
 }
 
+bool library_usda(const std::vector<LibraryItem>& items, const ByteSink& sink) {
+    if (!sink("#usda 1.0\n(\n    defaultPrim = \"Materials\"\n    doc = " +
+              usd_string(std::string(kGenerator) + ": every material of the run") +
+              "\n    metersPerUnit = 1\n    upAxis = \"Y\"\n)\n\ndef Scope \"Materials\"\n{\n"))
+        return false;
+    std::set<std::string> taken;
+    for (const LibraryItem& item : items) {
+        if (item.layer.find('@') != std::string::npos) continue;  // no @ in an asset path
+        std::string prim = scene_identifier(item.name);
+        for (int k = 2; !taken.insert(prim).second; ++k) prim = scene_identifier(item.name) + "_" + std::to_string(k);
+        if (!sink("    def " + usd_string(prim) + " (\n        prepend references = @" + item.layer +
+                  "@\n    )\n    {\n    }\n"))
+            return false;
+    }
+    return sink("}\n");
+}
+
 }  // namespace mf::usd

@@ -17,6 +17,9 @@
 //  - asset paths relative to the layer; text deterministic.
 #pragma once
 #include <string>
+#include <vector>
+
+#include "core/files.hpp"
 
 #include "gltf/gltf.hpp"
 #include "manifest/manifest.hpp"
@@ -26,5 +29,15 @@ namespace mf::usd {
 // The layer of `m` written at `usda_file` (relative to the manifest's folder), with the glTF's
 // alpha mode and cutoff.
 std::string material_usda(const manifest::Material& m, const std::string& usda_file, const gltf::MaterialOptions& opt);
+
+// library.usda: a `Scope "Materials"` (the defaultPrim) holding one prim per material that
+// references that material's layer (`layer`, relative to the library's folder), so a USD host
+// opens every material of a run from one file. Prim names are the materials' identifiers,
+// made unique in the items' order ("a-b" and "a_b": a_b, a_b_2). Written piece by piece to `sink`.
+struct LibraryItem {
+    std::string name;
+    std::string layer;
+};
+bool library_usda(const std::vector<LibraryItem>& items, const ByteSink& sink);
 
 }  // namespace mf::usd

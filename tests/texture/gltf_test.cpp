@@ -123,7 +123,7 @@ TEST(Gltf, MaterialsReferenceTheWrittenTexturesInTheirSlots) {
 
 TEST(Gltf, LibraryHoldsEveryMaterialOnItsOwnNode) {
     const auto& r = ingested("samples");
-    ASSERT_EQ(r.manifest["library"].size(), 2u);
+    ASSERT_EQ(r.manifest["library"].size(), 3u);  // library.gltf, .bin, .usda
     EXPECT_EQ(r.manifest["library"][0]["file"], "library.gltf");
     const json g = mf::testfiles::read_json(r.out / "library.gltf");
     ASSERT_EQ(g["nodes"].size(), r.manifest["materials"].size());
@@ -356,6 +356,39 @@ void expect_usda(const Run& r) {
 TEST(Gltf, UsdLayerBesideEachGltfReadsEveryTexture) {
     expect_usda(ingested("samples"));
     expect_usda(ingested("corpus"));
+}
+
+// library.usda references every material's layer under /Materials (the manifest lists it with
+// its hash); the independent reader finds each referenced file.
+TEST(Gltf, UsdLibraryReferencesEveryMaterialLayer) {
+    const auto& r = ingested("samples");
+    bool listed = false;
+    for (const auto& f : r.manifest["library"])
+        if (f["file"] == "library.usda") {
+            listed = true;
+            EXPECT_EQ(f["format"], "usda");
+            EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(r.out / "library.usda")));
+        }
+    ASSERT_TRUE(listed) << r.manifest["library"].dump();
+    const auto p = mf::testbin::spawn({"python3",
+                                       mf::testenv::source_dir().string() + "/tests/texture/checkers/usda_check.py",
+                                       (r.out / "library.usda").string()},
+                                      60);
+    ASSERT_EQ(p.code, 0) << p.output;
+    const json rep = json::parse(p.output.substr(0, p.output.find('\n')));
+    ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+    EXPECT_TRUE(rep["unresolved"].empty()) << rep["unresolved"];
+    EXPECT_EQ(rep["metadata"]["defaultPrim"], "Materials");
+    EXPECT_EQ(rep["prims"]["/Materials"]["type"], "Scope");
+    std::set<std::string> referenced;
+    for (const auto& [path, prim] : rep["prims"].items())
+        for (const auto& ref : prim.value("references", json::array())) referenced.insert(ref.get<std::string>());
+    std::set<std::string> layers;
+    for (const auto& m : r.manifest["materials"])
+        for (const auto& f : m["material_files"])
+            if (f["format"] == "usda") layers.insert(f["file"].get<std::string>());
+    EXPECT_EQ(referenced, layers);
+    EXPECT_EQ(layers.size(), r.manifest["materials"].size());
 }
 
 TEST(Gltf, MaterialXBesideEachGltfPassesMaterialXValidation) {

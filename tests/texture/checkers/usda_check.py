@@ -12,6 +12,7 @@ prints one JSON line per file: {"file", "ok", "error", "metadata": {...}, "prims
 connection is resolved: "unresolved" lists the targets whose prim or property is not declared.
 """
 import json
+import os
 import re
 import sys
 
@@ -83,6 +84,8 @@ class Parser:
             if kind == "string":  # a doc string alone
                 meta["doc"] = json.loads(text)
                 continue
+            if text in ("prepend", "append", "add", "delete", "reorder"):  # a list edit
+                text = self.take()[1]
             self.take("=")
             meta[text] = self.value()
         self.take(")")
@@ -97,9 +100,12 @@ class Parser:
             ptype = ""
         name = json.loads(self.take()[1])
         path = parent + "/" + name
-        if self.peek()[1] == "(":
-            self.metadata()
+        meta = self.metadata() if self.peek()[1] == "(" else {}
         entry = prims.setdefault(path, {"type": ptype, "attributes": {}})
+        refs = meta.get("references", [])
+        refs = refs if isinstance(refs, list) else [refs]
+        if refs:
+            entry["references"] = [r["asset"] for r in refs if isinstance(r, dict) and "asset" in r]
         self.take("{")
         while self.peek()[1] != "}":
             if self.peek()[1] == "def":
@@ -133,7 +139,11 @@ def read(file):
     while p.peek()[0] is not None:
         p.prim("", prims)
     unresolved = []
+    folder = os.path.dirname(os.path.abspath(file))
     for path, prim in prims.items():
+        for ref in prim.get("references", []):
+            if not os.path.isfile(os.path.join(folder, ref)):
+                unresolved.append(f"{path} references {ref}: no such file")
         for name, attr in prim["attributes"].items():
             target = attr.get("connect")
             if target is None:
