@@ -68,9 +68,10 @@ std::optional<ByteProducer> library_gltf(const std::vector<LibraryItem>& items, 
 // A relative path as a URI reference (RFC 3986 percent-encoding, '/' kept).
 std::string uri_of(const std::string& relative_path);
 
-// What feeds a material input of role `role`, as the glTF, MaterialX and USD files bind it: the
-// first texture channel holding the role (in the manifest's order of outputs and channels), or
-// else the constant the manifest records for it (a generated map's value, RGB for 3 numbers).
+// What feeds a material input of role `role`, as the MaterialX and USD files bind it (the glTF
+// has fixed slots, material_gltf): the first texture channel holding the role (in the
+// manifest's order of outputs and channels), or else the constant the manifest records for it
+// (a generated map's value, RGB for 3 numbers).
 struct RoleSource {
     const manifest::Output* output = nullptr;  // the texture, or nullptr
     const Channel* channel = nullptr;          // its channel ("RGB", "R", ... "A")

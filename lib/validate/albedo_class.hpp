@@ -60,6 +60,16 @@ struct AlbedoCounts {
         metal += j.metal;
         metal_dark += j.metal_dark ? j.metal : 0;
     }
+    // Both counts together (a surface counted in two parts).
+    void merge(const AlbedoCounts& o) {
+        visible += o.visible;
+        blend += o.blend;
+        dielectric += o.dielectric;
+        dielectric_dark += o.dielectric_dark;
+        dielectric_bright += o.dielectric_bright;
+        metal += o.metal;
+        metal_dark += o.metal_dark;
+    }
     // A weighted sum as a share of the visible surface.
     double surface_share(long long weighted) const {
         return visible > 0 ? static_cast<double>(weighted) / (static_cast<double>(visible) * kWeightUnit) : 0.0;

@@ -65,32 +65,31 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
                percent(static_cast<double>(count) / static_cast<double>(n)) + " of the " + std::to_string(pixels(n)) +
                " " + cls + " pixels; median " + median + weighted + ")";
     };
-    if (c.dielectric > 0) {
-        const auto& h = dielectric_hist_;
-        if (c.surface_share(c.dielectric_dark) > t_.albedo_dark_max_share)
-            add(code::albedo_too_dark,
-                file + ": " +
-                    amount(h, c.dielectric, c.dielectric_dark, "dielectric",
-                           "darker than " + fixed(t_.albedo_min_srgb, 0) + " sRGB") +
-                    "; no real dielectric is that dark — keep shadows and cavities out of the "
-                    "albedo (they belong in occlusion)",
-                figures(h, c.dielectric, c.dielectric_dark, t_.albedo_min_srgb));
-        if (c.surface_share(c.dielectric_bright) > t_.albedo_bright_max_share)
-            add(code::albedo_too_bright,
-                file + ": " +
-                    amount(h, c.dielectric, c.dielectric_bright, "dielectric",
-                           "brighter than " + fixed(t_.albedo_max_srgb, 0) + " sRGB") +
-                    "; even fresh snow reflects less — remove baked lighting or highlights",
-                figures(h, c.dielectric, c.dielectric_bright, t_.albedo_max_srgb));
+    // The three rules: what each compares, against which bound, and what to do about it.
+    struct Rule {
+        std::string_view code;
+        const Histogram& hist;
+        long long n, count;
+        double max_share, bound_srgb;
+        const char *cls, *relation, *advice;
+    };
+    const Rule rules[] = {
+        {code::albedo_too_dark, dielectric_hist_, c.dielectric, c.dielectric_dark, t_.albedo_dark_max_share,
+         t_.albedo_min_srgb, "dielectric", "darker",
+         "no real dielectric is that dark — keep shadows and cavities out of the albedo (they belong in occlusion)"},
+        {code::albedo_too_bright, dielectric_hist_, c.dielectric, c.dielectric_bright, t_.albedo_bright_max_share,
+         t_.albedo_max_srgb, "dielectric", "brighter",
+         "even fresh snow reflects less — remove baked lighting or highlights"},
+        {code::metal_albedo_too_dark, metal_hist_, c.metal, c.metal_dark, t_.metal_albedo_max_share,
+         t_.metal_albedo_min_srgb, "metallic", "darker",
+         "raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) or its metalness is wrong"},
+    };
+    for (const Rule& r : rules) {
+        if (r.n <= 0 || !(c.surface_share(r.count) > r.max_share)) continue;
+        const std::string comparison = std::string(r.relation) + " than " + fixed(r.bound_srgb, 0) + " sRGB";
+        add(r.code, file + ": " + amount(r.hist, r.n, r.count, r.cls, comparison) + "; " + r.advice,
+            figures(r.hist, r.n, r.count, r.bound_srgb));
     }
-    if (c.metal > 0 && c.surface_share(c.metal_dark) > t_.metal_albedo_max_share)
-        add(code::metal_albedo_too_dark,
-            file + ": " +
-                amount(metal_hist_, c.metal, c.metal_dark, "metallic",
-                       "darker than " + fixed(t_.metal_albedo_min_srgb, 0) + " sRGB") +
-                "; raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) "
-                "or its metalness is wrong",
-            figures(metal_hist_, c.metal, c.metal_dark, t_.metal_albedo_min_srgb));
 }
 
 }  // namespace mf::validate::detail

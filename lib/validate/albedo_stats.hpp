@@ -26,6 +26,14 @@ public:
         metal_hist_[code] += j.metal;
     }
     size_t srgb_code(float y) const { return classify_.srgb_code(y); }
+    // Adds the pixels another accumulator of the same thresholds counted (exact: integer weights).
+    void merge(const AlbedoStats& o) {
+        counts_.merge(o.counts_);
+        for (size_t k = 0; k < dielectric_hist_.size(); ++k) {
+            dielectric_hist_[k] += o.dielectric_hist_[k];
+            metal_hist_[k] += o.metal_hist_[k];
+        }
+    }
     void findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask, std::vector<Finding>& out) const;
 
 private:

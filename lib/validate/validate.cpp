@@ -144,15 +144,15 @@ struct SetRun {
         }
     }
 
-    // Pass 1: albedo on its own grid with metalness and opacity resampled onto it. With an
-    // opacity map the surface is also counted whole: an opacity that hides everything is not
-    // applied (OPACITY_ALL_TRANSPARENT, known once its reader finishes), and the albedo is then
-    // judged as the opaque material ingest writes.
-    std::optional<detail::AlbedoStats> albedo_visible, albedo_whole;
+    // Pass 1: albedo on its own grid with metalness and opacity resampled onto it. Pixels the
+    // opacity hides are counted apart: an opacity that hides everything is not applied
+    // (OPACITY_ALL_TRANSPARENT, known once its reader finishes), and the albedo is then judged
+    // whole, as the opaque material ingest writes (visible + hidden).
+    std::optional<detail::AlbedoStats> albedo_visible, albedo_hidden;
     void albedo_stats() {
         const ImageInfo& ai = info(albedo);
         albedo_visible.emplace(t, ai.is_float);
-        if (opacity.map >= 0) albedo_whole.emplace(t, ai.is_float);
+        if (opacity.map >= 0) albedo_hidden.emplace(t, ai.is_float);
         std::vector<int> mx, ox;
         auto xmap = [&](const Source& s, std::vector<int>& v) {
             if (s.map < 0) return;
@@ -173,21 +173,20 @@ struct SetRun {
             for (int x = 0; x < ai.width; ++x) {
                 const float mv = m ? m[mx[x] * mc + metal.channel] : 0.f;
                 const float* px = a + x * ai.channels;
-                if (o) {
-                    albedo_whole->add(px, mv);
-                    const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3]
-                                                               : o[ox[x] * oc + opacity.channel];
-                    if (!(ov >= t.opacity_visible)) continue;
+                if (!o) {
+                    albedo_visible->add(px, mv);
+                    continue;
                 }
-                albedo_visible->add(px, mv);
+                const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3] : o[ox[x] * oc + opacity.channel];
+                (ov >= t.opacity_visible ? *albedo_visible : *albedo_hidden).add(px, mv);
             }
         }
     }
     void albedo_findings() {
         if (!albedo_visible) return;
         const bool masked = opacity.map >= 0 && !result.opacity_invisible;
-        (masked || !albedo_whole ? *albedo_visible : *albedo_whole)
-            .findings(display_name(maps[static_cast<size_t>(albedo.map)]), metal.map >= 0, masked, found);
+        if (!masked && albedo_hidden) albedo_visible->merge(*albedo_hidden);
+        albedo_visible->findings(display_name(maps[static_cast<size_t>(albedo.map)]), metal.map >= 0, masked, found);
     }
 
     // Pass 2: normal with height resampled onto the normal's grid -> the convention verdict.

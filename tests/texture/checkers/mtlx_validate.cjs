@@ -3,7 +3,7 @@
 // prints one JSON line per file: {file, valid, message, version, images: [{name, type, file,
 // colorspace}], shaders: [{category, inputs: {name: nodename or value}}], extracts: {name: index}}.
 // MaterialX 1.39 comes from npm (@needle-tools/materialx: its JsMaterialXGenShader WebAssembly
-// build, scripts/npm-checkers.sh); Node loads it after two shims (../shared notes): the module
+// build, scripts/npm-checkers.sh); Node loads it after two shims: the module
 // without its final ES `export`, as CommonJS, and the data file under the name it asks for.
 // readFromXmlString is asynchronous in this build: awaited, or the document stays empty.
 const fs = require('fs'), path = require('path'), os = require('os');
