@@ -24,6 +24,8 @@ packages_test=(
   libgtest-dev libgmock-dev libbenchmark-dev
   vulkan-validationlayers  # every GPU test fails on a validation message
   python3 python3-jsonschema  # scripts/check-schemas.py (manifest and report schemas)
+  python3-yaml     # tests/texture/checkers/unity_check.py (Unity .mat and .meta YAML)
+  glslang-tools    # tests/render: the d3d11 HLSL include compiled by glslang's HLSL front end
   slurm-wlm munge  # scripts/cluster-demo.sh (sharded ingest on a one-node Slurm cluster)
   chromium         # tests/report: headless browser check of matforge report
   strace           # tests/hostile: counts the archive opens of a 3,000-entry .zip

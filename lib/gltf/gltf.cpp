@@ -152,8 +152,8 @@ const std::vector<uint8_t>& sphere_buffer() { return sphere().bytes; }
 
 std::string uri_of(const std::string& relative_path) { return percent_encode_path(relative_path); }
 
-bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri,
-                   const MaterialOptions& opt, Files& out, std::string& error) {
+bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri, Files& out,
+                   std::string& error) {
     const fs::path base = fs::path(gltf_file).parent_path();
     json doc;
     doc["asset"] = {{"version", "2.0"}, {"generator", std::string(kGenerator)}};
@@ -180,9 +180,10 @@ bool material_gltf(const manifest::Material& m, const std::string& gltf_file, co
         if (holds(o, "RGB", Role::albedo) && o.srgb) {
             pbr["baseColorTexture"] = {{"index", texture_of(o)}};
             base_color = true;
-            if (holds(o, "A", Role::opacity) && opt.alpha_mode != AlphaMode::opaque) {
-                mat["alphaMode"] = opt.alpha_mode == AlphaMode::mask ? "MASK" : "BLEND";
-                if (opt.alpha_mode == AlphaMode::mask) mat["alphaCutoff"] = opt.alpha_cutoff;
+            using manifest::AlphaMode;
+            if (holds(o, "A", Role::opacity) && m.alpha_mode && *m.alpha_mode != AlphaMode::opaque) {
+                mat["alphaMode"] = *m.alpha_mode == AlphaMode::mask ? "MASK" : "BLEND";
+                if (*m.alpha_mode == AlphaMode::mask) mat["alphaCutoff"] = m.alpha_cutoff;
                 mat["doubleSided"] = true;  // seen through, the far side shows
             }
         }
@@ -204,8 +205,8 @@ bool material_gltf(const manifest::Material& m, const std::string& gltf_file, co
         if (holds(o, "RGB", Role::emissive) && o.srgb) {
             mat["emissiveTexture"] = {{"index", texture_of(o)}};
             mat["emissiveFactor"] = {1.0, 1.0, 1.0};  // the default 0 would switch the texture off
-            if (opt.emissive_strength > 1.f) {
-                mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", opt.emissive_strength}};
+            if (m.emissive_strength > 1.f) {
+                mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", m.emissive_strength}};
                 doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
             }
         }

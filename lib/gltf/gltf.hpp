@@ -29,16 +29,6 @@
 
 namespace mf::gltf {
 
-enum class AlphaMode { opaque, mask, blend };
-
-struct MaterialOptions {
-    AlphaMode alpha_mode = AlphaMode::opaque;  // with an opacity in the base color's alpha
-    float alpha_cutoff = 0.5f;                 // MASK
-    // KHR_materials_emissive_strength, written only when > 1 (an emissive texture scaled down
-    // to fit [0, 1] by this factor).
-    float emissive_strength = 1.f;
-};
-
 struct Files {
     std::string gltf;          // JSON text
     std::vector<uint8_t> bin;  // the mesh buffer
@@ -49,9 +39,11 @@ struct Files {
 const std::vector<uint8_t>& sphere_buffer();
 
 // The .gltf of `m` written at `gltf_file` (relative to the manifest's folder), referencing its
-// buffer as `bin_uri` beside it. False + `error` when the outputs do not fit glTF's slots.
-bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri,
-                   const MaterialOptions& opt, Files& out, std::string& error);
+// buffer as `bin_uri` beside it: alphaMode and alphaCutoff from m.alpha_mode (MASK, BLEND; none
+// when opaque), KHR_materials_emissive_strength when m.emissive_strength > 1. False + `error`
+// when the outputs do not fit glTF's slots.
+bool material_gltf(const manifest::Material& m, const std::string& gltf_file, const std::string& bin_uri, Files& out,
+                   std::string& error);
 
 // library.gltf at the root of `out_dir` (its buffer `library.bin`, sphere_buffer()): each item's
 // material, read back from its .gltf, on a node of a square grid, 1.25 m apart, named after the

@@ -240,6 +240,18 @@ Material material_of(const json& j, const std::string& at) {
         if (!v) fail(where + ": emissive_strength", "must be a number >= 1");
         m.emissive_strength = *v;
     }
+    if (const json* a = member(j, "alpha_mode")) {
+        const std::string mode = a->is_string() ? a->get<std::string>() : "";
+        for (AlphaMode v : {AlphaMode::opaque, AlphaMode::mask, AlphaMode::blend})
+            if (mode == alpha_mode_name(v)) m.alpha_mode = v;
+        if (!m.alpha_mode) fail(where + ": alpha_mode", "must be \"opaque\", \"mask\" or \"blend\"");
+        if (*m.alpha_mode == AlphaMode::mask) {
+            const json* c = member(j, "alpha_cutoff");
+            const auto v = c ? json_float(*c, 0.0, 1.0) : std::nullopt;
+            if (!v) fail(where + ": alpha_cutoff", "must be a number within 0..1 with alpha_mode \"mask\"");
+            m.alpha_cutoff = *v;
+        }
+    }
     if (const json* f = member(j, "findings")) {
         if (!f->is_array()) fail(where, "\"findings\" is not an array");
         for (size_t i = 0; i < f->size(); ++i) {
@@ -255,6 +267,10 @@ Material material_of(const json& j, const std::string& at) {
 }  // namespace
 
 std::string_view status_name(Status s) { return s == Status::ok ? "ok" : "partial"; }
+
+std::string_view alpha_mode_name(AlphaMode a) {
+    return a == AlphaMode::opaque ? "opaque" : a == AlphaMode::mask ? "mask" : "blend";
+}
 
 json to_json(const Input& in) {
     json j = {{"file", in.file}, {"family", in.family}, {"rule", in.rule}};
@@ -378,6 +394,10 @@ json to_json(const Material& m) {
     j["outputs"] = std::move(outputs);
     if (!m.material_files.empty()) j["material_files"] = files_json(m.material_files);
     if (m.emissive_strength > 1.f) j["emissive_strength"] = m.emissive_strength;
+    if (m.alpha_mode) {
+        j["alpha_mode"] = alpha_mode_name(*m.alpha_mode);
+        if (*m.alpha_mode == AlphaMode::mask) j["alpha_cutoff"] = m.alpha_cutoff;
+    }
     json findings = json::array();
     for (const Finding& f : m.findings) findings.push_back(mf::to_json(f));
     j["findings"] = std::move(findings);
@@ -582,6 +602,9 @@ std::optional<Manifest> merge_heads(const std::vector<Manifest>& parts, const st
     out.preset = parts[0].preset;
     out.normal_convention = parts[0].normal_convention;
     out.thresholds = parts[0].thresholds;  // one run's: the shards' context digest holds its rules
+    // The files every shard writes alike (the folder's engine include: process/material_file.hpp
+    // write_folder_files), the same in each part: its context digest holds the preset.
+    out.library = parts[0].library;
     for (const Manifest& p : parts) out.failures.insert(out.failures.end(), p.failures.begin(), p.failures.end());
     auto key = [](const InputFailure& f) { return std::tie(f.source, f.code, f.message); };
     std::sort(out.failures.begin(), out.failures.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });

@@ -92,6 +92,13 @@ struct Constant {
 
 enum class Status { ok, partial };  // partial: some map could not be read or written
 
+// How an engine uses the opacity an output carries (texture::classify_opacity of the applied
+// opacity map): opaque (every texel 1), mask (cut-out at Material::alpha_cutoff, the preset's),
+// blend (translucent). Every material file of the set says the same (glTF alphaMode, MaterialX
+// alpha_mode, Godot transparency, Unity _ALPHATEST_ON / _SURFACE_TYPE_TRANSPARENT, ...).
+enum class AlphaMode { opaque, mask, blend };
+std::string_view alpha_mode_name(AlphaMode a);  // "opaque" | "mask" | "blend"
+
 struct Material {
     std::string name;
     std::string source;                  // relative to the manifest's folder
@@ -107,6 +114,9 @@ struct Material {
     // integer file: the outputs hold emissive / emissive_strength (the brightest texel at 1, hue
     // kept), the engine multiplies back (glTF: KHR_materials_emissive_strength). 1: as stored.
     float emissive_strength = 1.f;
+    // Only when an output carries the set's opacity (preset order: the first such channel).
+    std::optional<AlphaMode> alpha_mode;
+    float alpha_cutoff = 0.5f;  // with alpha_mode mask
 };
 
 struct Manifest {

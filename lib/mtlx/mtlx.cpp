@@ -1,5 +1,6 @@
 #include "mtlx/mtlx.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -33,13 +34,15 @@ int channel_index(const std::string& key) {
     return key == "R" ? 0 : key == "G" ? 1 : key == "B" ? 2 : key == "A" ? 3 : -1;
 }
 
+// The elements of one material: its nodes, its gltf_pbr and its surfacematerial. Element names
+// derive from `id` (the material, "<id>_shader", "<id>_normalmap", "<id>_<role>") and, for the
+// image nodes, from `image_prefix` + "img_<file stem>"; names() lists them all.
 class Writer {
 public:
-    Writer(const manifest::Material& m, const std::string& mtlx_file) : m_(m), name_(scene_identifier(m.name)) {
-        base_ = fs::path(mtlx_file).parent_path();
-    }
+    Writer(const manifest::Material& m, fs::path base, std::string id, std::string image_prefix)
+        : m_(m), name_(std::move(id)), base_(std::move(base)), image_prefix_(std::move(image_prefix)) {}
 
-    std::string document(const gltf::MaterialOptions& opt) {
+    std::string body() {
         std::set<std::string> connected;  // gltf_pbr inputs read from a texture
         std::string s = "  <gltf_pbr name=\"" + name_ + "_shader\" type=\"surfaceshader\">\n";
         for (const Slot& slot : kSlots) {
@@ -61,37 +64,40 @@ public:
         if (connected.count("emissive") && m_.emissive_strength != 1.f)
             s += "    <input name=\"emissive_strength\" type=\"float\" value=\"" + scene_number(m_.emissive_strength) +
                  "\" />\n";
-        if (connected.count("alpha")) {
+        using manifest::AlphaMode;
+        if (connected.count("alpha") && m_.alpha_mode) {
             s += "    <input name=\"alpha_mode\" type=\"integer\" value=\"" +
-                 std::to_string(opt.alpha_mode == gltf::AlphaMode::mask    ? 1
-                                : opt.alpha_mode == gltf::AlphaMode::blend ? 2
-                                                                           : 0) +
+                 std::to_string(*m_.alpha_mode == AlphaMode::mask    ? 1
+                                : *m_.alpha_mode == AlphaMode::blend ? 2
+                                                                     : 0) +
                  "\" />\n";
-            if (opt.alpha_mode == gltf::AlphaMode::mask)
-                s += "    <input name=\"alpha_cutoff\" type=\"float\" value=\"" + scene_number(opt.alpha_cutoff) +
+            if (*m_.alpha_mode == AlphaMode::mask)
+                s += "    <input name=\"alpha_cutoff\" type=\"float\" value=\"" + scene_number(m_.alpha_cutoff) +
                      "\" />\n";
         }
         s += "  </gltf_pbr>\n";
         s += "  <surfacematerial name=\"" + name_ + "\" type=\"material\">\n";
         s += "    <input name=\"surfaceshader\" type=\"surfaceshader\" nodename=\"" + name_ + "_shader\" />\n";
         s += "  </surfacematerial>\n";
-        return "<?xml version=\"1.0\"?>\n<!-- " + markup_escape(std::string(kGenerator)) + ": " +
-               markup_escape(m_.name) + " -->\n<materialx version=\"1.39\">\n" + nodes_ + s + "</materialx>\n";
+        names_.insert(names_.end(), {name_ + "_shader", name_});
+        return nodes_ + s;
     }
+
+    const std::vector<std::string>& names() const { return names_; }
 
 private:
     // The image node reading `o` as `type` (once per file and type).
     std::string image(const manifest::Output& o, const std::string& type, bool color) {
         const std::string key = o.file + "|" + type;
         if (const auto it = images_.find(key); it != images_.end()) return it->second;
-        std::string node = "img_" + scene_identifier(fs::path(o.file).stem().string()) +
+        std::string node = image_prefix_ + "img_" + scene_identifier(fs::path(o.file).stem().string()) +
                            (type == "color4" ? "_rgba" : "");
-        const std::string file = fs::path(o.file).lexically_relative(base_).generic_string();
+        const std::string file = base_.empty() ? o.file : fs::path(o.file).lexically_relative(base_).generic_string();
         nodes_ += "  <image name=\"" + node + "\" type=\"" + type +
                   "\">\n    <input name=\"file\" type=\"filename\" value=\"" + markup_escape(file) + "\"" +
                   (color ? " colorspace=\"srgb_texture\"" : "") + " />\n  </image>\n";
-        images_[key] = node;
-        return node;
+        names_.push_back(node);
+        return images_[key] = node;
     }
 
     // The node a gltf_pbr input connects to for channel `c` of `o`.
@@ -104,6 +110,7 @@ private:
             nodes_ += "  <normalmap name=\"" + node +
                       "\" type=\"vector3\">\n    <input name=\"in\" type=\"vector3\" nodename=\"" + img +
                       "\" />\n  </normalmap>\n";
+            names_.push_back(node);
             return node;
         }
         const int index = channel_index(c.key);
@@ -117,20 +124,52 @@ private:
                   std::string(rgba ? "color4" : "vector3") + "\" nodename=\"" + img +
                   "\" />\n    <input name=\"index\" type=\"integer\" value=\"" + std::to_string(index) +
                   "\" />\n  </extract>\n";
+        names_.push_back(node);
         return node;
     }
 
     const manifest::Material& m_;
     std::string name_;
     fs::path base_;
+    std::string image_prefix_;
     std::string nodes_;
     std::map<std::string, std::string> images_;
+    std::vector<std::string> names_;
 };
+
+std::string head(const std::string& comment) {
+    return "<?xml version=\"1.0\"?>\n<!-- " + markup_escape(std::string(kGenerator)) + ": " + markup_escape(comment) +
+           " -->\n<materialx version=\"1.39\">\n";
+}
 
 }  // namespace
 
-std::string material_mtlx(const manifest::Material& m, const std::string& mtlx_file, const gltf::MaterialOptions& opt) {
-    return Writer(m, mtlx_file).document(opt);
+std::string material_mtlx(const manifest::Material& m, const std::string& mtlx_file) {
+    return head(m.name) + Writer(m, fs::path(mtlx_file).parent_path(), scene_identifier(m.name), "").body() +
+           "</materialx>\n";
+}
+
+bool library_mtlx(const std::function<bool(const MaterialVisitor&)>& materials, const ByteSink& sink,
+                  std::string& error) {
+    if (!sink(head("every material of the run"))) return false;
+    std::set<std::string> taken;
+    const bool ok = materials([&](const manifest::Material& m) {
+        // The first of id, id_2, ... none of whose element names another material took.
+        for (int k = 1;; ++k) {
+            const std::string id = scene_identifier(m.name) + (k == 1 ? "" : "_" + std::to_string(k));
+            Writer w(m, fs::path(), id, id + "_");
+            std::string text = w.body();
+            if (std::any_of(w.names().begin(), w.names().end(), [&](const auto& n) { return taken.count(n); }))
+                continue;
+            taken.insert(w.names().begin(), w.names().end());
+            return sink(text);
+        }
+    });
+    if (!ok) {
+        if (error.empty()) error = "cannot write the document";
+        return false;
+    }
+    return sink("</materialx>\n");
 }
 
 }  // namespace mf::mtlx

@@ -15,15 +15,27 @@
 //  - file paths relative to the document's folder; names valid MaterialX identifiers;
 //  - text deterministic (outputs in the manifest's order): same entry, same bytes.
 #pragma once
+#include <functional>
 #include <string>
+
+#include "core/files.hpp"
 
 #include "gltf/gltf.hpp"
 #include "manifest/manifest.hpp"
 
 namespace mf::mtlx {
 
-// The document of `m` written at `mtlx_file` (relative to the manifest's folder), with the
-// glTF's alpha mode and cutoff (gltf_pbr's alpha_mode: 0 opaque, 1 mask, 2 blend).
-std::string material_mtlx(const manifest::Material& m, const std::string& mtlx_file, const gltf::MaterialOptions& opt);
+// The document of `m` written at `mtlx_file` (relative to the manifest's folder), with its
+// alpha mode and cutoff (m.alpha_mode; gltf_pbr's alpha_mode: 0 opaque, 1 mask, 2 blend).
+std::string material_mtlx(const manifest::Material& m, const std::string& mtlx_file);
+
+// library.mtlx at the manifest's folder: every material `materials` visits, in its order, as the
+// elements its own document holds (file paths relative to the library), in one document, so a
+// MaterialX host opens every material of a run from one file. Element names derive from the
+// material's identifier, made unique in the visiting order ("a-b" and "a_b": a_b, a_b_2), image
+// nodes prefixed with it. Written piece by piece to `sink` (one material's text held at a time).
+using MaterialVisitor = std::function<bool(const manifest::Material&)>;
+bool library_mtlx(const std::function<bool(const MaterialVisitor&)>& materials, const ByteSink& sink,
+                  std::string& error);
 
 }  // namespace mf::mtlx

@@ -56,7 +56,7 @@ struct Preset {
     int zstd_level = 19;
     bool toksvig = false;       // roughness mips widened by the normal mips' spread
     float alpha_cutoff = 0.5f;  // alpha test of opacity (coverage kept per mip; glTF alphaCutoff)
-    MaterialFileKind material_file = MaterialFileKind::none;  // gltf: a material file per set and library.gltf
+    MaterialFileKind material_file = MaterialFileKind::none;  // the engine's material files (lib/engine)
     nlohmann::json validate = nlohmann::json::object();       // rule overrides for validate
     nlohmann::json source_json;                               // as loaded
 

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/json.hpp"
+#include "preset/engine_slots.hpp"
 
 namespace mf {
 namespace {
@@ -243,7 +244,9 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
                         where + "block_format: required with format " + format + " (" + block_format_names() + ")");
         if (!check_block_format(p, o, where, error)) return false;
     }
-    return p.material_file != MaterialFileKind::gltf || check_gltf_layout(p, error);
+    if (p.material_file == MaterialFileKind::gltf) return check_gltf_layout(p, error);
+    const EngineMaterial* e = engine_material(p.material_file);
+    return !e || check_engine_layout(p, *e, error);
 }
 
 }  // namespace mf

@@ -16,7 +16,7 @@ enum class FileFormat { png, exr, tif, tga, dds, ktx2 };  // word(): also the fi
 enum class MipFilter { box, kaiser };
 enum class Effort { fast, normal, thorough };
 enum class Supercompression { none, zstd };
-enum class MaterialFileKind { none, gltf };
+enum class MaterialFileKind { none, gltf, godot, unity_hdrp, unity_urp, unreal, d3d11 };
 
 // Each enum's words, in its enumerators' order.
 template <class E>
@@ -39,7 +39,8 @@ struct Vocabulary<Supercompression> {
 };
 template <>
 struct Vocabulary<MaterialFileKind> {
-    static constexpr std::array<std::string_view, 2> words{"none", "gltf"};
+    static constexpr std::array<std::string_view, 7> words{"none",      "gltf",   "godot", "unity-hdrp",
+                                                           "unity-urp", "unreal", "d3d11"};
 };
 
 template <class E>

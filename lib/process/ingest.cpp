@@ -395,8 +395,9 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     m.constants = std::move(plan.constants);
     m.findings = reported_findings(std::move(plan.findings), src.name, opt_.rules);
     m.emissive_strength = emissive_strength;
+    decide_alpha(preset_, planes, m);
     write_material_files(
-        preset_, planes,
+        preset_,
         [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
             return run.write(rel, b, e);
         },
@@ -559,15 +560,17 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
         result.interrupted = true;
         return result;
     }
-    // library.gltf: every material of the run in one file (not per shard: a shard sees its part).
-    if (!opt_.shard &&
-        !write_library(
-            spool->entries(), opt_.out_dir,
-            [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-                return folder->write(rel, b, e);
-            },
-            [&](const std::string& rel, const ByteProducer& p, std::string& e) { return folder->write(rel, p, e); },
-            m.library, result.error))
+    const WriteFile write = [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+        return folder->write(rel, b, e);
+    };
+    // The folder's own files (every shard alike), then library.gltf and the other libraries:
+    // every material of the run in one file (not per shard: a shard sees its part).
+    if (!write_folder_files(preset_, write, m.library, result.error) ||
+        (!opt_.shard &&
+         !write_library(
+             *spool, opt_.out_dir, write,
+             [&](const std::string& rel, const ByteProducer& p, std::string& e) { return folder->write(rel, p, e); },
+             m.library, result.error)))
         return result;
     for (const auto& f : m.library) produced.insert(f.file);
     std::string err;

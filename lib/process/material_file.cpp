@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/files.hpp"
+#include "engine/engine.hpp"
 #include "findings/catalog.hpp"
 #include "gltf/gltf.hpp"
 #include "mtlx/mtlx.hpp"
@@ -27,33 +28,68 @@ bool write_pair(const gltf::Files& files, const std::string& gltf_rel, const std
 
 }  // namespace
 
-void write_material_files(const Preset& preset, const Planes& planes, const WriteFile& write, manifest::Material& m) {
+void decide_alpha(const Preset& preset, const Planes& planes, manifest::Material& m) {
+    const auto it = planes.find(Role::opacity);
+    const bool carried = std::any_of(m.outputs.begin(), m.outputs.end(), [](const manifest::Output& o) {
+        return std::any_of(o.channels.begin(), o.channels.end(),
+                           [](const Channel& c) { return c.kind == Channel::Kind::role && c.role == Role::opacity; });
+    });
+    if (it == planes.end() || !carried) return;
+    using manifest::AlphaMode;
+    switch (texture::classify_opacity(plane_floats(Role::opacity, it->second))) {
+        case texture::AlphaUse::opaque: m.alpha_mode = AlphaMode::opaque; break;
+        case texture::AlphaUse::cutout: m.alpha_mode = AlphaMode::mask; break;
+        case texture::AlphaUse::blend: m.alpha_mode = AlphaMode::blend; break;
+    }
+    m.alpha_cutoff = preset.alpha_cutoff;
+}
+
+namespace {
+
+// MATERIAL_FILE_SKIPPED when an output's normals are not `want` (--normal-convention): the
+// textures as asked, but no material file that would read them upside down.
+bool normals_fit(NormalConvention want, const std::string& file, std::string_view reader, manifest::Material& m) {
+    for (const auto& o : m.outputs)
+        if (o.normal_convention && *o.normal_convention != want) {
+            const std::string got(convention_name(*o.normal_convention));
+            m.findings.push_back(finding(code::material_file_skipped, "normal", "",
+                                         file + " not written: " + std::string(reader) + " reads " +
+                                             std::string(convention_name(want)) + " normals and this run writes " +
+                                             got + " normals (--normal-convention)",
+                                         {{"normal_convention", got}}));
+            return false;
+        }
+    return true;
+}
+
+bool write_text(const WriteFile& write, const std::string& rel, const std::string& format, const std::string& text,
+                manifest::Material& m) {
+    std::string error;
+    if (!write(rel, bytes_of(text), error)) {
+        m.findings.push_back(finding(code::output_write_failed, "", "", rel + ": " + error));
+        m.status = manifest::Status::partial;
+        return false;
+    }
+    m.material_files.push_back({rel, format, sha256_hex(bytes_of(text))});
+    return true;
+}
+
+}  // namespace
+
+void write_material_files(const Preset& preset, const WriteFile& write, manifest::Material& m) {
+    if (const EngineMaterial* e = engine_material(preset.material_file)) {
+        const auto files = engine::material_files(preset, *e, m);
+        if (files.empty() || !normals_fit(e->normal, files.back().file, e->engine, m)) return;
+        for (const engine::File& f : files)
+            if (!write_text(write, f.file, f.format, f.text, m)) return;
+        return;
+    }
     if (preset.material_file != MaterialFileKind::gltf) return;
     const std::string gltf_rel = m.name + "/" + m.name + ".gltf", bin_rel = m.name + "/" + m.name + ".bin";
-    // --normal-convention dx: the PNGs as asked, but no glTF (its normal textures are +Y).
-    for (const auto& o : m.outputs)
-        if (o.normal_convention && *o.normal_convention != NormalConvention::gl) {
-            m.findings.push_back(finding(code::material_file_skipped, "normal", "",
-                                         gltf_rel +
-                                             " not written: glTF normal textures are +Y (gl) and this run writes " +
-                                             std::string(convention_name(*o.normal_convention)) +
-                                             " normals (--normal-convention)",
-                                         {{"normal_convention", std::string(convention_name(*o.normal_convention))}}));
-            return;
-        }
-    gltf::MaterialOptions opt;
-    opt.alpha_cutoff = preset.alpha_cutoff;
-    opt.emissive_strength = m.emissive_strength;
-    if (const auto it = planes.find(Role::opacity); it != planes.end()) {
-        switch (texture::classify_opacity(plane_floats(Role::opacity, it->second))) {
-            case texture::AlphaUse::opaque: opt.alpha_mode = gltf::AlphaMode::opaque; break;
-            case texture::AlphaUse::cutout: opt.alpha_mode = gltf::AlphaMode::mask; break;
-            case texture::AlphaUse::blend: opt.alpha_mode = gltf::AlphaMode::blend; break;
-        }
-    }
+    if (!normals_fit(NormalConvention::gl, gltf_rel, "glTF", m)) return;
     gltf::Files files;
     std::string error;
-    if (!gltf::material_gltf(m, gltf_rel, m.name + ".bin", opt, files, error) ||
+    if (!gltf::material_gltf(m, gltf_rel, m.name + ".bin", files, error) ||
         !write_pair(files, gltf_rel, bin_rel, write, m.material_files, error)) {
         m.findings.push_back(finding(code::output_write_failed, "", "", gltf_rel + ": " + error));
         m.status = manifest::Status::partial;
@@ -62,26 +98,28 @@ void write_material_files(const Preset& preset, const Planes& planes, const Writ
     // The same material for DCCs: MaterialX (gltf_pbr, the glTF's own model) and USD
     // (UsdPreviewSurface), each beside the glTF.
     const std::string stem = m.name + "/" + m.name;
-    const std::pair<std::string, std::string> more[] = {
-        {"mtlx", mtlx::material_mtlx(m, stem + ".mtlx", opt)},
-        {"usda", usd::material_usda(m, stem + ".usda", opt)},
-    };
-    for (const auto& [format, text] : more) {
-        const std::string rel = stem + "." + format;
-        if (!write(rel, bytes_of(text), error)) {
-            m.findings.push_back(finding(code::output_write_failed, "", "", rel + ": " + error));
-            m.status = manifest::Status::partial;
-            return;
-        }
-        m.material_files.push_back({rel, format, sha256_hex(bytes_of(text))});
-    }
+    if (write_text(write, stem + ".mtlx", "mtlx", mtlx::material_mtlx(m, stem + ".mtlx"), m))
+        write_text(write, stem + ".usda", "usda", usd::material_usda(m, stem + ".usda"), m);
 }
 
-bool write_library(const std::vector<manifest::MaterialSpool::Entry>& materials, const std::filesystem::path& out_dir,
-                   const WriteFile& write, const WriteStream& write_stream,
-                   std::vector<manifest::MaterialFile>& library, std::string& error) {
+bool write_folder_files(const Preset& preset, const WriteFile& write, std::vector<manifest::MaterialFile>& library,
+                        std::string& error) {
+    const EngineMaterial* e = engine_material(preset.material_file);
+    if (!e) return true;
+    for (const engine::File& f : engine::folder_files(*e)) {
+        if (!write(f.file, bytes_of(f.text), error)) {
+            error = f.file + ": " + error;
+            return false;
+        }
+        library.push_back({f.file, f.format, sha256_hex(bytes_of(f.text))});
+    }
+    return true;
+}
+
+bool write_library(const manifest::MaterialSpool& spool, const std::filesystem::path& out_dir, const WriteFile& write,
+                   const WriteStream& write_stream, std::vector<manifest::MaterialFile>& library, std::string& error) {
     std::vector<gltf::LibraryItem> items;
-    for (const auto& m : materials)
+    for (const auto& m : spool.entries())
         if (!m.gltf.empty()) items.push_back({m.name, m.gltf});
     if (items.empty()) return true;
     const auto text = gltf::library_gltf(items, out_dir, error);
@@ -124,6 +162,35 @@ bool write_library(const std::vector<manifest::MaterialSpool::Entry>& materials,
         return false;
     }
     library.push_back({"library.usda", "usda", usda_sha.hex()});
+    // library.mtlx: every material's MaterialX elements again, read back from the spool one at a
+    // time (those with a .gltf have a .mtlx beside it).
+    Sha256 mtlx_sha;
+    std::string read_error;
+    const auto materials = [&](const mtlx::MaterialVisitor& visit) {
+        return spool.for_each(
+            [&](manifest::Material&& m) {
+                const bool has = std::any_of(m.material_files.begin(), m.material_files.end(),
+                                             [](const manifest::MaterialFile& f) { return f.format == "mtlx"; });
+                return !has || visit(m);
+            },
+            read_error);
+    };
+    if (!write_stream(
+            "library.mtlx",
+            [&](const ByteSink& sink) {
+                return mtlx::library_mtlx(
+                    materials,
+                    [&](std::string_view piece) {
+                        mtlx_sha.update(piece);
+                        return sink(piece);
+                    },
+                    read_error);
+            },
+            error)) {
+        error = "library.mtlx: " + (read_error.empty() ? error : read_error);
+        return false;
+    }
+    library.push_back({"library.mtlx", "mtlx", mtlx_sha.hex()});
     return true;
 }
 

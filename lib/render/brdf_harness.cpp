@@ -124,6 +124,12 @@ struct BrdfHarness::Impl {
         return slot;
     }
 
+    // Groups per row of a dispatch of `count` invocations (rows of at most kMaxGroupsX groups).
+    static uint32_t groups_x(uint32_t count) {
+        const uint32_t groups = (count + gpu::kGridGroup - 1) / gpu::kGridGroup;
+        return groups < kMaxGroupsX ? groups : kMaxGroupsX;
+    }
+
     // Binds inputs/outputs, dispatches `count` invocations (timed), copies `out` to `readback`
     // when given. Returns GPU milliseconds.
     double run(VkPipeline pipe, const Buffer& in, const Buffer& out, const Buffer* readback,
@@ -143,7 +149,7 @@ struct BrdfHarness::Impl {
         d.fn.vkUpdateDescriptorSets(d.device, 3, w, 0, nullptr);
 
         const uint32_t groups = (push.count + gpu::kGridGroup - 1) / gpu::kGridGroup;
-        const uint32_t gx = groups < kMaxGroupsX ? groups : kMaxGroupsX;
+        const uint32_t gx = groups_x(push.count);
         const uint32_t gy = (groups + gx - 1) / gx;
         Submission s(d, pool, queries, 2);
         VkCommandBuffer cmd = s.cmd();
@@ -177,24 +183,51 @@ BrdfHarness::~BrdfHarness() = default;
 
 bool BrdfHarness::supports_fp16() const { return impl_->d.shader_float16; }
 
-std::vector<std::array<float, 3>> BrdfHarness::evaluate(const std::vector<BrdfInput>& inputs, BrdfPrecision precision,
-                                                        double* gpu_ms) {
-    Impl& m = *impl_;
+namespace {
+
+std::vector<std::array<float, 3>> evaluate_with(BrdfHarness::Impl& m, VkPipeline pipe,
+                                                const std::vector<BrdfInput>& inputs, double* gpu_ms) {
     std::vector<std::array<float, 3>> result(inputs.size() * 3);
     if (inputs.empty()) return result;
-    if (inputs.size() > 0xffffffffu / 3) throw Error("BRDF harness: too many inputs");
-    VkPipeline pipe = m.pipeline(precision, gpu::kGridModeInputs);
     Buffer in = create_buffer(m.d, inputs.size() * sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     std::memcpy(in.mapped, inputs.data(), inputs.size() * sizeof(BrdfInput));
     flush(m.d, in);
     Buffer out = create_buffer(m.d, inputs.size() * 3 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    const gpu::GridPush push{static_cast<uint32_t>(inputs.size()), 0, 0, 0};
+    std::memset(out.mapped, 0, inputs.size() * 3 * 16);
+    flush(m.d, out);
+    const auto count = static_cast<uint32_t>(inputs.size());
+    const gpu::GridPush push{count, BrdfHarness::Impl::groups_x(count) * gpu::kGridGroup, 0, 0};
     const double ms = m.run(pipe, in, out, nullptr, push);
     if (gpu_ms) *gpu_ms = ms;
     invalidate(m.d, out);
     const auto* f = static_cast<const float*>(out.mapped);
     for (size_t i = 0; i < result.size(); ++i) result[i] = {f[4 * i], f[4 * i + 1], f[4 * i + 2]};
     return result;
+}
+
+}  // namespace
+
+std::vector<std::array<float, 3>> BrdfHarness::evaluate(const std::vector<BrdfInput>& inputs, BrdfPrecision precision,
+                                                        double* gpu_ms) {
+    if (inputs.size() > 0xffffffffu / 3) throw Error("BRDF harness: too many inputs");
+    return evaluate_with(*impl_, impl_->pipeline(precision, gpu::kGridModeInputs), inputs, gpu_ms);
+}
+
+std::vector<std::array<float, 3>> BrdfHarness::evaluate_spirv(const uint32_t* code, size_t bytes,
+                                                              const std::vector<BrdfInput>& inputs, double* gpu_ms) {
+    if (inputs.size() > 0xffffffffu / 3) throw Error("BRDF harness: too many inputs");
+    Impl& m = *impl_;
+    Unique<VkShaderModule> module = create_shader(m.d, code, bytes);
+    auto ci = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+    ci.stage = vk_struct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = module;
+    ci.stage.pName = "main";
+    ci.layout = m.layout;
+    VkPipeline h = VK_NULL_HANDLE;
+    VK_CHECK(m.d.fn.vkCreateComputePipelines(m.d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &h));
+    const Unique<VkPipeline> pipe(m.d, h);
+    return evaluate_with(m, pipe, inputs, gpu_ms);
 }
 
 double BrdfHarness::sphere(uint32_t size, Brdf model, uint32_t spp, BrdfPrecision precision, std::vector<float>* rgb) {

@@ -44,6 +44,16 @@ public:
     std::vector<std::array<float, 3>> evaluate(const std::vector<BrdfInput>& inputs,
                                                BrdfPrecision precision = BrdfPrecision::fp32, double* gpu_ms = nullptr);
 
+    // The same inputs through another compute shader with brdf_grid.glsl's interface, given as
+    // SPIR-V: inputs (GridInput) at binding kBindingGridInputs, outputs (vec4, model m of input i
+    // at 3 i + m) at kBindingGridOutputs, the energy table at kBindingGridEnergy, GridPush as push
+    // constants with `width` the invocations per row of the dispatch (index = y · width + x),
+    // kGridGroup invocations per group. For the d3d11 preset's HLSL BRDF, compiled by glslang
+    // (tests/render): the same oracle and bounds as the GLSL. Outputs the shader does not write
+    // are 0.
+    std::vector<std::array<float, 3>> evaluate_spirv(const uint32_t* code, size_t bytes,
+                                                     const std::vector<BrdfInput>& inputs, double* gpu_ms = nullptr);
+
     // The benchmark's sphere (bench/accuracy/knobs_brdf.cpp's scene) at size × size pixels,
     // `spp` ∈ {1, 4, 8} samples per pixel. Returns GPU milliseconds of the shading dispatch; with
     // `rgb`, also reads the radiance back (rows top to bottom, 3 floats per pixel).

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 
 #include "core/text.hpp"
+#include "engine/engine.hpp"
 #include "material/roles.hpp"
 #include "report/report.hpp"
 
@@ -90,6 +92,7 @@ private:
             h += "<figure class=\"preview\">" + img(*pics_.preview, m_.name + " preview") +
                  "<figcaption>preview</figcaption></figure>\n";
         outputs_html(h);
+        material_files_html(h);
         h += "</div>\n</div>\n";
         checks_html(h);
         before_after_html(h);
@@ -120,6 +123,31 @@ private:
             h += "<tr class=\"constant\" data-role=\"" + std::string(role_name(c.role)) + "\"><td>" +
                  std::string(role_name(c.role)) + "</td><td colspan=\"4\">no map: constant " + v + "</td></tr>\n";
         }
+        h += "</tbody></table>\n";
+    }
+
+    // The material files written for the set, each with the line on how to open it; the import
+    // settings beside each texture (.import, .meta) counted in one row.
+    void material_files_html(std::string& h) const {
+        if (m_.material_files.empty()) return;
+        h += "<h3>Material files</h3>\n<table class=\"material-files\"><thead><tr><th>file</th><th>format</th>"
+             "<th>open with</th></tr></thead><tbody>\n";
+        std::map<std::string, int> beside;  // per-texture import settings: format -> count
+        for (const manifest::MaterialFile& f : m_.material_files) {
+            const bool texture_settings = f.format == "import" ||
+                                          (f.format == "meta" && !f.file.ends_with(".mat.meta"));
+            if (texture_settings) {
+                ++beside[f.format];
+                continue;
+            }
+            h += "<tr data-format=\"" + markup_escape(f.format) + "\"><td><code>" + markup_escape(f.file) +
+                 "</code></td><td>" + markup_escape(f.format) + "</td><td>" +
+                 markup_escape(std::string(engine::how_to_open(f.format))) + "</td></tr>\n";
+        }
+        for (const auto& [format, n] : beside)
+            h += "<tr data-format=\"" + format + "\"><td>" + std::to_string(n) + " <code>." + format +
+                 "</code> beside the textures</td><td>" + format + "</td><td>" +
+                 markup_escape(std::string(engine::how_to_open(format))) + "</td></tr>\n";
         h += "</tbody></table>\n";
     }
 

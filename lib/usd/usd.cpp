@@ -41,7 +41,7 @@ public:
     Writer(const manifest::Material& m, const std::string& usda_file)
         : m_(m), name_(scene_identifier(m.name)), base_(fs::path(usda_file).parent_path()) {}
 
-    std::string layer(const gltf::MaterialOptions& opt) {
+    std::string layer() {
         std::set<std::string> connected;  // UsdPreviewSurface inputs read from a texture
         std::string s = "    def Shader \"Surface\"\n    {\n        uniform token info:id = \"UsdPreviewSurface\"\n";
         for (const Slot& slot : kSlots) {
@@ -62,9 +62,10 @@ public:
                      "\n";
             }
         }
-        if (connected.count("opacity") && opt.alpha_mode != gltf::AlphaMode::opaque)
+        using manifest::AlphaMode;
+        if (connected.count("opacity") && m_.alpha_mode && *m_.alpha_mode != AlphaMode::opaque)
             s += "        float inputs:opacityThreshold = " +
-                 (opt.alpha_mode == gltf::AlphaMode::mask ? scene_number(opt.alpha_cutoff) : std::string("0")) + "\n";
+                 (*m_.alpha_mode == AlphaMode::mask ? scene_number(m_.alpha_cutoff) : std::string("0")) + "\n";
         s += "        int inputs:useSpecularWorkflow = 0\n        token outputs:surface\n    }\n\n";
         s += "    def Shader \"TexCoord\"\n    {\n        uniform token info:id = \"UsdPrimvarReader_float2\"\n"
              "        string inputs:varname = \"st\"\n        float2 outputs:result\n    }\n";
@@ -121,8 +122,8 @@ private:
 
 }  // namespace
 
-std::string material_usda(const manifest::Material& m, const std::string& usda_file, const gltf::MaterialOptions& opt) {
-    return Writer(m, usda_file).layer(opt);
+std::string material_usda(const manifest::Material& m, const std::string& usda_file) {
+    return Writer(m, usda_file).layer();
 }
 
 bool library_usda(const std::vector<LibraryItem>& items, const ByteSink& sink) {

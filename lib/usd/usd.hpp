@@ -26,9 +26,9 @@
 
 namespace mf::usd {
 
-// The layer of `m` written at `usda_file` (relative to the manifest's folder), with the glTF's
-// alpha mode and cutoff.
-std::string material_usda(const manifest::Material& m, const std::string& usda_file, const gltf::MaterialOptions& opt);
+// The layer of `m` written at `usda_file` (relative to the manifest's folder), with its alpha
+// mode and cutoff (m.alpha_mode).
+std::string material_usda(const manifest::Material& m, const std::string& usda_file);
 
 // library.usda: a `Scope "Materials"` (the defaultPrim) holding one prim per material that
 // references that material's layer (`layer`, relative to the library's folder), so a USD host

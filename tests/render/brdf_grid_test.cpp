@@ -14,6 +14,8 @@
 #include "render/brdf_harness.hpp"
 #include "vulkan_fixture.hpp"
 
+#include "brdf_grid_hlsl.inc"  // kBrdfGridHlsl: brdf_grid.hlsl compiled by glslangValidator -D
+
 namespace {
 
 using namespace mf::cpubrdf;
@@ -34,8 +36,10 @@ double condition(V3<double> v, V3<double> l) {
 
 class BrdfShaderGrid : public mf::test::VulkanTest {};
 
-TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
-    BrdfHarness harness(context(), energy_table());
+// More than 10⁶ hard inputs: normals unit, tilted, zero and unnormalized; every pair of the hard
+// directions as v and l; roughness 0 to 1 around the floor; black, white, coloured and half
+// metals and dielectrics; intensities 0 to 10⁶.
+std::vector<BrdfInput> hard_inputs() {
     const auto dirs = hard_directions();
     const std::vector<V3<float>> normals = {{0.f, 0.f, 1.f},
                                             {0.6f, 0.f, 0.8f},
@@ -65,11 +69,17 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
                                           {v.x, v.y, v.z, m.metalness},
                                           {l.x, l.y, l.z, e},
                                           {m.albedo[0], m.albedo[1], m.albedo[2], 0.f}});
-    double ms = 0.0;
-    const auto out = harness.evaluate(in, mf::render::BrdfPrecision::fp32, &ms);
-    ASSERT_EQ(out.size(), in.size() * 3);
+    return in;
+}
 
-    const Model models[] = {Model::standard, Model::accurate, Model::unnormalized_diffuse};
+// The shader's radiance `out` (model m of input i at 3 i + m) of `in` against the double
+// evaluation, for the models `models` (0 standard, 1 accurate, 2 unnormalized diffuse), within
+// the stated bound; `what` names the shader in the printed summary.
+void expect_agrees_with_double(const char* what, const std::vector<BrdfInput>& in,
+                               const std::vector<std::array<float, 3>>& out, std::initializer_list<size_t> models,
+                               double ms) {
+    ASSERT_EQ(out.size(), in.size() * 3);
+    const Model kModels[] = {Model::standard, Model::accurate, Model::unnormalized_diffuse};
     size_t nonfinite = 0, disagree = 0, lit = 0, zero_mismatch = 0;
     double worst_ratio = 0.0, worst_rel[3] = {0, 0, 0}, worst_abs_unlit = 0.0;
     for (size_t i = 0; i < in.size(); ++i) {
@@ -79,8 +89,8 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
             {g.n[0], g.n[1], g.n[2]}, v, l, {g.albedo[0], g.albedo[1], g.albedo[2]}, g.n[3], g.v[3], g.l[3]};
         const double e = g.l[3];
         const double cond = condition(v, l);
-        for (size_t m = 0; m < 3; ++m) {
-            const auto rd = shade(d, models[m]);
+        for (const size_t m : models) {
+            const auto rd = shade(d, kModels[m]);
             const auto& rg = out[3 * i + m];
             for (size_t c = 0; c < 3; ++c) {
                 const double gpu = rg[c];
@@ -113,16 +123,40 @@ TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
             }
         }
     }
-    std::printf("shader grid: %zu inputs x 3 models in %.1f ms (lavapipe), lit channels %zu; worst error / bound "
+    std::printf("%s: %zu inputs x %zu models in %.1f ms (lavapipe), lit channels %zu; worst error / bound "
                 "%.3g; worst relative error (well-conditioned, value > 1e-3 E): standard %.3g, accurate %.3g, "
                 "unnormalized diffuse %.3g; worst GPU value where double is 0: %.3g E\n",
-                in.size(), ms, lit, worst_ratio, worst_rel[0], worst_rel[1], worst_rel[2], worst_abs_unlit);
+                what, in.size(), models.size(), ms, lit, worst_ratio, worst_rel[0], worst_rel[1], worst_rel[2],
+                worst_abs_unlit);
     EXPECT_GE(in.size(), size_t{1000000});
     EXPECT_EQ(nonfinite, 0u) << "NaN, Inf or negative radiance from the shader";
     EXPECT_EQ(disagree, 0u) << "shader outside the stated bound of the double evaluation";
     EXPECT_EQ(zero_mismatch, 0u) << "the shader lit a configuration with zero intensity";
-    EXPECT_GT(lit, in.size() * 3 / 20) << "the grid must exercise lit configurations";
+    EXPECT_GT(lit, in.size() * models.size() / 20) << "the grid must exercise lit configurations";
     for (double w : worst_rel) EXPECT_LT(w, 2e-5);
+}
+
+TEST_F(BrdfShaderGrid, MillionHardInputsFiniteAndAgreeWithDouble) {
+    BrdfHarness harness(context(), energy_table());
+    const auto in = hard_inputs();
+    double ms = 0.0;
+    const auto out = harness.evaluate(in, mf::render::BrdfPrecision::fp32, &ms);
+    expect_agrees_with_double("shader grid", in, out, {0, 1, 2}, ms);
+}
+
+// The d3d11 preset's HLSL include (lib/engine/matforge_material.hlsli: mf_brdf_light, the
+// standard model) compiled by glslang's HLSL front end (brdf_grid.hlsl, at build time) and run on
+// the same inputs: the same oracle, the same bound as the GLSL.
+TEST_F(BrdfShaderGrid, HlslIncludeAgreesWithDoubleAsTheGlslDoes) {
+    BrdfHarness harness(context(), energy_table());
+    const auto in = hard_inputs();
+    double ms = 0.0;
+    const auto out = harness.evaluate_spirv(kBrdfGridHlsl, sizeof kBrdfGridHlsl, in, &ms);
+    expect_agrees_with_double("HLSL grid (standard model)", in, out, {0}, ms);
+    // The models the HLSL does not have stay untouched.
+    size_t written = 0;
+    for (size_t i = 0; i < in.size(); ++i) written += out[3 * i + 1] != std::array<float, 3>{0.f, 0.f, 0.f};
+    EXPECT_EQ(written, 0u);
 }
 
 // White furnace (F0 = 1, so F = 1: a white metal under unit irradiance): the specular lobe's

@@ -74,6 +74,40 @@ TEST_F(SampleReportTest, EveryMaterialHasItsCardAndEveryFindingItsRow) {
     EXPECT_GE(links, total);
 }
 
+// Each card lists the material files written for its set (issue 27), each file with its format
+// and the line on how to open it; gltf writes four per set.
+TEST_F(SampleReportTest, EveryCardListsItsMaterialFiles) {
+    const std::string html = read_text(r_.report / "index.html");
+    for (const auto& m : manifest_["materials"]) {
+        const std::string name = m["name"];
+        const std::string card = card_of(html, markup_escape(name));
+        const size_t table = card.find("<table class=\"material-files\">");
+        ASSERT_NE(table, std::string::npos) << name;
+        const std::string rows = card.substr(table, card.find("</table>", table) - table);
+        ASSERT_EQ(m["material_files"].size(), 4u) << name;
+        for (const auto& f : m["material_files"]) {
+            const std::string row = "<tr data-format=\"" + f["format"].get<std::string>() + "\"><td><code>" +
+                                    markup_escape(f["file"].get<std::string>()) + "</code>";
+            EXPECT_NE(rows.find(row), std::string::npos) << name << ": " << f["file"];
+        }
+        EXPECT_NE(rows.find("three.js GLTFLoader"), std::string::npos) << name;
+        EXPECT_NE(rows.find("a USD host"), std::string::npos) << name;
+    }
+}
+
+// A Unity preset's .meta files beside the textures are one row with their count; the .mat its own.
+TEST(ReportCli, EngineMaterialFilesAreListedWithHowToOpenThem) {
+    const fs::path work = temp_dir("unity");
+    ASSERT_TRUE(matforge({"ingest", (mf::testenv::source_dir() / "sample_materials/Net004A_1K-JPG").string(), "-o",
+                          (work / "out").string(), "--preset", "unity-urp", "-q", "--fail-on", "never"}));
+    ASSERT_TRUE(matforge({"report", (work / "out/manifest.json").string(), "-o", (work / "report").string(), "-q"}));
+    const std::string html = read_text(work / "report/index.html");
+    EXPECT_NE(html.find("<tr data-format=\"mat\"><td><code>Net004A/Net004A.mat</code></td><td>mat</td><td>Unity: "),
+              std::string::npos)
+        << html.substr(html.find("material-files") == std::string::npos ? 0 : html.find("material-files"), 800);
+    EXPECT_NE(html.find("<td>4 <code>.meta</code> beside the textures</td>"), std::string::npos);
+}
+
 TEST_F(SampleReportTest, EveryPictureIsAPngOfTheThumbSize) {
     // All sample maps are larger than the thumbnails: every picture is reduced to exactly
     // kThumb on its long side (packed channels to a quarter of it).

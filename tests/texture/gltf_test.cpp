@@ -123,7 +123,7 @@ TEST(Gltf, MaterialsReferenceTheWrittenTexturesInTheirSlots) {
 
 TEST(Gltf, LibraryHoldsEveryMaterialOnItsOwnNode) {
     const auto& r = ingested("samples");
-    ASSERT_EQ(r.manifest["library"].size(), 3u);  // library.gltf, .bin, .usda
+    ASSERT_EQ(r.manifest["library"].size(), 4u);  // library.gltf, .bin, .usda, .mtlx
     EXPECT_EQ(r.manifest["library"][0]["file"], "library.gltf");
     const json g = mf::testfiles::read_json(r.out / "library.gltf");
     ASSERT_EQ(g["nodes"].size(), r.manifest["materials"].size());
@@ -389,6 +389,41 @@ TEST(Gltf, UsdLibraryReferencesEveryMaterialLayer) {
             if (f["format"] == "usda") layers.insert(f["file"].get<std::string>());
     EXPECT_EQ(referenced, layers);
     EXPECT_EQ(layers.size(), r.manifest["materials"].size());
+}
+
+// library.mtlx holds every material's MaterialX elements in one document that MaterialX's own
+// validation passes: one gltf_pbr per material, each reading files that exist relative to the
+// library, element names unique across materials (two names that make one identifier included).
+TEST(Gltf, MaterialXLibraryHoldsEveryMaterial) {
+    const auto& r = ingested("samples");
+    bool listed = false;
+    for (const auto& f : r.manifest["library"])
+        if (f["file"] == "library.mtlx") {
+            listed = true;
+            EXPECT_EQ(f["format"], "mtlx");
+            EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(r.out / "library.mtlx")));
+        }
+    ASSERT_TRUE(listed) << r.manifest["library"].dump();
+    // The samples again beside a copy of one set under a name that makes the same identifier.
+    const fs::path dir = temp_dir("library");
+    fs::copy(samples(), dir / "in", fs::copy_options::recursive);
+    fs::copy(dir / "in" / "Net004A_1K-JPG", dir / "in" / "Net004A-1K-JPG", fs::copy_options::recursive);
+    const json two = ingest({dir / "in"}, dir / "out", "gltf", {"--fail-on", "never"});
+    for (const auto& [out, materials] :
+         {std::pair{r.out, r.manifest["materials"].size()}, std::pair{dir / "out", two["materials"].size()}}) {
+        const auto reports = node_checker("mtlx_validate.cjs", {out / "library.mtlx"});
+        ASSERT_EQ(reports.size(), 1u);
+        const json& rep = reports[0];
+        EXPECT_TRUE(rep["valid"].get<bool>()) << rep["message"];
+        EXPECT_EQ(rep["shaders"].size(), materials);
+        std::set<std::string> files;
+        for (const auto& img : rep["images"]) {
+            files.insert(img["file"].get<std::string>());
+            EXPECT_TRUE(fs::is_regular_file(out / img["file"].get<std::string>())) << img["file"];
+        }
+        EXPECT_GE(files.size(), 3 * materials) << "each material's own textures";
+    }
+    EXPECT_EQ(two["materials"].size(), 5u);
 }
 
 TEST(Gltf, MaterialXBesideEachGltfPassesMaterialXValidation) {

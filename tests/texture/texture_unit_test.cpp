@@ -470,6 +470,7 @@ TEST(PresetFields, VocabularyIsTypedOnceAtLoad) {
     for (auto e : {mf::Effort::fast, mf::Effort::normal, mf::Effort::thorough}) round_trip(e);
     round_trip(mf::MipFilter::box), round_trip(mf::MipFilter::kaiser);
     round_trip(mf::Supercompression::zstd), round_trip(mf::MaterialFileKind::gltf);
+    round_trip(mf::MaterialFileKind::unity_hdrp), round_trip(mf::MaterialFileKind::d3d11);
     EXPECT_FALSE(mf::from_word<mf::FileFormat>("PNG"));
     EXPECT_FALSE(mf::from_word<mf::Effort>(""));
     EXPECT_EQ(mf::word_list<mf::FileFormat>(), "png, exr, tif, tga, dds or ktx2");
@@ -485,7 +486,8 @@ TEST(PresetFields, VocabularyIsTypedOnceAtLoad) {
     has(preset_error("dds", bc1 + R"(, "effort": "max"})"),
         "outputs[0] ('c'): effort must be fast, normal or thorough");
     has(preset_error("ktx2", bc1 + "}", R"("supercompression": "lz4",)"), "supercompression must be none or zstd");
-    has(preset_error("png", kAlbedo + "}", R"("material_file": "usd",)"), "material_file must be none or gltf");
+    has(preset_error("png", kAlbedo + "}", R"("material_file": "usd",)"),
+        "material_file must be none, gltf, godot, unity-hdrp, unity-urp, unreal or d3d11");
     has(preset_error("dds", kAlbedo + R"(, "block_format": 1})"), "unknown block format 1");
     const std::string text = R"({"name": "t", "format": "ktx2", "mips": true, "mip_filter": "box", "effort": "fast",
         "supercompression": "zstd", "outputs": [)" +

@@ -45,7 +45,7 @@ ExitCode run_merge(const MergeArgs& a) {
     auto merged = manifest::merge_shards(a.inputs, dir, *spool, error);
     if (!merged) return fail("merge", error);
     if (!write_library(
-            spool->entries(), dir,
+            *spool, dir,
             [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
                 return write_file_atomic(dir / rel, b, e);
             },

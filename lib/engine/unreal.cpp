@@ -1,0 +1,169 @@
+// Unreal Engine: <material>/import_<material>.py, an editor Python script (Tools > Execute
+// Python Script, or `UnrealEditor-Cmd Project.uproject -run=pythonscript -script=...`) that
+// imports the set's textures with unreal.AssetImportTask, sets each one's sRGB flag and
+// compression (TC_MASKS on the ORM, TC_NORMALMAP on the normal map, TC_GRAYSCALE on the height),
+// and makes MI_<material>, an instance of /Game/Matforge/M_MatforgeORM (made by the script when
+// the project has none: BaseColor RGB to Base Color and A to Opacity / Opacity Mask, ORM R to
+// Ambient Occlusion, G to Roughness, B to Metallic, Normal to Normal, Emissive times
+// EmissiveStrength to Emissive Color).
+//
+// Checked against the Unreal Python API reference (AssetImportTask, AssetTools,
+// EditorAssetLibrary, MaterialEditingLibrary, Texture.srgb / compression_settings) and parsed
+// and run against a recording stand-in of the `unreal` module in the tests
+// (tests/texture/checkers/unreal_check.py); not run in Unreal here (no Unreal Editor on Linux CI).
+#include "core/identifier.hpp"
+#include "core/version.hpp"
+#include "engine/engine.hpp"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+namespace mf::engine {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string py(const std::string& s) { return nlohmann::json(s).dump(); }  // a JSON string is a Python literal
+
+// The parent material and the instance, shared by every script (each script stands alone).
+constexpr const char* kBody = R"PY(
+
+def import_textures():
+    """Imports TEXTURES into DEST and sets their sRGB flag and compression; returns {parameter: texture}."""
+    tasks = []
+    for file, _, _, _ in TEXTURES:
+        task = unreal.AssetImportTask()
+        task.set_editor_property("filename", os.path.join(HERE, file))
+        task.set_editor_property("destination_path", DEST)
+        task.set_editor_property("automated", True)
+        task.set_editor_property("replace_existing", True)
+        task.set_editor_property("save", False)
+        tasks.append(task)
+    unreal.AssetToolsHelpers.get_asset_tools().import_asset_tasks(tasks)
+    textures = {}
+    for task, (file, parameter, srgb, compression) in zip(tasks, TEXTURES):
+        paths = task.get_editor_property("imported_object_paths")
+        if not paths:
+            raise RuntimeError("matforge: " + file + " was not imported")
+        texture = unreal.EditorAssetLibrary.load_asset(paths[0])
+        texture.set_editor_property("srgb", srgb)
+        texture.set_editor_property("compression_settings", getattr(unreal.TextureCompressionSettings, compression))
+        unreal.EditorAssetLibrary.save_loaded_asset(texture)
+        textures[parameter] = texture
+    return textures
+
+
+def parent_material(textures):
+    """/Game/Matforge/M_MatforgeORM, made when missing (its default textures: this set's)."""
+    if unreal.EditorAssetLibrary.does_asset_exist(PARENT):
+        return unreal.EditorAssetLibrary.load_asset(PARENT)
+    folder, name = PARENT.rsplit("/", 1)
+    tools = unreal.AssetToolsHelpers.get_asset_tools()
+    material = tools.create_asset(name, folder, unreal.Material, unreal.MaterialFactoryNew())
+    mel = unreal.MaterialEditingLibrary
+    samplers = {
+        "BaseColor": unreal.MaterialSamplerType.SAMPLERTYPE_COLOR,
+        "ORM": unreal.MaterialSamplerType.SAMPLERTYPE_MASKS,
+        "Normal": unreal.MaterialSamplerType.SAMPLERTYPE_NORMAL,
+        "Emissive": unreal.MaterialSamplerType.SAMPLERTYPE_COLOR,
+    }
+    nodes = {}
+    for row, (parameter, sampler) in enumerate(samplers.items()):
+        node = mel.create_material_expression(material, unreal.MaterialExpressionTextureSampleParameter2D, -600, row * 300)
+        node.set_editor_property("parameter_name", parameter)
+        node.set_editor_property("sampler_type", sampler)
+        if parameter in textures:
+            node.set_editor_property("texture", textures[parameter])
+        nodes[parameter] = node
+    mel.connect_material_property(nodes["BaseColor"], "RGB", unreal.MaterialProperty.MP_BASE_COLOR)
+    mel.connect_material_property(nodes["BaseColor"], "A", unreal.MaterialProperty.MP_OPACITY_MASK)
+    mel.connect_material_property(nodes["BaseColor"], "A", unreal.MaterialProperty.MP_OPACITY)
+    mel.connect_material_property(nodes["ORM"], "R", unreal.MaterialProperty.MP_AMBIENT_OCCLUSION)
+    mel.connect_material_property(nodes["ORM"], "G", unreal.MaterialProperty.MP_ROUGHNESS)
+    mel.connect_material_property(nodes["ORM"], "B", unreal.MaterialProperty.MP_METALLIC)
+    mel.connect_material_property(nodes["Normal"], "RGB", unreal.MaterialProperty.MP_NORMAL)
+    strength = mel.create_material_expression(material, unreal.MaterialExpressionScalarParameter, -600, 1200)
+    strength.set_editor_property("parameter_name", "EmissiveStrength")
+    strength.set_editor_property("default_value", 1.0)
+    emissive = mel.create_material_expression(material, unreal.MaterialExpressionMultiply, -250, 900)
+    mel.connect_material_expressions(nodes["Emissive"], "RGB", emissive, "A")
+    mel.connect_material_expressions(strength, "", emissive, "B")
+    mel.connect_material_property(emissive, "", unreal.MaterialProperty.MP_EMISSIVE_COLOR)
+    mel.recompile_material(material)
+    unreal.EditorAssetLibrary.save_loaded_asset(material)
+    return material
+
+
+def material_instance(textures, parent):
+    """MI_<material> in DEST: every imported texture on its parameter, the blend mode of the set."""
+    tools = unreal.AssetToolsHelpers.get_asset_tools()
+    path = DEST + "/" + INSTANCE
+    if unreal.EditorAssetLibrary.does_asset_exist(path):
+        instance = unreal.EditorAssetLibrary.load_asset(path)
+    else:
+        instance = tools.create_asset(INSTANCE, DEST, unreal.MaterialInstanceConstant,
+                                      unreal.MaterialInstanceConstantFactoryNew())
+    mel = unreal.MaterialEditingLibrary
+    mel.set_material_instance_parent(instance, parent)
+    for parameter, texture in textures.items():
+        if parameter in ("BaseColor", "ORM", "Normal", "Emissive"):
+            mel.set_material_instance_texture_parameter_value(instance, parameter, texture)
+    mel.set_material_instance_scalar_parameter_value(instance, "EmissiveStrength", EMISSIVE_STRENGTH)
+    overrides = instance.get_editor_property("base_property_overrides")
+    overrides.set_editor_property("override_blend_mode", True)
+    overrides.set_editor_property("blend_mode", getattr(unreal.BlendMode, BLEND_MODE))
+    overrides.set_editor_property("override_opacity_mask_clip_value", True)
+    overrides.set_editor_property("opacity_mask_clip_value", OPACITY_MASK_CLIP_VALUE)
+    overrides.set_editor_property("override_two_sided", True)
+    overrides.set_editor_property("two_sided", BLEND_MODE != "BLEND_OPAQUE")
+    instance.set_editor_property("base_property_overrides", overrides)
+    mel.update_material_instance(instance)
+    unreal.EditorAssetLibrary.save_loaded_asset(instance)
+    return instance
+
+
+textures = import_textures()
+material_instance(textures, parent_material(textures))
+)PY";
+
+// Each slot's import settings: (sRGB, compression).
+std::pair<bool, const char*> settings(const EngineSlot& s) {
+    if (s.role == Role::normal) return {false, "TC_NORMALMAP"};
+    if (s.slot == "ORM") return {false, "TC_MASKS"};
+    if (s.role == Role::height) return {false, "TC_GRAYSCALE"};
+    return {s.srgb, s.srgb ? "TC_DEFAULT" : "TC_MASKS"};
+}
+
+}  // namespace
+
+std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bound>& bound) {
+    const fs::path script = fs::path(m.name) / ("import_" + m.name + ".py");
+    const std::string id = scene_identifier(m.name);
+    std::string list;
+    for (const Bound& b : bound) {
+        const auto [srgb, compression] = settings(*b.slot);
+        list += "    (" + py(fs::path(b.output->file).lexically_relative(script.parent_path()).generic_string()) +
+                ", " + py(std::string(b.slot->slot)) + ", " + (srgb ? "True" : "False") + ", " + py(compression) +
+                "),\n";
+    }
+    using manifest::AlphaMode;
+    const char* blend = !m.alpha_mode || *m.alpha_mode == AlphaMode::opaque ? "BLEND_OPAQUE"
+                        : *m.alpha_mode == AlphaMode::mask                  ? "BLEND_MASKED"
+                                                                            : "BLEND_TRANSLUCENT";
+    std::string text = "# " + std::string(kGenerator) + ": imports " + m.name +
+                       "'s textures into /Game/Matforge and makes its material instance.\n"
+                       "# Run in the Unreal Editor (Tools > Execute Python Script) or\n"
+                       "#   UnrealEditor-Cmd Project.uproject -run=pythonscript -script=<this file>\n"
+                       "import os\n\nimport unreal\n\nHERE = os.path.dirname(os.path.abspath(__file__))\n"
+                       "DEST = " +
+                       py("/Game/Matforge/" + id) +
+                       "\nPARENT = \"/Game/Matforge/M_MatforgeORM\"\nINSTANCE = " + py("MI_" + id) +
+                       "\n# (file beside this script, parameter of the parent material, sRGB, compression)\n"
+                       "TEXTURES = [\n" +
+                       list + "]\nBLEND_MODE = \"" + blend +
+                       "\"\nOPACITY_MASK_CLIP_VALUE = " + scene_number(m.alpha_cutoff) +
+                       "\nEMISSIVE_STRENGTH = " + scene_number(m.emissive_strength) + "\n" + kBody;
+    return {{script.generic_string(), "py", std::move(text)}};
+}
+
+}  // namespace mf::engine

@@ -1,0 +1,45 @@
+// The texture slots of each engine material a preset's `material_file` names (godot,
+// unity-hdrp, unity-urp, unreal, d3d11): which role the engine reads from which channel of
+// which slot's texture, and whether it samples that texture as sRGB. The preset check
+// (check_engine_layout, at load) and the writers (lib/engine) read these tables alone, so a
+// preset whose layout an engine's slots cannot read is refused before any set is ingested.
+// (The glTF's slots are glTF 2.0's own: preset/texture_fields.cpp check_gltf_layout.)
+#pragma once
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "material/roles.hpp"
+#include "preset/preset.hpp"
+
+namespace mf {
+
+struct EngineSlot {
+    std::string_view slot;    // the engine's name of the texture ("albedo_texture", "_MaskMap", ...)
+    Role role;                // what it reads there
+    bool smoothness = false;  // stored as 1 - roughness (role roughness)
+    std::string_view key;     // the channel it reads it from: "RGB", "R", "G", "B", "A"
+    bool srgb = false;        // the engine samples the texture as sRGB colour
+};
+
+struct EngineMaterial {
+    MaterialFileKind kind;
+    std::string_view engine;              // "Godot 4 ORMMaterial3D", ...
+    NormalConvention normal;              // the tangent-space convention its normal slot reads
+    std::span<const FileFormat> formats;  // the texture files it imports
+    std::span<const EngineSlot> slots;    // in the order the engine's material lists them
+};
+
+// nullptr for none and gltf.
+const EngineMaterial* engine_material(MaterialFileKind kind);
+
+// The slot reading output `o` of a preset (the first slot one of whose roles `o` holds), or
+// nullptr when none does.
+const EngineSlot* slot_of(const EngineMaterial& e, const OutputSpec& o);
+
+// Whether `p`'s outputs fit `e`: its normal convention and format, each output read by a slot,
+// each role in the channel and colour encoding the slot reads it from, a slot's roles in one
+// output. False + `error` naming the output and the slot.
+bool check_engine_layout(const Preset& p, const EngineMaterial& e, std::string& error);
+
+}  // namespace mf

@@ -1,0 +1,383 @@
+// The engines' material files (presets godot, unity-hdrp, unity-urp, unreal, d3d11) on
+// sample_materials and the real-material corpus, read back by readers that are not matforge's
+// writers (tests/texture/checkers: a Godot text-resource and ConfigFile parser written from
+// Godot's format documentation, PyYAML for Unity's YAML, a recording stand-in of Unreal's
+// `unreal` module limited to the documented API, glslang's HLSL front end) and cross-checked
+// against the manifest: each slot holds the texture whose channels the engine reads there, data
+// maps are never sRGB, normal maps are imported as normal maps, every path and guid resolves,
+// every written texture is used, every file is listed with its hash.
+#include <set>
+
+#include "texture_cli.hpp"
+
+using namespace mtt;
+
+namespace {
+
+struct Ingested {
+    fs::path out;
+    json manifest;
+};
+const Ingested& ingested(const std::string& preset, const std::string& what) {
+    static std::map<std::string, Ingested> cache;
+    const std::string key = preset + "-" + what;
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+    Ingested r;
+    r.out = fs::temp_directory_path() / ("matforge-texture-engine-" + key + "-" + std::to_string(::getpid()));
+    fs::remove_all(r.out);
+    mf::testbin::register_test_dir(r.out);
+    r.manifest = ingest({what == "corpus" ? corpus() : samples()}, r.out, preset, {"--fail-on", "never"});
+    return cache[key] = r;
+}
+
+// "KEY:role" -> the file (relative to the manifest's folder) holding it, for one material.
+std::map<std::string, std::string> channels_of(const json& m) {
+    std::map<std::string, std::string> at;
+    for (const auto& o : m["outputs"])
+        for (const auto& [key, v] : o["channels"].items())
+            if (v.is_string()) at[key + ":" + v.get<std::string>()] = o["file"];
+    return at;
+}
+const json* output_named(const json& m, const std::string& file) {
+    for (const auto& o : m["outputs"])
+        if (o["file"] == file) return &o;
+    return nullptr;
+}
+bool holds(const json& o, const std::string& key, const std::string& role) {
+    return o["channels"].contains(key) && o["channels"][key] == role;
+}
+
+// Every material file listed exists and hashes to its sha256; the formats listed, in a set.
+std::multiset<std::string> listed_formats(const Ingested& r, const json& m) {
+    std::multiset<std::string> formats;
+    for (const auto& f : m["material_files"]) {
+        EXPECT_EQ(mf::sha256_hex(read_bytes(r.out / f["file"].get<std::string>())), f["sha256"]) << f["file"];
+        formats.insert(f["format"].get<std::string>());
+    }
+    return formats;
+}
+
+std::vector<json> python_checker(const std::string& script, const std::vector<std::string>& args, const fs::path& cwd) {
+    std::vector<std::string> argv{"python3", (mf::testenv::source_dir() / "tests/texture/checkers" / script).string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const fs::path old = fs::current_path();
+    fs::current_path(cwd);
+    const auto p = mf::testbin::spawn(argv, 300);
+    fs::current_path(old);
+    EXPECT_EQ(p.code, 0) << p.output;
+    std::vector<json> out;
+    std::istringstream lines(p.output);
+    for (std::string line; std::getline(lines, line);)
+        if (!line.empty()) out.push_back(json::parse(line));
+    return out;
+}
+
+// ---- Godot 4
+
+// Each ORMMaterial3D slot and the channels Godot reads there (Godot's class reference).
+const std::map<std::string, std::vector<std::string>> kGodotSlots{
+    {"albedo_texture", {"RGB:albedo"}},  {"orm_texture", {"G:roughness", "B:metalness"}},
+    {"normal_texture", {"RGB:normal"}},  {"emission_texture", {"RGB:emissive"}},
+    {"heightmap_texture", {"R:height"}},
+};
+
+void expect_godot(const Ingested& r) {
+    std::vector<std::string> tres;
+    for (const auto& m : r.manifest["materials"]) {
+        const auto formats = listed_formats(r, m);
+        EXPECT_EQ(formats.count("tres"), 1u) << m["name"];
+        EXPECT_EQ(formats.count("import"), m["outputs"].size()) << m["name"] << ": an .import beside each texture";
+        tres.push_back(m["name"].get<std::string>() + "/" + m["name"].get<std::string>() + ".tres");
+    }
+    const auto reports = python_checker("godot_check.py", tres, r.out);
+    ASSERT_EQ(reports.size(), r.manifest["materials"].size());
+    for (size_t i = 0; i < reports.size(); ++i) {
+        const json& rep = reports[i];
+        const json& m = r.manifest["materials"][i];
+        SCOPED_TRACE(rep["file"].get<std::string>());
+        ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+        EXPECT_EQ(rep["heading"]["attributes"]["type"], "ORMMaterial3D");
+        EXPECT_EQ(rep["heading"]["attributes"]["format"], 3);
+        EXPECT_EQ(rep["heading"]["attributes"]["load_steps"], rep["ext"].size() + 1);
+        const json& props = rep["props"];
+        const auto at = channels_of(m);
+        std::set<std::string> used;
+        for (const auto& [slot, needs] : kGodotSlots) {
+            const bool present = at.count(needs[0]) > 0;
+            ASSERT_EQ(props.contains(slot), present) << slot;
+            if (!present) continue;
+            const json& ext = rep["ext"][props[slot]["ext"].get<std::string>()];
+            EXPECT_EQ(ext["type"], "Texture2D");
+            EXPECT_TRUE(ext["exists"].get<bool>()) << ext["path"];
+            const std::string file = ext["resolved"];
+            for (const auto& n : needs) EXPECT_EQ(at.at(n), file) << slot << " reads " << n;
+            used.insert(file);
+            // The import settings Godot applies to it.
+            ASSERT_TRUE(ext["import"].is_object()) << file << ".import is missing";
+            EXPECT_EQ(ext["import"]["remap"]["importer"], "texture");
+            EXPECT_EQ(ext["import"]["remap"]["type"], "CompressedTexture2D");
+            const json& params = ext["import"]["params"];
+            EXPECT_EQ(params["compress/normal_map"], slot == "normal_texture" ? 1 : 2) << slot;
+            EXPECT_EQ(params["compress/mode"], 2) << slot;
+            EXPECT_EQ(params["mipmaps/generate"], true);
+            EXPECT_EQ(params["detect_3d/compress_to"], 0);
+        }
+        // ORM: occlusion in R when the set has one; AO read only with ao_enabled.
+        if (at.count("R:occlusion")) {
+            EXPECT_EQ(at.at("R:occlusion"), at.at("G:roughness"));
+        }
+        EXPECT_EQ(props.value("ao_enabled", false), true);
+        EXPECT_EQ(props.value("normal_enabled", false), at.count("RGB:normal") > 0);
+        EXPECT_EQ(props.value("emission_enabled", false), at.count("RGB:emissive") > 0);
+        EXPECT_EQ(props.value("heightmap_enabled", false), at.count("R:height") > 0);
+        EXPECT_FALSE(props.contains("emission")) << "Godot adds the emission colour to the texture: left black";
+        for (const auto& o : m["outputs"])
+            EXPECT_TRUE(used.count(o["file"])) << o["file"] << " is written but not used";
+        // Alpha as the manifest decided it (the glTF's alphaMode): scissor at the cutoff, or blend.
+        const std::string alpha = m.value("alpha_mode", "none");
+        EXPECT_EQ(props.value("transparency", 0), alpha == "mask" ? 2 : alpha == "blend" ? 1 : 0) << alpha;
+        if (alpha == "mask") {
+            EXPECT_EQ(props["alpha_scissor_threshold"], m["alpha_cutoff"]);
+        }
+    }
+}
+
+TEST(EngineFiles, GodotSamples) {
+    const auto& r = ingested("godot", "samples");
+    ASSERT_EQ(r.manifest["materials"].size(), 4u);
+    expect_godot(r);
+    // Net004A's net is cut out.
+    EXPECT_EQ(r.manifest["materials"][2]["name"], "Net004A");
+    EXPECT_EQ(r.manifest["materials"][2]["alpha_mode"], "mask");
+}
+
+TEST(EngineFiles, GodotCorpus) {
+    const auto& r = ingested("godot", "corpus");
+    ASSERT_GE(r.manifest["materials"].size(), 15u);
+    expect_godot(r);
+}
+
+// ---- Unity HDRP and URP
+
+struct UnitySlot {
+    std::string slot;
+    std::vector<std::string> reads;  // "KEY:role" the shader reads there
+    std::string keyword;             // the keyword that turns the map on ("" = none needed)
+};
+// HDRP Lit and URP Lit (Unity's shader documentation; the shaders' guids from their packages).
+const std::vector<UnitySlot> kHdrp{{"_BaseColorMap", {"RGB:albedo"}, ""},
+                                   {"_MaskMap", {"R:metalness", "A:smoothness"}, "_MASKMAP"},
+                                   {"_NormalMap", {"RGB:normal"}, "_NORMALMAP"},
+                                   {"_HeightMap", {"R:height"}, "_HEIGHTMAP"},
+                                   {"_EmissiveColorMap", {"RGB:emissive"}, "_EMISSIVE_COLOR_MAP"}};
+const std::vector<UnitySlot> kUrp{{"_BaseMap", {"RGB:albedo"}, ""},
+                                  {"_MetallicGlossMap", {"R:metalness", "A:smoothness"}, "_METALLICSPECGLOSSMAP"},
+                                  {"_BumpMap", {"RGB:normal"}, "_NORMALMAP"},
+                                  {"_OcclusionMap", {"R:occlusion"}, "_OCCLUSIONMAP"},
+                                  {"_ParallaxMap", {"R:height"}, "_PARALLAXMAP"},
+                                  {"_EmissionMap", {"RGB:emissive"}, "_EMISSION"}};
+
+void expect_unity(const Ingested& r, bool hdrp) {
+    std::vector<std::string> args{"."};
+    for (const auto& m : r.manifest["materials"]) {
+        const auto formats = listed_formats(r, m);
+        EXPECT_EQ(formats.count("mat"), 1u) << m["name"];
+        EXPECT_EQ(formats.count("meta"), m["outputs"].size() + 1)
+            << m["name"] << ": a .meta per texture and the .mat's";
+        args.push_back(m["name"].get<std::string>() + "/" + m["name"].get<std::string>() + ".mat");
+    }
+    const auto reports = python_checker("unity_check.py", args, r.out);
+    ASSERT_EQ(reports.size(), r.manifest["materials"].size());
+    for (size_t i = 0; i < reports.size(); ++i) {
+        const json& rep = reports[i];
+        const json& m = r.manifest["materials"][i];
+        SCOPED_TRACE(rep["file"].get<std::string>());
+        ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+        EXPECT_TRUE(rep["guids_unique"].get<bool>());
+        EXPECT_EQ(rep["name"], m["name"]);
+        EXPECT_EQ(rep["shader_file_id"], 4800000);
+        EXPECT_EQ(rep["shader_guid"], hdrp ? "6e4ae4064600d784cac1e41a9e6f2e59" : "933532a4fcc9baf4fa0491de14d08ed7");
+        EXPECT_EQ(rep["mat_meta"]["importer"], json::array({"NativeFormatImporter"}));
+        const auto at = channels_of(m);
+        const std::set<std::string> keywords(rep["keywords"].begin(), rep["keywords"].end());
+        std::set<std::string> used;
+        for (const UnitySlot& s : hdrp ? kHdrp : kUrp) {
+            const bool present = at.count(s.reads[0]) > 0;
+            ASSERT_TRUE(rep["textures"].contains(s.slot)) << s.slot;
+            const json& t = rep["textures"][s.slot];
+            ASSERT_EQ(!t.is_null(), present) << s.slot;
+            if (!s.keyword.empty()) {
+                EXPECT_EQ(keywords.count(s.keyword), present ? 1u : 0u) << s.keyword;
+            }
+            if (!present) continue;
+            ASSERT_FALSE(t["file"].is_null()) << s.slot << ": guid " << t["guid"] << " names no .meta";
+            const std::string file = t["file"];
+            for (const auto& n : s.reads) EXPECT_EQ(at.at(n), file) << s.slot << " reads " << n;
+            used.insert(file);
+            const json* o = output_named(m, file);
+            ASSERT_TRUE(o);
+            const json& imp = t["importer"];
+            EXPECT_EQ(imp["mipmaps"]["sRGBTexture"], (*o)["color_space"] == "sRGB" ? 1 : 0) << file;
+            EXPECT_EQ(imp["textureType"], holds(*o, "RGB", "normal") ? 1 : 0) << file;
+            EXPECT_EQ(imp["alphaIsTransparency"], holds(*o, "A", "opacity") ? 1 : 0) << file;
+            EXPECT_GE(imp["maxTextureSize"].get<int>(), std::max((*o)["width"].get<int>(), (*o)["height"].get<int>()));
+        }
+        if (hdrp && at.count("RGB:normal")) {
+            EXPECT_TRUE(keywords.count("_NORMALMAP_TANGENT_SPACE"));
+        }
+        if (hdrp && at.count("G:occlusion")) {
+            EXPECT_EQ(at.at("G:occlusion"), at.at("R:metalness"));
+        }
+        for (const auto& o : m["outputs"])
+            EXPECT_TRUE(used.count(o["file"])) << o["file"] << " is written but not used";
+        // The maps carry the values: every multiplier at 1.
+        EXPECT_EQ(rep["floats"]["_Metallic"], 1);
+        EXPECT_EQ(rep["floats"]["_Smoothness"], 1);
+        const std::string alpha = m.value("alpha_mode", "none");
+        EXPECT_EQ(keywords.count("_ALPHATEST_ON"), alpha == "mask" ? 1u : 0u);
+        EXPECT_EQ(rep["floats"][hdrp ? "_AlphaCutoffEnable" : "_AlphaClip"], alpha == "mask" ? 1 : 0);
+    }
+}
+
+TEST(EngineFiles, UnityHdrpSamples) { expect_unity(ingested("unity-hdrp", "samples"), true); }
+TEST(EngineFiles, UnityUrpSamples) { expect_unity(ingested("unity-urp", "samples"), false); }
+TEST(EngineFiles, UnityHdrpCorpus) { expect_unity(ingested("unity-hdrp", "corpus"), true); }
+TEST(EngineFiles, UnityUrpCorpus) { expect_unity(ingested("unity-urp", "corpus"), false); }
+
+// A re-ingest into another folder: the same guids, so references in a user's project hold.
+TEST(EngineFiles, UnityGuidsAreStableAcrossRuns) {
+    const auto& a = ingested("unity-hdrp", "samples");
+    const fs::path b = temp_dir("again");
+    ingest({samples()}, b, "unity-hdrp", {"--fail-on", "never"});
+    size_t metas = 0;
+    for (const auto& e : fs::recursive_directory_iterator(a.out))
+        if (e.path().extension() == ".meta") {
+            ++metas;
+            EXPECT_EQ(read_bytes(e.path()), read_bytes(b / fs::relative(e.path(), a.out))) << e.path();
+        }
+    EXPECT_GE(metas, 16u);
+}
+
+// ---- Unreal
+
+void expect_unreal(const Ingested& r) {
+    std::vector<std::string> scripts;
+    for (const auto& m : r.manifest["materials"]) {
+        const auto formats = listed_formats(r, m);
+        EXPECT_EQ(formats, std::multiset<std::string>{"py"}) << m["name"];
+        scripts.push_back(m["name"].get<std::string>() + "/import_" + m["name"].get<std::string>() + ".py");
+    }
+    const auto reports = python_checker("unreal_check.py", scripts, r.out);
+    ASSERT_EQ(reports.size(), r.manifest["materials"].size());
+    for (size_t i = 0; i < reports.size(); ++i) {
+        const json& rep = reports[i];
+        const json& m = r.manifest["materials"][i];
+        SCOPED_TRACE(rep["file"].get<std::string>());
+        ASSERT_TRUE(rep["parses"].get<bool>()) << rep["error"];
+        ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+        ASSERT_EQ(rep["imports"].size(), m["outputs"].size()) << "every written texture imported";
+        std::map<std::string, std::string> asset_of;  // output file -> imported asset
+        for (const auto& imp : rep["imports"]) {
+            EXPECT_TRUE(imp["exists"].get<bool>()) << imp["filename"];
+            EXPECT_TRUE(imp["automated"].get<bool>());
+            const fs::path f = fs::relative(imp["filename"].get<std::string>(), fs::canonical(r.out));
+            asset_of[f.generic_string()] = imp["destination_path"].get<std::string>() + "/" + f.stem().string();
+        }
+        std::map<std::string, std::string> param_of;  // imported asset -> the instance parameter
+        for (const auto& [param, asset] : rep["instance"]["textures"].items()) param_of[asset] = param;
+        for (const auto& o : m["outputs"]) {
+            const std::string file = o["file"];
+            ASSERT_TRUE(asset_of.count(file)) << file << " is written but not imported";
+            const json& tex = rep["textures"][asset_of[file]];
+            EXPECT_EQ(tex["srgb"], o["color_space"] == "sRGB") << file;
+            const std::string want = holds(o, "RGB", "normal")                                  ? "TC_NORMALMAP"
+                                     : holds(o, "G", "roughness") && holds(o, "B", "metalness") ? "TC_MASKS"
+                                     : holds(o, "R", "height")                                  ? "TC_GRAYSCALE"
+                                                                                                : "TC_DEFAULT";
+            EXPECT_EQ(tex["compression_settings"], "TextureCompressionSettings." + want) << file;
+            const std::string param = holds(o, "RGB", "albedo")     ? "BaseColor"
+                                      : holds(o, "RGB", "normal")   ? "Normal"
+                                      : holds(o, "G", "roughness")  ? "ORM"
+                                      : holds(o, "RGB", "emissive") ? "Emissive"
+                                                                    : "";
+            if (!param.empty()) {
+                EXPECT_EQ(param_of[asset_of[file]], param) << file;
+            }
+        }
+        EXPECT_EQ(rep["instance"]["parent"], "/Game/Matforge/M_MatforgeORM");
+        EXPECT_TRUE(rep["parent"]["created"].get<bool>()) << "a project without the parent gets it";
+        const std::set<std::vector<std::string>> wired{{"BaseColor", "RGB", "MP_BASE_COLOR"},
+                                                       {"ORM", "R", "MP_AMBIENT_OCCLUSION"},
+                                                       {"ORM", "G", "MP_ROUGHNESS"},
+                                                       {"ORM", "B", "MP_METALLIC"},
+                                                       {"Normal", "RGB", "MP_NORMAL"},
+                                                       {"BaseColor", "A", "MP_OPACITY_MASK"}};
+        std::set<std::vector<std::string>> got;
+        for (const auto& c : rep["parent"]["connections"]) got.insert(c.get<std::vector<std::string>>());
+        for (const auto& w : wired) EXPECT_TRUE(got.count(w)) << w[0] << "." << w[1] << " -> " << w[2];
+        const std::string alpha = m.value("alpha_mode", "opaque");
+        EXPECT_EQ(rep["instance"]["overrides"]["blend_mode"],
+                  std::string("BlendMode.") + (alpha == "mask"    ? "BLEND_MASKED"
+                                               : alpha == "blend" ? "BLEND_TRANSLUCENT"
+                                                                  : "BLEND_OPAQUE"));
+    }
+}
+
+TEST(EngineFiles, UnrealSamples) { expect_unreal(ingested("unreal", "samples")); }
+TEST(EngineFiles, UnrealCorpus) { expect_unreal(ingested("unreal", "corpus")); }
+
+// ---- A preset whose layout an engine cannot read is refused before any set is read.
+
+TEST(EngineFiles, APresetTheEngineCannotReadIsRefused) {
+    const fs::path dir = temp_dir("preset");
+    const auto shown = matforge({"presets", "show", "godot"});
+    ASSERT_EQ(shown.code, 0) << shown.output;
+    json p = json::parse(shown.output.substr(shown.output.find('{')));
+    p["name"] = "godot-swapped";
+    for (auto& o : p["outputs"])
+        if (o["suffix"] == "orm") o["channels"] = {{"R", "roughness"}, {"G", "occlusion"}, {"B", "metalness"}};
+    write_text(dir / "p.json", p.dump(2));
+    const auto r = matforge({"ingest", samples().string(), "-o", (dir / "out").string(), "--preset",
+                             (dir / "p.json").string()});
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("'orm' holds occlusion in G; orm_texture reads it from R"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out" / "manifest.json"));
+}
+
+}  // namespace
+
+namespace {
+
+// ---- Direct3D 11: the include, once per folder (every shard alike), compiled as HLSL.
+
+TEST(EngineFiles, D3d11FolderGetsTheHlslIncludeThatCompiles) {
+    const fs::path dir = temp_dir("d3d11");
+    const json m = ingest({samples() / "Net004A_1K-JPG"}, dir / "out", "d3d11", {"--fail-on", "never"});
+    ASSERT_EQ(m["library"].size(), 1u) << m["library"].dump();
+    EXPECT_EQ(m["library"][0]["file"], "matforge_material.hlsli");
+    EXPECT_EQ(m["library"][0]["format"], "hlsli");
+    const fs::path include = dir / "out" / "matforge_material.hlsli";
+    EXPECT_EQ(m["library"][0]["sha256"], mf::sha256_hex(read_bytes(include)));
+    EXPECT_EQ(read_bytes(include), read_bytes(mf::testenv::source_dir() / "lib/engine/matforge_material.hlsli"));
+    for (const auto& mat : m["materials"]) EXPECT_FALSE(mat.contains("material_files")) << "the include is per folder";
+    // glslang's HLSL front end compiles a pixel shader built on it (no fxc or dxc in Debian).
+    const auto p =
+        mf::testbin::spawn({"glslangValidator", "-D", "-V", "-S", "frag", "-e", "main", "--target-env", "vulkan1.2",
+                            "-I" + (dir / "out").string(), "-o", (dir / "ps.spv").string(),
+                            (mf::testenv::source_dir() / "tests/texture/checkers/d3d11_material.hlsl").string()},
+                           120);
+    ASSERT_EQ(p.code, 0) << p.output;
+    EXPECT_GT(fs::file_size(dir / "ps.spv"), 1000u);
+    // A shard writes it too (each part is a complete folder of its own), and merge keeps it.
+    const auto part = matforge({"ingest", (samples() / "Net004A_1K-JPG").string(), "-o", (dir / "shard").string(),
+                                "--preset", "d3d11", "--quiet", "--fail-on", "never", "--shard", "0/1"});
+    ASSERT_EQ(part.code, 0) << part.output;
+    const json shard = mf::testfiles::read_json(dir / "shard" / "manifest.shard-0-of-1.json");
+    EXPECT_EQ(shard["library"], m["library"]);
+    const auto merged = matforge({"merge", (dir / "shard" / "manifest.shard-0-of-1.json").string(), "-o",
+                                  (dir / "shard" / "manifest.json").string()});
+    ASSERT_EQ(merged.code, 0) << merged.output;
+    EXPECT_EQ(mf::testfiles::read_json(dir / "shard" / "manifest.json")["library"], m["library"]);
+}
+
+}  // namespace
