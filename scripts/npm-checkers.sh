@@ -5,15 +5,16 @@
 #   ktx-parse       a KTX 2.0 parser (header, level index, data format descriptor of every .ktx2)
 #   @needle-tools/materialx  MaterialX 1.39 as WebAssembly: its own document validation with the
 #                   standard libraries, on every .mtlx the tests write
+#   three           three.js: its MaterialXLoader renders the .mtlx the tests write (in Chromium)
 # Usage: scripts/npm-checkers.sh [DIR]   (default build/npm; the tests read DIR/node_modules)
 # Pinned versions: a new validator release must not change a test's verdict unnoticed.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 dir=${1:-$root/build/npm}
-packages=(gltf-validator@2.0.0-dev.3.10 ktx-parse@2.0.0 @needle-tools/materialx@1.4.6)
+packages=(gltf-validator@2.0.0-dev.3.10 ktx-parse@2.0.0 @needle-tools/materialx@1.4.6 three@0.187.0)
 want=$(printf '%s\n' "${packages[@]}")
 if [[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -d $dir/node_modules/gltf-validator && -d $dir/node_modules/ktx-parse
-      && -d $dir/node_modules/@needle-tools/materialx ]]; then
+      && -d $dir/node_modules/@needle-tools/materialx && -d $dir/node_modules/three ]]; then
   exit 0
 fi
 command -v npm >/dev/null || { echo "npm-checkers: npm is missing (Debian: apt-get install nodejs npm)" >&2; exit 1; }

@@ -91,7 +91,7 @@ private:
         const std::string key = o.file + "|" + type;
         if (const auto it = images_.find(key); it != images_.end()) return it->second;
         std::string node = image_prefix_ + "img_" + scene_identifier(fs::path(o.file).stem().string()) +
-                           (type == "color4" ? "_rgba" : "");
+                           (type == "vector4" ? "_rgba" : "");
         const std::string file = base_.empty() ? o.file : fs::path(o.file).lexically_relative(base_).generic_string();
         nodes_ += "  <image name=\"" + node + "\" type=\"" + type +
                   "\">\n    <input name=\"file\" type=\"filename\" value=\"" + markup_escape(file) + "\"" +
@@ -115,15 +115,17 @@ private:
         }
         const int index = channel_index(c.key);
         if (index < 0 || std::string(slot.type) != "float") return std::nullopt;
-        // A single channel of a packed (or RGBA) texture: read it whole, as data unless it is the
-        // base color's own file (its RGB is sRGB; the alpha channel is linear either way).
+        // A single channel of a packed (or RGBA) texture: read it whole as data (vector3, or
+        // vector4 for A): a channel that is not colour has no colour space, the alpha of an sRGB
+        // base colour included (sRGB encodes RGB only). Not color4: three.js's MaterialXLoader
+        // reads color4 as a colour of three components and loses A.
         const bool rgba = index == 3;
-        const std::string img = rgba ? image(o, "color4", o.srgb) : image(o, "vector3", false);
+        const std::string type = rgba ? "vector4" : "vector3";
+        const std::string img = image(o, type, false);
         std::string node = name_ + "_" + role;
-        nodes_ += "  <extract name=\"" + node + "\" type=\"float\">\n    <input name=\"in\" type=\"" +
-                  std::string(rgba ? "color4" : "vector3") + "\" nodename=\"" + img +
-                  "\" />\n    <input name=\"index\" type=\"integer\" value=\"" + std::to_string(index) +
-                  "\" />\n  </extract>\n";
+        nodes_ += "  <extract name=\"" + node + "\" type=\"float\">\n    <input name=\"in\" type=\"" + type +
+                  "\" nodename=\"" + img + "\" />\n    <input name=\"index\" type=\"integer\" value=\"" +
+                  std::to_string(index) + "\" />\n  </extract>\n";
         names_.push_back(node);
         return node;
     }

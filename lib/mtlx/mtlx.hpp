@@ -8,7 +8,8 @@
 //    preset writes has an input (standard_surface has no occlusion; open_pbr_surface none
 //    either), and a MaterialX host renders what a glTF viewer renders;
 //  - one `image` node per (file, type) read, named after the file ("img_<stem>"); a packed
-//    texture's channels through `extract` nodes (index 0-3 = R, G, B, A), the normal map through
+//    texture's channels through `extract` nodes (index 0-3 = R, G, B, A) of a vector3 or
+//    vector4 image (data: no colour space, an sRGB base colour's alpha too), the normal map through
 //    a `normalmap` node (MaterialX's tangent space is +Y, the gltf preset's convention);
 //  - `colorspace="srgb_texture"` on the colour maps' file inputs only (base color, emissive);
 //    data maps carry none (raw);

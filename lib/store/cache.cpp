@@ -124,13 +124,17 @@ std::string entry_digest(const nlohmann::json& entry) {
 
 // The manifest entry an action record holds, checked: nullopt + `error` naming the problem when
 // it does not parse, is of another version, is for another key than `key` (when given), or does
-// not hash to its `entry_sha256`.
-std::optional<manifest::Material> read_record(const fs::path& rec, std::string& error,
-                                              const std::string* key = nullptr) {
+// not hash to its `entry_sha256`. `outdated`: the record is a well-formed one of another
+// cache_version (an earlier matforge wrote it), which is no fault of the cache.
+std::optional<manifest::Material> read_record(const fs::path& rec, std::string& error, const std::string* key = nullptr,
+                                              bool* outdated = nullptr) {
     const auto j = read_json_file(rec, error);
     if (!j) return std::nullopt;
     const auto mj = j->find("entry");
     if (!j->is_object() || j->value("cache_version", 0) != kRecordVersion || mj == j->end() || !mj->is_object()) {
+        if (outdated && j->is_object() && j->value("cache_version", 0) > 0 &&
+            j->value("cache_version", 0) != kRecordVersion)
+            *outdated = true;
         error = "not an action record of this cache version";
         return std::nullopt;
     }
@@ -264,9 +268,13 @@ std::optional<Cache::Hit> Cache::restore(const std::string& key, const std::stri
     std::error_code ec;
     if (!fs::exists(fs::symlink_status(rec, ec))) return std::nullopt;  // never stored, or evicted
     std::string error;
-    auto entry = read_record(rec, error, &key);
+    bool outdated = false;
+    auto entry = read_record(rec, error, &key, &outdated);
     if (!entry || entry->name != name) {
-        corrupt.push_back(rec.string() + ": " + (entry ? "a record of another material" : error) + "; removed");
+        // An earlier matforge's record: a plain miss, replaced when the set is stored again
+        // (a version upgrade is no problem to report).
+        if (!outdated)
+            corrupt.push_back(rec.string() + ": " + (entry ? "a record of another material" : error) + "; removed");
         fs::remove(rec, ec);
         return std::nullopt;
     }

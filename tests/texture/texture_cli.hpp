@@ -64,8 +64,8 @@ inline std::vector<uint8_t> read_bytes(const fs::path& p) {
     return b;
 }
 
-// Runs `node SCRIPT NPM_DIR FILES...` (tests/texture/checkers) and parses one JSON line per file.
-inline std::vector<json> node_checker(const std::string& script, const std::vector<fs::path>& files) {
+// Whether scripts/npm-checkers.sh has installed the npm checkers (it runs once per process).
+inline bool npm_checkers_installed() {
     static const bool installed = [] {
         const auto p = mf::testbin::spawn({mf::testenv::source_dir().string() + "/scripts/npm-checkers.sh",
                                            mf::testenv::npm_dir().string()},
@@ -73,7 +73,12 @@ inline std::vector<json> node_checker(const std::string& script, const std::vect
         EXPECT_EQ(p.code, 0) << "scripts/npm-checkers.sh: " << p.output;
         return p.code == 0;
     }();
-    if (!installed) return {};
+    return installed;
+}
+
+// Runs `node SCRIPT NPM_DIR ARGS...` (tests/texture/checkers) and parses one JSON line per file.
+inline std::vector<json> node_checker(const std::string& script, const std::vector<fs::path>& files) {
+    if (!npm_checkers_installed()) return {};
     std::vector<std::string> argv{"node", mf::testenv::source_dir().string() + "/tests/texture/checkers/" + script,
                                   mf::testenv::npm_dir().string()};
     for (const auto& f : files) argv.push_back(f.string());
