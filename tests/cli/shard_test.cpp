@@ -1,6 +1,8 @@
 // Sharded runs: `plan` (keys, shards), `ingest --shard I/N`, `merge` — the merged manifest of N
 // shards is byte-identical to one unsharded run; merging parts of different runs is refused.
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include "cli_util.hpp"
 
@@ -17,6 +19,41 @@ std::map<std::string, std::string> keys_of(const fs::path& plan) {
 }
 
 }  // namespace
+
+// `plan --commands`: one ingest command per shard on standard output, run as a farm runs a work
+// list (here `xargs -P 2`, each line through sh -c), then merged: byte-identical to one run, with
+// an output folder whose name needs quoting.
+TEST(Shard, PlanCommandsRunAsAFarmRunsThem) {
+    const fs::path work = temp_dir("commands");
+    const fs::path out = work / "farm's out";
+    const auto p = mf::testbin::spawn({mf::testenv::bin(), "plan", samples().string(), "-o",
+                                       (work / "plan.json").string(), "--shards", "3", "--commands", "--out-dir",
+                                       out.string()});
+    ASSERT_EQ(p.code, 0) << p.output;
+    std::vector<std::string> lines;
+    std::istringstream text(p.output);
+    for (std::string line; std::getline(text, line);)
+        if (line.find(" ingest ") != std::string::npos) lines.push_back(line);
+    ASSERT_EQ(lines.size(), 3u) << p.output;
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(lines[i].substr(0, mf::testenv::bin().size()), mf::testenv::bin());
+        EXPECT_TRUE(lines[i].ends_with("--preset gltf --shard " + std::to_string(i) + "/3")) << lines[i];
+    }
+    EXPECT_NE(p.output.find("merge "), std::string::npos) << "the merge step is said";
+    std::ofstream(work / "list.txt") << lines[0] << "\n" << lines[1] << "\n" << lines[2] << "\n";
+    const auto farm = mf::testbin::spawn({"/bin/sh", "-c", "xargs -P 2 -d '\\n' -n 1 sh -c < " + q(work / "list.txt")},
+                                         600);
+    ASSERT_EQ(farm.code, 0) << farm.output;
+    const auto merged = mf::testbin::spawn({mf::testenv::bin(), "merge", (out / "manifest.shard-0-of-3.json").string(),
+                                            (out / "manifest.shard-1-of-3.json").string(),
+                                            (out / "manifest.shard-2-of-3.json").string(), "-o",
+                                            (out / "manifest.json").string()});
+    ASSERT_EQ(merged.code, 0) << merged.output;
+    ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work / "single") + " -q --no-cache").code, 0);
+    EXPECT_EQ(bytes_of(out / "manifest.json"), bytes_of(work / "single/manifest.json"));
+    // Without --out-dir there is no command to print.
+    EXPECT_EQ(run("plan " + q(samples()) + " -o " + q(work / "p2.json") + " --commands").code, 2);
+}
 
 TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
     const fs::path work = temp_dir("merge");

@@ -1,6 +1,12 @@
 // matforge plan <input>... -o plan.json [--preset NAME|FILE] [--rules FILE] [--shards N]
+//                [--commands --out-dir DIR]
 // The deterministic work list: every set with its size, its action key and, with --shards, the
 // shard `ingest --shard I/N` gives it. Reads every input file once (to hash it), decodes nothing.
+// --commands: one shell command per shard on standard output, one a line (the exact
+// `matforge ingest ... --shard I/N`, absolute paths, POSIX-quoted), for any farm that takes a
+// command per task (cuecmd, Deadline, GNU parallel, xargs -P, a Kubernetes Indexed Job).
+#include <filesystem>
+#include <iostream>
 #include <memory>
 
 #include "command.hpp"
@@ -18,7 +24,45 @@ struct PlanArgs {
     std::vector<std::string> inputs;
     std::string out, preset = "gltf", rules_file;
     int shards = 1;
+    bool commands = false;
+    std::string out_dir;  // with --commands: the folder the shards' ingests write
 };
+
+// `s` as one word of a POSIX shell command line: as it is when it holds only characters no
+// shell treats specially, else in single quotes (a ' inside as '\'').
+std::string shell_word(const std::string& s) {
+    const bool plain = !s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                         "0123456789_-./:=+,@%") == std::string::npos;
+    if (plain) return s;
+    std::string out = "'";
+    for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string absolute(const std::string& p) {
+    std::error_code ec;
+    const auto a = std::filesystem::absolute(p, ec);
+    return ec ? p : a.lexically_normal().generic_string();
+}
+
+// This binary, by its absolute path (a farm's node runs the same one on the shared file system).
+std::string self_binary() {
+    std::error_code ec;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    return shell_word(ec ? std::string("matforge") : self.string());
+}
+
+// The ingest command of shard I of N: this binary, the inputs, the output folder, the preset
+// (a preset file by its absolute path) and rules, as plan was given them.
+std::string shard_command(const PlanArgs& a, int index) {
+    std::error_code ec;
+    std::string line = self_binary() + " ingest";
+    for (const auto& in : a.inputs) line += " " + shell_word(absolute(in));
+    line += " -o " + shell_word(absolute(a.out_dir));
+    line += " --preset " + shell_word(std::filesystem::is_regular_file(a.preset, ec) ? absolute(a.preset) : a.preset);
+    if (!a.rules_file.empty()) line += " --rules " + shell_word(absolute(a.rules_file));
+    return line + " --shard " + std::to_string(index) + "/" + std::to_string(a.shards);
+}
 
 ExitCode run_plan(const PlanArgs& a) {
     if (std::string why = no_usable_input({a.inputs.begin(), a.inputs.end()}); !why.empty()) return fail("plan", why);
@@ -70,6 +114,14 @@ ExitCode run_plan(const PlanArgs& a) {
     const std::string text = json_text(plan);
     if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
         return fail("plan", error, ExitCode::findings);
+    if (a.commands) {
+        for (int i = 0; i < a.shards; ++i) std::cout << shard_command(a, i) << '\n';
+        std::cout.flush();
+        say("plan", "then, when every shard is done: " + self_binary() + " merge " +
+                        shell_word(absolute(a.out_dir) + "/manifest.shard-") + "*" +
+                        shell_word("-of-" + std::to_string(a.shards) + ".json") + " -o " +
+                        shell_word(absolute(a.out_dir) + "/manifest.json"));
+    }
     return unreadable ? ExitCode::findings : ExitCode::ok;
 }
 
@@ -86,6 +138,12 @@ const Register register_plan{
          sub.add_option("--shards", a->shards, "number of shards to assign the sets to (1..100000)")
              ->check(CLI::Range(1, 100000))
              ->capture_default_str();
+         auto* out_dir = sub.add_option("--out-dir", a->out_dir, "with --commands: the output folder of the ingests");
+         auto* commands = sub.add_flag(
+             "--commands", a->commands,
+             "print one `matforge ingest ... --shard I/N` command per shard on standard output, one a line");
+         commands->needs(out_dir);
+         out_dir->needs(commands);
          return [a] { return run_plan(*a); };
      },
      "the deterministic work list: sets, sizes, action keys, shards"}};
