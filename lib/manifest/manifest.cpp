@@ -198,6 +198,7 @@ Material material_of(const json& j, const std::string& at) {
     m.source = string_of(j, "source", where, false);
     if (member(j, "archive")) m.archive = string_of(j, "archive", where, true);
     m.convention = string_of(j, "convention", where, false);
+    m.key = string_of(j, "key", where, false);
     const std::string status = string_of(j, "status", where, false, "ok");
     if (status != "ok" && status != "partial") fail(where, "\"status\" must be \"ok\" or \"partial\"");
     m.status = status == "ok" ? Status::ok : Status::partial;
@@ -386,6 +387,7 @@ json to_json(const Material& m) {
     j["source"] = m.source;
     if (m.archive) j["archive"] = *m.archive;
     j["convention"] = m.convention;
+    if (!m.key.empty()) j["key"] = m.key;
     j["status"] = status_name(m.status);
     j["inputs"] = to_json(m.inputs);
     j["constants"] = to_json(m.constants);

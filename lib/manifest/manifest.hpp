@@ -104,6 +104,9 @@ struct Material {
     std::string source;                  // relative to the manifest's folder
     std::optional<std::string> archive;  // the .zip holding the set
     std::string convention;              // naming family
+    // The set's action key (process/work.hpp action_key: its files' contents and everything that
+    // decides its outputs), "" when a file could not be read: `plan --changed-since` compares it.
+    std::string key;
     Status status = Status::ok;
     std::vector<Input> inputs;                 // in role order
     std::vector<Constant> constants;           // in role order

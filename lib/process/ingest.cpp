@@ -182,12 +182,15 @@ struct Ingestor::Run {
 MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, Run& run) const {
     // Sets whose outputs another set claimed first are computed (the refusals are this run's).
     const bool cacheable = run.cache && !run.cache_off && !run.refused.count(src.name);
+    // Every set's action key goes into its entry (plan --changed-since); the cache remembers its
+    // files' digests by stat, without it they are read and hashed.
     std::string key_error;
-    const std::optional<std::string> key = cacheable ? action_key(src, run.context, key_error,
-                                                                  [&](const InputFile& in, std::string& e) {
-                                                                      return run.cache->digest(in, e);
-                                                                  })
-                                                     : std::nullopt;
+    const std::optional<std::string> action = action_key(src, run.context, key_error,
+                                                         run.cache ? Digest([&](const InputFile& in, std::string& e) {
+                                                             return run.cache->digest(in, e);
+                                                         })
+                                                                   : Digest());
+    const std::optional<std::string> key = cacheable ? action : std::nullopt;
     auto write = [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
         return run.write(rel, b, e);
     };
@@ -199,12 +202,14 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
             ++run.hits;
             MaterialResult res;
             res.entry = std::move(hit->entry);
+            res.entry.key = *key;
             res.entry.source = source_of(src, opt_.out_dir);
             if (src.is_zip) res.entry.archive = relative_to(src.root, opt_.out_dir);
             return res;
         }
     }
     MaterialResult res = compute(src, budget, run);
+    if (action) res.entry.key = *action;
     if (!key) return res;
     ++run.misses;
     // Only complete results are kept: a set with an output that could not be written, or one

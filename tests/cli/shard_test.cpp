@@ -55,6 +55,48 @@ TEST(Shard, PlanCommandsRunAsAFarmRunsThem) {
     EXPECT_EQ(run("plan " + q(samples()) + " -o " + q(work / "p2.json") + " --commands").code, 2);
 }
 
+// Each material of a manifest records its set's action key, the plan's; `plan --changed-since`
+// lists only the sets whose key differs from (or is absent in) that manifest, each with its shard
+// in the whole library's split, and --commands prints only the shards holding one.
+TEST(Shard, PlanChangedSinceListsOnlyTheChangedSets) {
+    const fs::path work = temp_dir("changed");
+    fs::copy(samples(), work / "lib", fs::copy_options::recursive);
+    ASSERT_EQ(run("ingest " + q(work / "lib") + " -o " + q(work / "out") + " -q --no-cache").code, 0);
+    ASSERT_EQ(run("plan " + q(work / "lib") + " -o " + q(work / "all.json") + " --shards 3").code, 0);
+    const auto keys = keys_of(work / "all.json");
+    const json m = read_json(work / "out/manifest.json");
+    ASSERT_EQ(m["materials"].size(), 4u);
+    for (const auto& mat : m["materials"]) EXPECT_EQ(mat["key"], keys.at(mat["name"])) << mat["name"];
+    const std::string since = " --changed-since " + q(work / "out/manifest.json");
+    ASSERT_EQ(run("plan " + q(work / "lib") + " -o " + q(work / "none.json") + " --shards 3" + since).code, 0);
+    EXPECT_TRUE(read_json(work / "none.json")["sets"].empty());
+    EXPECT_EQ(read_json(work / "none.json")["unchanged"], 4);
+    // One file of one set changed (bytes after the JPEG's end: the same picture, another file).
+    fs::path changed;
+    for (const auto& e : fs::directory_iterator(work / "lib/Net004A_1K-JPG"))
+        if (e.path().extension() == ".jpg" && (changed.empty() || e.path() < changed)) changed = e.path();
+    ASSERT_FALSE(changed.empty());
+    std::ofstream(changed, std::ios::binary | std::ios::app) << '\0';
+    const auto p = mf::testbin::spawn({mf::testenv::bin(), "plan", (work / "lib").string(), "-o",
+                                       (work / "one.json").string(), "--shards", "3", "--changed-since",
+                                       (work / "out/manifest.json").string(), "--commands", "--out-dir",
+                                       (work / "out").string()});
+    ASSERT_EQ(p.code, 0) << p.output;
+    const json one = read_json(work / "one.json");
+    ASSERT_EQ(one["sets"].size(), 1u) << one.dump(1);
+    EXPECT_EQ(one["sets"][0]["name"], "Net004A");
+    EXPECT_NE(one["sets"][0]["key"], keys.at("Net004A"));
+    EXPECT_EQ(one["unchanged"], 3);
+    size_t commands = 0;
+    std::istringstream text(p.output);
+    for (std::string line; std::getline(text, line);)
+        if (line.find(" ingest ") != std::string::npos) {
+            ++commands;
+            EXPECT_TRUE(line.ends_with("--shard " + std::to_string(one["sets"][0]["shard"].get<int>()) + "/3")) << line;
+        }
+    EXPECT_EQ(commands, 1u) << p.output;
+}
+
 TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
     const fs::path work = temp_dir("merge");
     ASSERT_EQ(run("plan " + q(samples()) + " -o " + q(work / "plan.json") + " --shards 3").code, 0);

@@ -1,18 +1,24 @@
 // matforge plan <input>... -o plan.json [--preset NAME|FILE] [--rules FILE] [--shards N]
-//                [--commands --out-dir DIR]
+//                [--commands --out-dir DIR] [--changed-since MANIFEST]
 // The deterministic work list: every set with its size, its action key and, with --shards, the
 // shard `ingest --shard I/N` gives it. Reads every input file once (to hash it), decodes nothing.
 // --commands: one shell command per shard on standard output, one a line (the exact
 // `matforge ingest ... --shard I/N`, absolute paths, POSIX-quoted), for any farm that takes a
 // command per task (cuecmd, Deadline, GNU parallel, xargs -P, a Kubernetes Indexed Job).
+// --changed-since: only the sets whose action key differs from (or is absent in) an earlier
+// run's manifest, each with its shard in the whole library's split; --commands then prints only
+// the shards that hold one.
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <set>
 
 #include "command.hpp"
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "core/version.hpp"
+#include "manifest/manifest.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
 #include "sets/sets.hpp"
@@ -25,7 +31,8 @@ struct PlanArgs {
     std::string out, preset = "gltf", rules_file;
     int shards = 1;
     bool commands = false;
-    std::string out_dir;  // with --commands: the folder the shards' ingests write
+    std::string out_dir;        // with --commands: the folder the shards' ingests write
+    std::string changed_since;  // an earlier run's manifest.json
 };
 
 // `s` as one word of a POSIX shell command line: as it is when it holds only characters no
@@ -73,6 +80,16 @@ ExitCode run_plan(const PlanArgs& a) {
     if (!rules) return fail("plan", error);
     auto color = ColorContext::create(error);
     if (!color) return fail("plan", error);
+    // The earlier run's keys, by material name (read one material at a time).
+    std::map<std::string, std::string> earlier;
+    if (!a.changed_since.empty() && !manifest::read_manifest(
+                                        a.changed_since,
+                                        [&](manifest::Material&& m, std::string&) {
+                                            earlier[m.name] = m.key;
+                                            return true;
+                                        },
+                                        error))
+        return fail("plan", "--changed-since: " + error);
     std::vector<InputFailure> failures;
     const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
     std::vector<std::string> skipped;
@@ -86,6 +103,8 @@ ExitCode run_plan(const PlanArgs& a) {
     const std::vector<int> shard = assign_shards(sets, bytes, a.shards);
     nlohmann::json list = nlohmann::json::array();
     bool unreadable = !failures.empty();
+    size_t unchanged = 0;
+    std::set<int> to_run;  // shards holding a listed set
     for (size_t i = 0; i < sets.size(); ++i) {
         nlohmann::json item{{"name", sets[i].name},
                             {"source", sets[i].display},
@@ -97,6 +116,14 @@ ExitCode run_plan(const PlanArgs& a) {
             item["error"] = error;
             unreadable = true;
         }
+        if (!a.changed_since.empty()) {
+            const auto it = earlier.find(sets[i].name);
+            if (it != earlier.end() && !it->second.empty() && item.contains("key") && item["key"] == it->second) {
+                ++unchanged;
+                continue;
+            }
+        }
+        to_run.insert(shard[i]);
         list.push_back(std::move(item));
     }
     nlohmann::json fl = nlohmann::json::array();
@@ -111,11 +138,17 @@ ExitCode run_plan(const PlanArgs& a) {
                               {"shards", a.shards},
                               {"sets", list},
                               {"failures", fl}};
-    const std::string text = json_text(plan);
+    nlohmann::json out = plan;
+    if (!a.changed_since.empty()) {
+        out["changed_since"] = a.changed_since;
+        out["unchanged"] = unchanged;
+    }
+    const std::string text = json_text(out);
     if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
         return fail("plan", error, ExitCode::findings);
     if (a.commands) {
-        for (int i = 0; i < a.shards; ++i) std::cout << shard_command(a, i) << '\n';
+        for (int i = 0; i < a.shards; ++i)
+            if (a.changed_since.empty() || to_run.count(i)) std::cout << shard_command(a, i) << '\n';
         std::cout.flush();
         say("plan", "then, when every shard is done: " + self_binary() + " merge " +
                         shell_word(absolute(a.out_dir) + "/manifest.shard-") + "*" +
@@ -144,6 +177,9 @@ const Register register_plan{
              "print one `matforge ingest ... --shard I/N` command per shard on standard output, one a line");
          commands->needs(out_dir);
          out_dir->needs(commands);
+         sub.add_option("--changed-since", a->changed_since,
+                        "an earlier run's manifest.json: list only the sets whose action key differs or is new")
+             ->check(CLI::ExistingFile);
          return [a] { return run_plan(*a); };
      },
      "the deterministic work list: sets, sizes, action keys, shards"}};
