@@ -44,7 +44,7 @@ const chromium = spawn(args.chromium, [
   '--disable-background-networking', '--disable-component-update', '--disable-sync',
   '--disable-extensions', '--disable-default-apps', '--mute-audio', '--hide-scrollbars',
   '--remote-debugging-pipe', `--user-data-dir=${profile}`, 'about:blank',
-], { stdio: ['ignore', 'pipe', 'pipe', 'pipe', 'pipe'] });
+], { stdio: ['ignore', 'pipe', 'pipe', 'pipe', 'pipe'], detached: true });  // its own process group
 chromium.stdout.on('data', (d) => chromiumLog.push(String(d)));
 chromium.stderr.on('data', (d) => chromiumLog.push(String(d)));
 chromium.on('error', (e) => finish(`cannot start ${args.chromium}: ${e.message} (Debian: apt-get install chromium)`));
@@ -99,9 +99,24 @@ function finish(fatal, result = {}) {
     for (const p of problems.slice(0, 50)) console.error(`browser-check: ${p}`);
     if (fatal) console.error(chromiumLog.join('').split('\n').filter((l) => !/dbus|unexpected operator/.test(l)).slice(-30).join('\n'));
   }
-  try { chromium.kill('SIGKILL'); } catch { /* gone */ }
-  rmSync(profile, { recursive: true, force: true });
-  process.exit(result.ok ? 0 : 1);
+  // Chromium closed first (Browser.close: it ends its helper processes, which write under the
+  // profile as they go), its process group killed when it has not gone within 3 s, then the
+  // profile removed, with retries.
+  const cleanup = () => {
+    try { process.kill(-chromium.pid, 'SIGKILL'); } catch { /* gone */ }
+    setTimeout(() => {
+      try {
+        rmSync(profile, { recursive: true, force: true, maxRetries: 10, retryDelay: 100 });
+      } catch (e) {
+        console.error(`browser-check: ${profile} left behind: ${e.message}`);
+      }
+      process.exit(result.ok ? 0 : 1);
+    }, 200);
+  };
+  if (chromium.exitCode !== null || chromium.signalCode !== null) return cleanup();
+  chromium.once('exit', cleanup);
+  setTimeout(cleanup, 3000);
+  try { toChromium.write(JSON.stringify({ id: ++nextId, method: 'Browser.close' }) + '\0'); } catch { /* gone */ }
 }
 
 // ---- the checks ----

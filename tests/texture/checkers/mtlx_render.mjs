@@ -90,7 +90,8 @@ const chromium = spawn('/usr/bin/chromium', [
   '--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
   '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-extensions',
   '--remote-debugging-pipe', `--user-data-dir=${profile}`, 'about:blank',
-], { stdio: ['ignore', 'pipe', 'pipe', 'pipe', 'pipe'] });
+], { stdio: ['ignore', 'pipe', 'pipe', 'pipe', 'pipe'], detached: true });  // its own process group
+const exited = new Promise((r) => chromium.once('exit', r));
 const log = [];
 chromium.stderr.on('data', (d) => log.push(String(d)));
 const to = chromium.stdio[3], from = chromium.stdio[4];
@@ -109,7 +110,22 @@ function send(method, params = {}, sessionId) {
   to.write(JSON.stringify({ id, method, params, sessionId }) + '\0');
   return new Promise((r) => waiting.set(id, r));
 }
-const finish = (code) => { try { chromium.kill('SIGKILL'); } catch {} server.close(); rmSync(profile, { recursive: true, force: true }); process.exit(code); };
+// Chromium closed (Browser.close: it ends its helper processes, which write under the profile
+// as they go), its process group killed when it has not gone within 3 s, then the profile
+// removed, with retries.
+const finish = async (code) => {
+  to.write(JSON.stringify({ id: ++nextId, method: 'Browser.close' }) + '\0');
+  await Promise.race([exited, new Promise((r) => setTimeout(r, 3000))]);
+  try { process.kill(-chromium.pid, 'SIGKILL'); } catch { /* gone */ }
+  await new Promise((r) => setTimeout(r, 200));
+  server.close();
+  try {
+    rmSync(profile, { recursive: true, force: true, maxRetries: 10, retryDelay: 100 });
+  } catch (e) {
+    console.error(`mtlx_render: ${profile} left behind: ${e.message}`);
+  }
+  process.exit(code);
+};
 setTimeout(() => { console.error('timeout\n' + log.join('\n')); finish(1); }, 240000);
 
 const { result: { targetId } } = await send('Target.createTarget', { url: 'about:blank' });
