@@ -1,5 +1,7 @@
 #include "engine/engine.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "core/files.hpp"
 
 namespace mf::engine {
@@ -53,6 +55,10 @@ std::string_view how_to_open(std::string_view format) {
     for (const auto& [f, how] : kHow)
         if (f == format) return how;
     return "";
+}
+
+std::string string_literal(const std::string& s) {
+    return nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::string guid_of(const std::string& what) {

@@ -56,6 +56,11 @@ File hlsl_include();
 // line: matforge report shows it beside each file.
 std::string_view how_to_open(std::string_view format);
 
+// `s` as a double-quoted string literal with JSON's escapes (\", \\, \n, \uXXXX for other
+// control characters; bytes that are not UTF-8 become U+FFFD): what Godot's text resources,
+// YAML's double-quoted scalars and Python all read back as `s`. A name is any bytes: never raw.
+std::string string_literal(const std::string& s);
+
 // A Unity asset guid (32 lowercase hex digits) derived from `what` (sha256): stable across runs.
 std::string guid_of(const std::string& what);
 

@@ -27,12 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted(const std::string& s) {
-    std::string out = "\"";
-    for (const char c : s) out += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    return out + "\"";
-}
-
 std::string import_file(const manifest::Output& o, const EngineSlot& slot) {
     const bool normal = slot.role == Role::normal;
     return std::string("[remap]\n\nimporter=\"texture\"\ntype=\"CompressedTexture2D\"\n\n[params]\n\n") +
@@ -63,11 +57,11 @@ std::vector<File> godot_files(const manifest::Material& m, const std::vector<Bou
         if (!o) return {};
         const std::string rid = std::to_string(++id);
         ext += "[ext_resource type=\"Texture2D\" path=" +
-               quoted(fs::path(o->file).lexically_relative(tres.parent_path()).generic_string()) + " id=\"" + rid +
-               "\"]\n";
+               string_literal(fs::path(o->file).lexically_relative(tres.parent_path()).generic_string()) + " id=\"" +
+               rid + "\"]\n";
         return std::string(slot) + " = ExtResource(\"" + rid + "\")\n";
     };
-    res += "resource_name = " + quoted(m.name) + "\n";
+    res += "resource_name = " + string_literal(m.name) + "\n";
     res += slot_line("albedo_texture");
     using manifest::AlphaMode;
     if (m.alpha_mode && *m.alpha_mode != AlphaMode::opaque) {

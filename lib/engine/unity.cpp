@@ -17,7 +17,6 @@
 //    remaps run 0..1), the emissive colour is white times the set's emissive_strength.
 #include <algorithm>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 
 #include "core/identifier.hpp"
 #include "core/version.hpp"
@@ -31,14 +30,14 @@ namespace fs = std::filesystem;
 bool hdrp(const EngineMaterial& e) { return e.kind == MaterialFileKind::unity_hdrp; }
 
 // A YAML scalar: plain when it is letters, digits, '_', '-', '.' and inner spaces (as Unity writes
-// names), else double-quoted with JSON's escapes (a YAML double-quoted string reads them alike).
+// names), else double-quoted (string_literal: a YAML double-quoted scalar reads its escapes).
 std::string yaml_scalar(const std::string& s) {
     const bool plain = !s.empty() && s.front() != ' ' && s.back() != ' ' && s.front() != '-' &&
                        std::all_of(s.begin(), s.end(), [](char c) {
                            return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
                                   c == '_' || c == '-' || c == '.' || c == ' ';
                        });
-    return plain ? s : nlohmann::json(s).dump();
+    return plain ? s : string_literal(s);
 }
 
 // The next power of two at or above the texture's larger side, within Unity's 32..16384.

@@ -16,14 +16,11 @@
 #include "engine/engine.hpp"
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 
 namespace mf::engine {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string py(const std::string& s) { return nlohmann::json(s).dump(); }  // a JSON string is a Python literal
 
 // The parent material and the instance, shared by every script (each script stands alone).
 constexpr const char* kBody = R"PY(
@@ -142,22 +139,23 @@ std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bo
     std::string list;
     for (const Bound& b : bound) {
         const auto [srgb, compression] = settings(*b.slot);
-        list += "    (" + py(fs::path(b.output->file).lexically_relative(script.parent_path()).generic_string()) +
-                ", " + py(std::string(b.slot->slot)) + ", " + (srgb ? "True" : "False") + ", " + py(compression) +
-                "),\n";
+        list += "    (" +
+                string_literal(fs::path(b.output->file).lexically_relative(script.parent_path()).generic_string()) +
+                ", " + string_literal(std::string(b.slot->slot)) + ", " + (srgb ? "True" : "False") + ", " +
+                string_literal(compression) + "),\n";
     }
     using manifest::AlphaMode;
     const char* blend = !m.alpha_mode || *m.alpha_mode == AlphaMode::opaque ? "BLEND_OPAQUE"
                         : *m.alpha_mode == AlphaMode::mask                  ? "BLEND_MASKED"
                                                                             : "BLEND_TRANSLUCENT";
-    std::string text = "# " + std::string(kGenerator) + ": imports " + m.name +
-                       "'s textures into /Game/Matforge and makes its material instance.\n"
+    std::string text = "# " + std::string(kGenerator) + ": imports the textures of " + string_literal(m.name) +
+                       " into /Game/Matforge and makes its material instance.\n"
                        "# Run in the Unreal Editor (Tools > Execute Python Script) or\n"
                        "#   UnrealEditor-Cmd Project.uproject -run=pythonscript -script=<this file>\n"
                        "import os\n\nimport unreal\n\nHERE = os.path.dirname(os.path.abspath(__file__))\n"
                        "DEST = " +
-                       py("/Game/Matforge/" + id) +
-                       "\nPARENT = \"/Game/Matforge/M_MatforgeORM\"\nINSTANCE = " + py("MI_" + id) +
+                       string_literal("/Game/Matforge/" + id) +
+                       "\nPARENT = \"/Game/Matforge/M_MatforgeORM\"\nINSTANCE = " + string_literal("MI_" + id) +
                        "\n# (file beside this script, parameter of the parent material, sRGB, compression)\n"
                        "TEXTURES = [\n" +
                        list + "]\nBLEND_MODE = \"" + blend +

@@ -124,23 +124,33 @@ bool write_library(const manifest::MaterialSpool& spool, const std::filesystem::
     if (items.empty()) return true;
     const auto text = gltf::library_gltf(items, out_dir, error);
     if (!text) return false;
+    // Each library file made as it is written, hashed on the way, then listed.
+    std::string read_error;  // library.mtlx's: a material that could not be read back from the spool
+    const auto stream = [&](const std::string& rel, const char* format, const ByteProducer& produce) {
+        Sha256 sha;
+        const bool ok = write_stream(
+            rel,
+            [&](const ByteSink& sink) {
+                return produce([&](std::string_view piece) {
+                    sha.update(piece);
+                    return sink(piece);
+                });
+            },
+            error);
+        if (!ok) {
+            error = rel + ": " + (read_error.empty() ? error : read_error);
+            return false;
+        }
+        library.push_back({rel, format, sha.hex()});
+        return true;
+    };
     // The buffer first: a .gltf is never there without the buffer it names.
     const std::vector<uint8_t>& bin = gltf::sphere_buffer();
-    Sha256 sha;
-    const bool ok = write("library.bin", bin, error) && write_stream(
-                                                            "library.gltf",
-                                                            [&](const ByteSink& sink) {
-                                                                return (*text)([&](std::string_view piece) {
-                                                                    sha.update(piece);
-                                                                    return sink(piece);
-                                                                });
-                                                            },
-                                                            error);
-    if (!ok) {
+    if (!write("library.bin", bin, error)) {
         error = "library.gltf: " + error;
         return false;
     }
-    library.push_back({"library.gltf", "gltf", sha.hex()});
+    if (!stream("library.gltf", "gltf", *text)) return false;
     library.push_back({"library.bin", "bin", sha256_hex(bin)});
     // library.usda: every material's layer, which write_material_files writes beside its .gltf
     // under the same stem.
@@ -148,24 +158,10 @@ bool write_library(const manifest::MaterialSpool& spool, const std::filesystem::
     layers.reserve(items.size());
     for (const auto& it : items)
         layers.push_back({it.name, std::filesystem::path(it.gltf_file).replace_extension(".usda").generic_string()});
-    Sha256 usda_sha;
-    if (!write_stream(
-            "library.usda",
-            [&](const ByteSink& sink) {
-                return usd::library_usda(layers, [&](std::string_view piece) {
-                    usda_sha.update(piece);
-                    return sink(piece);
-                });
-            },
-            error)) {
-        error = "library.usda: " + error;
+    if (!stream("library.usda", "usda", [&](const ByteSink& sink) { return usd::library_usda(layers, sink); }))
         return false;
-    }
-    library.push_back({"library.usda", "usda", usda_sha.hex()});
     // library.mtlx: every material's MaterialX elements again, read back from the spool one at a
     // time (those with a .gltf have a .mtlx beside it).
-    Sha256 mtlx_sha;
-    std::string read_error;
     const auto materials = [&](const mtlx::MaterialVisitor& visit) {
         return spool.for_each(
             [&](manifest::Material&& m) {
@@ -175,23 +171,8 @@ bool write_library(const manifest::MaterialSpool& spool, const std::filesystem::
             },
             read_error);
     };
-    if (!write_stream(
-            "library.mtlx",
-            [&](const ByteSink& sink) {
-                return mtlx::library_mtlx(
-                    materials,
-                    [&](std::string_view piece) {
-                        mtlx_sha.update(piece);
-                        return sink(piece);
-                    },
-                    read_error);
-            },
-            error)) {
-        error = "library.mtlx: " + (read_error.empty() ? error : read_error);
-        return false;
-    }
-    library.push_back({"library.mtlx", "mtlx", mtlx_sha.hex()});
-    return true;
+    return stream("library.mtlx", "mtlx",
+                  [&](const ByteSink& sink) { return mtlx::library_mtlx(materials, sink, read_error); });
 }
 
 }  // namespace mf

@@ -8,6 +8,7 @@
 // every written texture is used, every file is listed with its hash.
 #include <set>
 
+#include "engine/engine.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;
@@ -378,6 +379,47 @@ TEST(EngineFiles, D3d11FolderGetsTheHlslIncludeThatCompiles) {
                                   (dir / "shard" / "manifest.json").string()});
     ASSERT_EQ(merged.code, 0) << merged.output;
     EXPECT_EQ(mf::testfiles::read_json(dir / "shard" / "manifest.json")["library"], m["library"]);
+}
+
+}  // namespace
+
+namespace {
+
+// A material name is any bytes (a file's name): with a quote, a backslash, a newline and a byte
+// that is not UTF-8, each engine file still parses, by the same independent readers, and gives
+// the name back (the bad byte as U+FFFD).
+TEST(EngineFiles, AnyNameMakesFilesTheReadersParse) {
+    const fs::path dir = temp_dir("names");
+    mf::manifest::Material m;
+    m.name = "Net\"004A\\\nx\xff";
+    const std::string want = "Net\"004A\\\nx\xef\xbf\xbd";
+    EXPECT_EQ(json::parse(mf::engine::string_literal(m.name)).get<std::string>(), want);
+    const auto write_all = [&](const std::vector<mf::engine::File>& files) {
+        std::vector<std::string> paths;
+        for (const auto& f : files) {  // at paths without the name (the checkers print the paths)
+            std::string rel = f.file;
+            for (size_t at; (at = rel.find(m.name)) != std::string::npos;) rel.replace(at, m.name.size(), "M");
+            write_text(dir / "lib" / rel, f.text);
+            paths.push_back(rel);
+        }
+        return paths;
+    };
+    const auto tres = write_all(mf::engine::godot_files(m, {}));
+    const auto godot = python_checker("godot_check.py", {tres.back()}, dir / "lib");
+    ASSERT_EQ(godot.size(), 1u);
+    ASSERT_TRUE(godot[0]["ok"].get<bool>()) << godot[0]["error"];
+    EXPECT_EQ(godot[0]["props"]["resource_name"], want);
+    const auto* hdrp = mf::engine_material(mf::MaterialFileKind::unity_hdrp);
+    ASSERT_TRUE(hdrp);
+    const auto mat = write_all(mf::engine::unity_files(*hdrp, m, {}));
+    const auto unity = python_checker("unity_check.py", {".", mat[0]}, dir / "lib");
+    ASSERT_EQ(unity.size(), 1u);
+    ASSERT_TRUE(unity[0]["ok"].get<bool>()) << unity[0]["error"];
+    EXPECT_EQ(unity[0]["name"], want);
+    const auto py = write_all(mf::engine::unreal_files(m, {}));
+    const auto unreal = python_checker("unreal_check.py", {py[0]}, dir / "lib");
+    ASSERT_EQ(unreal.size(), 1u);
+    ASSERT_TRUE(unreal[0]["parses"].get<bool>()) << unreal[0]["error"];
 }
 
 }  // namespace
