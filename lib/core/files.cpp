@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -156,28 +157,45 @@ bool write_all(int fd, std::span<const unsigned char> bytes) {
 }
 }  // namespace
 
+const std::string& this_host() {
+    static const std::string host = [] {
+        char buf[256] = {};
+        std::string h;
+        if (::gethostname(buf, sizeof buf - 1) == 0)
+            for (const char* c = buf; *c && h.size() < 32; ++c)
+                if (std::isalnum(static_cast<unsigned char>(*c)) || *c == '.' || *c == '_' || *c == '-') h += *c;
+        return h.empty() ? std::string("host") : h;
+    }();
+    return host;
+}
+
 std::string temp_name(const std::string& final_name) {
     static std::atomic<unsigned> counter{0};
     // Appended, not `"." + name`: GCC 12 at -O3 takes that prepend into a temporary string for
     // an overlapping memcpy (a false -Wrestrict, a known bug of that release).
     std::string name = ".";
-    name.append(final_name).append(kTempMarker);
+    name.append(final_name).append(kTempMarker).append(this_host()).append("-");
     name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
     return name;
 }
 
-std::optional<long> temp_owner(std::string_view name) {
+std::optional<TempOwner> temp_owner(std::string_view name) {
     const size_t at = name.rfind(kTempMarker);
     if (name.size() < 2 || name.front() != '.' || at == std::string_view::npos || at < 2) return std::nullopt;
-    const std::string_view tail = name.substr(at + std::strlen(kTempMarker));  // "<pid>-<counter>"
-    const size_t dash = tail.find('-');
+    std::string_view tail = name.substr(at + std::strlen(kTempMarker));  // "[<host>-]<pid>-<counter>"
     auto digits = [](std::string_view d) {
         return !d.empty() && d.size() <= 18 &&
                std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
     };
-    if (dash == std::string_view::npos || !digits(tail.substr(0, dash)) || !digits(tail.substr(dash + 1)))
-        return std::nullopt;
-    return std::stol(std::string(tail.substr(0, dash)));
+    // Read from the end: a host name may hold '-'.
+    const size_t last = tail.rfind('-');
+    if (last == std::string_view::npos || !digits(tail.substr(last + 1))) return std::nullopt;
+    tail = tail.substr(0, last);  // "[<host>-]<pid>"
+    const size_t dash = tail.rfind('-');
+    const std::string_view pid = dash == std::string_view::npos ? tail : tail.substr(dash + 1);
+    if (!digits(pid) || dash == 0) return std::nullopt;
+    return TempOwner{dash == std::string_view::npos ? std::string() : std::string(tail.substr(0, dash)),
+                     std::stol(std::string(pid))};
 }
 
 namespace {
@@ -379,14 +397,16 @@ bool write_file_under(const fs::path& root, const std::string& rel, const BytePr
     return write_under(root, rel, produce, nullptr, error, before_write);
 }
 
-int remove_stale_temps(const fs::path& dir) {
+int remove_stale_temps(const fs::path& dir, bool other_hosts) {
     std::error_code ec;
     int removed = 0;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        const auto owner = temp_owner(name);
+        const auto owner = temp_owner(it->path().filename().string());
+        if (!owner) continue;
+        const bool here = owner->host.empty() || owner->host == this_host();
+        if (here ? process_alive(owner->pid) : !other_hosts) continue;
         std::error_code fec;
-        if (!owner || process_alive(*owner) || !it->is_regular_file(fec) || it->is_symlink(fec)) continue;
+        if (!it->is_regular_file(fec) || it->is_symlink(fec)) continue;
         if (fs::remove(it->path(), fec)) ++removed;
     }
     return removed;

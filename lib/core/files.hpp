@@ -42,15 +42,27 @@ bool write_file_atomic(const std::filesystem::path& dest, std::span<const unsign
 bool write_file_atomic(const std::filesystem::path& dest, const ByteProducer& produce, std::string& error);
 
 // The substring every temporary file of ours carries. A temporary is named exactly
-// "." + <final name> + kTempMarker + <pid> + "-" + <counter>: temp_name() makes one, temp_owner()
-// recognizes one (the writer's pid; nullopt for any other name, e.g. a user's "a.matforge-tmp-b").
+// "." + <final name> + kTempMarker + <host> + "-" + <pid> + "-" + <counter>: temp_name() makes
+// one, temp_owner() recognizes one (the writer's host and pid; nullopt for any other name, e.g. a
+// user's "a.matforge-tmp-b"). The host is there because a farm's nodes write into one shared
+// folder: a pid says whether a writer lives only on the host that wrote it. (Names of earlier
+// releases, without a host, are read as this host's.)
 inline constexpr const char* kTempMarker = ".matforge-tmp-";
+struct TempOwner {
+    std::string host;  // this_host() of the writer ("" in names of earlier releases)
+    long pid = 0;
+};
 std::string temp_name(const std::string& final_name);
-std::optional<long> temp_owner(std::string_view name);
-// Removes, in `dir` (not recursive), our temporaries whose writer process no longer exists: a
-// killed run's, never a running one's (another set of this run, another shard) nor a user's
-// file. Returns how many were removed.
-int remove_stale_temps(const std::filesystem::path& dir);
+std::optional<TempOwner> temp_owner(std::string_view name);
+// gethostname(), only [A-Za-z0-9._-] kept, at most 32 bytes: what temp_name() records.
+const std::string& this_host();
+// Removes, in `dir` (not recursive), our temporaries whose writer no longer exists: a killed
+// run's, never a running one's (another set of this run, another shard) nor a user's file. A
+// writer on this host is gone when its pid is; one on another host cannot be asked, so its
+// temporaries are kept unless `other_hosts` (a folder only the caller writes, such as a set's
+// folder its shard owns: a temporary there from another host is a lost node's). Returns how many
+// were removed.
+int remove_stale_temps(const std::filesystem::path& dir, bool other_hosts = false);
 
 // Writes root/rel atomically (as write_file_atomic) without following a symbolic link anywhere
 // below `root`: each folder of `rel` is created when missing and opened with O_NOFOLLOW, the

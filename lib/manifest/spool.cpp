@@ -82,7 +82,7 @@ std::string listed_file_problem(const std::filesystem::path& dir, const std::str
 }  // namespace
 
 std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& dir,
-                                     MaterialSpool& spool, std::string& error) {
+                                     MaterialSpool& spool, std::string& error, const PartObserver& seen) {
     std::vector<Manifest> heads;
     for (size_t i = 0; i < paths.size(); ++i) {
         size_t materials = 0;
@@ -90,6 +90,7 @@ std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, cons
             paths[i],
             [&](Material&& m, std::string& e) {
                 ++materials;
+                if (seen.material) seen.material(i, m);
                 return spool.add(m, e, static_cast<int>(i));
             },
             error);
@@ -102,6 +103,7 @@ std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, cons
                     " sets its shard was given (an incomplete or edited part); run that shard again";
             return std::nullopt;
         }
+        if (seen.head) seen.head(i, *head);
         heads.push_back(std::move(*head));
     }
     auto merged = merge_heads(heads, paths, error);

@@ -62,7 +62,13 @@ private:
 // and every file a material lists is inside `dir`, a regular file there, and hashes to its
 // sha256. The merged manifest's head (its materials are the spool's), or nullopt + `error`
 // naming the files.
+// `seen`, when given, is shown each part's head (its failures and shard) and each of its
+// materials as they are read: what the caller needs to judge each shard (cmd_merge's verdict).
+struct PartObserver {
+    std::function<void(size_t part, const Manifest& head)> head;
+    std::function<void(size_t part, const Material& m)> material;
+};
 std::optional<Manifest> merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& dir,
-                                     MaterialSpool& spool, std::string& error);
+                                     MaterialSpool& spool, std::string& error, const PartObserver& seen = {});
 
 }  // namespace mf::manifest

@@ -348,7 +348,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     const float emissive_strength = normalize_hdr_emissive(planes, preset_);
 
     // Pack, encode, write.
-    remove_stale_temps(opt_.out_dir / src.name);
+    remove_stale_temps(opt_.out_dir / src.name, /*other_hosts=*/true);  // only this set writes here
     std::vector<const OutputSpec*> wanted;
     for (const auto& o : preset_.outputs)
         if (output_needed(o, planes)) wanted.push_back(&o);

@@ -284,3 +284,52 @@ TEST(Shard, ActionKeysFollowContentAndConfigurationOnly) {
     const auto k4 = keys_of(work / "p4.json");
     for (const auto& [name, key] : k3) EXPECT_NE(key, k4.at(name)) << name;
 }
+
+// A shard whose own run failed (a map of one of its sets unreadable): merge refuses, exit 1,
+// naming that shard and the set, and writes nothing; --keep-errors writes what one run of the
+// same library writes (and exits 1 as it does); the map restored, that shard alone run again,
+// the merge completes, byte-identical to one run.
+TEST(Shard, MergeRefusesAFailedShardNamingIt) {
+    const fs::path work = temp_dir("failed");
+    const fs::path lib = work / "lib";
+    fs::copy(samples(), lib, fs::copy_options::recursive);
+    ASSERT_EQ(run("plan " + q(lib) + " -o " + q(work / "plan.json") + " --shards 2").code, 0);
+    int shard = -1;
+    const json plan = read_json(work / "plan.json");
+    for (const auto& s : plan["sets"])
+        if (s["name"] == "Metal_Damaged_001") shard = s["shard"].get<int>();
+    ASSERT_GE(shard, 0);
+    fs::path map;
+    for (const auto& e : fs::directory_iterator(lib / "Metal_Damaged_001_SD"))
+        if (e.path().filename().string().find("basecolor") != std::string::npos) map = e.path();
+    ASSERT_FALSE(map.empty());
+    const std::string kept = bytes_of(map);
+    {  // its first bytes overwritten, its size kept: the split stays the same
+        std::fstream f(map, std::ios::in | std::ios::out | std::ios::binary);
+        f << "not an image";
+    }
+    const std::string parts = q(work / "out/manifest.shard-0-of-2.json") + " " +
+                              q(work / "out/manifest.shard-1-of-2.json");
+    const std::string merged = q(work / "out/manifest.json");
+    for (int i = 0; i < 2; ++i)
+        EXPECT_EQ(run("ingest " + q(lib) + " -o " + q(work / "out") + " -q --shard " + std::to_string(i) + "/2").code,
+                  i == shard ? 1 : 0);
+    auto r = run("merge " + parts + " -o " + merged);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("shard " + std::to_string(shard) + " of 2 ("), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("1 set failed, first Metal_Damaged_001: UNREADABLE_FILE"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("shard " + std::to_string(1 - shard) + " of 2"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(work / "out/manifest.json"));
+    // --keep-errors: what one run of this library writes, and its exit code.
+    EXPECT_EQ(run("merge " + parts + " -o " + merged + " --keep-errors").code, 1);
+    EXPECT_EQ(run("ingest " + q(lib) + " -o " + q(work / "single-bad") + " -q --no-cache").code, 1);
+    EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "single-bad/manifest.json"));
+    // The map restored, that shard alone again: merged.
+    std::ofstream(map, std::ios::binary | std::ios::trunc) << kept;
+    ASSERT_EQ(run("ingest " + q(lib) + " -o " + q(work / "out") + " -q --shard " + std::to_string(shard) + "/2").code,
+              0);
+    r = run("merge " + parts + " -o " + merged);
+    EXPECT_EQ(r.code, 0) << r.output;
+    ASSERT_EQ(run("ingest " + q(lib) + " -o " + q(work / "single") + " -q --no-cache").code, 0);
+    EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "single/manifest.json"));
+}

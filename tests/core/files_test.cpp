@@ -75,6 +75,34 @@ TEST(AtomicWrite, StaleTempsAreRemoved) {
     fs::remove_all(d);
 }
 
+// A farm's nodes share one output folder: a pid names a live writer only on its own host.
+TEST(AtomicWrite, TemporariesOfOtherHostsAreKeptUnlessTheFolderIsTheCallers) {
+    const fs::path d = fresh_dir("hosts");
+    const std::string ours = mf::temp_name("a.png");
+    const auto owner = mf::temp_owner(ours);
+    ASSERT_TRUE(owner) << ours;
+    EXPECT_EQ(owner->host, mf::this_host());
+    EXPECT_EQ(owner->pid, ::getpid());
+    // Another node's writer: its pid (here, this process's own, alive) says nothing on this host.
+    const std::string other = std::string(".b.png") + mf::kTempMarker + "render-node-07-" + std::to_string(::getpid()) +
+                              "-4";
+    const auto o = mf::temp_owner(other);
+    ASSERT_TRUE(o);
+    EXPECT_EQ(o->host, "render-node-07");
+    const fs::path dead_here = d / (std::string(".c.png") + mf::kTempMarker + mf::this_host() +
+                                    "-99999999-1");  // above pid_max
+    for (const auto& n : {ours, other}) std::ofstream(d / n) << "partial";
+    std::ofstream(dead_here) << "partial";
+    EXPECT_EQ(mf::remove_stale_temps(d), 1);  // only this host's dead writer's
+    EXPECT_FALSE(fs::exists(dead_here));
+    EXPECT_TRUE(fs::exists(d / other));
+    EXPECT_EQ(mf::remove_stale_temps(d, /*other_hosts=*/true), 1);  // a lost node's, in a folder that is ours
+    EXPECT_FALSE(fs::exists(d / other));
+    EXPECT_TRUE(fs::exists(d / ours));  // this host's live writer's: never
+    EXPECT_FALSE(mf::temp_owner(std::string(".x.png") + mf::kTempMarker + "-12-1"));
+    fs::remove_all(d);
+}
+
 // What no document of ours may hold is refused while parsing, naming the file and the problem.
 TEST(ParseJson, RefusesDuplicateMembersAndNulCharacters) {
     std::string error;

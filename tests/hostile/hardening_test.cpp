@@ -459,7 +459,7 @@ TEST(StaleTemps, OnlyOursAndOnlyOfDeadProcesses) {
     EXPECT_EQ(mf::remove_stale_temps(d), 1);
     for (const auto& k : keep) EXPECT_TRUE(fs::exists(d / k)) << k;
     EXPECT_FALSE(fs::exists(d / gone));
-    EXPECT_EQ(mf::temp_owner(gone), dead);
+    EXPECT_EQ(mf::temp_owner(gone)->pid, dead);
     EXPECT_FALSE(mf::temp_owner(keep[0]));
 }
 

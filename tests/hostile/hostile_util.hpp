@@ -163,7 +163,7 @@ inline std::vector<std::string> temp_files_under(const fs::path& dir) {
     std::error_code ec;
     for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
         const auto owner = mf::temp_owner(it->path().filename().string());
-        if (owner && *owner != ::getpid()) found.push_back(it->path().string());
+        if (owner && owner->pid != ::getpid()) found.push_back(it->path().string());
     }
     return found;
 }
