@@ -73,6 +73,49 @@ std::vector<SidecarRoles> read_sidecars(Files& files) {
     return out;
 }
 
+}  // namespace
+
+bool PlanShare::read(const InputFile& in, const std::string& file, DecodedMap& out, std::string& error) {
+    {
+        std::lock_guard lock(mutex_);
+        if (const auto it = entries_.find(file); it != entries_.end()) {
+            if (!it->second.map) {
+                error = it->second.error;
+                return false;
+            }
+            out = *it->second.map;  // a copy: the plan frees or moves its maps as it goes
+            return true;
+        }
+    }
+    Entry e;
+    const bool ok = read_image(in, out.img, out.info, error);
+    if (ok) e.map = std::make_shared<const DecodedMap>(out);
+    else e.error = error;
+    std::lock_guard lock(mutex_);
+    entries_.emplace(file, std::move(e));
+    return ok;
+}
+
+validate::SetValidation PlanShare::validate(const std::vector<validate::MapInput>& maps, const rules::RuleConfig& rules,
+                                            const validate::ValidateOptions& vo) {
+    std::string key = rules::describe(rules).dump();
+    for (const auto& m : maps) {
+        key += '\n' + std::string(role_name(m.role)) + '\t' + m.name + '\t' + m.file.display + '\t' +
+               (m.alternate ? "alternate" : "") + '\t' + std::to_string(static_cast<int>(m.name_convention));
+        for (const Role r : m.unused) key += '\t' + std::string(role_name(r));
+    }
+    {
+        std::lock_guard lock(mutex_);
+        if (const auto it = validated_.find(key); it != validated_.end()) return it->second;
+    }
+    validate::SetValidation v = validate::validate_set(maps, rules, vo);
+    std::lock_guard lock(mutex_);
+    validated_.emplace(std::move(key), v);
+    return v;
+}
+
+namespace {
+
 // Estimated peak bytes of a set: its decoded maps (8-bit files as codes, others as float) plus
 // the planes made from them.
 uint64_t estimated_bytes(const SetDiscovery& d) {
@@ -89,7 +132,7 @@ uint64_t estimated_bytes(const SetDiscovery& d) {
 // mode: the whole image, in parallel for large sets; stream mode: the header). Every candidate
 // that fails is an UNREADABLE_FILE finding, and the set is partial. `failed`: files known
 // unreadable (stream mode: their pixels failed the rules' pass), failing here with that error.
-void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode mode, int threads,
+void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode mode, int threads, PlanShare* share,
                   const std::map<std::string, std::string>& failed, std::vector<validate::MapInput>& maps) {
     std::vector<std::vector<const Candidate*>> orders;
     for (const auto& choice : d.choices) {
@@ -116,7 +159,8 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
                 continue;
             }
             if (mode == PlanMode::decode) {
-                if (read_image(in, o.decoded.img, o.decoded.info, err)) {
+                if (share ? share->read(in, c->file, o.decoded, err)
+                          : read_image(in, o.decoded.img, o.decoded.info, err)) {
                     validate::MapInput m;
                     m.role = role;
                     m.file = in;
@@ -430,13 +474,15 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     plan.findings.insert(plan.findings.end(), excluded.begin(), excluded.end());
     plan.findings.insert(plan.findings.end(), src.findings.begin(), src.findings.end());  // NAMES_MERGED, …
     plan.footprint = estimated_bytes(d);
-    if (opt.mode == PlanMode::decode) plan.lease = std::make_unique<BudgetLease>(opt.budget, plan.footprint);
+    // A share keeps a copy of each decoded map for the set's next plan: half as much again.
+    if (opt.mode == PlanMode::decode)
+        plan.lease = std::make_unique<BudgetLease>(opt.budget, opt.share ? plan.footprint / 2 * 3 : plan.footprint);
 
     // Sets of 4 Mpixel maps and up decode their maps on two threads, and any set when a core is
     // idle; small ones stay on one otherwise (the batch is already parallel across sets).
     std::vector<validate::MapInput> maps;
-    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) || opt.spare_core ? 2 : 1, failed,
-                 maps);
+    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) || opt.spare_core ? 2 : 1, opt.share,
+                 failed, maps);
     if (maps.empty()) {
         std::string msg = src.display + ": no map of the set could be read";
         for (const auto& f : plan.findings)
@@ -452,7 +498,8 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
         for (const auto& [role, c] : plan.inputs) by_display[files.open(c.file).display] = &plan.decoded.at(c.file);
         vo.reader = memory_reader(std::move(by_display));
     }
-    const validate::SetValidation checked = validate::validate_set(maps, *opt.rules, vo);
+    const validate::SetValidation checked = opt.share ? opt.share->validate(maps, *opt.rules, vo)
+                                                      : validate::validate_set(maps, *opt.rules, vo);
     // Stream mode reads a map's header here and its pixels in the rules: a chosen map whose pixels
     // fail is planned again as decode mode saw it, a file that does not read (the next candidate,
     // or no map: MISSING_MAP).

@@ -8,6 +8,7 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,12 +22,42 @@
 #include "material/routing.hpp"
 #include "preset/preset.hpp"
 #include "sets/sets.hpp"
+#include "validate/validate.hpp"
 
 namespace mf {
 
 enum class PlanMode {
     decode,  // ingest: every chosen map decoded once, kept in memory for the planes
     stream,  // validate: headers only up front; the rules stream each map in bands
+};
+
+struct DecodedMap {
+    Decoded img;  // 8-bit files stay codes until a step needs floats
+    ImageInfo info;
+};
+
+// What the plans of one set share (ingest --preset a,b: one plan per preset, on one worker, one
+// after another). A file decodes to the same pixels whatever the preset: the first plan that
+// reads a file decodes it and keeps a copy, later plans copy that (or get the same error). The
+// rules judge the same maps under the same rules config alike: validate_set runs once per
+// distinct (maps, rules) pair. Thread-safe (a plan decodes its maps on up to two threads).
+class PlanShare {
+public:
+    // As read_image(in, out.img, out.info, error), from the share when `file` was read before.
+    bool read(const InputFile& in, const std::string& file, DecodedMap& out, std::string& error);
+    // As validate::validate_set(maps, rules, vo), from the share when the same maps (role, file,
+    // flags) were validated under the same rules before.
+    validate::SetValidation validate(const std::vector<validate::MapInput>& maps, const rules::RuleConfig& rules,
+                                     const validate::ValidateOptions& vo);
+
+private:
+    struct Entry {
+        std::shared_ptr<const DecodedMap> map;  // null when the read failed
+        std::string error;
+    };
+    std::mutex mutex_;
+    std::map<std::string, Entry> entries_;
+    std::map<std::string, validate::SetValidation> validated_;  // by (maps, rules) key
 };
 
 struct PlanOptions {
@@ -37,11 +68,8 @@ struct PlanOptions {
     // A core of the batch is idle (a set alone, or the batch's tail): decode on two threads
     // whatever the set's size (else only sets of 64 MB and up do).
     bool spare_core = false;
-};
-
-struct DecodedMap {
-    Decoded img;  // 8-bit files stay codes until a step needs floats
-    ImageInfo info;
+    // Decode mode: what an earlier plan of the same set decoded and validated (null: none).
+    PlanShare* share = nullptr;
 };
 
 struct SetPlan {

@@ -179,7 +179,49 @@ struct Ingestor::Run {
     }
 };
 
-MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, Run& run) const {
+// What the ingestors of run_together share of the set they process in turn: its decoded maps,
+// and its encoded outputs (an output's bytes are a function of its pixels and EncodeOptions:
+// image/image.hpp encodes deterministically).
+struct Ingestor::SetShare {
+    PlanShare plan;
+
+    // `bytes` of `img` encoded with `enc`: an equal image encoded so before is not encoded again.
+    template <class T>
+    bool encode(BasicImage<T> img, const EncodeOptions& enc, std::vector<unsigned char>& bytes, std::string& error) {
+        auto& kept = kept_of<T>();
+        {
+            std::lock_guard lock(mutex);
+            for (const auto& k : kept)
+                if (k.enc.format == enc.format && k.enc.bit_depth == enc.bit_depth && k.img.width == img.width &&
+                    k.img.height == img.height && k.img.channels == img.channels && k.img.pixels == img.pixels) {
+                    bytes = k.bytes;
+                    return true;
+                }
+        }
+        if (!encode_image(img, enc, bytes, error)) return false;
+        std::lock_guard lock(mutex);
+        kept.push_back({enc, std::move(img), bytes});
+        return true;
+    }
+
+private:
+    template <class T>
+    struct Kept {
+        EncodeOptions enc;
+        BasicImage<T> img;
+        std::vector<unsigned char> bytes;
+    };
+    template <class T>
+    std::vector<Kept<T>>& kept_of() {
+        if constexpr (std::is_same_v<T, float>) return floats;
+        else return codes;
+    }
+    std::mutex mutex;
+    std::vector<Kept<unsigned char>> codes;
+    std::vector<Kept<float>> floats;
+};
+
+MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const {
     // Sets whose outputs another set claimed first are computed (the refusals are this run's).
     const bool cacheable = run.cache && !run.cache_off && !run.refused.count(src.name);
     // Every set's action key goes into its entry (plan --changed-since); the cache remembers its
@@ -208,7 +250,7 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
             return res;
         }
     }
-    MaterialResult res = compute(src, budget, run);
+    MaterialResult res = compute(src, budget, run, share);
     if (action) res.entry.key = *action;
     if (!key) return res;
     ++run.misses;
@@ -236,6 +278,9 @@ struct OutputJob {
     const std::map<std::string, std::string>* refused;  // output suffix -> why it may not be written
     std::function<bool(const std::string& rel, std::span<const unsigned char>, std::string& error)>
         write;  // the run's folder
+    // Encodes a packed image (8-bit codes or floats): through the set's share in run_together.
+    std::function<bool(Image8, const EncodeOptions&, std::vector<unsigned char>&, std::string&)> encode8;
+    std::function<bool(Image, const EncodeOptions&, std::vector<unsigned char>&, std::string&)> encode;
 };
 
 struct Written {
@@ -273,8 +318,8 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
         // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
         std::optional<Image8> packed8 = pack_output8(o, job.planes, job.preset, size, job.color);
         const EncodeOptions enc{job.preset.format, o.bit_depth};
-        encoded = packed8 ? encode_image(*packed8, enc, bytes, err)
-                          : encode_image(pack_output(o, job.planes, job.preset, size, job.color), enc, bytes, err);
+        encoded = packed8 ? job.encode8(std::move(*packed8), enc, bytes, err)
+                          : job.encode(pack_output(o, job.planes, job.preset, size, job.color), enc, bytes, err);
     }
     // Written through the run's folder: under it, never through a link, journalled.
     const std::string file = rel_path.generic_string();
@@ -323,7 +368,7 @@ std::optional<Finding> too_large(const std::vector<Written>& written) {
 
 }  // namespace
 
-MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget, Run& run) const {
+MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const {
     struct InFlight {  // counts this set as running until it returns or throws
         std::atomic<int>& n;
         explicit InFlight(std::atomic<int>& c) : n(c) { ++n; }
@@ -337,7 +382,8 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     // with every worker busy that would only oversubscribe.
     const int workers = opt_.jobs > 0 ? opt_.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
     const bool idle_worker = run.in_flight.load() < workers;
-    SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget, idle_worker});
+    SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget, idle_worker,
+                                             share ? &share->plan : nullptr});
     if (plan.failure) {
         res.failure = std::move(plan.failure);
         return res;
@@ -363,6 +409,12 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                         refused == run.refused.end() ? nullptr : &refused->second,
                         [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
                             return run.write(rel, b, e);
+                        },
+                        [share](Image8 img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& e) {
+                            return share ? share->encode(std::move(img), enc, b, e) : encode_image(img, enc, b, e);
+                        },
+                        [share](Image img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& e) {
+                            return share ? share->encode(std::move(img), enc, b, e) : encode_image(img, enc, b, e);
                         }};
     // Outputs are packed and encoded on two threads (each output on one: deflate is serial) when
     // a worker is idle (above).
@@ -456,101 +508,161 @@ std::map<std::string, std::map<std::string, std::string>> claim_outputs(OutputFo
     return refused;
 }
 
+// Whether two discoveries found the same sets (run_together: one list serves every ingestor).
+bool same_sets(const std::vector<MaterialSource>& a, const std::vector<MaterialSource>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const MaterialSource& x, const MaterialSource& y) {
+        return x.name == y.name && x.root == y.root && x.zip_folder == y.zip_folder;
+    });
+}
+
 }  // namespace
 
 IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
-    IngestResult result;
-    if (result.error = make_output_folder(opt_.out_dir); !result.error.empty()) return result;
-    std::vector<InputFailure> source_failures;
-    std::string conflict;
-    std::vector<std::string> skipped;  // earlier output folders in the inputs: said as notes
-    std::vector<MaterialSource> sets = find_material_sets(inputs, opt_.out_dir, source_failures, &conflict, &skipped);
-    result.notes.insert(result.notes.end(), skipped.begin(), skipped.end());
-    if (!conflict.empty()) {
-        result.error = conflict;
-        result.usage_error = true;
-        return result;
-    }
-    // The folder is ours from here to the end (lock, journal): store/output_dir.hpp.
-    std::unique_ptr<OutputFolder> folder = OutputFolder::open({opt_.out_dir, opt_.manifest_name, opt_.force},
-                                                              result.error, result.usage_error);
-    if (!folder) return result;
-    remove_stale_temps(opt_.out_dir);  // a killed run's, never a running one's
-    Run run{*folder};
-    run.context = context_digest(preset_, opt_.rules, *color_);
-    // A shard's: the digest of the library's split (merge checks the parts).
-    const std::string plan = opt_.shard ? keep_shard(sets, *opt_.shard, run.context) : std::string();
-    run.refused = claim_outputs(*folder, preset_, opt_.manifest_name, sets);
-    if (!folder->begin(result.error)) return result;
-    // The cache never fails a run: one that cannot be opened is a problem reported, then off.
-    std::optional<Cache> cache;
-    if (opt_.cache_dir) {
-        std::string error;
-        cache = Cache::create(*opt_.cache_dir, error);
-        if (cache) run.cache = &*cache;
-        else result.cache_problems.push_back(error + "; running without the cache");
-    }
+    return std::move(run_together({this}, inputs).front());
+}
 
-    // Each set's entry goes to the spool (a temporary file) when the set is done: the run holds a
-    // tally and the file names of each set, not its entry, and the manifest is written from the
-    // spool (manifest/spool.hpp).
-    auto spool = manifest::MaterialSpool::open(opt_.out_dir, result.error);
-    if (!spool) return result;
-    MemoryBudget budget(opt_.memory_budget);
-    std::mutex done_mutex;
-    size_t done = 0;
-    std::string spool_error;
-    std::set<std::string> produced;
-    manifest::Manifest& m = result.manifest;
-    const std::vector<size_t> order = largest_first(sets);
-    parallel_for(sets.size(), opt_.jobs, [&](size_t k) {
-        const size_t i = order[k];
-        if (stop_requested()) return;  // a signal asked to stop: no new set starts
-        MaterialResult r;
-        try {
-            r = process(sets[i], opt_.memory_budget ? &budget : nullptr, run);
-        } catch (const std::bad_alloc&) {  // exhaustion in one set must not stop the others
-            r = MaterialResult{};
-            r.failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
-                                          "fewer --jobs, or set the preset's max_size";
-        } catch (const std::exception& e) {  // nor a bug
-            r = MaterialResult{};
-            r.failure = sets[i].display + ": internal error: " + e.what();
+std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingestor*>& ingestors,
+                                                 const std::vector<fs::path>& inputs) {
+    // One ingestor's part of the pass: what run() alone holds for its run.
+    struct Target {
+        const Ingestor* ing = nullptr;
+        IngestResult result;
+        std::vector<InputFailure> source_failures;
+        std::unique_ptr<OutputFolder> folder;
+        std::unique_ptr<Run> run;
+        std::string plan;  // a shard's: the digest of the library's split
+        std::optional<Cache> cache;
+        std::unique_ptr<manifest::MaterialSpool> spool;
+        std::string spool_error;
+        std::set<std::string> produced;
+        size_t done = 0;
+        bool ready = false;  // everything before the sets went well
+    };
+    std::vector<Target> targets(ingestors.size());
+    std::vector<MaterialSource> sets;
+    bool have_sets = false;
+    for (size_t t = 0; t < targets.size(); ++t) {
+        Target& g = targets[t];
+        g.ing = ingestors[t];
+        const IngestOptions& opt = g.ing->opt_;
+        IngestResult& result = g.result;
+        if (result.error = make_output_folder(opt.out_dir); !result.error.empty()) continue;
+        std::string conflict;
+        std::vector<std::string> skipped;  // earlier output folders in the inputs: said as notes
+        std::vector<MaterialSource> found = find_material_sets(inputs, opt.out_dir, g.source_failures, &conflict,
+                                                               &skipped);
+        result.notes.insert(result.notes.end(), skipped.begin(), skipped.end());
+        if (!conflict.empty()) {
+            result.error = conflict;
+            result.usage_error = true;
+            continue;
         }
-        std::string error;
-        const bool spooled = r.failure || spool->add(r.entry, error);
-        std::lock_guard lock(done_mutex);
-        ++done;
-        if (opt_.progress) opt_.progress(done, sets.size(), sets[i].name, r);
-        if (!spooled) {
-            if (spool_error.empty()) spool_error = error;
-        } else if (r.failure) {
-            m.failures.push_back({source_of(sets[i], opt_.out_dir), std::string(code::unreadable_file), *r.failure});
-        } else {
-            MaterialTally t{r.entry.name, {}};
-            validate::add_material(t.findings, r.entry.findings);
-            result.materials.push_back(std::move(t));
-            for (const auto& o : r.entry.outputs) produced.insert(o.file);
-            for (const auto& f : r.entry.material_files) produced.insert(f.file);
+        // The folder is ours from here to the end (lock, journal): store/output_dir.hpp.
+        g.folder = OutputFolder::open({opt.out_dir, opt.manifest_name, opt.force}, result.error, result.usage_error);
+        if (!g.folder) continue;
+        remove_stale_temps(opt.out_dir);  // a killed run's, never a running one's
+        g.run = std::make_unique<Run>(*g.folder);
+        g.run->context = context_digest(g.ing->preset_, opt.rules, *g.ing->color_);
+        // A shard's: the digest of the library's split (merge checks the parts).
+        g.plan = opt.shard ? keep_shard(found, *opt.shard, g.run->context) : std::string();
+        if (!have_sets) {
+            sets = std::move(found);
+            have_sets = true;
+        } else if (!same_sets(found, sets)) {
+            result.error = opt.out_dir.string() +
+                           ": the inputs give other sets for this output folder than for the first one (an "
+                           "output folder inside an input); run each preset on its own";
+            result.usage_error = true;
+            continue;
+        }
+        g.run->refused = claim_outputs(*g.folder, g.ing->preset_, opt.manifest_name, sets);
+        if (!g.folder->begin(result.error)) continue;
+        // The cache never fails a run: one that cannot be opened is a problem reported, then off.
+        if (opt.cache_dir) {
+            std::string error;
+            g.cache = Cache::create(*opt.cache_dir, error);
+            if (g.cache) g.run->cache = &*g.cache;
+            else result.cache_problems.push_back(error + "; running without the cache");
+        }
+        // Each set's entry goes to the spool (a temporary file) when the set is done: the run
+        // holds a tally and the file names of each set, not its entry, and the manifest is written
+        // from the spool (manifest/spool.hpp).
+        g.spool = manifest::MaterialSpool::open(opt.out_dir, result.error);
+        g.ready = g.spool != nullptr;
+    }
+    const auto ready = static_cast<size_t>(std::count_if(targets.begin(), targets.end(),
+                                                         [](const Target& g) { return g.ready; }));
+    const IngestOptions& lead = ingestors.front()->opt_;
+    MemoryBudget budget(lead.memory_budget);
+    std::mutex done_mutex;
+    const std::vector<size_t> order = largest_first(sets);
+    parallel_for(ready > 0 ? sets.size() : 0, lead.jobs, [&](size_t k) {
+        const size_t i = order[k];
+        std::optional<SetShare> share;  // several ingestors: one decode, one encode of equal outputs
+        if (ready > 1) share.emplace();
+        for (Target& g : targets) {
+            if (!g.ready) continue;
+            if (stop_requested()) return;  // a signal asked to stop: no new set starts
+            MaterialResult r;
+            try {
+                r = g.ing->process(sets[i], lead.memory_budget ? &budget : nullptr, *g.run, share ? &*share : nullptr);
+            } catch (const std::bad_alloc&) {  // exhaustion in one set must not stop the others
+                r = MaterialResult{};
+                r.failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
+                                              "fewer --jobs, or set the preset's max_size";
+            } catch (const std::exception& e) {  // nor a bug
+                r = MaterialResult{};
+                r.failure = sets[i].display + ": internal error: " + e.what();
+            }
+            std::string error;
+            const bool spooled = r.failure || g.spool->add(r.entry, error);
+            std::lock_guard lock(done_mutex);
+            ++g.done;
+            if (g.ing->opt_.progress) g.ing->opt_.progress(g.done, sets.size(), sets[i].name, r);
+            if (!spooled) {
+                if (g.spool_error.empty()) g.spool_error = error;
+            } else if (r.failure) {
+                g.result.manifest.failures.push_back({source_of(sets[i], g.ing->opt_.out_dir),
+                                                      std::string(code::unreadable_file), *r.failure});
+            } else {
+                MaterialTally tally{r.entry.name, {}};
+                validate::add_material(tally.findings, r.entry.findings);
+                g.result.materials.push_back(std::move(tally));
+                for (const auto& o : r.entry.outputs) g.produced.insert(o.file);
+                for (const auto& f : r.entry.material_files) g.produced.insert(f.file);
+            }
         }
     });
+    std::vector<IngestResult> results;
+    for (Target& g : targets) {
+        if (g.ready)
+            g.ing->finish(g.result, *g.folder, *g.run, *g.spool, g.spool_error, g.plan, sets.size(),
+                          std::move(g.source_failures), g.produced);
+        results.push_back(std::move(g.result));
+    }
+    return results;
+}
+
+void Ingestor::finish(IngestResult& result, OutputFolder& folder, Run& run, manifest::MaterialSpool& spool,
+                      const std::string& spool_error, const std::string& plan, size_t sets,
+                      std::vector<InputFailure> source_failures, std::set<std::string>& produced) const {
     if (!spool_error.empty()) {
         result.error = spool_error;
-        return result;
+        return;
     }
-
+    manifest::Manifest& m = result.manifest;
     m.generator = std::string(kGenerator);
     m.preset = preset_.name;
     m.normal_convention = preset_.normal_convention;
     m.thresholds = rules::threshold_table(opt_.rules.thresholds);
     if (opt_.shard)
         m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, run.context, plan,
-                                            static_cast<int>(sets.size())};
+                                            static_cast<int>(sets)};
     for (auto& f : source_failures) {
         f.source = relative_to(f.source, opt_.out_dir);
         m.failures.push_back(std::move(f));
     }
-    spool->sort();  // names are unique: one folder each
+    spool.sort();  // names are unique: one folder each
     std::sort(result.materials.begin(), result.materials.end(),
               [](const auto& a, const auto& b) { return a.name < b.name; });
     // By source, then code and message: a total order, the one `matforge merge` writes too.
@@ -563,26 +675,25 @@ IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     for (auto& p : run.cache_problems) result.cache_problems.push_back(std::move(p));
     if (stop_requested()) {  // stopped: the journal stays, no manifest (the next run finishes the job)
         result.interrupted = true;
-        return result;
+        return;
     }
     const WriteFile write = [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-        return folder->write(rel, b, e);
+        return folder.write(rel, b, e);
     };
     // The folder's own files (every shard alike), then library.gltf and the other libraries:
     // every material of the run in one file (not per shard: a shard sees its part).
     if (!write_folder_files(preset_, write, m.library, result.error) ||
         (!opt_.shard &&
          !write_library(
-             *spool, opt_.out_dir, write,
-             [&](const std::string& rel, const ByteProducer& p, std::string& e) { return folder->write(rel, p, e); },
+             spool, opt_.out_dir, write,
+             [&](const std::string& rel, const ByteProducer& p, std::string& e) { return folder.write(rel, p, e); },
              m.library, result.error)))
-        return result;
+        return;
     for (const auto& f : m.library) produced.insert(f.file);
     std::string err;
-    const ByteProducer text = [&](const ByteSink& sink) { return spool->write_manifest(m, sink, err); };
-    if (!folder->finish(text, produced, result.notes, err)) result.error = err;
+    const ByteProducer text = [&](const ByteSink& sink) { return spool.write_manifest(m, sink, err); };
+    if (!folder.finish(text, produced, result.notes, err)) result.error = err;
     remove_stale_temps(opt_.out_dir);
-    return result;
 }
 
 }  // namespace mf

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,11 @@
 #include "validate/verdict.hpp"
 
 namespace mf {
+
+class OutputFolder;
+namespace manifest {
+class MaterialSpool;
+}
 
 struct MaterialResult {
     manifest::Material entry;            // one element of the manifest's "materials"
@@ -79,16 +85,32 @@ public:
     // everything a run changes lives in its Run, not in the Ingestor.
     IngestResult run(const std::vector<std::filesystem::path>& inputs) const;
 
+    // Several ingestors (ingest --preset a,b: one per preset, each with its own output folder)
+    // over the same inputs in one pass: each set is processed by every ingestor in turn on one
+    // worker, its maps decoded once (plan/plan.hpp's PlanShare) and an output whose pixels and
+    // encoding equal one another ingestor encoded for that set encoded once. Each result, and
+    // every file, is what that ingestor's run() gives alone. The first ingestor's jobs, memory
+    // budget and progress serve the pass; the sets must be the same for all (the same inputs,
+    // shard and output folders outside them), else each result holds the error.
+    static std::vector<IngestResult> run_together(const std::vector<const Ingestor*>& ingestors,
+                                                  const std::vector<std::filesystem::path>& inputs);
+
 private:
     Preset preset_;
     std::shared_ptr<const ColorContext> color_;
     IngestOptions opt_;
-    struct Run;  // one run()'s state, shared by the sets it processes (ingest.cpp)
+    struct Run;       // one run()'s state, shared by the sets it processes (ingest.cpp)
+    struct SetShare;  // what the ingestors of run_together share of one set (ingest.cpp)
     // One set of `run`: restored from the run's cache, or computed. Validates it (every rule,
     // from the decoded pixels: each file is decoded once), converts and packs it, and writes
-    // its outputs through the run's output folder.
-    MaterialResult process(const MaterialSource& src, MemoryBudget* budget, Run& run) const;
-    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget, Run& run) const;
+    // its outputs through the run's output folder. `share`: null for a run alone.
+    MaterialResult process(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const;
+    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const;
+    // After every set: the manifest's head, the folder's and library files, the manifest written
+    // and the folder finished (store/output_dir.hpp), or `result.error`.
+    void finish(IngestResult& result, OutputFolder& folder, Run& run, manifest::MaterialSpool& spool,
+                const std::string& spool_error, const std::string& plan, size_t sets,
+                std::vector<InputFailure> source_failures, std::set<std::string>& produced) const;
 };
 
 }  // namespace mf

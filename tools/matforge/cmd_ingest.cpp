@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <set>
 
 #include "command.hpp"
 #include "core/files.hpp"
@@ -60,6 +61,37 @@ std::string write_ingest_report(const IngestArgs& a, const std::filesystem::path
     return {};
 }
 
+// What one preset's run tells its user, and its exit code. `command`: "ingest", or with several
+// presets "ingest [NAME]".
+ExitCode report_run(const IngestArgs& a, const IngestOptions& opt, const IngestResult& r, const std::string& command) {
+    const std::filesystem::path manifest = opt.out_dir / opt.manifest_name;
+    if (r.interrupted)
+        return interrupted(command, "stopped before the end; " + manifest.string() +
+                                        " is not written until a run completes (run the command again to finish)");
+    if (!r.error.empty()) return fail(command, r.error, r.usage_error ? ExitCode::usage : ExitCode::findings);
+    if (!a.quiet)
+        for (const auto& n : r.notes) say(command, "note: " + n);
+    for (const auto& p : r.cache_problems) say(command, "warning: cache: " + p);
+    if (!a.quiet && opt.cache_dir && r.cache_hits + r.cache_misses > 0)
+        say(command, "cache: " + std::to_string(r.cache_hits) + " sets restored, " + std::to_string(r.cache_misses) +
+                         " computed (" + opt.cache_dir->string() + ")");
+    std::vector<std::string> names;
+    for (const auto& m : r.materials) names.push_back(m.name);
+    report_unmatched_suppressions(command, opt.rules, names);
+    for (const auto& f : r.manifest.failures) say(command, f.code + ": " + f.message);
+    if (!a.quiet) {
+        const validate::Summary counts = summarize(r);
+        say(command, std::to_string(r.materials.size()) + " materials, " + std::to_string(r.manifest.failures.size()) +
+                         " failed; findings: " + std::to_string(counts.error) + " error, " +
+                         std::to_string(counts.warning) + " warning, " + std::to_string(counts.info) +
+                         " info; manifest: " + manifest.string());
+        print_attention(command, r);
+    }
+    if (!a.report.empty())
+        if (std::string why = write_ingest_report(a, manifest); !why.empty()) return fail(command, why);
+    return verdict_exit(validate::run_fails(summarize(r), fail_on_of(a.fail_on)));
+}
+
 ExitCode run_ingest(const IngestArgs& a) {
     // Nothing to read (a typo'd folder): stop before anything is created.
     if (std::string why = no_usable_input({a.inputs.begin(), a.inputs.end()}); !why.empty()) return fail("ingest", why);
@@ -77,75 +109,84 @@ ExitCode run_ingest(const IngestArgs& a) {
         if (why.empty() && html) why = output_overlaps_input(a.report_file, inputs);
         if (!why.empty()) return fail("ingest", "--report-file " + why);
     }
-    auto preset = load_preset(a.preset, error);
-    if (!preset) return fail("ingest", error);
-    auto rules = load_rule_config(*preset, a.rules_file, error);
-    if (!rules) return fail("ingest", error);
+    // --preset a,b: one output folder a preset, <out>/<its name>, each what a run of that preset
+    // alone into that folder writes (process/ingest.hpp's run_together).
+    std::vector<std::string> names;
+    for (size_t at = 0; at <= a.preset.size();) {
+        const size_t comma = std::min(a.preset.find(',', at), a.preset.size());
+        names.push_back(a.preset.substr(at, comma - at));
+        at = comma + 1;
+    }
+    const bool several = names.size() > 1;
+    if (several && !a.report.empty())
+        return fail("ingest", "--report takes one preset's run; with several, run `matforge validate` or `matforge "
+                              "report` on each preset's folder");
     auto color = ColorContext::create(error);
     if (!color) return fail("ingest", error);
-    IngestOptions opt;
-    opt.out_dir = a.out_dir;
-    opt.jobs = a.jobs;
-    opt.rules = std::move(*rules);
-    opt.force = a.force;
-    if (!a.no_cache) opt.cache_dir = cache_folder(a.cache);
-    if (opt.cache_dir) {
-        const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
-        if (std::string why = cache_overlaps(*opt.cache_dir, a.out_dir, inputs); !why.empty())
-            return fail("ingest", why);
-        // A folder the user named must be a cache (or new); the default one, if foreign, is left
-        // alone with a warning and the run goes on without it (process/ingest.cpp).
-        const bool named = !a.cache.empty() || std::getenv("MATFORGE_CACHE") != nullptr;
-        if (std::string why = Cache::unusable(*opt.cache_dir); named && !why.empty()) return fail("ingest", why);
+    std::vector<std::unique_ptr<Ingestor>> ingestors;
+    std::vector<IngestOptions> options;
+    std::set<std::string> folders;
+    for (const std::string& name : names) {
+        if (name.empty()) return fail("ingest", "--preset \"" + a.preset + "\" names an empty preset");
+        auto preset = load_preset(name, error);
+        if (!preset) return fail("ingest", error);
+        auto rules = load_rule_config(*preset, a.rules_file, error);
+        if (!rules) return fail("ingest", error);
+        IngestOptions opt;
+        opt.out_dir = a.out_dir;
+        if (several) {
+            // The preset's name is the folder's: one path component, and one folder a preset.
+            const std::string& folder = preset->name;
+            if (folder.empty() || folder == "." || folder == ".." || folder.find_first_of("/\\") != std::string::npos)
+                return fail("ingest", name + ": the preset's name \"" + folder +
+                                          "\" cannot name its output folder; give it a plain name");
+            if (!folders.insert(folder).second)
+                return fail("ingest", "--preset names \"" + folder + "\" twice; each preset writes <out>/<its name>");
+            opt.out_dir = std::filesystem::path(a.out_dir) / folder;
+        }
+        opt.jobs = a.jobs;
+        opt.rules = std::move(*rules);
+        opt.force = a.force;
+        if (!a.no_cache) opt.cache_dir = cache_folder(a.cache);
+        if (opt.cache_dir) {
+            const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+            if (std::string why = cache_overlaps(*opt.cache_dir, opt.out_dir, inputs); !why.empty())
+                return fail("ingest", why);
+            // A folder the user named must be a cache (or new); the default one, if foreign, is
+            // left alone with a warning and the run goes on without it (process/ingest.cpp).
+            const bool named = !a.cache.empty() || std::getenv("MATFORGE_CACHE") != nullptr;
+            if (std::string why = Cache::unusable(*opt.cache_dir); named && !why.empty()) return fail("ingest", why);
+        }
+        if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
+        if (!a.shard.empty()) {
+            opt.shard = parse_shard(a.shard);
+            if (!opt.shard) return fail("ingest", "--shard must be I/N with 0 <= I < N, not \"" + a.shard + "\"");
+            opt.manifest_name = "manifest.shard-" + std::to_string(opt.shard->first) + "-of-" +
+                                std::to_string(opt.shard->second) + ".json";
+        }
+        const bool tty = ::isatty(STDERR_FILENO) && !a.quiet;
+        if (tty && ingestors.empty()) {  // one progress line: the first preset's (the others follow it set by set)
+            opt.progress = [](size_t done, size_t total, const std::string& set, const MaterialResult& r) {
+                std::cerr << "\r\033[K[" << done << "/" << total << "] " << terminal_safe(set) << " " << set_status(r)
+                          << std::flush;
+                if (done == total) std::cerr << "\n";
+            };
+        }
+        options.push_back(opt);
+        ingestors.push_back(std::make_unique<Ingestor>(std::move(*preset), color, std::move(opt)));
     }
-    if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
-    if (!a.shard.empty()) {
-        opt.shard = parse_shard(a.shard);
-        if (!opt.shard) return fail("ingest", "--shard must be I/N with 0 <= I < N, not \"" + a.shard + "\"");
-        opt.manifest_name = "manifest.shard-" + std::to_string(opt.shard->first) + "-of-" +
-                            std::to_string(opt.shard->second) + ".json";
-    }
-    const bool tty = ::isatty(STDERR_FILENO) && !a.quiet;
-    if (tty) {
-        opt.progress = [](size_t done, size_t total, const std::string& name, const MaterialResult& r) {
-            std::cerr << "\r\033[K[" << done << "/" << total << "] " << terminal_safe(name) << " " << set_status(r)
-                      << std::flush;
-            if (done == total) std::cerr << "\n";
-        };
-    }
-    Ingestor ingestor(std::move(*preset), color, opt);
+    std::vector<const Ingestor*> all;
+    for (const auto& i : ingestors) all.push_back(i.get());
     std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
     install_stop_handlers();
-    const IngestResult r = ingestor.run(inputs);
-    if (r.interrupted)
-        return interrupted("ingest", "stopped before the end; " +
-                                         (std::filesystem::path(a.out_dir) / opt.manifest_name).string() +
-                                         " is not written until a run completes (run the command again to finish)");
-    if (!r.error.empty()) return fail("ingest", r.error, r.usage_error ? ExitCode::usage : ExitCode::findings);
-    if (!a.quiet)
-        for (const auto& n : r.notes) say("ingest", "note: " + n);
-    for (const auto& p : r.cache_problems) say("ingest", "warning: cache: " + p);
-    if (!a.quiet && opt.cache_dir && r.cache_hits + r.cache_misses > 0)
-        say("ingest", "cache: " + std::to_string(r.cache_hits) + " sets restored, " + std::to_string(r.cache_misses) +
-                          " computed (" + opt.cache_dir->string() + ")");
-    std::vector<std::string> names;
-    for (const auto& m : r.materials) names.push_back(m.name);
-    report_unmatched_suppressions("ingest", opt.rules, names);
-    for (const auto& f : r.manifest.failures) say("ingest", f.code + ": " + f.message);
-    if (!a.quiet) {
-        const validate::Summary counts = summarize(r);
-        say("ingest", std::to_string(r.materials.size()) + " materials, " + std::to_string(r.manifest.failures.size()) +
-                          " failed; findings: " + std::to_string(counts.error) + " error, " +
-                          std::to_string(counts.warning) + " warning, " + std::to_string(counts.info) +
-                          " info; manifest: " + (std::filesystem::path(a.out_dir) / opt.manifest_name).string());
-        print_attention("ingest", r);
+    const std::vector<IngestResult> results = Ingestor::run_together(all, inputs);
+    ExitCode worst = ExitCode::ok;
+    for (size_t i = 0; i < results.size(); ++i) {
+        const ExitCode code = report_run(a, options[i], results[i], several ? "ingest [" + names[i] + "]" : "ingest");
+        if (code == ExitCode::interrupted_int || code == ExitCode::interrupted_term) return code;
+        if (static_cast<int>(code) > static_cast<int>(worst)) worst = code;
     }
-    if (!a.report.empty()) {
-        if (std::string why = write_ingest_report(a, a.out_dir / std::filesystem::path(opt.manifest_name));
-            !why.empty())
-            return fail("ingest", why);
-    }
-    return verdict_exit(validate::run_fails(summarize(r), fail_on_of(a.fail_on)));
+    return worst;
 }
 
 const Register register_ingest{
@@ -155,7 +196,9 @@ const Register register_ingest{
          sub.add_option("inputs", a->inputs, "material folders, .zip files, or folders of many (recursive)")
              ->required();
          sub.add_option("-o,--out", a->out_dir, "output folder (created; manifest.json goes here)")->required();
-         sub.add_option("--preset", a->preset, "shipped preset name (see 'matforge presets') or a JSON file")
+         sub.add_option("--preset", a->preset,
+                        "shipped preset name (see 'matforge presets') or a JSON file; several, comma-separated "
+                        "(gltf,unity-hdrp), write each into <out>/<its name> in one pass: each set decoded once")
              ->capture_default_str();
          sub.add_option("-j,--jobs", a->jobs, "sets processed in parallel (0 = all cores)")
              ->check(CLI::Range(0, 1024))
