@@ -324,6 +324,21 @@ bool check_dimensions(const InputFile& in, const ImageInfo& info, std::string& e
     return true;
 }
 
+// A read that succeeded over a file that ends early: libjpeg fills the rows past the end with
+// grey and only warns ("Premature end of JPEG file", JWRN_JPEG_EOF), which OpenImageIO keeps as
+// a pending error beside a successful read (checked with OpenImageIO 2.4 on a JPEG cut to its
+// first 2,000 bytes). Those pixels are not the map's: the file is unreadable. Other pending
+// messages are dropped: libjpeg's "Corrupt JPEG data: N extraneous bytes before marker", which
+// real vendor files carry with intact pixels, must not fail them.
+bool ended_early(OIIO::ImageInput& r, const InputFile& in, std::string& error) {
+    if (!r.has_error()) return false;
+    const std::string message = r.geterror();
+    if (message.find("Premature end") == std::string::npos) return false;
+    error = in.display + ": the file ends before its last pixel (" + oiio_error_text(message) +
+            "): truncated, the rest would be grey";
+    return true;
+}
+
 }  // namespace
 
 std::string InputFile::extension() const {
@@ -365,6 +380,10 @@ bool read_image_impl(const InputFile& in, Decoded& out, ImageInfo& info, std::st
         error = in.display + ": " + oiio_error_text(r.in->geterror());
         return false;
     }
+    if (ended_early(*r.in, in, error)) {
+        out = Decoded{};
+        return false;
+    }
     return true;
 }
 
@@ -397,6 +416,7 @@ bool read_bands_impl(const InputFile& in, int band_rows, ImageInfo& info, std::s
             error = in.display + ": " + oiio_error_text(r.in->geterror());
             return false;
         }
+        if (ended_early(*r.in, in, error)) return false;
         fn(y0, rows, band.data());
     }
     return true;

@@ -129,6 +129,27 @@ TEST(Parity, ATruncatedMapIsMissingForBothCommands) {
     EXPECT_EQ(mat["inputs"]["roughness"]["file"], "Cut_roughness.tif");
 }
 
+// A JPEG cut short decodes "successfully" in libjpeg (grey past the end, a warning): it is
+// unreadable for both commands, named with its problem, never a grey map used as albedo.
+TEST(Parity, AJpegCutShortIsUnreadableNotGrey) {
+    const fs::path work = temp_dir("jpeg");
+    const fs::path set = work / "in/Net";
+    fs::create_directories(set);
+    for (const auto& e : fs::directory_iterator(samples() / "Net004A_1K-JPG"))
+        if (e.path().extension() == ".jpg") fs::copy_file(e.path(), set / e.path().filename());
+    const fs::path color = set / "Net004A_1K-JPG_Color.jpg";
+    fs::resize_file(color, 2000);
+    expect_parity(work / "in", work, 1);
+    const json mat = read_json(work / "out/manifest.json")["materials"][0];
+    EXPECT_TRUE(has_finding(mat, "UNREADABLE_FILE", "albedo")) << mat.dump(2);
+    EXPECT_FALSE(mat["inputs"].contains("albedo")) << mat.dump(2);
+    bool said = false;
+    for (const auto& f : mat["findings"])
+        said = said || (f["code"] == "UNREADABLE_FILE" &&
+                        f["message"].get<std::string>().find("ends before its last pixel") != std::string::npos);
+    EXPECT_TRUE(said) << mat.dump(2);
+}
+
 TEST(Parity, SchemaSpoolReceivesWhatTheRunsWrote) {
     // The schema check at the end of the suite sees this test's manifest (the spool works).
     const fs::path work = temp_dir("spool");
