@@ -199,7 +199,12 @@ struct Ingestor::SetShare {
                 }
         }
         if (!encode_image(img, enc, bytes, error)) return false;
+        // Kept up to a bound: an 8K set's packed outputs are gigabytes, and sharing is a saving,
+        // never needed for the result.
+        const uint64_t size = img.pixels.size() * sizeof(T) + bytes.size();
         std::lock_guard lock(mutex);
+        if (kept_bytes + size > kMaxKeptBytes) return true;
+        kept_bytes += size;
         kept.push_back({enc, std::move(img), bytes});
         return true;
     }
@@ -216,7 +221,9 @@ private:
         if constexpr (std::is_same_v<T, float>) return floats;
         else return codes;
     }
+    static constexpr uint64_t kMaxKeptBytes = uint64_t{256} << 20;
     std::mutex mutex;
+    uint64_t kept_bytes = 0;
     std::vector<Kept<unsigned char>> codes;
     std::vector<Kept<float>> floats;
 };

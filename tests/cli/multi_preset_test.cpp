@@ -9,14 +9,8 @@ using namespace mft;
 
 namespace {
 
-// Every file under `dir` (relative path -> bytes), temporaries and locks included: a leftover
-// would differ.
-std::map<std::string, std::string> tree(const fs::path& dir) {
-    std::map<std::string, std::string> files;
-    for (const auto& e : fs::recursive_directory_iterator(dir))
-        if (e.is_regular_file()) files[fs::relative(e.path(), dir).generic_string()] = bytes_of(e.path());
-    return files;
-}
+// Every file under a folder (temporaries and locks included: a leftover would differ).
+using mf::testfiles::files_under;
 
 void expect_same_tree(const std::map<std::string, std::string>& got, const std::map<std::string, std::string>& want,
                       const std::string& what) {
@@ -45,7 +39,7 @@ TEST(MultiPreset, EachFolderIsByteIdenticalToItsOwnRun) {
         EXPECT_NE(r.output.find("matforge ingest [" + p + "]: 4 materials"), std::string::npos) << r.output;
     std::map<std::string, std::map<std::string, std::string>> together;
     for (const auto& p : kPresets) {
-        together[p] = tree(out / p);
+        together[p] = files_under(out / p);
         EXPECT_TRUE(together[p].count("manifest.json")) << p;
         EXPECT_EQ(read_json(out / p / "manifest.json")["preset"], p);
     }
@@ -54,13 +48,13 @@ TEST(MultiPreset, EachFolderIsByteIdenticalToItsOwnRun) {
     for (const auto& p : kPresets) {
         r = run("ingest " + q(samples()) + " -o " + q(out / p) + " -q --no-cache --preset " + p);
         ASSERT_EQ(r.code, 0) << r.output;
-        expect_same_tree(tree(out / p), together[p], p + " alone vs together");
+        expect_same_tree(files_under(out / p), together[p], p + " alone vs together");
     }
     // Together again, every set restored from the cache into fresh folders: the same bytes.
     const fs::path again = work / "again";
     ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(again) + " -q --preset gltf,unity-hdrp,unreal" + cache).code,
               0);
-    for (const auto& p : kPresets) expect_same_tree(tree(again / p), together[p], p + " restored together");
+    for (const auto& p : kPresets) expect_same_tree(files_under(again / p), together[p], p + " restored together");
     // Sharded: each folder's parts merge into that preset's one run.
     const fs::path sharded = work / "sharded";
     for (const char* s : {"0/2", "1/2"})

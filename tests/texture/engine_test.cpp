@@ -31,6 +31,24 @@ const Ingested& ingested(const std::string& preset, const std::string& what) {
     return cache[key] = r;
 }
 
+// The corpus ingested for every engine preset in one run (`--preset a,b,...`: each preset's
+// folder is what its own run writes, MultiPreset.EachFolderIsByteIdenticalToItsOwnRun), so
+// the engines' readers below also read what a multi-preset run writes.
+std::map<std::string, Ingested> corpus_for_every_engine() {
+    const std::vector<std::string> presets{"godot", "unity-hdrp", "unity-urp", "unreal"};
+    const fs::path out = fs::temp_directory_path() / ("matforge-texture-engine-corpus-" + std::to_string(::getpid()));
+    fs::remove_all(out);
+    mf::testbin::register_test_dir(out);
+    std::vector<std::string> args{"ingest",     corpus().string(), "-o",
+                                  out.string(), "--quiet",         "--fail-on",
+                                  "never",      "--preset",        "godot,unity-hdrp,unity-urp,unreal"};
+    const auto r = matforge(args);
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::map<std::string, Ingested> each;
+    for (const auto& p : presets) each[p] = {out / p, mf::testfiles::read_json(out / p / "manifest.json")};
+    return each;
+}
+
 // "KEY:role" -> the file (relative to the manifest's folder) holding it, for one material.
 std::map<std::string, std::string> channels_of(const json& m) {
     std::map<std::string, std::string> at;
@@ -152,12 +170,6 @@ TEST(EngineFiles, GodotSamples) {
     EXPECT_EQ(r.manifest["materials"][2]["alpha_mode"], "mask");
 }
 
-TEST(EngineFiles, GodotCorpus) {
-    const auto& r = ingested("godot", "corpus");
-    ASSERT_GE(r.manifest["materials"].size(), 15u);
-    expect_godot(r);
-}
-
 // ---- Unity HDRP and URP
 
 struct UnitySlot {
@@ -242,8 +254,6 @@ void expect_unity(const Ingested& r, bool hdrp) {
 
 TEST(EngineFiles, UnityHdrpSamples) { expect_unity(ingested("unity-hdrp", "samples"), true); }
 TEST(EngineFiles, UnityUrpSamples) { expect_unity(ingested("unity-urp", "samples"), false); }
-TEST(EngineFiles, UnityHdrpCorpus) { expect_unity(ingested("unity-hdrp", "corpus"), true); }
-TEST(EngineFiles, UnityUrpCorpus) { expect_unity(ingested("unity-urp", "corpus"), false); }
 
 // A re-ingest into another folder: the same guids, so references in a user's project hold.
 TEST(EngineFiles, UnityGuidsAreStableAcrossRuns) {
@@ -325,7 +335,18 @@ void expect_unreal(const Ingested& r) {
 }
 
 TEST(EngineFiles, UnrealSamples) { expect_unreal(ingested("unreal", "samples")); }
-TEST(EngineFiles, UnrealCorpus) { expect_unreal(ingested("unreal", "corpus")); }
+
+// Every engine's files for the real corpus, from one run of the four presets: Godot's, Unity's
+// (HDRP and URP) and Unreal's readers as on the samples.
+TEST(EngineFiles, EveryEngineOnTheCorpusInOneRun) {
+    const auto each = corpus_for_every_engine();
+    ASSERT_GE(each.at("godot").manifest["materials"].size(), 15u);
+    for (const auto& [preset, r] : each) EXPECT_EQ(r.manifest["preset"], preset);
+    expect_godot(each.at("godot"));
+    expect_unity(each.at("unity-hdrp"), true);
+    expect_unity(each.at("unity-urp"), false);
+    expect_unreal(each.at("unreal"));
+}
 
 // ---- A preset whose layout an engine cannot read is refused before any set is read.
 

@@ -2,6 +2,7 @@
 // glTF-Validator (0 errors, 0 warnings) on sample_materials/ and the real-material corpus, and
 // their materials checked against the manifest (slots, alpha mode, URIs, hashes).
 #include <cmath>
+#include <fstream>
 #include <set>
 
 #include "core/srgb.hpp"
@@ -211,17 +212,23 @@ namespace {
 // libraries passes it; its gltf_pbr reads every written texture, colour maps (and only they)
 // as srgb_texture, each packed channel through an extract of the channel the manifest names,
 // the normal through a normalmap node; it is listed in the manifest with its hash.
-void expect_mtlx(const Run& r) {
+// The runs' documents go to one checker process: MaterialX's WebAssembly build and its standard
+// libraries take seconds to load, each document a fraction of that.
+void expect_mtlx(const std::vector<const Run*>& runs) {
     std::vector<fs::path> files;
     std::vector<const json*> mats;
-    for (const auto& m : r.manifest["materials"])
-        for (const auto& f : m["material_files"])
-            if (f["format"] == "mtlx") {
-                files.push_back(r.out / f["file"].get<std::string>());
-                mats.push_back(&m);
-                EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(files.back()))) << files.back();
-            }
-    ASSERT_EQ(files.size(), r.manifest["materials"].size()) << "one .mtlx per material";
+    for (const Run* r : runs) {
+        size_t mine = 0;
+        for (const auto& m : r->manifest["materials"])
+            for (const auto& f : m["material_files"])
+                if (f["format"] == "mtlx") {
+                    files.push_back(r->out / f["file"].get<std::string>());
+                    mats.push_back(&m);
+                    ++mine;
+                    EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(files.back()))) << files.back();
+                }
+        ASSERT_EQ(mine, r->manifest["materials"].size()) << "one .mtlx per material";
+    }
     const auto reports = node_checker("mtlx_validate.cjs", files);
     ASSERT_EQ(reports.size(), files.size());
     static const std::map<std::string, std::string> kInput{{"albedo", "base_color"},   {"opacity", "alpha"},
@@ -476,7 +483,32 @@ TEST(Gltf, MaterialXRendersAsItsGltfInThreeJs) {
     EXPECT_EQ(n, r.manifest["materials"].size());
 }
 
+// The checker itself: a misspelled input, an input of the wrong type and a connection to no
+// node each make a sample's document invalid; the document as written is valid.
+TEST(Gltf, MaterialXCheckerRefusesBrokenDocuments) {
+    const auto& r = ingested("samples");
+    const fs::path doc = r.out / "Metal_Damaged_001" / "Metal_Damaged_001.mtlx";
+    const std::vector<uint8_t> bytes = read_bytes(doc);
+    const std::string text(bytes.begin(), bytes.end());
+    auto broken = [&](const std::string& from, const std::string& to, const std::string& name) {
+        const size_t at = text.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        std::string t = text;
+        if (at != std::string::npos) t.replace(at, from.size(), to);
+        const fs::path f = r.out / name;
+        std::ofstream(f) << t;
+        return f;
+    };
+    const std::vector<fs::path> files{doc, broken("name=\"base_color\"", "name=\"base_colour\"", "misspelled.mtlx"),
+                                      broken("name=\"base_color\" type=\"color3\"",
+                                             "name=\"base_color\" type=\"float\"", "mistyped.mtlx"),
+                                      broken("nodename=\"img_", "nodename=\"missing_img_", "dangling.mtlx")};
+    const auto reports = node_checker("mtlx_validate.cjs", files);
+    ASSERT_EQ(reports.size(), 4u);
+    EXPECT_TRUE(reports[0]["valid"].get<bool>()) << reports[0]["message"];
+    for (size_t i = 1; i < 4; ++i) EXPECT_FALSE(reports[i]["valid"].get<bool>()) << files[i];
+}
+
 TEST(Gltf, MaterialXBesideEachGltfPassesMaterialXValidation) {
-    expect_mtlx(ingested("samples"));
-    expect_mtlx(ingested("corpus"));
+    expect_mtlx({&ingested("samples"), &ingested("corpus")});
 }

@@ -126,6 +126,7 @@ ExitCode run_ingest(const IngestArgs& a) {
     std::vector<std::unique_ptr<Ingestor>> ingestors;
     std::vector<IngestOptions> options;
     std::set<std::string> folders;
+    std::vector<std::string> labels;  // each preset's run says its own summary
     for (const std::string& name : names) {
         if (name.empty()) return fail("ingest", "--preset \"" + a.preset + "\" names an empty preset");
         auto preset = load_preset(name, error);
@@ -173,6 +174,7 @@ ExitCode run_ingest(const IngestArgs& a) {
             };
         }
         options.push_back(opt);
+        labels.push_back(several ? "ingest [" + preset->name + "]" : "ingest");
         ingestors.push_back(std::make_unique<Ingestor>(std::move(*preset), color, std::move(opt)));
     }
     std::vector<const Ingestor*> all;
@@ -182,7 +184,7 @@ ExitCode run_ingest(const IngestArgs& a) {
     const std::vector<IngestResult> results = Ingestor::run_together(all, inputs);
     ExitCode worst = ExitCode::ok;
     for (size_t i = 0; i < results.size(); ++i) {
-        const ExitCode code = report_run(a, options[i], results[i], several ? "ingest [" + names[i] + "]" : "ingest");
+        const ExitCode code = report_run(a, options[i], results[i], labels[i]);
         if (code == ExitCode::interrupted_int || code == ExitCode::interrupted_term) return code;
         if (static_cast<int>(code) > static_cast<int>(worst)) worst = code;
     }
