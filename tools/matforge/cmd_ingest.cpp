@@ -178,6 +178,7 @@ ExitCode run_ingest(const IngestArgs& a) {
         ingestors.push_back(std::make_unique<Ingestor>(std::move(*preset), color, std::move(opt)));
     }
     std::vector<const Ingestor*> all;
+    all.reserve(ingestors.size());
     for (const auto& i : ingestors) all.push_back(i.get());
     std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
     install_stop_handlers();
