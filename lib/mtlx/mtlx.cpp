@@ -139,9 +139,15 @@ private:
     std::vector<std::string> names_;
 };
 
+// An XML comment may not hold "--" (XML 1.0, production 15): a name's dashes are kept apart.
+std::string comment_text(std::string text) {
+    for (size_t at = 0; (at = text.find("--", at)) != std::string::npos;) text.insert(at + 1, " ");
+    return text;
+}
+
 std::string head(const std::string& comment) {
-    return "<?xml version=\"1.0\"?>\n<!-- " + markup_escape(std::string(kGenerator)) + ": " + markup_escape(comment) +
-           " -->\n<materialx version=\"1.39\">\n";
+    return "<?xml version=\"1.0\"?>\n<!-- " + markup_escape(std::string(kGenerator)) + ": " +
+           comment_text(markup_escape(comment)) + " -->\n<materialx version=\"1.39\">\n";
 }
 
 }  // namespace

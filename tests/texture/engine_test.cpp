@@ -9,6 +9,7 @@
 #include <set>
 
 #include "engine/engine.hpp"
+#include "mtlx/mtlx.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;
@@ -441,6 +442,16 @@ TEST(EngineFiles, AnyNameMakesFilesTheReadersParse) {
     const auto unreal = python_checker("unreal_check.py", {py[0]}, dir / "lib");
     ASSERT_EQ(unreal.size(), 1u);
     ASSERT_TRUE(unreal[0]["parses"].get<bool>()) << unreal[0]["error"];
+    // The MaterialX document names the material in its first comment, where XML forbids "--":
+    // Python's expat, a strict XML parser, reads it.
+    mf::manifest::Material dashes;
+    dashes.name = "Oak--Floor---";
+    write_text(dir / "lib/dashes.mtlx", mf::mtlx::material_mtlx(dashes, "dashes.mtlx"));
+    const auto p = mf::testbin::spawn({"python3", "-c",
+                                       "import sys, xml.etree.ElementTree as E; E.parse(sys.argv[1]); print('ok')",
+                                       (dir / "lib/dashes.mtlx").string()});
+    EXPECT_EQ(p.code, 0) << p.output;
+    EXPECT_NE(p.output.find("ok"), std::string::npos) << p.output;
 }
 
 }  // namespace
