@@ -152,7 +152,7 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
 }
 
 struct Ingestor::Run {
-    explicit Run(OutputFolder& f) : folder(f) {}
+    Run(OutputFolder& f, std::atomic<int>& flight) : folder(f), in_flight(flight) {}
     // The output folder, ours for the run (lock, journal, files that are not ours refused:
     // store/output_dir.hpp): every file of the run is written through it.
     OutputFolder& folder;
@@ -166,9 +166,10 @@ struct Ingestor::Run {
     std::atomic<size_t> hits{0}, misses{0};
     std::atomic<bool> cache_off{false};  // after a store failed: the cache is off for the rest of the run
     std::vector<std::string> cache_problems;
-    // Sets inside compute() now: a set with a worker left idle (the batch's tail, or a single
-    // set) decodes and encodes on two threads; with every worker busy, on one.
-    std::atomic<int> in_flight{0};
+    // Sets inside compute() now, of every preset of the pass (run_together): a set with a worker
+    // left idle (the batch's tail, or a single set) decodes and encodes on two threads; with
+    // every worker busy, on one.
+    std::atomic<int>& in_flight;
 
     bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
         return folder.write(rel, bytes, error);
@@ -546,6 +547,7 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
         bool ready = false;  // everything before the sets went well
     };
     std::vector<Target> targets(ingestors.size());
+    std::atomic<int> in_flight{0};  // the pass's sets inside compute(), whichever preset's
     std::vector<MaterialSource> sets;
     bool have_sets = false;
     for (size_t t = 0; t < targets.size(); ++t) {
@@ -568,7 +570,7 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
         g.folder = OutputFolder::open({opt.out_dir, opt.manifest_name, opt.force}, result.error, result.usage_error);
         if (!g.folder) continue;
         remove_stale_temps(opt.out_dir);  // a killed run's, never a running one's
-        g.run = std::make_unique<Run>(*g.folder);
+        g.run = std::make_unique<Run>(*g.folder, in_flight);
         g.run->context = context_digest(g.ing->preset_, opt.rules, *g.ing->color_);
         // A shard's: the digest of the library's split (merge checks the parts).
         g.plan = opt.shard ? keep_shard(found, *opt.shard, g.run->context) : std::string();
