@@ -15,7 +15,8 @@
 #
 # Usage: scripts/cluster-demo.sh [INPUT] [SHARDS]   (default: sample_materials, 3 shards)
 # Environment: NODES (default 3), FAULTS=0 runs farm 1 only (so does one node), KEEP=1 keeps the scratch folder,
-# MATFORGE_CLUSTER_DIR names it (default: a fresh mktemp folder), MATFORGE_BIN the binary.
+# MATFORGE_CLUSTER_DIR names it (a folder that does not exist yet; default: a fresh mktemp
+# folder), MATFORGE_BIN the binary.
 # Needs root (munged and slurmd run as root here) and builds matforge when missing. The input is
 # copied into the scratch folder (farm 3 damages a file of the copy, never of INPUT).
 set -euo pipefail
@@ -42,6 +43,12 @@ done
 matforge=${MATFORGE_BIN:-$root/build/tools/matforge/matforge}
 [[ -x $matforge ]] || "$root/scripts/bootstrap.sh" "$root/build" >/dev/null
 
+# The scratch folder is removed at the end: a named one must not exist yet (a folder of the
+# user's, with files in it, is never taken as scratch).
+if [[ -n ${MATFORGE_CLUSTER_DIR:-} && -e $MATFORGE_CLUSTER_DIR ]]; then
+    say "MATFORGE_CLUSTER_DIR=$MATFORGE_CLUSTER_DIR exists; name a folder that does not (it is removed at the end unless KEEP=1)"
+    exit 2
+fi
 work=${MATFORGE_CLUSTER_DIR:-$(mktemp -d /tmp/matforge-cluster.XXXXXX)}
 mkdir -p "$work"/{munge,slurm/state,slurm/spool,slurm/log}
 chmod 700 "$work/munge"
