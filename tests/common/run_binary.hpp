@@ -22,6 +22,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "test_dirs.hpp"
 #include "test_env.hpp"
 
 namespace mf::testbin {
@@ -85,19 +86,9 @@ inline Proc spawn(const std::vector<std::string>& argv, double deadline_s = 300,
 
 // ---- the schema spool
 
-// Temporary folders of the running test (temp_dir() helpers register theirs).
-inline std::vector<fs::path>& test_dirs() {
-    static std::vector<fs::path> dirs;
-    return dirs;
-}
-inline std::mutex& spool_mutex() {
-    static std::mutex m;
-    return m;
-}
-inline void register_test_dir(const fs::path& d) {
-    std::lock_guard lock(spool_mutex());
-    test_dirs().push_back(d);
-}
+// A temporary folder of the running test: spooled at the test's end, removed at the program's
+// (test_dirs.hpp).
+inline void register_test_dir(const fs::path& d) { mf::testdirs::own(d); }
 
 // Copies `text` (a JSON document matforge wrote) into the spool when it is a manifest or a
 // validate report.
@@ -136,13 +127,13 @@ inline void spool_folder(const fs::path& dir, const std::string& label) {
     }
 }
 
-// At the end of every test, the test's folders go to the spool (then are forgotten).
+// At the end of every test, the test's folders go to the spool.
 class SpoolListener : public ::testing::EmptyTestEventListener {
     void OnTestEnd(const ::testing::TestInfo& info) override {
         std::vector<fs::path> dirs;
         {
-            std::lock_guard lock(spool_mutex());
-            dirs.swap(test_dirs());
+            std::lock_guard lock(mf::testdirs::mutex());
+            dirs.swap(mf::testdirs::of_current_test());
         }
         for (const auto& d : dirs) spool_folder(d, std::string(info.test_suite_name()) + "." + info.name());
     }

@@ -3,17 +3,11 @@
 #include <filesystem>
 #include <string>
 
-#include <unistd.h>
+#include "test_dirs.hpp"
 
 namespace coretest {
 
 // An empty folder of this process, named after the test's `name`.
-inline std::filesystem::path fresh_dir(const std::string& name) {
-    const std::filesystem::path d = std::filesystem::temp_directory_path() /
-                                    ("matforge-test-" + name + "-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(d);
-    std::filesystem::create_directories(d);
-    return d;
-}
+inline std::filesystem::path fresh_dir(const std::string& name) { return mf::testdirs::fresh("matforge-test-", name); }
 
 }  // namespace coretest

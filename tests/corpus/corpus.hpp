@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "test_dirs.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -61,12 +63,7 @@ inline RunResult run(const std::string& args) {
 inline std::string q(const fs::path& p) { return std::string("'").append(p.string()).append("'"); }
 
 // A fresh, empty folder under the system's temporary folder (the corpus is read-only).
-inline fs::path temp_dir(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("matforge-corpus-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+inline fs::path temp_dir(const std::string& name) { return mf::testdirs::fresh("matforge-corpus-", name); }
 
 // truth.json's problem sentences (their opening words) → the code that reports that problem.
 struct ProblemCode {

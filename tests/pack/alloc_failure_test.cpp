@@ -13,6 +13,7 @@
 
 #include "core/files.hpp"
 #include "image/image.hpp"
+#include "test_dirs.hpp"
 
 namespace {
 std::atomic<size_t> g_fail_above{0};  // 0: never fail
@@ -39,8 +40,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(AllocationFailure, DecodingSaysOutOfMemoryAndNamesTheFile) {
-    const fs::path dir = fs::temp_directory_path() / ("matforge-alloc-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    const fs::path dir = mf::testdirs::fresh("matforge-alloc-", "decode");
     const fs::path file = dir / "Big_Color.png";
     mf::Image img(512, 512, 3, 0.5f);
     std::vector<unsigned char> bytes;

@@ -14,6 +14,7 @@
 #include "core/json.hpp"
 #include "manifest/spool.hpp"
 #include "preview/preview.hpp"
+#include "test_dirs.hpp"
 #include "test_env.hpp"
 #include "vulkan_fixture.hpp"
 
@@ -23,12 +24,7 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-fs::path temp_dir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("matforge_preview_test_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
+fs::path temp_dir(const std::string& name) { return mf::testdirs::fresh("matforge-preview-test-", name); }
 
 void write_png8(const fs::path& file, int w, int h, int channels, const std::vector<uint8_t>& px) {
     fs::create_directories(file.parent_path());

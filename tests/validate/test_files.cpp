@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "helpers.hpp"
+#include "test_dirs.hpp"
 
 using namespace mft;
 namespace mv = mf::validate;
@@ -81,8 +82,7 @@ TEST(ValidateFiles, FloatExrWithNaN) {
 
 TEST(ColorTag, PngChunks) {
     // Written by OpenImageIO with explicit color spaces, read back by our chunk parser.
-    const auto dir = std::filesystem::temp_directory_path() / ("mf-colortag-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const auto dir = mf::testdirs::fresh("matforge-colortag-", "png");
     auto write = [&](const std::string& name, const char* cs) {
         const auto path = (dir / name).string();
         auto out = OIIO::ImageOutput::create(path);
