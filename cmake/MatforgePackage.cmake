@@ -1,8 +1,10 @@
 # `cmake --install` and the Debian package (scripts/package.sh runs CPack's DEB generator).
-# Installs the matforge binary (presets and the OpenColorIO config are compiled in), the
+# Installs the matforge binary and its image module (presets and the OpenColorIO config are compiled in), the
 # README, docs/ and the shipped presets as reference files.
 include(GNUInstallDirs)
 install(TARGETS matforge RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The image decoders and encoders, loaded at run time (lib/CMakeLists.txt, matforge_oiio).
+install(TARGETS matforge_oiio LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/matforge)
 install(FILES README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY presets/ DESTINATION ${CMAKE_INSTALL_DATADIR}/matforge/presets)

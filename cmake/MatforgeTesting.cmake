@@ -20,7 +20,8 @@ function(matforge_test name)
   cmake_parse_arguments(T "RUNS_BINARY" "LOCK" "SLOW;SOURCES;LIBS" ${ARGN})
   add_executable(test_${name} ${T_SOURCES})
   matforge_target_defaults(test_${name})
-  target_link_libraries(test_${name} PRIVATE ${T_LIBS} GTest::gtest_main GTest::gmock)
+  # OpenImageIO directly too: tests write and read files with it as an independent check.
+  target_link_libraries(test_${name} PRIVATE ${T_LIBS} OpenImageIO::OpenImageIO GTest::gtest_main GTest::gmock)
   target_include_directories(test_${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
   # Paths reach the tests through the environment (tests/common/test_env.hpp), never compiled
   # in: a test object must not depend on where the clone lives (ccache hits across clones).

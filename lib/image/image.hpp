@@ -59,8 +59,17 @@ struct InputFile {
     std::string display;                                      // name used in messages
     std::filesystem::path path;                               // set for files on disk
     std::shared_ptr<const std::vector<unsigned char>> bytes;  // set for in-memory entries
-    std::string open_error;         // why an in-memory entry could not be read (then bytes is empty)
-    std::string extension() const;  // lower case, without the dot
+    std::string open_error;  // why an in-memory entry could not be read (then bytes is empty)
+    // Lower case, without the dot (of `display`, else of `path`).
+    std::string extension() const {
+        std::string name = display.empty() ? path.string() : display;
+        const auto dot = name.rfind('.');
+        if (dot == std::string::npos || name.find('/', dot) != std::string::npos) return {};
+        name.erase(0, dot + 1);
+        for (char& c : name)
+            if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+        return name;
+    }
 };
 
 struct ImageInfo {
@@ -107,8 +116,6 @@ struct EncodeOptions {
     int bit_depth = 8;                    // 8 or 16 for png/tif/tga; 16 (half) or 32 for exr
 };
 
-// Encodes `img` (values already in the output encoding, [0,1] for integer formats) to bytes,
-// deterministically (no timestamps). Rounds to nearest code. Returns false and sets `error`.
 // OpenImageIO's version (its readers decode every input, its PNG/TIFF/EXR writers encode the
 // outputs), for the ingest cache's action key.
 std::string image_library_version();
@@ -116,11 +123,28 @@ std::string image_library_version();
 // it was built with, as it reports them ("png:libpng 1.6.39;jpeg:jpeg-turbo 2.1.5;...").
 std::string image_library_versions();
 
+// Encodes `img` (values already in the output encoding, [0,1] for integer formats) to bytes,
+// deterministically (no timestamps). Rounds to nearest code. Returns false and sets `error`.
 bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error);
 
 // Encodes 8-bit codes as they are (an 8-bit integer format: png, tif, tga). Returns false and
 // sets `error` for any other format or depth.
 bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error);
+
+// What a file's reader states as its colour space (OpenImageIO's "oiio:ColorSpace"; for PNG
+// and JPEG it says "sRGB" whether or not the file is tagged) and the reader's format name; both
+// empty when the file does not open. lib/validate's colour-tag check reads it.
+struct StatedColorSpace {
+    std::string color_space, format;
+};
+StatedColorSpace stated_color_space(const InputFile& in);
+
+// `src` resized to w x h by OpenImageIO's Lanczos-3 resize (lib/pack's resample decides when).
+Image resize_lanczos3(const Image& src, int w, int h);
+
+// Whether the decoders and encoders (the matforge_oiio module, loaded on first use) can be
+// loaded; `error` says why not. Every function above that needs them sets this as its error.
+bool image_module_available(std::string& error);
 
 // The quantization of every integer output: round half up of clamp(v, 0, 1) * maxv, NaN -> 0.
 // Branch-free: the cast truncates a non-negative value, which is floor, so loops vectorize with

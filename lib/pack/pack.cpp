@@ -1,8 +1,5 @@
 #include "pack/pack.hpp"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -267,13 +264,7 @@ Image resample(const Image& src, int w, int h) {
     // small map blown up to a large set) goes through the separable form of the same filter.
     const double rx = static_cast<double>(w) / src.width, ry = static_cast<double>(h) / src.height;
     if (std::fabs(rx - ry) > 1e-9 * std::max(rx, ry) || rx > 4.0 || rx < 0.25) return resample_separable(src, w, h);
-    OIIO::ImageSpec in_spec(src.width, src.height, src.channels, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf in(in_spec, const_cast<float*>(src.pixels.data()));  // read-only use
-    Image out(w, h, src.channels);
-    OIIO::ImageSpec out_spec(w, h, src.channels, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf dst(out_spec, out.pixels.data());
-    OIIO::ImageBufAlgo::resize(dst, in, "lanczos3", 0.f, OIIO::ROI::All(), 1);
-    return out;
+    return resize_lanczos3(src, w, h);
 }
 
 void fit_plane(Role role, RolePlane& plane, int w, int h, const ColorContext& color) {

@@ -1,9 +1,6 @@
 #include "validate/color_tag.hpp"
 #include "core/text.hpp"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -91,24 +88,7 @@ ColorTagInfo read_color_tag(const InputFile& in) {
         head.resize(static_cast<size_t>(f.gcount()));
         return png_color_tag(head.data(), head.size());
     }
-    OIIO::ImageSpec config;
-    std::unique_ptr<OIIO::ImageInput> input;
-    std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
-    if (in.bytes) {
-        auto probe = OIIO::ImageInput::create(in.display, false);
-        if (!probe || !probe->supports("ioproxy") || in.bytes->empty()) return {};
-        proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(in.bytes->data(), in.bytes->size());
-        input = OIIO::ImageInput::open(in.display, &config, proxy.get());
-    } else {
-        input = OIIO::ImageInput::open(in.path.string(), &config);
-    }
-    if (!input) {
-        (void)OIIO::geterror();  // clear the thread's error; unreadable files are reported elsewhere
-        return {};
-    }
-    const std::string cs = input->spec().get_string_attribute("oiio:ColorSpace");
-    const std::string fmt = input->format_name();
-    input->close();
+    const auto [cs, fmt] = stated_color_space(in);
     if (cs.empty()) return {};
     // Readers that state a color space for every file (EXR: linear; JPEG and WebP: sRGB, the
     // format's assumption, not a tag the file carries) say nothing about this file.

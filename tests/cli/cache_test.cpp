@@ -101,6 +101,41 @@ TEST(Cache, WarmRunRestoresTheSameBytesAsARunWithoutIt) {
     EXPECT_EQ(fs::hard_link_count(work / "mine/Net004A/Net004A_basecolor.png"), 2u);
 }
 
+// What a run loads, from the dynamic loader's own log (glibc's LD_DEBUG=files names every file
+// it opens, also the module matforge opens with dlopen).
+bool loads_image_library(const std::string& output) {
+    return output.find("matforge_oiio.so") != std::string::npos || output.find("libOpenImageIO") != std::string::npos;
+}
+
+// OpenImageIO and its 261 libraries took 0.3 s of every start (docs/performance.md, "A run
+// with nothing to do"): a run that decodes nothing must not load them.
+TEST(Cache, ARunWithNothingToDecodeLoadsNoImageLibrary) {
+    const fs::path work = temp_dir("lazy");
+    const fs::path in = two_sets(work);
+    const std::string env = "LD_DEBUG=files MATFORGE_CACHE=" + q(work / "cache");
+    auto r = run_env(env, "ingest " + q(in) + " -o " + q(work / "out"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(0, 2)) << r.output;
+    EXPECT_TRUE(loads_image_library(r.output)) << "the log shows the module when it is loaded:\n" << r.output;
+    const std::string manifest = bytes_of(work / "out/manifest.json");
+    // Up to date, into the same folder and into a new one from the same cache.
+    for (const char* out : {"out", "other"}) {
+        r = run_env(env, "ingest " + q(in) + " -o " + q(work / out));
+        ASSERT_EQ(r.code, 0) << r.output;
+        EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
+        EXPECT_FALSE(loads_image_library(r.output)) << out << ":\n" << r.output;
+        EXPECT_EQ(bytes_of(work / out / "manifest.json"), manifest);
+    }
+    r = run_env("LD_DEBUG=files", "--help");
+    EXPECT_FALSE(loads_image_library(r.output)) << r.output;
+    // The cache key names the same OpenImageIO whether the build's library path is trusted or
+    // the module is loaded and asked (LD_LIBRARY_PATH set): a farm's nodes share records.
+    r = run_env(env + " LD_LIBRARY_PATH=" + q(work / "nothing-here"), "ingest " + q(in) + " -o " + q(work / "ld"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
+    EXPECT_TRUE(loads_image_library(r.output)) << r.output;
+}
+
 TEST(Cache, ChangedFileOrPresetRecomputesOnlyWhatItTouches) {
     const fs::path work = temp_dir("change");
     const fs::path in = two_sets(work);

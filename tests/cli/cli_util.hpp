@@ -38,15 +38,7 @@ inline std::string q(const fs::path& p) { return std::string("'").append(p.strin
 inline fs::path samples() { return mf::testenv::source_dir() / "sample_materials"; }
 
 // A fresh, empty temporary folder per test.
-inline fs::path temp_dir(const std::string& name) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path d = fs::temp_directory_path() / ("matforge-cli-" + std::string(info->test_suite_name()) + "-" +
-                                              info->name() + "-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    mf::testbin::register_test_dir(d);
-    return d;
-}
+inline fs::path temp_dir(const std::string& name) { return mf::testdirs::fresh_for_test("matforge-cli-", name); }
 
 using mf::testfiles::read_json;
 using mf::testfiles::read_pixels;

@@ -41,10 +41,20 @@ inline void own(const fs::path& d) {
 // temp_directory_path()/"<prefix><name>-<pid>", emptied, created and registered.
 inline fs::path fresh(const std::string& prefix, const std::string& name) {
     fs::path d = fs::temp_directory_path() / (prefix + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
+    std::error_code ec;
+    fs::remove_all(d, ec);  // a test's unreadable leftovers do not stop the next run
     fs::create_directories(d);
     own(d);
     return d;
+}
+
+// fresh(prefix, "<suite>-<test>-<name>") for the running test; a parameterized suite's '/'
+// ("Presets/EveryPreset") becomes '_': the folder sits straight under the temporary folder.
+inline fs::path fresh_for_test(const std::string& prefix, const std::string& name) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string test = std::string(info->test_suite_name()) + "-" + info->name() + "-" + name;
+    std::replace(test.begin(), test.end(), '/', '_');
+    return fresh(prefix, test);
 }
 
 class Cleanup : public ::testing::EmptyTestEventListener {

@@ -117,16 +117,7 @@ private:
 };
 
 // A fresh, empty folder per test (ctest runs tests in parallel, one process each).
-inline fs::path temp_dir(const std::string& name) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path d = fs::temp_directory_path() / ("matforge-hostile-" + std::string(info->test_suite_name()) + "-" +
-                                              info->name() + "-" + name + "-" + std::to_string(::getpid()));
-    std::error_code ec;
-    fs::remove_all(d, ec);
-    fs::create_directories(d);
-    mf::testbin::register_test_dir(d);
-    return d;
-}
+inline fs::path temp_dir(const std::string& name) { return mf::testdirs::fresh_for_test("matforge-hostile-", name); }
 
 inline void write_bytes(const fs::path& p, const Bytes& b) {
     fs::create_directories(p.parent_path());

@@ -36,15 +36,7 @@ inline ::testing::AssertionResult matforge(const std::vector<std::string>& args,
 inline fs::path samples() { return mf::testenv::source_dir() / "sample_materials"; }
 
 // A fresh, empty folder per test (its manifests go to the schema spool when the test ends).
-inline fs::path temp_dir(const std::string& name) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const fs::path d = fs::temp_directory_path() / ("matforge-report-" + std::string(info->test_suite_name()) + "-" +
-                                                    info->name() + "-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    mf::testbin::register_test_dir(d);
-    return d;
-}
+inline fs::path temp_dir(const std::string& name) { return mf::testdirs::fresh_for_test("matforge-report-", name); }
 
 inline std::string read_text(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);

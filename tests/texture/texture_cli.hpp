@@ -42,15 +42,7 @@ inline Run matforge(const std::vector<std::string>& args) {
 }
 
 // A fresh folder per test (the schema spool copies the manifests left in it).
-inline fs::path temp_dir(const std::string& name) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path d = fs::temp_directory_path() / ("matforge-texture-" + std::string(info->test_suite_name()) + "-" +
-                                              info->name() + "-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    mf::testbin::register_test_dir(d);
-    return d;
-}
+inline fs::path temp_dir(const std::string& name) { return mf::testdirs::fresh_for_test("matforge-texture-", name); }
 
 inline void write_text(const fs::path& p, const std::string& s) {
     fs::create_directories(p.parent_path());
