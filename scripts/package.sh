@@ -48,6 +48,10 @@ $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-reco
 mf=/usr/bin/matforge
 [[ -x $mf ]] || { echo "package: no $mf after installing $deb" >&2; exit 1; }
 "$mf" --version | sed 's/^/package:   /' >&2
+# The image module comes from the package (lib/matforge beside bin/), not from a build tree.
+loaded=$(LD_DEBUG=files "$mf" --version 2>&1)
+grep -q 'file=/usr/bin/../lib/matforge/matforge_oiio.so ' <<<"$loaded" ||
+  { echo "package: /usr/bin/matforge did not load the packaged matforge_oiio.so" >&2; exit 1; }
 # The installed binary, not the build tree's: the samples through every command. A cache of its
 # own, so nothing is restored from the tests' runs.
 export MATFORGE_CACHE=$work/cache
