@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # oiiotool_peer.sh: the studio-script peer of `matforge ingest --preset gltf`.
 #
-#   oiiotool_peer.sh <library-dir> <out-dir> [--jobs N] [--png-like-matforge]
+#   oiiotool_peer.sh <library-dir> <out-dir> [--jobs N] [--png-like-matforge] [--unity-hdrp]
 #
 # For each set of <library-dir>/library.tsv (written by make_library) it writes the outputs
 # matforge's gltf preset writes, with one oiiotool process per output map (decode, convert,
@@ -12,6 +12,10 @@
 #                                decodes, renormalizes and re-encodes (hence a 2-code tolerance)
 #   <name>/<name>_orm.png        R = AO (1 when none), G = roughness, B = metalness (0 when
 #                                none) 8-bit; a Poly Haven _arm_ map is already in that layout
+# --unity-hdrp also writes Unity HDRP's mask map, as a script serving glTF and HDRP in one pass
+# a set would (the base colour and the normal map are the same files for both):
+#   <name>/<name>_mask.png       R = metalness (0 when none), G = AO (1 when none), B = 1,
+#                                A = smoothness = 1 - roughness, 8-bit, alpha unassociated
 # --jobs 1 (default) runs the commands one after another; --jobs N runs N at once (xargs -P).
 # --png-like-matforge writes PNGs with matforge's encoder settings (Paeth filter, zlib RLE)
 # instead of oiiotool's defaults: the script as it would be with matforge's encoder choice, so
@@ -20,15 +24,17 @@
 # peer measures the conversions, not a naming parser.
 set -euo pipefail
 
-usage() { echo "usage: oiiotool_peer.sh <library-dir> <out-dir> [--jobs N] [--png-like-matforge]" >&2; exit 2; }
+usage() { echo "usage: oiiotool_peer.sh <library-dir> <out-dir> [--jobs N] [--png-like-matforge] [--unity-hdrp]" >&2; exit 2; }
 [[ $# -ge 2 ]] || usage
 lib=$1 out=$2
 shift 2
 jobs=1
 png=()
+hdrp=0
 while [[ $# -gt 0 ]]; do
   case $1 in
     --jobs) [[ $# -ge 2 && $2 =~ ^[1-9][0-9]*$ ]] || usage; jobs=$2; shift 2 ;;
+    --unity-hdrp) hdrp=1; shift ;;
     --png-like-matforge) png=(--attrib png:compressionLevel 1 --attrib:type=int png:filter 128 --compression rle); shift ;;
     *) usage ;;
   esac
@@ -64,6 +70,16 @@ while IFS=$'\t' read -r name dir size albedo normal conv ao rough metal arm heig
     if [[ $metal != - ]]; then m=("$src/$metal" --ch 0); else m=(--pattern constant:color=0 "${size}x${size}" 1); fi
     add oiiotool "${a[@]}" "$src/$rough" --ch 0 --chappend "${m[@]}" --chappend --chnames R,G,B \
         -d uint8 -o "$dst/${name}_orm.png"
+  fi
+  if ((hdrp)); then
+    if [[ $arm != - ]]; then
+      add oiiotool "$src/$arm" --ch R=B,G=R,B=1.0,A=G --invert:chbegin=3:chend=4 \
+          --attrib:type=int oiio:UnassociatedAlpha 1 -d uint8 -o "$dst/${name}_mask.png"
+    else
+      add oiiotool "${m[@]}" "${a[@]}" --chappend --pattern constant:color=1 "${size}x${size}" 1 --chappend \
+          "$src/$rough" --ch 0 --invert --chappend --chnames R,G,B,A \
+          --attrib:type=int oiio:UnassociatedAlpha 1 -d uint8 -o "$dst/${name}_mask.png"
+    fi
   fi
   : "$height"  # displacement: not a gltf output
 done < "$lib/library.tsv"
