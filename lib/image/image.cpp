@@ -127,6 +127,14 @@ public:
                std::to_string(st.st_ctim.tv_sec) + '.' + std::to_string(st.st_ctim.tv_nsec) + ':' + in.display + '\n' +
                in.path.string();
     }
+    // Remembers `value` for the file, as get() would.
+    void put(const InputFile& in, T value) {
+        const std::string key = key_of(in);
+        if (key.empty()) return;
+        std::lock_guard lock(mutex_);
+        if (entries_.size() >= kMaxEntries) entries_.clear();
+        entries_.emplace(key, std::move(value));
+    }
     // f() once per unchanged file.
     template <class F>
     T get(const InputFile& in, F&& f) {
@@ -152,6 +160,7 @@ private:
 struct HeaderRead {
     std::optional<ImageInfo> info;
     std::string error;
+    std::optional<StatedColorSpace> stated;  // from the same open, where it is stated_color_space's
 };
 FileMemo<HeaderRead>& header_memo() {
     static FileMemo<HeaderRead> memo;
@@ -168,7 +177,9 @@ std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
     if (!t) return std::nullopt;
     HeaderRead r = header_memo().get(in, [&] {
         HeaderRead h;
-        h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error); });
+        h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error, h.stated); });
+        // The colour-tag check then needs no open of its own (a JPEG's costs a decode).
+        if (h.stated) stated_memo().put(in, *h.stated);
         return h;
     });
     if (!r.info) error = std::move(r.error);

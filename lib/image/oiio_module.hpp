@@ -13,7 +13,7 @@
 namespace mf::oiio_module {
 
 // Raised whenever a function's signature or a type the table passes changes.
-inline constexpr int kAbi = 1;
+inline constexpr int kAbi = 2;
 // The module's file name and its one exported symbol, `const Table* matforge_oiio_table()`.
 inline constexpr const char* kFileName = "matforge_oiio.so";
 inline constexpr const char* kEntry = "matforge_oiio_table";
@@ -23,7 +23,10 @@ struct Table {
     size_t size;  // sizeof(Table) of the module's build
     // As read_info, read_image (keep_codes: an 8-bit file as its codes), read_bands and
     // encode_image of image.hpp, without the exception guard image.cpp puts around them.
-    std::optional<ImageInfo> (*read_info)(const InputFile& in, std::string& error);
+    // `stated`: what stated_color_space would give, when this open used the reader the file's
+    // name picks (that function opens by name), else left empty.
+    std::optional<ImageInfo> (*read_info)(const InputFile& in, std::string& error,
+                                          std::optional<StatedColorSpace>& stated);
     bool (*read_image)(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error, bool keep_codes);
     bool (*read_bands)(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
                        const std::function<void(int, int, const float*)>& fn);

@@ -347,10 +347,25 @@ bool ended_early(OIIO::ImageInput& r, const InputFile& in, std::string& error) {
     return true;
 }
 
-std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error) {
+// The colour space `r` states, when `r` is the reader the file's name picks (a misnamed file's
+// sniffed reader is another than stated_color_space's, which opens by name).
+std::optional<StatedColorSpace> stated_by(const OIIO::ImageInput& r, const InputFile& in) {
+    auto by_name = OIIO::ImageInput::create(in.bytes ? in.display : in.path.string(), false);
+    if (!by_name) {
+        (void)OIIO::geterror();  // clear the thread's error
+        return std::nullopt;
+    }
+    if (std::string(by_name->format_name()) != r.format_name() || (in.bytes && !by_name->supports("ioproxy")))
+        return std::nullopt;
+    return StatedColorSpace{r.spec().get_string_attribute("oiio:ColorSpace"), r.format_name()};
+}
+
+std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error,
+                                        std::optional<StatedColorSpace>& stated) {
     Reader r;
     if (!open_reader(in, r, error)) return std::nullopt;
     ImageInfo info = info_of(*r.in);
+    stated = stated_by(*r.in, in);  // before inspect, which may move to another subimage and back
     if (!check_dimensions(in, info, error) || !inspect(*r.in, in, info, error)) return std::nullopt;
     return info;
 }
