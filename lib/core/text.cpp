@@ -79,12 +79,6 @@ std::string percent_encode_path(std::string_view path) {
     return out;
 }
 
-std::string ascii_lower(std::string s) {
-    for (char& c : s)
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    return s;
-}
-
 std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
     const std::string w = ascii_lower(word);
     std::string best;

@@ -18,7 +18,12 @@ std::string percent_encode_path(std::string_view path);
 
 // `s` with ASCII letters in lower case, other bytes unchanged: names compared as case-insensitive
 // file systems compare them (file names are bytes, not text in a locale).
-std::string ascii_lower(std::string s);
+// Inline: lib/image's module, which links no library of ours, uses it through InputFile.
+inline std::string ascii_lower(std::string s) {
+    for (char& c : s)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return s;
+}
 
 // Lower case for comparing names as people write them: ASCII, and in UTF-8 the capitals of
 // Latin-1 (À–Þ), Latin Extended-A (Ā–ž, Ÿ), Greek (Α–Ω) and Cyrillic (Ѐ–Я) to their small

@@ -8,7 +8,6 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <climits>
 #include <cstdlib>
 #include <ctime>
 #include <map>
@@ -101,53 +100,45 @@ auto guarded(const InputFile& in, std::string& error, F&& f) -> decltype(f()) {
     return {};
 }
 
-}  // namespace
-
-bool image_module_available(std::string& error) { return table(error) != nullptr; }
-
-namespace {
 // What a file's header says, remembered for the process by the file's identity and change
 // times: a set's plan reads each map's header once per preset and the checks read it again, and
 // OpenImageIO's JPEG reader entropy-decodes a progressive file whole to open it (52 of the
 // corpus's 91 JPEGs are progressive: an ingest of it for glTF and HDRP opened each JPEG 4.8
 // times, 2.8 with these memos, and took 12 % less CPU). A file changed since is another key;
 // in-memory entries (.zip) are read each time.
+//
+// The key of a file on disk, empty for what is not one, and for a file changed in the last two
+// seconds: file times advance by the kernel's coarse clock (milliseconds), so a file rewritten
+// at the same size within one tick would keep its key (git's "racily clean" rule).
+std::string file_key(const InputFile& in) {
+    struct stat st {};
+    if (in.bytes || ::stat(in.path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return {};
+    if (std::time(nullptr) - std::max(st.st_mtim.tv_sec, st.st_ctim.tv_sec) < 2) return {};
+    return std::to_string(st.st_dev) + ':' + std::to_string(st.st_ino) + ':' + std::to_string(st.st_size) + ':' +
+           std::to_string(st.st_mtim.tv_sec) + '.' + std::to_string(st.st_mtim.tv_nsec) + ':' +
+           std::to_string(st.st_ctim.tv_sec) + '.' + std::to_string(st.st_ctim.tv_nsec) + ':' + in.display + '\n' +
+           in.path.string();
+}
+
 template <class T>
 class FileMemo {
 public:
-    // The key of a file on disk, empty for what is not one, and for a file changed in the last
-    // two seconds: file times advance by the kernel's coarse clock (milliseconds), so a file
-    // rewritten at the same size within one tick would keep its key (git's "racily clean" rule).
-    static std::string key_of(const InputFile& in) {
-        struct stat st {};
-        if (in.bytes || ::stat(in.path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return {};
-        if (std::time(nullptr) - std::max(st.st_mtim.tv_sec, st.st_ctim.tv_sec) < 2) return {};
-        return std::to_string(st.st_dev) + ':' + std::to_string(st.st_ino) + ':' + std::to_string(st.st_size) + ':' +
-               std::to_string(st.st_mtim.tv_sec) + '.' + std::to_string(st.st_mtim.tv_nsec) + ':' +
-               std::to_string(st.st_ctim.tv_sec) + '.' + std::to_string(st.st_ctim.tv_nsec) + ':' + in.display + '\n' +
-               in.path.string();
-    }
-    // Remembers `value` for the file, as get() would.
-    void put(const InputFile& in, T value) {
-        const std::string key = key_of(in);
+    // Remembers `value` under `key` (file_key's; an empty key remembers nothing).
+    void put(const std::string& key, T value) {
         if (key.empty()) return;
         std::lock_guard lock(mutex_);
-        if (entries_.size() >= kMaxEntries) entries_.clear();
+        if (entries_.size() >= kMaxEntries) entries_.clear();  // a bound, not a policy: a library's maps fit
         entries_.emplace(key, std::move(value));
     }
-    // f() once per unchanged file.
+    // f() once per key.
     template <class F>
-    T get(const InputFile& in, F&& f) {
-        const std::string key = key_of(in);
-        if (key.empty()) return f();
-        {
+    T get(const std::string& key, F&& f) {
+        if (!key.empty()) {
             std::lock_guard lock(mutex_);
             if (const auto it = entries_.find(key); it != entries_.end()) return it->second;
         }
         T value = f();
-        std::lock_guard lock(mutex_);
-        if (entries_.size() >= kMaxEntries) entries_.clear();  // a bound, not a policy: a library's maps fit
-        entries_.emplace(key, value);
+        put(key, value);
         return value;
     }
 
@@ -160,7 +151,6 @@ private:
 struct HeaderRead {
     std::optional<ImageInfo> info;
     std::string error;
-    std::optional<StatedColorSpace> stated;  // from the same open, where it is stated_color_space's
 };
 FileMemo<HeaderRead>& header_memo() {
     static FileMemo<HeaderRead> memo;
@@ -175,11 +165,13 @@ FileMemo<StatedColorSpace>& stated_memo() {
 std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
     const auto* t = table(error, in.display + ": ");
     if (!t) return std::nullopt;
-    HeaderRead r = header_memo().get(in, [&] {
+    const std::string key = file_key(in);
+    HeaderRead r = header_memo().get(key, [&] {
         HeaderRead h;
-        h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error, h.stated); });
+        std::optional<StatedColorSpace> stated;  // from the same open, where it is stated_color_space's
+        h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error, stated); });
         // The colour-tag check then needs no open of its own (a JPEG's costs a decode).
-        if (h.stated) stated_memo().put(in, *h.stated);
+        if (stated) stated_memo().put(key, *stated);
         return h;
     });
     if (!r.info) error = std::move(r.error);
@@ -223,7 +215,7 @@ StatedColorSpace stated_color_space(const InputFile& in) {
     std::string error;
     const auto* t = table(error);
     if (!t) return {};
-    return stated_memo().get(in, [&] {
+    return stated_memo().get(file_key(in), [&] {
         StatedColorSpace s;
         // A reader that throws on hostile bytes states nothing; decoding the file reports it.
         const bool ok = guarded(in, error, [&] {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/limits.hpp"
+#include "core/text.hpp"
 #include "preset/vocabulary.hpp"
 
 namespace mf {
@@ -65,10 +66,7 @@ struct InputFile {
         std::string name = display.empty() ? path.string() : display;
         const auto dot = name.rfind('.');
         if (dot == std::string::npos || name.find('/', dot) != std::string::npos) return {};
-        name.erase(0, dot + 1);
-        for (char& c : name)
-            if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-        return name;
+        return ascii_lower(name.substr(dot + 1));
     }
 };
 
@@ -141,10 +139,6 @@ StatedColorSpace stated_color_space(const InputFile& in);
 
 // `src` resized to w x h by OpenImageIO's Lanczos-3 resize (lib/pack's resample decides when).
 Image resize_lanczos3(const Image& src, int w, int h);
-
-// Whether the decoders and encoders (the matforge_oiio module, loaded on first use) can be
-// loaded; `error` says why not. Every function above that needs them sets this as its error.
-bool image_module_available(std::string& error);
 
 // The quantization of every integer output: round half up of clamp(v, 0, 1) * maxv, NaN -> 0.
 // Branch-free: the cast truncates a non-negative value, which is floor, so loops vectorize with
