@@ -16,7 +16,7 @@ packages_build=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev libopencolorio-dev libopenexr-dev libcli11-dev nlohmann-json3-dev
   openimageio-tools  # OpenImageIO's CMake package names its tools: configuring fails without them
-  libzip-dev libssl-dev libsquish-dev libastcenc-dev libzstd-dev
+  libzip-dev libssl-dev libstb-dev libsquish-dev libastcenc-dev libzstd-dev
   libxml2-dev  # MaterialX sidecars (lib/material); the tests also parse JUnit with it
   libvulkan-dev glslc mesa-vulkan-drivers  # preview: shaders built by glslc, lavapipe without a GPU
 )

@@ -8,7 +8,13 @@
 #   bench/texture/run.sh [BUILD_DIR (build)] [--quick] [--work DIR] [--results DIR]
 #
 # Inputs: bench/throughput/make_library's smooth-noise maps (albedo, GL normal, roughness) at
-# 1K, 2K and 4K (--quick: 1K), converted to 8-bit PNG once so every tool reads the same file.
+# 1K, 2K and 4K (--quick: 1K), and `photo`: 1K photographs of the corpus (tests/data/corpus:
+# Poly Haven's brown_planks_09 albedo, GL normal and the roughness of its ARM map, and
+# broken_wall's ARM map whole as a BC1 `orm`, the vulkan-ktx2 preset's layout), where encoders
+# meet far more distinct colours per block; all converted to 8-bit PNG once so every tool reads
+# the same file. BC1 is also timed on one thread (`matforge 1t`), beside nvcompress's one.
+# A last table: zstd's levels (the `zstd` CLI's benchmark, one thread) on matforge's BC files
+# of the photographs, the size and time a KTX2 preset's `zstd_level` trades.
 # Time per map: for the peers, the wall time of one process per file (/usr/bin/time: start-up,
 # reading the PNG, encoding level 0, writing the file), what a script pays per file; for
 # matforge, the time from reading the PNG to the file written inside one process (texture_bench
@@ -40,16 +46,25 @@ done
 tb=$build/bench-texture/texture_bench
 make_library=$build/bench-throughput/make_library
 for b in "$tb" "$make_library"; do [[ -x $b ]] || { echo "run.sh: $b not built" >&2; exit 1; }; done
-for t in nvcompress nvdecompress astcenc oiiotool; do
+for t in nvcompress nvdecompress astcenc oiiotool zstd; do
   command -v "$t" >/dev/null || { echo "run.sh: $t missing (Debian: apt-get install --no-install-recommends libnvtt-bin astcenc openimageio-tools)" >&2; exit 1; }
 done
-if ((quick)); then sizes=(1k); results=${results:-$work}; else sizes=(1k 2k 4k); results=${results:-$repo/docs/texture}; fi
+if ((quick)); then sizes=(1k photo); results=${results:-$work}; else sizes=(1k 2k 4k photo); results=${results:-$repo/docs/texture}; fi
 rm -rf "$work" && mkdir -p "$work" "$results"
 csv=$results/results.csv
 echo "size,map,format,tool,effort,seconds,process_seconds,psnr_db,angle_deg,bytes" > "$csv"
 
 # ---- inputs: one set per size, its albedo, normal and roughness as 8-bit PNG
+corpus=$repo/tests/data/corpus/real
+mkdir -p "$work/in/photo"
+planks=$corpus/polyhaven_brown_planks_09_1k_jpg+webp/brown_planks_09
+oiiotool "${planks}_diff_1k.jpg" --ch R,G,B -d uint8 -o "$work/in/photo/albedo.png"
+oiiotool "${planks}_nor_gl_1k.jpg" --ch R,G,B -d uint8 -o "$work/in/photo/normal.png"
+oiiotool "${planks}_arm_1k.jpg" --ch 1 -d uint8 -o "$work/in/photo/roughness.png"
+oiiotool "$work/in/photo/roughness.png" --ch 0,0,0,0 -o "$work/in/photo/roughness-rgba.png"
+oiiotool "$corpus/polyhaven_broken_wall_1k_jpg+webp/broken_wall_arm_1k.jpg" --ch R,G,B -d uint8 -o "$work/in/photo/orm.png"
 for s in "${sizes[@]}"; do
+  [[ $s == photo ]] && continue
   args=(--1k 0 --2k 0 --4k 0)
   case $s in 1k) args[1]=1 ;; 2k) args[3]=1 ;; 4k) args[5]=1 ;; esac
   "$make_library" "$work/lib-$s" "${args[@]}" >&2
@@ -83,6 +98,7 @@ for s in "${sizes[@]}"; do
   in=$work/in/$s
   # name map format channels matforge-flags nvcompress-flags astcenc-block astcenc-mode
   while read -r map format ch mflags nvflags block amode; do
+    [[ -f $in/$map.png ]] || continue
     [[ $mflags == - ]] && mflags=""
     ext=dds
     [[ $format == astc* ]] && ext=ktx2
@@ -93,6 +109,12 @@ for s in "${sizes[@]}"; do
       inside=$(cat "$work/log")
       "$tb" decode "$f.$ext" "$f.png"
       row "$s" "$map" "$format" matforge "$effort" "$inside" "$t" "$f.png" "$ch" "$f.$ext"
+      [[ $format == bc1 ]] || continue
+      # shellcheck disable=SC2086
+      t=$(time_of "$tb" encode "$in/$map.png" "$f-1t.$ext" "$format" "$effort" $mflags --threads 1)
+      inside=$(cat "$work/log")
+      "$tb" decode "$f-1t.$ext" "$f-1t.png"
+      row "$s" "$map" "$format" "matforge 1t" "$effort" "$inside" "$t" "$f-1t.png" "$ch" "$f-1t.$ext"
     done
     if [[ $nvflags != - ]]; then
       for effort in fast normal; do
@@ -120,6 +142,7 @@ for s in "${sizes[@]}"; do
     fi
   done <<'EOF'
 albedo bc1 3 --srgb -bc1 - -
+orm bc1 3 - -bc1 - -
 roughness bc4 1 - -bc4 - -
 normal bc5 2 --normal -bc5,-normal - -
 albedo astc-6x6 3 --srgb - 6x6 s
@@ -127,7 +150,17 @@ normal astc-4x4 2 --normal - 4x4 l
 EOF
 done
 
-python3 - "$csv" "$results/results.md" "$invocation" "$(nproc)" <<'EOF'
+# zstd's levels on the photographs' BC files (matforge, normal effort), one stream.
+zcsv=$results/zstd_levels.csv
+echo "level,bytes_in,bytes_out,ratio,compress_mb_s" > "$zcsv"
+cat "$o"/photo-*-bc[145]-mf-normal.dds > "$work/bc.bin"
+for level in 1 3 6 9 12 15 17 19; do
+  zstd -b"$level" -T1 -i2 "$work/bc.bin" 2>&1 | tr '\r' '\n' | grep 'MB/s' | tail -1 |
+    sed -E 's/.*: *([0-9]+) -> *([0-9]+) \(x?([0-9.]+)\), *([0-9.]+) MB\/s.*/\1,\2,\3,\4/' |
+    sed "s/^/$level,/" >> "$zcsv"
+done
+
+python3 - "$csv" "$results/results.md" "$invocation" "$(nproc)" "$zcsv" <<'EOF'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 out, invocation, cores = sys.argv[2], sys.argv[3], sys.argv[4]
@@ -153,15 +186,25 @@ for g in groups:
             L.append(f"| {r['size']} | {r['map']} | {r['format']} | {r['tool']} | {r['effort']} | {float(r['seconds']):.3f} | {float(r['process_seconds']):.2f} | "
                      f"{float(r['psnr_db']):.2f} | {r['angle_deg'] or ''} | {r['bytes']} |")
 L += ["", "## matforge against the peer at the same effort", "",
-      "| size | format | effort | peer | matforge s / peer s | matforge dB − peer dB |",
-      "| --- | --- | --- | --- | ---: | ---: |"]
+      "| size | map | format | effort | peer | matforge s / peer s | matforge dB − peer dB |",
+      "| --- | --- | --- | --- | --- | ---: | ---: |"]
 for g in groups:
     mf = {r["effort"]: r for r in rows if keyf(r) == g and r["tool"] == "matforge"}
     for r in rows:
-        if keyf(r) == g and r["tool"] != "matforge" and r["effort"] in mf:
+        if keyf(r) == g and not r["tool"].startswith("matforge") and r["effort"] in mf:
             m = mf[r["effort"]]
-            L.append(f"| {g[0]} | {g[2]} | {r['effort']} | {r['tool']} | "
+            L.append(f"| {g[0]} | {g[1]} | {g[2]} | {r['effort']} | {r['tool']} | "
                      f"{float(m['seconds']) / max(float(r['seconds']), 1e-3):.2f} | {float(m['psnr_db']) - float(r['psnr_db']):+.2f} |")
+z = list(csv.DictReader(open(sys.argv[5])))
+L += ["", "## zstd level", "",
+      "The KTX2 presets' `zstd_level` on the photographs' BC1, BC4 and BC5 files above (`zstd -bN -T1`, "
+      "one stream; matforge compresses each mip level apart).", "",
+      "| level | bytes in | bytes out | ratio | MB/s compressing | bytes against level 19 |",
+      "| ---: | ---: | ---: | ---: | ---: | ---: |"]
+last = float(z[-1]["bytes_out"]) if z else 1.0
+for r in z:
+    L.append(f"| {r['level']} | {r['bytes_in']} | {r['bytes_out']} | {r['ratio']} | {r['compress_mb_s']} | "
+             f"{(float(r['bytes_out']) / last - 1) * 100:+.1f} % |")
 open(out, "w").write("\n".join(L) + "\n")
 EOF
 cat "$results/results.md"

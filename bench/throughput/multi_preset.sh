@@ -9,7 +9,9 @@
 # alone, then all of them in one `--preset a,b` run; --repeat rounds, the runs alternating within
 # a round (a drift in the machine's speed hits all alike); each keeps its median wall time.
 # Checks that each preset's folder of the one run is byte-identical to its own run's (diff -r),
-# and prints a Markdown table: the separate runs' sum, the one run, and their ratio.
+# and prints a Markdown table: each preset's run with its time over the first preset's (issue 28,
+# item 4: `--presets "gltf vulkan-ktx2"`, at most 3x), the separate runs' sum, the one run, and
+# their ratio.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build=build library=$repo/tests/data/corpus/real presets="gltf unity-hdrp" jobs=2 repeat=3
@@ -53,16 +55,17 @@ for p in "${list[@]}"; do
 done
 sets=$(python3 -c 'import json, sys; print(len(json.load(open(sys.argv[1]))["materials"]))' "$work/together/${list[0]}/manifest.json")
 sum=0
-echo "| run | wall (median of $repeat) |"
-echo "|---|---|"
+first=$(median "$work/${list[0]}.times")
+echo "| run | wall (median of $repeat) | × \`${list[0]}\` |"
+echo "|---|---|---|"
 for p in "${list[@]}"; do
   t=$(median "$work/$p.times")
   sum=$(awk -v a="$sum" -v b="$t" 'BEGIN { print a + b }')
-  echo "| \`--preset $p\` | $t s |"
+  echo "| \`--preset $p\` | $t s | $(awk -v a="$t" -v b="$first" 'BEGIN { printf "%.2f", a / b }') |"
 done
 t=$(median "$work/together.times")
-echo "| separate runs, sum | $sum s |"
-echo "| \`--preset $joined\` (one run) | $t s |"
-echo "| ratio | $(awk -v a="$t" -v b="$sum" 'BEGIN { printf "%.2f", a / b }') |"
+echo "| separate runs, sum | $sum s | |"
+echo "| \`--preset $joined\` (one run) | $t s | |"
+echo "| one run / separate runs | $(awk -v a="$t" -v b="$sum" 'BEGIN { printf "%.2f", a / b }') | |"
 echo
 echo "$sets sets in $library; --jobs $jobs; $(nproc) cores; every run --no-cache into a fresh folder; each preset's folder of the one run byte-identical to its own run's."

@@ -36,6 +36,12 @@ struct OutputSpec {
     std::vector<Role> roles() const;  // the roles it reads (roughness for smoothness)
 };
 
+// zstd's level for KTX2 supercompression when a preset names none (and in the shipped presets).
+// Measured (docs/performance.md, "The GPU presets against gltf"): level 19 runs at 2-4 MB/s on
+// BC data and was half of a vulkan-ktx2 ingest; level 9 runs at 25-30 MB/s for 3.9 % more bytes
+// on the corpus's photographs (7.7 % on generated sets); levels 10-16 gain under 0.5 %.
+inline constexpr int kDefaultZstdLevel = 9;
+
 struct Preset {
     std::string name, description, engine_convention;
     std::vector<std::string> sources;
@@ -53,7 +59,7 @@ struct Preset {
     MipFilter mip_filter = MipFilter::kaiser;
     Effort effort = Effort::normal;
     Supercompression supercompression = Supercompression::none;  // ktx2 only
-    int zstd_level = 19;
+    int zstd_level = kDefaultZstdLevel;
     bool toksvig = false;       // roughness mips widened by the normal mips' spread
     float alpha_cutoff = 0.5f;  // alpha test of opacity (coverage kept per mip; glTF alphaCutoff)
     MaterialFileKind material_file = MaterialFileKind::none;  // the engine's material files (lib/engine)

@@ -1,10 +1,22 @@
-// Block codecs from Debian's libraries: libsquish (BC1, BC3, BC4, BC5) and astcenc (ASTC LDR).
+// Block codecs from Debian's libraries: stb_dxt (libstb-dev) and libsquish for BC1-BC5, astcenc
+// for ASTC LDR.
 //
-// libsquish over libnvtt 2.0.8: squish compresses one 4x4 block at a time with no global state
-// (so levels and blocks can be spread over threads, and the mip chain is ours, filtered in
-// linear light), and its three colour fits map onto the effort levels. nvtt 2.0.8 wants to
-// build the mip chain itself, writes only the DX9 DDS header (no DX10 header, so no sRGB
-// formats) and exposes no decoder.
+// Which BC encoder for which effort was decided by measurement (docs/texture/results.md,
+// bench/texture/run.sh; 1K albedo and packed ORM photographs of the corpus, one thread):
+// libsquish's cluster fit takes 1.4-3.0 s a map on real photographs (0.2 s on smooth noise)
+// for 0.6-0.7 dB over stb_dxt's two-refinement mode, which takes 0.03 s; NVIDIA Texture Tools
+// 2.0.8 (libnvtt, in process) takes 0.03 s at its fastest setting for stb's error (within
+// 0.1 dB either way) and 0.5-1.1 s at its default for 1.5-4 dB more error, and it carries its
+// own copy of squish whose symbols collide with libsquish's in one process. So BC1 colour (and
+// BC3's colour half) is stb_dxt at `fast` (one refinement) and `normal` (two), squish's cluster
+// fit at `thorough` (its iterative fit gains under 0.01 dB for 1.1-1.5x the time). BC4, BC5 and
+// BC3's alpha stay with squish at every effort: its fit tries both of the format's interpolation
+// modes (0.05-0.3 s a 1K map, 2.6-16 dB above nvcompress's BC4), where stb_dxt's tries one.
+//
+// libsquish over libnvtt 2.0.8 for the rest: squish compresses one 4x4 block at a time with no
+// global state (so levels and blocks can be spread over threads, and the mip chain is ours,
+// filtered in linear light). nvtt 2.0.8 wants to build the mip chain itself, writes only the
+// DX9 DDS header (no DX10 header, so no sRGB formats) and exposes no decoder.
 //
 // The BC blocks are decoded here, not by squish: squish 1.15 expands 5/6-bit endpoints by bit
 // replication ((r << 3) | (r >> 2): 231 for r = 28, where the D3D and Khronos specs' r / 31 is
@@ -15,6 +27,7 @@
 // uses, so the recorded error is the one that reader sees, to the sample).
 #include <astcenc.h>
 #include <squish.h>
+#include <stb_dxt.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -30,17 +43,18 @@ namespace {
 
 bool is_astc(const BlockFormatInfo& f) { return f.name.substr(0, 4) == "astc"; }
 
+// The colour encoder of BC1 and BC3 at an effort (see the top of this file).
+bool stb_colour(const BlockFormatInfo& f, Effort effort) {
+    return (f.name == "bc1" || f.name == "bc3") && effort != Effort::thorough;
+}
+
 int squish_flags(const BlockFormatInfo& f, Effort effort) {
-    int flags = f.name == "bc1"   ? squish::kDxt1
-                : f.name == "bc3" ? squish::kDxt5
-                : f.name == "bc4" ? squish::kBc4
-                                  : squish::kBc5;
-    switch (effort) {
-        case Effort::fast: flags |= squish::kColourRangeFit; break;
-        case Effort::normal: flags |= squish::kColourClusterFit; break;
-        case Effort::thorough: flags |= squish::kColourIterativeClusterFit; break;
-    }
-    return flags;
+    const int flags = f.name == "bc1"   ? squish::kDxt1
+                      : f.name == "bc3" ? squish::kDxt5
+                      : f.name == "bc4" ? squish::kBc4
+                                        : squish::kBc5;
+    // Where stb_dxt writes the colour, squish's cheapest colour fit fills what it overwrites.
+    return flags | (stb_colour(f, effort) ? squish::kColourRangeFit : squish::kColourClusterFit);
 }
 
 // The 16 texels of block (bx, by) as RGBA codes; texels past the edge repeat the last row or
@@ -64,6 +78,12 @@ void gather_block(const Image8& img, int bx, int by, bool normal_xy, std::array<
                 d[3] = c == 4 ? s[3] : 255;
             }
         }
+}
+
+// stb_dxt tests a block for one colour on whole RGBA texels: alpha (BC3 encodes it apart) must
+// not split one colour into several.
+void rgba_opaque(std::array<uint8_t, 64>& rgba) {
+    for (size_t t = 0; t < 16; ++t) rgba[t * 4 + 3] = 255;
 }
 
 struct AstcContext {
@@ -192,6 +212,8 @@ bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint
         return true;
     }
     const int flags = squish_flags(f, opt.effort);
+    const bool stb = stb_colour(f, opt.effort);
+    const int stb_mode = opt.effort == Effort::fast ? STB_DXT_NORMAL : STB_DXT_HIGHQUAL;
     const int bw = (level.width + 3) / 4, bh = (level.height + 3) / 4;
     // Rows of blocks are independent: any number of threads writes the same bytes.
     parallel_for(static_cast<size_t>(bh), std::max(1, opt.threads), [&](size_t row) {
@@ -202,7 +224,17 @@ bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint
             gather_block(level, bx, by, opt.normal_xy, rgba, mask);
             uint8_t* out = &blocks[(static_cast<size_t>(by) * static_cast<size_t>(bw) + static_cast<size_t>(bx)) *
                                    static_cast<size_t>(f.block_bytes)];
+            if (stb && f.name == "bc1") {
+                // Texels past the edge repeat the edge (gather_block): they cost the fit nothing.
+                rgba_opaque(rgba);
+                stb_compress_dxt_block(out, rgba.data(), 0, stb_mode);
+                continue;
+            }
             squish::CompressMasked(rgba.data(), mask, out, flags);
+            if (stb) {  // BC3: squish's alpha half, stb_dxt's colour half (always 4-colour there)
+                rgba_opaque(rgba);
+                stb_compress_dxt_block(out + 8, rgba.data(), 0, stb_mode);
+            }
         }
     });
     return true;
@@ -267,9 +299,9 @@ bool decode_level(std::span<const uint8_t> blocks, int width, int height, const 
 }
 
 std::string encoder_versions() {
-    // libsquish and astcenc report no version at run time: the package versions CMake found.
-    return std::string("squish ") + MATFORGE_SQUISH_VERSION + ", astcenc " + MATFORGE_ASTCENC_VERSION + ", zstd " +
-           ZSTD_versionString();
+    // stb_dxt, libsquish and astcenc report no version at run time: the package versions CMake found.
+    return std::string("stb_dxt ") + MATFORGE_STB_VERSION + ", squish " + MATFORGE_SQUISH_VERSION + ", astcenc " +
+           MATFORGE_ASTCENC_VERSION + ", zstd " + ZSTD_versionString();
 }
 
 }  // namespace mf::texture

@@ -122,7 +122,7 @@ bool read_dds(std::span<const uint8_t> bytes, GpuTexture& t, std::string& error)
 
 struct Ktx2Options {
     bool zstd = false;
-    int zstd_level = 19;
+    int zstd_level = kDefaultZstdLevel;
     std::string writer;  // KTXwriter value
 };
 // KTX 2.0: header, level index, data format descriptor (BT.709 primaries; sRGB transfer for
