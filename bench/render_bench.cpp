@@ -2,7 +2,7 @@
 //
 //   render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]
 //                [--csv FILE] [--only NAME[,NAME…]] [--gpu-formats] [--texture-size N]
-//                [--library N] [--shading raster|compute|auto]
+//                [--library N] [--ahead N] [--shading raster|compute|auto]
 //
 // For each configuration and size it builds a renderer (load-time passes timed once), uploads
 // the material, renders --warmup frames untimed and --frames frames timed, and prints the median
@@ -10,9 +10,14 @@
 // no image files, so the program needs nothing but the Vulkan loader and a driver.
 //
 // --library N: for each textured configuration, N materials previewed one after another as
-// `matforge preview` does (textures prepared on another thread up to two materials ahead, upload
-// and render with the 8-bit readback on this one): materials per second, file decoding and PNG
-// writing left out (they stay on the host's CPU whatever the device).
+// `matforge preview` does (textures prepared on other threads ahead, upload and render with the
+// 8-bit readback on this one): materials per second, file decoding and PNG writing left out
+// (they stay on the host's CPU whatever the device). Printed beside it, per material: the
+// device's own time (the frame's timestamped passes), and where this thread's wall time went
+// (waiting for a prepared material, upload, render with its submit-and-wait and readback).
+// --ahead N: materials being prepared at once (default: the host's hardware threads, 3 to 8;
+// 3 was the loop before; what `matforge preview` reads ahead is lib/preview/batch.cpp's).
+// Finished materials are freed on another thread (render.hpp's GpuMaterial contract).
 //
 // --shading: the path every configuration is shaded on (Scene::shading; default raster), so the
 // same table can be made on both. The path that ran is printed for each configuration (a scene
@@ -32,6 +37,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "render/render.hpp"
@@ -50,6 +56,9 @@ struct Args {
     bool gpu_formats = false;  // ContextOptions::precise_cpu_textures off
     uint32_t texture_size = 2048;
     int library = 0;  // --library N: materials previewed in a row per textured configuration
+    // --ahead N. 8 was the best on the H200's 16-core host (4: as fast, 16: 5 % slower, the
+    // threads contending for memory bandwidth with the upload's copies); at least 3 elsewhere.
+    int ahead = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 3, 8);
     Shading shading = Shading::raster;
 };
 
@@ -58,7 +67,7 @@ struct Args {
                  "render_bench: %s\n"
                  "usage: render_bench [--device auto|gpu|cpu] [--sizes 512,2048] [--frames N] [--warmup N]\n"
                  "                    [--csv FILE] [--only NAME[,NAME...]] [--gpu-formats]\n"
-                 "                    [--texture-size N] [--library N] [--shading raster|compute|auto]\n",
+                 "                    [--texture-size N] [--library N] [--ahead N] [--shading raster|compute|auto]\n",
                  why);
     std::exit(2);
 }
@@ -108,6 +117,10 @@ Args parse(int argc, char** argv) {
             const long n = std::strtol(value().c_str(), nullptr, 10);
             if (n < 1 || n > 100000) usage("--library must be in 1..100000");
             a.library = static_cast<int>(n);
+        } else if (k == "--ahead") {
+            const long n = std::strtol(value().c_str(), nullptr, 10);
+            if (n < 1 || n > 256) usage("--ahead must be in 1..256");
+            a.ahead = static_cast<int>(n);
         } else if (k == "--shading") {
             const auto sh = parse_shading(value());
             if (!sh) usage("--shading must be raster, compute or auto");
@@ -402,22 +415,41 @@ int main(int argc, char** argv) {
                     t0 = Clock::now();
                     cpu0 = process_cpu_ms();
                     size_t checksum = 0;
+                    std::vector<double> waited, uploaded, rendered, device;
+                    std::future<void> freeing;  // the last material's device objects, freed on another thread
                     for (int i = 0; i < args.library; ++i) {
-                        while (launched < args.library && launched <= i + 2) launch();
+                        while (launched < args.library && launched < i + args.ahead) launch();
+                        auto t = Clock::now();
                         PreparedMaterial pm = ahead.front().get();
                         ahead.pop_front();
-                        const GpuMaterial lg = renderer.upload(std::move(pm));
+                        waited.push_back(ms_since(t));
+                        t = Clock::now();
+                        GpuMaterial lg = renderer.upload(std::move(pm));
+                        uploaded.push_back(ms_since(t));
+                        t = Clock::now();
                         checksum += renderer.render(lg, out).rgba8.size();
+                        rendered.push_back(ms_since(t));
+                        if (freeing.valid()) freeing.get();
+                        freeing = std::async(std::launch::async,
+                                             [g = std::move(lg)]() mutable { GpuMaterial done = std::move(g); });
+                        double frame = 0;
+                        for (const PassTime& p : renderer.frame_times()) frame += p.ms;
+                        device.push_back(frame);
                     }
+                    if (freeing.valid()) freeing.get();
                     const double wall = ms_since(t0), cpu = process_cpu_ms() - cpu0;
                     if (checksum != size_t(args.library) * size * size * 4)
                         throw std::runtime_error("library: short frame");
                     emit("library wall per material", {wall / args.library});
                     emit("library cpu per material", {cpu / args.library});
-                    std::printf("%-11s %6u  library of %d materials (%u² textures): %.2f s wall, %.1f materials/s, "
-                                "%.2f s CPU\n",
-                                c.name.c_str(), size, args.library, ts, wall / 1e3, args.library * 1e3 / wall,
-                                cpu / 1e3);
+                    emit("library: waiting for prepare", waited);
+                    emit("library: upload (host)", uploaded);
+                    emit("library: render (host)", rendered);
+                    emit("library: frame (device)", device);
+                    std::printf("%-11s %6u  library of %d materials (%u² textures, %d prepared at once): %.2f s wall, "
+                                "%.1f materials/s, %.2f s CPU; a material: %.3f ms wall, %.3f ms on the device\n",
+                                c.name.c_str(), size, args.library, ts, args.ahead, wall / 1e3,
+                                args.library * 1e3 / wall, cpu / 1e3, wall / args.library, median(device));
                 }
             }
         }

@@ -173,7 +173,7 @@ private:
             return ready_outcome(std::move(o));
         }
         try {
-            const render::GpuMaterial gm = renderer_->upload(std::move(*l.prepared));
+            render::GpuMaterial gm = renderer_->upload(std::move(*l.prepared));
             for (const std::string& n : renderer_->take_notes()) o.lines.push_back(job.name + ": note: " + n);
             const bool png = opt_.format == "png";
             std::vector<uint8_t> rgba8;
@@ -188,7 +188,8 @@ private:
             std::string progress = "[" + std::to_string(i + 1) + "/" + std::to_string(jobs_.size()) + "] ";
             return std::async(std::launch::async, [this, &job, png, out, progress = std::move(progress),
                                                    o = std::move(o), rgba8 = std::move(rgba8),
-                                                   rgba32f = std::move(rgba32f)]() mutable {
+                                                   rgba32f = std::move(rgba32f), gm = std::move(gm)]() mutable {
+                { render::GpuMaterial freed = std::move(gm); }  // its device objects, off the render thread
                 const uint32_t w = sf_.scene.width, h = sf_.scene.height;
                 std::string error;
                 bool written = false;

@@ -365,7 +365,9 @@ private:
 };
 
 // A material's textures on the device and the pipeline variant it needs. Destroy before the
-// Renderer that made it.
+// Renderer that made it; on any thread once the render() calls that drew it have returned (its
+// device objects are its own: freeing a 1K material's took ~0.8 ms of the H200 host's 5 ms a
+// material, which a library's loop can hand to another thread).
 class GpuMaterial {
 public:
     GpuMaterial();

@@ -116,6 +116,14 @@ struct Renderer::Impl {
     // Records into the caller's `cmd`; the staging buffers go to the caller's `staging`.
     detail::Image upload_texture(const detail::PreparedTexture& prepared, VkCommandBuffer cmd,
                                  std::vector<detail::Buffer>& staging) const;
+    // Staging buffers of finished uploads, kept for the next ones (at most kStagingKept bytes):
+    // a host-visible allocation is pinned memory, and making and freeing three a material was
+    // most of a library's upload on the H200 (docs/bench/README.md, A library on the H200).
+    // Touched only where upload() and render() are called; mutable as `notes` is.
+    static constexpr VkDeviceSize kStagingKept = VkDeviceSize{96} << 20;
+    mutable std::vector<detail::Buffer> staging_free;
+    detail::Buffer take_staging(VkDeviceSize bytes) const;       // a kept one that fits, else a new one
+    void keep_staging(std::vector<detail::Buffer>& used) const;  // after their submission completed
 
     // frame.cpp
     void write_frame_descriptors();

@@ -361,5 +361,31 @@ TEST_F(FastTexturesTest, PrepareRunsOnOtherThreads) {
     EXPECT_THROW(other.upload(renderer.prepare(m)), render::Error);
 }
 
+// Staging memory is kept from one upload for the next (Renderer::Impl::take_staging): materials
+// of other sizes and contents, in any order, render as with a renderer of their own, and each
+// may be freed on another thread once drawn (render.hpp's GpuMaterial contract).
+TEST_F(FastTexturesTest, StagingIsReusedAcrossMaterialsAndMaterialsFreeElsewhere) {
+    std::vector<Material> ms{detailed_material(128), detailed_material(64), detailed_material(256),
+                             detailed_material(128)};
+    for (uint8_t& v : ms[1].textures[0].data) v = static_cast<uint8_t>(255 - v);  // another albedo
+    const Scene s = small_scene(48, true);
+    std::vector<render::Frame> alone;
+    for (const Material& m : ms) {
+        render::Renderer r(context(), s);
+        alone.push_back(r.render(r.upload(m)));
+    }
+    EXPECT_GT(diff(alone[0], alone[1]).max_code, 40);  // what a stale or misplaced staging copy would show
+    render::Renderer shared(context(), s);
+    std::future<void> freeing;
+    for (size_t i = 0; i < ms.size(); ++i) {
+        render::GpuMaterial g = shared.upload(ms[i]);
+        EXPECT_EQ(diff(shared.render(g), alone[i]).max_code, 0) << "material " << i;
+        if (freeing.valid()) freeing.get();
+        freeing = std::async(std::launch::async,
+                             [g = std::move(g)]() mutable { render::GpuMaterial done = std::move(g); });
+    }
+    freeing.get();
+}
+
 }  // namespace
 }  // namespace mf::test
