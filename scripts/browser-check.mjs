@@ -6,18 +6,17 @@
 // JavaScript off, and the first page's pictures decode. Prints one JSON line (timings included)
 // and exits 1 when a check fails.
 //
-// Chromium is driven over the DevTools protocol on a pipe (--remote-debugging-pipe: messages
-// separated by NUL on file descriptors 3 and 4), so there is no port, no network and no npm
-// package: node and Debian's chromium are all it needs.
+// Chromium is driven over the DevTools protocol on a pipe (scripts/devtools-pipe.mjs): no port,
+// no network and no npm package, node and Debian's chromium are all it needs.
 //
 // node scripts/browser-check.mjs --page out/report/index.html --manifest out/manifest.json
 //      [--screenshot docs/report.png] [--width 1280] [--height 1000] [--page-size 50]
 //      [--chromium /usr/bin/chromium] [--timeout 120]
-import { spawn } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join, resolve } from 'node:path';
+import { readFileSync, writeFileSync } from 'node:fs';
+import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
+
+import { startChromium } from './devtools-pipe.mjs';
 
 const args = { width: 1280, height: 1000, chromium: '/usr/bin/chromium', timeout: 120 };
 for (let i = 2; i < process.argv.length; i += 2) {
@@ -34,56 +33,17 @@ if (!args.page || !args.manifest) usage('--page and --manifest are required');
 const manifest = JSON.parse(readFileSync(args.manifest, 'utf8'));
 const pageUrl = pathToFileURL(resolve(args.page)).href;
 const rulesUrl = new URL('rules.html', pageUrl).href;
-const profile = mkdtempSync(join(tmpdir(), 'matforge-chromium-'));
 const started = performance.now();
 const problems = [];
-const chromiumLog = [];
 
-const chromium = spawn(args.chromium, [
-  '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-  '--disable-extensions', '--disable-default-apps', '--mute-audio', '--hide-scrollbars',
-  '--remote-debugging-pipe', `--user-data-dir=${profile}`, 'about:blank',
-], { stdio: ['ignore', 'pipe', 'pipe', 'pipe', 'pipe'], detached: true });  // its own process group
-chromium.stdout.on('data', (d) => chromiumLog.push(String(d)));
-chromium.stderr.on('data', (d) => chromiumLog.push(String(d)));
-chromium.on('error', (e) => finish(`cannot start ${args.chromium}: ${e.message} (Debian: apt-get install chromium)`));
-chromium.on('exit', (code, signal) => { if (!done) finish(`chromium exited early (${signal || code})`); });
-const watchdog = setTimeout(() => finish(`no result within ${args.timeout} s`), Number(args.timeout) * 1000);
-
-// ---- the DevTools protocol over the pipe ----
-const toChromium = chromium.stdio[3], fromChromium = chromium.stdio[4];
-let nextId = 0, pending = '';
-const waiting = new Map(), listeners = new Set();
-fromChromium.on('data', (chunk) => {
-  pending += chunk.toString('utf8');
-  for (let end; (end = pending.indexOf('\0')) >= 0;) {
-    const msg = JSON.parse(pending.slice(0, end));
-    pending = pending.slice(end + 1);
-    if (msg.id !== undefined && waiting.has(msg.id)) {
-      const { resolve: ok, reject, method } = waiting.get(msg.id);
-      waiting.delete(msg.id);
-      if (msg.error) reject(new Error(`${method}: ${msg.error.message}`));
-      else ok(msg.result);
-    } else {
-      for (const l of listeners) l(msg);
-    }
-  }
+const browser = startChromium({
+  name: 'browser-check', binary: args.chromium,
+  flags: ['--disable-gpu', '--disable-quic', '--disable-sync', '--disable-default-apps', '--mute-audio', '--hide-scrollbars'],
 });
-function send(method, params = {}, sessionId) {
-  return new Promise((ok, reject) => {
-    const msg = { id: ++nextId, method, params };
-    if (sessionId) msg.sessionId = sessionId;
-    waiting.set(msg.id, { resolve: ok, reject, method });
-    toChromium.write(JSON.stringify(msg) + '\0');
-  });
-}
-function once(method) {
-  return new Promise((ok) => {
-    const l = (m) => { if (m.method === method) { listeners.delete(l); ok(m.params); } };
-    listeners.add(l);
-  });
-}
+const { send, once } = browser;
+browser.child.on('error', (e) => finish(`cannot start ${args.chromium}: ${e.message} (Debian: apt-get install chromium)`));
+browser.child.on('exit', (code, signal) => { if (!done) finish(`chromium exited early (${signal || code})`); });
+const watchdog = setTimeout(() => finish(`no result within ${args.timeout} s`), Number(args.timeout) * 1000);
 
 let done = false;
 function finish(fatal, result = {}) {
@@ -97,26 +57,9 @@ function finish(fatal, result = {}) {
   console.log(JSON.stringify(result));
   if (!result.ok) {
     for (const p of problems.slice(0, 50)) console.error(`browser-check: ${p}`);
-    if (fatal) console.error(chromiumLog.join('').split('\n').filter((l) => !/dbus|unexpected operator/.test(l)).slice(-30).join('\n'));
+    if (fatal) console.error(browser.log.join('').split('\n').filter((l) => !/dbus|unexpected operator/.test(l)).slice(-30).join('\n'));
   }
-  // Chromium closed first (Browser.close: it ends its helper processes, which write under the
-  // profile as they go), its process group killed when it has not gone within 3 s, then the
-  // profile removed, with retries.
-  const cleanup = () => {
-    try { process.kill(-chromium.pid, 'SIGKILL'); } catch { /* gone */ }
-    setTimeout(() => {
-      try {
-        rmSync(profile, { recursive: true, force: true, maxRetries: 10, retryDelay: 100 });
-      } catch (e) {
-        console.error(`browser-check: ${profile} left behind: ${e.message}`);
-      }
-      process.exit(result.ok ? 0 : 1);
-    }, 200);
-  };
-  if (chromium.exitCode !== null || chromium.signalCode !== null) return cleanup();
-  chromium.once('exit', cleanup);
-  setTimeout(cleanup, 3000);
-  try { toChromium.write(JSON.stringify({ id: ++nextId, method: 'Browser.close' }) + '\0'); } catch { /* gone */ }
+  browser.close().then(() => process.exit(result.ok ? 0 : 1));
 }
 
 // ---- the checks ----
@@ -124,7 +67,7 @@ async function main() {
   const { targetId } = await send('Target.createTarget', { url: 'about:blank' });
   const { sessionId: s } = await send('Target.attachToTarget', { targetId, flatten: true });
   const consoleErrors = [], requests = [];
-  listeners.add((m) => {
+  browser.listen((m) => {
     if (m.sessionId !== s) return;
     const p = m.params;
     if (m.method === 'Runtime.consoleAPICalled' && (p.type === 'error' || p.type === 'assert' || p.type === 'warning'))

@@ -10,12 +10,12 @@
 // gltf: {lit, mean}, psnr_db} (lit: pixels brighter than black; mean: their sRGB-encoded RGB,
 // 0-1; PSNR of the two 192² pictures) and writes OUT_DIR/NAME.mtlx.png and NAME.gltf.png.
 // Served over a local HTTP server (three's loaders fetch; file:// cannot), Chromium driven over
-// the DevTools protocol on a pipe, as scripts/browser-check.mjs does.
-import { spawn } from 'node:child_process';
+// the DevTools protocol on a pipe (scripts/devtools-pipe.mjs).
 import { createServer } from 'node:http';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join, resolve, extname, normalize } from 'node:path';
+
+import { startChromium } from '../../../scripts/devtools-pipe.mjs';
 
 const [npmDir, rootDir, outDir, ...names] = process.argv.slice(2);
 const modules = resolve(npmDir, 'node_modules');
@@ -85,58 +85,28 @@ const server = createServer((req, res) => {
 await new Promise((r) => server.listen(0, '127.0.0.1', r));
 const port = server.address().port;
 
-const profile = mkdtempSync(join(tmpdir(), 'matforge-mtlx-chromium-'));
-const chromium = spawn('/usr/bin/chromium', [
-  '--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-  '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-extensions',
-  '--remote-debugging-pipe', `--user-data-dir=${profile}`, 'about:blank',
-], { stdio: ['ignore', 'pipe', 'pipe', 'pipe', 'pipe'], detached: true });  // its own process group
-const exited = new Promise((r) => chromium.once('exit', r));
-const log = [];
-chromium.stderr.on('data', (d) => log.push(String(d)));
-const to = chromium.stdio[3], from = chromium.stdio[4];
-let nextId = 0, pending = '';
-const waiting = new Map();
-from.on('data', (chunk) => {
-  pending += chunk.toString('utf8');
-  for (let end; (end = pending.indexOf('\0')) >= 0;) {
-    const msg = JSON.parse(pending.slice(0, end)); pending = pending.slice(end + 1);
-    if (msg.id !== undefined && waiting.has(msg.id)) { waiting.get(msg.id)(msg); waiting.delete(msg.id); }
-    if (msg.method === 'Runtime.consoleAPICalled' || msg.method === 'Runtime.exceptionThrown') log.push(JSON.stringify(msg.params).slice(0, 400));
-  }
+const browser = startChromium({
+  name: 'mtlx-render', flags: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
 });
-function send(method, params = {}, sessionId) {
-  const id = ++nextId;
-  to.write(JSON.stringify({ id, method, params, sessionId }) + '\0');
-  return new Promise((r) => waiting.set(id, r));
-}
-// Chromium closed (Browser.close: it ends its helper processes, which write under the profile
-// as they go), its process group killed when it has not gone within 3 s, then the profile
-// removed, with retries.
+const { send, log } = browser;
+browser.listen((msg) => {
+  if (msg.method === 'Runtime.consoleAPICalled' || msg.method === 'Runtime.exceptionThrown') log.push(JSON.stringify(msg.params).slice(0, 400));
+});
 const finish = async (code) => {
-  to.write(JSON.stringify({ id: ++nextId, method: 'Browser.close' }) + '\0');
-  await Promise.race([exited, new Promise((r) => setTimeout(r, 3000))]);
-  try { process.kill(-chromium.pid, 'SIGKILL'); } catch { /* gone */ }
-  await new Promise((r) => setTimeout(r, 200));
+  await browser.close();
   server.close();
-  try {
-    rmSync(profile, { recursive: true, force: true, maxRetries: 10, retryDelay: 100 });
-  } catch (e) {
-    console.error(`mtlx_render: ${profile} left behind: ${e.message}`);
-  }
   process.exit(code);
 };
 setTimeout(() => { console.error('timeout\n' + log.join('\n')); finish(1); }, 240000);
 
-const { result: { targetId } } = await send('Target.createTarget', { url: 'about:blank' });
-const { result: { sessionId } } = await send('Target.attachToTarget', { targetId, flatten: true });
+const { targetId } = await send('Target.createTarget', { url: 'about:blank' });
+const { sessionId } = await send('Target.attachToTarget', { targetId, flatten: true });
 await send('Runtime.enable', {}, sessionId);
 await send('Page.navigate', { url: `http://127.0.0.1:${port}/` }, sessionId);
 const evaluate = async (expression) => {
   const r = await send('Runtime.evaluate', { expression, awaitPromise: true, returnByValue: true }, sessionId);
-  if (r.error) throw new Error(JSON.stringify(r.error));
-  if (r.result.exceptionDetails) throw new Error(JSON.stringify(r.result.exceptionDetails).slice(0, 600));
-  return r.result.result.value;
+  if (r.exceptionDetails) throw new Error(JSON.stringify(r.exceptionDetails).slice(0, 600));
+  return r.result.value;
 };
 for (let i = 0; i < 200 && !(await evaluate('window.ready === true')); ++i) await new Promise((r) => setTimeout(r, 100));
 let failed = false;
