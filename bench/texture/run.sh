@@ -121,9 +121,9 @@ for s in "${sizes[@]}"; do
         f=$o/$s-$map-$format-nv-$effort
         fast=""
         [[ $effort == fast ]] && fast=-fast
-        # shellcheck disable=SC2086
         nvin=$in/$map.png
         [[ $format == bc4 ]] && nvin=$in/$map-rgba.png
+        # shellcheck disable=SC2086  # nvflags: several flags, split on purpose
         t=$(time_of nvcompress -nocuda -nomips -repeat $fast ${nvflags//,/ } "$nvin" "$f.dds")
         oiiotool "$f.dds" -d uint8 -o "$f.png"  # OpenImageIO's DDS reader (nvdecompress 2.0.8 misreads BC4)
         row "$s" "$map" "$format" nvcompress "$effort" "$t" "$t" "$f.png" "$ch" "$f.dds"
