@@ -14,6 +14,8 @@
 # their ratio.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=common.sh
+source "$repo/bench/throughput/common.sh"
 build=build library=$repo/tests/data/corpus/real presets="gltf unity-hdrp" jobs=2 repeat=3
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -45,7 +47,6 @@ timed() {
   }
   tail -n 1 "$work/t" >>"$work/$name.times"  # (time notes a non-zero exit on a line before)
 }
-median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 for ((r = 0; r < repeat; r++)); do
   for p in "${list[@]}"; do timed "$p" "$work/alone/$p" --preset "$p"; done
   timed together "$work/together" --preset "$joined"

@@ -14,6 +14,8 @@
 # library (glibc's LD_DEBUG=files log).
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=common.sh
+source "$repo/bench/throughput/common.sh"
 build=build library=$repo/tests/data/corpus/real preset=gltf jobs=2 repeat=3
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -43,7 +45,6 @@ timed() {
   tail -n 1 "$work/t" | awk '{ print $1 }' >>"$work/$name.times"
   tail -n 1 "$work/t" | awk '{ print $2 }' >>"$work/$name.kb"
 }
-median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 ingest() { timed "$1" ingest "$library" -o "$2" --preset "$preset" --jobs "$jobs" --cache "$work/cache"; }
 for ((r = 0; r < repeat; r++)); do
   rm -rf "$work/out" "$work/new" "$work/cache"

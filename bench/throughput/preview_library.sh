@@ -13,6 +13,8 @@
 # Markdown table of every run, the medians and the load average.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=common.sh
+source "$repo/bench/throughput/common.sh"
 build=build materials=100 repeat=3 device=cpu
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -37,7 +39,6 @@ for p in gltf vulkan-ktx2; do
   }
 done
 
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 echo "| round | from | wall | CPU (user + sys) | load average (1 min) |"
 echo "| ---: | --- | ---: | ---: | ---: |"
 for ((r = 1; r <= repeat; r++)); do
@@ -53,4 +54,4 @@ for ((r = 1; r <= repeat; r++)); do
   done
 done
 echo
-echo "Medians: from \`gltf\` (PNG) $(median <"$work/gltf.wall") s, from \`vulkan-ktx2\` (BC) $(median <"$work/vulkan-ktx2.wall") s; $materials materials of 1K, --device $device, $(nproc) cores."
+echo "Medians: from \`gltf\` (PNG) $(median "$work/gltf.wall") s, from \`vulkan-ktx2\` (BC) $(median "$work/vulkan-ktx2.wall") s; $materials materials of 1K, --device $device, $(nproc) cores."

@@ -15,6 +15,8 @@
 # (the script through xargs -P), alternating, median of --repeat rounds of wall time.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=common.sh
+source "$repo/bench/throughput/common.sh"
 build=build jobs=2 repeat=3
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -65,7 +67,6 @@ with open(sys.argv[2], "w") as o:
 PY
 find "$corpus/real" -type f -exec cat {} + >/dev/null  # a warm page cache for both
 
-median() { sort -g "$1" | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 for ((r = 0; r < repeat; r++)); do
   rm -rf "$work/peer" "$work/mf"
   /usr/bin/time -f %e -o "$work/t" "$repo/bench/throughput/oiiotool_peer.sh" "$work/lib" "$work/peer" --jobs "$jobs" --unity-hdrp

@@ -4,7 +4,7 @@
 // Which BC encoder for which effort was decided by measurement (docs/texture/results.md,
 // bench/texture/run.sh; 1K albedo and packed ORM photographs of the corpus, one thread):
 // libsquish's cluster fit takes 1.4-3.0 s a map on real photographs (0.2 s on smooth noise)
-// for 0.6-0.7 dB over stb_dxt's two-refinement mode, which takes 0.03 s; NVIDIA Texture Tools
+// for 0.5-0.7 dB over stb_dxt's two-refinement mode, which takes 0.03 s; NVIDIA Texture Tools
 // 2.0.8 (libnvtt, in process) takes 0.03 s at its fastest setting for stb's error (within
 // 0.1 dB either way) and 0.5-1.1 s at its default for 1.5-4 dB more error, and it carries its
 // own copy of squish whose symbols collide with libsquish's in one process. So BC1 colour (and
