@@ -1,6 +1,7 @@
 // png_tradeoff: what PNG output size costs in time. Re-encodes a folder of 8-bit PNGs (for
 // example matforge's outputs of the throughput library) with OpenImageIO under each zlib level,
-// row filter and deflate strategy, and reports encode time, decode time and total size, so the
+// row filter and deflate strategy, and with matforge's own writer (Paeth rows, libdeflate level
+// 1: lib/image/oiio/png_writer.hpp), and reports encode time, decode time and total size, so the
 // default matforge writes is a measured choice, not a guess.
 //
 //   png_tradeoff <folder> [--repeat N] [--csv FILE]
@@ -22,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "image/image.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -30,13 +33,15 @@ struct Picture {
     std::string path;
     OIIO::ImageSpec spec;
     std::vector<std::uint8_t> pixels;
+    mf::Image8 codes;  // the same pixels, for matforge's writer
 };
 
 struct Setting {
     std::string label;
     int level;
-    int filter;            // libpng PNG_FILTER_* mask; -1: libpng's default (adaptive, all five)
-    std::string strategy;  // OpenImageIO "compression" for PNG: default | filtered | huffman | rle | fixed
+    int filter;             // libpng PNG_FILTER_* mask; -1: libpng's default (adaptive, all five)
+    std::string strategy;   // OpenImageIO "compression" for PNG: default | filtered | huffman | rle | fixed
+    bool matforge = false;  // matforge's encode_image instead (its own fixed settings)
 };
 
 // libpng's filter masks (png.h): NONE 0x08, SUB 0x10, UP 0x20, AVG 0x40, PAETH 0x80.
@@ -46,9 +51,25 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Read configuration: a 4th channel as stored (OpenImageIO premultiplies PNG alpha otherwise,
+// which no encoding round-trips).
+const OIIO::ImageSpec& unassociated() {
+    static const OIIO::ImageSpec config = [] {
+        OIIO::ImageSpec c;
+        c.attribute("oiio:UnassociatedAlpha", 1);
+        return c;
+    }();
+    return config;
+}
+
 bool encode(const Picture& p, const Setting& s, std::vector<unsigned char>& bytes) {
     bytes.clear();
+    if (s.matforge) {
+        std::string error;
+        return mf::encode_image(p.codes, {mf::FileFormat::png, 8}, bytes, error);
+    }
     OIIO::ImageSpec spec(p.spec.width, p.spec.height, p.spec.nchannels, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // a 4th channel as it is, as matforge writes it
     spec.attribute("png:compressionLevel", s.level);
     if (s.filter >= 0) spec.attribute("png:filter", s.filter);
     if (s.strategy != "default") spec.attribute("compression", s.strategy);
@@ -60,7 +81,7 @@ bool encode(const Picture& p, const Setting& s, std::vector<unsigned char>& byte
 
 bool decode_equals(const Picture& p, std::vector<unsigned char>& bytes) {
     OIIO::Filesystem::IOMemReader mem(bytes.data(), bytes.size());
-    auto in = OIIO::ImageInput::open("x.png", nullptr, &mem);
+    auto in = OIIO::ImageInput::open("x.png", &unassociated(), &mem);
     if (!in) return false;
     std::vector<std::uint8_t> px(p.pixels.size());
     const bool ok = in->read_image(0, 0, 0, p.spec.nchannels, OIIO::TypeDesc::UINT8, px.data());
@@ -93,12 +114,14 @@ int main(int argc, char** argv) {
     std::error_code ec;
     for (const auto& e : fs::recursive_directory_iterator(folder, ec)) {
         if (!e.is_regular_file() || e.path().extension() != ".png") continue;
-        auto in = OIIO::ImageInput::open(e.path().string());
+        auto in = OIIO::ImageInput::open(e.path().string(), &unassociated());
         if (!in) continue;
-        Picture p{e.path().string(), in->spec(), {}};
+        Picture p{e.path().string(), in->spec(), {}, {}};
         p.pixels.resize(p.spec.image_pixels() * static_cast<std::size_t>(p.spec.nchannels));
         if (!in->read_image(0, 0, 0, p.spec.nchannels, OIIO::TypeDesc::UINT8, p.pixels.data())) continue;
         raw += p.pixels.size();
+        p.codes = mf::Image8(p.spec.width, p.spec.height, p.spec.nchannels);
+        p.codes.pixels = p.pixels;
         pictures.push_back(std::move(p));
     }
     std::sort(pictures.begin(), pictures.end(), [](const Picture& a, const Picture& b) { return a.path < b.path; });
@@ -123,6 +146,7 @@ int main(int argc, char** argv) {
         {"level 1, sub, rle", 1, kSub, "rle"},
         {"level 1, paeth, huffman", 1, kPaeth, "huffman"},
         {"level 0 (stored)", 0, kNone, "default"},
+        {"matforge: paeth, libdeflate level 1", 1, kPaeth, "libdeflate", true},
     };
 
     const double raw_mb = static_cast<double>(raw) / 1e6;

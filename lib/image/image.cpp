@@ -278,7 +278,9 @@ std::string image_library_version() {
     }
     const fs::path real = fs::canonical(file, ec);
     const auto size = ec ? 0 : fs::file_size(real, ec);
-    return "OpenImageIO " + (ec ? file.string() : real.filename().string() + " " + std::to_string(size));
+    // PNG outputs are libdeflate's stream in libpng's chunks (oiio/png_writer.hpp).
+    return "OpenImageIO " + (ec ? file.string() : real.filename().string() + " " + std::to_string(size)) +
+           ", libdeflate " MATFORGE_LIBDEFLATE_VERSION ", libpng " MATFORGE_LIBPNG_VERSION;
 }
 
 std::string image_library_versions() {

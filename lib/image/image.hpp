@@ -114,8 +114,8 @@ struct EncodeOptions {
     int bit_depth = 8;                    // 8 or 16 for png/tif/tga; 16 (half) or 32 for exr
 };
 
-// OpenImageIO's version (its readers decode every input, its PNG/TIFF/EXR writers encode the
-// outputs), for the ingest cache's action key.
+// OpenImageIO's version (its readers decode every input, its TIFF/EXR writers encode those
+// outputs) and the PNG writer's libraries (libdeflate, libpng), for the ingest cache's action key.
 std::string image_library_version();
 // For `matforge --version`: OpenImageIO's version (major.minor.patch) and the format libraries
 // it was built with, as it reports them ("png:libpng 1.6.39;jpeg:jpeg-turbo 2.1.5;...").

@@ -19,6 +19,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include "image/oiio/png_writer.hpp"
 #include "image/oiio_module.hpp"
 
 namespace mf {
@@ -45,7 +46,8 @@ struct TempFile {
 
 // An open reader plus whatever keeps its bytes alive.
 struct Reader {
-    std::shared_ptr<const std::vector<unsigned char>> owned;  // a PNG stripped of bulky metadata
+    // A PNG stripped of bulky metadata, or a JPEG's headers alone (for a header read).
+    std::shared_ptr<const std::vector<unsigned char>> owned;
     std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
     std::unique_ptr<TempFile> temp;
     std::unique_ptr<OIIO::ImageInput> in;
@@ -130,6 +132,37 @@ std::shared_ptr<std::vector<unsigned char>> png_without_bulky_metadata(uint64_t 
     return out;
 }
 
+// A JPEG's markers up to and including its first scan's header (SOS), then an end-of-image
+// marker: everything OpenImageIO's reader needs to state the size, channels, orientation and
+// colour space, without the scans. For a header read only: OpenImageIO opens a JPEG by starting
+// libjpeg's decompressor, which for a progressive JPEG entropy-decodes every scan (9 % of an
+// ingest of the corpus, whose 3dtextures.me maps are progressive, went to headers read that way,
+// before the same files were decoded). nullptr when the markers do not walk to a scan (the
+// decoder then reads the file as it is).
+std::shared_ptr<std::vector<unsigned char>> jpeg_through_first_scan_header(uint64_t size, const ReadAt& read) {
+    uint64_t at = 2;  // after SOI
+    unsigned char m[4];
+    while (at + 4 <= size) {
+        if (!read(at, 4, m) || m[0] != 0xFF) return nullptr;
+        if (m[1] == 0xFF) {  // fill byte before a marker
+            ++at;
+            continue;
+        }
+        if (m[1] == 0x01 || (m[1] >= 0xD0 && m[1] <= 0xD9)) return nullptr;  // no segment before a scan is bare
+        const uint64_t end = at + 2 + ((uint64_t{m[2]} << 8) | m[3]);
+        if (end > size) return nullptr;
+        if (m[1] == 0xDA) {
+            auto out = std::make_shared<std::vector<unsigned char>>(static_cast<size_t>(end) + 2);
+            if (!read(0, static_cast<size_t>(end), out->data())) return nullptr;
+            (*out)[end] = 0xFF;
+            (*out)[end + 1] = 0xD9;
+            return out;
+        }
+        at = end;
+    }
+    return nullptr;
+}
+
 // Opens `name` with the reader of `format` (a format name, or a file name whose extension picks
 // the reader). Sets `error` on failure.
 std::unique_ptr<OIIO::ImageInput> open_with(const std::string& format, const std::string& name,
@@ -154,7 +187,9 @@ std::unique_ptr<OIIO::ImageInput> open_with(const std::string& format, const std
     return in;
 }
 
-bool open_reader(const InputFile& in, Reader& r, std::string& error) {
+// header_only: the reader is used for its spec, never its pixels (a JPEG is then opened over its
+// headers alone, jpeg_through_first_scan_header).
+bool open_reader(const InputFile& in, Reader& r, std::string& error, bool header_only = false) {
     OIIO::ImageSpec config;
     // Texture data: a 4th channel is not necessarily transparency; never premultiply.
     config.attribute("oiio:UnassociatedAlpha", 1);
@@ -185,15 +220,15 @@ bool open_reader(const InputFile& in, Reader& r, std::string& error) {
         f.read(reinterpret_cast<char*>(head.data()), head.size());
         const std::string format = sniff_format(head.data(), static_cast<size_t>(f.gcount()));
         std::string why;
-        if (format == "png") {
-            const uint64_t size = fs::file_size(in.path, ec);
-            r.owned = png_without_bulky_metadata(size, [&](uint64_t at, size_t n, unsigned char* out) {
-                f.clear();
-                f.seekg(static_cast<std::streamoff>(at));
-                f.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n));
-                return static_cast<size_t>(f.gcount()) == n;
-            });
-        }
+        const ReadAt read_at = [&](uint64_t at, size_t n, unsigned char* out) {
+            f.clear();
+            f.seekg(static_cast<std::streamoff>(at));
+            f.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n));
+            return static_cast<size_t>(f.gcount()) == n;
+        };
+        if (format == "png") r.owned = png_without_bulky_metadata(fs::file_size(in.path, ec), read_at);
+        if (format == "jpeg" && header_only)
+            r.owned = jpeg_through_first_scan_header(fs::file_size(in.path, ec), read_at);
         if (r.owned) {
             r.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(r.owned->data(), r.owned->size());
             r.in = open_with(format, name, config, r.proxy.get(), why);
@@ -215,12 +250,13 @@ bool open_reader(const InputFile& in, Reader& r, std::string& error) {
         }
         std::string format = sniff_format(in.bytes->data(), in.bytes->size());
         if (format.empty()) format = name;  // no signature: the extension decides
-        if (format == "png")
-            r.owned = png_without_bulky_metadata(in.bytes->size(), [&](uint64_t at, size_t n, unsigned char* out) {
-                if (at + n > in.bytes->size()) return false;
-                std::copy_n(in.bytes->data() + at, n, out);
-                return true;
-            });
+        const ReadAt read_at = [&](uint64_t at, size_t n, unsigned char* out) {
+            if (at + n > in.bytes->size()) return false;
+            std::copy_n(in.bytes->data() + at, n, out);
+            return true;
+        };
+        if (format == "png") r.owned = png_without_bulky_metadata(in.bytes->size(), read_at);
+        if (format == "jpeg" && header_only) r.owned = jpeg_through_first_scan_header(in.bytes->size(), read_at);
         const std::vector<unsigned char>& data = r.owned ? *r.owned : *in.bytes;
         auto probe = OIIO::ImageInput::create(format, false);
         std::string why;
@@ -363,7 +399,7 @@ std::optional<StatedColorSpace> stated_by(const OIIO::ImageInput& r, const Input
 std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error,
                                         std::optional<StatedColorSpace>& stated) {
     Reader r;
-    if (!open_reader(in, r, error)) return std::nullopt;
+    if (!open_reader(in, r, error, /*header_only=*/true)) return std::nullopt;
     ImageInfo info = info_of(*r.in);
     stated = stated_by(*r.in, in);  // before inspect, which may move to another subimage and back
     if (!check_dimensions(in, info, error) || !inspect(*r.in, in, info, error)) return std::nullopt;
@@ -443,22 +479,15 @@ OIIO::ImageSpec output_spec(int width, int height, int channels, const EncodeOpt
     spec.attribute("DateTime", "2000:01:01 00:00:00");
     spec.attribute("Software", "matforge");
     if (opt.format == FileFormat::exr) spec.attribute("compression", "zip");
-    if (opt.format == FileFormat::png) {
-        // Paeth row filter + zlib's run-length strategy instead of libpng's default (adaptive
-        // filter choice, zlib level 6): 4-5x faster to encode and 2-4 % smaller on textures and
-        // a photograph alike; decoders see an ordinary PNG. Measured by bench/throughput/
-        // png_tradeoff (docs/throughput/png_tradeoff.md). zlib + libpng are 75 % of ingest's
-        // time at libpng's default, so this choice sets matforge's throughput.
-        spec.attribute("png:compressionLevel", 1);  // Z_RLE ignores the level's match search
-        spec.attribute("png:filter", 0x80);         // PNG_FILTER_PAETH (png.h)
-        spec.attribute("compression", "rle");       // OpenImageIO: Z_RLE strategy
-    }
     return spec;
 }
 
 // Writes `data` (of `memtype`) with `spec` in opt.format to bytes.
 bool write_encoded(const OIIO::ImageSpec& spec, const OIIO::TypeDesc& memtype, const void* data,
                    const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error) {
+    if (opt.format == FileFormat::png)  // png_writer.hpp says why not OpenImageIO's writer
+        return png::write(data, spec.width, spec.height, spec.nchannels, static_cast<int>(memtype.size()) * 8, bytes,
+                          error);
     const std::string format(word(opt.format));
     const std::string name = "output." + format;
     auto out = is_block_container(opt.format) ? nullptr : OIIO::ImageOutput::create(name);

@@ -1,0 +1,180 @@
+#include "image/oiio/png_writer.hpp"
+
+#include <libdeflate.h>
+#include <png.h>
+
+#include <algorithm>
+#include <csetjmp>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+namespace mf::png {
+namespace {
+
+// IDAT chunks are cut at this size: any size is valid (PNG spec 11.2.4); streaming decoders
+// buffer a chunk at a time.
+constexpr size_t kIdatBytes = size_t{1} << 20;
+
+// Paeth filter (PNG spec 9.4) of one row, 8 samples at a time. `left` and `upleft` are the
+// bytes `bpp` before `cur` and `up`. GCC's -O2 does not vectorize the scalar form (150 MB/s
+// against 1.5 GB/s for this one, measured on random rows); GCC and clang both take these vector
+// types, on any target.
+using I16x8 = int16_t __attribute__((vector_size(16)));
+using U8x8 = uint8_t __attribute__((vector_size(8)));
+
+I16x8 load8(const uint8_t* p) {
+    U8x8 v;
+    std::memcpy(&v, p, sizeof v);
+    return __builtin_convertvector(v, I16x8);
+}
+
+I16x8 abs16(I16x8 x) {
+    const I16x8 sign = x >> 15;
+    return (x ^ sign) - sign;
+}
+
+uint8_t paeth1(int a, int b, int c, int x) {
+    const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
+    return static_cast<uint8_t>(x - ((pa <= pb && pa <= pc) ? a : (pb <= pc ? b : c)));
+}
+
+// out[0] is the filter type; out[1..n] the filtered bytes of `cur` (n bytes) over `up` (zeros
+// for the first row).
+void paeth_row(const uint8_t* cur, const uint8_t* up, size_t n, size_t bpp, uint8_t* out) {
+    *out++ = 4;  // Paeth
+    const size_t head = std::min(bpp, n);
+    for (size_t i = 0; i < head; ++i) out[i] = paeth1(0, up[i], 0, cur[i]);
+    size_t i = head;
+    for (; i + 8 <= n; i += 8) {
+        const I16x8 a = load8(cur + i - bpp), b = load8(up + i), c = load8(up + i - bpp), x = load8(cur + i);
+        const I16x8 pa = abs16(b - c), pb = abs16(a - c), pc = abs16(a + b - c - c);
+        const I16x8 use_a = (pa <= pb) & (pa <= pc);
+        const I16x8 use_b = ~use_a & (pb <= pc);
+        const U8x8 r = __builtin_convertvector(x - ((a & use_a) | (b & use_b) | (c & ~(use_a | use_b))), U8x8);
+        std::memcpy(out + i, &r, sizeof r);
+    }
+    for (; i < n; ++i) out[i] = paeth1(cur[i - bpp], up[i], up[i - bpp], cur[i]);
+}
+
+// libpng reports a failure by longjmp to the setjmp in write_chunks; its message goes here.
+struct Failure {
+    char message[256] = {};
+};
+
+void on_error(png_structp png, png_const_charp message) {
+    auto* f = static_cast<Failure*>(png_get_error_ptr(png));
+    std::snprintf(f->message, sizeof f->message, "%s", message ? message : "libpng failed");
+    png_longjmp(png, 1);
+}
+
+void on_warning(png_structp, png_const_charp) {}
+
+// Appends to a vector whose capacity write() reserved for the whole file: nothing allocates (or
+// could throw) inside libpng's C frames.
+void on_write(png_structp png, png_bytep data, size_t n) {
+    auto* out = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(png));
+    out->insert(out->end(), data, data + n);
+}
+
+void on_flush(png_structp) {}
+
+// The file's chunks around the compressed stream `z`. Only plain C state lives here: a libpng
+// failure longjmps back into this frame.
+bool write_chunks(png_structp png, png_infop info, int width, int height, int color_type, int bit_depth,
+                  const unsigned char* z, size_t z_bytes) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bit_depth, color_type,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    char key[] = "Software", text[] = "matforge";
+    png_text software{};
+    software.compression = PNG_TEXT_COMPRESSION_NONE;
+    software.key = key;
+    software.text = text;
+    software.text_length = sizeof text - 1;
+    png_set_text(png, info, &software, 1);
+    png_write_info(png, info);  // signature, IHDR, tEXt
+    // The image data as compressed here; libpng frames each chunk and computes its CRC.
+    for (size_t at = 0; at < z_bytes; at += kIdatBytes)
+        png_write_chunk(png, reinterpret_cast<png_const_bytep>("IDAT"), z + at, std::min(kIdatBytes, z_bytes - at));
+    png_write_chunk(png, reinterpret_cast<png_const_bytep>("IEND"), nullptr, 0);
+    return true;
+}
+
+}  // namespace
+
+bool write(const void* samples, int width, int height, int channels, int bit_depth, std::vector<unsigned char>& bytes,
+           std::string& error) {
+    static constexpr int kColorType[] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                         PNG_COLOR_TYPE_RGB_ALPHA};
+    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (bit_depth != 8 && bit_depth != 16)) {
+        error = "PNG cannot hold a " + std::to_string(width) + "x" + std::to_string(height) + " image of " +
+                std::to_string(channels) + " channels at " + std::to_string(bit_depth) + " bits";
+        return false;
+    }
+    const size_t bpp = static_cast<size_t>(channels) * static_cast<size_t>(bit_depth / 8);
+    const size_t row_bytes = static_cast<size_t>(width) * bpp;
+    // Every row filtered, each behind its filter-type byte: what the zlib stream holds.
+    std::vector<uint8_t> filtered((row_bytes + 1) * static_cast<size_t>(height));
+    const std::vector<uint8_t> zeros(row_bytes, 0);
+    if (bit_depth == 8) {
+        const auto* rows = static_cast<const uint8_t*>(samples);
+        for (size_t y = 0; y < static_cast<size_t>(height); ++y)
+            paeth_row(rows + y * row_bytes, y ? rows + (y - 1) * row_bytes : zeros.data(), row_bytes, bpp,
+                      filtered.data() + y * (row_bytes + 1));
+    } else {  // PNG's 16-bit samples are big-endian: each row is swapped into one of two buffers
+        const auto* rows = static_cast<const uint16_t*>(samples);
+        std::vector<uint8_t> big[2] = {std::vector<uint8_t>(row_bytes), std::vector<uint8_t>(row_bytes)};
+        const size_t per_row = row_bytes / 2;
+        for (size_t y = 0; y < static_cast<size_t>(height); ++y) {
+            uint8_t* cur = big[y & 1].data();
+            for (size_t i = 0; i < per_row; ++i) {
+                const uint16_t v = rows[y * per_row + i];
+                cur[2 * i] = static_cast<uint8_t>(v >> 8);
+                cur[2 * i + 1] = static_cast<uint8_t>(v & 0xFF);
+            }
+            paeth_row(cur, y ? big[(y - 1) & 1].data() : zeros.data(), row_bytes, bpp,
+                      filtered.data() + y * (row_bytes + 1));
+        }
+    }
+
+    const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> deflater(
+        libdeflate_alloc_compressor(1), &libdeflate_free_compressor);
+    if (!deflater) {
+        error = "encoding png: out of memory for the compressor";
+        return false;
+    }
+    std::vector<unsigned char> z(libdeflate_zlib_compress_bound(deflater.get(), filtered.size()));
+    const size_t z_bytes = libdeflate_zlib_compress(deflater.get(), filtered.data(), filtered.size(), z.data(),
+                                                    z.size());
+    if (z_bytes == 0) {  // cannot happen with the bound's room; said rather than assumed
+        error = "encoding png: the compressed pixels did not fit their bound";
+        return false;
+    }
+    std::vector<uint8_t>().swap(filtered);
+
+    Failure failure;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &failure, on_error, on_warning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        error = "encoding png: out of memory for libpng";
+        return false;
+    }
+    const size_t chunks = (z_bytes + kIdatBytes - 1) / kIdatBytes;
+    bytes.clear();
+    // Signature, IHDR, tEXt (Software=matforge), the IDAT chunks and IEND, exactly.
+    bytes.reserve(8 + 25 + (12 + sizeof "Software" + sizeof "matforge" - 1) + z_bytes + 12 * chunks + 12);
+    png_set_write_fn(png, &bytes, on_write, on_flush);
+    const bool ok = write_chunks(png, info, width, height, kColorType[channels], bit_depth, z.data(), z_bytes);
+    png_destroy_write_struct(&png, &info);
+    if (!ok) {
+        bytes.clear();
+        error = std::string("encoding png: ") + failure.message;
+    }
+    return ok;
+}
+
+}  // namespace mf::png

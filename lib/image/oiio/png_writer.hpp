@@ -1,0 +1,26 @@
+// matforge's PNG encoder: libpng writes the file's chunks, libdeflate compresses the pixels.
+// Part of the matforge_oiio module (write_encoded sends every PNG here).
+//
+// Why not libpng's own writer: it can only compress through zlib, whose deflate was a third of
+// ingest's CPU time (perf, the corpus through gltf,unity-hdrp). On the 84 distinct PNG outputs of
+// that run (268 MB of Paeth-filtered rows), libdeflate level 1 compresses 1.6x faster than zlib's
+// Z_RLE strategy (the earlier setting), into 7 % fewer bytes, and zlib inflates its streams 17 %
+// faster (docs/throughput/png_tradeoff.md, "Deflate libraries"). ISA-L was faster still but its
+// output depends on the CPU's instruction set, and matforge promises the same bytes from the same
+// inputs on any machine of a farm (docs/cluster.md).
+#pragma once
+#include <string>
+#include <vector>
+
+namespace mf::png {
+
+// Contract: `samples` holds height rows of width * channels samples, uint8_t (bit_depth 8) or
+// uint16_t in host order (bit_depth 16); channels 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA (alpha
+// unassociated, written as given). Appends nothing on failure: returns false with `error`.
+// Every row uses the Paeth filter (PNG spec 9.4; the setting png_tradeoff.md chose), the file is
+// one zlib stream of libdeflate level 1 in IDAT chunks of at most kIdatBytes, with one tEXt
+// (Software=matforge) and no timestamp: the same pixels give the same bytes.
+bool write(const void* samples, int width, int height, int channels, int bit_depth, std::vector<unsigned char>& bytes,
+           std::string& error);
+
+}  // namespace mf::png
