@@ -81,8 +81,9 @@ bool encode(const Picture& p, const Setting& s, std::vector<unsigned char>& byte
 
 bool decode_equals(const Picture& p, std::vector<unsigned char>& bytes) {
     OIIO::Filesystem::IOMemReader mem(bytes.data(), bytes.size());
-    auto in = OIIO::ImageInput::open("x.png", &unassociated(), &mem);
-    if (!in) return false;
+    auto in = OIIO::ImageInput::create("png");
+    OIIO::ImageSpec spec;
+    if (!in || !in->set_ioproxy(&mem) || !in->open("x.png", spec, unassociated())) return false;
     std::vector<std::uint8_t> px(p.pixels.size());
     const bool ok = in->read_image(0, 0, 0, p.spec.nchannels, OIIO::TypeDesc::UINT8, px.data());
     return ok && px == p.pixels;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <map>
 #include <mutex>
@@ -247,8 +248,22 @@ const std::array<float, 256>& unorm8_values() {
 }
 
 void to_float(const uint8_t* codes, size_t n, float* out, const float* table) {
-    const float* v = table ? table : unorm8_values().data();
-    for (size_t i = 0; i < n; ++i) out[i] = v[codes[i]];
+    if (table && table != unorm8_values().data()) {
+        for (size_t i = 0; i < n; ++i) out[i] = table[codes[i]];
+        return;
+    }
+    // unorm8_values' own expression, 8 codes at a time: the same floats bit for bit, without a
+    // table load per code (GCC's -O2 vectorizes neither form; this was 3 % of an ingest's CPU).
+    using U8x8 = uint8_t __attribute__((vector_size(8)));
+    using F32x8 = float __attribute__((vector_size(32)));
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        U8x8 k;
+        std::memcpy(&k, codes + i, sizeof k);
+        const F32x8 v = __builtin_convertvector(k, F32x8) * (1.0f / 255.0f);
+        std::memcpy(out + i, &v, sizeof v);
+    }
+    for (; i < n; ++i) out[i] = static_cast<float>(codes[i]) * (1.0f / 255.0f);
 }
 
 Image to_float(const Image8& codes, const float* table) {

@@ -56,6 +56,11 @@ TEST(Codes, Unorm8ValuesAreWhatReadImageGives) {
         EXPECT_NEAR(unorm[k], static_cast<double>(k) / 255.0, 1e-7);
     }
     EXPECT_EQ(mf::to_float(decoded.codes).pixels, floats.pixels);
+    for (size_t n : {1, 7, 13, 255}) {  // the 8-wide loop and its scalar tail
+        std::vector<float> out(n);
+        mf::to_float(all.pixels.data() + 1, n, out.data());
+        EXPECT_EQ(out, std::vector<float>(floats.pixels.begin() + 1, floats.pixels.begin() + 1 + static_cast<long>(n)));
+    }
     EXPECT_EQ(unorm[0], 0.f);
     EXPECT_EQ(unorm[255], 1.f);
 }

@@ -19,6 +19,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include "image/oiio/png_reader.hpp"
 #include "image/oiio/png_writer.hpp"
 #include "image/oiio_module.hpp"
 
@@ -406,9 +407,56 @@ std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error,
     return info;
 }
 
+// A plain 8-bit PNG (what matforge writes: png_reader.hpp) decoded without OpenImageIO; false,
+// having changed nothing, for any other file, which read_image_impl then opens as before.
+bool read_plain_png(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_codes) {
+    using png::kSignature;
+    // Up to 48 MiB of samples (a 4K RGB map): the reader holds the file and the samples at once.
+    constexpr size_t kMaxBytes = size_t{48} << 20;
+    std::vector<unsigned char> file;
+    if (in.bytes) {
+        if (in.bytes->size() < 8 || !std::equal(kSignature, kSignature + 8, in.bytes->begin())) return false;
+        file = *in.bytes;
+    } else {
+        std::error_code ec;
+        if (!fs::is_regular_file(in.path, ec)) return false;  // open_reader says what it is instead
+        std::ifstream f(in.path, std::ios::binary);
+        unsigned char head[8];
+        if (!f.read(reinterpret_cast<char*>(head), sizeof head) || !std::equal(head, head + 8, kSignature))
+            return false;
+        const uint64_t file_size = fs::file_size(in.path, ec);
+        if (ec || file_size > 2 * kMaxBytes) return false;
+        file.assign(head, head + 8);
+        file.resize(static_cast<size_t>(file_size));
+        if (!f.read(reinterpret_cast<char*>(file.data()) + 8, static_cast<std::streamsize>(file_size - 8)))
+            return false;
+    }
+    png::Plain8 p;
+    if (!png::read_plain8(file, std::min<size_t>(kMaxBytes, static_cast<size_t>(kMaxPixels) * 4), p)) return false;
+    info = ImageInfo{};
+    info.width = p.width;
+    info.height = p.height;
+    info.channels = p.channels;
+    info.bit_depth = 8;
+    info.format = "png";
+    out = Decoded{};
+    if (keep_codes) {
+        out.codes.width = p.width;
+        out.codes.height = p.height;
+        out.codes.channels = p.channels;
+        out.codes.pixels = std::move(p.pixels);
+    } else {  // code k as OpenImageIO gives it: k * (1/255) (Codes.Unorm8ValuesAreWhatReadImageGives)
+        out.floats = Image(p.width, p.height, p.channels);
+        std::transform(p.pixels.begin(), p.pixels.end(), out.floats.pixels.begin(),
+                       [](uint8_t k) { return static_cast<float>(k) * (1.0f / 255.0f); });
+    }
+    return true;
+}
+
 // Decodes into `codes` when keep_codes and the file is 8-bit integer, else into `floats`.
 bool read_image_impl(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error, bool keep_codes) {
     out = Decoded{};
+    if (read_plain_png(in, out, info, keep_codes)) return true;
     Reader r;
     if (!open_reader(in, r, error)) return false;
     info = info_of(*r.in);

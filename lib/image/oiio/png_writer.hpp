@@ -2,12 +2,12 @@
 // Part of the matforge_oiio module (write_encoded sends every PNG here).
 //
 // Why not libpng's own writer: it can only compress through zlib, whose deflate was a third of
-// ingest's CPU time (perf, the corpus through gltf,unity-hdrp). On the 84 distinct PNG outputs of
-// that run (268 MB of Paeth-filtered rows), libdeflate level 1 compresses 1.6x faster than zlib's
-// Z_RLE strategy (the earlier setting), into 7 % fewer bytes, and zlib inflates its streams 17 %
-// faster (docs/throughput/png_tradeoff.md, "Deflate libraries"). ISA-L was faster still but its
-// output depends on the CPU's instruction set, and matforge promises the same bytes from the same
-// inputs on any machine of a farm (docs/cluster.md).
+// ingest's CPU time (perf, the corpus through gltf,unity-hdrp). On that run's 69 distinct 8-bit
+// outputs, this writer encodes 1.9x faster than libpng with zlib's Z_RLE strategy (the earlier
+// setting) into 1.2 % more bytes, decoded as fast (bench/throughput/png_tradeoff,
+// docs/throughput/png_tradeoff.md); the run's 16-bit heights came out 18 % smaller. ISA-L
+// compressed 2x faster again, but its output depends on the CPU's instruction set, and matforge
+// promises the same bytes from the same inputs on any machine of a farm (docs/cluster.md).
 #pragma once
 #include <string>
 #include <vector>
