@@ -309,6 +309,9 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
         {"an unknown chunk", with([](auto& c) {
              put(c, 1, Chunk{"abCd", {1, 2}});
          })},
+        {"an orientation in text", with([](auto& c) {
+             put(c, 1, Chunk{"tEXt", {'O', 'r', 'i', 'e', 'n', 't', 'a', 't', 'i', 'o', 'n', 0, '6'}});
+         })},
         {"IDAT split by another chunk", with([](auto& c) {
              Chunk second{"IDAT", {c[2].data.begin() + 4, c[2].data.end()}};
              c[2].data.resize(4);
@@ -325,6 +328,9 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
              c[2].data.resize(n);
          })},
     };
+    EXPECT_TRUE(plain(with([](auto& c) {
+        put(c, 1, Chunk{"tEXt", {'O', 'r', 'i', 'e', 'n', 't', 0, '6'}});
+    }))) << "other text is inert";
     for (const auto& [why, bytes] : refused) {
         SCOPED_TRACE(why);
         EXPECT_FALSE(plain(bytes));

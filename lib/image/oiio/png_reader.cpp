@@ -64,11 +64,21 @@ bool unfilter(int type, uint8_t* row, const uint8_t* up, size_t width, int bpp) 
     }
 }
 
-// Chunks that change no pixel and no colour fact OpenImageIO would state for the file: text,
-// time, pixel size, image offset (matforge reads no origin). Any other ancillary chunk (gAMA, sRGB, iCCP, cHRM, sBIT,
-// tRNS, eXIf, ...) sends the file to OpenImageIO.
-bool inert(std::string_view type) {
-    return type == "tEXt" || type == "zTXt" || type == "iTXt" || type == "tIME" || type == "pHYs" || type == "oFFs";
+// Chunks that change no pixel and no colour fact OpenImageIO would state for the file: text but
+// an orientation, time, pixel size, image offset (matforge reads no origin). Any other ancillary chunk (gAMA, sRGB,
+// iCCP, cHRM, sBIT, tRNS, eXIf, ...) sends the file to OpenImageIO.
+bool inert(std::string_view type, const unsigned char* data, uint32_t len) {
+    if (type == "tEXt" || type == "zTXt" || type == "iTXt") {
+        // OpenImageIO makes each text chunk an attribute named by its keyword, and reads an
+        // "Orientation" one as the orientation it notes (ORIENTATION_IGNORED): such a file is its.
+        std::string_view key(reinterpret_cast<const char*>(data), std::min<uint32_t>(len, 80));
+        key = key.substr(0, key.find('\0'));
+        static constexpr std::string_view kOrientation = "orientation";
+        return !(key.size() == kOrientation.size() &&
+                 std::equal(key.begin(), key.end(), kOrientation.begin(),
+                            [](char a, char b) { return (a >= 'A' && a <= 'Z' ? a - 'A' + 'a' : a) == b; }));
+    }
+    return type == "tIME" || type == "pHYs" || type == "oFFs";
 }
 
 }  // namespace
@@ -109,7 +119,7 @@ bool read_plain8(std::vector<unsigned char>& file, size_t max_bytes, Plain8& out
             stream += len;
         } else if (type == "IEND") {
             ended = true;
-        } else if (!inert(type)) {
+        } else if (!inert(type, data, len)) {
             return false;
         }
         if (last == "IDAT" && type != "IDAT") idat_run_over = true;
