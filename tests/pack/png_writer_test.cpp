@@ -66,6 +66,14 @@ std::vector<T> samples(int w, int h, int channels, bool noise, unsigned seed) {
     return v;
 }
 
+// `png` as an in-memory file named `name`, for read_image.
+mf::InputFile in_memory(const std::vector<unsigned char>& png, const char* name) {
+    mf::InputFile in;
+    in.display = name;
+    in.bytes = std::make_shared<const std::vector<unsigned char>>(png);
+    return in;
+}
+
 // Encodes through encode_image: 8-bit as codes, 16-bit as floats k / 65535 (quantized back to k).
 std::vector<unsigned char> encode(int w, int h, int channels, int depth, const std::vector<uint16_t>& s16,
                                   const std::vector<uint8_t>& s8) {
@@ -117,9 +125,7 @@ TEST(PngWriter, EveryLayoutReadsBackExactlyInTwoIndependentDecoders) {
                     EXPECT_EQ(sc, channels);
 
                     // OpenImageIO: libpng and zlib.
-                    mf::InputFile in;
-                    in.display = "written.png";
-                    in.bytes = std::make_shared<const std::vector<unsigned char>>(png);
+                    const mf::InputFile in = in_memory(png, "written.png");
                     mf::Decoded decoded;
                     mf::ImageInfo info;
                     std::string err;
@@ -257,9 +263,7 @@ TEST(PngReader, ReadsEveryFilterAndLayoutExactly) {
                     EXPECT_EQ(p.channels, channels);
                     EXPECT_EQ(p.pixels, s8);
                     // And through read_image, as codes and as floats (OpenImageIO's k / 255).
-                    mf::InputFile in;
-                    in.display = "plain.png";
-                    in.bytes = std::make_shared<const std::vector<unsigned char>>(png);
+                    const mf::InputFile in = in_memory(png, "plain.png");
                     mf::Decoded d;
                     mf::ImageInfo info;
                     std::string err;
@@ -345,9 +349,7 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
     EXPECT_FALSE(plain(good, w * h * channels - 1));
     EXPECT_TRUE(plain(good, w * h * channels));
     // What OpenImageIO then says about the gAMA file: its pixels, as before.
-    mf::InputFile in;
-    in.display = "gamma.png";
-    in.bytes = std::make_shared<const std::vector<unsigned char>>(refused[3].second);
+    const mf::InputFile in = in_memory(refused[3].second, "gamma.png");
     mf::Decoded d;
     mf::ImageInfo info;
     std::string err;

@@ -91,10 +91,6 @@ std::string sniff_format(const unsigned char* b, size_t n) {
 // critical or small and always kept.
 constexpr uint32_t kMaxPngMetadataChunk = 1u << 20;
 
-uint32_t be32(const unsigned char* p) {
-    return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
-}
-
 // Reads `n` bytes at `at` from the file or the memory image; false past the end.
 using ReadAt = std::function<bool(uint64_t at, size_t n, unsigned char* out)>;
 
@@ -112,7 +108,7 @@ std::shared_ptr<std::vector<unsigned char>> png_without_bulky_metadata(uint64_t 
     unsigned char head[8];
     while (at + 12 <= size) {
         if (!read(at, 8, head)) return nullptr;
-        const uint64_t len = be32(head);
+        const uint64_t len = png::be32(head);
         if (at + 12 + len > size) return nullptr;
         const bool ancillary = head[4] >= 'a' && head[4] <= 'z';
         const bool drop = ancillary && len > kMaxPngMetadataChunk;
@@ -410,29 +406,31 @@ std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error,
 // A plain 8-bit PNG (what matforge writes: png_reader.hpp) decoded without OpenImageIO; false,
 // having changed nothing, for any other file, which read_image_impl then opens as before.
 bool read_plain_png(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_codes) {
-    using png::kSignature;
     // Up to 48 MiB of samples (a 4K RGB map): the reader holds the file and the samples at once.
-    constexpr size_t kMaxBytes = size_t{48} << 20;
+    const size_t max_bytes = std::min<size_t>(size_t{48} << 20, static_cast<size_t>(kMaxPixels) * 4);
+    // The head first: any other PNG (16-bit, palette, interlaced, too large) or any other file is
+    // left to OpenImageIO before the whole file is read or copied.
     std::vector<unsigned char> file;
     if (in.bytes) {
-        if (in.bytes->size() < 8 || !std::equal(kSignature, kSignature + 8, in.bytes->begin())) return false;
+        if (in.bytes->size() < png::kHeaderBytes || png::plain8_header(in.bytes->data(), max_bytes) == 0) return false;
         file = *in.bytes;
     } else {
         std::error_code ec;
         if (!fs::is_regular_file(in.path, ec)) return false;  // open_reader says what it is instead
         std::ifstream f(in.path, std::ios::binary);
-        unsigned char head[8];
-        if (!f.read(reinterpret_cast<char*>(head), sizeof head) || !std::equal(head, head + 8, kSignature))
+        unsigned char head[png::kHeaderBytes];
+        if (!f.read(reinterpret_cast<char*>(head), sizeof head) || png::plain8_header(head, max_bytes) == 0)
             return false;
         const uint64_t file_size = fs::file_size(in.path, ec);
-        if (ec || file_size > 2 * kMaxBytes) return false;
-        file.assign(head, head + 8);
+        if (ec || file_size < sizeof head || file_size > 2 * uint64_t{max_bytes}) return false;
+        file.assign(head, head + sizeof head);
         file.resize(static_cast<size_t>(file_size));
-        if (!f.read(reinterpret_cast<char*>(file.data()) + 8, static_cast<std::streamsize>(file_size - 8)))
+        if (!f.read(reinterpret_cast<char*>(file.data()) + sizeof head,
+                    static_cast<std::streamsize>(file_size - sizeof head)))
             return false;
     }
     png::Plain8 p;
-    if (!png::read_plain8(file, std::min<size_t>(kMaxBytes, static_cast<size_t>(kMaxPixels) * 4), p)) return false;
+    if (!png::read_plain8(file, max_bytes, p)) return false;
     info = ImageInfo{};
     info.width = p.width;
     info.height = p.height;

@@ -11,10 +11,6 @@
 namespace mf::png {
 namespace {
 
-uint32_t be32(const unsigned char* p) {
-    return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
-}
-
 // Reverses the Paeth filter (PNG spec 9.4) of one row in place (`row` holds the filtered bytes,
 // `up` the row above, reconstructed, or zeros). Each pixel depends on the one before it; its
 // channels are independent chains, which the processor overlaps. (Per-pixel vector forms ran no
@@ -83,13 +79,29 @@ bool inert(std::string_view type, const unsigned char* data, uint32_t len) {
 
 }  // namespace
 
+int plain8_header(const unsigned char* head, size_t max_bytes) {
+    if (std::memcmp(head, kSignature, 8) != 0 || be32(head + 8) != 13 || std::memcmp(head + 12, "IHDR", 4) != 0)
+        return 0;
+    const unsigned char* data = head + 16;
+    const uint32_t width = be32(data), height = be32(data + 4);
+    static constexpr int kChannels[] = {1, 0, 3, 0, 2, 0, 4};  // by colour type
+    const int channels = data[9] < 7 ? kChannels[data[9]] : 0;
+    // 8-bit samples, deflate, filter method 0, not interlaced.
+    if (data[8] != 8 || channels == 0 || data[10] != 0 || data[11] != 0 || data[12] != 0) return 0;
+    if (width == 0 || height == 0 || width > 0x7FFFFFFFu || height > 0x7FFFFFFFu ||
+        uint64_t{width} * height * static_cast<uint64_t>(channels) > max_bytes)
+        return 0;
+    return channels;
+}
+
 bool read_plain8(std::vector<unsigned char>& file, size_t max_bytes, Plain8& out) {
     out = Plain8{};
     unsigned char* bytes = file.data();
     const size_t size = file.size();
-    if (size < 8 + 25 || std::memcmp(bytes, kSignature, 8) != 0) return false;
+    if (size < kHeaderBytes) return false;
+    const int channels = plain8_header(bytes, max_bytes);
+    if (channels == 0) return false;
     uint32_t width = 0, height = 0;
-    int channels = 0;
     size_t stream = 0;  // the IDAT chunks' data, moved together to the front of `file`
     bool ended = false, idat_run_over = false;
     std::string_view last;
@@ -100,18 +112,9 @@ bool read_plain8(std::vector<unsigned char>& file, size_t max_bytes, Plain8& out
         const std::string_view type(reinterpret_cast<const char*>(bytes + at + 4), 4);
         const unsigned char* data = bytes + at + 8;
         if (libdeflate_crc32(0, bytes + at + 4, len + 4) != be32(data + len)) return false;
-        if (at == 8) {  // IHDR first, and only there
-            if (type != "IHDR" || len != 13) return false;
+        if (at == 8) {  // IHDR, checked before the loop
             width = be32(data);
             height = be32(data + 4);
-            static constexpr int kChannels[] = {1, 0, 3, 0, 2, 0, 4};  // by colour type
-            const unsigned color_type = data[9];
-            channels = color_type < 7 ? kChannels[color_type] : 0;
-            // 8-bit samples, deflate, filter method 0, not interlaced.
-            if (data[8] != 8 || channels == 0 || data[10] != 0 || data[11] != 0 || data[12] != 0) return false;
-            if (width == 0 || height == 0 || width > 0x7FFFFFFFu || height > 0x7FFFFFFFu ||
-                uint64_t{width} * height * static_cast<uint64_t>(channels) > max_bytes)
-                return false;
         } else if (type == "IDAT") {
             if (idat_run_over) return false;
             // Behind everything already read (stream <= at): moving it overwrites nothing unread.

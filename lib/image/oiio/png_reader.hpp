@@ -11,6 +11,19 @@ namespace mf::png {
 
 // Every PNG's first eight bytes (PNG spec 5.2).
 inline constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+// The signature and the IHDR chunk: the bytes plain8_header looks at.
+inline constexpr size_t kHeaderBytes = 8 + 12 + 13;
+
+// A big-endian 32-bit field (PNG's lengths, sizes and CRCs).
+inline uint32_t be32(const unsigned char* p) {
+    return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
+}
+
+// The channels of the plain 8-bit PNG whose first kHeaderBytes are `head` (signature, IHDR of 13
+// bytes: 8-bit grey, grey+alpha, RGB or RGBA, not interlaced, a size of at most `max_bytes` of
+// samples), else 0. The IHDR's CRC is not checked here: read_plain8 checks every chunk's. Lets a
+// caller leave any other PNG to OpenImageIO before reading more than its head.
+int plain8_header(const unsigned char* head, size_t max_bytes);
 
 struct Plain8 {
     int width = 0, height = 0, channels = 0;
