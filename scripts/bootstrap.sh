@@ -17,7 +17,7 @@ packages_build=(
   libopenimageio-dev libopencolorio-dev libopenexr-dev libcli11-dev nlohmann-json3-dev
   openimageio-tools  # OpenImageIO's CMake package names its tools: configuring fails without them
   libzip-dev libssl-dev libstb-dev libsquish-dev libastcenc-dev libzstd-dev
-  libpng-dev libdeflate-dev  # the PNG writer (lib/image/oiio/png_writer.hpp)
+  libpng-dev libdeflate-dev libjpeg-dev libwebp-dev  # lib/image/direct.hpp, png_writer.hpp
   libxml2-dev  # MaterialX sidecars (lib/material); the tests also parse JUnit with it
   libvulkan-dev glslc mesa-vulkan-drivers  # preview: shaders built by glslc, lavapipe without a GPU
 )

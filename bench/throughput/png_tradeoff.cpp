@@ -1,7 +1,7 @@
 // png_tradeoff: what PNG output size costs in time. Re-encodes a folder of 8-bit PNGs (for
 // example matforge's outputs of the throughput library) with OpenImageIO under each zlib level,
 // row filter and deflate strategy, and with matforge's own writer (Paeth rows, libdeflate level
-// 1: lib/image/oiio/png_writer.hpp), and reports encode time, decode time and total size, so the
+// 1: lib/image/png_writer.hpp), and reports encode time, decode time and total size, so the
 // default matforge writes is a measured choice, not a guess.
 //
 //   png_tradeoff <folder> [--repeat N] [--csv FILE]

@@ -7,6 +7,10 @@
 #include <dlfcn.h>
 #include <sys/stat.h>
 
+#include <cstdio>  // before jpeglib.h, which uses FILE
+
+#include <jpeglib.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -15,7 +19,9 @@
 #include <mutex>
 #include <new>
 
+#include "image/direct.hpp"
 #include "image/oiio_module.hpp"
+#include "image/png_writer.hpp"
 
 namespace mf {
 namespace {
@@ -164,13 +170,16 @@ FileMemo<StatedColorSpace>& stated_memo() {
 }  // namespace
 
 std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
-    const auto* t = table(error, in.display + ": ");
-    if (!t) return std::nullopt;
     const std::string key = file_key(in);
     HeaderRead r = header_memo().get(key, [&] {
         HeaderRead h;
         std::optional<StatedColorSpace> stated;  // from the same open, where it is stated_color_space's
-        h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error, stated); });
+        ImageInfo direct_info;
+        if (direct::read_info(in, direct_info, stated)) {
+            h.info = std::move(direct_info);
+        } else if (const auto* t = table(h.error, in.display + ": ")) {
+            h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error, stated); });
+        }
         // The colour-tag check then needs no open of its own (a JPEG's costs a decode).
         if (stated) stated_memo().put(key, *stated);
         return h;
@@ -179,44 +188,68 @@ std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
     return std::move(r.info);
 }
 
+// Decodes `in`: directly where image/direct.hpp reads it, else through the module.
+bool read_decoded(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error, bool keep_codes) {
+    if (direct::read_image(in, out, info, keep_codes)) return true;
+    const auto* t = table(error, in.display + ": ");
+    const bool ok = t && guarded(in, error, [&] { return t->read_image(in, out, info, error, keep_codes); });
+    if (!ok) out = Decoded{};
+    return ok;
+}
+
 bool read_image(const InputFile& in, Image& out, ImageInfo& info, std::string& error) {
     Decoded d;
-    const auto* t = table(error, in.display + ": ");
-    const bool ok = t && guarded(in, error, [&] { return t->read_image(in, d, info, error, false); });
+    const bool ok = read_decoded(in, d, info, error, false);
     out = ok ? std::move(d.floats) : Image{};
     return ok;
 }
 
 bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error) {
-    const auto* t = table(error, in.display + ": ");
-    const bool ok = t && guarded(in, error, [&] { return t->read_image(in, out, info, error, true); });
-    if (!ok) out = Decoded{};
-    return ok;
+    return read_decoded(in, out, info, error, true);
 }
 
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
                 const std::function<void(int, int, const float*)>& fn) {
+    if (direct::read_bands(in, band_rows, info, fn)) return true;
     const auto* t = table(error, in.display + ": ");
     return t && guarded(in, error, [&] { return t->read_bands(in, band_rows, info, error, fn); });
 }
 
+// PNG is matforge's own writer (png_writer.hpp says why); every other format OpenImageIO's.
 bool encode_image(const Image& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error) {
     bytes.clear();
+    if (opt.format == FileFormat::png) {
+        // Quantized here (round to nearest, clamp) so results never depend on a writer's rounding.
+        if (opt.bit_depth == 16) {
+            std::vector<uint16_t> q16(img.pixels.size());
+            for (size_t i = 0; i < q16.size(); ++i) q16[i] = quantize_unorm(img.pixels[i], 65535.f);
+            return png::write(q16.data(), img.width, img.height, img.channels, 16, bytes, error);
+        }
+        std::vector<uint8_t> q8(img.pixels.size());
+        for (size_t i = 0; i < q8.size(); ++i) q8[i] = quantize8(img.pixels[i]);
+        return png::write(q8.data(), img.width, img.height, img.channels, 8, bytes, error);
+    }
     const auto* t = table(error);
     return t && t->encode_floats(img, opt, bytes, error);
 }
 
 bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error) {
     bytes.clear();
+    if (opt.format == FileFormat::png && opt.bit_depth == 8)
+        return png::write(img.pixels.data(), img.width, img.height, img.channels, 8, bytes, error);
     const auto* t = table(error);
     return t && t->encode_codes(img, opt, bytes, error);
 }
 
 StatedColorSpace stated_color_space(const InputFile& in) {
-    std::string error;
-    const auto* t = table(error);
-    if (!t) return {};
     return stated_memo().get(file_key(in), [&] {
+        // A JPEG read directly is stated as OpenImageIO states every JPEG, without the module.
+        ImageInfo info;
+        std::optional<StatedColorSpace> stated;
+        if (direct::read_info(in, info, stated) && stated) return *stated;
+        std::string error;
+        const auto* t = table(error);
+        if (!t) return StatedColorSpace{};
         StatedColorSpace s;
         // A reader that throws on hostile bytes states nothing; decoding the file reports it.
         const bool ok = guarded(in, error, [&] {
@@ -274,12 +307,23 @@ Image to_float(const Image8& codes, const float* table) {
 
 uint16_t quantize(float v, int bit_depth) { return quantize_unorm(v, bit_depth == 16 ? 65535.f : 255.f); }
 
-// The ingest cache's key names the OpenImageIO that decodes and encodes: the library file's real
-// name (libOpenImageIO.so.2.4.7, Debian's full version) and size; an upgrade replaces the file,
-// so the key changes. Asking the loaded library costs loading it (0.3 s, 261 libraries) in every
-// run, also one that finds everything up to date, so the file is looked up where the build
-// linked it. Where the loader could pick another (LD_LIBRARY_PATH set, or no file there), the
-// module is loaded and names the file it loaded: the same key either way.
+namespace {
+// A library file's real name and size ("libjpeg.so.62.3.0 413904"): an upgrade replaces the
+// file, so the key changes, whatever version the headers of the build named.
+std::string file_identity(const fs::path& file) {
+    std::error_code ec;
+    const fs::path real = fs::canonical(file, ec);
+    const auto size = ec ? 0 : fs::file_size(real, ec);
+    return ec ? file.string() : real.filename().string() + " " + std::to_string(size);
+}
+}  // namespace
+
+// The ingest cache's key names the libraries that decode and encode: OpenImageIO's file, and
+// libjpeg-turbo's, libdeflate and libpng (image/direct.hpp, png_writer.hpp). Asking the loaded
+// OpenImageIO costs loading it (0.3 s, 261 libraries) in every run, also one that finds
+// everything up to date, so its file is looked up where the build linked it. Where the loader
+// could pick another (LD_LIBRARY_PATH set, or no file there), the module is loaded and names the
+// file it loaded: the same key either way. libjpeg is linked: the file the loader loaded.
 std::string image_library_version() {
     fs::path file = fs::path(MATFORGE_OIIO_LIBRARY_DIR) / ("libOpenImageIO.so." + std::to_string(OIIO_VERSION_MAJOR) +
                                                            "." + std::to_string(OIIO_VERSION_MINOR));
@@ -291,10 +335,9 @@ std::string image_library_version() {
         if (!t) return "OpenImageIO (" + error + ")";
         file = t->library_file();
     }
-    const fs::path real = fs::canonical(file, ec);
-    const auto size = ec ? 0 : fs::file_size(real, ec);
-    // PNG outputs are libdeflate's stream in libpng's chunks (oiio/png_writer.hpp).
-    return "OpenImageIO " + (ec ? file.string() : real.filename().string() + " " + std::to_string(size)) +
+    Dl_info jpeg{};
+    const bool found = ::dladdr(reinterpret_cast<void*>(&jpeg_read_header), &jpeg) != 0 && jpeg.dli_fname;
+    return "OpenImageIO " + file_identity(file) + ", libjpeg " + (found ? file_identity(jpeg.dli_fname) : "?") +
            ", libdeflate " MATFORGE_LIBDEFLATE_VERSION ", libpng " MATFORGE_LIBPNG_VERSION;
 }
 

@@ -186,9 +186,27 @@ struct Ingestor::Run {
 struct Ingestor::SetShare {
     PlanShare plan;
 
-    // `bytes` of `img` encoded with `enc`: an equal image encoded so before is not encoded again.
+    // The set's input digests, read and hashed once for every ingestor of the pass (without a
+    // cache, which remembers them by stat).
+    std::optional<std::string> digest(const InputFile& in, std::string& error) {
+        const std::string key = in.display + '\n' + in.path.string();
+        {
+            std::lock_guard lock(mutex);
+            if (const auto it = digests.find(key); it != digests.end()) return it->second;
+        }
+        std::optional<std::string> sha = read_and_hash(in, error);
+        if (sha) {
+            std::lock_guard lock(mutex);
+            digests.emplace(key, *sha);
+        }
+        return sha;
+    }
+
+    // `bytes` of `img` encoded with `enc`, and their SHA-256 in `sha`: an equal image encoded so
+    // before is neither encoded nor hashed again.
     template <class T>
-    bool encode(BasicImage<T> img, const EncodeOptions& enc, std::vector<unsigned char>& bytes, std::string& error) {
+    bool encode(BasicImage<T> img, const EncodeOptions& enc, std::vector<unsigned char>& bytes, std::string& sha,
+                std::string& error) {
         auto& kept = kept_of<T>();
         {
             std::lock_guard lock(mutex);
@@ -196,17 +214,19 @@ struct Ingestor::SetShare {
                 if (k.enc.format == enc.format && k.enc.bit_depth == enc.bit_depth && k.img.width == img.width &&
                     k.img.height == img.height && k.img.channels == img.channels && k.img.pixels == img.pixels) {
                     bytes = k.bytes;
+                    sha = k.sha;
                     return true;
                 }
         }
         if (!encode_image(img, enc, bytes, error)) return false;
+        sha = sha256_hex(bytes);
         // Kept up to a bound: an 8K set's packed outputs are gigabytes, and sharing is a saving,
         // never needed for the result.
         const uint64_t size = img.pixels.size() * sizeof(T) + bytes.size();
         std::lock_guard lock(mutex);
         if (kept_bytes + size > kMaxKeptBytes) return true;
         kept_bytes += size;
-        kept.push_back({enc, std::move(img), bytes});
+        kept.push_back({enc, std::move(img), bytes, sha});
         return true;
     }
 
@@ -216,6 +236,7 @@ private:
         EncodeOptions enc;
         BasicImage<T> img;
         std::vector<unsigned char> bytes;
+        std::string sha;
     };
     template <class T>
     std::vector<Kept<T>>& kept_of() {
@@ -227,6 +248,7 @@ private:
     uint64_t kept_bytes = 0;
     std::vector<Kept<unsigned char>> codes;
     std::vector<Kept<float>> floats;
+    std::map<std::string, std::string> digests;
 };
 
 MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const {
@@ -235,11 +257,10 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
     // Every set's action key goes into its entry (plan --changed-since); the cache remembers its
     // files' digests by stat, without it they are read and hashed.
     std::string key_error;
-    const std::optional<std::string> action = action_key(src, run.context, key_error,
-                                                         run.cache ? Digest([&](const InputFile& in, std::string& e) {
-                                                             return run.cache->digest(in, e);
-                                                         })
-                                                                   : Digest());
+    Digest digest;
+    if (run.cache) digest = [&](const InputFile& in, std::string& e) { return run.cache->digest(in, e); };
+    else if (share) digest = [share](const InputFile& in, std::string& e) { return share->digest(in, e); };
+    const std::optional<std::string> action = action_key(src, run.context, key_error, digest);
     const std::optional<std::string> key = cacheable ? action : std::nullopt;
     auto write = [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
         return run.write(rel, b, e);
@@ -286,9 +307,12 @@ struct OutputJob {
     const std::map<std::string, std::string>* refused;  // output suffix -> why it may not be written
     std::function<bool(const std::string& rel, std::span<const unsigned char>, std::string& error)>
         write;  // the run's folder
-    // Encodes a packed image (8-bit codes or floats): through the set's share in run_together.
-    std::function<bool(Image8, const EncodeOptions&, std::vector<unsigned char>&, std::string&)> encode8;
-    std::function<bool(Image, const EncodeOptions&, std::vector<unsigned char>&, std::string&)> encode;
+    // Encodes a packed image (8-bit codes or floats): through the set's share in run_together,
+    // which also gives the bytes' SHA-256 (else left empty).
+    std::function<bool(Image8, const EncodeOptions&, std::vector<unsigned char>&, std::string& sha, std::string&)>
+        encode8;
+    std::function<bool(Image, const EncodeOptions&, std::vector<unsigned char>&, std::string& sha, std::string&)>
+        encode;
 };
 
 struct Written {
@@ -314,6 +338,7 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
     const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return job.planes.count(r) > 0; });
     const Size size = any_map ? job.size : Size{job.preset.constant_size, job.preset.constant_size};
     std::vector<unsigned char> bytes;
+    std::string sha;  // of `bytes`, when the encoder had it
     std::string err;
     bool encoded = false;
     std::optional<texture::EncodedOutput> gpu;  // dds, ktx2: the mip levels in GPU blocks (lib/texture)
@@ -326,8 +351,8 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
         // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
         std::optional<Image8> packed8 = pack_output8(o, job.planes, job.preset, size, job.color);
         const EncodeOptions enc{job.preset.format, o.bit_depth};
-        encoded = packed8 ? job.encode8(std::move(*packed8), enc, bytes, err)
-                          : job.encode(pack_output(o, job.planes, job.preset, size, job.color), enc, bytes, err);
+        encoded = packed8 ? job.encode8(std::move(*packed8), enc, bytes, sha, err)
+                          : job.encode(pack_output(o, job.planes, job.preset, size, job.color), enc, bytes, sha, err);
     }
     // Written through the run's folder: under it, never through a link, journalled.
     const std::string file = rel_path.generic_string();
@@ -347,7 +372,7 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
     e.height = size.height;
     e.bit_depth = o.bit_depth;
     e.format = std::string(word(job.preset.format));
-    e.sha256 = sha256_hex(bytes);
+    e.sha256 = sha.empty() ? sha256_hex(bytes) : std::move(sha);
     if (!gpu) return Written{std::move(e), std::nullopt, {}};
     e.width = gpu->width;
     e.height = gpu->height;
@@ -418,11 +443,13 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                         [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
                             return run.write(rel, b, e);
                         },
-                        [share](Image8 img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& e) {
-                            return share ? share->encode(std::move(img), enc, b, e) : encode_image(img, enc, b, e);
+                        [share](Image8 img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& sha,
+                                std::string& e) {
+                            return share ? share->encode(std::move(img), enc, b, sha, e) : encode_image(img, enc, b, e);
                         },
-                        [share](Image img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& e) {
-                            return share ? share->encode(std::move(img), enc, b, e) : encode_image(img, enc, b, e);
+                        [share](Image img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& sha,
+                                std::string& e) {
+                            return share ? share->encode(std::move(img), enc, b, sha, e) : encode_image(img, enc, b, e);
                         }};
     // Outputs are packed and encoded on two threads (each output on one: deflate is serial) when
     // a worker is idle (above).

@@ -41,6 +41,15 @@ std::string context_digest(const Preset& preset, const rules::RuleConfig& rules,
     return h.hex();
 }
 
+std::optional<std::string> read_and_hash(const InputFile& in, std::string& error) {
+    if (in.bytes) return sha256_hex(*in.bytes);
+    if (!in.open_error.empty()) {
+        error = in.display + ": " + in.open_error;
+        return std::nullopt;
+    }
+    return sha256_of_file(in.path, error);
+}
+
 std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error,
                                       const Digest& digest) {
     Hasher h;
@@ -50,16 +59,7 @@ std::optional<std::string> action_key(const MaterialSource& set, const std::stri
     for (const Finding& f : set.findings) h.add(to_json(f).dump());
     for (const std::string& f : set.files) {  // sorted by find_material_sets
         const InputFile in = set.open(f);
-        std::optional<std::string> sha;
-        if (digest) {
-            sha = digest(in, error);
-        } else if (in.bytes) {
-            sha = sha256_hex(*in.bytes);
-        } else if (!in.open_error.empty()) {
-            error = in.display + ": " + in.open_error;
-        } else {
-            sha = sha256_of_file(in.path, error);  // in pieces: a 150 MB map is not held to be hashed
-        }
+        const std::optional<std::string> sha = digest ? digest(in, error) : read_and_hash(in, error);
         if (!sha) return std::nullopt;
         h.add(f);
         h.add(*sha);

@@ -25,8 +25,11 @@ std::string context_digest(const Preset& preset, const rules::RuleConfig& rules,
 // The SHA-256 (hex) of an input file's bytes; nullopt + `error` when it cannot be read.
 using Digest = std::function<std::optional<std::string>(const InputFile&, std::string& error)>;
 
+// A Digest that reads and hashes the file (a map in pieces: a 150 MB map is not held to be hashed).
+std::optional<std::string> read_and_hash(const InputFile& in, std::string& error);
+
 // The set's action key, or nullopt + `error` when one of its files cannot be read. `digest`:
-// how a file's SHA-256 is had (a cache remembers them by stat); empty: read and hash.
+// how a file's SHA-256 is had (a cache remembers them by stat); empty: read_and_hash.
 std::optional<std::string> action_key(const MaterialSource& set, const std::string& context, std::string& error,
                                       const Digest& digest = {});
 

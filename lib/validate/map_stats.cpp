@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -89,36 +90,25 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         const float up = normal_signed == 1 ? 1.f : 1.f - 0.5f / 255.f;  // z = +1 stored
         normal_z = blue_constant && (xy_vary || bmax < up - 0.1f) ? 1 : 0;
     }
-    // Per-channel min/max/sum, channel by channel so the accumulators live in registers (the
-    // pixel-major form kept them in the member arrays, one store-to-load chain per sample).
-    if (code_scale > 0.f) {
-        for (int c = 0; c < std::min(channels, 4); ++c) {
-            // Integer file: no NaN or Inf can occur, min/max in float are exact, the sum is exact in
-            // codes; no branch and no dependency through a double add per sample.
-            // Four independent chains: min, max and integer sums are exact in any order.
-            constexpr float kInf = std::numeric_limits<float>::infinity();
-            float mn[4] = {kInf, kInf, kInf, kInf}, mx[4] = {-kInf, -kInf, -kInf, -kInf};
-            long long codes[4] = {0, 0, 0, 0};
-            const float scale = code_scale;
-            auto step = [&](size_t j, float v) {
-                mn[j] = std::min(mn[j], v);
-                mx[j] = std::max(mx[j], v);
+    // Per-channel min/max/sum. Integer file: no NaN or Inf can occur, min/max in float are exact,
+    // the sum is exact in codes: any order gives the same figures, so the band is walked as it
+    // lies in memory, four samples a step (codes_band).
+    if (code_scale > 0.f && channels <= 4) {
+        codes_band(n, px);
+    } else if (code_scale > 0.f) {
+        for (int c = 0; c < 4; ++c) {
+            float mn = std::numeric_limits<float>::infinity(), mx = -mn;
+            long long codes = 0;
+            for (long long i = 0; i < n; ++i) {
+                const float v = px[i * channels + c];
+                mn = std::min(mn, v);
+                mx = std::max(mx, v);
                 // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
-                codes[j] += static_cast<long long>(v * scale + 0.5f);
-            };
-            const float* q = px + c;
-            const auto stride = static_cast<size_t>(channels);
-            long long i = 0;
-            for (; i + 4 <= n; i += 4, q += 4 * stride) {
-                step(0, q[0]);
-                step(1, q[stride]);
-                step(2, q[2 * stride]);
-                step(3, q[3 * stride]);
+                codes += static_cast<long long>(v * code_scale + 0.5f);
             }
-            for (; i < n; ++i, q += stride) step(0, q[0]);
-            min[c] = std::min({min[c], double{mn[0]}, double{mn[1]}, double{mn[2]}, double{mn[3]}});
-            max[c] = std::max({max[c], double{mx[0]}, double{mx[1]}, double{mx[2]}, double{mx[3]}});
-            code_sum[c] += codes[0] + codes[1] + codes[2] + codes[3];
+            min[c] = std::min(min[c], double{mn});
+            max[c] = std::max(max[c], double{mx});
+            code_sum[c] += codes;
             finite[c] += n;
         }
     } else {
@@ -201,6 +191,77 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         opacity_invisible += invisible, opacity_below_cutoff += below;
     }
     if (is_normal() && channels >= 2) normal_band(n, px);
+}
+
+// min, max and code sums of an integer file's band of 1-4 channels: blocks of lcm(channels, 4)
+// samples, as whole vectors of four lanes whose channel is fixed by the lane's place in the
+// block ((4 j + lane) mod channels); the rest sample by sample. The same figures as one channel
+// at a time, several times faster (GCC vector types: SSE2 on any x86-64, NEON on ARM).
+void MapStats::codes_band(long long n, const float* px) {
+    using F4 = float __attribute__((vector_size(16)));
+    using I4 = int32_t __attribute__((vector_size(16)));
+    const auto nc = static_cast<size_t>(channels);
+    const size_t vectors = nc == 3 ? 3 : 1;  // per block
+    const size_t block = vectors * 4;
+    const size_t total = static_cast<size_t>(n) * nc;
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    F4 mn[3], mx[3];
+    I4 sums[3];
+    long long wide[3][4] = {};
+    for (size_t j = 0; j < 3; ++j) {
+        mn[j] = F4{kInf, kInf, kInf, kInf};
+        mx[j] = -mn[j];
+        sums[j] = I4{0, 0, 0, 0};
+    }
+    const F4 scale = F4{1.f, 1.f, 1.f, 1.f} * code_scale;
+    // A lane adds at most one code (< 65536) a block: 2^15 blocks stay below 2^31.
+    constexpr size_t kFlush = size_t{1} << 15;
+    auto flush = [&] {
+        for (size_t j = 0; j < vectors; ++j)
+            for (int l = 0; l < 4; ++l) {
+                wide[j][l] += sums[j][l];
+                sums[j][l] = 0;
+            }
+    };
+    size_t i = 0, blocks = 0;
+    for (; i + block <= total; i += block) {
+        for (size_t j = 0; j < vectors; ++j) {
+            F4 v;
+            std::memcpy(&v, px + i + 4 * j, sizeof v);
+            mn[j] = v < mn[j] ? v : mn[j];
+            mx[j] = v > mx[j] ? v : mx[j];
+            // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
+            sums[j] += __builtin_convertvector(v * scale + 0.5f, I4);
+        }
+        if (++blocks == kFlush) {
+            flush();
+            blocks = 0;
+        }
+    }
+    flush();
+    float cmin[4] = {kInf, kInf, kInf, kInf}, cmax[4] = {-kInf, -kInf, -kInf, -kInf};
+    long long csum[4] = {};
+    for (size_t j = 0; j < vectors; ++j)
+        for (size_t l = 0; l < 4; ++l) {
+            const size_t c = (4 * j + l) % nc;
+            cmin[c] = std::min(cmin[c], mn[j][l]);
+            cmax[c] = std::max(cmax[c], mx[j][l]);
+            csum[c] += wide[j][l];
+        }
+    for (; i < total; ++i) {
+        const size_t c = i % nc;
+        const float v = px[i];
+        cmin[c] = std::min(cmin[c], v);
+        cmax[c] = std::max(cmax[c], v);
+        // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
+        csum[c] += static_cast<long long>(v * code_scale + 0.5f);
+    }
+    for (size_t c = 0; c < nc; ++c) {
+        min[c] = std::min(min[c], double{cmin[c]});
+        max[c] = std::max(max[c], double{cmax[c]});
+        code_sum[c] += csum[c];
+        finite[c] += n;
+    }
 }
 
 // The normal-map statistics of one band: one loop for the stored vectors, one for the vectors the

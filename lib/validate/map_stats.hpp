@@ -71,6 +71,7 @@ struct MapStats {
     MapStats(MapInput in, const ImageInfo& info, const rules::Thresholds& th);
     void add_band(int y0, int rows, const float* px);
     void normal_band(long long n, const float* px);  // add_band's normal-map part
+    void codes_band(long long n, const float* px);   // add_band's min, max and sums of an integer file
 
     // Findings that depend on this map alone, at their catalog severity: the rule groups below,
     // in order.

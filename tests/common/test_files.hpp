@@ -6,12 +6,22 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "image/image.hpp"
 
 namespace mf::testfiles {
+
+// `bytes` as an in-memory input named `name` (as an entry of a .zip is read).
+inline mf::InputFile in_memory(const std::vector<unsigned char>& bytes, const std::string& name) {
+    mf::InputFile in;
+    in.display = name;
+    in.bytes = std::make_shared<const std::vector<unsigned char>>(bytes);
+    return in;
+}
 
 inline nlohmann::json read_json(const std::filesystem::path& p) {
     std::ifstream f(p);

@@ -1,6 +1,7 @@
-// Plain-PNG reader (lib/image/oiio/png_reader.hpp): any bytes as a PNG. Whatever it accepts must
-// come back as exactly width x height x channels samples; anything else is refused (false), never
-// a crash, an overread or an unbounded allocation.
+// Plain-PNG reader (lib/image/png_reader.hpp): any bytes as a PNG. Whatever it accepts must
+// come back as exactly width x height x channels samples of its depth, as its header read states
+// them; anything else is refused (false), never a crash, an overread or an unbounded allocation.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -8,7 +9,7 @@
 
 #include <libdeflate.h>
 
-#include "image/oiio/png_reader.hpp"
+#include "image/png_reader.hpp"
 
 namespace {
 
@@ -33,14 +34,29 @@ void fix_crcs(std::vector<unsigned char>& f) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::vector<unsigned char> file(data, data + size);
     if (size > 0 && (data[0] & 1)) fix_crcs(file);  // half the inputs as they come
-    mf::png::Plain8 p;
-    if (!mf::png::read_plain8(file, size_t{1} << 24, p)) {
+    // The header read first, as image/direct.cpp does: over the same bytes it may accept what
+    // the decode then refuses (damage after the first IDAT), never the other way round.
+    mf::png::Plain head;
+    const bool head_ok = mf::png::read_plain_header(
+        file.size(),
+        [&](uint64_t at, size_t n, unsigned char* out) {
+            if (at > file.size() || n > file.size() - at) return false;
+            std::copy_n(file.data() + at, n, out);
+            return true;
+        },
+        size_t{1} << 24, head);
+    mf::png::Plain p;
+    if (!mf::png::read_plain(file, size_t{1} << 24, p)) {
         if (!p.pixels.empty()) std::abort();  // a refusal leaves nothing
         return 0;
     }
-    if (p.width <= 0 || p.height <= 0 || p.channels < 1 || p.channels > 4 ||
+    const size_t bytes = p.bit_depth == 16 ? 2 : 1;
+    if (p.width <= 0 || p.height <= 0 || p.channels < 1 || p.channels > 4 || (p.bit_depth != 8 && p.bit_depth != 16) ||
         p.pixels.size() !=
-            static_cast<size_t>(p.width) * static_cast<size_t>(p.height) * static_cast<size_t>(p.channels))
+            static_cast<size_t>(p.width) * static_cast<size_t>(p.height) * static_cast<size_t>(p.channels) * bytes)
         std::abort();
+    if (!head_ok || head.width != p.width || head.height != p.height || head.channels != p.channels ||
+        head.bit_depth != p.bit_depth)
+        std::abort();  // what the decode reads, the header read states
     return 0;
 }

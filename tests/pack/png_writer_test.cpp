@@ -1,10 +1,11 @@
-// matforge's PNG writer (lib/image/oiio/png_writer.hpp, reached through encode_image) read back by
+// matforge's PNG writer (lib/image/png_writer.hpp, reached through encode_image) read back by
 // two decoders that share no code with it or with each other: stb_image (its own inflate) and
 // OpenImageIO (libpng and zlib). Every layout PNG outputs use, odd sizes, noise and smooth
 // ramps; the file's chunk sequence and CRCs checked with zlib's crc32, its rows' filter bytes
 // read from zlib's inflate. Then its reader (png_reader.hpp) on files libpng wrote with each row
 // filter, and on every kind of PNG it must leave to OpenImageIO.
 #include <gtest/gtest.h>
+#include <png.h>
 #include <stb_image.h>
 #include <zlib.h>
 
@@ -18,7 +19,9 @@
 #include <functional>
 
 #include "image/image.hpp"
-#include "image/oiio/png_reader.hpp"
+#include "image/png_reader.hpp"
+#include "oiio_oracle.hpp"
+#include "test_files.hpp"
 
 namespace {
 
@@ -66,13 +69,7 @@ std::vector<T> samples(int w, int h, int channels, bool noise, unsigned seed) {
     return v;
 }
 
-// `png` as an in-memory file named `name`, for read_image.
-mf::InputFile in_memory(const std::vector<unsigned char>& png, const char* name) {
-    mf::InputFile in;
-    in.display = name;
-    in.bytes = std::make_shared<const std::vector<unsigned char>>(png);
-    return in;
-}
+using mf::testfiles::in_memory;
 
 // Encodes through encode_image: 8-bit as codes, 16-bit as floats k / 65535 (quantized back to k).
 std::vector<unsigned char> encode(int w, int h, int channels, int depth, const std::vector<uint16_t>& s16,
@@ -255,9 +252,9 @@ TEST(PngReader, ReadsEveryFilterAndLayoutExactly) {
                     const auto s8 = samples<uint8_t>(w, h, channels, noise, seed++);
                     const std::vector<unsigned char> png = filter < 0 ? encode(w, h, channels, 8, {}, s8)
                                                                       : libpng_file(w, h, channels, s8, filter);
-                    mf::png::Plain8 p;
+                    mf::png::Plain p;
                     std::vector<unsigned char> file = png;
-                    ASSERT_TRUE(mf::png::read_plain8(file, kLimit, p));
+                    ASSERT_TRUE(mf::png::read_plain(file, kLimit, p));
                     EXPECT_EQ(p.width, w);
                     EXPECT_EQ(p.height, h);
                     EXPECT_EQ(p.channels, channels);
@@ -278,13 +275,125 @@ TEST(PngReader, ReadsEveryFilterAndLayoutExactly) {
                 }
 }
 
+// 16-bit samples: libpng's files with each filter (OpenImageIO writing) and matforge's, read here
+// as host-order codes and, through read_image, as the floats OpenImageIO reads (k / 65535).
+TEST(PngReader, Reads16BitAsOpenImageIoDoes) {
+    unsigned seed = 900;
+    for (int channels = 1; channels <= 4; ++channels)
+        for (int filter : {0x08, 0x10, 0x20, 0x40, 0x80, 0, -1}) {
+            const int w = 37, h = 11;
+            SCOPED_TRACE(std::to_string(channels) + " channels, filter " + std::to_string(filter));
+            const auto s16 = samples<uint16_t>(w, h, channels, (seed & 1) != 0, seed);
+            ++seed;
+            std::vector<unsigned char> png;
+            if (filter < 0) {
+                png = encode(w, h, channels, 16, s16, {});
+            } else {
+                OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT16);
+                spec.attribute("oiio:UnassociatedAlpha", 1);
+                if (filter) spec.attribute("png:filter", filter);
+                OIIO::Filesystem::IOVecOutput vec(png);
+                auto out = OIIO::ImageOutput::create("x.png");
+                ASSERT_TRUE(out && out->set_ioproxy(&vec) && out->open("x.png", spec) &&
+                            out->write_image(OIIO::TypeDesc::UINT16, s16.data()) && out->close());
+            }
+            std::vector<unsigned char> file = png;
+            mf::png::Plain p;
+            ASSERT_TRUE(mf::png::read_plain(file, kLimit, p));
+            EXPECT_EQ(p.bit_depth, 16);
+            std::vector<uint16_t> codes(p.pixels.size() / 2);
+            std::memcpy(codes.data(), p.pixels.data(), p.pixels.size());
+            EXPECT_EQ(codes, s16);
+            const auto o = mf::testenv::oiio_read(png, "png", OIIO::TypeDesc::FLOAT);
+            ASSERT_TRUE(o.ok);
+            std::vector<float> expected(s16.size());
+            std::memcpy(expected.data(), o.pixels.data(), o.pixels.size());
+            mf::Image got;
+            mf::ImageInfo info;
+            std::string err;
+            ASSERT_TRUE(mf::read_image(in_memory(png, "h16.png"), got, info, err)) << err;
+            EXPECT_EQ(info.bit_depth, 16);
+            EXPECT_EQ(got.pixels, expected);
+        }
+}
+
+// An Adam7-interlaced PNG made by libpng (OpenImageIO writes none): every pass, small images
+// whose passes are partly empty among them, 8 and 16 bits, read as libpng's own reader and
+// OpenImageIO read it.
+std::vector<unsigned char> libpng_adam7(int w, int h, int channels, int depth, const void* samples) {
+    std::vector<unsigned char> bytes;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        ADD_FAILURE() << "libpng failed";
+        return {};
+    }
+    png_set_write_fn(
+        png, &bytes,
+        [](png_structp p, png_bytep data, png_size_t n) {
+            auto* out = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(p));
+            for (png_size_t i = 0; i < n; ++i) out->push_back(data[i]);
+        },
+        nullptr);
+    static constexpr int kType[] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                    PNG_COLOR_TYPE_RGBA};
+    png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), depth, kType[channels],
+                 PNG_INTERLACE_ADAM7, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    if (depth == 16) png_set_swap(png);  // host-order samples (little-endian hosts)
+    const size_t row = static_cast<size_t>(w) * static_cast<size_t>(channels) * static_cast<size_t>(depth / 8);
+    std::vector<png_bytep> rows(static_cast<size_t>(h));
+    for (size_t y = 0; y < rows.size(); ++y)
+        rows[y] = const_cast<png_bytep>(static_cast<const unsigned char*>(samples) + y * row);
+    png_write_image(png, rows.data());
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return bytes;
+}
+
+TEST(PngReader, ReadsAdam7AsOpenImageIoDoes) {
+    const int sizes[][2] = {{1, 1}, {2, 3}, {5, 1}, {9, 9}, {33, 17}};
+    unsigned seed = 700;
+    for (int depth : {8, 16})
+        for (int channels = 1; channels <= 4; ++channels)
+            for (const auto& wh : sizes) {
+                const int w = wh[0], h = wh[1];
+                SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(channels) + " " +
+                             std::to_string(depth) + "-bit");
+                const auto s8 = samples<uint8_t>(w, h, channels, true, seed);
+                const auto s16 = samples<uint16_t>(w, h, channels, true, seed++);
+                const std::vector<unsigned char> png = libpng_adam7(w, h, channels, depth,
+                                                                    depth == 8 ? static_cast<const void*>(s8.data())
+                                                                               : s16.data());
+                std::vector<unsigned char> file = png;
+                mf::png::Plain p;
+                ASSERT_TRUE(mf::png::read_plain(file, kLimit, p));
+                EXPECT_TRUE(p.interlaced);
+                if (depth == 8) {
+                    EXPECT_EQ(p.pixels, s8);
+                } else {
+                    ASSERT_EQ(p.pixels.size(), s16.size() * 2);
+                    EXPECT_EQ(std::memcmp(p.pixels.data(), s16.data(), p.pixels.size()), 0);
+                }
+                const auto o = mf::testenv::oiio_read(png, "png", OIIO::TypeDesc::FLOAT);
+                ASSERT_TRUE(o.ok);
+                mf::Image got;
+                mf::ImageInfo info;
+                std::string err;
+                ASSERT_TRUE(mf::read_image(in_memory(png, "adam7.png"), got, info, err)) << err;
+                ASSERT_EQ(got.pixels.size() * sizeof(float), o.pixels.size());
+                EXPECT_EQ(std::memcmp(got.pixels.data(), o.pixels.data(), o.pixels.size()), 0);
+            }
+}
+
 TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
     const int w = 9, h = 5, channels = 3;
     const auto s8 = samples<uint8_t>(w, h, channels, true, 5);
     const std::vector<unsigned char> good = encode(w, h, channels, 8, {}, s8);
-    mf::png::Plain8 p;
+    mf::png::Plain p;
     auto plain = [&p](std::vector<unsigned char> file, size_t limit = kLimit) {
-        return mf::png::read_plain8(file, limit, p);
+        return mf::png::read_plain(file, limit, p);
     };
     ASSERT_TRUE(plain(good));
     const std::vector<Chunk> chunks = chunks_of(good);  // IHDR, tEXt, IDAT, IEND
@@ -298,14 +407,15 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
         return with([&](std::vector<Chunk>& c) { c[0].data[at] = v; });
     };
     const std::pair<std::string, std::vector<unsigned char>> refused[] = {
-        {"16-bit", ihdr_byte(8, 16)},
+        {"2-bit samples", ihdr_byte(8, 2)},
         {"palette", ihdr_byte(9, 3)},
-        {"interlaced", ihdr_byte(12, 1)},
-        {"gAMA (a colour fact)", with([](auto& c) {
-             put(c, 1, Chunk{"gAMA", {0, 1, 0x86, 0xA0}});
+        {"an unknown interlace method", ihdr_byte(12, 2)},
+        {"sBIT (significant bits)", with([](auto& c) {
+             put(c, 1, Chunk{"sBIT", {5, 6, 5}});
          })},
-        {"sRGB", with([](auto& c) {
-             put(c, 1, Chunk{"sRGB", {0}});
+        {"eXIf with orientation 6", with([](auto& c) {
+             put(c, 1, Chunk{"eXIf", {'M', 'M', 0, 42, 0, 0, 0, 8, 0, 1, 0x01, 0x12, 0,
+                                      3,   0,   0, 0,  1, 0, 6, 0, 0, 0, 0,    0,    0}});
          })},
         {"tRNS", with([](auto& c) {
              put(c, 1, Chunk{"tRNS", {0, 0, 0, 0, 0, 0}});
@@ -335,6 +445,40 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
     EXPECT_TRUE(plain(with([](auto& c) {
         put(c, 1, Chunk{"tEXt", {'O', 'r', 'i', 'e', 'n', 't', 0, '6'}});
     }))) << "other text is inert";
+    // Colour chunks OpenImageIO records and never applies, and EXIF that states no orientation:
+    // read here, each value as OpenImageIO reads it (its floats, bit for bit).
+    const std::pair<std::string, std::vector<unsigned char>> colour[] = {
+        {"gAMA", with([](auto& c) {
+             put(c, 1, Chunk{"gAMA", {0, 0, 0xB1, 0x8F}});
+         })},
+        {"sRGB", with([](auto& c) {
+             put(c, 1, Chunk{"sRGB", {0}});
+         })},
+        {"cHRM", with([](auto& c) {
+             put(c, 1, Chunk{"cHRM", {0, 0, 0x7A, 0x26, 0, 0, 0x80, 0x84, 0, 0, 0xFA, 0,    0, 0, 0x80, 0xE8,
+                                      0, 0, 0x75, 0x30, 0, 0, 0xEA, 0x60, 0, 0, 0x3A, 0x98, 0, 0, 0x17, 0x70}});
+         })},
+        {"bKGD", with([](auto& c) {
+             put(c, 1, Chunk{"bKGD", {0, 255, 0, 0, 0, 255}});
+         })},
+        {"eXIf without an orientation", with([](auto& c) {
+             put(c, 1, Chunk{"eXIf", {'M', 'M', 0, 42, 0, 0, 0, 8, 0, 0, 0, 0, 0, 0}});
+         })},
+    };
+    for (const auto& [why, bytes] : colour) {
+        SCOPED_TRACE(why);
+        EXPECT_TRUE(plain(bytes));
+        EXPECT_EQ(p.pixels, s8);
+        const auto o = mf::testenv::oiio_read(bytes, "png", OIIO::TypeDesc::FLOAT);
+        ASSERT_TRUE(o.ok);
+        std::vector<float> expected(s8.size());
+        std::memcpy(expected.data(), o.pixels.data(), o.pixels.size());
+        mf::Image got;
+        mf::ImageInfo info;
+        std::string err;
+        ASSERT_TRUE(mf::read_image(in_memory(bytes, "colour.png"), got, info, err)) << err;
+        EXPECT_EQ(got.pixels, expected);
+    }
     for (const auto& [why, bytes] : refused) {
         SCOPED_TRACE(why);
         EXPECT_FALSE(plain(bytes));
@@ -348,8 +492,8 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
         EXPECT_FALSE(plain({good.begin(), good.begin() + static_cast<long>(cut)})) << cut;
     EXPECT_FALSE(plain(good, w * h * channels - 1));
     EXPECT_TRUE(plain(good, w * h * channels));
-    // What OpenImageIO then says about the gAMA file: its pixels, as before.
-    const mf::InputFile in = in_memory(refused[3].second, "gamma.png");
+    // What OpenImageIO then says about the file with an sBIT chunk: its pixels, as before.
+    const mf::InputFile in = in_memory(refused[3].second, "sbit.png");
     mf::Decoded d;
     mf::ImageInfo info;
     std::string err;

@@ -19,9 +19,10 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
-#include "image/oiio/png_reader.hpp"
-#include "image/oiio/png_writer.hpp"
+#include "image/header_notes.hpp"
+#include "image/jpeg_reader.hpp"
 #include "image/oiio_module.hpp"
+#include "image/png_reader.hpp"
 
 namespace mf {
 namespace {
@@ -91,9 +92,6 @@ std::string sniff_format(const unsigned char* b, size_t n) {
 // critical or small and always kept.
 constexpr uint32_t kMaxPngMetadataChunk = 1u << 20;
 
-// Reads `n` bytes at `at` from the file or the memory image; false past the end.
-using ReadAt = std::function<bool(uint64_t at, size_t n, unsigned char* out)>;
-
 // The PNG without its oversized ancillary chunks, or nullptr when it has none (or is not a
 // well-formed chunk sequence: the decoder then reports the file as it is).
 std::shared_ptr<std::vector<unsigned char>> png_without_bulky_metadata(uint64_t size, const ReadAt& read) {
@@ -132,32 +130,16 @@ std::shared_ptr<std::vector<unsigned char>> png_without_bulky_metadata(uint64_t 
 // A JPEG's markers up to and including its first scan's header (SOS), then an end-of-image
 // marker: everything OpenImageIO's reader needs to state the size, channels, orientation and
 // colour space, without the scans. For a header read only: OpenImageIO opens a JPEG by starting
-// libjpeg's decompressor, which for a progressive JPEG entropy-decodes every scan (9 % of an
-// ingest of the corpus, whose 3dtextures.me maps are progressive, went to headers read that way,
-// before the same files were decoded). nullptr when the markers do not walk to a scan (the
-// decoder then reads the file as it is).
+// libjpeg's decompressor, which for a progressive JPEG entropy-decodes every scan. nullptr when
+// the markers do not walk to a scan (the decoder then reads the file as it is).
 std::shared_ptr<std::vector<unsigned char>> jpeg_through_first_scan_header(uint64_t size, const ReadAt& read) {
-    uint64_t at = 2;  // after SOI
-    unsigned char m[4];
-    while (at + 4 <= size) {
-        if (!read(at, 4, m) || m[0] != 0xFF) return nullptr;
-        if (m[1] == 0xFF) {  // fill byte before a marker
-            ++at;
-            continue;
-        }
-        if (m[1] == 0x01 || (m[1] >= 0xD0 && m[1] <= 0xD9)) return nullptr;  // no segment before a scan is bare
-        const uint64_t end = at + 2 + ((uint64_t{m[2]} << 8) | m[3]);
-        if (end > size) return nullptr;
-        if (m[1] == 0xDA) {
-            auto out = std::make_shared<std::vector<unsigned char>>(static_cast<size_t>(end) + 2);
-            if (!read(0, static_cast<size_t>(end), out->data())) return nullptr;
-            (*out)[end] = 0xFF;
-            (*out)[end + 1] = 0xD9;
-            return out;
-        }
-        at = end;
-    }
-    return nullptr;
+    const uint64_t end = jpeg::first_scan_header_end(size, read);
+    if (end == 0) return nullptr;
+    auto out = std::make_shared<std::vector<unsigned char>>(static_cast<size_t>(end) + 2);
+    if (!read(0, static_cast<size_t>(end), out->data())) return nullptr;
+    (*out)[end] = 0xFF;
+    (*out)[end + 1] = 0xD9;
+    return out;
 }
 
 // Opens `name` with the reader of `format` (a format name, or a file name whose extension picks
@@ -330,23 +312,7 @@ bool inspect(OIIO::ImageInput& r, const InputFile& in, ImageInfo& info, std::str
                                                        " is used, the others are ignored");
     }
     const int orientation = r.spec().get_int_attribute("Orientation", 1);
-    if (orientation != 1) {
-        static constexpr const char* kMeaning[] = {"",
-                                                   "",
-                                                   "mirrored left-right",
-                                                   "rotated 180°",
-                                                   "mirrored top-bottom",
-                                                   "transposed",
-                                                   "rotated 90° clockwise",
-                                                   "transversed",
-                                                   "rotated 90° counter-clockwise"};
-        info.notes.emplace_back(
-            "ORIENTATION_IGNORED",
-            in.display + ": its EXIF/TIFF orientation is " + std::to_string(orientation) +
-                (orientation >= 2 && orientation <= 8 ? std::string(" (") + kMeaning[orientation] + ")"
-                                                      : std::string()) +
-                ", which is not applied: the map is used as stored, so that every map of the set lines up pixel for pixel");
-    }
+    if (orientation != 1) info.notes.push_back(orientation_note(in.display, orientation));
     return true;
 }
 
@@ -382,14 +348,25 @@ bool ended_early(OIIO::ImageInput& r, const InputFile& in, std::string& error) {
 
 // The colour space `r` states, when `r` is the reader the file's name picks (a misnamed file's
 // sniffed reader is another than stated_color_space's, which opens by name).
-std::optional<StatedColorSpace> stated_by(const OIIO::ImageInput& r, const InputFile& in) {
-    auto by_name = OIIO::ImageInput::create(in.bytes ? in.display : in.path.string(), false);
+// The format of the reader OpenImageIO picks by the file's name when that reader takes the file
+// (2.4's create checks the file's signature with the reader its extension names: through a
+// memory proxy for an entry of a .zip, else it looks for the name on disk), else empty.
+std::string format_by_name(const InputFile& in) {
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> mem;
+    if (in.bytes) mem = std::make_unique<OIIO::Filesystem::IOMemReader>(in.bytes->data(), in.bytes->size());
+    auto by_name = OIIO::ImageInput::create(in.bytes ? in.display : in.path.string(), false, nullptr, mem.get());
     if (!by_name) {
         (void)OIIO::geterror();  // clear the thread's error
-        return std::nullopt;
+        return {};
     }
-    if (std::string(by_name->format_name()) != r.format_name() || (in.bytes && !by_name->supports("ioproxy")))
-        return std::nullopt;
+    if (in.bytes && !by_name->supports("ioproxy")) return {};
+    return by_name->format_name();
+}
+
+// The colour space `r` states, when `r` is the reader the file's name picks (a misnamed file's
+// sniffed reader is another than stated_color_space's, which opens by name).
+std::optional<StatedColorSpace> stated_by(const OIIO::ImageInput& r, const InputFile& in) {
+    if (format_by_name(in) != r.format_name()) return std::nullopt;
     return StatedColorSpace{r.spec().get_string_attribute("oiio:ColorSpace"), r.format_name()};
 }
 
@@ -403,58 +380,9 @@ std::optional<ImageInfo> read_info_impl(const InputFile& in, std::string& error,
     return info;
 }
 
-// A plain 8-bit PNG (what matforge writes: png_reader.hpp) decoded without OpenImageIO; false,
-// having changed nothing, for any other file, which read_image_impl then opens as before.
-bool read_plain_png(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_codes) {
-    // Up to 48 MiB of samples (a 4K RGB map): the reader holds the file and the samples at once.
-    const size_t max_bytes = std::min<size_t>(size_t{48} << 20, static_cast<size_t>(kMaxPixels) * 4);
-    // The head first: any other PNG (16-bit, palette, interlaced, too large) or any other file is
-    // left to OpenImageIO before the whole file is read or copied.
-    std::vector<unsigned char> file;
-    if (in.bytes) {
-        if (in.bytes->size() < png::kHeaderBytes || png::plain8_header(in.bytes->data(), max_bytes) == 0) return false;
-        file = *in.bytes;
-    } else {
-        std::error_code ec;
-        if (!fs::is_regular_file(in.path, ec)) return false;  // open_reader says what it is instead
-        std::ifstream f(in.path, std::ios::binary);
-        unsigned char head[png::kHeaderBytes];
-        if (!f.read(reinterpret_cast<char*>(head), sizeof head) || png::plain8_header(head, max_bytes) == 0)
-            return false;
-        const uint64_t file_size = fs::file_size(in.path, ec);
-        if (ec || file_size < sizeof head || file_size > 2 * uint64_t{max_bytes}) return false;
-        file.assign(head, head + sizeof head);
-        file.resize(static_cast<size_t>(file_size));
-        if (!f.read(reinterpret_cast<char*>(file.data()) + sizeof head,
-                    static_cast<std::streamsize>(file_size - sizeof head)))
-            return false;
-    }
-    png::Plain8 p;
-    if (!png::read_plain8(file, max_bytes, p)) return false;
-    info = ImageInfo{};
-    info.width = p.width;
-    info.height = p.height;
-    info.channels = p.channels;
-    info.bit_depth = 8;
-    info.format = "png";
-    out = Decoded{};
-    if (keep_codes) {
-        out.codes.width = p.width;
-        out.codes.height = p.height;
-        out.codes.channels = p.channels;
-        out.codes.pixels = std::move(p.pixels);
-    } else {  // code k as OpenImageIO gives it: k * (1/255) (Codes.Unorm8ValuesAreWhatReadImageGives)
-        out.floats = Image(p.width, p.height, p.channels);
-        std::transform(p.pixels.begin(), p.pixels.end(), out.floats.pixels.begin(),
-                       [](uint8_t k) { return static_cast<float>(k) * (1.0f / 255.0f); });
-    }
-    return true;
-}
-
 // Decodes into `codes` when keep_codes and the file is 8-bit integer, else into `floats`.
 bool read_image_impl(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error, bool keep_codes) {
     out = Decoded{};
-    if (read_plain_png(in, out, info, keep_codes)) return true;
     Reader r;
     if (!open_reader(in, r, error)) return false;
     info = info_of(*r.in);
@@ -531,9 +459,10 @@ OIIO::ImageSpec output_spec(int width, int height, int channels, const EncodeOpt
 // Writes `data` (of `memtype`) with `spec` in opt.format to bytes.
 bool write_encoded(const OIIO::ImageSpec& spec, const OIIO::TypeDesc& memtype, const void* data,
                    const EncodeOptions& opt, std::vector<unsigned char>& bytes, std::string& error) {
-    if (opt.format == FileFormat::png)  // png_writer.hpp says why not OpenImageIO's writer
-        return png::write(data, spec.width, spec.height, spec.nchannels, static_cast<int>(memtype.size()) * 8, bytes,
-                          error);
+    if (opt.format == FileFormat::png) {  // image.cpp's (png_writer.hpp says why not OpenImageIO's writer)
+        error = "PNG is encoded by matforge's own writer, not through OpenImageIO";
+        return false;
+    }
     const std::string format(word(opt.format));
     const std::string name = "output." + format;
     auto out = is_block_container(opt.format) ? nullptr : OIIO::ImageOutput::create(name);
@@ -595,10 +524,13 @@ StatedColorSpace stated_color_space(const InputFile& in) {
     std::unique_ptr<OIIO::ImageInput> input;
     std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
     if (in.bytes) {
-        auto probe = OIIO::ImageInput::create(in.display, false);
-        if (!probe || !probe->supports("ioproxy") || in.bytes->empty()) return {};
+        // The reader the name picks, over the memory image (ImageInput::open's proxy argument
+        // does not reach 2.4's JPEG reader, which then looked for the name on disk).
+        const std::string format = format_by_name(in);
+        if (format.empty()) return {};
         proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(in.bytes->data(), in.bytes->size());
-        input = OIIO::ImageInput::open(in.display, &config, proxy.get());
+        std::string why;
+        input = open_with(format, in.display, config, proxy.get(), why);
     } else {
         input = OIIO::ImageInput::open(in.path.string(), &config);
     }

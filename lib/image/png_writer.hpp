@@ -1,5 +1,5 @@
 // matforge's PNG encoder: libpng writes the file's chunks, libdeflate compresses the pixels.
-// Part of the matforge_oiio module (write_encoded sends every PNG here).
+// image.cpp sends every PNG output here (encode_image); OpenImageIO writes the other formats.
 //
 // Why not libpng's own writer: it can only compress through zlib, whose deflate was a third of
 // ingest's CPU time (perf, the corpus through gltf,unity-hdrp). On that run's 69 distinct 8-bit

@@ -1,4 +1,4 @@
-#include "image/oiio/png_writer.hpp"
+#include "image/png_writer.hpp"
 
 #include <libdeflate.h>
 #include <png.h>

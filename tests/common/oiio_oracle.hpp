@@ -1,0 +1,40 @@
+// OpenImageIO read directly, as the oracle of matforge's own readers (lib/image/direct.hpp):
+// the tests that link OpenImageIO compare every code and header fact with what it reads.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <string>
+#include <vector>
+
+namespace mf::testenv {
+
+struct OiioRead {
+    bool ok = false;
+    OIIO::ImageSpec spec;
+    std::vector<unsigned char> pixels;  // in the type asked for
+};
+
+// `bytes` opened by the reader `format` names ("jpeg", "png"), as matforge's module opens a file
+// (unassociated alpha), read whole in `type`; a failure is added to the calling test.
+inline OiioRead oiio_read(const std::vector<unsigned char>& bytes, const std::string& format, OIIO::TypeDesc type) {
+    OiioRead o;
+    OIIO::Filesystem::IOMemReader mem(bytes.data(), bytes.size());
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::create(format, false, &config);
+    OIIO::ImageSpec spec;
+    if (!in || !in->set_ioproxy(&mem) || !in->open("memory." + format, spec, config)) {
+        ADD_FAILURE() << "OpenImageIO cannot open it: " << (in ? in->geterror() : OIIO::geterror());
+        return o;
+    }
+    o.spec = in->spec();
+    o.pixels.resize(o.spec.image_pixels() * static_cast<size_t>(o.spec.nchannels) * type.size());
+    o.ok = in->read_image(0, 0, 0, o.spec.nchannels, type, o.pixels.data());
+    if (!o.ok) ADD_FAILURE() << "OpenImageIO cannot read it: " << in->geterror();
+    return o;
+}
+
+}  // namespace mf::testenv

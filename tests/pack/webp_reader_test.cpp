@@ -1,0 +1,91 @@
+// matforge's WebP reader (lib/image/webp_reader.hpp, reached through read_info and read_image)
+// on files libwebp's encoder makes here: lossy and lossless, odd sizes. Where it reads a file,
+// every code and header fact must be OpenImageIO's; files with alpha are left to OpenImageIO,
+// and matforge's readers then say what it says.
+#include <gtest/gtest.h>
+
+#include <webp/encode.h>
+
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "image/image.hpp"
+#include "image/webp_reader.hpp"
+#include "oiio_oracle.hpp"
+#include "test_files.hpp"
+
+namespace {
+
+std::vector<unsigned char> make_webp(int w, int h, int channels, bool lossless) {
+    std::vector<uint8_t> px(static_cast<size_t>(w) * static_cast<size_t>(h) * static_cast<size_t>(channels));
+    std::mt19937 rng(static_cast<unsigned>(w * 13 + h + channels));
+    for (size_t i = 0; i < px.size(); ++i) px[i] = static_cast<uint8_t>((i * 7 + (rng() & 31)) & 0xFF);
+    uint8_t* out = nullptr;
+    const int stride = w * channels;
+    const size_t n = channels == 3 ? (lossless ? WebPEncodeLosslessRGB(px.data(), w, h, stride, &out)
+                                               : WebPEncodeRGB(px.data(), w, h, stride, 80.f, &out))
+                                   : (lossless ? WebPEncodeLosslessRGBA(px.data(), w, h, stride, &out)
+                                               : WebPEncodeRGBA(px.data(), w, h, stride, 80.f, &out));
+    std::vector<unsigned char> bytes(out, out + n);
+    WebPFree(out);
+    return bytes;
+}
+
+using mf::testfiles::in_memory;
+
+TEST(WebpReader, ReadsOpaqueWebpAsOpenImageIoDoes) {
+    for (bool lossless : {false, true})
+        for (const auto& wh : {std::pair{1, 1}, {17, 5}, {64, 33}}) {
+            SCOPED_TRACE(std::to_string(wh.first) + "x" + std::to_string(wh.second) +
+                         (lossless ? " lossless" : " lossy"));
+            const std::vector<unsigned char> file = make_webp(wh.first, wh.second, 3, lossless);
+            mf::webp::Plain head, whole;
+            ASSERT_TRUE(mf::webp::read_plain(file.data(), file.size(), true, 1u << 24, head));
+            ASSERT_TRUE(mf::webp::read_plain(file.data(), file.size(), false, 1u << 24, whole));
+            EXPECT_EQ(head.width, wh.first);
+            EXPECT_EQ(whole.height, wh.second);
+            const auto o = mf::testenv::oiio_read(file, "webp", OIIO::TypeDesc::UINT8);
+            ASSERT_TRUE(o.ok);
+            EXPECT_EQ(o.spec.nchannels, 3);
+            EXPECT_TRUE(whole.pixels == o.pixels) << "every code as OpenImageIO decodes it";
+            const mf::InputFile in = in_memory(file, "made.webp");
+            std::string err;
+            const auto info = mf::read_info(in, err);
+            ASSERT_TRUE(info) << err;
+            EXPECT_EQ(info->format, "webp");
+            EXPECT_EQ(info->channels, 3);
+            mf::Decoded d;
+            mf::ImageInfo decoded;
+            ASSERT_TRUE(mf::read_image(in, d, decoded, err)) << err;
+            EXPECT_TRUE(d.codes.pixels == o.pixels);
+            EXPECT_EQ(mf::stated_color_space(in).color_space, o.spec.get_string_attribute("oiio:ColorSpace"));
+        }
+}
+
+TEST(WebpReader, LeavesWebpWithAlphaToOpenImageIo) {
+    for (bool lossless : {false, true}) {
+        SCOPED_TRACE(lossless ? "lossless" : "lossy");
+        const std::vector<unsigned char> file = make_webp(20, 12, 4, lossless);
+        mf::webp::Plain p;
+        EXPECT_FALSE(mf::webp::read_plain(file.data(), file.size(), false, 1u << 24, p));
+        EXPECT_TRUE(p.pixels.empty());
+        const auto o = mf::testenv::oiio_read(file, "webp", OIIO::TypeDesc::UINT8);
+        ASSERT_TRUE(o.ok);
+        std::string err;
+        mf::Decoded d;
+        mf::ImageInfo info;
+        ASSERT_TRUE(mf::read_image(in_memory(file, "alpha.webp"), d, info, err)) << err;
+        EXPECT_EQ(info.channels, o.spec.nchannels);
+        EXPECT_TRUE(d.codes.pixels == o.pixels);
+    }
+    // Cut files and a size over the bound are left alone too.
+    const std::vector<unsigned char> good = make_webp(40, 40, 3, false);
+    mf::webp::Plain p;
+    EXPECT_FALSE(mf::webp::read_plain(good.data(), good.size() / 2, false, 1u << 24, p));
+    EXPECT_FALSE(mf::webp::read_plain(good.data(), good.size(), false, 40 * 40 * 3 - 1, p));
+    EXPECT_TRUE(mf::webp::read_plain(good.data(), good.size(), false, 40 * 40 * 3, p));
+}
+
+}  // namespace
