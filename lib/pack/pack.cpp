@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -345,6 +346,63 @@ int channel_count(const std::vector<ChannelSpec>& channels) {
     return n;
 }
 
+// Where an 8-bit output channel's codes come from: a plane's channel (`base`, every `stride`
+// codes, XOR `flip`: 0xFF is 255 - k, the smoothness inversion), a constant code, or nothing
+// here (`written`: the normal blocks wrote it).
+struct CodeSource {
+    const uint8_t* base = nullptr;
+    size_t stride = 0;
+    uint8_t constant = 0;
+    uint8_t flip = 0;
+    bool written = false;
+};
+
+// Every output pixel's channels from their sources, pixel by pixel (N channels known to the
+// compiler: the channel loop unrolls, the stores run along the output). A constant is read with
+// stride 0 from its own byte: no branch per sample.
+template <int N>
+void assemble_pixels(uint8_t* out, size_t n, const CodeSource* s) {
+    const uint8_t* base[N];
+    size_t stride[N];
+    uint8_t flip[N];
+    for (int c = 0; c < N; ++c) {
+        base[c] = s[c].base ? s[c].base : &s[c].constant;
+        stride[c] = s[c].base ? s[c].stride : 0;
+        flip[c] = s[c].flip;
+    }
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < N; ++c) out[i * N + c] = static_cast<uint8_t>(base[c][i * stride[c]] ^ flip[c]);
+}
+
+void assemble_codes(Image8& out, const std::vector<CodeSource>& sources) {
+    const size_t n = static_cast<size_t>(out.width) * static_cast<size_t>(out.height);
+    const size_t nch = sources.size();
+    const bool all = std::none_of(sources.begin(), sources.end(), [](const CodeSource& c) { return c.written; });
+    // An RGB plane copied whole into an RGB output: the same bytes.
+    if (all && nch == 3 && sources[0].base && sources[0].stride == 3 && sources[1].base == sources[0].base + 1 &&
+        sources[2].base == sources[0].base + 2 && !(sources[0].flip | sources[1].flip | sources[2].flip)) {
+        std::memcpy(out.pixels.data(), sources[0].base, n * 3);
+        return;
+    }
+    if (all && nch >= 1 && nch <= 4) {
+        switch (nch) {
+            case 1: assemble_pixels<1>(out.pixels.data(), n, sources.data()); return;
+            case 2: assemble_pixels<2>(out.pixels.data(), n, sources.data()); return;
+            case 3: assemble_pixels<3>(out.pixels.data(), n, sources.data()); return;
+            default: assemble_pixels<4>(out.pixels.data(), n, sources.data()); return;
+        }
+    }
+    // Some channels written by the normal blocks (a normal map beside other channels), or more
+    // than four channels: channel by channel.
+    for (size_t c = 0; c < nch; ++c) {
+        const CodeSource& src = sources[c];
+        if (src.written) continue;
+        for (size_t i = 0; i < n; ++i)
+            out.pixels[i * nch + c] = src.base ? static_cast<uint8_t>(src.base[i * src.stride] ^ src.flip)
+                                               : src.constant;
+    }
+}
+
 // One packing walk for both sample types: floats (any plane; codes planes decoded) or 8-bit
 // codes (codes planes only, checked by pack_output8). The codes walk writes what quantizing the
 // float walk's result gives: constants are quantized once, codes copied (inverted as 255 - k),
@@ -357,17 +415,25 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
     const int nch = channel_count(channels);
     BasicImage<T> out(size.width, size.height, nch);
     const size_t n = static_cast<size_t>(size.width) * size.height;
+    // Codes: each output channel's source is recorded, and the pixels are then assembled in one
+    // pass (assemble_codes), not one strided pass over the whole output per channel.
+    std::vector<CodeSource> sources(static_cast<size_t>(nch));
     auto fill = [&](int ch, float v) {
-        T k{};
-        if constexpr (kCodes) k = quantize8(v);
-        else k = v;
-        for (size_t i = 0; i < n; ++i) out.pixels[i * nch + ch] = k;
+        if constexpr (kCodes) {
+            sources[static_cast<size_t>(ch)] = {nullptr, 0, quantize8(v), 0};
+        } else {
+            for (size_t i = 0; i < n; ++i) out.pixels[i * nch + ch] = v;
+        }
     };
     auto copy = [&](int ch, const BasicImage<T>& src, int sc, bool inv) {
-        for (size_t i = 0; i < n; ++i) {
-            const T v = src.pixels[i * src.channels + sc];
-            if constexpr (kCodes) out.pixels[i * nch + ch] = inv ? static_cast<uint8_t>(255 - v) : v;
-            else out.pixels[i * nch + ch] = inv ? 1.f - v : v;
+        if constexpr (kCodes) {
+            sources[static_cast<size_t>(ch)] = {src.pixels.data() + sc, static_cast<size_t>(src.channels), 0,
+                                                static_cast<uint8_t>(inv ? 0xFF : 0)};
+        } else {
+            for (size_t i = 0; i < n; ++i) {
+                const T v = src.pixels[i * src.channels + sc];
+                out.pixels[i * nch + ch] = inv ? 1.f - v : v;
+            }
         }
     };
     // The plane's samples in T, copied only when they must be made: codes as they are, a float
@@ -403,6 +469,8 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
             BasicImage<T> scratch;
             const BasicImage<T>& stored = view(c.role, p, scratch);  // codes, or unit GL vectors
             NormalBlock b{};
+            if constexpr (kCodes)
+                for (size_t k = 0; k < 3; ++k) sources[static_cast<size_t>(dst) + k].written = true;
             for (size_t i0 = 0; i0 < n; i0 += kBlock) {
                 const size_t m = std::min(kBlock, n - i0);
                 if constexpr (kCodes) {  // decode the stored codes here, as plane_floats would
@@ -434,6 +502,7 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
         }
         dst += 3;
     }
+    if constexpr (kCodes) assemble_codes(out, sources);
     return out;
 }
 

@@ -193,52 +193,65 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
     if (is_normal() && channels >= 2) normal_band(n, px);
 }
 
-// min, max and code sums of an integer file's band of 1-4 channels: blocks of lcm(channels, 4)
-// samples, as whole vectors of four lanes whose channel is fixed by the lane's place in the
-// block ((4 j + lane) mod channels); the rest sample by sample. The same figures as one channel
-// at a time, several times faster (GCC vector types: SSE2 on any x86-64, NEON on ARM).
-void MapStats::codes_band(long long n, const float* px) {
-    using F4 = float __attribute__((vector_size(16)));
-    using I4 = int32_t __attribute__((vector_size(16)));
-    const auto nc = static_cast<size_t>(channels);
-    const size_t vectors = nc == 3 ? 3 : 1;  // per block
-    const size_t block = vectors * 4;
-    const size_t total = static_cast<size_t>(n) * nc;
+namespace {
+
+using F4 = float __attribute__((vector_size(16)));
+using I4 = int32_t __attribute__((vector_size(16)));
+
+// Per-lane min, max and code sums over whole blocks of V vectors of four samples (V = 3 for three
+// channels, else 1), accumulators in registers (a compile-time V); returns the samples consumed.
+template <size_t V>
+size_t code_blocks(const float* px, size_t total, float code_scale, F4 (&mn)[3], F4 (&mx)[3], long long (&wide)[3][4]) {
     constexpr float kInf = std::numeric_limits<float>::infinity();
-    F4 mn[3], mx[3];
-    I4 sums[3];
-    long long wide[3][4] = {};
-    for (size_t j = 0; j < 3; ++j) {
-        mn[j] = F4{kInf, kInf, kInf, kInf};
-        mx[j] = -mn[j];
+    F4 lo[V], hi[V];
+    I4 sums[V];
+    for (size_t j = 0; j < V; ++j) {
+        lo[j] = F4{kInf, kInf, kInf, kInf};
+        hi[j] = -lo[j];
         sums[j] = I4{0, 0, 0, 0};
     }
     const F4 scale = F4{1.f, 1.f, 1.f, 1.f} * code_scale;
     // A lane adds at most one code (< 65536) a block: 2^15 blocks stay below 2^31.
     constexpr size_t kFlush = size_t{1} << 15;
-    auto flush = [&] {
-        for (size_t j = 0; j < vectors; ++j)
-            for (int l = 0; l < 4; ++l) {
-                wide[j][l] += sums[j][l];
-                sums[j][l] = 0;
-            }
-    };
     size_t i = 0, blocks = 0;
-    for (; i + block <= total; i += block) {
-        for (size_t j = 0; j < vectors; ++j) {
+    for (; i + 4 * V <= total; i += 4 * V) {
+        for (size_t j = 0; j < V; ++j) {
             F4 v;
             std::memcpy(&v, px + i + 4 * j, sizeof v);
-            mn[j] = v < mn[j] ? v : mn[j];
-            mx[j] = v > mx[j] ? v : mx[j];
+            lo[j] = v < lo[j] ? v : lo[j];
+            hi[j] = v > hi[j] ? v : hi[j];
             // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
             sums[j] += __builtin_convertvector(v * scale + 0.5f, I4);
         }
-        if (++blocks == kFlush) {
-            flush();
+        if (++blocks == kFlush || i + 8 * V > total) {
+            for (size_t j = 0; j < V; ++j)
+                for (int l = 0; l < 4; ++l) wide[j][l] += sums[j][l];
+            for (size_t j = 0; j < V; ++j) sums[j] = I4{0, 0, 0, 0};
             blocks = 0;
         }
     }
-    flush();
+    for (size_t j = 0; j < V; ++j) {
+        mn[j] = lo[j];
+        mx[j] = hi[j];
+    }
+    return i;
+}
+
+}  // namespace
+
+// min, max and code sums of an integer file's band of 1-4 channels: blocks of lcm(channels, 4)
+// samples, as whole vectors of four lanes whose channel is fixed by the lane's place in the
+// block ((4 j + lane) mod channels); the rest sample by sample. The same figures as one channel
+// at a time, several times faster (GCC vector types: SSE2 on any x86-64, NEON on ARM).
+void MapStats::codes_band(long long n, const float* px) {
+    const auto nc = static_cast<size_t>(channels);
+    const size_t vectors = nc == 3 ? 3 : 1;  // per block
+    const size_t total = static_cast<size_t>(n) * nc;
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    F4 mn[3], mx[3];
+    long long wide[3][4] = {};
+    const size_t done = vectors == 3 ? code_blocks<3>(px, total, code_scale, mn, mx, wide)
+                                     : code_blocks<1>(px, total, code_scale, mn, mx, wide);
     float cmin[4] = {kInf, kInf, kInf, kInf}, cmax[4] = {-kInf, -kInf, -kInf, -kInf};
     long long csum[4] = {};
     for (size_t j = 0; j < vectors; ++j)
@@ -248,7 +261,7 @@ void MapStats::codes_band(long long n, const float* px) {
             cmax[c] = std::max(cmax[c], mx[j][l]);
             csum[c] += wide[j][l];
         }
-    for (; i < total; ++i) {
+    for (size_t i = done; i < total; ++i) {
         const size_t c = i % nc;
         const float v = px[i];
         cmin[c] = std::min(cmin[c], v);
