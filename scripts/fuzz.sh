@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # libFuzzer targets (tests/fuzz) for our parsers: preset, file-name discovery, the scene file, the
-# manifest reader and the plain-PNG reader.
+# manifest reader and the JPEG and plain-PNG readers (lib/image/direct.hpp).
 #   scripts/fuzz.sh [SECONDS]          each target for SECONDS (default 30) on a scratch copy of
 #                                      its committed corpus (CI: bounded, the corpus is unchanged)
 #   FUZZ_GROW=1 scripts/fuzz.sh 3600   by hand: longer, new inputs merged into tests/fuzz/corpus

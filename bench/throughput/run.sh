@@ -157,7 +157,8 @@ cat "$work/compare.txt" >&2
 inputs_desc=$(find "$work/lib/sets" -type f | sed -E 's/.*\.//' | sort | uniq -c | awk '{printf "%s%s %s", sep, $1, $2; sep=", "}')
 lib_mb=$(du -sm "$work/lib/sets" | cut -f1)
 out_mb=$(du -sm "$work/out-matforge" | cut -f1)
-peer_mb=$(du -sm "$work/out-oiiotool-P${peer_jobs%% *}" | cut -f1)
+peer_mb=n/a  # --peer-jobs "": the floor and matforge alone
+[[ -z ${peer_jobs// /} ]] || peer_mb=$(du -sm "$work/out-oiiotool-P${peer_jobs%% *}" | cut -f1)
 cpu_model=$(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1)
 mem_gb=$(awk '/MemTotal/ {printf "%.0f", $2 / 1048576}' /proc/meminfo)
 oiio_version=$(oiiotool --version 2>/dev/null | head -1)
