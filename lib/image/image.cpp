@@ -10,6 +10,7 @@
 #include <cstdio>  // before jpeglib.h, which uses FILE
 
 #include <jpeglib.h>
+#include <webp/decode.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -319,11 +320,11 @@ std::string file_identity(const fs::path& file) {
 }  // namespace
 
 // The ingest cache's key names the libraries that decode and encode: OpenImageIO's file, and
-// libjpeg-turbo's, libdeflate and libpng (image/direct.hpp, png_writer.hpp). Asking the loaded
+// libjpeg-turbo's and libwebp's, libdeflate and libpng (image/direct.hpp, png_writer.hpp). Asking the loaded
 // OpenImageIO costs loading it (0.3 s, 261 libraries) in every run, also one that finds
 // everything up to date, so its file is looked up where the build linked it. Where the loader
 // could pick another (LD_LIBRARY_PATH set, or no file there), the module is loaded and names the
-// file it loaded: the same key either way. libjpeg is linked: the file the loader loaded.
+// file it loaded: the same key either way. libjpeg and libwebp are linked: the files the loader loaded.
 std::string image_library_version() {
     fs::path file = fs::path(MATFORGE_OIIO_LIBRARY_DIR) / ("libOpenImageIO.so." + std::to_string(OIIO_VERSION_MAJOR) +
                                                            "." + std::to_string(OIIO_VERSION_MINOR));
@@ -335,9 +336,14 @@ std::string image_library_version() {
         if (!t) return "OpenImageIO (" + error + ")";
         file = t->library_file();
     }
-    Dl_info jpeg{};
-    const bool found = ::dladdr(reinterpret_cast<void*>(&jpeg_read_header), &jpeg) != 0 && jpeg.dli_fname;
-    return "OpenImageIO " + file_identity(file) + ", libjpeg " + (found ? file_identity(jpeg.dli_fname) : "?") +
+    // The file the loader loaded that holds `symbol` (a linked library's).
+    auto loaded = [](void* symbol) {
+        Dl_info where{};
+        const bool found = ::dladdr(symbol, &where) != 0 && where.dli_fname;
+        return found ? file_identity(where.dli_fname) : std::string("?");
+    };
+    return "OpenImageIO " + file_identity(file) + ", libjpeg " + loaded(reinterpret_cast<void*>(&jpeg_read_header)) +
+           ", libwebp " + loaded(reinterpret_cast<void*>(&WebPGetDecoderVersion)) +
            ", libdeflate " MATFORGE_LIBDEFLATE_VERSION ", libpng " MATFORGE_LIBPNG_VERSION;
 }
 
