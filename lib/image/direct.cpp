@@ -18,6 +18,10 @@ namespace fs = std::filesystem;
 
 enum class Kind { none, jpeg, png, webp };
 
+// OpenImageIO's WebP reader: its format name and its one extension (it states "sRGB" for every
+// WebP, as its JPEG reader does for every JPEG).
+constexpr const char* kWebp = "webp";
+
 // OpenImageIO's JPEG reader's extensions: a file named so is stated "sRGB" by that reader, the
 // one stated_color_space opens by name. A JPEG under another name is the module's.
 bool jpeg_name(const InputFile& in) {
@@ -53,7 +57,7 @@ struct Source {
         unsigned char riff[12] = {};
         if (head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF && jpeg_name(in)) kind = Kind::jpeg;
         else if (std::memcmp(head, png::kSignature, 8) == 0) kind = Kind::png;
-        else if (std::memcmp(head, "RIFF", 4) == 0 && in.extension() == "webp" && read(0, sizeof riff, riff) &&
+        else if (std::memcmp(head, "RIFF", 4) == 0 && in.extension() == kWebp && read(0, sizeof riff, riff) &&
                  std::memcmp(riff + 8, "WEBP", 4) == 0)
             kind = Kind::webp;
     }
@@ -88,9 +92,6 @@ ImageInfo info_of(int width, int height, int channels, int bit_depth, const char
     info.format = format;
     return info;
 }
-
-// The WebP reader's extension, likewise (OpenImageIO states "sRGB" for every WebP).
-constexpr const char* kWebp = "webp";
 
 bool within_limits(int width, int height, int channels) {
     return int64_t{width} * height <= kMaxPixels && channels <= kMaxChannels;
@@ -156,8 +157,6 @@ bool decode_or_throw(const InputFile& in, Raw& raw) {
     return false;
 }
 
-// 16-bit code k as OpenImageIO reads it: k * (1/65535) in float (its convert_type<uint16_t,
-// float>; DirectCodecs.* compare every value).
 bool decode(const InputFile& in, Raw& raw) {
     try {
         return decode_or_throw(in, raw);
@@ -167,6 +166,8 @@ bool decode(const InputFile& in, Raw& raw) {
     }
 }
 
+// 16-bit code k as OpenImageIO reads it: k * (1/65535) in float (its convert_type<uint16_t,
+// float>; PngReader.Reads16BitAsOpenImageIoDoes compares every value).
 void unorm16_to_float(const uint8_t* samples, size_t n, float* out) {
     for (size_t i = 0; i < n; ++i) {
         uint16_t k;
@@ -180,9 +181,6 @@ void to_floats(const Raw& raw, size_t first, size_t n, float* out) {
     else to_float(raw.samples.data() + first, n, out);
 }
 
-}  // namespace
-
-namespace {
 bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<StatedColorSpace>& stated) {
     Source src(in);
     if (src.kind == Kind::jpeg) {

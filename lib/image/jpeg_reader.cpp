@@ -7,10 +7,8 @@
 #include <cstring>
 #include <string_view>
 
-// clang-format off: jerror.h's message codes (JWRN_JPEG_EOF) need jpeglib.h first.
-#include <jerror.h>
+#include <jerror.h>  // libjpeg's message codes (JWRN_JPEG_EOF)
 #include <jpeglib.h>
-// clang-format on
 
 namespace mf::jpeg {
 namespace {

@@ -86,11 +86,11 @@ std::vector<Pass> passes_of(size_t width, size_t height, bool interlaced) {
 
 // Chunks that change no pixel OpenImageIO reads and no fact it states that matforge uses: text
 // but an orientation, EXIF of orientation 1, time, pixel size, image offset (matforge reads no
-// origin), and the colour
-// chunks OpenImageIO 2.4 records as attributes without applying them (gAMA, sRGB, cHRM, iCCP;
-// bKGD, a viewer's backdrop: OpenImageIO composites nothing). PngReader.ReadsWhatOpenImageIoReads
-// holds this against OpenImageIO. Any other ancillary chunk (sBIT, tRNS, ...) sends the
-// file to OpenImageIO.
+// origin), and the colour chunks OpenImageIO 2.4 records as attributes without applying them
+// (gAMA, sRGB, cHRM, iCCP; bKGD, a viewer's backdrop: OpenImageIO composites nothing).
+// PngReader.LeavesEveryOtherPngToOpenImageIo and DirectCodecs.CorpusPngsReadAsOpenImageIoReadsThem
+// hold this against OpenImageIO. Any other ancillary chunk (sBIT, tRNS, ...) sends the file to
+// OpenImageIO.
 bool inert(std::string_view type, const unsigned char* data, uint32_t len) {
     if (type == "tEXt" || type == "zTXt" || type == "iTXt") {
         // OpenImageIO makes each text chunk an attribute named by its keyword, and reads an
@@ -146,7 +146,7 @@ bool read_plain_header(uint64_t size, const ReadAt& read, size_t max_bytes, Plai
         if (len > 0x7FFFFFFFu || size - at - 12 < len) break;
         const std::string_view type(reinterpret_cast<const char*>(h + 4), 4);
         if (type == "IDAT") return true;
-        if (len > (uint32_t{1} << 20)) break;  // larger ancillary chunks are OpenImageIO's (oiio_module.cpp)
+        if (len > kMaxMetadataChunk) break;  // the module drops it before OpenImageIO reads the file
         chunk.resize(size_t{len} + 8);
         if (!read(at + 4, chunk.size(), chunk.data())) break;
         if (libdeflate_crc32(0, chunk.data(), len + 4) != be32(chunk.data() + 4 + len)) break;

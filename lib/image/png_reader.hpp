@@ -18,6 +18,11 @@ inline constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n',
 // The signature and the IHDR chunk: the bytes plain8_header looks at.
 inline constexpr size_t kHeaderBytes = 8 + 12 + 13;
 
+// PNG metadata matforge does not use can be huge (a 200 MB tEXt chunk: OpenImageIO keeps every
+// text chunk as an attribute, ~1 GB at peak). The module drops ancillary chunks larger than this
+// before OpenImageIO sees the file (oiio_module.cpp); a header read here leaves such a file to it.
+inline constexpr uint32_t kMaxMetadataChunk = 1u << 20;
+
 // A big-endian 32-bit field (PNG's lengths, sizes and CRCs).
 inline uint32_t be32(const unsigned char* p) {
     return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};

@@ -6,8 +6,11 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cstring>
 #include <string>
 #include <vector>
+
+#include "image/image.hpp"
 
 namespace mf::testenv {
 
@@ -35,6 +38,22 @@ inline OiioRead oiio_read(const std::vector<unsigned char>& bytes, const std::st
     o.ok = in->read_image(0, 0, 0, o.spec.nchannels, type, o.pixels.data());
     if (!o.ok) ADD_FAILURE() << "OpenImageIO cannot read it: " << in->geterror();
     return o;
+}
+
+// matforge's read_image of `in` (which holds `bytes`) gives every float OpenImageIO's reader
+// `format` reads from them, bit for bit; returns the facts matforge's read stated.
+inline mf::ImageInfo expect_floats_as_openimageio(const mf::InputFile& in, const std::vector<unsigned char>& bytes,
+                                                  const std::string& format) {
+    const OiioRead o = oiio_read(bytes, format, OIIO::TypeDesc::FLOAT);
+    mf::Image got;
+    mf::ImageInfo info;
+    std::string err;
+    EXPECT_TRUE(mf::read_image(in, got, info, err)) << err;
+    EXPECT_EQ(got.pixels.size() * sizeof(float), o.pixels.size());
+    if (o.ok && got.pixels.size() * sizeof(float) == o.pixels.size()) {
+        EXPECT_EQ(std::memcmp(got.pixels.data(), o.pixels.data(), o.pixels.size()), 0) << "a float differs";
+    }
+    return info;
 }
 
 }  // namespace mf::testenv

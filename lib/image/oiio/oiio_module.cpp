@@ -86,11 +86,9 @@ std::string sniff_format(const unsigned char* b, size_t n) {
     return {};
 }
 
-// PNG metadata matforge does not use can be huge (a 200 MB tEXt chunk: OpenImageIO keeps every
-// text chunk as an attribute, ~1 GB at peak). Ancillary chunks (lower-case first letter) larger
-// than this are dropped before the decoder sees the file; pixels, palette and transparency are
-// critical or small and always kept.
-constexpr uint32_t kMaxPngMetadataChunk = 1u << 20;
+// Ancillary chunks (lower-case first letter) larger than png::kMaxMetadataChunk are dropped
+// before the decoder sees the file; pixels, palette and transparency are critical or small and
+// always kept.
 
 // The PNG without its oversized ancillary chunks, or nullptr when it has none (or is not a
 // well-formed chunk sequence: the decoder then reports the file as it is).
@@ -109,7 +107,7 @@ std::shared_ptr<std::vector<unsigned char>> png_without_bulky_metadata(uint64_t 
         const uint64_t len = png::be32(head);
         if (at + 12 + len > size) return nullptr;
         const bool ancillary = head[4] >= 'a' && head[4] <= 'z';
-        const bool drop = ancillary && len > kMaxPngMetadataChunk;
+        const bool drop = ancillary && len > png::kMaxMetadataChunk;
         any = any || drop;
         chunks.push_back({at, 12 + len, drop});
         at += 12 + len;
@@ -346,8 +344,6 @@ bool ended_early(OIIO::ImageInput& r, const InputFile& in, std::string& error) {
     return true;
 }
 
-// The colour space `r` states, when `r` is the reader the file's name picks (a misnamed file's
-// sniffed reader is another than stated_color_space's, which opens by name).
 // The format of the reader OpenImageIO picks by the file's name when that reader takes the file
 // (2.4's create checks the file's signature with the reader its extension names: through a
 // memory proxy for an entry of a .zip, else it looks for the name on disk), else empty.
