@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <thread>
 #include <vector>
@@ -23,6 +24,33 @@ void parallel_for(size_t n, int jobs, F&& fn) {
     for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
     worker();
     for (auto& t : pool) t.join();
+}
+
+// As parallel_for on two threads, the second joining only while `spare()` holds (a core of the
+// batch is idle: the batch's tail, a set alone). It looks every millisecond until every index is
+// handed out, so a stage that began while the batch was busy still gets the core freed midway.
+// fn must not throw; spare() is called from the second thread.
+template <class S, class F>
+void parallel_for_spare(size_t n, S&& spare, F&& fn) {
+    std::atomic<size_t> next{0};
+    auto worker = [&] {
+        for (size_t i = next++; i < n; i = next++) fn(i);
+    };
+    if (n < 2) {
+        worker();
+        return;
+    }
+    std::thread helper([&] {
+        while (next.load() < n) {
+            if (spare()) {
+                worker();
+                return;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    });
+    worker();
+    helper.join();
 }
 
 }  // namespace mf

@@ -249,21 +249,28 @@ bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_co
 }
 
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info,
-                const std::function<void(int, int, const float*)>& fn) {
+                const std::function<void(int, int, const float*)>& fn,
+                const std::function<void(int, int, const uint8_t*)>& codes) {
     Raw raw;
     if (!decode(in, raw)) return false;
     band_rows = std::max(1, band_rows);
     const size_t row = static_cast<size_t>(raw.info.width) * static_cast<size_t>(raw.info.channels);
+    const bool as_codes = codes && raw.bit_depth == 8;
     std::vector<float> band;
     try {
-        band.resize(row * static_cast<size_t>(std::min(band_rows, raw.info.height)));
+        if (!as_codes) band.resize(row * static_cast<size_t>(std::min(band_rows, raw.info.height)));
     } catch (const std::bad_alloc&) {
         return false;
     }
     info = std::move(raw.info);
     for (int y0 = 0; y0 < info.height; y0 += band_rows) {
         const int rows = std::min(band_rows, info.height - y0);
-        to_floats(raw, row * static_cast<size_t>(y0), row * static_cast<size_t>(rows), band.data());
+        const size_t first = row * static_cast<size_t>(y0);
+        if (as_codes) {
+            codes(y0, rows, raw.samples.data() + first);
+            continue;
+        }
+        to_floats(raw, first, row * static_cast<size_t>(rows), band.data());
         fn(y0, rows, band.data());
     }
     return true;

@@ -28,9 +28,11 @@ bool read_info(const InputFile& in, ImageInfo& info, std::optional<StatedColorSp
 bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_codes);
 
 // read_bands' contract over a whole decode (the files read here are at most kMaxSampleBytes).
-// Declines only before the first band: `fn` is called for every band or for none.
+// Declines only before the first band: `fn` is called for every band or for none. With `codes`,
+// an 8-bit file's bands go there as its codes instead.
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info,
-                const std::function<void(int, int, const float*)>& fn);
+                const std::function<void(int, int, const float*)>& fn,
+                const std::function<void(int, int, const uint8_t*)>& codes = {});
 
 // The largest decode read here: a 4K RGB map's 48 MiB of samples; the module streams larger
 // files in bands (read_bands).

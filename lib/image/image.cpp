@@ -211,7 +211,13 @@ bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, std::string&
 
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
                 const std::function<void(int, int, const float*)>& fn) {
-    if (direct::read_bands(in, band_rows, info, fn)) return true;
+    return read_bands(in, band_rows, info, error, fn, {});
+}
+
+bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
+                const std::function<void(int, int, const float*)>& fn,
+                const std::function<void(int, int, const uint8_t*)>& codes) {
+    if (direct::read_bands(in, band_rows, info, fn, codes)) return true;
     const auto* t = table(error, in.display + ": ");
     return t && guarded(in, error, [&] { return t->read_bands(in, band_rows, info, error, fn); });
 }

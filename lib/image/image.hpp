@@ -108,6 +108,11 @@ bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, std::string&
 // maps). `fn(y0, rows, pixels)` gets float pixels of rows [y0, y0+rows). Returns false on error.
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
                 const std::function<void(int y0, int rows, const float* pixels)>& fn);
+// As above, but an 8-bit file decoded by matforge's own readers (JPEG, plain PNG, WebP) hands its
+// bands to `codes` as its codes (code k standing for unorm8_values()[k]): no float copy.
+bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
+                const std::function<void(int y0, int rows, const float* pixels)>& fn,
+                const std::function<void(int y0, int rows, const uint8_t* codes)>& codes);
 
 struct EncodeOptions {
     FileFormat format = FileFormat::png;  // png | exr | tif | tga (no blocks: lib/texture writes dds, ktx2)

@@ -374,6 +374,28 @@ void assemble_pixels(uint8_t* out, size_t n, const CodeSource* s) {
         for (int c = 0; c < N; ++c) out[i * N + c] = static_cast<uint8_t>(base[c][i * stride[c]] ^ flip[c]);
 }
 
+// As assemble_pixels when every source is a plane of its own (stride 1) or a constant: chunks
+// of pixels in which a constant is a filled row, so every source runs with unit stride (GCC then
+// interleaves whole vectors; twice as fast as the strided loop on the corpus's ORM maps).
+template <int N>
+void assemble_planes(uint8_t* out, size_t n, const CodeSource* s) {
+    constexpr size_t kChunk = 4096;
+    uint8_t constants[N][kChunk];
+    uint8_t flip[N];
+    for (int c = 0; c < N; ++c) {
+        if (!s[c].base) std::memset(constants[c], s[c].constant, kChunk);
+        flip[c] = s[c].base ? s[c].flip : 0;
+    }
+    for (size_t i0 = 0; i0 < n; i0 += kChunk) {
+        const size_t m = std::min(kChunk, n - i0);
+        const uint8_t* row[N];
+        for (int c = 0; c < N; ++c) row[c] = s[c].base ? s[c].base + i0 : constants[c];
+        uint8_t* o = out + i0 * N;
+        for (size_t i = 0; i < m; ++i)
+            for (int c = 0; c < N; ++c) o[i * N + c] = static_cast<uint8_t>(row[c][i] ^ flip[c]);
+    }
+}
+
 void assemble_codes(Image8& out, const std::vector<CodeSource>& sources) {
     const size_t n = static_cast<size_t>(out.width) * static_cast<size_t>(out.height);
     const size_t nch = sources.size();
@@ -383,6 +405,15 @@ void assemble_codes(Image8& out, const std::vector<CodeSource>& sources) {
         sources[2].base == sources[0].base + 2 && !(sources[0].flip | sources[1].flip | sources[2].flip)) {
         std::memcpy(out.pixels.data(), sources[0].base, n * 3);
         return;
+    }
+    const bool planar = std::all_of(sources.begin(), sources.end(),
+                                    [](const CodeSource& c) { return !c.base || c.stride == 1; });
+    if (all && planar && nch >= 2 && nch <= 4) {
+        switch (nch) {
+            case 2: assemble_planes<2>(out.pixels.data(), n, sources.data()); return;
+            case 3: assemble_planes<3>(out.pixels.data(), n, sources.data()); return;
+            default: assemble_planes<4>(out.pixels.data(), n, sources.data()); return;
+        }
     }
     if (all && nch >= 1 && nch <= 4) {
         switch (nch) {

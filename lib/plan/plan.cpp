@@ -76,21 +76,33 @@ std::vector<SidecarRoles> read_sidecars(Files& files) {
 }  // namespace
 
 bool PlanShare::read(const InputFile& in, const std::string& file, DecodedMap& out, std::string& error) {
+    bool taken = false;
     {
         std::lock_guard lock(mutex_);
-        if (const auto it = entries_.find(file); it != entries_.end()) {
+        const auto it = entries_.find(file);
+        if (it != entries_.end() && !it->second.taken) {
             if (!it->second.map) {
                 error = it->second.error;
                 return false;
             }
-            out = *it->second.map;  // a copy: the plan frees or moves its maps as it goes
+            // A copy (the plan frees or moves its maps as it goes), or the kept map itself for
+            // the last plan that reads it (one read more, as a file two roles read, decodes again).
+            if (++it->second.reads < plans_) {
+                out = *it->second.map;
+            } else {
+                out = std::move(*it->second.map);
+                it->second.map.reset();
+                it->second.taken = true;
+            }
             return true;
         }
+        if (it != entries_.end()) taken = true;
     }
+    if (taken) return read_image(in, out.img, out.info, error);
     Entry e;
     const bool ok = read_image(in, out.img, out.info, error);
-    if (ok) e.map = std::make_shared<const DecodedMap>(out);
-    else e.error = error;
+    if (ok && plans_ > 1) e.map = out;
+    else if (!ok) e.error = error;
     std::lock_guard lock(mutex_);
     entries_.emplace(file, std::move(e));
     return ok;
@@ -132,7 +144,8 @@ uint64_t estimated_bytes(const SetDiscovery& d) {
 // mode: the whole image, in parallel for large sets; stream mode: the header). Every candidate
 // that fails is an UNREADABLE_FILE finding, and the set is partial. `failed`: files known
 // unreadable (stream mode: their pixels failed the rules' pass), failing here with that error.
-void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode mode, int threads, PlanShare* share,
+void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode mode, bool two_threads,
+                  const std::function<bool()>& spare, PlanShare* share,
                   const std::map<std::string, std::string>& failed, std::vector<validate::MapInput>& maps) {
     std::vector<std::vector<const Candidate*>> orders;
     for (const auto& choice : d.choices) {
@@ -148,7 +161,7 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
         std::vector<std::pair<const Candidate*, std::string>> errors;
     };
     std::vector<Outcome> outcomes(orders.size());
-    parallel_for(orders.size(), mode == PlanMode::decode ? threads : 1, [&](size_t i) {
+    auto read_one = [&](size_t i) {
         Outcome& o = outcomes[i];
         const Role role = d.choices[i].role;
         for (const Candidate* c : orders[i]) {
@@ -180,7 +193,10 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
             }
             o.errors.emplace_back(c, err);
         }
-    });
+    };
+    const bool decode = mode == PlanMode::decode;
+    if (decode && !two_threads && spare) parallel_for_spare(orders.size(), spare, read_one);
+    else parallel_for(orders.size(), decode && two_threads ? 2 : 1, read_one);
     for (size_t i = 0; i < orders.size(); ++i) {
         const Role role = d.choices[i].role;
         for (const auto& [c, err] : outcomes[i].errors) {
@@ -219,27 +235,20 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
     }
 }
 
-// Serves decoded maps to the rules band by band, as mf::read_bands would read them: codes are
-// converted one band at a time (the band stays in cache; the map is never held as floats).
+// Serves decoded maps to the rules band by band, as validate::read_file_bands would read them:
+// an 8-bit map as its codes (the rules read them through unorm8_values: the same figures, and
+// the map is never converted to floats), a float map as its floats.
 validate::BandReader memory_reader(std::map<std::string, const DecodedMap*> by_display) {
     return [by_display = std::move(by_display)](const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
-                                                const std::function<void(int, int, const float*)>& fn) {
+                                                const std::function<void(int, int, validate::Samples)>& fn) {
         const auto it = by_display.find(in.display);
-        if (it == by_display.end()) return read_bands(in, band_rows, info, error, fn);  // an alternate
+        if (it == by_display.end()) return validate::read_file_bands(in, band_rows, info, error, fn);  // an alternate
         const Decoded& d = it->second->img;
         info = it->second->info;
-        if (!d.is_codes()) {
-            for (int y0 = 0; y0 < d.floats.height; y0 += band_rows)
-                fn(y0, std::min(band_rows, d.floats.height - y0), &d.floats.pixels[d.floats.index(0, y0)]);
-            return true;
-        }
-        const Image8& c = d.codes;
-        std::vector<float> band(static_cast<size_t>(c.width) * c.channels * static_cast<size_t>(band_rows));
-        for (int y0 = 0; y0 < c.height; y0 += band_rows) {
-            const int rows = std::min(band_rows, c.height - y0);
-            to_float(&c.pixels[c.index(0, y0)], static_cast<size_t>(c.width) * c.channels * static_cast<size_t>(rows),
-                     band.data());
-            fn(y0, rows, band.data());
+        for (int y0 = 0; y0 < d.height(); y0 += band_rows) {
+            const int rows = std::min(band_rows, d.height() - y0);
+            if (d.is_codes()) fn(y0, rows, {nullptr, &d.codes.pixels[d.codes.index(0, y0)]});
+            else fn(y0, rows, {&d.floats.pixels[d.floats.index(0, y0)]});
         }
         return true;
     };
@@ -478,11 +487,11 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     if (opt.mode == PlanMode::decode)
         plan.lease = std::make_unique<BudgetLease>(opt.budget, opt.share ? plan.footprint / 2 * 3 : plan.footprint);
 
-    // Sets of 4 Mpixel maps and up decode their maps on two threads, and any set when a core is
+    // Sets of 4 Mpixel maps and up decode their maps on two threads, and any set while a core is
     // idle; small ones stay on one otherwise (the batch is already parallel across sets).
     std::vector<validate::MapInput> maps;
-    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20) || opt.spare_core ? 2 : 1, opt.share,
-                 failed, maps);
+    read_choices(plan, files, d, opt.mode, plan.footprint > (uint64_t{64} << 20), opt.spare_core, opt.share, failed,
+                 maps);
     if (maps.empty()) {
         std::string msg = src.display + ": no map of the set could be read";
         for (const auto& f : plan.findings)

@@ -6,6 +6,7 @@
 // these stages raise comes from here (or from validate_set, which this calls), once, at its
 // catalog severity; reported_findings() applies the rules config to them, once per set.
 #pragma once
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -38,11 +39,13 @@ struct DecodedMap {
 
 // What the plans of one set share (ingest --preset a,b: one plan per preset, on one worker, one
 // after another). A file decodes to the same pixels whatever the preset: the first plan that
-// reads a file decodes it and keeps a copy, later plans copy that (or get the same error). The
-// rules judge the same maps under the same rules config alike: validate_set runs once per
-// distinct (maps, rules) pair. Thread-safe (a plan decodes its maps on up to two threads).
+// reads a file decodes it and keeps a copy, later plans copy that (or get the same error), and
+// the last of `plans` readers takes the copy itself. The rules judge the same maps under the same
+// rules config alike: validate_set runs once per distinct (maps, rules) pair. Thread-safe (a plan
+// decodes its maps on up to two threads).
 class PlanShare {
 public:
+    explicit PlanShare(int plans) : plans_(plans) {}
     // As read_image(in, out.img, out.info, error), from the share when `file` was read before.
     bool read(const InputFile& in, const std::string& file, DecodedMap& out, std::string& error);
     // As validate::validate_set(maps, rules, vo), from the share when the same maps (role, file,
@@ -52,9 +55,12 @@ public:
 
 private:
     struct Entry {
-        std::shared_ptr<const DecodedMap> map;  // null when the read failed
+        std::optional<DecodedMap> map;  // empty when the read failed or the last reader took it
+        int reads = 1;                  // plans that have read it
+        bool taken = false;             // the last reader took the map
         std::string error;
     };
+    int plans_;
     std::mutex mutex_;
     std::map<std::string, Entry> entries_;
     std::map<std::string, validate::SetValidation> validated_;  // by (maps, rules) key
@@ -65,9 +71,10 @@ struct PlanOptions {
     const rules::RuleConfig* rules = nullptr;  // thresholds, severities, suppressions
     PlanMode mode = PlanMode::decode;
     MemoryBudget* budget = nullptr;  // decode mode: the set's decoded bytes are leased from it
-    // A core of the batch is idle (a set alone, or the batch's tail): decode on two threads
-    // whatever the set's size (else only sets of 64 MB and up do).
-    bool spare_core = false;
+    // Whether a core of the batch is idle now (a set alone, or the batch's tail; empty: never):
+    // a second thread then joins the decoding whatever the set's size (sets of 64 MB and up
+    // always decode on two).
+    std::function<bool()> spare_core = {};
     // Decode mode: what an earlier plan of the same set decoded and validated (null: none).
     PlanShare* share = nullptr;
 };

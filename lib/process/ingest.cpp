@@ -184,6 +184,7 @@ struct Ingestor::Run {
 // and its encoded outputs (an output's bytes are a function of its pixels and EncodeOptions:
 // image/image.hpp encodes deterministically).
 struct Ingestor::SetShare {
+    explicit SetShare(int plans) : plan(plans) {}
     PlanShare plan;
 
     // The set's input digests, read and hashed once for every ingestor of the pass (without a
@@ -410,12 +411,12 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         InFlight& operator=(const InFlight&) = delete;
     } in_flight(run.in_flight);
     MaterialResult res;
-    // A set running while a worker is idle (alone, or at the batch's tail) decodes its maps and
-    // encodes its outputs on two threads, so a re-ingest of one changed set keeps both cores busy;
-    // with every worker busy that would only oversubscribe.
+    // While a worker is idle (a set alone, or the batch's tail, which may begin midway through this
+    // set) a second thread joins this set's decoding and encoding, so a re-ingest of one changed
+    // set keeps both cores busy; with every worker busy that would only oversubscribe.
     const int workers = opt_.jobs > 0 ? opt_.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-    const bool idle_worker = run.in_flight.load() < workers;
-    SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget, idle_worker,
+    const std::function<bool()> spare_core = [&run, workers] { return run.in_flight.load() < workers; };
+    SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget, spare_core,
                                              share ? &share->plan : nullptr});
     if (plan.failure) {
         res.failure = std::move(plan.failure);
@@ -451,9 +452,9 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                                 std::string& e) {
                             return share ? share->encode(std::move(img), enc, b, sha, e) : encode_image(img, enc, b, e);
                         }};
-    // Outputs are packed and encoded on two threads (each output on one: deflate is serial) when
+    // Outputs are packed and encoded on two threads (each output on one: deflate is serial) while
     // a worker is idle (above).
-    parallel_for(wanted.size(), idle_worker ? 2 : 1, [&](size_t i) {
+    parallel_for_spare(wanted.size(), spare_core, [&](size_t i) {
         try {
             written[i] = write_output(*wanted[i], job);
         } catch (const std::bad_alloc&) {  // parallel_for's fn must not throw
@@ -635,7 +636,7 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
     parallel_for(ready > 0 ? sets.size() : 0, lead.jobs, [&](size_t k) {
         const size_t i = order[k];
         std::optional<SetShare> share;  // several ingestors: one decode, one encode of equal outputs
-        if (ready > 1) share.emplace();
+        if (ready > 1) share.emplace(static_cast<int>(ready));
         for (Target& g : targets) {
             if (!g.ready) continue;
             if (stop_requested()) return;  // a signal asked to stop: no new set starts

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "core/srgb.hpp"
+#include "image/image.hpp"
 #include "validate/map_stats.hpp"
 
 namespace mf::validate {
@@ -20,6 +21,7 @@ AlbedoClassifier::AlbedoClassifier(const rules::Thresholds& t, bool linear_input
         first_code_[b] = static_cast<uint16_t>(std::lower_bound(edges_.begin(), edges_.end(), lo) - edges_.begin());
     }
     decode_ = detail::srgb_decode_table().data();
+    for (size_t k = 0; k < linear8_.size(); ++k) linear8_[k] = linear(unorm8_values()[k]);
 }
 
 }  // namespace mf::validate

@@ -85,6 +85,10 @@ public:
     float luminance(const float* rgb) const {
         return 0.2126f * linear(rgb[0]) + 0.7152f * linear(rgb[1]) + 0.0722f * linear(rgb[2]);
     }
+    // The same of a pixel held as 8-bit codes (unorm8_values): bit for bit the floats' luminance.
+    float luminance(const uint8_t* rgb) const {
+        return 0.2126f * linear8_[rgb[0]] + 0.7152f * linear8_[rgb[1]] + 0.0722f * linear8_[rgb[2]];
+    }
     AlbedoJudgement judge(float y, float metalness) const {
         AlbedoJudgement j;
         if (!std::isfinite(y) || !std::isfinite(metalness)) return j;
@@ -132,6 +136,7 @@ private:
     std::array<float, 257> edges_{};                   // linear luminance at sRGB code k + 0.5; [256] = +inf
     std::array<uint16_t, kBuckets + 1> first_code_{};  // edges below b / 4096 (b = kBuckets: below 1)
     const float* decode_;                              // sRGB decode of every 16-bit code
+    std::array<float, 256> linear8_{};                 // linear() of every 8-bit code's float
 };
 
 }  // namespace mf::validate

@@ -24,9 +24,17 @@ double AlbedoStats::percentile(const Histogram& hist, long long n, double p) {
     return 255.0;
 }
 
+AlbedoStats::Histogram AlbedoStats::total(Histogram Lanes::*which) const {
+    Histogram h{};
+    for (const Lanes& l : lanes_)
+        for (size_t k = 0; k < h.size(); ++k) h[k] += (l.*which)[k];
+    return h;
+}
+
 void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask,
                            std::vector<Finding>& out) const {
     const AlbedoCounts& c = counts_;
+    const Histogram dielectric_hist = total(&Lanes::dielectric), metal_hist = total(&Lanes::metal);
     // Weighted sums reported as pixels: whole numbers whenever the metalness map is binary.
     auto pixels = [](long long weighted) {
         return static_cast<long long>(std::llround(static_cast<double>(weighted) / kWeightUnit));
@@ -74,13 +82,13 @@ void AlbedoStats::findings(const std::string& file, bool has_metal_mask, bool ha
         const char *cls, *relation, *advice;
     };
     const Rule rules[] = {
-        {code::albedo_too_dark, dielectric_hist_, c.dielectric, c.dielectric_dark, t_.albedo_dark_max_share,
+        {code::albedo_too_dark, dielectric_hist, c.dielectric, c.dielectric_dark, t_.albedo_dark_max_share,
          t_.albedo_min_srgb, "dielectric", "darker",
          "no real dielectric is that dark — keep shadows and cavities out of the albedo (they belong in occlusion)"},
-        {code::albedo_too_bright, dielectric_hist_, c.dielectric, c.dielectric_bright, t_.albedo_bright_max_share,
+        {code::albedo_too_bright, dielectric_hist, c.dielectric, c.dielectric_bright, t_.albedo_bright_max_share,
          t_.albedo_max_srgb, "dielectric", "brighter",
          "even fresh snow reflects less — remove baked lighting or highlights"},
-        {code::metal_albedo_too_dark, metal_hist_, c.metal, c.metal_dark, t_.metal_albedo_max_share,
+        {code::metal_albedo_too_dark, metal_hist, c.metal, c.metal_dark, t_.metal_albedo_max_share,
          t_.metal_albedo_min_srgb, "metallic", "darker",
          "raw metals reflect 70-100 % — a dark metal is a dielectric (oxide, paint) or its metalness is wrong"},
     };

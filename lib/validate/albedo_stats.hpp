@@ -14,25 +14,38 @@ namespace mf::validate::detail {
 class AlbedoStats {
 public:
     AlbedoStats(const rules::Thresholds& t, bool linear_input) : t_(t), classify_(t, linear_input) {}
-    // rgb: the albedo pixel as stored (sRGB-encoded unless linear_input); metalness in [0, 1].
-    // Inline: called once per albedo pixel.
-    void add(const float* rgb, float metalness) {
-        const float y = classify_.luminance(rgb);
-        const AlbedoJudgement j = classify_.judge(y, metalness);
-        if (!j.counted) return;
-        counts_.add(j);
-        const size_t code = classify_.srgb_code(y);
-        dielectric_hist_[code] += j.dielectric();
-        metal_hist_[code] += j.metal;
+    // One row of n albedo pixels as stored (sRGB-encoded unless linear_input): pixel i's RGB at
+    // rgb + i * stride, 3 floats or 3 8-bit codes (validate.hpp's Samples); its metalness
+    // metal[i] in [0, 1] (nullptr: 0). With `keep`, only the pixels whose keep[i] is `want`.
+    // The counts are summed in locals and added once a row; the histograms alternate between
+    // two lanes by pixel, so that a run of one luminance code does not wait on its own last
+    // add. Every sum is an integer: the same figures in any order.
+    template <class T>
+    void add_row(const T* rgb, size_t stride, const float* metal, size_t n, const uint8_t* keep = nullptr,
+                 uint8_t want = 1) {
+        AlbedoCounts c;
+        for (size_t i = 0; i < n; ++i) {
+            if (keep && keep[i] != want) continue;
+            const float y = classify_.luminance(rgb + i * stride);
+            const AlbedoJudgement j = classify_.judge(y, metal ? metal[i] : 0.f);
+            if (!j.counted) continue;
+            c.add(j);
+            const size_t code = classify_.srgb_code(y);
+            Lanes& lane = lanes_[i & 1];
+            lane.dielectric[code] += j.dielectric();
+            lane.metal[code] += j.metal;
+        }
+        counts_.merge(c);
     }
     size_t srgb_code(float y) const { return classify_.srgb_code(y); }
     // Adds the pixels another accumulator of the same thresholds counted (exact: integer weights).
     void merge(const AlbedoStats& o) {
         counts_.merge(o.counts_);
-        for (size_t k = 0; k < dielectric_hist_.size(); ++k) {
-            dielectric_hist_[k] += o.dielectric_hist_[k];
-            metal_hist_[k] += o.metal_hist_[k];
-        }
+        for (size_t l = 0; l < lanes_.size(); ++l)
+            for (size_t k = 0; k < 256; ++k) {
+                lanes_[l].dielectric[k] += o.lanes_[l].dielectric[k];
+                lanes_[l].metal[k] += o.lanes_[l].metal[k];
+            }
     }
     void findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask, std::vector<Finding>& out) const;
 
@@ -41,10 +54,16 @@ private:
     using Histogram = std::array<long long, 256>;
     static double percentile(const Histogram& hist, long long n, double p);
 
+    struct Lanes {
+        Histogram dielectric{}, metal{};
+    };
+    // The two lanes' sum.
+    Histogram total(Histogram Lanes::*which) const;
+
     rules::Thresholds t_;
     AlbedoClassifier classify_;
     AlbedoCounts counts_;
-    Histogram dielectric_hist_{}, metal_hist_{};
+    std::array<Lanes, 2> lanes_{};
 };
 
 }  // namespace mf::validate::detail

@@ -2,9 +2,9 @@
 
 namespace mf::validate::detail {
 
-BandStream::BandStream(const BandReader& reader, const InputFile& in, int band_rows, int row_floats,
-                       std::function<void(int, int, const float*)> on_band, bool lockstep)
-    : on_band_(std::move(on_band)), row_floats_(row_floats), free_run_(!lockstep) {
+BandStream::BandStream(const BandReader& reader, const InputFile& in, int band_rows, int row_samples,
+                       std::function<void(int, int, Samples)> on_band, bool lockstep)
+    : on_band_(std::move(on_band)), row_samples_(row_samples), free_run_(!lockstep) {
     thread_ = std::thread(&BandStream::run, this, reader, in, band_rows);
 }
 
@@ -16,10 +16,10 @@ void BandStream::run(const BandReader& reader, const InputFile& in, int band_row
     bool ok = false;
     try {
         bool shape_changed = false;
-        ok = reader(in, band_rows, info, err, [&](int y0, int rows, const float* px) {
+        ok = reader(in, band_rows, info, err, [&](int y0, int rows, Samples px) {
             // The header the caller planned with must match what the reader delivers, or every
             // row offset below would be wrong.
-            if (shape_changed || info.width * info.channels != row_floats_) {
+            if (shape_changed || info.width * info.channels != row_samples_) {
                 shape_changed = true;
                 return;
             }
@@ -54,16 +54,17 @@ void BandStream::run(const BandReader& reader, const InputFile& in, int band_row
     cv_.notify_all();
 }
 
-const float* BandStream::row(int r) {
+Samples BandStream::row(int r) {
     std::unique_lock lk(m_);
     for (;;) {
         if (has_band_) {
-            if (r >= y0_ && r < y0_ + rows_) return band_ + static_cast<size_t>(r - y0_) * row_floats_;
-            if (r < y0_) return nullptr;  // rows must not go backwards
-            has_band_ = false;            // past this band: release it to the reader
+            if (r >= y0_ && r < y0_ + rows_)
+                return band_ + static_cast<size_t>(r - y0_) * static_cast<size_t>(row_samples_);
+            if (r < y0_) return {};  // rows must not go backwards
+            has_band_ = false;       // past this band: release it to the reader
             cv_.notify_all();
         }
-        if (done_) return nullptr;
+        if (done_) return {};
         cv_.wait(lk, [this] { return has_band_ || done_; });
     }
 }

@@ -17,15 +17,15 @@ class BandStream {
 public:
     // `on_band` runs on the reader thread for every band, before the consumer sees it (per-map
     // statistics). With `lockstep` false the stream never waits for a consumer.
-    BandStream(const BandReader& reader, const InputFile& in, int band_rows, int row_floats,
-               std::function<void(int, int, const float*)> on_band, bool lockstep);
+    BandStream(const BandReader& reader, const InputFile& in, int band_rows, int row_samples,
+               std::function<void(int, int, Samples)> on_band, bool lockstep);
     ~BandStream();
     BandStream(const BandStream&) = delete;
     BandStream& operator=(const BandStream&) = delete;
 
-    // Row r (non-decreasing across calls) of the image, or nullptr when the stream ended early
-    // or failed. Valid until the next call.
-    const float* row(int r);
+    // Row r (non-decreasing across calls) of the image, or empty when the stream ended early or
+    // failed. Valid until the next call.
+    Samples row(int r);
     // Lets the reader run to the end without a consumer and waits for it.
     void finish();
     bool ok() const { return ok_; }
@@ -38,9 +38,9 @@ private:
 
     std::mutex m_;
     std::condition_variable cv_;
-    std::function<void(int, int, const float*)> on_band_;
-    int row_floats_ = 0;
-    const float* band_ = nullptr;
+    std::function<void(int, int, Samples)> on_band_;
+    int row_samples_ = 0;
+    Samples band_;
     int y0_ = 0, rows_ = 0;
     bool has_band_ = false;
     bool free_run_ = false;  // no consumer: never publish, never wait

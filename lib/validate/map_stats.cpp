@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #include "core/srgb.hpp"
@@ -61,8 +62,28 @@ MapStats::MapStats(MapInput in, const ImageInfo& info, const rules::Thresholds& 
 
 bool MapStats::scalar_role() const { return traits(input.role).channels == 1; }
 
-void MapStats::add_band(int /*y0*/, int rows, const float* px) {
-    const long long n = static_cast<long long>(rows) * width;
+namespace {
+
+// An 8-bit band read as floats through a table (unorm8_values, or one built from it), indexed as
+// a float pointer is: add_band_t's loops are the same code for both, so the same values meet the
+// same operations in the same order.
+struct CodeReader {
+    const uint8_t* p;
+    const float* table;
+    float operator[](size_t i) const { return table[p[i]]; }
+    CodeReader operator+(size_t n) const { return {p + n, table}; }
+};
+
+}  // namespace
+
+void MapStats::add_band(int /*y0*/, int rows, const float* px) { add_band_t(static_cast<long long>(rows) * width, px); }
+
+void MapStats::add_band(int /*y0*/, int rows, const uint8_t* codes) {
+    add_band_t(static_cast<long long>(rows) * width, CodeReader{codes, unorm8_values().data()});
+}
+
+template <class P>
+void MapStats::add_band_t(long long n, P px) {
     const bool check_range = input.info.is_float && has_unit_range(input.role);
     const double lo = is_normal() ? -1.0 : 0.0;
     const double eps = t.range_epsilon;
@@ -71,7 +92,7 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
     if (is_normal() && normal_signed < 0) {
         // Float normal maps come both ways; negative values mean "already signed".
         bool neg = false;
-        for (long long i = 0; i < n * channels && !neg; ++i) neg = px[i] < -1e-3f;
+        for (long long i = 0; i < n * channels && !neg; ++i) neg = px[static_cast<size_t>(i)] < -1e-3f;
         normal_signed = neg ? 1 : 0;
     }
     if (is_normal() && channels >= 3 && normal_z < 0 && n > 0) {
@@ -79,7 +100,7 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         // or one value far from "up": no tangent map stores that, a two-channel export does.
         float bmin = px[2], bmax = px[2], xmin = px[0], xmax = px[0], ymin = px[1], ymax = px[1];
         for (long long i = 0; i < n; ++i) {
-            const float* p = px + static_cast<size_t>(i) * static_cast<size_t>(channels);
+            const auto p = px + static_cast<size_t>(i) * static_cast<size_t>(channels);
             bmin = std::min(bmin, p[2]), bmax = std::max(bmax, p[2]);
             xmin = std::min(xmin, p[0]), xmax = std::max(xmax, p[0]);
             ymin = std::min(ymin, p[1]), ymax = std::max(ymax, p[1]);
@@ -94,13 +115,14 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
     // the sum is exact in codes: any order gives the same figures, so the band is walked as it
     // lies in memory, four samples a step (codes_band).
     if (code_scale > 0.f && channels <= 4) {
-        codes_band(n, px);
+        if constexpr (std::is_same_v<P, CodeReader>) codes_band(n, px.p);
+        else codes_band(n, px);
     } else if (code_scale > 0.f) {
         for (int c = 0; c < 4; ++c) {
             float mn = std::numeric_limits<float>::infinity(), mx = -mn;
             long long codes = 0;
             for (long long i = 0; i < n; ++i) {
-                const float v = px[i * channels + c];
+                const float v = px[static_cast<size_t>(i * channels + c)];
                 mn = std::min(mn, v);
                 mx = std::max(mx, v);
                 // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
@@ -117,7 +139,7 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
             double mn = min[k], mx = max[k], sm = sum[k];
             long long fin = 0, nans = 0, infs = 0;
             for (long long i = 0; i < n; ++i) {
-                const float v = px[i * channels + c];
+                const float v = px[static_cast<size_t>(i * channels + c)];
                 if (!std::isfinite(v)) {
                     ++(std::isnan(v) ? nans : infs);
                     continue;
@@ -142,7 +164,7 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
     if (check_range) {
         long long bad = 0;
         for (long long i = 0; i < n; ++i) {
-            const float* p = px + i * channels;
+            const auto p = px + static_cast<size_t>(i * channels);
             bool bad_range = false;
             for (int c = 0; c < channels; ++c) {
                 const float v = p[c];
@@ -156,7 +178,12 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         long long differing = 0;
         double max_diff = gray_max_diff, sum_rg = gray_sum_rg, sum_rb = gray_sum_rb;
         for (long long i = 0; i < n; ++i) {
-            const float* p = px + i * channels;
+            const auto p = px + static_cast<size_t>(i * channels);
+            if constexpr (std::is_same_v<P, CodeReader>) {
+                // Three equal codes add 0 to the sums (which are >= 0: x + 0.0 is x) and leave
+                // the max as it is: skipped, the same figures.
+                if (p.p[0] == p.p[1] && p.p[0] == p.p[2]) continue;
+            }
             const double rg = std::abs(double{p[0]} - p[1]), rb = std::abs(double{p[0]} - p[2]),
                          gb = std::abs(double{p[1]} - p[2]);
             const double d = std::max({rg, rb, gb});
@@ -173,7 +200,7 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
     if (metal_channel >= 0) {
         long long dielectric = 0, metal = 0, between = 0;
         for (long long i = 0; i < n; ++i) {
-            const float m = px[i * channels + metal_channel];
+            const float m = px[static_cast<size_t>(i * channels + metal_channel)];
             if (m <= t.dielectric_max) ++dielectric;
             else if (m >= t.metal_min) ++metal;
             else if (std::isfinite(m)) ++between;
@@ -184,7 +211,7 @@ void MapStats::add_band(int /*y0*/, int rows, const float* px) {
         long long invisible = 0, below = 0;
         const auto inv = static_cast<float>(t.opacity_invisible_max), cut = static_cast<float>(t.opacity_visible);
         for (long long i = 0; i < n; ++i) {
-            const float o = px[i * channels + opacity_channel];
+            const float o = px[static_cast<size_t>(i * channels + opacity_channel)];
             invisible += o <= inv ? 1 : 0;  // NaN counts as neither
             below += o < cut ? 1 : 0;
         }
@@ -277,11 +304,110 @@ void MapStats::codes_band(long long n, const float* px) {
     }
 }
 
+namespace {
+
+// 2 · decode(c) − 1 of an integer file's value c = code / scale in [0, 1]: its 16-bit code (8-bit
+// k is 257 k) indexes the decode table (`lut`, srgb_decode_table) exactly.
+float srgb_normal_component(const float* lut, float c) {
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings): c is a code / scale in [0, 1]
+    return 2.f * lut[static_cast<size_t>(c * 65535.f + 0.5f)] - 1.f;
+}
+
+// srgb_normal_component of every 8-bit code's float.
+const std::array<float, 256>& srgb_normal_codes() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> v{};
+        for (size_t k = 0; k < v.size(); ++k)
+            v[k] = srgb_normal_component(srgb_decode_table().data(), unorm8_values()[k]);
+        return v;
+    }();
+    return table;
+}
+
+using U8x16 = uint8_t __attribute__((vector_size(16)));
+using U16x16 = uint16_t __attribute__((vector_size(32)));
+
+// Per-lane smallest and largest code and code sums over whole blocks of V vectors of 16 codes
+// (V = 3 for three channels, else 1), as code_blocks does for floats; returns the codes consumed.
+template <size_t V>
+size_t code8_blocks(const uint8_t* p, size_t total, uint8_t (&lo)[48], uint8_t (&hi)[48], uint64_t (&sum)[48]) {
+    U8x16 l[V] = {}, h[V] = {};
+    U16x16 s[V] = {};
+    for (size_t j = 0; j < V; ++j) {
+        l[j] = U8x16{} + 255;
+        h[j] = U8x16{};
+        s[j] = U16x16{};
+    }
+    // A 16-bit lane adds at most 255 a block: 257 blocks fit, flushed every 256.
+    constexpr size_t kFlush = 256;
+    auto flush = [&] {
+        for (size_t j = 0; j < V; ++j) {
+            for (size_t k = 0; k < 16; ++k) sum[16 * j + k] += s[j][k];
+            s[j] = U16x16{};
+        }
+    };
+    size_t i = 0, blocks = 0;
+    for (; i + 16 * V <= total; i += 16 * V) {
+        for (size_t j = 0; j < V; ++j) {
+            U8x16 v;
+            std::memcpy(&v, p + i + 16 * j, sizeof v);
+            l[j] = v < l[j] ? v : l[j];
+            h[j] = v > h[j] ? v : h[j];
+            s[j] += __builtin_convertvector(v, U16x16);
+        }
+        if (++blocks == kFlush) {
+            flush();
+            blocks = 0;
+        }
+    }
+    flush();
+    for (size_t j = 0; j < V; ++j)
+        for (size_t k = 0; k < 16; ++k) lo[16 * j + k] = l[j][k], hi[16 * j + k] = h[j][k];
+    return i;
+}
+
+}  // namespace
+
+// codes_band of a band held as 8-bit codes: the table rises with the code, so the smallest and
+// largest code give the smallest and largest float, and the codes' sum is the code sum.
+void MapStats::codes_band(long long n, const uint8_t* codes) {
+    const auto nc = static_cast<size_t>(channels);
+    const size_t total = static_cast<size_t>(n) * nc;
+    uint8_t lanes_lo[48], lanes_hi[48];
+    uint64_t lanes_sum[48] = {};
+    const size_t vectors = nc == 3 ? 3 : 1;  // per block: lcm(channels, 16) codes
+    const size_t done = vectors == 3 ? code8_blocks<3>(codes, total, lanes_lo, lanes_hi, lanes_sum)
+                                     : code8_blocks<1>(codes, total, lanes_lo, lanes_hi, lanes_sum);
+    uint8_t lo[4] = {255, 255, 255, 255}, hi[4] = {};
+    uint64_t sums[4] = {};
+    for (size_t k = 0; k < 16 * vectors; ++k) {
+        const size_t c = k % nc;
+        lo[c] = std::min(lo[c], lanes_lo[k]);
+        hi[c] = std::max(hi[c], lanes_hi[k]);
+        sums[c] += lanes_sum[k];
+    }
+    for (size_t i = done; i < total; ++i) {
+        const size_t c = i % nc;
+        lo[c] = std::min(lo[c], codes[i]);
+        hi[c] = std::max(hi[c], codes[i]);
+        sums[c] += codes[i];
+    }
+    if (n <= 0) return;
+    const auto& v = unorm8_values();
+    for (size_t c = 0; c < nc; ++c) {
+        min[c] = std::min(min[c], double{v[lo[c]]});
+        max[c] = std::max(max[c], double{v[hi[c]]});
+        code_sum[c] += static_cast<long long>(sums[c]);
+        finite[c] += n;
+    }
+}
+
 // The normal-map statistics of one band: one loop for the stored vectors, one for the vectors the
 // same codes would give if the file were sRGB-encoded (integer files only). Float math per pixel
 // (the figures need a few digits), double sums, integer counts, no branch on the pixel's values:
 // the loops stay vectorizable, about as fast as the length check alone was.
-void MapStats::normal_band(long long n, const float* px) {
+template <class P>
+void MapStats::normal_band(long long n, P px) {
     const bool is_signed = normal_signed == 1;
     const auto nc = static_cast<size_t>(channels);
     const bool rgb = channels >= 3 && normal_z != 1;  // else z is rebuilt from x and y
@@ -291,7 +417,7 @@ void MapStats::normal_band(long long n, const float* px) {
     long long bad_length = 0, negative_z = 0, upward = 0, grey = 0;
     double sum_length = 0, sum_z = 0, sxx = 0, syy = 0;
     for (long long i = 0; i < n; ++i) {
-        const float* p = px + static_cast<size_t>(i) * nc;
+        const auto p = px + static_cast<size_t>(i) * nc;
         const float x = a * p[0] + b, y = a * p[1] + b;
         const float xy = x * x + y * y;
         // Two channels (BC5-style): z rebuilt, the length is 1 unless x, y alone exceed it.
@@ -313,20 +439,20 @@ void MapStats::normal_band(long long n, const float* px) {
     normal_bad_length += bad_length, normal_negative_z += negative_z, normal_upward += upward, normal_gray += grey;
     normal_sum_length += sum_length, normal_sum_z += sum_z, normal_sum_xx += sxx, normal_sum_yy += syy;
     if (input.info.is_float || code_scale <= 0.f) return;
-    // An integer file's value is code / scale in [0, 1]: its 16-bit code (8-bit k is 257 k)
-    // indexes the decode table exactly.
-    const float* lut = srgb_decode_table().data();
-    auto dec = [lut](float c) {
-        // NOLINTNEXTLINE(bugprone-incorrect-roundings): c is a code / scale in [0, 1]
-        return 2.f * lut[static_cast<size_t>(c * 65535.f + 0.5f)] - 1.f;
+    // The components as if sRGB-encoded: an 8-bit band's codes through a table of them, a float
+    // band's values through srgb_normal_component (the table's entries are its values).
+    const float* lut = std::is_same_v<P, CodeReader> ? srgb_normal_codes().data() : srgb_decode_table().data();
+    auto dec = [&px, lut](size_t i) {
+        if constexpr (std::is_same_v<P, CodeReader>) return lut[px.p[i]];
+        else return srgb_normal_component(lut, px[i]);
     };
     long long srgb_upward = 0;
     double ssx = 0, ssy = 0, ssl = 0;
     for (long long i = 0; i < n; ++i) {
-        const float* p = px + static_cast<size_t>(i) * nc;
-        const float x = dec(p[0]), y = dec(p[1]);
+        const size_t p = static_cast<size_t>(i) * nc;
+        const float x = dec(p), y = dec(p + 1);
         const float xy = x * x + y * y;
-        const float z = rgb ? dec(p[2]) : std::sqrt(std::max(0.f, 1.f - xy));
+        const float z = rgb ? dec(p + 2) : std::sqrt(std::max(0.f, 1.f - xy));
         ssx += x;
         ssy += y;
         ssl += std::sqrt(xy + z * z);

@@ -70,8 +70,12 @@ struct MapStats {
 
     MapStats(MapInput in, const ImageInfo& info, const rules::Thresholds& th);
     void add_band(int y0, int rows, const float* px);
-    void normal_band(long long n, const float* px);  // add_band's normal-map part
-    void codes_band(long long n, const float* px);   // add_band's min, max and sums of an integer file
+    // An 8-bit file's band as its codes: the figures its floats (unorm8_values) would give, bit
+    // for bit — every value is read through that table or one built from it, in the same order.
+    void add_band(int y0, int rows, const uint8_t* codes);
+    void add_band(int y0, int rows, Samples px) {
+        px.codes ? add_band(y0, rows, px.codes) : add_band(y0, rows, px.floats);
+    }
 
     // Findings that depend on this map alone, at their catalog severity: the rule groups below,
     // in order.
@@ -102,6 +106,15 @@ struct MapStats {
         return total / static_cast<double>(finite[c]);
     }
     bool scalar_role() const;
+
+private:
+    // add_band over a float pointer or a code reader (map_stats.cpp), and its parts.
+    template <class P>
+    void add_band_t(long long n, P px);
+    template <class P>
+    void normal_band(long long n, P px);            // the normal-map statistics
+    void codes_band(long long n, const float* px);  // min, max and sums of an integer file's floats
+    void codes_band(long long n, const uint8_t* codes);
 };
 
 // Which output role channel c of a map holds (packed inputs split; RGB roles whole).

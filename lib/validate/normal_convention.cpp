@@ -49,17 +49,37 @@ NormalConvention sign_convention(double r) {
 
 }  // namespace
 
-void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz, bool rebuild_z) {
-    for (int x = 0; x < width; ++x) {
-        const float* s = src + static_cast<size_t>(x) * channels;
-        auto dec = [&](float c) { return signed_values ? c : 2.f * c - 1.f; };
-        float nx = dec(s[0]);
-        float ny = channels > 1 ? dec(s[1]) : 0.f;
-        float nz = channels > 2 && !rebuild_z ? dec(s[2]) : std::sqrt(std::max(0.f, 1.f - nx * nx - ny * ny));
+namespace {
+
+// decode_normal_row over any sample kind: `dec(i)` is the component of sample i.
+template <class Dec>
+void decode_row(Dec dec, int channels, int width, float* xyz, bool rebuild_z) {
+    const auto nc = static_cast<size_t>(channels);
+    for (size_t x = 0; x < static_cast<size_t>(width); ++x) {
+        const size_t s = x * nc;
+        const float nx = dec(s);
+        const float ny = channels > 1 ? dec(s + 1) : 0.f;
+        const float nz = channels > 2 && !rebuild_z ? dec(s + 2) : std::sqrt(std::max(0.f, 1.f - nx * nx - ny * ny));
         xyz[3 * x] = nx;
         xyz[3 * x + 1] = ny;
         xyz[3 * x + 2] = nz;
     }
+}
+
+}  // namespace
+
+void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz, bool rebuild_z) {
+    decode_row([&](size_t i) { return signed_values ? src[i] : 2.f * src[i] - 1.f; }, channels, width, xyz, rebuild_z);
+}
+
+void decode_normal_row(const uint8_t* codes, int channels, int width, float* xyz, bool rebuild_z) {
+    // 2 c − 1 of every code's float, as the float overload computes it.
+    static const std::array<float, 256> component = [] {
+        std::array<float, 256> v{};
+        for (size_t k = 0; k < v.size(); ++k) v[k] = 2.f * unorm8_values()[k] - 1.f;
+        return v;
+    }();
+    decode_row([&](size_t i) { return component[codes[i]]; }, channels, width, xyz, rebuild_z);
 }
 
 struct NormalConventionDetector::Impl {

@@ -68,6 +68,8 @@ inline constexpr double kDepthMinCorrelation = 0.3;
 // BC5-style map whose blue is empty); with 2 channels it always is.
 void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz,
                        bool rebuild_z = false);
+// The same of a row held as 8-bit codes (unorm8_values; never signed): the floats' triples bit for bit.
+void decode_normal_row(const uint8_t* codes, int channels, int width, float* xyz, bool rebuild_z = false);
 
 // Streaming detector: feed decoded rows top to bottom (and the height row of the same grid, or
 // nullptr when there is no height map). Memory: a few rows per pyramid level.

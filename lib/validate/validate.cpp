@@ -32,6 +32,15 @@ int first_readable(const std::vector<MapInput>& maps, const std::vector<bool>& r
 
 }  // namespace
 
+bool read_file_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
+                     const std::function<void(int, int, Samples)>& fn) {
+    return read_bands(
+        in, band_rows, info, error, [&](int y0, int rows, const float* px) { fn(y0, rows, {px}); },
+        [&](int y0, int rows, const uint8_t* codes) {
+            fn(y0, rows, {nullptr, codes});
+        });
+}
+
 std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name, NormalConvention name_convention,
                                        std::string& error) {
     MapInput m;
@@ -77,9 +86,9 @@ struct SetRun {
     const ImageInfo& info(const Source& s) const { return maps[static_cast<size_t>(s.map)].info; }
     bool albedo_pass() const { return albedo.map >= 0 && info(albedo).channels >= 3; }
     bool normal_pass() const { return normal.map >= 0 && info(normal).channels >= 2; }
-    const float* row_of(const Source& s, int r) const {
+    Samples row_of(const Source& s, int r) const {
         return s.map >= 0 && streams[static_cast<size_t>(s.map)] ? streams[static_cast<size_t>(s.map)]->row(r)
-                                                                 : nullptr;
+                                                                 : Samples{};
     }
 
     // Header facts first (cheap); a map whose header fails is reported and left out.
@@ -129,7 +138,7 @@ struct SetRun {
         if (normal_pass())
             for (const Source& s : {normal, height})
                 if (s.map >= 0) lockstep[static_cast<size_t>(s.map)] = true;
-        const BandReader reader = opt.reader ? opt.reader : BandReader(&mf::read_bands);
+        const BandReader reader = opt.reader ? opt.reader : BandReader(&read_file_bands);
         const int band_rows = std::max(1, opt.band_rows);
         for (size_t i = 0; i < maps.size(); ++i) {
             if (!readable[i]) continue;
@@ -140,7 +149,7 @@ struct SetRun {
             const ImageInfo expected = maps[i].info;
             streams[i] = std::make_unique<BandStream>(
                 reader, maps[i].file, band_rows, expected.width * expected.channels,
-                [st](int y0, int rows, const float* px) { st->add_band(y0, rows, px); }, lockstep[i]);
+                [st](int y0, int rows, Samples px) { st->add_band(y0, rows, px); }, lockstep[i]);
         }
     }
 
@@ -161,26 +170,48 @@ struct SetRun {
         };
         xmap(metal, mx);
         xmap(opacity, ox);
-        const int mc = metal.map >= 0 ? info(metal).channels : 0;
-        const int oc = opacity.map >= 0 ? info(opacity).channels : 0;
         for (int y = 0; y < ai.height; ++y) {
-            const float* a = row_of(albedo, y);
-            if (!a) break;
-            const float* m = metal.map >= 0 ? row_of(metal, nearest_index(y, ai.height, info(metal).height)) : nullptr;
-            const float* o = opacity.map == albedo.map ? a
-                             : opacity.map >= 0 ? row_of(opacity, nearest_index(y, ai.height, info(opacity).height))
-                                                : nullptr;
-            for (int x = 0; x < ai.width; ++x) {
-                const float mv = m ? m[mx[x] * mc + metal.channel] : 0.f;
-                const float* px = a + x * ai.channels;
-                if (!o) {
-                    albedo_visible->add(px, mv);
-                    continue;
-                }
-                const float ov = opacity.map == albedo.map ? a[x * ai.channels + 3] : o[ox[x] * oc + opacity.channel];
-                (ov >= t.opacity_visible ? *albedo_visible : *albedo_hidden).add(px, mv);
-            }
+            const Samples a = row_of(albedo, y);
+            if (a.empty()) break;
+            const Samples m = metal.map >= 0 ? row_of(metal, nearest_index(y, ai.height, info(metal).height))
+                                             : Samples{};
+            const Samples o = opacity.map == albedo.map ? a
+                              : opacity.map >= 0 ? row_of(opacity, nearest_index(y, ai.height, info(opacity).height))
+                                                 : Samples{};
+            if (a.codes) albedo_row(a.codes, m, o, mx, ox);
+            else albedo_row(a.floats, m, o, mx, ox);
         }
+    }
+    // One albedo row (floats or codes) with its metalness and opacity rows (either kind, or
+    // empty), resampled onto the albedo's grid; pixels the opacity hides go to albedo_hidden.
+    std::vector<float> metal_row;
+    std::vector<uint8_t> visible_row;
+    template <class T>
+    void albedo_row(const T* a, const Samples& m, const Samples& o, const std::vector<int>& mx,
+                    const std::vector<int>& ox) {
+        const ImageInfo& ai = info(albedo);
+        const auto w = static_cast<size_t>(ai.width);
+        const auto nc = static_cast<size_t>(ai.channels);
+        if (!m.empty()) {
+            const auto mc = static_cast<size_t>(info(metal).channels), ch = static_cast<size_t>(metal.channel);
+            metal_row.resize(w);
+            for (size_t x = 0; x < w; ++x) metal_row[x] = m[static_cast<size_t>(mx[x]) * mc + ch];
+        }
+        const float* mv = m.empty() ? nullptr : metal_row.data();
+        if (o.empty()) {
+            albedo_visible->add_row(a, nc, mv, w);
+            return;
+        }
+        const bool own_alpha = opacity.map == albedo.map;
+        const size_t oc = own_alpha ? nc : static_cast<size_t>(info(opacity).channels);
+        const size_t ch = own_alpha ? 3 : static_cast<size_t>(opacity.channel);
+        visible_row.resize(w);
+        for (size_t x = 0; x < w; ++x) {
+            const size_t at = (own_alpha ? x : static_cast<size_t>(ox[x])) * oc + ch;
+            visible_row[x] = o[at] >= t.opacity_visible ? 1 : 0;  // NaN: hidden
+        }
+        albedo_visible->add_row(a, nc, mv, w, visible_row.data(), 1);
+        albedo_hidden->add_row(a, nc, mv, w, visible_row.data(), 0);
     }
     void albedo_findings() {
         if (!albedo_visible) return;
@@ -201,18 +232,20 @@ struct SetRun {
             for (int x = 0; x < ni.width; ++x)
                 hx[static_cast<size_t>(x)] = nearest_index(x, ni.width, info(height).width);
         }
-        const int hc = wh ? info(height).channels : 0;
+        const size_t hc = wh ? static_cast<size_t>(info(height).channels) : 0;
+        const auto hch = static_cast<size_t>(height.channel);
         for (int y = 0; y < ni.height; ++y) {
-            const float* n = row_of(normal, y);
-            if (!n) break;
+            const Samples n = row_of(normal, y);
+            if (n.empty()) break;
             // The reader thread decided the decoding on the first band, before this row.
             const MapStats& ns = *stats[static_cast<size_t>(normal.map)];
-            decode_normal_row(n, ni.channels, ni.width, ns.normal_signed == 1, xyz.data(), ns.rebuilds_z());
-            const float* h = wh ? row_of(height, nearest_index(y, ni.height, info(height).height)) : nullptr;
-            if (h)
+            if (n.codes) decode_normal_row(n.codes, ni.channels, ni.width, xyz.data(), ns.rebuilds_z());
+            else decode_normal_row(n.floats, ni.channels, ni.width, ns.normal_signed == 1, xyz.data(), ns.rebuilds_z());
+            const Samples h = wh ? row_of(height, nearest_index(y, ni.height, info(height).height)) : Samples{};
+            if (!h.empty())
                 for (int x = 0; x < ni.width; ++x)
-                    hrow[static_cast<size_t>(x)] = h[hx[static_cast<size_t>(x)] * hc + height.channel];
-            det.add_row(xyz.data(), h ? hrow.data() : nullptr);
+                    hrow[static_cast<size_t>(x)] = h[static_cast<size_t>(hx[static_cast<size_t>(x)]) * hc + hch];
+            det.add_row(xyz.data(), h.empty() ? nullptr : hrow.data());
         }
         verdict = det.verdict();
     }

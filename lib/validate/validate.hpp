@@ -51,14 +51,31 @@ struct MapInput {
 std::optional<MapInput> make_map_input(Role role, InputFile file, std::string name, NormalConvention name_convention,
                                        std::string& error);
 
-// mf::read_bands's signature: tests substitute in-memory images.
+// A band (or a row) of samples as a reader hands it: floats, or an 8-bit file's codes, code k
+// standing for unorm8_values()[k] — the float mf::read_bands gives for it, bit for bit. The
+// rules read codes through that table (or tables built from it), so a map held as codes
+// validates to the same figures as its floats would, without a float copy of it.
+struct Samples {
+    const float* floats = nullptr;
+    const uint8_t* codes = nullptr;
+    bool empty() const { return !floats && !codes; }
+    Samples operator+(size_t n) const { return codes ? Samples{nullptr, codes + n} : Samples{floats + n, nullptr}; }
+    // One value (a branch per call: for the few reads outside the rules' per-type loops).
+    float operator[](size_t i) const { return codes ? unorm8_values()[codes[i]] : floats[i]; }
+};
+
+// mf::read_bands's contract with Samples for the band: tests substitute in-memory images, ingest
+// its decoded maps (codes where it holds codes).
 using BandReader = std::function<bool(const InputFile&, int band_rows, ImageInfo&, std::string&,
-                                      const std::function<void(int, int, const float*)>&)>;
+                                      const std::function<void(int, int, Samples)>&)>;
+// mf::read_bands as a BandReader: codes where matforge's own readers decode an 8-bit file.
+bool read_file_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
+                     const std::function<void(int, int, Samples)>& fn);
 
 struct ValidateOptions {
     std::string material;  // name the suppressions match
     int band_rows = 64;
-    BandReader reader;         // empty: mf::read_bands
+    BandReader reader;         // empty: read_file_bands
     DetectorOptions detector;  // GL/DX detector settings
 };
 

@@ -63,7 +63,7 @@ struct MemSet {
         auto inf = infos;
         auto bad = broken;
         return [imgs, inf, bad](const mf::InputFile& in, int band_rows, mf::ImageInfo& info, std::string& err,
-                                const std::function<void(int, int, const float*)>& fn) {
+                                const std::function<void(int, int, mf::validate::Samples)>& fn) {
             if (std::find(bad.begin(), bad.end(), in.display) != bad.end()) {
                 err = in.display + ": truncated file";
                 return false;
@@ -77,7 +77,7 @@ struct MemSet {
             info = inf.at(in.display);
             for (int y0 = 0; y0 < im.height; y0 += band_rows) {
                 const int rows = std::min(band_rows, im.height - y0);
-                fn(y0, rows, im.pixels.data() + im.index(0, y0));
+                fn(y0, rows, {im.pixels.data() + im.index(0, y0)});
             }
             return true;
         };

@@ -130,7 +130,7 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
     // nothing holds a whole map, so the peak memory measures the validator alone.
     constexpr int W = 8192, H = 8192;
     auto gen = [](const mf::InputFile& in, int band_rows, mf::ImageInfo& info, std::string&,
-                  const std::function<void(int, int, const float*)>& fn) {
+                  const std::function<void(int, int, mv::Samples)>& fn) {
         const bool normal = in.display == "N.png";
         const int c = normal || in.display == "A.png" ? 3 : 1;
         info = {W, H, c, 8, false, "memory", {}};
@@ -150,7 +150,7 @@ TEST(ValidateFiles, EightKSetInBoundedMemory) {
                     } else if (in.display == "M.png") p[0] = x < W / 2 ? 0.f : 1.f;
                     else p[0] = t;
                 }
-            fn(y0, rows, band.data());
+            fn(y0, rows, {band.data()});
         }
         return true;
     };
