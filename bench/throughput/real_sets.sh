@@ -69,12 +69,17 @@ find "$corpus/real" -type f -exec cat {} + >/dev/null  # a warm page cache for b
 
 for ((r = 0; r < repeat; r++)); do
   rm -rf "$work/peer" "$work/mf"
+  # Each timed run starts with nothing of the other's left to write back: on two cores the
+  # kernel's writeback of one run's files would otherwise be charged to the next.
+  sync
   /usr/bin/time -f %e -o "$work/t" "$repo/bench/throughput/oiiotool_peer.sh" "$work/lib" "$work/peer" --jobs "$jobs" --unity-hdrp
   tail -n 1 "$work/t" >>"$work/peer.times"
+  sync
   /usr/bin/time -f %e -o "$work/t" "$matforge" ingest "$corpus/real" -o "$work/mf" --preset gltf,unity-hdrp --no-cache \
     --jobs "$jobs" -q || (($? == 1))  # 1: the corpus's real errors are findings; outputs are written
   tail -n 1 "$work/t" >>"$work/mf.times"
 done
+[[ -z ${MATFORGE_BENCH_RAW:-} ]] || paste "$work/peer.times" "$work/mf.times" >&2
 sets=$(($(wc -l <"$work/lib/library.tsv") - 1))
 peer_files=$(find "$work/peer" -name '*.png' | wc -l)
 mf_files=$(find "$work/mf" -type f | wc -l)

@@ -241,16 +241,40 @@ struct Fd {
     Fd& operator=(const Fd&) = delete;
 };
 
-// Writes what `produce` gives as `name` in folder `dfd` by a temporary beside it and renameat.
-// `shown` names the destination in messages.
+// StagedFile::write's file synced, renamed into place and the rename made durable (a folder
+// fsync): the whole of an atomic write.
 bool write_at(int dfd, const std::string& name, const ByteProducer& produce, const std::string& shown,
               std::string& error) {
-    const std::string tmp = temp_name(name);
-    const int fd = ::openat(dfd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd < 0) {
+    const int dir = ::dup(dfd);
+    if (dir < 0) {
         error = shown + ": cannot write (" + errno_text(errno) + ")";
         return false;
     }
+    auto staged = StagedFile::write(dir, name, produce, shown, error);
+    if (!staged || !staged->sync(error) || !staged->rename(error)) return false;
+    ::fsync(dfd);  // make the rename itself durable
+    return true;
+}
+
+ByteProducer producer_of(std::span<const unsigned char> bytes) {
+    return [bytes](const ByteSink& sink) { return sink({reinterpret_cast<const char*>(bytes.data()), bytes.size()}); };
+}
+}  // namespace
+
+std::optional<StagedFile> StagedFile::write(int dir, const std::string& name, const ByteProducer& produce,
+                                            const std::string& shown, std::string& error) {
+    StagedFile staged;
+    staged.dir_ = dir;
+    staged.name_ = name;
+    staged.shown_ = shown;
+    const std::string temp = temp_name(name);
+    staged.fd_ = ::openat(dir, temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (staged.fd_ < 0) {
+        error = shown + ": cannot write (" + errno_text(errno) + ")";
+        return std::nullopt;  // closes `dir`; no temporary to remove
+    }
+    staged.temp_ = temp;
+    const int fd = staged.fd_;
     // Small pieces (a JSON element) gather in a buffer; one write(2) each would cost more than them.
     constexpr size_t kBuffer = size_t{1} << 20;
     std::string buffer;
@@ -271,31 +295,80 @@ bool write_at(int dfd, const std::string& name, const ByteProducer& produce, con
         return !failed;
     };
     const bool produced = produce(sink);
-    const bool ok = produced && flush() && ::fsync(fd) == 0;
-    const int saved = failed ? failed : errno;
-    ::close(fd);
-    if (!ok) {
-        ::unlinkat(dfd, tmp.c_str(), 0);
-        if (produced || failed) error = shown + ": cannot write (" + errno_text(saved) + ")";
+    if (!produced || !flush()) {
+        if (produced || failed) error = shown + ": cannot write (" + errno_text(failed ? failed : errno) + ")";
         else if (error.empty()) error = shown + ": not written";
-        return false;
+        return std::nullopt;  // the temporary is removed
     }
-    if (::renameat(dfd, tmp.c_str(), dfd, name.c_str()) != 0) {
-        const int e = errno;
-        ::unlinkat(dfd, tmp.c_str(), 0);
-        error = shown + ": cannot rename into place (" +
-                (e == EISDIR || e == ENOTEMPTY || e == EEXIST ? "a folder of that name is in the way" : errno_text(e)) +
-                ")";
-        return false;
-    }
-    ::fsync(dfd);  // make the rename itself durable
-    return true;
+#ifdef __linux__
+    // Writeback starts now, without waiting: sync() then finds most of it done.
+    ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);
+#endif
+    return staged;
 }
 
-ByteProducer producer_of(std::span<const unsigned char> bytes) {
-    return [bytes](const ByteSink& sink) { return sink({reinterpret_cast<const char*>(bytes.data()), bytes.size()}); };
+StagedFile::StagedFile(StagedFile&& o) noexcept
+    : dir_(std::exchange(o.dir_, -1)),
+      fd_(std::exchange(o.fd_, -1)),
+      temp_(std::exchange(o.temp_, {})),
+      name_(std::move(o.name_)),
+      shown_(std::move(o.shown_)) {}
+
+StagedFile& StagedFile::operator=(StagedFile&& o) noexcept {
+    if (this != &o) {
+        release();
+        dir_ = std::exchange(o.dir_, -1);
+        fd_ = std::exchange(o.fd_, -1);
+        temp_ = std::exchange(o.temp_, {});
+        name_ = std::move(o.name_);
+        shown_ = std::move(o.shown_);
+    }
+    return *this;
 }
-}  // namespace
+
+StagedFile::~StagedFile() { release(); }
+
+void StagedFile::release() {
+    if (fd_ >= 0) ::close(fd_);
+    if (dir_ >= 0 && !temp_.empty()) ::unlinkat(dir_, temp_.c_str(), 0);
+    if (dir_ >= 0) ::close(dir_);
+    fd_ = dir_ = -1;
+    temp_.clear();
+}
+
+bool StagedFile::sync(std::string& error) {
+    const bool ok = fd_ >= 0 && ::fsync(fd_) == 0;
+    const int e = fd_ >= 0 ? errno : EBADF;
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    if (!ok) {
+        error = shown_ + ": cannot write (" + errno_text(e) + ")";
+        release();
+    }
+    return ok;
+}
+
+bool StagedFile::destination_exists() const {
+    struct stat st {};
+    return dir_ >= 0 && ::fstatat(dir_, name_.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
+}
+
+bool StagedFile::rename(std::string& error) {
+    if (dir_ < 0 || temp_.empty()) {
+        error = shown_ + ": not written";
+        return false;
+    }
+    if (::renameat(dir_, temp_.c_str(), dir_, name_.c_str()) != 0) {
+        const int e = errno;
+        error = shown_ + ": cannot rename into place (" +
+                (e == EISDIR || e == ENOTEMPTY || e == EEXIST ? "a folder of that name is in the way" : errno_text(e)) +
+                ")";
+        release();
+        return false;
+    }
+    temp_.clear();  // in place: nothing to remove
+    return true;
+}
 
 namespace {
 // write_file_atomic's steps; `same` (the bytes, when known in advance) leaves an identical file be.
@@ -317,10 +390,12 @@ bool write_atomic(const fs::path& dest, const ByteProducer& produce, const std::
     return write_at(dfd.fd, dest.filename().string(), produce, dest.string(), error);
 }
 
-// write_file_under's steps; `same` as write_atomic's.
+// write_file_under's steps; `same` as write_atomic's. With `staged`, the bytes are left in a
+// temporary there (stage_file_under) and nothing is renamed.
 bool write_under(const fs::path& root, const std::string& rel, const ByteProducer& produce,
                  const std::span<const unsigned char>* same, std::string& error,
-                 const std::function<std::string(bool exists)>& before_write) {
+                 const std::function<std::string(bool exists)>& before_write,
+                 std::optional<StagedFile>* staged = nullptr) {
     const fs::path r = fs::path(rel).lexically_normal();
     std::vector<std::string> parts;
     for (const auto& p : r) parts.push_back(p.string());
@@ -375,7 +450,14 @@ bool write_under(const fs::path& root, const std::string& rel, const ByteProduce
             return false;
         }
     }
-    return write_at(dfd->fd, name, produce, rel, error);
+    if (!staged) return write_at(dfd->fd, name, produce, rel, error);
+    const int dir = ::dup(dfd->fd);
+    if (dir < 0) {
+        error = rel + ": cannot write (" + errno_text(errno) + ")";
+        return false;
+    }
+    *staged = StagedFile::write(dir, name, produce, rel, error);
+    return staged->has_value();
 }
 }  // namespace
 
@@ -390,6 +472,13 @@ bool write_file_atomic(const fs::path& dest, const ByteProducer& produce, std::s
 bool write_file_under(const fs::path& root, const std::string& rel, std::span<const unsigned char> bytes,
                       std::string& error, const std::function<std::string(bool exists)>& before_write) {
     return write_under(root, rel, producer_of(bytes), &bytes, error, before_write);
+}
+
+bool stage_file_under(const fs::path& root, const std::string& rel, std::span<const unsigned char> bytes,
+                      std::optional<StagedFile>& staged, std::string& error,
+                      const std::function<std::string(bool exists)>& before_write) {
+    staged.reset();
+    return write_under(root, rel, producer_of(bytes), &bytes, error, before_write, &staged);
 }
 
 bool write_file_under(const fs::path& root, const std::string& rel, const ByteProducer& produce, std::string& error,

@@ -77,6 +77,43 @@ bool write_file_under(const std::filesystem::path& root, const std::string& rel,
 bool write_file_under(const std::filesystem::path& root, const std::string& rel, const ByteProducer& produce,
                       std::string& error, const std::function<std::string(bool exists)>& before_write = {});
 
+// An atomic write's first half: the bytes in a temporary beside the destination (their
+// writeback started), for a caller that finishes the write elsewhere (OutputFolder's committer
+// thread: fsyncs off the workers, one journal flush and one folder fsync a group). sync() then
+// rename() finish it; the folder's fsync is the caller's. A staged file that is never renamed
+// removes its temporary when destroyed. Move-only; not thread-safe.
+class StagedFile {
+public:
+    // The bytes `produce` gives, as a temporary (temp_name) for `name` in folder `dir` (taken:
+    // closed when the staged file goes). nullopt + `error` (naming `shown`) on failure.
+    static std::optional<StagedFile> write(int dir, const std::string& name, const ByteProducer& produce,
+                                           const std::string& shown, std::string& error);
+    StagedFile(StagedFile&& o) noexcept;
+    StagedFile& operator=(StagedFile&& o) noexcept;
+    StagedFile(const StagedFile&) = delete;
+    StagedFile& operator=(const StagedFile&) = delete;
+    ~StagedFile();
+
+    const std::string& shown() const { return shown_; }
+    int folder() const { return dir_; }  // the destination's folder (for the caller's fsync)
+    bool sync(std::string& error);       // fsync of the bytes; false: the temporary removed
+    // Whether something is at the destination now (never follows a link).
+    bool destination_exists() const;
+    bool rename(std::string& error);  // over the destination; false: the temporary removed
+
+private:
+    StagedFile() = default;
+    void release();
+    int dir_ = -1, fd_ = -1;
+    std::string temp_, name_, shown_;
+};
+
+// write_file_under up to a StagedFile: the same checks, folders, `before_write` and the
+// identical-bytes case (true with `staged` empty: nothing to write). False + `error` on failure.
+bool stage_file_under(const std::filesystem::path& root, const std::string& rel, std::span<const unsigned char> bytes,
+                      std::optional<StagedFile>& staged, std::string& error,
+                      const std::function<std::string(bool exists)>& before_write = {});
+
 // An exclusive lock on a folder: flock(2) on the file `name` inside it, held until destroyed
 // (then the file is removed). The lock file holds the holder's pid, so a second writer can say
 // who is there: acquire() returns nullopt + `error` "another matforge (pid N) is writing in DIR"

@@ -434,6 +434,13 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         if (output_needed(o, planes)) wanted.push_back(&o);
     std::vector<Written> written(wanted.size());
     const auto refused = run.refused.find(src.name);
+    // The set's files are finished (fsync, journal, rename) by the folder's committer while the
+    // next output is packed and encoded; the outputs are in place before the material files
+    // that name them are written, and those before the set's entry is returned.
+    OutputFolder::Batch batch(run.folder);
+    const auto batch_write = [&batch](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+        return batch.write(rel, b, e);
+    };
     const OutputJob job{preset_,
                         *color_,
                         plan,
@@ -441,9 +448,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                         src.name,
                         Size{w, h},
                         refused == run.refused.end() ? nullptr : &refused->second,
-                        [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-                            return run.write(rel, b, e);
-                        },
+                        batch_write,
                         [share](Image8 img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& sha,
                                 std::string& e) {
                             return share ? share->encode(std::move(img), enc, b, sha, e) : encode_image(img, enc, b, e);
@@ -468,6 +473,12 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                                          preset_.output_path(src.name, *wanted[i]) + ": " + e.what());
         }
     });
+    for (const auto& [rel, error] : batch.wait())
+        for (auto& r : written)
+            if (r.entry && r.entry->file == rel) {
+                r.entry.reset();
+                r.failure = finding(code::output_write_failed, "", "", error);
+            }
     if (auto f = too_large(written)) plan.findings.push_back(std::move(*f));
 
     manifest::Material& m = res.entry;
@@ -489,12 +500,13 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     m.findings = reported_findings(std::move(plan.findings), src.name, opt_.rules);
     m.emissive_strength = emissive_strength;
     decide_alpha(preset_, planes, m);
-    write_material_files(
-        preset_,
-        [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-            return run.write(rel, b, e);
-        },
-        m);
+    write_material_files(preset_, batch_write, m);
+    for (const auto& [file, error] : batch.wait()) {
+        const std::string& rel = file;  // a structured binding cannot be captured before C++20's P1091 (clang 14)
+        std::erase_if(m.material_files, [&rel](const manifest::MaterialFile& f) { return f.file == rel; });
+        m.findings.push_back(finding(code::output_write_failed, "", "", error));
+        m.status = manifest::Status::partial;
+    }
     return res;
 }
 

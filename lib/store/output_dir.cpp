@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <set>
+#include <utility>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -173,6 +175,7 @@ std::set<std::string> OutputFolder::listed_elsewhere() const {
 }
 
 OutputFolder::~OutputFolder() {
+    stop_committer();
     if (journal_fd_ >= 0) ::close(journal_fd_);
 }
 
@@ -237,10 +240,15 @@ bool OutputFolder::write(const std::string& rel, const ByteProducer& produce, st
     return write_file_under(opt_.dir, rel, produce, error, [&](bool exists) { return may_write(rel, exists); });
 }
 
-std::string OutputFolder::may_write(const std::string& rel, bool exists) {
+std::string OutputFolder::refusal(const std::string& rel, bool exists) const {
     if (exists && !opt_.force && !ours(rel))
         return "a file matforge did not write is in the way (no earlier manifest of this folder lists it); "
                "move it away, or pass --force to replace it";
+    return {};
+}
+
+std::string OutputFolder::may_write(const std::string& rel, bool exists) {
+    if (std::string why = refusal(rel, exists); !why.empty()) return why;
     // Journaled before it is replaced: a run stopped after the rename still knows the file is ours.
     const std::string line = nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false,
                                                                  nlohmann::json::error_handler_t::replace) +
@@ -252,8 +260,113 @@ std::string OutputFolder::may_write(const std::string& rel, bool exists) {
     return {};
 }
 
+bool OutputFolder::Batch::write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
+    std::optional<StagedFile> staged;
+    if (!stage_file_under(folder_.opt_.dir, rel, bytes, staged, error,
+                          [&](bool exists) { return folder_.refusal(rel, exists); }))
+        return false;
+    if (!staged) return true;  // it already holds these bytes
+    {
+        std::lock_guard lock(mutex_);
+        ++pending_;
+    }
+    folder_.enqueue({rel, std::move(*staged), this});
+    return true;
+}
+
+std::map<std::string, std::string> OutputFolder::Batch::wait() {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [this] { return pending_ == 0; });
+    return std::exchange(failed_, {});
+}
+
+void OutputFolder::Batch::done(const std::string& rel, std::string error) {
+    std::lock_guard lock(mutex_);
+    if (!error.empty()) failed_.emplace(rel, std::move(error));
+    --pending_;
+    cv_.notify_all();
+}
+
+void OutputFolder::enqueue(Commit c) {
+    std::lock_guard lock(commit_mutex_);
+    if (!committer_.joinable()) committer_ = std::thread(&OutputFolder::commit_loop, this);
+    commits_.push_back(std::move(c));
+    commit_cv_.notify_one();
+}
+
+void OutputFolder::commit_loop() {
+    for (;;) {
+        std::vector<Commit> group;
+        {
+            std::unique_lock lock(commit_mutex_);
+            commit_cv_.wait(lock, [this] { return stopping_ || !commits_.empty(); });
+            if (commits_.empty()) return;  // stopping, and nothing left
+            group.swap(commits_);
+        }
+        commit_group(group);
+    }
+}
+
+// One group of staged files into place, in the order an atomic write takes: the bytes on disk,
+// the journal line (one flush for the group), the rename, the folder.
+void OutputFolder::commit_group(std::vector<Commit>& group) {
+    std::vector<std::string> errors(group.size());
+    for (size_t i = 0; i < group.size(); ++i) {
+        if (!group[i].file.sync(errors[i])) continue;
+        // The check write() made, again just before the rename: a file that is not ours and
+        // appeared since the bytes were staged is never replaced.
+        if (group[i].file.destination_exists() && !refusal(group[i].rel, true).empty())
+            errors[i] = group[i].rel + ": a file matforge did not write appeared there while it was being written; "
+                                       "not replaced";
+    }
+    std::string lines;
+    for (size_t i = 0; i < group.size(); ++i)
+        if (errors[i].empty())
+            lines += nlohmann::json{{"wrote", group[i].rel}}.dump(-1, ' ', false,
+                                                                  nlohmann::json::error_handler_t::replace) +
+                     "\n";
+    if (!lines.empty()) {
+        std::lock_guard lock(journal_mutex_);
+        if (journal_fd_ >= 0 &&
+            (::write(journal_fd_, lines.data(), lines.size()) != static_cast<ssize_t>(lines.size()) ||
+             ::fdatasync(journal_fd_) != 0)) {
+            const std::string why = std::string("cannot record it in the journal (") + std::strerror(errno) + ")";
+            for (size_t i = 0; i < group.size(); ++i)
+                if (errors[i].empty()) errors[i] = group[i].rel + ": " + why;
+        }
+    }
+    // Each folder's renames made durable by one fsync (folders told apart by device and inode).
+    std::set<std::pair<dev_t, ino_t>> synced;
+    for (size_t i = 0; i < group.size(); ++i) {
+        if (!errors[i].empty() || !group[i].file.rename(errors[i])) continue;
+        struct stat st {};
+        const int dir = group[i].file.folder();
+        if (::fstat(dir, &st) == 0 && synced.emplace(st.st_dev, st.st_ino).second) ::fsync(dir);
+    }
+    for (size_t i = 0; i < group.size(); ++i) {
+        Batch* batch = group[i].batch;
+        const std::string rel = group[i].rel;
+        {  // descriptors closed (a temporary not renamed removed) before the batch hears
+            const StagedFile gone = std::move(group[i].file);
+        }
+        batch->done(rel, std::move(errors[i]));
+    }
+}
+
+void OutputFolder::stop_committer() {
+    {
+        std::lock_guard lock(commit_mutex_);
+        stopping_ = true;
+        commit_cv_.notify_all();
+    }
+    if (committer_.joinable()) committer_.join();
+    std::lock_guard lock(commit_mutex_);
+    stopping_ = false;  // a later Batch::write starts it again
+}
+
 bool OutputFolder::finish(const ByteProducer& manifest, const std::set<std::string>& produced,
                           std::vector<std::string>& notes, std::string& error) {
+    stop_committer();  // every batch's files are in place before the manifest that lists them
     if (!write_file_under(opt_.dir, opt_.manifest_name, manifest, error)) {
         error = (opt_.dir / opt_.manifest_name).string() + ": " +
                 error.substr(error.find(": ") == std::string::npos ? 0 : error.find(": ") + 2);

@@ -16,6 +16,7 @@
 // own lock and journal, and may share one folder at once; every matforge manifest and journal
 // in the folder counts when deciding whether a file is ours or stale.
 #pragma once
+#include <condition_variable>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -24,6 +25,7 @@
 #include <set>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/files.hpp"
@@ -59,6 +61,31 @@ public:
     bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error);
     // The same for a file made as it is written (it is written even when it holds these bytes).
     bool write(const std::string& rel, const ByteProducer& produce, std::string& error);
+    // Writes whose last steps run on the folder's committer thread, so that a worker does not
+    // wait on the disk: write() checks and writes the bytes aside as write() above does (its
+    // refusals and failures are immediate); the committer then fsyncs them, journals a group of
+    // them in one flush, renames each into place (unless a file that is not ours appeared there
+    // meanwhile) and fsyncs each folder once. wait() returns once every write of the batch is
+    // done, with those that failed since the last wait(): path -> error. Thread-safe.
+    class Batch {
+    public:
+        explicit Batch(OutputFolder& folder) : folder_(folder) {}
+        ~Batch() { wait(); }
+        Batch(const Batch&) = delete;
+        Batch& operator=(const Batch&) = delete;
+        bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error);
+        std::map<std::string, std::string> wait();
+
+    private:
+        friend class OutputFolder;
+        void done(const std::string& rel, std::string error);  // from the committer
+        OutputFolder& folder_;
+        std::mutex mutex_;
+        std::condition_variable cv_;
+        int pending_ = 0;
+        std::map<std::string, std::string> failed_;
+    };
+
     // The new manifest (made as it is written), stale outputs removed (`produced`: every output
     // file of this run), the journal removed. `notes`: one line per file removed or kept.
     bool finish(const ByteProducer& manifest, const std::set<std::string>& produced, std::vector<std::string>& notes,
@@ -69,6 +96,18 @@ private:
     bool ours(const std::string& rel) const;
     // write()'s check and journal line before `rel` is replaced: "" or why not.
     std::string may_write(const std::string& rel, bool exists);
+    // may_write's check alone: "" or why `rel` may not be replaced.
+    std::string refusal(const std::string& rel, bool exists) const;
+    // The committer: Batch::write's files, finished in groups (Batch above).
+    struct Commit {
+        std::string rel;
+        StagedFile file;
+        Batch* batch;
+    };
+    void enqueue(Commit c);
+    void commit_loop();
+    void commit_group(std::vector<Commit>& group);
+    void stop_committer();  // after every queued commit
     // Paths other manifests and journals of ours in the folder list now (other shards).
     std::set<std::string> listed_elsewhere() const;
 
@@ -81,6 +120,11 @@ private:
     std::map<std::string, std::string> claimed_dirs_;   // lower-case folder -> owner
     std::mutex journal_mutex_;
     int journal_fd_ = -1;
+    std::mutex commit_mutex_;
+    std::condition_variable commit_cv_;
+    std::vector<Commit> commits_;  // queued for the committer
+    bool stopping_ = false;
+    std::thread committer_;  // started by the first Batch::write
 };
 
 }  // namespace mf

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <unistd.h>
 
@@ -104,6 +106,54 @@ TEST(AtomicWrite, TemporariesOfOtherHostsAreKeptUnlessTheFolderIsTheCallers) {
 }
 
 // What no document of ours may hold is refused while parsing, naming the file and the problem.
+// An atomic write in two halves (stage_file_under, then StagedFile's sync and rename): nothing at
+// the destination until the rename, a temporary that never outlives an abandoned write, the
+// identical-bytes case with nothing staged, and a refusal before anything is written.
+TEST(StagedWrite, NothingInPlaceUntilRenamedAndNoTemporaryLeft) {
+    const fs::path d = fresh_dir("staged");
+    auto names = [&d] {
+        std::vector<std::string> n;
+        for (auto& e : fs::recursive_directory_iterator(d))
+            if (e.is_regular_file()) n.push_back(fs::relative(e.path(), d).generic_string());
+        std::sort(n.begin(), n.end());
+        return n;
+    };
+    const auto data = bytes_of("staged bytes");
+    std::string err;
+    std::optional<mf::StagedFile> s;
+    ASSERT_TRUE(mf::stage_file_under(d, "a/out.bin", data, s, err)) << err;
+    ASSERT_TRUE(s);
+    EXPECT_FALSE(fs::exists(d / "a/out.bin"));
+    ASSERT_EQ(names().size(), 1u);
+    EXPECT_NE(names()[0].find(mf::kTempMarker), std::string::npos);
+    EXPECT_FALSE(s->destination_exists());
+    ASSERT_TRUE(s->sync(err)) << err;
+    ASSERT_TRUE(s->rename(err)) << err;
+    s.reset();
+    EXPECT_EQ(names(), std::vector<std::string>{"a/out.bin"});
+    std::vector<unsigned char> back;
+    ASSERT_TRUE(mf::read_file(d / "a/out.bin", back, err));
+    EXPECT_EQ(back, data);
+
+    // The same bytes: nothing staged, nothing touched.
+    ASSERT_TRUE(mf::stage_file_under(d, "a/out.bin", data, s, err)) << err;
+    EXPECT_FALSE(s);
+    // Other bytes, abandoned before the rename: the destination keeps its bytes, no temporary.
+    ASSERT_TRUE(mf::stage_file_under(d, "a/out.bin", bytes_of("other"), s, err)) << err;
+    ASSERT_TRUE(s);
+    EXPECT_TRUE(s->destination_exists());
+    s.reset();
+    EXPECT_EQ(names(), std::vector<std::string>{"a/out.bin"});
+    ASSERT_TRUE(mf::read_file(d / "a/out.bin", back, err));
+    EXPECT_EQ(back, data);
+    // A refusal: nothing written.
+    EXPECT_FALSE(mf::stage_file_under(d, "b/x.bin", data, s, err, [](bool) { return std::string("not ours"); }));
+    EXPECT_EQ(err, "b/x.bin: not ours");
+    EXPECT_FALSE(s);
+    EXPECT_EQ(names(), std::vector<std::string>{"a/out.bin"});
+    fs::remove_all(d);
+}
+
 TEST(ParseJson, RefusesDuplicateMembersAndNulCharacters) {
     std::string error;
     EXPECT_TRUE(mf::parse_json(R"({"a": {"x": 1}, "b": {"x": 2}})", "ok.json", error)) << error;

@@ -11,6 +11,7 @@
 #include "hostile_fixture.hpp"
 #include "pack/pack.hpp"
 #include "sets/sets.hpp"
+#include "store/output_dir.hpp"
 
 using namespace mfh;
 
@@ -461,6 +462,60 @@ TEST(StaleTemps, OnlyOursAndOnlyOfDeadProcesses) {
     EXPECT_FALSE(fs::exists(d / gone));
     EXPECT_EQ(mf::temp_owner(gone)->pid, dead);
     EXPECT_FALSE(mf::temp_owner(keep[0]));
+}
+
+// The committer (OutputFolder::Batch): files are written aside at once and put in place by the
+// folder's thread; wait() sees every one in place, journaled, with no temporary left; a file that
+// is not ours is refused at once (nothing queued); identical bytes queue nothing; a wait reports
+// each failure once.
+TEST(OutputBatch, FilesAreInPlaceAndJournaledWhenWaitReturns) {
+    const fs::path d = temp_dir("batch");
+    write_text(d / "Set/foreign.png", "a user's file");
+    mf::OutputFolder::Options o;
+    o.dir = d;
+    std::string err;
+    bool usage = false;
+    auto folder = mf::OutputFolder::open(o, err, usage);
+    ASSERT_TRUE(folder) << err;
+    ASSERT_TRUE(folder->begin(err)) << err;
+    auto bytes = [](const std::string& s) { return std::vector<unsigned char>(s.begin(), s.end()); };
+    auto read_text = [](const fs::path& p) {
+        const Bytes b = read_bytes(p);
+        return std::string(b.begin(), b.end());
+    };
+    {
+        mf::OutputFolder::Batch batch(*folder);
+        std::vector<std::vector<unsigned char>> data;
+        for (int i = 0; i < 20; ++i) data.push_back(bytes("file " + std::to_string(i)));
+        for (int i = 0; i < 20; ++i)
+            ASSERT_TRUE(batch.write("Set/sub" + std::to_string(i % 3) + "/f" + std::to_string(i) + ".png", data[i],
+                                    err))
+                << err;
+        EXPECT_FALSE(batch.write("Set/foreign.png", data[0], err));
+        EXPECT_NE(err.find("did not write"), std::string::npos) << err;
+        EXPECT_TRUE(batch.wait().empty());
+        for (int i = 0; i < 20; ++i)
+            EXPECT_EQ(read_text(d / ("Set/sub" + std::to_string(i % 3)) / ("f" + std::to_string(i) + ".png")),
+                      "file " + std::to_string(i));
+        // The same bytes again: nothing to do, in place already.
+        ASSERT_TRUE(batch.write("Set/sub0/f0.png", data[0], err)) << err;
+        EXPECT_TRUE(batch.wait().empty());
+    }
+    EXPECT_EQ(read_text(d / "Set/foreign.png"), "a user's file");
+    const std::string journal = read_text(d / folder->journal_name());
+    for (int i = 0; i < 20; ++i)
+        EXPECT_NE(journal.find("\"Set/sub" + std::to_string(i % 3) + "/f" + std::to_string(i) + ".png\""),
+                  std::string::npos)
+            << i;
+    size_t temps = 0;
+    for (const auto& e : fs::recursive_directory_iterator(d))
+        temps += e.path().filename().string().find(mf::kTempMarker) != std::string::npos ? 1 : 0;
+    EXPECT_EQ(temps, 0u);
+    std::vector<std::string> notes;
+    const std::string manifest = R"({"generator": "matforge test"})";
+    const mf::ByteProducer produce = [&manifest](const mf::ByteSink& sink) { return sink(manifest); };
+    ASSERT_TRUE(folder->finish(produce, {}, notes, err)) << err;
+    EXPECT_FALSE(fs::exists(d / folder->journal_name()));
 }
 
 // ===== 8. files in the output folder that are not ours
