@@ -12,7 +12,8 @@
 # base colour, the GL normal map, glTF's ORM and HDRP's mask map, one oiiotool process per
 # output; matforge runs `ingest --preset gltf,unity-hdrp --no-cache` (both presets' full output
 # folders: also opacity, heights, material files, manifests, every check). Both at --jobs N
-# (the script through xargs -P), alternating, median of --repeat rounds of wall time.
+# (the script through xargs -P), alternating, median of --repeat rounds of wall time, each run
+# after a sync. MATFORGE_BENCH_RAW=1 prints every round's two times (script, matforge) on stderr.
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 # shellcheck source=common.sh
