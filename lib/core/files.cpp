@@ -242,17 +242,12 @@ struct Fd {
 };
 
 // StagedFile::write's file synced, renamed into place and the rename made durable (a folder
-// fsync): the whole of an atomic write.
-bool write_at(int dfd, const std::string& name, const ByteProducer& produce, const std::string& shown,
+// fsync): the whole of an atomic write into folder `dir` (its descriptor goes to the staged file).
+bool write_at(Fd& dir, const std::string& name, const ByteProducer& produce, const std::string& shown,
               std::string& error) {
-    const int dir = ::dup(dfd);
-    if (dir < 0) {
-        error = shown + ": cannot write (" + errno_text(errno) + ")";
-        return false;
-    }
-    auto staged = StagedFile::write(dir, name, produce, shown, error);
+    auto staged = StagedFile::write(std::exchange(dir.fd, -1), name, produce, shown, error);
     if (!staged || !staged->sync(error) || !staged->rename(error)) return false;
-    ::fsync(dfd);  // make the rename itself durable
+    ::fsync(staged->folder());  // make the rename itself durable
     return true;
 }
 
@@ -382,12 +377,12 @@ bool write_atomic(const fs::path& dest, const ByteProducer& produce, const std::
         return false;
     }
     if (same && same_content(dest, *same)) return true;
-    const Fd dfd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    Fd dfd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
     if (dfd.fd < 0) {
         error = dest.string() + ": cannot write (" + errno_text(errno) + ")";
         return false;
     }
-    return write_at(dfd.fd, dest.filename().string(), produce, dest.string(), error);
+    return write_at(dfd, dest.filename().string(), produce, dest.string(), error);
 }
 
 // write_file_under's steps; `same` as write_atomic's. With `staged`, the bytes are left in a
@@ -450,13 +445,8 @@ bool write_under(const fs::path& root, const std::string& rel, const ByteProduce
             return false;
         }
     }
-    if (!staged) return write_at(dfd->fd, name, produce, rel, error);
-    const int dir = ::dup(dfd->fd);
-    if (dir < 0) {
-        error = rel + ": cannot write (" + errno_text(errno) + ")";
-        return false;
-    }
-    *staged = StagedFile::write(dir, name, produce, rel, error);
+    if (!staged) return write_at(*dfd, name, produce, rel, error);
+    *staged = StagedFile::write(std::exchange(dfd->fd, -1), name, produce, rel, error);
     return staged->has_value();
 }
 }  // namespace

@@ -49,6 +49,14 @@ using Image8 = BasicImage<uint8_t>;
 // The float OpenImageIO reads 8-bit code k as (its own conversion: read_image's floats of an
 // 8-bit file and these agree bit for bit).
 const std::array<float, 256>& unorm8_values();
+// `f` of every 8-bit code's float: a table indexed by code that gives what `f` gives for the
+// float read_image holds for that code, bit for bit (the rules read codes through such tables).
+template <class F>
+std::array<float, 256> unorm8_table(F f) {
+    std::array<float, 256> t{};
+    for (size_t k = 0; k < t.size(); ++k) t[k] = f(unorm8_values()[k]);
+    return t;
+}
 // The codes as floats through a 256-entry `table`: by default unorm8_values() (what read_image
 // gives), or another per-code table such as ColorContext::srgb_codes_to_linear().
 Image to_float(const Image8& codes, const float* table = nullptr);

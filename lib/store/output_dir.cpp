@@ -247,17 +247,22 @@ std::string OutputFolder::refusal(const std::string& rel, bool exists) const {
     return {};
 }
 
-std::string OutputFolder::may_write(const std::string& rel, bool exists) {
-    if (std::string why = refusal(rel, exists); !why.empty()) return why;
-    // Journaled before it is replaced: a run stopped after the rename still knows the file is ours.
-    const std::string line = nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false,
-                                                                 nlohmann::json::error_handler_t::replace) +
-                             "\n";
+std::string OutputFolder::journal(const std::vector<std::string>& rels) {
+    std::string lines;
+    for (const auto& rel : rels)
+        lines += nlohmann::json{{"wrote", rel}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    if (lines.empty()) return {};
     std::lock_guard lock(journal_mutex_);
-    if (journal_fd_ >= 0 && (::write(journal_fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size()) ||
+    if (journal_fd_ >= 0 && (::write(journal_fd_, lines.data(), lines.size()) != static_cast<ssize_t>(lines.size()) ||
                              ::fdatasync(journal_fd_) != 0))
         return std::string("cannot record it in the journal (") + std::strerror(errno) + ")";
     return {};
+}
+
+std::string OutputFolder::may_write(const std::string& rel, bool exists) {
+    if (std::string why = refusal(rel, exists); !why.empty()) return why;
+    // Journaled before it is replaced: a run stopped after the rename still knows the file is ours.
+    return journal({rel});
 }
 
 bool OutputFolder::Batch::write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
@@ -319,22 +324,12 @@ void OutputFolder::commit_group(std::vector<Commit>& group) {
             errors[i] = group[i].rel + ": a file matforge did not write appeared there while it was being written; "
                                        "not replaced";
     }
-    std::string lines;
+    std::vector<std::string> to_journal;
     for (size_t i = 0; i < group.size(); ++i)
-        if (errors[i].empty())
-            lines += nlohmann::json{{"wrote", group[i].rel}}.dump(-1, ' ', false,
-                                                                  nlohmann::json::error_handler_t::replace) +
-                     "\n";
-    if (!lines.empty()) {
-        std::lock_guard lock(journal_mutex_);
-        if (journal_fd_ >= 0 &&
-            (::write(journal_fd_, lines.data(), lines.size()) != static_cast<ssize_t>(lines.size()) ||
-             ::fdatasync(journal_fd_) != 0)) {
-            const std::string why = std::string("cannot record it in the journal (") + std::strerror(errno) + ")";
-            for (size_t i = 0; i < group.size(); ++i)
-                if (errors[i].empty()) errors[i] = group[i].rel + ": " + why;
-        }
-    }
+        if (errors[i].empty()) to_journal.push_back(group[i].rel);
+    if (const std::string why = journal(to_journal); !why.empty())
+        for (size_t i = 0; i < group.size(); ++i)
+            if (errors[i].empty()) errors[i] = group[i].rel + ": " + why;
     // Each folder's renames made durable by one fsync (folders told apart by device and inode).
     std::set<std::pair<dev_t, ino_t>> synced;
     for (size_t i = 0; i < group.size(); ++i) {

@@ -96,6 +96,8 @@ private:
     bool ours(const std::string& rel) const;
     // write()'s check and journal line before `rel` is replaced: "" or why not.
     std::string may_write(const std::string& rel, bool exists);
+    // "wrote" lines for `rels` appended to the journal in one flush: "" or why not.
+    std::string journal(const std::vector<std::string>& rels);
     // may_write's check alone: "" or why `rel` may not be replaced.
     std::string refusal(const std::string& rel, bool exists) const;
     // The committer: Batch::write's files, finished in groups (Batch above).

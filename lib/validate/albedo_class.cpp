@@ -21,7 +21,7 @@ AlbedoClassifier::AlbedoClassifier(const rules::Thresholds& t, bool linear_input
         first_code_[b] = static_cast<uint16_t>(std::lower_bound(edges_.begin(), edges_.end(), lo) - edges_.begin());
     }
     decode_ = detail::srgb_decode_table().data();
-    for (size_t k = 0; k < linear8_.size(); ++k) linear8_[k] = linear(unorm8_values()[k]);
+    linear8_ = unorm8_table([this](float v) { return linear(v); });
 }
 
 }  // namespace mf::validate

@@ -74,6 +74,79 @@ struct CodeReader {
     CodeReader operator+(size_t n) const { return {p + n, table}; }
 };
 
+// How MapStats::codes_band reads one kind of integer file's samples: floats (code / scale, 8 or
+// 16 bits) four to a vector, or 8-bit codes sixteen to a vector. Sums are kept per lane in `Sum`
+// and widened every kFlush blocks, before a lane can overflow.
+struct FloatLanes {
+    using T = float;
+    using Vec = float __attribute__((vector_size(16)));
+    using Sum = int32_t __attribute__((vector_size(16)));
+    static constexpr size_t kLanes = 4;
+    static constexpr size_t kFlush = size_t{1} << 15;  // a lane adds one code (< 65536) a block: below 2^31
+    static constexpr T kTop = std::numeric_limits<float>::infinity(), kBottom = -kTop;
+    float scale;  // the file's code_scale
+    void add(Sum& s, const Vec& v) const {
+        // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
+        s += __builtin_convertvector(v * scale + 0.5f, Sum);
+    }
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
+    long long code(T v) const { return static_cast<long long>(v * scale + 0.5f); }
+    static double value(T v) { return v; }
+};
+
+struct CodeLanes {
+    using T = uint8_t;
+    using Vec = uint8_t __attribute__((vector_size(16)));
+    using Sum = uint16_t __attribute__((vector_size(32)));
+    static constexpr size_t kLanes = 16;
+    static constexpr size_t kFlush = 256;  // a 16-bit lane adds at most 255 a block: 257 blocks fit
+    static constexpr T kTop = 255, kBottom = 0;
+    static void add(Sum& s, const Vec& v) { s += __builtin_convertvector(v, Sum); }
+    static long long code(T v) { return v; }
+    static double value(T v) { return unorm8_values()[v]; }
+};
+
+// Per-lane min, max and code sums over whole blocks of V vectors (V = 3 for three channels, else
+// 1), accumulators in registers (a compile-time V); returns the samples consumed.
+template <size_t V, class L>
+size_t lane_blocks(const typename L::T* px, size_t total, const L& lanes, typename L::Vec (&mn)[3],
+                   typename L::Vec (&mx)[3], long long (&wide)[3][L::kLanes]) {
+    using Vec = typename L::Vec;
+    using Sum = typename L::Sum;
+    Vec lo[V] = {}, hi[V] = {};
+    Sum sums[V] = {};
+    for (size_t j = 0; j < V; ++j) {
+        lo[j] = Vec{} + L::kTop;
+        hi[j] = Vec{} + L::kBottom;
+    }
+    auto flush = [&] {
+        for (size_t j = 0; j < V; ++j) {
+            for (size_t l = 0; l < L::kLanes; ++l) wide[j][l] += sums[j][l];
+            sums[j] = Sum{};
+        }
+    };
+    size_t i = 0, blocks = 0;
+    for (; i + L::kLanes * V <= total; i += L::kLanes * V) {
+        for (size_t j = 0; j < V; ++j) {
+            Vec v;
+            std::memcpy(&v, px + i + L::kLanes * j, sizeof v);
+            lo[j] = v < lo[j] ? v : lo[j];
+            hi[j] = v > hi[j] ? v : hi[j];
+            lanes.add(sums[j], v);
+        }
+        if (++blocks == L::kFlush) {
+            flush();
+            blocks = 0;
+        }
+    }
+    flush();
+    for (size_t j = 0; j < V; ++j) {
+        mn[j] = lo[j];
+        mx[j] = hi[j];
+    }
+    return i;
+}
+
 }  // namespace
 
 void MapStats::add_band(int /*y0*/, int rows, const float* px) { add_band_t(static_cast<long long>(rows) * width, px); }
@@ -115,8 +188,8 @@ void MapStats::add_band_t(long long n, P px) {
     // the sum is exact in codes: any order gives the same figures, so the band is walked as it
     // lies in memory, four samples a step (codes_band).
     if (code_scale > 0.f && channels <= 4) {
-        if constexpr (std::is_same_v<P, CodeReader>) codes_band(n, px.p);
-        else codes_band(n, px);
+        if constexpr (std::is_same_v<P, CodeReader>) codes_band(n, px.p, CodeLanes{});
+        else codes_band(n, px, FloatLanes{code_scale});
     } else if (code_scale > 0.f) {
         for (int c = 0; c < 4; ++c) {
             float mn = std::numeric_limits<float>::infinity(), mx = -mn;
@@ -222,90 +295,6 @@ void MapStats::add_band_t(long long n, P px) {
 
 namespace {
 
-using F4 = float __attribute__((vector_size(16)));
-using I4 = int32_t __attribute__((vector_size(16)));
-
-// Per-lane min, max and code sums over whole blocks of V vectors of four samples (V = 3 for three
-// channels, else 1), accumulators in registers (a compile-time V); returns the samples consumed.
-template <size_t V>
-size_t code_blocks(const float* px, size_t total, float code_scale, F4 (&mn)[3], F4 (&mx)[3], long long (&wide)[3][4]) {
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    F4 lo[V], hi[V];
-    I4 sums[V];
-    for (size_t j = 0; j < V; ++j) {
-        lo[j] = F4{kInf, kInf, kInf, kInf};
-        hi[j] = -lo[j];
-        sums[j] = I4{0, 0, 0, 0};
-    }
-    const F4 scale = F4{1.f, 1.f, 1.f, 1.f} * code_scale;
-    // A lane adds at most one code (< 65536) a block: 2^15 blocks stay below 2^31.
-    constexpr size_t kFlush = size_t{1} << 15;
-    size_t i = 0, blocks = 0;
-    for (; i + 4 * V <= total; i += 4 * V) {
-        for (size_t j = 0; j < V; ++j) {
-            F4 v;
-            std::memcpy(&v, px + i + 4 * j, sizeof v);
-            lo[j] = v < lo[j] ? v : lo[j];
-            hi[j] = v > hi[j] ? v : hi[j];
-            // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
-            sums[j] += __builtin_convertvector(v * scale + 0.5f, I4);
-        }
-        if (++blocks == kFlush || i + 8 * V > total) {
-            for (size_t j = 0; j < V; ++j)
-                for (int l = 0; l < 4; ++l) wide[j][l] += sums[j][l];
-            for (size_t j = 0; j < V; ++j) sums[j] = I4{0, 0, 0, 0};
-            blocks = 0;
-        }
-    }
-    for (size_t j = 0; j < V; ++j) {
-        mn[j] = lo[j];
-        mx[j] = hi[j];
-    }
-    return i;
-}
-
-}  // namespace
-
-// min, max and code sums of an integer file's band of 1-4 channels: blocks of lcm(channels, 4)
-// samples, as whole vectors of four lanes whose channel is fixed by the lane's place in the
-// block ((4 j + lane) mod channels); the rest sample by sample. The same figures as one channel
-// at a time, several times faster (GCC vector types: SSE2 on any x86-64, NEON on ARM).
-void MapStats::codes_band(long long n, const float* px) {
-    const auto nc = static_cast<size_t>(channels);
-    const size_t vectors = nc == 3 ? 3 : 1;  // per block
-    const size_t total = static_cast<size_t>(n) * nc;
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    F4 mn[3], mx[3];
-    long long wide[3][4] = {};
-    const size_t done = vectors == 3 ? code_blocks<3>(px, total, code_scale, mn, mx, wide)
-                                     : code_blocks<1>(px, total, code_scale, mn, mx, wide);
-    float cmin[4] = {kInf, kInf, kInf, kInf}, cmax[4] = {-kInf, -kInf, -kInf, -kInf};
-    long long csum[4] = {};
-    for (size_t j = 0; j < vectors; ++j)
-        for (size_t l = 0; l < 4; ++l) {
-            const size_t c = (4 * j + l) % nc;
-            cmin[c] = std::min(cmin[c], mn[j][l]);
-            cmax[c] = std::max(cmax[c], mx[j][l]);
-            csum[c] += wide[j][l];
-        }
-    for (size_t i = done; i < total; ++i) {
-        const size_t c = i % nc;
-        const float v = px[i];
-        cmin[c] = std::min(cmin[c], v);
-        cmax[c] = std::max(cmax[c], v);
-        // NOLINTNEXTLINE(bugprone-incorrect-roundings): v is code / scale, the nearest code is exact
-        csum[c] += static_cast<long long>(v * code_scale + 0.5f);
-    }
-    for (size_t c = 0; c < nc; ++c) {
-        min[c] = std::min(min[c], double{cmin[c]});
-        max[c] = std::max(max[c], double{cmax[c]});
-        code_sum[c] += csum[c];
-        finite[c] += n;
-    }
-}
-
-namespace {
-
 // 2 · decode(c) − 1 of an integer file's value c = code / scale in [0, 1]: its 16-bit code (8-bit
 // k is 257 k) indexes the decode table (`lut`, srgb_decode_table) exactly.
 float srgb_normal_component(const float* lut, float c) {
@@ -315,89 +304,49 @@ float srgb_normal_component(const float* lut, float c) {
 
 // srgb_normal_component of every 8-bit code's float.
 const std::array<float, 256>& srgb_normal_codes() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> v{};
-        for (size_t k = 0; k < v.size(); ++k)
-            v[k] = srgb_normal_component(srgb_decode_table().data(), unorm8_values()[k]);
-        return v;
-    }();
+    static const std::array<float, 256> table = unorm8_table([](float c) {
+        return srgb_normal_component(srgb_decode_table().data(), c);
+    });
     return table;
-}
-
-using U8x16 = uint8_t __attribute__((vector_size(16)));
-using U16x16 = uint16_t __attribute__((vector_size(32)));
-
-// Per-lane smallest and largest code and code sums over whole blocks of V vectors of 16 codes
-// (V = 3 for three channels, else 1), as code_blocks does for floats; returns the codes consumed.
-template <size_t V>
-size_t code8_blocks(const uint8_t* p, size_t total, uint8_t (&lo)[48], uint8_t (&hi)[48], uint64_t (&sum)[48]) {
-    U8x16 l[V] = {}, h[V] = {};
-    U16x16 s[V] = {};
-    for (size_t j = 0; j < V; ++j) {
-        l[j] = U8x16{} + 255;
-        h[j] = U8x16{};
-        s[j] = U16x16{};
-    }
-    // A 16-bit lane adds at most 255 a block: 257 blocks fit, flushed every 256.
-    constexpr size_t kFlush = 256;
-    auto flush = [&] {
-        for (size_t j = 0; j < V; ++j) {
-            for (size_t k = 0; k < 16; ++k) sum[16 * j + k] += s[j][k];
-            s[j] = U16x16{};
-        }
-    };
-    size_t i = 0, blocks = 0;
-    for (; i + 16 * V <= total; i += 16 * V) {
-        for (size_t j = 0; j < V; ++j) {
-            U8x16 v;
-            std::memcpy(&v, p + i + 16 * j, sizeof v);
-            l[j] = v < l[j] ? v : l[j];
-            h[j] = v > h[j] ? v : h[j];
-            s[j] += __builtin_convertvector(v, U16x16);
-        }
-        if (++blocks == kFlush) {
-            flush();
-            blocks = 0;
-        }
-    }
-    flush();
-    for (size_t j = 0; j < V; ++j)
-        for (size_t k = 0; k < 16; ++k) lo[16 * j + k] = l[j][k], hi[16 * j + k] = h[j][k];
-    return i;
 }
 
 }  // namespace
 
-// codes_band of a band held as 8-bit codes: the table rises with the code, so the smallest and
-// largest code give the smallest and largest float, and the codes' sum is the code sum.
-void MapStats::codes_band(long long n, const uint8_t* codes) {
+// min, max and code sums of an integer file's band of 1-4 channels: blocks of lcm(channels,
+// lanes) samples, as whole vectors whose lane's channel is fixed by its place in the block
+// ((lanes j + lane) mod channels); the rest sample by sample. The same figures as one channel at
+// a time, several times faster (GCC vector types: SSE2 on any x86-64, NEON on ARM). The table
+// rises with the code, so the smallest and largest code give the smallest and largest value.
+template <class L>
+void MapStats::codes_band(long long n, const typename L::T* px, const L& lanes) {
+    using T = typename L::T;
+    if (n <= 0) return;
     const auto nc = static_cast<size_t>(channels);
+    const size_t vectors = nc == 3 ? 3 : 1;  // per block
     const size_t total = static_cast<size_t>(n) * nc;
-    uint8_t lanes_lo[48], lanes_hi[48];
-    uint64_t lanes_sum[48] = {};
-    const size_t vectors = nc == 3 ? 3 : 1;  // per block: lcm(channels, 16) codes
-    const size_t done = vectors == 3 ? code8_blocks<3>(codes, total, lanes_lo, lanes_hi, lanes_sum)
-                                     : code8_blocks<1>(codes, total, lanes_lo, lanes_hi, lanes_sum);
-    uint8_t lo[4] = {255, 255, 255, 255}, hi[4] = {};
-    uint64_t sums[4] = {};
-    for (size_t k = 0; k < 16 * vectors; ++k) {
-        const size_t c = k % nc;
-        lo[c] = std::min(lo[c], lanes_lo[k]);
-        hi[c] = std::max(hi[c], lanes_hi[k]);
-        sums[c] += lanes_sum[k];
-    }
+    typename L::Vec mn[3], mx[3];
+    long long wide[3][L::kLanes] = {};
+    const size_t done = vectors == 3 ? lane_blocks<3>(px, total, lanes, mn, mx, wide)
+                                     : lane_blocks<1>(px, total, lanes, mn, mx, wide);
+    T cmin[4] = {L::kTop, L::kTop, L::kTop, L::kTop}, cmax[4] = {L::kBottom, L::kBottom, L::kBottom, L::kBottom};
+    long long csum[4] = {};
+    for (size_t j = 0; j < vectors; ++j)
+        for (size_t l = 0; l < L::kLanes; ++l) {
+            const size_t c = (L::kLanes * j + l) % nc;
+            cmin[c] = std::min(cmin[c], T{mn[j][l]});
+            cmax[c] = std::max(cmax[c], T{mx[j][l]});
+            csum[c] += wide[j][l];
+        }
     for (size_t i = done; i < total; ++i) {
         const size_t c = i % nc;
-        lo[c] = std::min(lo[c], codes[i]);
-        hi[c] = std::max(hi[c], codes[i]);
-        sums[c] += codes[i];
+        cmin[c] = std::min(cmin[c], px[i]);
+        cmax[c] = std::max(cmax[c], px[i]);
+        csum[c] += lanes.code(px[i]);
     }
-    if (n <= 0) return;
-    const auto& v = unorm8_values();
     for (size_t c = 0; c < nc; ++c) {
-        min[c] = std::min(min[c], double{v[lo[c]]});
-        max[c] = std::max(max[c], double{v[hi[c]]});
-        code_sum[c] += static_cast<long long>(sums[c]);
+        min[c] = std::min(min[c], lanes.value(cmin[c]));
+        max[c] = std::max(max[c], lanes.value(cmax[c]));
+        code_sum[c] += csum[c];
         finite[c] += n;
     }
 }

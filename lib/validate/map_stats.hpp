@@ -112,9 +112,11 @@ private:
     template <class P>
     void add_band_t(long long n, P px);
     template <class P>
-    void normal_band(long long n, P px);            // the normal-map statistics
-    void codes_band(long long n, const float* px);  // min, max and sums of an integer file's floats
-    void codes_band(long long n, const uint8_t* codes);
+    void normal_band(long long n, P px);  // the normal-map statistics
+    // min, max and code sums of an integer file's band, its samples read as `lanes` says
+    // (map_stats.cpp: floats, or 8-bit codes).
+    template <class L>
+    void codes_band(long long n, const typename L::T* px, const L& lanes);
 };
 
 // Which output role channel c of a map holds (packed inputs split; RGB roles whole).

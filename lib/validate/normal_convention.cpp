@@ -66,19 +66,18 @@ void decode_row(Dec dec, int channels, int width, float* xyz, bool rebuild_z) {
     }
 }
 
+// A stored (unsigned) value's component: n = 2c − 1.
+float component_of(float c) { return 2.f * c - 1.f; }
+
 }  // namespace
 
 void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz, bool rebuild_z) {
-    decode_row([&](size_t i) { return signed_values ? src[i] : 2.f * src[i] - 1.f; }, channels, width, xyz, rebuild_z);
+    decode_row([&](size_t i) { return signed_values ? src[i] : component_of(src[i]); }, channels, width, xyz,
+               rebuild_z);
 }
 
 void decode_normal_row(const uint8_t* codes, int channels, int width, float* xyz, bool rebuild_z) {
-    // 2 c − 1 of every code's float, as the float overload computes it.
-    static const std::array<float, 256> component = [] {
-        std::array<float, 256> v{};
-        for (size_t k = 0; k < v.size(); ++k) v[k] = 2.f * unorm8_values()[k] - 1.f;
-        return v;
-    }();
+    static const std::array<float, 256> component = unorm8_table(component_of);
     decode_row([&](size_t i) { return component[codes[i]]; }, channels, width, xyz, rebuild_z);
 }
 
