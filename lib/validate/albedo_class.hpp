@@ -90,10 +90,15 @@ public:
         return 0.2126f * linear8_[rgb[0]] + 0.7152f * linear8_[rgb[1]] + 0.0722f * linear8_[rgb[2]];
     }
     AlbedoJudgement judge(float y, float metalness) const {
+        if (!std::isfinite(y) || !std::isfinite(metalness)) return {};
+        return judge_weighted(y, metal_weight(metalness));
+    }
+    // judge() of a finite luminance whose metal weight is known (a row without a metalness map:
+    // metal_weight(0) for every pixel).
+    AlbedoJudgement judge_weighted(float y, long long metal) const {
         AlbedoJudgement j;
-        if (!std::isfinite(y) || !std::isfinite(metalness)) return j;
         j.counted = true;
-        j.metal = metal_weight(metalness);
+        j.metal = metal;
         j.dark = j.metal < kWeightUnit && y < dark_lin_;
         j.bright = j.metal < kWeightUnit && y > bright_lin_;
         j.metal_dark = j.metal > 0 && y < metal_dark_lin_;

@@ -28,6 +28,10 @@ AlbedoStats::Histogram AlbedoStats::total(Histogram Lanes::*which) const {
     Histogram h{};
     for (const Lanes& l : lanes_)
         for (size_t k = 0; k < h.size(); ++k) h[k] += (l.*which)[k];
+    const long long metal = classify_.metal_weight(0.0);
+    const long long weight = which == &Lanes::metal ? metal : kWeightUnit - metal;
+    for (const Histogram& p : plain_)
+        for (size_t k = 0; k < h.size(); ++k) h[k] += p[k] * weight;
     return h;
 }
 

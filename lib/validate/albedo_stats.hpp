@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "findings/rules.hpp"
@@ -18,22 +19,35 @@ public:
     // rgb + i * stride, 3 floats or 3 8-bit codes (validate.hpp's Samples); its metalness
     // metal[i] in [0, 1] (nullptr: 0). With `keep`, only the pixels whose keep[i] is `want`.
     // The counts are summed in locals and added once a row; the histograms alternate between
-    // two lanes by pixel, so that a run of one luminance code does not wait on its own last
-    // add. Every sum is an integer: the same figures in any order.
+    // lanes by pixel, so that a run of one luminance code does not wait on its own last add.
+    // Every sum is an integer: the same figures in any order.
     template <class T>
     void add_row(const T* rgb, size_t stride, const float* metal, size_t n, const uint8_t* keep = nullptr,
                  uint8_t want = 1) {
         AlbedoCounts c;
-        for (size_t i = 0; i < n; ++i) {
-            if (keep && keep[i] != want) continue;
-            const float y = classify_.luminance(rgb + i * stride);
-            const AlbedoJudgement j = classify_.judge(y, metal ? metal[i] : 0.f);
-            if (!j.counted) continue;
-            c.add(j);
-            const size_t code = classify_.srgb_code(y);
-            Lanes& lane = lanes_[i & 1];
-            lane.dielectric[code] += j.dielectric();
-            lane.metal[code] += j.metal;
+        if (std::is_same_v<T, uint8_t> && !metal) {
+            // 8-bit codes have a finite luminance, and without a metalness map every pixel has
+            // the same metal weight (metal_weight(0)): judged without the checks and the weight's
+            // arithmetic, and counted by code in `plain_` (weighted when the histograms are read).
+            const long long weight = classify_.metal_weight(0.0);
+            for (size_t i = 0; i < n; ++i) {
+                if (keep && keep[i] != want) continue;
+                const float y = classify_.luminance(rgb + i * stride);
+                c.add(classify_.judge_weighted(y, weight));
+                ++plain_[i & 3][classify_.srgb_code(y)];
+            }
+        } else {
+            for (size_t i = 0; i < n; ++i) {
+                if (keep && keep[i] != want) continue;
+                const float y = classify_.luminance(rgb + i * stride);
+                const AlbedoJudgement j = classify_.judge(y, metal ? metal[i] : 0.f);
+                if (!j.counted) continue;
+                c.add(j);
+                const size_t code = classify_.srgb_code(y);
+                Lanes& lane = lanes_[i & 1];
+                lane.dielectric[code] += j.dielectric();
+                lane.metal[code] += j.metal;
+            }
         }
         counts_.merge(c);
     }
@@ -46,6 +60,8 @@ public:
                 lanes_[l].dielectric[k] += o.lanes_[l].dielectric[k];
                 lanes_[l].metal[k] += o.lanes_[l].metal[k];
             }
+        for (size_t l = 0; l < plain_.size(); ++l)
+            for (size_t k = 0; k < 256; ++k) plain_[l][k] += o.plain_[l][k];
     }
     void findings(const std::string& file, bool has_metal_mask, bool has_opacity_mask, std::vector<Finding>& out) const;
 
@@ -57,13 +73,14 @@ private:
     struct Lanes {
         Histogram dielectric{}, metal{};
     };
-    // The two lanes' sum.
+    // The dielectric or metal histogram: the lanes' sum, and the plain counts weighted.
     Histogram total(Histogram Lanes::*which) const;
 
     rules::Thresholds t_;
     AlbedoClassifier classify_;
     AlbedoCounts counts_;
     std::array<Lanes, 2> lanes_{};
+    std::array<Histogram, 4> plain_{};  // pixels of weight metal_weight(0), by code
 };
 
 }  // namespace mf::validate::detail

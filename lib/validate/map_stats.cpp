@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/simd.hpp"
 #include "core/srgb.hpp"
 #include "core/text.hpp"
 
@@ -351,43 +352,25 @@ void MapStats::codes_band(long long n, const typename L::T* px, const L& lanes) 
     }
 }
 
-// The normal-map statistics of one band: one loop for the stored vectors, one for the vectors the
-// same codes would give if the file were sRGB-encoded (integer files only). Float math per pixel
-// (the figures need a few digits), double sums, integer counts, no branch on the pixel's values:
-// the loops stay vectorizable, about as fast as the length check alone was.
+// The normal-map statistics of one band: the stored vectors, and the vectors the same codes
+// would give if the file were sRGB-encoded (integer files only). Blocks of pixels are read into
+// planes of components (a code through its table, as the float would be), then the figures are
+// taken four pixels at a time: float math per pixel (the figures need a few digits), float sums
+// per lane over a block (16 values), double sums over blocks, integer counts, no branch on the
+// pixel's values.
 template <class P>
 void MapStats::normal_band(long long n, P px) {
+    using namespace simd;
+    if (n <= 0) return;
     const bool is_signed = normal_signed == 1;
     const auto nc = static_cast<size_t>(channels);
     const bool rgb = channels >= 3 && normal_z != 1;  // else z is rebuilt from x and y
-    const auto len_tol = static_cast<float>(t.normal_length_tolerance), z_eps = static_cast<float>(t.normal_z_epsilon);
-    const auto gtol = static_cast<float>(is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance);
-    const float a = is_signed ? 1.f : 2.f, b = is_signed ? 0.f : -1.f;  // n = a c + b
-    long long bad_length = 0, negative_z = 0, upward = 0, grey = 0;
-    double sum_length = 0, sum_z = 0, sxx = 0, syy = 0;
-    for (long long i = 0; i < n; ++i) {
-        const auto p = px + static_cast<size_t>(i) * nc;
-        const float x = a * p[0] + b, y = a * p[1] + b;
-        const float xy = x * x + y * y;
-        // Two channels (BC5-style): z rebuilt, the length is 1 unless x, y alone exceed it.
-        const float z = rgb ? a * p[2] + b : std::sqrt(std::max(0.f, 1.f - xy));
-        const float len = rgb ? std::sqrt(xy + z * z) : std::max(1.f, std::sqrt(xy));
-        const bool ok = std::isfinite(len);
-        if (channels >= 3) {
-            const float d = std::max(std::max(std::abs(p[0] - p[1]), std::abs(p[0] - p[2])), std::abs(p[1] - p[2]));
-            grey += d <= gtol ? 1 : 0;
-        }
-        bad_length += ok && std::abs(len - 1.f) > len_tol ? 1 : 0;
-        negative_z += ok && z < -z_eps ? 1 : 0;
-        upward += ok && z >= 0.f && z * z >= xy ? 1 : 0;
-        sum_length += ok ? double{len} : 0.0;
-        sum_z += ok ? double{z} : 0.0;
-        sxx += ok ? double{x * x} : 0.0;
-        syy += ok ? double{y * y} : 0.0;
-    }
-    normal_bad_length += bad_length, normal_negative_z += negative_z, normal_upward += upward, normal_gray += grey;
-    normal_sum_length += sum_length, normal_sum_z += sum_z, normal_sum_xx += sxx, normal_sum_yy += syy;
-    if (input.info.is_float || code_scale <= 0.f) return;
+    const bool srgb = !input.info.is_float && code_scale > 0.f;
+    const F4 len_tol = F4{} + static_cast<float>(t.normal_length_tolerance),
+             z_eps = F4{} + static_cast<float>(t.normal_z_epsilon),
+             gtol = F4{} + static_cast<float>(is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance);
+    const F4 a = F4{} + (is_signed ? 1.f : 2.f), b = F4{} + (is_signed ? 0.f : -1.f);  // n = a c + b
+    const F4 zero{}, one = F4{} + 1.f;
     // The components as if sRGB-encoded: an 8-bit band's codes through a table of them, a float
     // band's values through srgb_normal_component (the table's entries are its values).
     const float* lut = std::is_same_v<P, CodeReader> ? srgb_normal_codes().data() : srgb_decode_table().data();
@@ -395,20 +378,63 @@ void MapStats::normal_band(long long n, P px) {
         if constexpr (std::is_same_v<P, CodeReader>) return lut[px.p[i]];
         else return srgb_normal_component(lut, px[i]);
     };
-    long long srgb_upward = 0;
-    double ssx = 0, ssy = 0, ssl = 0;
-    for (long long i = 0; i < n; ++i) {
-        const size_t p = static_cast<size_t>(i) * nc;
-        const float x = dec(p), y = dec(p + 1);
-        const float xy = x * x + y * y;
-        const float z = rgb ? dec(p + 2) : std::sqrt(std::max(0.f, 1.f - xy));
-        ssx += x;
-        ssy += y;
-        ssl += std::sqrt(xy + z * z);
-        srgb_upward += z >= 0.f && z * z >= xy ? 1 : 0;
+    I4 bad_length{}, negative_z{}, upward{}, grey{}, srgb_upward{};
+    Sum4 sum_length, sum_z, sxx, syy, ssx, ssy, ssl;
+    constexpr size_t kBlock = 64;
+    alignas(16) float c[3][kBlock] = {}, s[3][kBlock] = {};
+    const auto total_px = static_cast<size_t>(n);
+    for (size_t i0 = 0; i0 < total_px; i0 += kBlock) {
+        const size_t m = std::min(kBlock, total_px - i0), m4 = (m + 3) & ~size_t{3};
+        for (size_t i = 0; i < m; ++i) {
+            const size_t q = (i0 + i) * nc;
+            c[0][i] = px[q], c[1][i] = px[q + 1], c[2][i] = nc >= 3 ? px[q + 2] : 0.f;
+            if (srgb) s[0][i] = dec(q), s[1][i] = dec(q + 1), s[2][i] = rgb ? dec(q + 2) : 0.f;
+        }
+        for (size_t i = m; i < m4; ++i)  // lanes past the band: zeros, masked out below
+            for (size_t k = 0; k < 3; ++k) c[k][i] = s[k][i] = 0.f;
+        // Two passes over the block (the stored vectors, then the sRGB ones): each keeps its
+        // accumulators in registers. Float sums a block, added to the double sums once a block.
+        F4 b_len{}, b_z{}, b_xx{}, b_yy{};
+        for (size_t i = 0; i < m4; i += 4) {
+            const I4 valid = I4{0, 1, 2, 3} + static_cast<int32_t>(i) < static_cast<int32_t>(m);
+            const F4 c0 = load4(&c[0][i]), c1 = load4(&c[1][i]), c2 = load4(&c[2][i]);
+            const F4 x = a * c0 + b, y = a * c1 + b;
+            const F4 xy = x * x + y * y;
+            // Two channels (BC5-style): z rebuilt, the length is 1 unless x, y alone exceed it.
+            const F4 z = rgb ? a * c2 + b : sqrt4(max4(zero, one - xy));
+            const F4 len = rgb ? sqrt4(xy + z * z) : max4(one, sqrt4(xy));
+            const I4 ok = valid & finite4(len);
+            if (channels >= 3) grey += valid & (max4(max4(abs4(c0 - c1), abs4(c0 - c2)), abs4(c1 - c2)) <= gtol);
+            bad_length += ok & (abs4(len - one) > len_tol);
+            negative_z += ok & (z < -z_eps);
+            upward += ok & (z >= zero) & (z * z >= xy);
+            b_len += keep(len, ok);
+            b_z += keep(z, ok);
+            b_xx += keep(x * x, ok);
+            b_yy += keep(y * y, ok);
+        }
+        sum_length.add(b_len), sum_z.add(b_z), sxx.add(b_xx), syy.add(b_yy);
+        if (!srgb) continue;
+        F4 b_sx{}, b_sy{}, b_sl{};
+        for (size_t i = 0; i < m4; i += 4) {
+            const I4 valid = I4{0, 1, 2, 3} + static_cast<int32_t>(i) < static_cast<int32_t>(m);
+            const F4 sx = load4(&s[0][i]), sy = load4(&s[1][i]), sz = load4(&s[2][i]);
+            const F4 sxy = sx * sx + sy * sy;
+            const F4 szr = rgb ? sz : sqrt4(max4(zero, one - sxy));
+            b_sx += keep(sx, valid);
+            b_sy += keep(sy, valid);
+            b_sl += keep(sqrt4(sxy + szr * szr), valid);
+            srgb_upward += valid & (szr >= zero) & (szr * szr >= sxy);
+        }
+        ssx.add(b_sx), ssy.add(b_sy), ssl.add(b_sl);
     }
-    normal_srgb_upward += srgb_upward;
-    normal_srgb_sum_x += ssx, normal_srgb_sum_y += ssy, normal_srgb_sum_length += ssl;
+    normal_bad_length += count(bad_length), normal_negative_z += count(negative_z);
+    normal_upward += count(upward), normal_gray += count(grey);
+    normal_sum_length += sum_length.total(), normal_sum_z += sum_z.total();
+    normal_sum_xx += sxx.total(), normal_sum_yy += syy.total();
+    if (!srgb) return;
+    normal_srgb_upward += count(srgb_upward);
+    normal_srgb_sum_x += ssx.total(), normal_srgb_sum_y += ssy.total(), normal_srgb_sum_length += ssl.total();
 }
 
 bool MapStats::normal_invalid() const {

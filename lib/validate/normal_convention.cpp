@@ -3,20 +3,48 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
+
+#include "core/simd.hpp"
 
 namespace mf::validate {
 namespace {
 
+using simd::D2;
+using simd::load2d;
+
 // Uncentered correlation: the tests are about proportionality through the origin (q = ±s·g).
+// Sums in two lanes of two doubles (simd.hpp): a row's x = 1 .. width - 2 go to lane
+// (x - 1) mod 4 until fewer than four are left, those one by one; the same figures on every
+// machine.
 struct Corr {
     double xy = 0, xx = 0, yy = 0;
     long n = 0;
-    void add(double a, double b) {
-        xy += a * b;
-        xx += a * a;
-        yy += b * b;
-        ++n;
+    // The pairs (a, b) of x = 1 .. width - 2 (the interior of a row): pair(load, x) reads its
+    // samples through `load`, which gives the float at p and p + 1 as a D2, or the one at p.
+    template <class Pair>
+    void add_row(int width, Pair pair) {
+        const size_t end = width >= 2 ? static_cast<size_t>(width) - 1 : 1;
+        D2 sxy[2] = {}, sxx[2] = {}, syy[2] = {};
+        size_t x = 1;
+        for (; x + 4 <= end; x += 4)
+            for (size_t k = 0; k < 2; ++k) {
+                const auto [a, b] = pair([](const float* p) { return load2d(p); }, x + 2 * k);
+                sxy[k] += a * b;
+                sxx[k] += a * a;
+                syy[k] += b * b;
+            }
+        xy += (sxy[0][0] + sxy[0][1]) + (sxy[1][0] + sxy[1][1]);
+        xx += (sxx[0][0] + sxx[0][1]) + (sxx[1][0] + sxx[1][1]);
+        yy += (syy[0][0] + syy[0][1]) + (syy[1][0] + syy[1][1]);
+        for (; x < end; ++x) {
+            const auto [a, b] = pair([](const float* p) { return double{*p}; }, x);
+            xy += a * b;
+            xx += a * a;
+            yy += b * b;
+        }
+        n += static_cast<long>(end - 1);
     }
     double r() const {
         const double d = std::sqrt(xx * yy);
@@ -88,6 +116,7 @@ struct NormalConventionDetector::Impl {
     // Full-resolution slope moments (the flat test).
     double sp = 0, sq = 0, spp = 0, sqq = 0;
     long long ns = 0;
+    std::vector<float> row_p, row_q;  // add_row's slopes, kept between rows
 
     Impl(int width, bool wh, const DetectorOptions& o) : opt(o), with_height(wh) {
         int w = width;
@@ -125,23 +154,19 @@ struct NormalConventionDetector::Impl {
             // per statistic; the same additions in the same order: bit-identical sums.
             const float *p0 = L.p[0].data(), *p1 = L.p[1].data(), *p2 = L.p[2].data();
             const float* q1 = L.q[1].data();
-            Corr curl = L.curl;
-            for (int x = 1; x + 1 < L.width; ++x) {
-                const double a = 0.5 * (double{p2[x]} - p0[x]);
-                const double b = 0.5 * (double{q1[x + 1]} - q1[x - 1]);
-                curl.add(a, b);
-            }
-            L.curl = curl;
+            // Central differences at x of the middle row: ∂p/∂y and ∂q/∂x for the curl; with a
+            // height, ∂h/∂x and ∂h/∂y against p and q.
+            L.curl.add_row(L.width, [&](auto load, size_t x) {
+                return std::pair{0.5 * (load(p2 + x) - load(p0 + x)), 0.5 * (load(q1 + x + 1) - load(q1 + x - 1))};
+            });
             if (L.with_height) {
                 const float *h0 = L.h[0].data(), *h1 = L.h[1].data(), *h2 = L.h[2].data();
-                Corr cx = L.cx, cy = L.cy;
-                for (int x = 1; x + 1 < L.width; ++x) {
-                    const double gx = 0.5 * (double{h1[x + 1]} - h1[x - 1]);
-                    const double gr = 0.5 * (double{h2[x]} - h0[x]);
-                    cx.add(p1[x], gx);
-                    cy.add(q1[x], gr);
-                }
-                L.cx = cx, L.cy = cy;
+                L.cx.add_row(L.width, [&](auto load, size_t x) {
+                    return std::pair{load(p1 + x), 0.5 * (load(h1 + x + 1) - load(h1 + x - 1))};
+                });
+                L.cy.add_row(L.width, [&](auto load, size_t x) {
+                    return std::pair{load(q1 + x), 0.5 * (load(h2 + x) - load(h0 + x))};
+                });
             }
         }
         // Build the next level's row from 2×2 blocks.
@@ -172,25 +197,39 @@ NormalConventionDetector::NormalConventionDetector(NormalConventionDetector&&) n
 NormalConventionDetector& NormalConventionDetector::operator=(NormalConventionDetector&&) noexcept = default;
 
 void NormalConventionDetector::add_row(const float* xyz, const float* height) {
+    using namespace simd;
     if (impl_->levels.empty()) return;
     const int w = impl_->levels[0].width;
-    std::vector<float> p(w), q(w);
-    const auto min_nz = static_cast<float>(impl_->opt.min_nz);
-    double sp = 0, sq = 0, spp = 0, sqq = 0;
-    long long ns = 0;
-    for (int x = 0; x < w; ++x) {
-        const float nz = std::max(xyz[3 * x + 2], min_nz);
-        p[x] = -xyz[3 * x] / nz;
-        q[x] = xyz[3 * x + 1] / nz;
-        if (std::isfinite(p[x]) && std::isfinite(q[x])) {
-            sp += p[x];
-            sq += q[x];
-            spp += double{p[x]} * p[x];
-            sqq += double{q[x]} * q[x];
-            ++ns;
+    const auto n = static_cast<size_t>(w);
+    std::vector<float>&p = impl_->row_p, &q = impl_->row_q;
+    p.resize(n), q.resize(n);
+    const F4 min_nz = F4{} + static_cast<float>(impl_->opt.min_nz);
+    // Slopes four texels at a time (the last group padded with flat texels, left out of the sums).
+    Sum4 sp, sq, spp, sqq;
+    I4 counted{};
+    for (size_t x = 0; x < n; x += 4) {
+        const size_t m = std::min<size_t>(4, n - x);
+        F4 nx, ny, nz;
+        if (m == 4) {
+            nx = gather4(xyz + 3 * x, 3), ny = gather4(xyz + 3 * x + 1, 3), nz = gather4(xyz + 3 * x + 2, 3);
+        } else {
+            nx = ny = F4{}, nz = F4{} + 1.f;
+            for (size_t l = 0; l < m; ++l)
+                nx[l] = xyz[3 * (x + l)], ny[l] = xyz[3 * (x + l) + 1], nz[l] = xyz[3 * (x + l) + 2];
         }
+        nz = max4(nz, min_nz);
+        const F4 pv = -nx / nz, qv = ny / nz;
+        for (size_t l = 0; l < m; ++l) p[x + l] = pv[l], q[x + l] = qv[l];
+        const I4 ok = (I4{0, 1, 2, 3} < static_cast<int32_t>(m)) & finite4(pv) & finite4(qv);
+        sp.add(keep(pv, ok));
+        sq.add(keep(qv, ok));
+        spp.add_squares(keep(pv, ok));
+        sqq.add_squares(keep(qv, ok));
+        counted += ok;
     }
-    impl_->sp += sp, impl_->sq += sq, impl_->spp += spp, impl_->sqq += sqq, impl_->ns += ns;
+    const double sp_total = sp.total(), sq_total = sq.total(), spp_total = spp.total(), sqq_total = sqq.total();
+    const long long ns = count(counted);
+    impl_->sp += sp_total, impl_->sq += sq_total, impl_->spp += spp_total, impl_->sqq += sqq_total, impl_->ns += ns;
     // A missing height row (the height map ended early) reads as flat: no evidence, no crash.
     std::vector<float> flat;
     if (impl_->with_height && !height) {
