@@ -47,9 +47,9 @@ bool unfilter(int type, uint8_t* row, const uint8_t* up, size_t width, int bpp) 
         case 2:
             for (size_t i = 0; i < n; ++i) row[i] = static_cast<uint8_t>(row[i] + up[i]);
             return true;
-        case 3:
-            for (size_t i = 0; i < n; ++i)
-                row[i] = static_cast<uint8_t>(row[i] + ((i >= k ? row[i - k] : 0) + up[i]) / 2);
+        case 3:  // the first pixel has no left neighbour (0): its own loop, none of it in the chain
+            for (size_t i = 0; i < std::min(k, n); ++i) row[i] = static_cast<uint8_t>(row[i] + up[i] / 2);
+            for (size_t i = k; i < n; ++i) row[i] = static_cast<uint8_t>(row[i] + (row[i - k] + up[i]) / 2);
             return true;
         case 4:
             switch (bpp) {  // bytes per pixel: 1-4 channels of 8 bits, or 1-4 of 16
