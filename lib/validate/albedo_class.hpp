@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/simd.hpp"
 #include "findings/rules.hpp"
 
 namespace mf::validate {
@@ -89,6 +90,25 @@ public:
     float luminance(const uint8_t* rgb) const {
         return 0.2126f * linear8_[rgb[0]] + 0.7152f * linear8_[rgb[1]] + 0.0722f * linear8_[rgb[2]];
     }
+    // luminance() of four pixels of 8-bit codes, pixel l at rgb + l * stride: lane by lane the
+    // same float operations, so the same values.
+    simd::F4 luminance4(const uint8_t* rgb, size_t stride) const {
+        auto channel = [&](size_t c) {
+            return simd::F4{linear8_[rgb[c]], linear8_[rgb[stride + c]], linear8_[rgb[2 * stride + c]],
+                            linear8_[rgb[3 * stride + c]]};
+        };
+        return 0.2126f * channel(0) + 0.7152f * channel(1) + 0.0722f * channel(2);
+    }
+    // judge_weighted() of four finite luminances of one metal weight: the lanes that are too
+    // dark, too bright, and (metal) too dark.
+    struct Judgements4 {
+        simd::I4 dark, bright, metal_dark;
+    };
+    Judgements4 judge_weighted4(simd::F4 y, long long metal) const {
+        const simd::I4 dielectric = simd::I4{} - (metal < kWeightUnit ? 1 : 0);  // all lanes -1 or 0
+        const simd::I4 metallic = simd::I4{} - (metal > 0 ? 1 : 0);
+        return {dielectric & (y < dark_lin_), dielectric & (y > bright_lin_), metallic & (y < metal_dark_lin_)};
+    }
     AlbedoJudgement judge(float y, float metalness) const {
         if (!std::isfinite(y) || !std::isfinite(metalness)) return {};
         return judge_weighted(y, metal_weight(metalness));
@@ -116,10 +136,11 @@ public:
     size_t srgb_code(float y) const {
         // y * 4096 is exact (a power of two): bucket b holds exactly the y in [b/4096, (b+1)/4096).
         // Edges are at least 3e-4 apart (the curve's steepest part, near 0) and a bucket is
-        // 2.4e-4 wide: at most one edge lies between the bucket's start and y. y >= 1 takes the
-        // last entry (255 edges lie below 1); the sentinel edge (+inf) stops the step at 256.
-        size_t k = first_code_[y < 1.f ? static_cast<size_t>(y * 4096.f) : kBuckets];
-        k += edges_[k] < y ? 1 : 0;
+        // 2.4e-4 wide: at most one edge lies between the bucket's start and y, the bucket's next
+        // edge. y >= 1 takes the last entry (255 edges lie below 1). Both entries are read by the
+        // bucket: neither load waits on the other.
+        const size_t b = y < 1.f ? static_cast<size_t>(y * 4096.f) : kBuckets;
+        const size_t k = first_code_[b] + (next_edge_[b] < y ? 1 : 0);
         return std::min<size_t>(k, 255);
     }
 
@@ -138,10 +159,12 @@ private:
     bool linear_input_;
     double dielectric_max_, metal_min_;  // compared in double, as MapStats' METALNESS_NOT_BINARY
     float dark_lin_, bright_lin_, metal_dark_lin_;
-    std::array<float, 257> edges_{};                   // linear luminance at sRGB code k + 0.5; [256] = +inf
-    std::array<uint16_t, kBuckets + 1> first_code_{};  // edges below b / 4096 (b = kBuckets: below 1)
-    const float* decode_;                              // sRGB decode of every 16-bit code
-    std::array<float, 256> linear8_{};                 // linear() of every 8-bit code's float
+    // Code edges (the linear luminance at sRGB code k + 0.5) below b / 4096 (b = kBuckets: below
+    // 1), and the first edge at or above b / 4096 (+inf past the last).
+    std::array<uint8_t, kBuckets + 1> first_code_{};
+    std::array<float, kBuckets + 1> next_edge_{};
+    const float* decode_;               // sRGB decode of every 16-bit code
+    std::array<float, 256> linear8_{};  // linear() of every 8-bit code's float
 };
 
 }  // namespace mf::validate

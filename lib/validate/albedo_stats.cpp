@@ -24,6 +24,41 @@ double AlbedoStats::percentile(const Histogram& hist, long long n, double p) {
     return 255.0;
 }
 
+void AlbedoStats::add_plain_row(const uint8_t* rgb, size_t stride, size_t n, const uint8_t* keep, uint8_t want) {
+    const long long weight = classify_.metal_weight(0.0);
+    simd::I4 counted{}, dark{}, bright{}, metal_dark{};
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        const simd::F4 y = classify_.luminance4(rgb + i * stride, stride);
+        simd::I4 kept = simd::I4{} - 1;
+        if (keep) kept = simd::I4{keep[i], keep[i + 1], keep[i + 2], keep[i + 3]} == static_cast<int32_t>(want);
+        const AlbedoClassifier::Judgements4 j = classify_.judge_weighted4(y, weight);
+        counted += kept;
+        dark += kept & j.dark;
+        bright += kept & j.bright;
+        metal_dark += kept & j.metal_dark;
+        for (size_t l = 0; l < 4; ++l)
+            if (kept[l]) ++plain_[l][classify_.srgb_code(y[l])];
+    }
+    AlbedoCounts c;
+    for (; i < n; ++i) {  // the last 0-3 pixels
+        if (keep && keep[i] != want) continue;
+        const float y = classify_.luminance(rgb + i * stride);
+        c.add(classify_.judge_weighted(y, weight));
+        ++plain_[i & 3][classify_.srgb_code(y)];
+    }
+    // The four lanes' pixels as AlbedoCounts::add counts them, weight by weight.
+    const long long pixels = simd::count(counted), dielectric = kWeightUnit - weight;
+    c.visible += pixels;
+    c.blend += weight > 0 && weight < kWeightUnit ? pixels : 0;
+    c.dielectric += pixels * dielectric;
+    c.dielectric_dark += simd::count(dark) * dielectric;
+    c.dielectric_bright += simd::count(bright) * dielectric;
+    c.metal += pixels * weight;
+    c.metal_dark += simd::count(metal_dark) * weight;
+    counts_.merge(c);
+}
+
 AlbedoStats::Histogram AlbedoStats::total(Histogram Lanes::*which) const {
     Histogram h{};
     for (const Lanes& l : lanes_)

@@ -18,39 +18,36 @@ public:
     // One row of n albedo pixels as stored (sRGB-encoded unless linear_input): pixel i's RGB at
     // rgb + i * stride, 3 floats or 3 8-bit codes (validate.hpp's Samples); its metalness
     // metal[i] in [0, 1] (nullptr: 0). With `keep`, only the pixels whose keep[i] is `want`.
-    // The counts are summed in locals and added once a row; the histograms alternate between
+    // The counts are summed in locals and added once a row; the histograms alternate between two
     // lanes by pixel, so that a run of one luminance code does not wait on its own last add.
     // Every sum is an integer: the same figures in any order.
     template <class T>
     void add_row(const T* rgb, size_t stride, const float* metal, size_t n, const uint8_t* keep = nullptr,
                  uint8_t want = 1) {
+        if constexpr (std::is_same_v<T, uint8_t>) {
+            if (!metal) {
+                add_plain_row(rgb, stride, n, keep, want);
+                return;
+            }
+        }
         AlbedoCounts c;
-        if (std::is_same_v<T, uint8_t> && !metal) {
-            // 8-bit codes have a finite luminance, and without a metalness map every pixel has
-            // the same metal weight (metal_weight(0)): judged without the checks and the weight's
-            // arithmetic, and counted by code in `plain_` (weighted when the histograms are read).
-            const long long weight = classify_.metal_weight(0.0);
-            for (size_t i = 0; i < n; ++i) {
-                if (keep && keep[i] != want) continue;
-                const float y = classify_.luminance(rgb + i * stride);
-                c.add(classify_.judge_weighted(y, weight));
-                ++plain_[i & 3][classify_.srgb_code(y)];
-            }
-        } else {
-            for (size_t i = 0; i < n; ++i) {
-                if (keep && keep[i] != want) continue;
-                const float y = classify_.luminance(rgb + i * stride);
-                const AlbedoJudgement j = classify_.judge(y, metal ? metal[i] : 0.f);
-                if (!j.counted) continue;
-                c.add(j);
-                const size_t code = classify_.srgb_code(y);
-                Lanes& lane = lanes_[i & 1];
-                lane.dielectric[code] += j.dielectric();
-                lane.metal[code] += j.metal;
-            }
+        for (size_t i = 0; i < n; ++i) {
+            if (keep && keep[i] != want) continue;
+            const float y = classify_.luminance(rgb + i * stride);
+            const AlbedoJudgement j = classify_.judge(y, metal ? metal[i] : 0.f);
+            if (!j.counted) continue;
+            c.add(j);
+            const size_t code = classify_.srgb_code(y);
+            Lanes& lane = lanes_[i & 1];
+            lane.dielectric[code] += j.dielectric();
+            lane.metal[code] += j.metal;
         }
         counts_.merge(c);
     }
+    // add_row of 8-bit codes without a metalness map: 8-bit codes have a finite luminance, and
+    // every pixel has the same metal weight (metal_weight(0)); judged four at a time, counted by
+    // code in `plain_` (weighted when the histograms are read). The same figures.
+    void add_plain_row(const uint8_t* rgb, size_t stride, size_t n, const uint8_t* keep, uint8_t want);
     size_t srgb_code(float y) const { return classify_.srgb_code(y); }
     // Adds the pixels another accumulator of the same thresholds counted (exact: integer weights).
     void merge(const AlbedoStats& o) {
