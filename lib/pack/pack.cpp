@@ -1,6 +1,7 @@
 #include "pack/pack.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -585,6 +586,43 @@ std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, co
             return std::nullopt;
     }
     return pack_walk<uint8_t>(o, planes, preset, size, color);
+}
+
+std::string pack_recipe(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size) {
+    auto exact = [](float v) { return std::to_string(std::bit_cast<uint32_t>(v)); };  // two values, two texts
+    // Everything pack_walk and pack_output8 read: the size, the output's encoding, each written
+    // channel, the defaults of missing roles, and the normal convention written.
+    std::string r = std::to_string(size.width) + 'x' + std::to_string(size.height) + ' ' +
+                    (o.srgb ? "srgb" : "linear") + ' ' + std::to_string(o.bit_depth) + ' ' +
+                    std::string(word(preset.format));
+    for (const auto& c : effective_channels(o, planes)) {
+        r += '|' + c.key + ' ' + std::to_string(static_cast<int>(c.kind)) + ' ' + std::string(role_name(c.role)) + ' ' +
+             exact(c.value);
+        if (c.kind != ChannelSpec::Kind::role && c.kind != ChannelSpec::Kind::smoothness) continue;
+        if (c.role == Role::normal) r += std::string(" to ") + std::string(convention_name(preset.normal_convention));
+        if (planes.count(c.role)) continue;
+        if (c.role == Role::albedo)
+            for (float v : preset.default_albedo) r += ' ' + exact(v);
+        else r += " default " + exact(preset.default_value(c.role));
+    }
+    return r;
+}
+
+std::vector<Role> plane_roles(const OutputSpec& o, const Planes& planes) {
+    std::vector<Role> roles;
+    for (const auto& c : effective_channels(o, planes))
+        if ((c.kind == ChannelSpec::Kind::role || c.kind == ChannelSpec::Kind::smoothness) && planes.count(c.role) &&
+            std::find(roles.begin(), roles.end(), c.role) == roles.end())
+            roles.push_back(c.role);
+    return roles;
+}
+
+bool same_plane(const RolePlane& a, const RolePlane& b) {
+    auto same = [](const auto& x, const auto& y) {
+        return x.width == y.width && x.height == y.height && x.channels == y.channels && x.pixels == y.pixels;
+    };
+    return a.encoding == b.encoding && a.codes_convention == b.codes_convention && same(a.codes, b.codes) &&
+           same(a.image, b.image);
 }
 
 }  // namespace mf

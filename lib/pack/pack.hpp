@@ -93,4 +93,14 @@ Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& prese
 std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
                                    const ColorContext& color);
 
+// What pack_output and pack_output8 read of an output besides the pixels of its planes, as
+// text: two outputs of equal recipes over equal planes (same_plane for each of plane_roles) pack
+// equal images, whatever their names, and may share one encoding (process/ingest's SetShare).
+// The ColorContext is the caller's to compare.
+std::string pack_recipe(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size);
+// The roles whose planes an output reads.
+std::vector<Role> plane_roles(const OutputSpec& o, const Planes& planes);
+// Whether two planes hold the same samples in the same form.
+bool same_plane(const RolePlane& a, const RolePlane& b);
+
 }  // namespace mf

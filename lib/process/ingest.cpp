@@ -181,8 +181,8 @@ struct Ingestor::Run {
 };
 
 // What the ingestors of run_together share of the set they process in turn: its decoded maps,
-// and its encoded outputs (an output's bytes are a function of its pixels and EncodeOptions:
-// image/image.hpp encodes deterministically).
+// and its encoded outputs (an output's pixels are a function of its recipe and planes, its bytes
+// of its pixels and EncodeOptions: image/image.hpp encodes deterministically).
 struct Ingestor::SetShare {
     explicit SetShare(int plans) : plan(plans) {}
     PlanShare plan;
@@ -203,52 +203,66 @@ struct Ingestor::SetShare {
         return sha;
     }
 
-    // `bytes` of `img` encoded with `enc`, and their SHA-256 in `sha`: an equal image encoded so
-    // before is neither encoded nor hashed again.
-    template <class T>
-    bool encode(BasicImage<T> img, const EncodeOptions& enc, std::vector<unsigned char>& bytes, std::string& sha,
-                std::string& error) {
-        auto& kept = kept_of<T>();
+    // What an output's pixels are made of: its recipe (pack_recipe: the channels, encoding,
+    // size, defaults), the color context that converts its colors, and the planes of `roles`.
+    struct Source {
+        std::string recipe;
+        const ColorContext* color;
+        std::shared_ptr<const Planes> planes;
+        std::vector<Role> roles;
+        bool same_as(const Source& o) const {
+            return recipe == o.recipe && color == o.color && roles == o.roles &&
+                   (planes == o.planes || std::all_of(roles.begin(), roles.end(), [&](Role r) {
+                        return same_plane(planes->at(r), o.planes->at(r));
+                    }));
+        }
+    };
+
+    // `bytes` of an output packed and encoded by `fresh`, and their SHA-256 in `sha`: an output
+    // of the same source done so before is neither packed, encoded nor hashed again (its
+    // EncodeOptions, the format and bit depth, are in the recipe). The planes stay with the kept
+    // encoding until the set is done.
+    template <class Fresh>
+    bool encode(Source source, Fresh fresh, std::vector<unsigned char>& bytes, std::string& sha) {
+        std::vector<std::shared_ptr<const Kept>> kept_now;
         {
             std::lock_guard lock(mutex);
-            for (const auto& k : kept)
-                if (k.enc.format == enc.format && k.enc.bit_depth == enc.bit_depth && k.img.width == img.width &&
-                    k.img.height == img.height && k.img.channels == img.channels && k.img.pixels == img.pixels) {
-                    bytes = k.bytes;
-                    sha = k.sha;
-                    return true;
-                }
+            kept_now = kept;
         }
-        if (!encode_image(img, enc, bytes, error)) return false;
+        // Compared outside the lock (another output of the set may be packing meanwhile).
+        for (const auto& k : kept_now)
+            if (k->source.same_as(source)) {
+                bytes = k->bytes;
+                sha = k->sha;
+                return true;
+            }
+        if (!fresh()) return false;
         sha = sha256_hex(bytes);
-        // Kept up to a bound: an 8K set's packed outputs are gigabytes, and sharing is a saving,
-        // never needed for the result.
-        const uint64_t size = img.pixels.size() * sizeof(T) + bytes.size();
         std::lock_guard lock(mutex);
+        // Kept up to a bound (planes counted once): an 8K set's planes and outputs are gigabytes,
+        // and sharing is a saving, never needed for the result.
+        uint64_t size = bytes.size();
+        if (!counted.count(source.planes.get()))
+            for (const auto& [r, p] : *source.planes)
+                size += p.codes.pixels.size() + p.image.pixels.size() * sizeof(float);
         if (kept_bytes + size > kMaxKeptBytes) return true;
         kept_bytes += size;
-        kept.push_back({enc, std::move(img), bytes, sha});
+        counted.insert(source.planes.get());
+        kept.push_back(std::make_shared<const Kept>(Kept{std::move(source), bytes, sha}));
         return true;
     }
 
 private:
-    template <class T>
     struct Kept {
-        EncodeOptions enc;
-        BasicImage<T> img;
+        Source source;
         std::vector<unsigned char> bytes;
         std::string sha;
     };
-    template <class T>
-    std::vector<Kept<T>>& kept_of() {
-        if constexpr (std::is_same_v<T, float>) return floats;
-        else return codes;
-    }
     static constexpr uint64_t kMaxKeptBytes = uint64_t{256} << 20;
     std::mutex mutex;
     uint64_t kept_bytes = 0;
-    std::vector<Kept<unsigned char>> codes;
-    std::vector<Kept<float>> floats;
+    std::vector<std::shared_ptr<const Kept>> kept;
+    std::set<const Planes*> counted;
     std::map<std::string, std::string> digests;
 };
 
@@ -308,12 +322,10 @@ struct OutputJob {
     const std::map<std::string, std::string>* refused;  // output suffix -> why it may not be written
     std::function<bool(const std::string& rel, std::span<const unsigned char>, std::string& error)>
         write;  // the run's folder
-    // Encodes a packed image (8-bit codes or floats): through the set's share in run_together,
-    // which also gives the bytes' SHA-256 (else left empty).
-    std::function<bool(Image8, const EncodeOptions&, std::vector<unsigned char>&, std::string& sha, std::string&)>
-        encode8;
-    std::function<bool(Image, const EncodeOptions&, std::vector<unsigned char>&, std::string& sha, std::string&)>
-        encode;
+    // Packs and encodes an output of `size` in the preset's image format: through the set's share
+    // in run_together, which also gives the bytes' SHA-256 (else left empty).
+    std::function<bool(const OutputSpec&, Size, std::vector<unsigned char>&, std::string& sha, std::string&)>
+        pack_encode;
 };
 
 struct Written {
@@ -349,11 +361,7 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
                                          *gpu, err);
         bytes = std::move(gpu->bytes);
     } else {
-        // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
-        std::optional<Image8> packed8 = pack_output8(o, job.planes, job.preset, size, job.color);
-        const EncodeOptions enc{job.preset.format, o.bit_depth};
-        encoded = packed8 ? job.encode8(std::move(*packed8), enc, bytes, sha, err)
-                          : job.encode(pack_output(o, job.planes, job.preset, size, job.color), enc, bytes, sha, err);
+        encoded = job.pack_encode(o, size, bytes, sha, err);
     }
     // Written through the run's folder: under it, never through a link, journalled.
     const std::string file = rel_path.generic_string();
@@ -422,10 +430,13 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         res.failure = std::move(plan.failure);
         return res;
     }
-    Planes planes = make_planes(plan);
+    // Shared with the set's share, which keeps them with the encodings made from them.
+    const auto made = std::make_shared<Planes>(make_planes(plan));
     const int w = plan.width, h = plan.height;
-    for (auto& [r, p] : planes) fit_plane(r, p, w, h, *color_);
-    const float emissive_strength = normalize_hdr_emissive(planes, preset_);
+    for (auto& [r, p] : *made) fit_plane(r, p, w, h, *color_);
+    const float emissive_strength = normalize_hdr_emissive(*made, preset_);
+    const std::shared_ptr<const Planes> shared_planes = made;
+    const Planes& planes = *shared_planes;
 
     // Pack, encode, write.
     remove_stale_temps(opt_.out_dir / src.name, /*other_hosts=*/true);  // only this set writes here
@@ -449,13 +460,21 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                         Size{w, h},
                         refused == run.refused.end() ? nullptr : &refused->second,
                         batch_write,
-                        [share](Image8 img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& sha,
-                                std::string& e) {
-                            return share ? share->encode(std::move(img), enc, b, sha, e) : encode_image(img, enc, b, e);
-                        },
-                        [share](Image img, const EncodeOptions& enc, std::vector<unsigned char>& b, std::string& sha,
-                                std::string& e) {
-                            return share ? share->encode(std::move(img), enc, b, sha, e) : encode_image(img, enc, b, e);
+                        [&](const OutputSpec& o, Size size, std::vector<unsigned char>& bytes, std::string& sha,
+                            std::string& e) {
+                            // 8-bit outputs of codes planes go from codes to codes; anything else
+                            // through floats.
+                            auto fresh = [&] {
+                                const EncodeOptions enc{preset_.format, o.bit_depth};
+                                std::optional<Image8> packed8 = pack_output8(o, planes, preset_, size, *color_);
+                                return packed8 ? encode_image(*packed8, enc, bytes, e)
+                                               : encode_image(pack_output(o, planes, preset_, size, *color_), enc,
+                                                              bytes, e);
+                            };
+                            if (!share) return fresh();
+                            return share->encode({pack_recipe(o, planes, preset_, size), color_.get(), shared_planes,
+                                                  plane_roles(o, planes)},
+                                                 fresh, bytes, sha);
                         }};
     // Outputs are packed and encoded on two threads (each output on one: deflate is serial) while
     // a worker is idle (above).

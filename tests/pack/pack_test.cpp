@@ -280,3 +280,60 @@ TEST(Quantize, MatchesClampAndRoundHalfUp) {
         EXPECT_EQ(mf::quantize(-std::numeric_limits<float>::infinity(), bits), 0);
     }
 }
+
+// pack_recipe is what lets two presets of one run share an output (process/ingest's SetShare):
+// over every shipped preset's outputs (which differ in channels, order, constants, defaults,
+// encoding, bit depth and normal convention), two outputs whose packed images differ must have
+// different recipes, and equal recipes must pack equal images. Planes with and without
+// metalness and albedo (defaults written), and a plane that differs in one code, which
+// same_plane tells apart.
+TEST(PackRecipe, EqualRecipesPackEqualImagesAndDifferentImagesHaveDifferentRecipes) {
+    auto color = color_context();
+    for (const bool metal : {true, false})
+        for (const bool albedo : {true, false}) {
+            mf::Planes planes = make_planes(metal);
+            if (!albedo) planes.erase(mf::Role::albedo);
+            struct Out {
+                std::string name, recipe;
+                mf::Image img;
+            };
+            std::vector<Out> outs;
+            for (const auto& name : mf::shipped_presets()) {
+                std::string err;
+                const auto preset = mf::load_preset(name, err);
+                ASSERT_TRUE(preset) << err;
+                for (const auto& o : preset->outputs) {
+                    const mf::Size size{2, 1};
+                    outs.push_back({name + "/" + o.suffix + "/" + std::to_string(o.bit_depth),
+                                    mf::pack_recipe(o, planes, *preset, size),
+                                    mf::pack_output(o, planes, *preset, size, *color)});
+                }
+            }
+            int equal_recipes = 0, different_images = 0;
+            for (size_t i = 0; i < outs.size(); ++i)
+                for (size_t j = i + 1; j < outs.size(); ++j) {
+                    const bool same_image = outs[i].img.channels == outs[j].img.channels &&
+                                            outs[i].img.pixels == outs[j].img.pixels;
+                    if (outs[i].recipe == outs[j].recipe) {
+                        ++equal_recipes;
+                        EXPECT_TRUE(same_image) << outs[i].name << " and " << outs[j].name << ": " << outs[i].recipe;
+                    }
+                    different_images += same_image ? 0 : 1;
+                }
+            // The shipped presets share outputs (glTF's and HDRP's base color and normal map) and
+            // differ in most: both sides of the property are exercised.
+            EXPECT_GT(equal_recipes, 0);
+            EXPECT_GT(different_images, 100);
+        }
+    mf::Planes a = make_planes(), b = make_planes();
+    EXPECT_TRUE(mf::same_plane(a.at(mf::Role::roughness), b.at(mf::Role::roughness)));
+    b.at(mf::Role::roughness).image.pixels[1] = 190 / 255.f;
+    EXPECT_FALSE(mf::same_plane(a.at(mf::Role::roughness), b.at(mf::Role::roughness)));
+    b.at(mf::Role::albedo).encoding = mf::ColorEncoding::linear;
+    EXPECT_FALSE(mf::same_plane(a.at(mf::Role::albedo), b.at(mf::Role::albedo)));
+    mf::OutputSpec smooth;  // a smoothness channel reads the roughness plane
+    mf::ChannelSpec c;
+    c.key = "R", c.kind = mf::Channel::Kind::smoothness, c.role = mf::Role::roughness;
+    smooth.channels = {c};
+    EXPECT_EQ(mf::plane_roles(smooth, a), std::vector<mf::Role>{mf::Role::roughness});
+}
