@@ -195,7 +195,11 @@ struct SetRun {
         if (!m.empty()) {
             const auto mc = static_cast<size_t>(info(metal).channels), ch = static_cast<size_t>(metal.channel);
             metal_row.resize(w);
-            for (size_t x = 0; x < w; ++x) metal_row[x] = m[static_cast<size_t>(mx[x]) * mc + ch];
+            const std::array<float, 256>& unorm = unorm8_values();
+            if (m.codes)  // the kind decided once a row
+                for (size_t x = 0; x < w; ++x) metal_row[x] = unorm[m.codes[static_cast<size_t>(mx[x]) * mc + ch]];
+            else
+                for (size_t x = 0; x < w; ++x) metal_row[x] = m.floats[static_cast<size_t>(mx[x]) * mc + ch];
         }
         const float* mv = m.empty() ? nullptr : metal_row.data();
         if (o.empty()) {
@@ -242,9 +246,13 @@ struct SetRun {
             if (n.codes) decode_normal_row(n.codes, ni.channels, ni.width, xyz.data(), ns.rebuilds_z());
             else decode_normal_row(n.floats, ni.channels, ni.width, ns.normal_signed == 1, xyz.data(), ns.rebuilds_z());
             const Samples h = wh ? row_of(height, nearest_index(y, ni.height, info(height).height)) : Samples{};
-            if (!h.empty())
-                for (int x = 0; x < ni.width; ++x)
-                    hrow[static_cast<size_t>(x)] = h[static_cast<size_t>(hx[static_cast<size_t>(x)]) * hc + hch];
+            // The height's row on the normal's grid, its kind decided once a row.
+            auto gather = [&](auto value) {
+                for (size_t x = 0; x < hrow.size(); ++x) hrow[x] = value(static_cast<size_t>(hx[x]) * hc + hch);
+            };
+            const std::array<float, 256>& unorm = unorm8_values();
+            if (h.codes) gather([&](size_t i) { return unorm[h.codes[i]]; });
+            else if (h.floats) gather([&](size_t i) { return h.floats[i]; });
             det.add_row(xyz.data(), h.empty() ? nullptr : hrow.data());
         }
         verdict = det.verdict();
