@@ -34,8 +34,6 @@ inline F4 max4(F4 a, F4 b) { return a < b ? b : a; }
 // v where mask is true, else +0.
 inline F4 keep(F4 v, I4 mask) { return std::bit_cast<F4>(std::bit_cast<I4>(v) & mask); }
 inline I4 finite4(F4 v) { return v - v == F4{}; }  // Inf - Inf and NaN - NaN are NaN
-// Four floats from p, p + stride, p + 2 stride, p + 3 stride.
-inline F4 gather4(const float* p, size_t stride) { return F4{p[0], p[stride], p[2 * stride], p[3 * stride]}; }
 inline F4 load4(const float* p) {
     F4 v;
     std::memcpy(&v, p, sizeof v);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -11,38 +12,36 @@
 namespace mf::validate {
 namespace {
 
-using simd::D2;
-using simd::load2d;
-
 // Uncentered correlation: the tests are about proportionality through the origin (q = ±s·g).
-// Sums in two lanes of two doubles (simd.hpp): a row's x = 1 .. width - 2 go to lane
-// (x - 1) mod 4 until fewer than four are left, those one by one; the same figures on every
-// machine.
+// A row's x = 1 .. width - 2 four at a time (simd.hpp's lanes): float products (the figure needs a
+// few digits) summed in float over 16 steps, those sums in double, the lanes added in order; the
+// last 0-3 one by one. The same figures on every machine.
 struct Corr {
     double xy = 0, xx = 0, yy = 0;
     long n = 0;
     // The pairs (a, b) of x = 1 .. width - 2 (the interior of a row): pair(load, x) reads its
-    // samples through `load`, which gives the float at p and p + 1 as a D2, or the one at p.
+    // samples through `load`, which gives the floats at p .. p + 3 as an F4, or the one at p.
     template <class Pair>
     void add_row(int width, Pair pair) {
         const size_t end = width >= 2 ? static_cast<size_t>(width) - 1 : 1;
-        D2 sxy[2] = {}, sxx[2] = {}, syy[2] = {};
+        simd::Sum4 sxy, sxx, syy;
         size_t x = 1;
-        for (; x + 4 <= end; x += 4)
-            for (size_t k = 0; k < 2; ++k) {
-                const auto [a, b] = pair([](const float* p) { return load2d(p); }, x + 2 * k);
-                sxy[k] += a * b;
-                sxx[k] += a * a;
-                syy[k] += b * b;
+        while (x + 4 <= end) {
+            simd::F4 bxy{}, bxx{}, byy{};
+            for (int k = 0; k < 16 && x + 4 <= end; ++k, x += 4) {
+                const auto [a, b] = pair([](const float* p) { return simd::load4(p); }, x);
+                bxy += a * b;
+                bxx += a * a;
+                byy += b * b;
             }
-        xy += (sxy[0][0] + sxy[0][1]) + (sxy[1][0] + sxy[1][1]);
-        xx += (sxx[0][0] + sxx[0][1]) + (sxx[1][0] + sxx[1][1]);
-        yy += (syy[0][0] + syy[0][1]) + (syy[1][0] + syy[1][1]);
+            sxy.add(bxy), sxx.add(bxx), syy.add(byy);
+        }
+        xy += sxy.total(), xx += sxx.total(), yy += syy.total();
         for (; x < end; ++x) {
-            const auto [a, b] = pair([](const float* p) { return double{*p}; }, x);
-            xy += a * b;
-            xx += a * a;
-            yy += b * b;
+            const auto [a, b] = pair([](const float* p) { return *p; }, x);
+            xy += double{a * b};
+            xx += double{a * a};
+            yy += double{b * b};
         }
         n += static_cast<long>(end - 1);
     }
@@ -81,16 +80,15 @@ namespace {
 
 // decode_normal_row over any sample kind: `dec(i)` is the component of sample i.
 template <class Dec>
-void decode_row(Dec dec, int channels, int width, float* xyz, bool rebuild_z) {
-    const auto nc = static_cast<size_t>(channels);
-    for (size_t x = 0; x < static_cast<size_t>(width); ++x) {
+void decode_row(Dec dec, int channels, int width, NormalRow& out, bool rebuild_z) {
+    const auto nc = static_cast<size_t>(channels), n = static_cast<size_t>(width);
+    out.x.resize(n), out.y.resize(n), out.z.resize(n);
+    for (size_t x = 0; x < n; ++x) {
         const size_t s = x * nc;
         const float nx = dec(s);
         const float ny = channels > 1 ? dec(s + 1) : 0.f;
         const float nz = channels > 2 && !rebuild_z ? dec(s + 2) : std::sqrt(std::max(0.f, 1.f - nx * nx - ny * ny));
-        xyz[3 * x] = nx;
-        xyz[3 * x + 1] = ny;
-        xyz[3 * x + 2] = nz;
+        out.x[x] = nx, out.y[x] = ny, out.z[x] = nz;
     }
 }
 
@@ -99,14 +97,14 @@ float component_of(float c) { return 2.f * c - 1.f; }
 
 }  // namespace
 
-void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz, bool rebuild_z) {
-    decode_row([&](size_t i) { return signed_values ? src[i] : component_of(src[i]); }, channels, width, xyz,
+void decode_normal_row(const float* src, int channels, int width, bool signed_values, NormalRow& out, bool rebuild_z) {
+    decode_row([&](size_t i) { return signed_values ? src[i] : component_of(src[i]); }, channels, width, out,
                rebuild_z);
 }
 
-void decode_normal_row(const uint8_t* codes, int channels, int width, float* xyz, bool rebuild_z) {
+void decode_normal_row(const uint8_t* codes, int channels, int width, NormalRow& out, bool rebuild_z) {
     static const std::array<float, 256> component = unorm8_table(component_of);
-    decode_row([&](size_t i) { return component[codes[i]]; }, channels, width, xyz, rebuild_z);
+    decode_row([&](size_t i) { return component[codes[i]]; }, channels, width, out, rebuild_z);
 }
 
 struct NormalConventionDetector::Impl {
@@ -157,15 +155,15 @@ struct NormalConventionDetector::Impl {
             // Central differences at x of the middle row: ∂p/∂y and ∂q/∂x for the curl; with a
             // height, ∂h/∂x and ∂h/∂y against p and q.
             L.curl.add_row(L.width, [&](auto load, size_t x) {
-                return std::pair{0.5 * (load(p2 + x) - load(p0 + x)), 0.5 * (load(q1 + x + 1) - load(q1 + x - 1))};
+                return std::pair{0.5f * (load(p2 + x) - load(p0 + x)), 0.5f * (load(q1 + x + 1) - load(q1 + x - 1))};
             });
             if (L.with_height) {
                 const float *h0 = L.h[0].data(), *h1 = L.h[1].data(), *h2 = L.h[2].data();
                 L.cx.add_row(L.width, [&](auto load, size_t x) {
-                    return std::pair{load(p1 + x), 0.5 * (load(h1 + x + 1) - load(h1 + x - 1))};
+                    return std::pair{load(p1 + x), 0.5f * (load(h1 + x + 1) - load(h1 + x - 1))};
                 });
                 L.cy.add_row(L.width, [&](auto load, size_t x) {
-                    return std::pair{load(q1 + x), 0.5 * (load(h2 + x) - load(h0 + x))};
+                    return std::pair{load(q1 + x), 0.5f * (load(h2 + x) - load(h0 + x))};
                 });
             }
         }
@@ -196,7 +194,7 @@ NormalConventionDetector::~NormalConventionDetector() = default;
 NormalConventionDetector::NormalConventionDetector(NormalConventionDetector&&) noexcept = default;
 NormalConventionDetector& NormalConventionDetector::operator=(NormalConventionDetector&&) noexcept = default;
 
-void NormalConventionDetector::add_row(const float* xyz, const float* height) {
+void NormalConventionDetector::add_row(const NormalRow& row, const float* height) {
     using namespace simd;
     if (impl_->levels.empty()) return;
     const int w = impl_->levels[0].width;
@@ -211,15 +209,19 @@ void NormalConventionDetector::add_row(const float* xyz, const float* height) {
         const size_t m = std::min<size_t>(4, n - x);
         F4 nx, ny, nz;
         if (m == 4) {
-            nx = gather4(xyz + 3 * x, 3), ny = gather4(xyz + 3 * x + 1, 3), nz = gather4(xyz + 3 * x + 2, 3);
+            nx = load4(row.x.data() + x), ny = load4(row.y.data() + x), nz = load4(row.z.data() + x);
         } else {
             nx = ny = F4{}, nz = F4{} + 1.f;
-            for (size_t l = 0; l < m; ++l)
-                nx[l] = xyz[3 * (x + l)], ny[l] = xyz[3 * (x + l) + 1], nz[l] = xyz[3 * (x + l) + 2];
+            for (size_t l = 0; l < m; ++l) nx[l] = row.x[x + l], ny[l] = row.y[x + l], nz[l] = row.z[x + l];
         }
         nz = max4(nz, min_nz);
         const F4 pv = -nx / nz, qv = ny / nz;
-        for (size_t l = 0; l < m; ++l) p[x + l] = pv[l], q[x + l] = qv[l];
+        if (m == 4) {
+            std::memcpy(p.data() + x, &pv, sizeof pv);
+            std::memcpy(q.data() + x, &qv, sizeof qv);
+        } else {
+            for (size_t l = 0; l < m; ++l) p[x + l] = pv[l], q[x + l] = qv[l];
+        }
         const I4 ok = (I4{0, 1, 2, 3} < static_cast<int32_t>(m)) & finite4(pv) & finite4(qv);
         sp.add(keep(pv, ok));
         sq.add(keep(qv, ok));
@@ -332,19 +334,19 @@ NormalVerdict detect_normal_convention(const Image& normal, const Image* height,
                                        bool signed_values) {
     const bool wh = height && !height->empty();
     NormalConventionDetector det(normal.width, wh, opt);
-    std::vector<float> xyz(static_cast<size_t>(normal.width) * 3);
+    NormalRow row;
     std::vector<float> hrow(wh ? normal.width : 0);
     std::vector<int> xmap(wh ? normal.width : 0);
     if (wh)
         for (int x = 0; x < normal.width; ++x)
             xmap[x] = std::min(height->width - 1, static_cast<int>((x + 0.5) * height->width / normal.width));
     for (int y = 0; y < normal.height; ++y) {
-        decode_normal_row(&normal.pixels[normal.index(0, y)], normal.channels, normal.width, signed_values, xyz.data());
+        decode_normal_row(&normal.pixels[normal.index(0, y)], normal.channels, normal.width, signed_values, row);
         if (wh) {
             const int hy = std::min(height->height - 1, static_cast<int>((y + 0.5) * height->height / normal.height));
             for (int x = 0; x < normal.width; ++x) hrow[x] = height->at(xmap[x], hy, 0);
         }
-        det.add_row(xyz.data(), wh ? hrow.data() : nullptr);
+        det.add_row(row, wh ? hrow.data() : nullptr);
     }
     return det.verdict();
 }

@@ -23,6 +23,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "findings/findings.hpp"
 #include "image/image.hpp"
@@ -61,15 +62,21 @@ struct NormalVerdict {
 // map as weakly tied as Metal_Rusted_010's is left as before (its evidence counts half).
 inline constexpr double kDepthMinCorrelation = 0.3;
 
-// Decodes one row of a normal map to unit-free (x, y, z) triples. `channels`: 2 (z rebuilt as
+// One decoded row of a normal map: its unit-free components as three planes (the detector reads
+// them four at a time).
+struct NormalRow {
+    std::vector<float> x, y, z;
+};
+
+// Decodes one row of a normal map into `out` (resized to `width`). `channels`: 2 (z rebuilt as
 // sqrt(1 − x² − y²), as BC5/two-channel maps), ≥ 3 (RGB, extra channels ignored). `signed_values`:
 // the file already stores −1…1 (some float maps); otherwise n = 2c − 1.
 // `rebuild_z`: Z from X and Y (sqrt(1 - x² - y²)) whatever a third channel holds (a two-channel,
 // BC5-style map whose blue is empty); with 2 channels it always is.
-void decode_normal_row(const float* src, int channels, int width, bool signed_values, float* xyz,
+void decode_normal_row(const float* src, int channels, int width, bool signed_values, NormalRow& out,
                        bool rebuild_z = false);
-// The same of a row held as 8-bit codes (unorm8_values; never signed): the floats' triples bit for bit.
-void decode_normal_row(const uint8_t* codes, int channels, int width, float* xyz, bool rebuild_z = false);
+// The same of a row held as 8-bit codes (unorm8_values; never signed): the floats' components bit for bit.
+void decode_normal_row(const uint8_t* codes, int channels, int width, NormalRow& out, bool rebuild_z = false);
 
 // Streaming detector: feed decoded rows top to bottom (and the height row of the same grid, or
 // nullptr when there is no height map). Memory: a few rows per pyramid level.
@@ -80,7 +87,7 @@ public:
     NormalConventionDetector(NormalConventionDetector&&) noexcept;
     NormalConventionDetector& operator=(NormalConventionDetector&&) noexcept;
 
-    void add_row(const float* xyz, const float* height);
+    void add_row(const NormalRow& row, const float* height);
     NormalVerdict verdict() const;
 
 private:

@@ -229,7 +229,8 @@ struct SetRun {
         const ImageInfo& ni = info(normal);
         const bool wh = height.map >= 0;
         NormalConventionDetector det(ni.width, wh, opt.detector);
-        std::vector<float> xyz(static_cast<size_t>(ni.width) * 3), hrow(wh ? static_cast<size_t>(ni.width) : 0);
+        NormalRow row;
+        std::vector<float> hrow(wh ? static_cast<size_t>(ni.width) : 0);
         std::vector<int> hx;
         if (wh) {
             hx.resize(static_cast<size_t>(ni.width));
@@ -243,8 +244,8 @@ struct SetRun {
             if (n.empty()) break;
             // The reader thread decided the decoding on the first band, before this row.
             const MapStats& ns = *stats[static_cast<size_t>(normal.map)];
-            if (n.codes) decode_normal_row(n.codes, ni.channels, ni.width, xyz.data(), ns.rebuilds_z());
-            else decode_normal_row(n.floats, ni.channels, ni.width, ns.normal_signed == 1, xyz.data(), ns.rebuilds_z());
+            if (n.codes) decode_normal_row(n.codes, ni.channels, ni.width, row, ns.rebuilds_z());
+            else decode_normal_row(n.floats, ni.channels, ni.width, ns.normal_signed == 1, row, ns.rebuilds_z());
             const Samples h = wh ? row_of(height, nearest_index(y, ni.height, info(height).height)) : Samples{};
             // The height's row on the normal's grid, its kind decided once a row.
             auto gather = [&](auto value) {
@@ -253,7 +254,7 @@ struct SetRun {
             const std::array<float, 256>& unorm = unorm8_values();
             if (h.codes) gather([&](size_t i) { return unorm[h.codes[i]]; });
             else if (h.floats) gather([&](size_t i) { return h.floats[i]; });
-            det.add_row(xyz.data(), h.empty() ? nullptr : hrow.data());
+            det.add_row(row, h.empty() ? nullptr : hrow.data());
         }
         verdict = det.verdict();
     }

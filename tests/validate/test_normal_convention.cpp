@@ -135,10 +135,10 @@ TEST(NormalConvention, StreamingEqualsWholeImage) {
     const Image n = normal_from_height(h, NormalConvention::gl, 0.5, 0.03, 9);
     const auto whole = mv::detect_normal_convention(n, &h);
     mv::NormalConventionDetector det(n.width, true);
-    std::vector<float> xyz(static_cast<size_t>(n.width) * 3);
+    mv::NormalRow row;
     for (int y = 0; y < n.height; ++y) {
-        mv::decode_normal_row(&n.pixels[n.index(0, y)], 3, n.width, false, xyz.data());
-        det.add_row(xyz.data(), &h.pixels[h.index(0, y)]);
+        mv::decode_normal_row(&n.pixels[n.index(0, y)], 3, n.width, false, row);
+        det.add_row(row, &h.pixels[h.index(0, y)]);
     }
     const auto streamed = det.verdict();
     EXPECT_EQ(streamed.convention, whole.convention);
