@@ -17,7 +17,6 @@ namespace mf::simd {
 
 using F4 = float __attribute__((vector_size(16)));
 using I4 = int32_t __attribute__((vector_size(16)));  // what comparing F4s gives: -1 true, 0 false
-using F2 = float __attribute__((vector_size(8)));
 using D2 = double __attribute__((vector_size(16)));
 
 inline F4 sqrt4(F4 v) {
@@ -39,12 +38,6 @@ inline F4 load4(const float* p) {
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-// Two floats widened to doubles.
-inline D2 load2d(const float* p) {
-    F2 v;
-    std::memcpy(&v, p, sizeof v);
-    return __builtin_convertvector(v, D2);
-}
 inline D2 low2d(F4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 0, 1), D2); }
 inline D2 high2d(F4 v) { return __builtin_convertvector(__builtin_shufflevector(v, v, 2, 3), D2); }
 
@@ -62,6 +55,7 @@ struct Sum4 {
     }
     double total() const { return lo[0] + lo[1] + hi[0] + hi[1]; }
 };
+
 // How many lanes a sum of comparison masks counted (each true lane added -1).
 inline long long count(I4 masks) { return -(static_cast<long long>(masks[0]) + masks[1] + masks[2] + masks[3]); }
 
