@@ -52,14 +52,20 @@ struct AlbedoCounts {
     // Weighted, in units of 1/kWeightUnit of a pixel:
     long long dielectric = 0, dielectric_dark = 0, dielectric_bright = 0, metal = 0, metal_dark = 0;
     void add(const AlbedoJudgement& j) {
-        if (!j.counted) return;
-        ++visible;
-        blend += j.blend() ? 1 : 0;
-        dielectric += j.dielectric();
-        dielectric_dark += j.dark ? j.dielectric() : 0;
-        dielectric_bright += j.bright ? j.dielectric() : 0;
-        metal += j.metal;
-        metal_dark += j.metal_dark ? j.metal : 0;
+        if (j.counted) add(1, j.dark ? 1 : 0, j.bright ? 1 : 0, j.metal_dark ? 1 : 0, j.metal);
+    }
+    // `pixels` counted pixels of one metal weight, of which `dark`, `bright` and `dark_metal`
+    // break those bounds (judged as AlbedoJudgement: dark and bright only where dielectric,
+    // dark_metal only where metal).
+    void add(long long pixels, long long dark, long long bright, long long dark_metal, long long metal_weight) {
+        const long long dielectric_weight = kWeightUnit - metal_weight;
+        visible += pixels;
+        blend += metal_weight > 0 && metal_weight < kWeightUnit ? pixels : 0;
+        dielectric += pixels * dielectric_weight;
+        dielectric_dark += dark * dielectric_weight;
+        dielectric_bright += bright * dielectric_weight;
+        metal += pixels * metal_weight;
+        metal_dark += dark_metal * metal_weight;
     }
     // Both counts together (a surface counted in two parts).
     void merge(const AlbedoCounts& o) {
@@ -90,6 +96,15 @@ public:
     float luminance(const uint8_t* rgb) const {
         return 0.2126f * linear8_[rgb[0]] + 0.7152f * linear8_[rgb[1]] + 0.0722f * linear8_[rgb[2]];
     }
+    // The bounds a luminance breaks, whatever its class: of one float (bools) or of four lanes
+    // (simd::F4: masks). The one place the three comparisons are written.
+    template <class Y>
+    auto bounds(Y y) const {
+        struct Broken {
+            decltype(y < dark_lin_) dark, bright, metal_dark;
+        };
+        return Broken{y<dark_lin_, y> bright_lin_, y < metal_dark_lin_};
+    }
     // luminance() of four pixels of 8-bit codes, pixel l at rgb + l * stride: lane by lane the
     // same float operations, so the same values.
     simd::F4 luminance4(const uint8_t* rgb, size_t stride) const {
@@ -100,14 +115,15 @@ public:
         return 0.2126f * channel(0) + 0.7152f * channel(1) + 0.0722f * channel(2);
     }
     // judge_weighted() of four finite luminances of one metal weight: the lanes that are too
-    // dark, too bright, and (metal) too dark.
+    // dark, too bright, and (metal) too dark, as masks.
     struct Judgements4 {
         simd::I4 dark, bright, metal_dark;
     };
     Judgements4 judge_weighted4(simd::F4 y, long long metal) const {
+        const auto b = bounds(y);
         const simd::I4 dielectric = simd::I4{} - (metal < kWeightUnit ? 1 : 0);  // all lanes -1 or 0
         const simd::I4 metallic = simd::I4{} - (metal > 0 ? 1 : 0);
-        return {dielectric & (y < dark_lin_), dielectric & (y > bright_lin_), metallic & (y < metal_dark_lin_)};
+        return {dielectric & b.dark, dielectric & b.bright, metallic & b.metal_dark};
     }
     AlbedoJudgement judge(float y, float metalness) const {
         if (!std::isfinite(y) || !std::isfinite(metalness)) return {};
@@ -116,12 +132,13 @@ public:
     // judge() of a finite luminance whose metal weight is known (a row without a metalness map:
     // metal_weight(0) for every pixel).
     AlbedoJudgement judge_weighted(float y, long long metal) const {
+        const auto b = bounds(y);
         AlbedoJudgement j;
         j.counted = true;
         j.metal = metal;
-        j.dark = j.metal < kWeightUnit && y < dark_lin_;
-        j.bright = j.metal < kWeightUnit && y > bright_lin_;
-        j.metal_dark = j.metal > 0 && y < metal_dark_lin_;
+        j.dark = j.metal < kWeightUnit && b.dark;
+        j.bright = j.metal < kWeightUnit && b.bright;
+        j.metal_dark = j.metal > 0 && b.metal_dark;
         return j;
     }
     // The metal weight of a finite metalness, compared in double as MapStats'

@@ -47,15 +47,7 @@ void AlbedoStats::add_plain_row(const uint8_t* rgb, size_t stride, size_t n, con
         c.add(classify_.judge_weighted(y, weight));
         ++plain_[i & 3][classify_.srgb_code(y)];
     }
-    // The four lanes' pixels as AlbedoCounts::add counts them, weight by weight.
-    const long long pixels = simd::count(counted), dielectric = kWeightUnit - weight;
-    c.visible += pixels;
-    c.blend += weight > 0 && weight < kWeightUnit ? pixels : 0;
-    c.dielectric += pixels * dielectric;
-    c.dielectric_dark += simd::count(dark) * dielectric;
-    c.dielectric_bright += simd::count(bright) * dielectric;
-    c.metal += pixels * weight;
-    c.metal_dark += simd::count(metal_dark) * weight;
+    c.add(simd::count(counted), simd::count(dark), simd::count(bright), simd::count(metal_dark), weight);
     counts_.merge(c);
 }
 
