@@ -248,20 +248,27 @@ for attempt in 1 2 3; do
     t=$(now)
     read -r array merge < <(submit "--requeue" "$all_shards" "$out" "--no-cache")
     say "farm 2: array job $array (--requeue) and merge job $merge; a node will be lost while its shard writes"
-    victim="" node="" task=""
-    for _ in $(seq 6000); do
-        while read -r jid k n; do
-            if [[ -e $out/.manifest.shard-$k-of-$shards.json.journal ]]; then victim=$jid task=$k node=$n; break; fi
-        done < <(squeue -h -j "$array" -t R -o '%A %K %N' 2>/dev/null)
-        [[ -n $victim ]] && break
-        sleep 0.01
+    # The first shard whose journal appears is frozen at once (its process found by its command
+    # line: the job's shell execs matforge), then named: job and node, from squeue.
+    victim="" node="" task="" shard_pids=()
+    for _ in $(seq 60000); do
+        for ((k = 0; k < shards; k++)); do
+            [[ -e $out/.manifest.shard-$k-of-$shards.json.journal ]] || continue
+            mapfile -t shard_pids < <(pgrep -f -- " --shard $k/$shards\$")
+            ((${#shard_pids[@]})) && kill -STOP "${shard_pids[@]}" 2>/dev/null || true  # frozen mid-write
+            task=$k
+            break 2
+        done
+        sleep 0.001
     done
-    [[ -n $victim ]] || { say "farm 2: no shard was seen writing"; exit 1; }
-    shard_pids=()
-    for p in /proc/[0-9]*; do
-        if grep -qxz "SLURM_JOB_ID=$victim" "$p/environ" 2>/dev/null; then shard_pids+=("${p#/proc/}"); fi
-    done
-    ((${#shard_pids[@]})) && kill -STOP "${shard_pids[@]}" 2>/dev/null || true  # frozen mid-write
+    [[ -n $task ]] || { say "farm 2: no shard was seen writing"; exit 1; }
+    read -r victim node < <(squeue -h -j "$array" -t R -o '%A %K %N' 2>/dev/null | awk -v k="$task" '$2 == k { print $1, $3 }') || true
+    if [[ -z $victim || ${#shard_pids[@]} == 0 ]] && ((attempt < 3)); then
+        say "farm 2: shard $task finished before it was stopped (attempt $attempt); again"
+        wait_jobs "$array,$merge"
+        continue
+    fi
+    [[ -n $victim ]] || { say "farm 2: shard $task was seen writing but is not running"; exit 1; }
     temps=$(find "$out" -name "*.matforge-tmp-*" | wc -l)
     kill -9 "$(cat "$work/slurm/slurmd-$node.pid")"
     lost_at=$(now)
