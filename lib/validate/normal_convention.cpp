@@ -148,8 +148,6 @@ struct NormalConventionDetector::Impl {
         ++L.rows;
         if (L.rows >= 3) {
             // Central differences at the middle row (slot 1).
-            // Accumulators in locals (the members would be stored back every texel), one loop
-            // per statistic; the same additions in the same order: bit-identical sums.
             const float *p0 = L.p[0].data(), *p1 = L.p[1].data(), *p2 = L.p[2].data();
             const float* q1 = L.q[1].data();
             // Central differences at x of the middle row: ∂p/∂y and ∂q/∂x for the curl; with a
@@ -229,9 +227,8 @@ void NormalConventionDetector::add_row(const NormalRow& row, const float* height
         sqq.add_squares(keep(qv, ok));
         counted += ok;
     }
-    const double sp_total = sp.total(), sq_total = sq.total(), spp_total = spp.total(), sqq_total = sqq.total();
-    const long long ns = count(counted);
-    impl_->sp += sp_total, impl_->sq += sq_total, impl_->spp += spp_total, impl_->sqq += sqq_total, impl_->ns += ns;
+    impl_->sp += sp.total(), impl_->sq += sq.total(), impl_->spp += spp.total(), impl_->sqq += sqq.total();
+    impl_->ns += count(counted);
     // A missing height row (the height map ended early) reads as flat: no evidence, no crash.
     std::vector<float> flat;
     if (impl_->with_height && !height) {

@@ -23,6 +23,18 @@ struct Source {
     int channel = 0;  // channel holding the value
 };
 
+// Channel `channel` of the pixels at xs[i] of a row of `channels`-channel samples, into out[i]:
+// another map's row resampled onto this one's grid, its kind (codes or floats) decided once a row,
+// not a branch per sample through Samples::operator[].
+void gather(const Samples& row, const std::vector<int>& xs, size_t channels, size_t channel, float* out) {
+    auto each = [&](auto value) {
+        for (size_t x = 0; x < xs.size(); ++x) out[x] = value(static_cast<size_t>(xs[x]) * channels + channel);
+    };
+    const std::array<float, 256>& unorm = unorm8_values();
+    if (row.codes) each([&](size_t i) { return unorm[row.codes[i]]; });
+    else each([&](size_t i) { return row.floats[i]; });
+}
+
 // The first map of input role `r` whose header could be read, -1 when none.
 int first_readable(const std::vector<MapInput>& maps, const std::vector<bool>& readable, Role r) {
     for (size_t i = 0; i < maps.size(); ++i)
@@ -195,11 +207,7 @@ struct SetRun {
         if (!m.empty()) {
             const auto mc = static_cast<size_t>(info(metal).channels), ch = static_cast<size_t>(metal.channel);
             metal_row.resize(w);
-            const std::array<float, 256>& unorm = unorm8_values();
-            if (m.codes)  // the kind decided once a row
-                for (size_t x = 0; x < w; ++x) metal_row[x] = unorm[m.codes[static_cast<size_t>(mx[x]) * mc + ch]];
-            else
-                for (size_t x = 0; x < w; ++x) metal_row[x] = m.floats[static_cast<size_t>(mx[x]) * mc + ch];
+            gather(m, mx, mc, ch, metal_row.data());
         }
         const float* mv = m.empty() ? nullptr : metal_row.data();
         if (o.empty()) {
@@ -247,13 +255,7 @@ struct SetRun {
             if (n.codes) decode_normal_row(n.codes, ni.channels, ni.width, row, ns.rebuilds_z());
             else decode_normal_row(n.floats, ni.channels, ni.width, ns.normal_signed == 1, row, ns.rebuilds_z());
             const Samples h = wh ? row_of(height, nearest_index(y, ni.height, info(height).height)) : Samples{};
-            // The height's row on the normal's grid, its kind decided once a row.
-            auto gather = [&](auto value) {
-                for (size_t x = 0; x < hrow.size(); ++x) hrow[x] = value(static_cast<size_t>(hx[x]) * hc + hch);
-            };
-            const std::array<float, 256>& unorm = unorm8_values();
-            if (h.codes) gather([&](size_t i) { return unorm[h.codes[i]]; });
-            else if (h.floats) gather([&](size_t i) { return h.floats[i]; });
+            if (!h.empty()) gather(h, hx, hc, hch, hrow.data());
             det.add_row(row, h.empty() ? nullptr : hrow.data());
         }
         verdict = det.verdict();
