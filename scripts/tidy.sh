@@ -7,7 +7,8 @@
 # Only the files that changed since they last passed are analysed: a file passes once for one
 # key, the SHA-256 of clang-tidy's version, .clang-tidy, the file's compile flags and its
 # preprocessed text (the file and every header it includes, paths taken relative to the clone).
-# The keys of passed files are kept in $MATFORGE_TIDY_CACHE (default ~/.cache/matforge/tidy;
+# The keys of passed files are kept in $MATFORGE_TIDY_CACHE (default ~/.cache/matforge-tidy, beside
+# matforge's result cache, never in it: ingest refuses a cache folder that holds other files;
 # .ci/run keeps it outside the clone, between CI runs); MATFORGE_TIDY_CACHE=none analyses all.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -18,7 +19,7 @@ source "$root/scripts/bootstrap.sh"
 configure "$build" -DCMAKE_UNITY_BUILD=OFF -DMATFORGE_TESTS=OFF -DMATFORGE_BENCHMARKS=OFF
 cmake --build "$build" --target matforge_generated >"$build/generated.log" 2>&1 || { cat "$build/generated.log" >&2; exit 1; }
 db=$build/compile_commands.json
-cache=${MATFORGE_TIDY_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/matforge/tidy}
+cache=${MATFORGE_TIDY_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/matforge-tidy}
 
 exec python3 - "$db" "$root" "$cache" "$(nproc)" <<'PY'
 import concurrent.futures, hashlib, json, os, re, shlex, subprocess, sys, time
