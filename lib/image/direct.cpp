@@ -133,9 +133,9 @@ bool decode_or_throw(const InputFile& in, Raw& raw) {
         std::vector<unsigned char> file = whole(src);
         webp::Plain p;
         if (file.empty() || !webp::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, 3))
+            !within_limits(p.width, p.height, p.channels))
             return false;
-        raw.info = info_of(p.width, p.height, 3, 8, kWebp);
+        raw.info = info_of(p.width, p.height, p.channels, 8, kWebp);
         raw.bit_depth = 8;
         raw.samples = std::move(p.pixels);
         return true;
@@ -200,9 +200,9 @@ bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<Stat
         const std::vector<unsigned char> head = src.bytes(std::min<uint64_t>(src.size, 4096));
         webp::Plain p;
         if (head.empty() || !webp::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, 3))
+            !within_limits(p.width, p.height, p.channels))
             return false;
-        info = info_of(p.width, p.height, 3, 8, kWebp);
+        info = info_of(p.width, p.height, p.channels, 8, kWebp);
         stated = StatedColorSpace{"sRGB", kWebp};
         return true;
     }

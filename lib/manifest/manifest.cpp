@@ -283,6 +283,8 @@ json to_json(const Input& in) {
     if (in.is_float) j["float"] = true;
     if (in.stored_as_depth) j["stored_as_depth"] = true;
     if (in.unused) j["unused"] = true;
+    // What each channel of a packed input held: from the role (packed_layout), never stored apart.
+    for (const auto& [channel, what] : packing_channels(in.role)) j["packing"][channel] = what;
     if (in.normal) {
         j["normal_convention"] = convention_name(in.normal->convention);
         if (!in.normal->source.empty()) j["normal_convention_source"] = in.normal->source;

@@ -36,6 +36,7 @@ int format_rank(std::string_view file) {
 
 struct Ranked {
     Candidate cand;
+    bool stray = false;   // another material's map beside the one a sidecar names for the role
     int normal_rank = 0;  // 0 policy's convention, 1 other known, 2 unknown
     bool over_limit = false;
     int size = 0;  // longest side, header else name hint; 0 unknown
@@ -44,7 +45,7 @@ struct Ranked {
 
     // Smaller is better.
     auto key() const {
-        return std::make_tuple(normal_rank, over_limit, over_limit ? size : -size, format, -depth,
+        return std::make_tuple(stray, normal_rank, over_limit, over_limit ? size : -size, format, -depth,
                                std::string_view(cand.file));
     }
 };
@@ -68,6 +69,9 @@ Ranked rank_candidate(const Candidate& c, const ChoicePolicy& policy) {
 // Why `a` ranks before `b`: the first criterion that separates them.
 std::string why_first(const Ranked& a, const Ranked& b, const ChoicePolicy& policy) {
     const auto conv = [](const Ranked& r) { return std::string(convention_name(r.cand.match.normal)); };
+    if (a.stray != b.stray)
+        return "the sidecar " + a.cand.match.sidecar + " names it, and " + b.cand.file +
+               " is a map of another material name";
     if (a.normal_rank != b.normal_rank)
         return a.normal_rank == 0 ? "its normal convention (" + conv(a) + ") is the preset's"
                                   : "its name states a normal convention (" + conv(a) + ")";
@@ -200,16 +204,89 @@ std::string_view family_view(std::string_view name) {
     return naming::kFamilies[naming::kGenericFamily].name;
 }
 
+// Unreal-style letters whose meaning differs between families: Epic's style guide has "_D" base
+// colour and "_A" opacity, Megascans' own export "_A" albedo and "_D" displacement. The pixels
+// decide: a colour "_A" is the albedo (an opacity mask is never a colour image), and a grey
+// "_D" beside it is then the displacement.
+void decide_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const ColourProbe& colour) {
+    if (!colour) return;
+    const auto letter = [](const Ranked& r, std::string_view rule) { return r.cand.match.rule == rule; };
+    auto take = [&](Role from, std::string_view rule, Role to, const char* new_rule, bool want_colour) {
+        bool moved = false;
+        auto it = by_role.find(from);
+        if (it == by_role.end()) return false;
+        auto& list = it->second;
+        for (size_t i = 0; i < list.size();) {
+            if (!letter(list[i], rule) || colour(list[i].cand.file) != want_colour) {
+                ++i;
+                continue;
+            }
+            Ranked r = std::move(list[i]);
+            list.erase(list.begin() + static_cast<std::ptrdiff_t>(i));
+            r.cand.match.role = to;
+            r.cand.match.family = "megascans";
+            r.cand.match.rule = new_rule;
+            by_role[to].push_back(std::move(r));
+            moved = true;
+        }
+        if (list.empty()) by_role.erase(from);
+        return moved;
+    };
+    if (take(Role::opacity, "unreal:_A", Role::albedo, "megascans:_A (a colour image: the albedo, not an opacity mask)",
+             true))
+        take(Role::albedo, "unreal:_D", Role::height,
+             "megascans:_D (a grey image beside a colour _A albedo: the displacement)", false);
+}
+
+// Object-space normal maps (baked for one mesh) are never the material's tangent-space normal
+// map: those the name calls object space, and, beside one the name calls tangent space, any
+// other normal map whose name states no space or convention ("rock_nm" beside "rock_nm_tangent").
+void keep_object_space_out(std::map<Role, std::vector<Ranked>>& by_role, std::vector<Finding>& unrecognized) {
+    const auto it = by_role.find(Role::normal);
+    if (it == by_role.end()) return;
+    auto& list = it->second;
+    const auto tangent = std::find_if(list.begin(), list.end(),
+                                      [](const Ranked& r) { return r.cand.match.space == NormalSpace::tangent; });
+    const std::string tangent_file = tangent == list.end() ? std::string() : tangent->cand.file;
+    std::erase_if(list, [&](const Ranked& r) {
+        const NameMatch& m = r.cand.match;
+        std::string why;
+        if (m.space == NormalSpace::object) why = "an object-space normal map (its name says so)";
+        else if (!tangent_file.empty() && m.space == NormalSpace::unknown && m.normal == NormalConvention::unknown)
+            why = "taken as the object-space normal map beside the tangent-space " + tangent_file;
+        if (why.empty()) return false;
+        unrecognized.push_back(unrecognized_finding(
+            r.cand.file, why + "; kept out of the normal slot (the material's normal map is tangent space)"));
+        return true;
+    });
+    if (list.empty()) by_role.erase(it);
+}
+
+// Where a sidecar names a file for a role, a candidate of another material name for that role
+// is a stray (another id's map left in the folder): it ranks after every named one.
+void mark_strays(std::map<Role, std::vector<Ranked>>& by_role) {
+    for (auto& [role, list] : by_role) {
+        std::set<std::string> named_stems;
+        for (const auto& r : list)
+            if (!r.cand.match.sidecar.empty()) named_stems.insert(fold_case(material_stem(r.cand.file)));
+        if (named_stems.empty()) continue;
+        for (auto& r : list)
+            r.stray = r.cand.match.sidecar.empty() && !named_stems.count(fold_case(material_stem(r.cand.file)));
+    }
+}
+
 }  // namespace
 
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
-                          const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars) {
+                          const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars,
+                          const ColourProbe& colour) {
     SetDiscovery out;
     std::vector<std::string> sorted = files;  // directory order must not change the result
     std::sort(sorted.begin(), sorted.end());
     sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
 
+    const bool billboards = billboards_only(sorted);  // a billboard's own folder: its maps are maps
     std::set<std::string> used_sidecars;
     const auto from_sidecar = sidecar_matches(sorted, sidecars, used_sidecars);
     std::map<std::string, const SidecarRoles*> sidecar_files;
@@ -237,6 +314,7 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
             continue;
         }
         auto a = naming::analyse(file);
+        if (billboards && a.clutter && a.clutter->kind == naming::ClutterKind::billboard) a.clutter.reset();
         const auto sc = from_sidecar.find(file);
         if (sc != from_sidecar.end() && !(a.clutter && a.clutter->kind == naming::ClutterKind::billboard)) {
             // A sidecar of no naming family (MaterialX) that agrees with the name adds its evidence
@@ -277,6 +355,15 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
         tags.push_back(std::move(*a.tag));
     }
     out.convention = vote_convention(tags);
+    decide_by_pixels(by_role, colour);
+    keep_object_space_out(by_role, unrecognized);
+    mark_strays(by_role);
+    // The engine's normal convention where the name states none (the pixels still decide first).
+    const NormalConvention engine = out.convention == "unity"    ? NormalConvention::gl
+                                    : out.convention == "unreal" ? NormalConvention::dx
+                                                                 : NormalConvention::unknown;
+    if (const auto n = by_role.find(Role::normal); n != by_role.end())
+        for (auto& r : n->second) r.cand.match.engine_normal = engine;
     // An untagged image named as the set beside tagged maps of that name ("Platform2.jpg" beside
     // "PLatform2_Normal.jpg" and "Platform2_disp.jpg": tutorial and hand-made game folders) is
     // the colour map, when the set has no other and it is the only such file. Names compare as

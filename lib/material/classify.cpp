@@ -188,6 +188,7 @@ std::optional<RoleTag> find_role_tag(const std::vector<Token>& tokens) {
     tag.match.role = chosen->rule->role;
     tag.match.normal = chosen->rule->normal;
     tag.match.opacity_in_alpha = chosen->rule->opacity_in_alpha;
+    tag.match.space = chosen->rule->space;
     tag.match.family = std::string(kFamilies[chosen->family].name);
     tag.match.rule = tag.match.family + ":" + std::string(chosen->rule->display);
     return tag;
@@ -265,11 +266,26 @@ bool is_image_file(std::string_view filename) {
 
 bool is_clutter(std::string_view filename) { return naming::analyse(filename).clutter.has_value(); }
 
-std::optional<NameMatch> classify_name(std::string_view filename) {
+std::optional<NameMatch> classify_name(std::string_view filename) { return classify_name(filename, false); }
+
+std::optional<NameMatch> classify_name(std::string_view filename, bool billboards_are_maps) {
     if (!is_image_file(filename)) return std::nullopt;
     auto a = naming::analyse(filename);
-    if (a.clutter || !a.tag) return std::nullopt;
+    const bool billboard = a.clutter && a.clutter->kind == naming::ClutterKind::billboard;
+    if ((a.clutter && !(billboard && billboards_are_maps)) || !a.tag) return std::nullopt;
     return std::move(a.tag->match);
+}
+
+bool billboards_only(const std::vector<std::string>& files) {
+    bool billboard_map = false;
+    for (const auto& f : files) {
+        if (!is_image_file(f)) continue;
+        const auto a = naming::analyse(f);
+        if (!a.tag) continue;
+        if (!a.clutter) return false;  // a map of the asset itself
+        billboard_map = billboard_map || a.clutter->kind == naming::ClutterKind::billboard;
+    }
+    return billboard_map;
 }
 
 std::string material_stem(std::string_view filename) {

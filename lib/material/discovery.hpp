@@ -58,6 +58,12 @@ struct NameMatch {
     // roughness), an emissiveTexture whose emissiveFactor is 0 (emissive). Sorted, in Role order.
     std::vector<Role> unused;
     std::string sidecar;  // the sidecar file that stated the role; empty when the name did
+    // A normal map's space as its name states it ("_nm_tangent", "_normal_os"): an object-space
+    // map is never the material's (tangent-space) normal map.
+    NormalSpace space = NormalSpace::unknown;
+    // The convention the set's engine family implies where the name states none (Unity: gl,
+    // Unreal: dx); used only when the pixels do not decide (validate's convention verdict).
+    NormalConvention engine_normal = NormalConvention::unknown;
 };
 
 // True for extensions OpenImageIO reads that matforge treats as maps
@@ -70,6 +76,14 @@ bool is_clutter(std::string_view filename);
 
 // The role a file name states, or nullopt (clutter, non-image, no role tag).
 std::optional<NameMatch> classify_name(std::string_view filename);
+
+// Whether every image of `files` (one folder's, or one set's) that names a role is a billboard
+// map ("<id>_Billboard_Albedo"): such a folder is the billboard's own material, and its maps are
+// maps. Beside the asset's own maps, billboard maps are clutter (a plant's far-LOD impostor).
+bool billboards_only(const std::vector<std::string>& files);
+
+// classify_name, with billboard maps read as maps when `billboards_are_maps`.
+std::optional<NameMatch> classify_name(std::string_view filename, bool billboards_are_maps);
 
 // The material name part of a file name: the tokens before the role tag, with resolution and
 // format tags removed, joined by '_' in their original case ("Bricks059_1K-PNG_Color.png" →
@@ -176,9 +190,17 @@ struct SetDiscovery {
 // file a sidecar names takes the sidecar's role (a Megascans JSON before a glTF, then the order
 // given); a sidecar that named at least one file of the set is not reported, one that named none
 // is UNRECOGNIZED_FILE.
+// `colour(file)`: whether the file's pixels are colour (R, G, B apart), nullopt when unknown;
+// asked only of names whose role the pixels decide: Unreal-style "T_<name>_A" and "_D" (a
+// colour "_A" is Megascans' albedo, never an opacity mask; a grey "_D" beside it is the
+// displacement). Object-space normal maps ("_nm_os", or an untagged "_nm" beside "_nm_tangent")
+// never take the normal role: UNRECOGNIZED_FILE (info) says why. A file a sidecar names for a
+// role outranks a file of another material name for that role (a stray map of another id).
+using ColourProbe = std::function<std::optional<bool>(const std::string&)>;
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
-                          const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars = {});
+                          const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars = {},
+                          const ColourProbe& colour = {});
 
 // ---------------------------------------------------------------------------------------------
 // Grouping a flat folder into materials

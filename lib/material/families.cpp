@@ -83,6 +83,12 @@ constexpr Rule kMegascans[] = {
     {"opacity", opacity, kU, Case::capital, false, "_Opacity"},
     {"translucency", translucency, kU, Case::capital, false, "_Translucency"},
     {"ort", Role::ort, kU, Case::any, false, "_ORT"},  // only Megascans packs ORT
+    // Megascans assets named the Unreal way outside Fab ("T_<name>_A/_N/_R/_O/_T/_D"): A is the
+    // albedo and D the displacement there, the reverse of Epic's style guide (unreal below:
+    // D base color, A opacity). The letters A and D are decided by the pixels as well
+    // (discover_set: a colour image is never an opacity mask); O and T are Megascans' own.
+    {"o", opacity, kU, Case::upper, false, "_O", Need::unreal_suffix},
+    {"t", translucency, kU, Case::upper, false, "_T", Need::unreal_suffix},
     // Fab's current names ("Bracken_Fern_okdr22_4K_BaseColor").
     {"base color", albedo, kU, Case::capital, true, "_BaseColor"},
     // The Unreal export ("T_tbdpec3r_4K_B-O"): B base color, B-O base color with opacity in A,
@@ -113,6 +119,25 @@ constexpr Rule kUnreal[] = {
     {"h", height, kU, Case::upper, false, "_H", Need::unreal_suffix},
     {"a", opacity, kU, Case::upper, false, "_A", Need::unreal_suffix},
     {"s", specular, kU, Case::upper, false, "_S", Need::unreal_suffix},
+};
+
+// Unity's shaders and the Substance/Unity export templates ("<Name>_MetallicSmoothness",
+// "_AlbedoTransparency", "_MaskMap"): Standard/URP metallic, specular and HDRP Lit. The plain
+// tags a Unity export writes beside them are listed too, so that such a set votes "unity"
+// (its normal maps are +Y: Unity's convention).
+constexpr Rule kUnity[] = {
+    {"albedo transparency", albedo, kU, Case::any, true, "_AlbedoTransparency", Need::none, true},
+    {"metallic smoothness", metallic_smoothness, kU, Case::any, true, "_MetallicSmoothness"},
+    {"metallic gloss map", metallic_smoothness, kU, Case::any, true, "_MetallicGlossMap"},
+    {"metallic gloss", metallic_smoothness, kU, Case::any, true, "_MetallicGloss"},
+    {"specular smoothness", specular_smoothness, kU, Case::any, true, "_SpecularSmoothness"},
+    {"spec gloss map", specular_smoothness, kU, Case::any, true, "_SpecGlossMap"},
+    {"mask map", mask_map, kU, Case::any, true, "_MaskMap"},
+    {"albedo", albedo, kU, Case::capital, false, "_Albedo"},
+    {"normal", normal, kU, Case::capital, false, "_Normal"},
+    {"occlusion", occlusion, kU, Case::capital, false, "_Occlusion"},
+    {"emission", emissive, kU, Case::capital, false, "_Emission"},
+    {"height", height, kU, Case::capital, false, "_Height"},
 };
 
 constexpr Rule kSubstance[] = {
@@ -204,6 +229,39 @@ constexpr Rule kGeneric[] = {
     {"translucency", translucency, kU, Case::any, false, "translucency"},
     {"translucent", translucency, kU, Case::any, false, "translucent"},
     {"cavity", cavity, kU, Case::any, false, "cavity"},
+    // Packed maps whose name states the order of their channels (Substance's engine templates,
+    // game pipelines): letters only as the name's last word, words joined or apart.
+    {"mra", mra, kU, Case::any, false, "_MRA", Need::at_end},
+    {"mrao", mra, kU, Case::any, false, "_MRAO", Need::at_end},
+    {"rma", rma, kU, Case::any, false, "_RMA", Need::at_end},
+    {"rmao", rma, kU, Case::any, false, "_RMAO", Need::at_end},
+    {"aorm", orm, kU, Case::any, false, "_AORM", Need::at_end},
+    {"metallic roughness ao", mra, kU, Case::any, false, "metallic_roughness_ao"},
+    {"metallic roughness occlusion", mra, kU, Case::any, false, "metallic_roughness_occlusion"},
+    {"metalness roughness ao", mra, kU, Case::any, false, "metalness_roughness_ao"},
+    {"roughness metallic ao", rma, kU, Case::any, false, "roughness_metallic_ao"},
+    {"roughness metallic occlusion", rma, kU, Case::any, false, "roughness_metallic_occlusion"},
+    {"roughness metallic", rm, kU, Case::any, true, "RoughnessMetallic"},
+    {"ao roughness metallic", orm, kU, Case::any, false, "ao_roughness_metallic"},
+    {"ambient occlusion roughness metallic", orm, kU, Case::any, true, "AmbientOcclusionRoughnessMetallic"},
+    // A normal map's space named: a tangent-space map is the normal map; an object-space one
+    // (baked for one mesh, "_nm" beside "_nm_tangent") never is (discover_set).
+    {"nm tangent", normal, kU, Case::any, false, "_nm_tangent", Need::none, false, NormalSpace::tangent},
+    {"normal tangent", normal, kU, Case::any, false, "_normal_tangent", Need::none, false, NormalSpace::tangent},
+    {"tangent normal", normal, kU, Case::any, false, "_tangent_normal", Need::none, false, NormalSpace::tangent},
+    {"tangent space normal", normal, kU, Case::any, false, "_tangent_space_normal", Need::none, false,
+     NormalSpace::tangent},
+    {"normal ts", normal, kU, Case::any, false, "_normal_ts", Need::none, false, NormalSpace::tangent},
+    {"nm ts", normal, kU, Case::any, false, "_nm_ts", Need::none, false, NormalSpace::tangent},
+    {"nm object", normal, kU, Case::any, false, "_nm_object", Need::none, false, NormalSpace::object},
+    {"normal object", normal, kU, Case::any, false, "_normal_object", Need::none, false, NormalSpace::object},
+    {"object normal", normal, kU, Case::any, false, "_object_normal", Need::none, false, NormalSpace::object},
+    {"object space normal", normal, kU, Case::any, false, "_object_space_normal", Need::none, false,
+     NormalSpace::object},
+    {"normal os", normal, kU, Case::any, false, "_normal_os", Need::none, false, NormalSpace::object},
+    {"nm os", normal, kU, Case::any, false, "_nm_os", Need::none, false, NormalSpace::object},
+    {"world normal", normal, kU, Case::any, false, "_world_normal", Need::none, false, NormalSpace::object},
+    {"normal world", normal, kU, Case::any, false, "_normal_world", Need::none, false, NormalSpace::object},
     // Game pipelines' two-letter tags, only as the name's last word ("Crate_BC", "Crate_NM_2K").
     {"bc", albedo, kU, Case::any, false, "_BC", Need::at_end},
     {"nm", normal, kU, Case::any, false, "_NM", Need::at_end},
@@ -223,13 +281,14 @@ constexpr Rule kGeneric[] = {
 
 }  // namespace
 
-const std::array<Family, 8> kFamilies{{
+const std::array<Family, 9> kFamilies{{
     {"ambientcg", kAmbientCG, [](const Layout& l) { return l.res_format_pair; }},
     {"polyhaven", kPolyHaven, [](const Layout& l) { return l.res_after; }},
     {"texturescom", kTexturesCom, [](const Layout& l) { return l.res_after || l.poliigon_prefix; }},
     {"megascans", kMegascans, [](const Layout& l) { return l.res_before; }},
     {"substance", kSubstance, [](const Layout& l) { return l.no_resolution; }},
     {"gltf", kGltf, [](const Layout& l) { return l.no_resolution; }},
+    {"unity", kUnity, [](const Layout& l) { return l.no_resolution && !l.unreal_prefix; }},
     {"unreal", kUnreal, [](const Layout& l) { return l.unreal_prefix; }},
     {"generic", kGeneric, [](const Layout&) { return false; }},
 }};

@@ -48,7 +48,8 @@ struct Rule {
     bool joined;  // the tokens must form one camel-case word ("NormalGL", not "Normal_GL")
     std::string_view display;
     Need need = Need::none;
-    bool opacity_in_alpha = false;  // the map's alpha channel is opacity ("_B-O": base color + opacity)
+    bool opacity_in_alpha = false;             // the map's alpha channel is opacity ("_B-O": base color + opacity)
+    NormalSpace space = NormalSpace::unknown;  // a normal map's name says tangent or object space
 };
 
 // How a name is laid out around its role tag; each family has a typical layout, used to
@@ -69,7 +70,7 @@ struct Family {
 };
 
 // Priority order: also the tie-break when nothing else decides. The generic family is last.
-extern const std::array<Family, 8> kFamilies;
-inline constexpr size_t kGenericFamily = 7;
+extern const std::array<Family, 9> kFamilies;
+inline constexpr size_t kGenericFamily = 8;
 
 }  // namespace mf::naming

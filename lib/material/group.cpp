@@ -76,9 +76,11 @@ std::vector<FileGroup> group_files(const std::vector<std::string>& files, const 
     std::map<std::string, FileGroup> groups;  // by case-insensitive stem, separators unified
     std::map<std::string, std::vector<std::pair<std::string, Spelling>>> spellings;
     std::vector<std::string> loose;
+    const bool billboards = billboards_only(files);
     for (const auto& file : files) {
         const auto a = naming::analyse(file);
-        const bool has_role = is_image_file(file) && !a.clutter && a.tag;
+        const bool clutter = a.clutter && !(billboards && a.clutter->kind == naming::ClutterKind::billboard);
+        const bool has_role = is_image_file(file) && !clutter && a.tag;
         const std::string stem = has_role ? naming::join_name(a.tokens, a.name_end) : std::string();
         if (stem.empty()) {
             loose.push_back(file);

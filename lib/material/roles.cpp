@@ -21,6 +21,12 @@ constexpr std::array<RoleTraits, kRoleCount> kTraits{{
     {Role::ort, "ort", false, false, 3, true},
     {Role::cavity, "cavity", false, false, 1, false},
     {Role::translucency, "translucency", false, false, 1, false},
+    {Role::metallic_smoothness, "metallic_smoothness", false, false, 4, true},
+    {Role::mask_map, "mask_map", false, false, 4, true},
+    {Role::specular_smoothness, "specular_smoothness", false, false, 4, true},
+    {Role::mra, "mra", false, false, 3, true},
+    {Role::rma, "rma", false, false, 3, true},
+    {Role::rm, "rm", false, false, 2, true},
 }};
 }  // namespace
 
@@ -50,16 +56,51 @@ std::optional<NormalConvention> convention_from_name(std::string_view name) {
     return std::nullopt;
 }
 
-std::array<std::optional<Role>, 3> packed_layout(Role packed) {
+PackedLayout packed_layout(Role packed) {
+    using R = Role;
+    constexpr PackedChannel occ{R::occlusion}, rough{R::roughness}, metal{R::metalness};
+    constexpr PackedChannel smooth{R::roughness, true};
     switch (packed) {
-        case Role::orm: return {Role::occlusion, Role::roughness, Role::metalness};
+        case R::orm: return {occ, rough, metal, std::nullopt};
         // glTF 2.0 §3.9.2: metallicRoughnessTexture, G = roughness, B = metalness, R ignored.
-        case Role::metallic_roughness: return {std::nullopt, Role::roughness, Role::metalness};
+        case R::metallic_roughness: return {std::nullopt, rough, metal, std::nullopt};
         // Megascans ORT: B is translucency, which is not metalness.
-        case Role::ort: return {Role::occlusion, Role::roughness, Role::translucency};
+        case R::ort: return {occ, rough, PackedChannel{R::translucency}, std::nullopt};
+        // Unity's Standard/URP shader: _MetallicGlossMap R = metallic, A = smoothness.
+        case R::metallic_smoothness: return {metal, std::nullopt, std::nullopt, smooth};
+        // HDRP Lit's _MaskMap: R metallic, G occlusion, B detail mask, A smoothness.
+        case R::mask_map: return {metal, occ, std::nullopt, smooth};
+        // Standard (Specular setup): _SpecGlossMap RGB = specular colour, A = smoothness.
+        case R::specular_smoothness: return {std::nullopt, std::nullopt, std::nullopt, smooth};
+        case R::mra: return {metal, rough, occ, std::nullopt};
+        case R::rma: return {rough, metal, occ, std::nullopt};
+        case R::rm: return {rough, metal, std::nullopt, std::nullopt};
         default: break;
     }
-    return {std::nullopt, std::nullopt, std::nullopt};
+    return {};
+}
+
+std::vector<std::pair<std::string, std::string>> packing_channels(Role packed) {
+    static constexpr const char* kCh[] = {"R", "G", "B", "A"};
+    std::vector<std::pair<std::string, std::string>> out;
+    const auto layout = packed_layout(packed);
+    for (size_t i = 0; i < layout.size(); ++i)
+        if (layout[i])
+            out.emplace_back(kCh[i], layout[i]->invert ? "smoothness" : std::string(role_name(layout[i]->role)));
+    return out;
+}
+
+const std::vector<Role>& packed_roles() {
+    static const std::vector<Role> kPacked{Role::orm,
+                                           Role::metallic_roughness,
+                                           Role::ort,
+                                           Role::mra,
+                                           Role::rma,
+                                           Role::rm,
+                                           Role::mask_map,
+                                           Role::metallic_smoothness,
+                                           Role::specular_smoothness};
+    return kPacked;
 }
 
 }  // namespace mf

@@ -2,7 +2,10 @@
 #pragma once
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace mf {
 
@@ -24,11 +27,19 @@ enum class Role {
     ort,                 // Megascans packed: R occlusion, G roughness, B translucency
     cavity,              // Megascans cavity: reported, not packed
     translucency,        // Megascans / Poliigon SSS: reported, not packed
+    // Packed inputs of engine exports (docs/ingest.md "Packed maps"); smoothness is inverted.
+    metallic_smoothness,  // Unity Standard/URP: R metalness, A smoothness (G, B unused)
+    mask_map,             // Unity HDRP: R metalness, G occlusion, B detail mask (unused), A smoothness
+    specular_smoothness,  // Unity specular workflow: RGB specular (kept), A smoothness
+    mra,                  // "_MRA", "_MRAO": R metalness, G roughness, B occlusion
+    rma,                  // "_RMA", "_RMAO": R roughness, G metalness, B occlusion
+    rm,                   // "_RoughnessMetallic": R roughness, G metalness
 };
-inline constexpr int kRoleCount = 15;
+inline constexpr int kRoleCount = 21;
 inline constexpr int kOutputRoleCount = 8;
 
-enum class NormalConvention { unknown, gl, dx };  // gl: +Y (green up), dx: -Y
+enum class NormalConvention { unknown, gl, dx };      // gl: +Y (green up), dx: -Y
+enum class NormalSpace { unknown, tangent, object };  // what a normal map's name says of its space
 
 struct RoleTraits {
     Role role;
@@ -47,7 +58,19 @@ std::optional<NormalConvention> convention_from_name(std::string_view name);
 inline bool is_output_role(Role r) { return traits(r).output; }
 inline bool is_color_role(Role r) { return traits(r).color; }
 
-// Channels of a packed input: which output role each of R, G, B holds (nullopt = not unpacked).
-std::array<std::optional<Role>, 3> packed_layout(Role packed);
+// One channel of a packed input: the role it holds, stored inverted (smoothness = 1 - roughness).
+struct PackedChannel {
+    Role role;
+    bool invert = false;
+};
+// Channels of a packed input: what each of R, G, B, A holds (nullopt = not unpacked: unused,
+// a detail mask, the specular colour). The one owner of every packing matforge reads.
+using PackedLayout = std::array<std::optional<PackedChannel>, 4>;
+PackedLayout packed_layout(Role packed);
+// The packing as words, channel by channel: {"R", "metalness"}, {"A", "smoothness"} (an
+// inverted channel is named smoothness). Empty for a role that is not packed.
+std::vector<std::pair<std::string, std::string>> packing_channels(Role packed);
+// Every packed input role, in routing preference order (the first holding a role feeds it).
+const std::vector<Role>& packed_roles();
 
 }  // namespace mf

@@ -4,10 +4,11 @@ namespace mf {
 
 std::vector<Route> route_candidates(Role out) {
     std::vector<Route> list{{out, -1, false, false}};
-    for (const Role packed : {Role::orm, Role::metallic_roughness, Role::ort}) {
+    for (const Role packed : packed_roles()) {
         const auto layout = packed_layout(packed);
-        for (int ch = 0; ch < 3; ++ch)
-            if (layout[static_cast<size_t>(ch)] == out) list.push_back({packed, ch, false, false});
+        for (int ch = 0; ch < 4; ++ch)
+            if (const auto& c = layout[static_cast<size_t>(ch)]; c && c->role == out)
+                list.push_back({packed, ch, c->invert, false});
     }
     if (out == Role::roughness) list.push_back({Role::gloss, -1, true, false});
     return list;

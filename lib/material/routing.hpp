@@ -3,7 +3,8 @@
 // and validate always judge the same maps.
 //
 // Preference, for every output role: its dedicated map, then a packed input holding it (orm,
-// metallic_roughness, ort — see packed_layout()), then gloss (inverted) for roughness; opacity
+// metallic_roughness, ort, the engines' packings — see packed_layout(); a smoothness channel is
+// read inverted), then gloss (inverted) for roughness; opacity
 // with no map of its own comes from the albedo's alpha (glTF 2.0 §3.9.2: baseColor's alpha is
 // the coverage). A packed input feeds a role only when it has that channel.
 #pragma once
@@ -19,7 +20,7 @@ namespace mf {
 struct Route {
     Role from = Role::albedo;  // the input role whose map holds the values
     int channel = -1;          // -1: the whole map; 0..3: one channel of it
-    bool invert = false;       // gloss -> roughness (1 - v)
+    bool invert = false;       // gloss or a smoothness channel -> roughness (1 - v)
     bool from_alpha = false;   // opacity carried in the albedo's last channel
 };
 using Routes = std::map<Role, Route>;  // output role -> its route

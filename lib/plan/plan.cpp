@@ -1,6 +1,7 @@
 #include "plan/plan.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <set>
 
@@ -73,6 +74,33 @@ std::vector<SidecarRoles> read_sidecars(Files& files) {
     return out;
 }
 
+// Whether a map's pixels are colour: R, G and B apart by more than NOT_GRAYSCALE's JPEG
+// tolerance in more than its share of pixels (that rule's thresholds: a map it would call "not
+// grayscale" is colour here too). nullopt when the file cannot be read or has no RGB.
+std::optional<bool> is_colour_image(const InputFile& in, const rules::Thresholds& t) {
+    Decoded d;
+    ImageInfo info;
+    std::string error;
+    if (!read_image(in, d, info, error) || d.channels() < 3) return std::nullopt;
+    const int c = d.channels();
+    const size_t pixels = static_cast<size_t>(d.width()) * static_cast<size_t>(d.height());
+    size_t differing = 0;
+    auto apart = [&](float r, float g, float b) {
+        return std::max({std::abs(r - g), std::abs(r - b), std::abs(g - b)}) > t.grayscale_tolerance_jpeg;
+    };
+    for (size_t i = 0; i < pixels; ++i) {
+        const size_t k = i * static_cast<size_t>(c);
+        if (d.is_codes()) {
+            const auto& p = d.codes.pixels;
+            differing += apart(p[k] / 255.f, p[k + 1] / 255.f, p[k + 2] / 255.f);
+        } else {
+            const auto& p = d.floats.pixels;
+            differing += apart(p[k], p[k + 1], p[k + 2]);
+        }
+    }
+    return pixels > 0 && static_cast<double>(differing) > t.grayscale_max_share * static_cast<double>(pixels);
+}
+
 }  // namespace
 
 bool PlanShare::read(const InputFile& in, const std::string& file, DecodedMap& out, std::string& error) {
@@ -113,7 +141,8 @@ validate::SetValidation PlanShare::validate(const std::vector<validate::MapInput
     std::string key = rules::describe(rules).dump();
     for (const auto& m : maps) {
         key += '\n' + std::string(role_name(m.role)) + '\t' + m.name + '\t' + m.file.display + '\t' +
-               (m.alternate ? "alternate" : "") + '\t' + std::to_string(static_cast<int>(m.name_convention));
+               (m.alternate ? "alternate" : "") + '\t' + std::to_string(static_cast<int>(m.name_convention)) + '\t' +
+               std::to_string(static_cast<int>(m.engine_convention));
         for (const Role r : m.unused) key += '\t' + std::string(role_name(r));
     }
     {
@@ -187,6 +216,7 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
                 o.map = validate::make_map_input(role, in, c->file, c->match.normal, err);
             }
             if (o.map) o.map->unused = c->match.unused;
+            if (o.map) o.map->engine_convention = c->match.engine_normal;
             if (o.map) {
                 o.used = c;
                 return;
@@ -283,6 +313,15 @@ void route(SetPlan& plan, const validate::SetValidation& checked) {
             const auto& u = plan.inputs.at(from).match.unused;
             return std::find(u.begin(), u.end(), out) != u.end();
         });
+    // A map that is no tangent-space normal map is not written as one: a flat normal instead,
+    // and its NORMAL_INVALID error says so.
+    if (const auto n = plan.routes.find(Role::normal); n != plan.routes.end() && checked.normal_invalid) {
+        const std::string& file = plan.inputs.at(n->second.from).file;
+        for (auto& f : plan.findings)
+            if (f.code == code::normal_invalid && f.file == file)
+                f.message += "; it is not written into the normal slot: the material gets a flat normal";
+        plan.routes.erase(n);
+    }
     const auto op = plan.routes.find(Role::opacity);
     if (op == plan.routes.end()) return;
     // An opacity that hides the whole surface is not what the artist meant (3dtextures.me ships
@@ -299,6 +338,36 @@ void route(SetPlan& plan, const validate::SetValidation& checked) {
     }
     plan.findings.push_back(make_finding(code::packed_input_unpacked, Role::opacity, plan.inputs.at(Role::albedo).file,
                                          "opacity taken from the albedo map's alpha channel"));
+}
+
+// "R = metalness, A = smoothness (roughness = 1 - A)" for a packed role: every channel it holds,
+// what it leaves unused, and what a channel the file lacks means.
+std::string packing_text(Role p, int file_channels) {
+    static constexpr const char* kCh[] = {"R", "G", "B", "A"};
+    const auto layout = packed_layout(p);
+    std::string parts;
+    for (size_t i = 0; i < layout.size(); ++i) {
+        if (!layout[i]) continue;
+        std::string part = std::string(kCh[i]) + " = ";
+        part += layout[i]->invert ? "smoothness (" + std::string(role_name(layout[i]->role)) + " = 1 - " + kCh[i] + ")"
+                                  : std::string(role_name(layout[i]->role));
+        if (static_cast<int>(i) >= file_channels)
+            part += " (missing: the file has " + std::to_string(file_channels) + " channels)";
+        parts += (parts.empty() ? "" : ", ") + part;
+    }
+    if (p == Role::ort) parts += " (translucency is not metalness)";
+    if (p == Role::mask_map) parts += "; B is the detail mask, not used";
+    if (p == Role::specular_smoothness)
+        parts += "; RGB is the specular colour of a specular-workflow material: kept as it is, never read as "
+                 "metalness (metalness takes the preset's constant)";
+    return parts;
+}
+
+// ["R=metalness", "A=smoothness"]: the packing as a finding's figure states it.
+std::vector<std::string> packing_figure(Role p) {
+    std::vector<std::string> f;
+    for (const auto& [channel, what] : packing_channels(p)) f.push_back(channel + "=" + what);
+    return f;
 }
 
 // What each route does to its input, said once: the normal convention conversion, gloss
@@ -321,21 +390,17 @@ void conversion_findings(SetPlan& plan, NormalConvention target) {
                 code::height_stored_as_depth, out, c.file,
                 c.file + " is stored as depth (white = deep: its slopes run against the normal map's); read "
                          "inverted, so a height output is white = high"));
-        else if (r.invert)
+        else if (r.invert && !traits(r.from).packed)  // a packed smoothness channel: said below
             plan.findings.push_back(make_finding(code::gloss_inverted, out, c.file,
                                                  "gloss map converted to roughness (roughness = 1 - gloss)"));
         if (traits(r.from).packed) unpacked.insert(r.from);
     }
     for (Role p : unpacked) {
-        std::string parts;
-        const auto layout = packed_layout(p);
-        static constexpr const char* kCh[] = {"R", "G", "B"};
-        for (size_t i = 0; i < 3; ++i)
-            if (layout[i])
-                parts += (parts.empty() ? "" : ", ") + std::string(kCh[i]) + " = " + std::string(role_name(*layout[i]));
-        plan.findings.push_back(make_finding(code::packed_input_unpacked, p, plan.inputs.at(p).file,
-                                             "packed " + std::string(role_name(p)) + " map split into " + parts +
-                                                 (p == Role::ort ? " (translucency is not metalness)" : "")));
+        const Candidate& c = plan.inputs.at(p);
+        plan.findings.push_back(make_finding(code::packed_input_unpacked, p, c.file,
+                                             "packed " + std::string(role_name(p)) + " map split into " +
+                                                 packing_text(p, std::max(0, c.header.channels)),
+                                             {{"channels", packing_figure(p)}, {"rule", c.match.rule}}));
     }
 }
 
@@ -476,8 +541,10 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
                                 (e->reason.empty() ? std::string() : ": " + e->reason) + ")";
         excluded.push_back(finding(code::unrecognized_file, "", f, why + "; not used as a map", {{"reason", why}}));
     }
+    const rules::Thresholds thresholds = opt.rules ? opt.rules->thresholds : rules::Thresholds{};
+    auto colour = [&](const std::string& f) { return is_colour_image(files.open(f), thresholds); };
     const SetDiscovery d = discover_set(candidates, header, ChoicePolicy{preset.normal_convention, preset.max_size},
-                                        read_sidecars(files));
+                                        read_sidecars(files), colour);
     plan.convention = d.convention;
     plan.findings = d.findings;
     plan.findings.insert(plan.findings.end(), excluded.begin(), excluded.end());
@@ -579,7 +646,8 @@ std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {
         if (const auto h = plan.routes.find(Role::height); role == Role::height && h != plan.routes.end())
             in.stored_as_depth = h->second.from == Role::height && h->second.invert;
         // An opacity map no route reads is not applied (route(): it would hide the whole surface).
-        in.unused = role == Role::opacity && !plan.routes.count(Role::opacity);
+        // A normal map that is no normal map (NORMAL_INVALID) is not applied either (route()).
+        in.unused = (role == Role::opacity || role == Role::normal) && !plan.routes.count(role);
         inputs.push_back(std::move(in));
     }
     return inputs;

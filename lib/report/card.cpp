@@ -299,9 +299,8 @@ private:
                  "</code></figcaption></figure>";
             // The outputs this input's roles went into.
             std::vector<Role> roles{in.role};
-            if (const auto layout = packed_layout(in.role); traits(in.role).packed)
-                for (const auto& r : layout)
-                    if (r) roles.push_back(*r);
+            for (const auto& c : packed_layout(in.role))
+                if (c) roles.push_back(c->role);
             if (in.role == Role::gloss) roles.push_back(Role::roughness);
             for (size_t k = 0; k < m_.outputs.size(); ++k) {
                 const bool holds = std::any_of(m_.outputs[k].channels.begin(), m_.outputs[k].channels.end(),

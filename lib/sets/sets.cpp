@@ -154,6 +154,7 @@ struct Scan {
     std::map<fs::path, std::vector<size_t>> seen;  // real path of a folder/archive -> its sets
     std::string input;                             // the input being walked, for DUPLICATE_INPUT
     size_t reached_again = 0;                      // folders and archives met a second time
+    std::vector<std::string> lone;                 // lone maps that made no set, one line each
 };
 
 // A folder or archive already read: its sets are noted, not found again.
@@ -172,12 +173,37 @@ bool already_seen(Scan& scan, const fs::path& p) {
     return true;
 }
 
+// Why a group of files is no material ("" when it is one): a material needs a colour map, or two
+// maps of one name (a lone "normal_map_tutorial.png" or "alpha.webp" is a stray image, not a
+// material with grey albedo).
+std::string lone_map(const std::vector<std::string>& files, bool billboards) {
+    int maps = 0;
+    std::string only;
+    for (const auto& f : files) {
+        const auto m = classify_name(f, billboards);
+        // An untagged image beside it may be its colour map (discover_set: "Platform2.jpg").
+        if (!m && is_image_file(f) && !is_clutter(f)) return {};
+        if (!m) continue;
+        if (m->role == Role::albedo) return {};
+        ++maps;
+        only = f + " (" + std::string(role_name(m->role)) + ")";
+    }
+    if (maps != 1) return {};
+    return only + ": a lone map, not a material set (a set needs a colour map or two maps of one material); not used";
+}
+
 void add_groups(const std::string& fallback, const std::vector<std::string>& files, const MaterialSource& proto,
-                std::vector<MaterialSource>& out) {
+                std::vector<MaterialSource>& out, std::vector<std::string>* notes = nullptr) {
+    const bool billboards = billboards_only(files);
     for (auto& g : group_files(files, fallback)) {
-        const bool any_role = std::any_of(g.files.begin(), g.files.end(),
-                                          [](const std::string& f) { return classify_name(f).has_value(); });
+        const bool any_role = std::any_of(g.files.begin(), g.files.end(), [&](const std::string& f) {
+            return classify_name(f, billboards).has_value();
+        });
         if (!any_role) continue;
+        if (const std::string why = lone_map(g.files, billboards); !why.empty()) {
+            if (notes) notes->push_back(proto.display + "/" + why);
+            continue;
+        }
         MaterialSource s = proto;
         s.name = g.name.empty() ? fallback : g.name;
         s.files = g.files;
@@ -264,7 +290,7 @@ void scan_zip(Scan& scan, const fs::path& zip_path) {
         proto.archive = zip;
         proto.display = shown + (folder.empty() ? "" : "/" + folder);
         const std::string fallback = folder.empty() ? zip_path.stem().string() : fs::path(folder).filename().string();
-        add_groups(fallback, files, proto, scan.out);
+        add_groups(fallback, files, proto, scan.out, &scan.lone);
     }
     auto& mine = scan.seen[real_path(zip_path)];
     for (size_t i = before; i < scan.out.size(); ++i) {
@@ -304,11 +330,16 @@ bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& fi
             if (std::binary_search(files.begin(), files.end(), m.file)) named.push_back(m.file);
         if (named.empty()) continue;
         if (roles.kind != SidecarKind::materialx) return true;
+        // Its maps all in one group of the names (another id's set beside it, or a stray map of
+        // another id, is a group of its own): the names decide. ambientCG's downloads put one
+        // document beside each set, two sets side by side are two materials.
         std::vector<MaterialSource> groups;
         add_groups(dir.filename().string(), files, MaterialSource{}, groups);
-        const bool one_group = groups.size() == 1 && std::all_of(named.begin(), named.end(), [&](const std::string& n) {
-                                   return std::binary_search(groups[0].files.begin(), groups[0].files.end(), n);
-                               });
+        const bool one_group = std::any_of(groups.begin(), groups.end(), [&](const MaterialSource& g) {
+            return std::all_of(named.begin(), named.end(), [&](const std::string& n) {
+                return std::binary_search(g.files.begin(), g.files.end(), n);
+            });
+        });
         if (!one_group) return true;
     }
     return false;
@@ -361,7 +392,7 @@ void scan_folder(Scan& scan, const fs::path& dir) {
         s.files = files;
         scan.out.push_back(std::move(s));
     } else {
-        add_groups(dir.filename().string(), files, proto, scan.out);
+        add_groups(dir.filename().string(), files, proto, scan.out, &scan.lone);
     }
     auto& mine = scan.seen[real_path(dir)];
     for (size_t i = before; i < scan.out.size(); ++i) mine.push_back(i);
@@ -667,7 +698,7 @@ std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inpu
                                                std::vector<InputFailure>& failures, std::string* output_conflict,
                                                std::vector<std::string>* skipped) {
     std::vector<MaterialSource> sets;
-    Scan scan{exclude, sets, failures, output_conflict, skipped, {}, {}};
+    Scan scan{exclude, sets, failures, output_conflict, skipped, {}, {}, 0, {}};
     for (const auto& in : inputs) {
         scan.input = in.string();
         const size_t sets_before = sets.size(), failures_before = failures.size(), again = scan.reached_again;
@@ -683,10 +714,15 @@ std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inpu
         }
         // Nothing found is not a pass: an input without a set fails, naming it (as a zip does).
         if (sets.size() == sets_before && failures.size() == failures_before && !seen_before &&
-            scan.reached_again == again && fs::is_directory(in, ec))
+            scan.reached_again == again && fs::is_directory(in, ec)) {
+            std::string why = "no file names a map role, e.g. _Color, _Normal, _Roughness, in a format matforge reads";
+            if (!scan.lone.empty()) why = scan.lone.front();
             failures.push_back({in.string(), std::string(code::unrecognized_file),
-                                in.string() + ": no material set found (no file names a map role, e.g. _Color, "
-                                              "_Normal, _Roughness, in a format matforge reads)"});
+                                in.string() + ": no material set found (" + why + ")"});
+        } else if (skipped) {
+            for (const auto& l : scan.lone) skipped->push_back(l);
+        }
+        scan.lone.clear();
     }
     std::vector<std::string> wanted;
     wanted.reserve(sets.size());

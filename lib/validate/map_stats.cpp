@@ -37,8 +37,11 @@ const std::vector<float>& srgb_decode_table() {
 
 std::optional<Role> channel_role(Role input_role, int channel) {
     if (traits(input_role).packed) {
-        if (channel < 0 || channel > 2) return std::nullopt;
-        return packed_layout(input_role)[static_cast<size_t>(channel)];
+        if (channel < 0 || channel > 3) return std::nullopt;
+        const PackedLayout layout = packed_layout(input_role);
+        const auto& c = layout[static_cast<size_t>(channel)];
+        if (!c) return std::nullopt;
+        return c->role;
     }
     return input_role;
 }
@@ -50,7 +53,8 @@ MapStats::MapStats(MapInput in, const ImageInfo& info, const rules::Thresholds& 
     min.fill(std::numeric_limits<double>::infinity());
     max.fill(-std::numeric_limits<double>::infinity());
     if (input.role == Role::metalness) metal_channel = 0;
-    else if (input.role == Role::orm || input.role == Role::metallic_roughness) metal_channel = 2;
+    for (int c = 0; c < 4 && traits(input.role).packed; ++c)
+        if (channel_role(input.role, c) == Role::metalness) metal_channel = c;
     if (metal_channel >= channels) metal_channel = -1;
     // The albedo's alpha is glTF's opacity when the set has no opacity map (the set-level
     // caller overrides this when it has one).
@@ -590,7 +594,7 @@ void MapStats::constant_findings(const Emit& add) const {
     const double tol = is_jpeg ? t.constant_tolerance_jpeg : t.constant_tolerance;
     std::vector<std::pair<std::vector<int>, Role>> groups;
     if (traits(input.role).packed) {
-        for (int c = 0; c < std::min(channels, 3); ++c)
+        for (int c = 0; c < std::min(channels, 4); ++c)
             if (auto r = channel_role(input.role, c)) groups.push_back({{c}, *r});
     } else if (scalar_role()) {
         groups.push_back({{0}, input.role});

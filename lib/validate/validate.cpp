@@ -279,6 +279,9 @@ struct SetRun {
         } else if (decided) {
             nc.resolved = nc.content.convention;
             nc.source = "content";
+        } else if (m.engine_convention != NormalConvention::unknown) {
+            nc.resolved = m.engine_convention;
+            nc.source = "engine";
         }
         Figures fig = nc.content.figures;
         fig["name_convention"] = convention_name(nc.name);
@@ -300,7 +303,8 @@ struct SetRun {
                  nc.file + ": the name says " + std::string(convention_name(nc.name)) + " but the content says " +
                      std::string(convention_name(nc.content.convention)) + " (confidence " + percent + " %, " +
                      nc.content.method + " test); check the green channel before trusting the name");
-        else if (nc.name == NormalConvention::unknown && !decided && !nc.content.flat)  // flat: GL = DX
+        else if (nc.name == NormalConvention::unknown && !decided && !nc.content.flat &&  // flat: GL = DX
+                 m.engine_convention == NormalConvention::unknown)
             emit(code::normal_convention_unknown,
                  nc.file + ": neither the name nor the content decides GL or DX (content confidence " + percent +
                      " %); assumed OpenGL (+Y): check the preview, or rename it with a _gl/_dx suffix");
@@ -338,6 +342,8 @@ struct SetRun {
             stats[i]->findings(found);
         }
         // A map that is not a normal map has no green convention: NORMAL_INVALID says it all.
+        if (normal.map >= 0 && readable[static_cast<size_t>(normal.map)])
+            result.normal_invalid = stats[static_cast<size_t>(normal.map)]->normal_invalid();
         if (verdict) {
             const auto n = static_cast<size_t>(normal.map);
             convention_findings(*verdict, readable[n] && !stats[n]->normal_invalid());

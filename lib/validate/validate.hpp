@@ -40,6 +40,9 @@ struct MapInput {
     ImageInfo info;          // header facts; width 0: read with mf::read_info
     ColorTagInfo color_tag;  // from read_color_tag(file); none: no tag check
     NormalConvention name_convention = NormalConvention::unknown;  // what the file name says
+    // What the set's engine family implies (Unity gl, Unreal dx): taken when neither the name
+    // nor the pixels decide, instead of assuming gl with NORMAL_CONVENTION_UNKNOWN.
+    NormalConvention engine_convention = NormalConvention::unknown;
     std::vector<Role> unused;  // output roles this map must not feed (routing's `unused`)
     // Another candidate for a role whose chosen map comes first (a WebP copy beside the JPEG
     // original): checked by the rules of a map alone, never routed, never a joint statistic.
@@ -102,6 +105,9 @@ struct SetValidation {
     // The routed normal map stores X and Y only (two channels, or an empty blue): ingest
     // rebuilds Z from them, as the rules did (NORMAL_Z_RECONSTRUCTED).
     bool normal_z_rebuilt = false;
+    // The routed normal map is no tangent-space normal map (NORMAL_INVALID): the plan does not
+    // write it into the normal slot; the material gets a flat normal.
+    bool normal_invalid = false;
     // The maps that could not be read (a truncated file reads its header, not its pixels):
     // MapInput::name (the file, when unnamed) -> the reader's error. Each has its UNREADABLE_FILE.
     std::map<std::string, std::string> unreadable;

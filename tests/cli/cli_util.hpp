@@ -35,6 +35,9 @@ inline RunResult run(const std::string& args) { return run_env("", args); }
 
 inline std::string q(const fs::path& p) { return std::string("'").append(p.string()).append("'"); }
 
+// A set of the real corpus (tests/data/corpus/real/<name>), read in place: never written to.
+inline fs::path corpus_set(const std::string& name) { return mf::testenv::corpus_dir() / "real" / name; }
+
 inline fs::path samples() { return mf::testenv::source_dir() / "sample_materials"; }
 
 // A fresh, empty temporary folder per test.

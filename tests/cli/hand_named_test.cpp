@@ -11,8 +11,6 @@ using namespace mft;
 
 namespace {
 
-fs::path corpus_set(const std::string& name) { return mf::testenv::corpus_dir() / "real" / name; }
-
 // The manifest entry of the only material of an ingest of `set`.
 nlohmann::json ingest_one(const fs::path& set, const fs::path& out) {
     const auto r = run("ingest " + q(set) + " -o " + q(out) + " --preset gltf --no-cache -q");

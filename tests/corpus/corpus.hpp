@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "material/roles.hpp"
 #include "test_dirs.hpp"
 
 #include <sys/wait.h>
@@ -92,7 +93,10 @@ inline std::optional<std::string> code_of_problem(const std::string& problem) {
 // truth roles → the input roles matforge names in manifests and findings.
 inline bool role_matches(const std::string& truth_role, const std::string& role) {
     if (truth_role == "ao") return role == "occlusion";
-    if (truth_role == "packed") return role == "orm" || role == "metallic_roughness" || role == "ort" || role == "arm";
+    if (truth_role == "packed") {  // any packed input: orm, ort, Unity's mask_map, metallic_smoothness, ...
+        const auto r = mf::role_from_name(role);
+        return r && mf::traits(*r).packed;
+    }
     return truth_role == role;
 }
 

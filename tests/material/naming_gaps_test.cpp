@@ -68,11 +68,13 @@ TEST(NamingGaps, ThreeDTexturesClutterHasItsOwnReason) {
     EXPECT_EQ(unrecognized_reason(d, "Material_1639.jpg"), "preview render (Material_NNNN)");
     EXPECT_EQ(unrecognized_reason(d, "Ground_Wet_002_mask.jpg"), "ID or mask image with no PBR role");
     for (const auto& f : d.findings) EXPECT_EQ(f.severity, Severity::info) << f.message;
-    for (const std::string file : {"Crystal_003_BLACK.jpg", "Material_1957.jpg", "Ground_Wet_002_mask.jpg",
-                                   "Material.001.png", "Mat_MaskMap.png"}) {
+    for (const std::string file :
+         {"Crystal_003_BLACK.jpg", "Material_1957.jpg", "Ground_Wet_002_mask.jpg", "Material.001.png"}) {
         EXPECT_TRUE(is_clutter(file)) << file;
         EXPECT_FALSE(classify_name(file).has_value()) << file;
     }
+    // HDRP's "_MaskMap" is a packed map (R metallic, G occlusion, B detail mask, A smoothness).
+    EXPECT_EQ(classify_name("Mat_MaskMap.png")->role, Role::mask_map);
     // Ordinary words stay words away from the tag's place, and a material named "Material" is fine.
     for (const std::string file :
          {"Black_Marble_2K_Albedo.jpg", "Mask_Factory_Color.png", "Material_001_BaseColor.png"})
