@@ -173,12 +173,13 @@ bool already_seen(Scan& scan, const fs::path& p) {
     return true;
 }
 
-// Why a group of files is no material ("" when it is one): a material needs a colour map, or two
-// maps of one name (a lone "normal_map_tutorial.png" or "alpha.webp" is a stray image, not a
-// material with grey albedo).
+// Why a group of files is no material ("" when it is one): a lone map whose name carries no
+// material name ("normal_map_tutorial.png", "alpha.webp": a tag and nothing of a material) is a
+// stray image, not a material with grey albedo. A colour map, two maps, an untagged image
+// beside the map, or a lone map named for a material ("Rock_Roughness.png") make a set.
 std::string lone_map(const std::vector<std::string>& files, bool billboards) {
     int maps = 0;
-    std::string only;
+    std::string only, role;
     for (const auto& f : files) {
         const auto m = classify_name(f, billboards);
         // An untagged image beside it may be its colour map (discover_set: "Platform2.jpg").
@@ -186,10 +187,13 @@ std::string lone_map(const std::vector<std::string>& files, bool billboards) {
         if (!m) continue;
         if (m->role == Role::albedo) return {};
         ++maps;
-        only = f + " (" + std::string(role_name(m->role)) + ")";
+        only = f;
+        role = role_name(m->role);
     }
-    if (maps != 1) return {};
-    return only + ": a lone map, not a material set (a set needs a colour map or two maps of one material); not used";
+    if (maps != 1 || !material_stem(only).empty()) return {};
+    return only + " (" + role +
+           "): a lone map whose name holds no material name, not a material set (a set needs a colour map, "
+           "two maps of one material, or a material name); not used";
 }
 
 void add_groups(const std::string& fallback, const std::vector<std::string>& files, const MaterialSource& proto,

@@ -680,7 +680,9 @@ TEST_F(Hostile, KilledRerunLeavesNoStaleManifest) {
 // ===== 12. outputs an earlier run wrote that this one does not: removed (or kept, said)
 
 TEST_F(Hostile, StaleOutputsAreRemoved) {
-    write_bytes(in / "Good" / "Good_NormalGL.png", make_png(16, 16, 8, 2, Bytes(16 * 16 * 3, 128)));
+    Bytes flat;  // a flat normal (128, 128, 255): a map of grey 128 is no normal map (NORMAL_INVALID, not written)
+    for (int i = 0; i < 16 * 16; ++i) flat.insert(flat.end(), {128, 128, 255});
+    write_bytes(in / "Good" / "Good_NormalGL.png", make_png(16, 16, 8, 2, flat));
     ASSERT_EQ(ingest({"--fail-on", "never"}).code, 0);
     ASSERT_TRUE(fs::exists(out / "Good" / "Good_normal.png"));
     fs::remove(in / "Good" / "Good_NormalGL.png");  // a source map deleted

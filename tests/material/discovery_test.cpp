@@ -297,7 +297,6 @@ TEST(ClassifyName, NotClassified) {
              "WoodFine0012_Sphere.png",
              "Concrete_Normal_thumbnail.jpg",  // clutter wins over a role word
              "Mat_mask_id.png",
-             "Mat_MaskMap.png",  // Unity mask map: layout unknown, not guessed
              "brick_wall_001_1k.jpg",
              "scene.blend",
          })

@@ -7,6 +7,7 @@
 
 #include "discovery_helpers.hpp"
 #include "material/discovery.hpp"
+#include "material/routing.hpp"
 
 namespace mf {
 namespace {
@@ -326,6 +327,107 @@ TEST(NamingGaps, LargerJpegOriginalBeatsSmallerWebp) {
         ASSERT_NE(f, nullptr);
         EXPECT_THAT(f->message, HasSubstr("its format (jpg) ranks above webp (the vendor's own"));
     }
+}
+
+}  // namespace
+}  // namespace mf
+
+namespace mf {
+namespace {
+
+using namespace discovery_test;
+
+// ---------------------------------------------------------------------------------------------
+// Engine exports (issue 44): Unity's packed maps, names stating their channel order, a normal
+// map's space, Unreal-style letters decided by the pixels.
+
+TEST(EngineNames, UnityAndStatedOrderPackings) {
+    check({
+        {"Crate_MetallicSmoothness.png", Role::metallic_smoothness, "unity:_MetallicSmoothness"},
+        {"Crate_MetallicGlossMap.png", Role::metallic_smoothness, "unity:_MetallicGlossMap"},
+        {"Crate_SpecularSmoothness.png", Role::specular_smoothness, "unity:_SpecularSmoothness"},
+        {"Crate_MaskMap.tga", Role::mask_map, "unity:_MaskMap"},
+        {"Crate_AlbedoTransparency.png", Role::albedo, "unity:_AlbedoTransparency", NormalConvention::unknown, true},
+        {"Rock_MRA.png", Role::mra, "generic:_MRA"},
+        {"rock-mrao.png", Role::mra, "generic:_MRAO"},
+        {"Rock_RMA_2K.png", Role::rma, "generic:_RMA"},
+        {"Rock_Metallic_Roughness_AO.png", Role::mra, ""},
+        {"Rock_RoughnessMetallic.png", Role::rm, ""},
+        {"Rock_OcclusionRoughnessMetallic.png", Role::orm, ""},
+        {"Rock_metallicRoughness.png", Role::metallic_roughness, ""},  // glTF's: G roughness, B metal
+        {"T_Rock_O.png", Role::opacity, "megascans:_O"},
+        {"T_Rock_T.png", Role::translucency, "megascans:_T"},
+    });
+    // Every channel of a packing, smoothness inverted; the detail mask and the specular colour unread.
+    EXPECT_EQ(packing_channels(Role::mask_map), (std::vector<std::pair<std::string, std::string>>{
+                                                    {"R", "metalness"}, {"G", "occlusion"}, {"A", "smoothness"}}));
+    EXPECT_EQ(packing_channels(Role::specular_smoothness),
+              (std::vector<std::pair<std::string, std::string>>{{"A", "smoothness"}}));
+    EXPECT_TRUE(packed_layout(Role::metallic_smoothness)[3]->invert);
+    EXPECT_FALSE(packed_layout(Role::rma)[0]->invert);
+    // Words that merely contain the letters stay words.
+    EXPECT_FALSE(classify_name("Rma_Stone_Color.png")->role == Role::rma);
+}
+
+TEST(EngineNames, SmoothnessRoutesInvertedAndADedicatedMapWins) {
+    auto channels = [](std::map<Role, int> have) {
+        return [have](Role r) {
+            const auto it = have.find(r);
+            return it == have.end() ? 0 : it->second;
+        };
+    };
+    Routes r = route_roles(channels({{Role::metallic_smoothness, 4}}));
+    ASSERT_TRUE(r.count(Role::roughness));
+    EXPECT_EQ(r.at(Role::roughness).from, Role::metallic_smoothness);
+    EXPECT_EQ(r.at(Role::roughness).channel, 3);
+    EXPECT_TRUE(r.at(Role::roughness).invert);
+    EXPECT_EQ(r.at(Role::metalness).channel, 0);
+    // Saved without alpha: no smoothness to read, the metal still is.
+    r = route_roles(channels({{Role::metallic_smoothness, 3}}));
+    EXPECT_FALSE(r.count(Role::roughness));
+    EXPECT_EQ(r.at(Role::metalness).from, Role::metallic_smoothness);
+    // A roughness map beats the packed smoothness, which beats a gloss map.
+    r = route_roles(channels({{Role::mask_map, 4}, {Role::roughness, 1}, {Role::gloss, 1}}));
+    EXPECT_EQ(r.at(Role::roughness).from, Role::roughness);
+    r = route_roles(channels({{Role::mask_map, 4}, {Role::gloss, 1}}));
+    EXPECT_EQ(r.at(Role::roughness).from, Role::mask_map);
+    EXPECT_EQ(r.at(Role::occlusion).channel, 1);
+}
+
+TEST(EngineNames, ObjectSpaceNormalsNeverTakeTheNormalSlot) {
+    const auto d = discover_set({"rock_diffuse.png", "rock_nm.tga", "rock_nm_tangent.tga"}, nullptr, ChoicePolicy{});
+    EXPECT_EQ(chosen_file(d, Role::normal), "rock_nm_tangent.tga");
+    EXPECT_THAT(unrecognized_reason(d, "rock_nm.tga"), ::testing::HasSubstr("object-space"));
+    const auto os = discover_set({"rock_diffuse.png", "rock_normal_os.png"}, nullptr, ChoicePolicy{});
+    EXPECT_EQ(discovery_test::find_choice(os, Role::normal), nullptr);
+    EXPECT_THAT(unrecognized_reason(os, "rock_normal_os.png"), ::testing::HasSubstr("object-space"));
+}
+
+TEST(EngineNames, UnrealLettersByThePixels) {
+    const std::vector<std::string> files{"T_Rock_A.jpg", "T_Rock_D.png", "T_Rock_N.jpg", "T_Rock_R.jpg"};
+    // Megascans: a colour _A, a grey _D.
+    auto mega = discover_set(files, nullptr, ChoicePolicy{}, {},
+                             [](const std::string& f) -> std::optional<bool> { return f == "T_Rock_A.jpg"; });
+    EXPECT_EQ(chosen_file(mega, Role::albedo), "T_Rock_A.jpg");
+    EXPECT_EQ(chosen_file(mega, Role::height), "T_Rock_D.png");
+    EXPECT_EQ(discovery_test::find_choice(mega, Role::opacity), nullptr);
+    // Epic's style: a colour _D, a grey _A mask.
+    auto epic = discover_set(files, nullptr, ChoicePolicy{}, {},
+                             [](const std::string& f) -> std::optional<bool> { return f == "T_Rock_D.png"; });
+    EXPECT_EQ(chosen_file(epic, Role::albedo), "T_Rock_D.png");
+    EXPECT_EQ(chosen_file(epic, Role::opacity), "T_Rock_A.jpg");
+    // Pixels unknown: the names as Epic's style guide has them.
+    auto plain = discover_set(files, nullptr, ChoicePolicy{});
+    EXPECT_EQ(chosen_file(plain, Role::opacity), "T_Rock_A.jpg");
+}
+
+TEST(EngineNames, BillboardFoldersAndLoneMaps) {
+    EXPECT_TRUE(billboards_only({"Fern_Billboard_2K_Albedo.jpg", "Fern_Billboard_2K_Normal.jpg", "notes.txt"}));
+    EXPECT_FALSE(billboards_only({"Fern_2K_Albedo.jpg", "Fern_Billboard_2K_Albedo.jpg"}));
+    const auto d = discover_set({"Fern_Billboard_2K_Albedo.jpg", "Fern_Billboard_2K_Normal.jpg"}, nullptr,
+                                ChoicePolicy{});
+    EXPECT_EQ(chosen_file(d, Role::albedo), "Fern_Billboard_2K_Albedo.jpg");
+    EXPECT_EQ(group_files({"Fern_Billboard_2K_Albedo.jpg", "Fern_Billboard_2K_Normal.jpg"}, "x").size(), 1u);
 }
 
 }  // namespace
