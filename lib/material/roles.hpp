@@ -39,7 +39,7 @@ inline constexpr int kRoleCount = 21;
 inline constexpr int kOutputRoleCount = 8;
 
 enum class NormalConvention { unknown, gl, dx };      // gl: +Y (green up), dx: -Y
-enum class NormalSpace { unknown, tangent, object };  // what a normal map's name says of its space
+enum class NormalSpace : unsigned char { unknown, tangent, object };  // what a normal map's name says of its space
 
 struct RoleTraits {
     Role role;
@@ -60,7 +60,7 @@ inline bool is_color_role(Role r) { return traits(r).color; }
 
 // One channel of a packed input: the role it holds, stored inverted (smoothness = 1 - roughness).
 struct PackedChannel {
-    Role role;
+    Role role = Role::albedo;
     bool invert = false;
 };
 // Channels of a packed input: what each of R, G, B, A holds (nullopt = not unpacked: unused,
