@@ -38,7 +38,7 @@ enum class Role {
 inline constexpr int kRoleCount = 21;
 inline constexpr int kOutputRoleCount = 8;
 
-enum class NormalConvention { unknown, gl, dx };      // gl: +Y (green up), dx: -Y
+enum class NormalConvention { unknown, gl, dx };                      // gl: +Y (green up), dx: -Y
 enum class NormalSpace : unsigned char { unknown, tangent, object };  // what a normal map's name says of its space
 
 struct RoleTraits {
