@@ -16,6 +16,8 @@ const std::vector<CodeInfo>& finding_catalog() {
         {code::out_of_range_values, Severity::warning, "Float data outside [0, 1] where the role allows none", "rules",
          "out_of_range_values"},
         {code::not_grayscale, Severity::warning, "Scalar map stored with differing channels", "rules", "not_grayscale"},
+        {code::packed_channels_identical, Severity::warning, "A packed (ORM-style) map whose R, G and B hold one image",
+         "rules", "packed_channels_identical"},
         {code::constant_map, Severity::info, "Map holds one value (replaceable by a constant)", "rules",
          "constant_map"},
         {code::metalness_not_binary, Severity::warning, "Too much metalness strictly between 0 and 1", "rules",

@@ -66,6 +66,8 @@ inline constexpr std::string_view encoding_error_exceeded =
     "ENCODING_ERROR_EXCEEDED";  // a decoded block-compressed level over the preset's bound
 inline constexpr std::string_view material_file_skipped =
     "MATERIAL_FILE_SKIPPED";  // the preset's glTF not written (dx normals)
+inline constexpr std::string_view packed_channels_identical =
+    "PACKED_CHANNELS_IDENTICAL";  // an ORM-style map whose R, G, B are one image
 inline constexpr std::string_view height_stored_as_depth =
     "HEIGHT_STORED_AS_DEPTH";  // white = deep: written white = high
 }  // namespace code

@@ -295,12 +295,13 @@ MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget
         }
     }
     MaterialResult res = compute(src, budget, run, share);
-    if (action) res.entry.key = *action;
+    // Only a complete result records its key and is kept: a set with an output that could not be
+    // written (partial), or one stopped by a signal, is not "unchanged" to plan --changed-since
+    // and is computed again next time.
+    const bool complete = !res.failure && res.entry.status == manifest::Status::ok && !stop_requested();
+    if (action && complete) res.entry.key = *action;
     if (!key) return res;
     ++run.misses;
-    // Only complete results are kept: a set with an output that could not be written, or one
-    // stopped by a signal, is computed again next time.
-    const bool complete = !res.failure && res.entry.status == manifest::Status::ok && !stop_requested();
     std::string error;
     if (complete && !run.cache_off && !run.cache->store(*key, res.entry, opt_.out_dir, error) &&
         !run.cache_off.exchange(true))

@@ -233,11 +233,16 @@ std::string OutputFolder::claim(const std::string& rel, const std::string& owner
 }
 
 bool OutputFolder::write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
-    return write_file_under(opt_.dir, rel, bytes, error, [&](bool exists) { return may_write(rel, exists); });
+    const bool ok = write_file_under(opt_.dir, rel, bytes, error, [&](bool exists) { return may_write(rel, exists); });
+    if (!ok) write_failed_ = true;
+    return ok;
 }
 
 bool OutputFolder::write(const std::string& rel, const ByteProducer& produce, std::string& error) {
-    return write_file_under(opt_.dir, rel, produce, error, [&](bool exists) { return may_write(rel, exists); });
+    const bool ok = write_file_under(opt_.dir, rel, produce, error,
+                                     [&](bool exists) { return may_write(rel, exists); });
+    if (!ok) write_failed_ = true;
+    return ok;
 }
 
 std::string OutputFolder::refusal(const std::string& rel, bool exists) const {
@@ -268,8 +273,10 @@ std::string OutputFolder::may_write(const std::string& rel, bool exists) {
 bool OutputFolder::Batch::write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
     std::optional<StagedFile> staged;
     if (!stage_file_under(folder_.opt_.dir, rel, bytes, staged, error,
-                          [&](bool exists) { return folder_.refusal(rel, exists); }))
+                          [&](bool exists) { return folder_.refusal(rel, exists); })) {
+        folder_.write_failed_ = true;
         return false;
+    }
     if (!staged) return true;  // it already holds these bytes
     {
         std::lock_guard lock(mutex_);
@@ -287,7 +294,10 @@ std::map<std::string, std::string> OutputFolder::Batch::wait() {
 
 void OutputFolder::Batch::done(const std::string& rel, std::string error) {
     std::lock_guard lock(mutex_);
-    if (!error.empty()) failed_.emplace(rel, std::move(error));
+    if (!error.empty()) {
+        folder_.write_failed_ = true;
+        failed_.emplace(rel, std::move(error));
+    }
     --pending_;
     cv_.notify_all();
 }
@@ -369,6 +379,20 @@ bool OutputFolder::finish(const ByteProducer& manifest, const std::set<std::stri
     }
     // Outputs of earlier runs this one does not produce: removed when unchanged since we wrote
     // them, kept (and said so) when someone changed them. Files other manifests list are theirs.
+    // A run with a failed write removes none of them and keeps its journal (header comment).
+    size_t unproduced = 0;
+    for (const auto& entry : previous_)
+        unproduced += produced.count(entry.first) || entry.first == opt_.manifest_name ? 0 : 1;
+    if (write_failed_ && unproduced > 0) {
+        notes.push_back("kept " + std::to_string(unproduced) +
+                        " earlier outputs this run does not produce: some of its own could not be written, so the "
+                        "last good copies stay until a run writes all of its outputs");
+        if (const int dfd = ::open(opt_.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
+            ::fsync(dfd);
+            ::close(dfd);
+        }
+        return true;
+    }
     const std::set<std::string> elsewhere = listed_elsewhere();
     for (const auto& [rel, sha] : previous_) {
         if (produced.count(rel) || elsewhere.count(rel) || rel == opt_.manifest_name) continue;

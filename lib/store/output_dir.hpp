@@ -16,6 +16,7 @@
 // own lock and journal, and may share one folder at once; every matforge manifest and journal
 // in the folder counts when deciding whether a file is ours or stale.
 #pragma once
+#include <atomic>
 #include <condition_variable>
 #include <filesystem>
 #include <map>
@@ -87,9 +88,14 @@ public:
     };
 
     // The new manifest (made as it is written), stale outputs removed (`produced`: every output
-    // file of this run), the journal removed. `notes`: one line per file removed or kept.
+    // file of this run), the journal removed. `notes`: one line per file removed or kept. When
+    // any write of this run failed (a full disk, a refusal), no earlier output is removed: each
+    // is the last good copy of a file this run may have failed to replace, and the journal stays
+    // so the next run still knows them as ours (a run that writes all it should removes them).
     bool finish(const ByteProducer& manifest, const std::set<std::string>& produced, std::vector<std::string>& notes,
                 std::string& error);
+    // Whether a write of this run failed (write(), a batch's stage or commit).
+    bool write_failed() const { return write_failed_.load(); }
 
 private:
     explicit OutputFolder(Options opt) : opt_(std::move(opt)) {}
@@ -121,6 +127,7 @@ private:
     std::map<std::string, std::string> claimed_files_;  // lower-case path -> owner
     std::map<std::string, std::string> claimed_dirs_;   // lower-case folder -> owner
     std::mutex journal_mutex_;
+    std::atomic<bool> write_failed_{false};
     int journal_fd_ = -1;
     std::mutex commit_mutex_;
     std::condition_variable commit_cv_;

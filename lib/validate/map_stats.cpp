@@ -67,6 +67,12 @@ MapStats::MapStats(MapInput in, const ImageInfo& info, const rules::Thresholds& 
 
 bool MapStats::scalar_role() const { return traits(input.role).channels == 1; }
 
+bool MapStats::packed_rgb() const {
+    if (!traits(input.role).packed || channels < 3) return false;
+    const PackedLayout layout = packed_layout(input.role);
+    return layout[0] && layout[1] && layout[2];
+}
+
 namespace {
 
 // An 8-bit band read as floats through a table (unorm8_values, or one built from it), indexed as
@@ -165,7 +171,7 @@ void MapStats::add_band_t(long long n, P px) {
     const bool check_range = input.info.is_float && has_unit_range(input.role);
     const double lo = is_normal() ? -1.0 : 0.0;
     const double eps = t.range_epsilon;
-    const bool gray = scalar_role() && channels >= 3;
+    const bool gray = (scalar_role() && channels >= 3) || packed_rgb();
     const double gtol = is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance;
     if (is_normal() && normal_signed < 0) {
         // Float normal maps come both ways; negative values mean "already signed".
@@ -527,6 +533,7 @@ void MapStats::findings(std::vector<Finding>& out) const {
     const Emit add{input.name.empty() ? input.file.display : input.name, std::string(role_name(input.role)), out};
     value_findings(add);
     grayscale_findings(add);
+    packed_findings(add);
     constant_findings(add);
     metalness_findings(add);
     opacity_findings(add);
@@ -586,6 +593,30 @@ void MapStats::grayscale_findings(const Emit& add) const {
                  {"jpeg", is_jpeg}});
         }
     }
+}
+
+// PACKED_CHANNELS_IDENTICAL: R, G and B of an ORM-style map hold one image (a greyscale map
+// saved under a packed name), so occlusion, roughness and metalness would all be that image. A
+// constant image is left to CONSTANT_MAP (each channel is said there). Same tolerance and share
+// as NOT_GRAYSCALE: "identical" is what NOT_GRAYSCALE calls grey.
+void MapStats::packed_findings(const Emit& add) const {
+    if (!packed_rgb()) return;
+    const double tol = is_jpeg ? t.constant_tolerance_jpeg : t.constant_tolerance;
+    bool varies = false;
+    for (int c = 0; c < 3; ++c) varies = varies || (finite[c] > 0 && max[c] - min[c] > tol);
+    const double share = ratio(gray_differing, pixels);
+    if (!varies || share > t.grayscale_max_share) return;
+    std::vector<std::string> roles;
+    for (int c = 0; c < 3; ++c) roles.emplace_back(role_name(*channel_role(input.role, c)));
+    add(code::packed_channels_identical, add.role,
+        add.file + ": R, G and B hold one image (they differ in " + percent(share) +
+            " of pixels): a greyscale map saved under a packed name, so " + roles[0] + ", " + roles[1] + " and " +
+            roles[2] + " would all be that image — check that the file is the packed export",
+        {{"share", share},
+         {"max_difference", gray_max_diff},
+         {"tolerance", is_jpeg ? t.grayscale_tolerance_jpeg : t.grayscale_tolerance},
+         {"jpeg", is_jpeg},
+         {"channels", roles}});
 }
 
 // CONSTANT_MAP: per channel group (packed inputs: per channel role).

@@ -47,7 +47,8 @@ struct MapStats {
     // in codes (code_scale 0: a float file, summed in `sum`).
     float code_scale = 0.f;
     std::array<long long, 4> code_sum{};
-    // NOT_GRAYSCALE (scalar roles with ≥ 3 channels).
+    // NOT_GRAYSCALE (scalar roles with ≥ 3 channels) and PACKED_CHANNELS_IDENTICAL (packed
+    // inputs whose layout gives R, G and B each a role): pixels whose R, G, B differ.
     long long gray_differing = 0;
     double gray_max_diff = 0, gray_sum_rg = 0, gray_sum_rb = 0;
     // METALNESS_NOT_BINARY (the channel holding metalness, if any).
@@ -87,6 +88,7 @@ struct MapStats {
     };
     void value_findings(const Emit& add) const;
     void grayscale_findings(const Emit& add) const;
+    void packed_findings(const Emit& add) const;
     void constant_findings(const Emit& add) const;
     void metalness_findings(const Emit& add) const;
     void opacity_findings(const Emit& add) const;
@@ -106,6 +108,9 @@ struct MapStats {
         return total / static_cast<double>(finite[c]);
     }
     bool scalar_role() const;
+    // A packed input whose layout gives each of R, G and B a role (ORM, ARM, MRA, RMA), read
+    // from ≥ 3 channels: one image in all three would be three roles at once.
+    bool packed_rgb() const;
 
 private:
     // add_band over a float pointer or a code reader (map_stats.cpp), and its parts.

@@ -252,6 +252,7 @@ TEST(EngineExports, PackedMapsUnpackInTheOrderTheirNamesState) {
         ASSERT_TRUE(mat.is_object());
         EXPECT_EQ(mat["inputs"][c.role]["file"], c.file) << mat["inputs"].dump(1);
         expect_quiet(mat);
+        for (const auto& f : mat["findings"]) EXPECT_NE(f["code"], "PACKED_CHANNELS_IDENTICAL") << f.dump();
         const Codes orm = orm_of(out, mat);
         expect_channel(
             orm, 0, [&](int x, int y) { return s.ao.at(x, y, 0); }, "occlusion");
@@ -259,6 +260,49 @@ TEST(EngineExports, PackedMapsUnpackInTheOrderTheirNamesState) {
             orm, 1, [&](int x, int y) { return s.rough.at(x, y, 0); }, "roughness");
         expect_channel(
             orm, 2, [&](int x, int y) { return s.metal.at(x, y, 0); }, "metalness");
+    }
+}
+
+// A packed name on pixels that are not packed is a finding, not a silent guess: one greyscale
+// image in R, G and B (a roughness map saved as `_ORM`) is PACKED_CHANNELS_IDENTICAL, a colour
+// photo under a packed name fails its metal channel (METALNESS_NOT_BINARY); the real packing of
+// the same set (above) gets neither.
+TEST(EngineExports, PackedNameOnUnpackedPixelsIsAFinding) {
+    const Source& s = source();
+    const fs::path root = temp_dir("packed_lies");
+    auto codes_of = [](const nlohmann::json& mat, const std::string& role) {
+        std::map<std::string, std::string> out;  // code -> severity
+        for (const auto& f : mat["findings"])
+            if (f.value("role", "") == role) out[f["code"]] = f["severity"];
+        return out;
+    };
+    {
+        const fs::path set = root / "grey";
+        fs::create_directories(set);
+        fs::copy_file(s.dir / "Sci-Fi_Wall_014_basecolor.jpg", set / "Wall_BaseColor.jpg");
+        oiio_write_png(set / "Wall_ORM.png", s.w(), s.h(), 3, [&](int x, int y, int) { return s.rough.at(x, y, 0); });
+        const Ingest r = ingest(set, root / "grey_out");
+        const nlohmann::json& mat = only_material(r);
+        ASSERT_TRUE(mat.is_object());
+        const auto got = codes_of(mat, "orm");
+        ASSERT_TRUE(got.count("PACKED_CHANNELS_IDENTICAL")) << mat["findings"].dump(1);
+        EXPECT_EQ(got.at("PACKED_CHANNELS_IDENTICAL"), "warning");
+    }
+    {
+        const fs::path set = root / "photo";
+        fs::create_directories(set);
+        fs::copy_file(s.dir / "Sci-Fi_Wall_014_basecolor.jpg", set / "Wall_BaseColor.jpg");
+        oiio_write_png(set / "Wall_ORM.png", s.w(), s.h(), 3,
+                       [&](int x, int y, int k) { return s.color.at(x, y, std::min(k, s.color.channels - 1)); });
+        const Ingest r = ingest(set, root / "photo_out");
+        const nlohmann::json& mat = only_material(r);
+        ASSERT_TRUE(mat.is_object());
+        bool metal_not_binary = false;
+        for (const auto& f : mat["findings"])
+            metal_not_binary = metal_not_binary || (f["code"] == "METALNESS_NOT_BINARY" && f["severity"] == "warning" &&
+                                                    f.value("file", "") == "Wall_ORM.png");
+        EXPECT_TRUE(metal_not_binary) << mat["findings"].dump(1);
+        EXPECT_FALSE(codes_of(mat, "orm").count("PACKED_CHANNELS_IDENTICAL"));
     }
 }
 

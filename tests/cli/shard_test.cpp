@@ -55,6 +55,60 @@ TEST(Shard, PlanCommandsRunAsAFarmRunsThem) {
     EXPECT_EQ(run("plan " + q(samples()) + " -o " + q(work / "p2.json") + " --commands").code, 2);
 }
 
+// A path cannot hijack a command list (issue 45): every runner of one command a line splits
+// lines before a shell sees the quotes, so `plan --commands` refuses a path with a newline (or
+// any control character), names it and prints no command; a path with quotes, $(), backticks and
+// `;` is quoted and runs as itself through the documented `while read` loop. A file named like a
+// shipped preset in the working folder does not turn `--preset gltf` into that file's path.
+TEST(Shard, PlanCommandsCannotBeSplitByAPath) {
+    const fs::path work = temp_dir("hijack");
+    const fs::path set = samples() / "Net004A_1K-JPG";
+    const fs::path evil = work / "lib\ntouch X\nx";
+    fs::create_directories(evil);
+    fs::copy(set, evil / "Net004A_1K-JPG", fs::copy_options::recursive);
+    // In `work`, with the arguments as they are (no shell quoting of them).
+    const std::vector<std::string> in_work{"/bin/sh", "-c", "cd \"$0\" && exec \"$@\"", work.string(),
+                                           mf::testenv::bin()};
+    auto args = [&](std::vector<std::string> more) {
+        std::vector<std::string> v = in_work;
+        v.insert(v.end(), more.begin(), more.end());
+        return v;
+    };
+    const auto p = mf::testbin::spawn(args({"plan", evil.string(), "-o", "plan.json", "--shards", "2", "--commands",
+                                            "--out-dir", "out"}));
+    EXPECT_EQ(p.code, 2) << p.output;
+    EXPECT_EQ(p.output.find(mf::testenv::bin() + " ingest"), std::string::npos) << p.output;
+    EXPECT_NE(p.output.find("newline"), std::string::npos) << p.output;
+    EXPECT_NE(p.output.find("lib\\x0atouch X\\x0ax"), std::string::npos) << "the path is named, escaped: " << p.output;
+    EXPECT_FALSE(fs::exists(work / "X"));
+    for (const std::string out : {"out\tdir", "out\x7f"}) {
+        const auto t = mf::testbin::spawn(args({"plan", set.string(), "-o", "p.json", "--commands", "--out-dir",
+                                                (work / out).string()}));
+        EXPECT_EQ(t.code, 2) << out << ": " << t.output;
+    }
+    // Quotes and shell syntax are quoted, and run as the path they are.
+    const fs::path odd = work / "it's $(touch Y) `touch Z`; x";
+    fs::create_directories(odd);
+    fs::copy(set, odd / "Net004A_1K-JPG", fs::copy_options::recursive);
+    std::ofstream(work / "gltf") << "{\"not\": \"a preset\"}";  // a file named like the shipped preset
+    const auto c = mf::testbin::spawn(args({"plan", odd.string(), "-o", "plan.json", "--commands", "--out-dir",
+                                            (odd / "out").string(), "--preset", "gltf"}));
+    ASSERT_EQ(c.code, 0) << c.output;
+    std::string line;
+    std::istringstream text(c.output);
+    for (std::string l; std::getline(text, l);)
+        if (l.find(" ingest ") != std::string::npos) line = l;
+    EXPECT_TRUE(line.ends_with("--preset gltf --shard 0/1")) << line;
+    std::ofstream(work / "list.txt") << line << "\n";
+    const auto farm = mf::testbin::spawn(
+        {"/bin/sh", "-c", "cd " + q(work) + " && while IFS= read -r cmd; do sh -c \"$cmd\" || exit 1; done < list.txt"},
+        600);
+    ASSERT_EQ(farm.code, 0) << farm.output;
+    EXPECT_TRUE(fs::exists(odd / "out/manifest.shard-0-of-1.json"));
+    EXPECT_FALSE(fs::exists(work / "Y"));
+    EXPECT_FALSE(fs::exists(work / "Z"));
+}
+
 // Each material of a manifest records its set's action key, the plan's; `plan --changed-since`
 // lists only the sets whose key differs from (or is absent in) that manifest, each with its shard
 // in the whole library's split, and --commands prints only the shards holding one.

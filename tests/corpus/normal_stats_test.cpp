@@ -227,11 +227,11 @@ void check_classification() {
             EXPECT_FALSE(s.gamma_encoded) << m.map->name;
         }
     }
-    // 22 vendor normal maps (20 real, 2 gamma-encoded), each real one with two copies (20 more
-    // gamma-encoded, 20 linearized); the corpus' 79 other images; two object-space maps.
-    EXPECT_EQ(real, 20);
-    EXPECT_EQ(gamma, 22);
-    EXPECT_EQ(wrong, 79 + 20 + 2);
+    // 24 vendor and engine normal maps (22 real, 2 gamma-encoded), each real one with two copies
+    // (22 more gamma-encoded, 22 linearized); the corpus' 84 other images; two object-space maps.
+    EXPECT_EQ(real, 22);
+    EXPECT_EQ(gamma, 24);
+    EXPECT_EQ(wrong, 84 + 22 + 2);
 }
 
 void check_margins() {

@@ -623,6 +623,83 @@ TEST_F(Hostile, FullOutputDisk) {
     }
 }
 
+// A re-ingest on a full disk (issue 45): the manifest fits, a big output does not. The earlier
+// run's outputs, the last good copies, all stay byte for byte (never removed as stale: neither
+// the big set's, whose new bytes could not be written, nor those of a set gone from the inputs);
+// the next run with room writes its own and only then removes what it no longer produces,
+// leaving no file the manifest does not list.
+TEST_F(Hostile, FullDiskKeepsTheLastGoodOutputs) {
+    MFH_REQUIRE_TMPFS();
+    auto noise = [](uint32_t seed) {
+        mf::Image img(768, 768, 3);
+        for (float& v : img.pixels) v = static_cast<float>((seed = seed * 1664525u + 1013904223u) >> 24) / 255.f;
+        return img;
+    };
+    write_bytes(in / "Big" / "Big_Color.png", encode(noise(1)));
+    write_bytes(in / "Old" / "Old_Color.png", encode(gradient(16, 16, 3)));
+    const fs::path snapshot = temp_dir("snapshot-keep");
+    write_bytes(snapshot / "new_big.png", encode(noise(2)));
+    fs::create_directories(out);
+    // In one mount namespace: a first run; the inputs changed (Big's bytes, Old gone); the disk
+    // filled but for 64 KiB; a second run; copies of the folder after each; room made, a third.
+    const std::string script =
+        "mount -t tmpfs -o size=4m tmpfs \"$0\" || exit 99; "
+        "\"$1\" ingest \"$2\" -o \"$0\" --quiet --no-cache || exit 98; mkdir \"$3\"/first \"$3\"/second; "
+        "cp -a \"$0\"/. \"$3\"/first/; "
+        "cp \"$3\"/new_big.png \"$2\"/Big/Big_Color.png; rm -r \"$2\"/Old; "
+        "dd if=/dev/zero of=\"$0\"/pad bs=4k count=16 2>/dev/null; "
+        "dd if=/dev/zero of=\"$0\"/filler bs=4k 2>/dev/null; rm \"$0\"/pad; "
+        "\"$1\" ingest \"$2\" -o \"$0\" --quiet --no-cache; echo \"second=$?\"; "
+        "rm \"$0\"/filler; cp -a \"$0\"/. \"$3\"/second/; "
+        "\"$1\" ingest \"$2\" -o \"$0\" --quiet --no-cache; echo \"third=$?\"; mkdir \"$3\"/third; "
+        "cp -a \"$0\"/. \"$3\"/third/";
+    const Proc p = spawn({"unshare", is_root() ? "-m" : "-rm", "sh", "-c", script, out.string(), bin(), in.string(),
+                          snapshot.string()},
+                         180);
+    EXPECT_FALSE(p.hung);
+    ASSERT_EQ(p.code, 0) << p.output;
+    EXPECT_NE(p.output.find("second=1"), std::string::npos) << "the full disk fails the run: " << p.output;
+    EXPECT_NE(p.output.find("third=0"), std::string::npos) << p.output;
+    ASSERT_TRUE(fs::exists(snapshot / "second/manifest.json")) << "the manifest fits: " << p.output;
+    const auto first = tree_hashes(snapshot / "first"), second = tree_hashes(snapshot / "second");
+    EXPECT_TRUE(first.count("Old/Old_basecolor.png") && first.count("Big/Big_basecolor.png"));
+    // Every output of the first run is still there after the failed one: the files the second
+    // run wrote (its manifest lists them: the library files) as that manifest says, every other
+    // one byte for byte as the first run left it (Big's texture, whose new bytes did not fit).
+    std::map<std::string, std::string> rewritten;
+    const auto second_manifest = read_json(snapshot / "second/manifest.json");
+    for (const auto& m : second_manifest["materials"])
+        for (const auto& o : m["outputs"]) rewritten[o["file"]] = o["sha256"];
+    for (const auto& o : second_manifest.value("library", nlohmann::json::array())) rewritten[o["file"]] = o["sha256"];
+    EXPECT_FALSE(rewritten.count("Big/Big_basecolor.png")) << second_manifest.dump(1);
+    for (const auto& [rel, sha] : first) {
+        if (rel.front() == '.' || rel == "manifest.json") continue;
+        const auto it = second.find(rel);
+        ASSERT_NE(it, second.end()) << rel << " was removed by the failed run\n" << p.output;
+        EXPECT_EQ(it->second, rewritten.count(rel) ? rewritten.at(rel) : sha) << rel;
+    }
+    // The run with room: Big written anew, Old's outputs (no longer produced) removed.
+    out = snapshot / "third";
+    manifest = read_json(out / "manifest.json");
+    expect_good_done();
+    EXPECT_FALSE(mat("Old"));
+    ASSERT_TRUE(mat("Big"));
+    EXPECT_EQ((*mat("Big"))["status"], "ok");
+    std::set<std::string> listed{"manifest.json"};
+    for (const auto& m : manifest["materials"]) {
+        for (const auto& o : m["outputs"]) listed.insert(o["file"].get<std::string>());
+        for (const auto& o : m.value("material_files", nlohmann::json::array()))
+            listed.insert(o["file"].get<std::string>());
+    }
+    for (const auto& o : manifest.value("library", nlohmann::json::array()))
+        listed.insert(o["file"].get<std::string>());
+    for (const auto& [rel, sha] : tree_hashes(out)) {
+        if (rel.front() != '.') {
+            EXPECT_TRUE(listed.count(rel)) << rel << " is on the disk but not in the manifest";
+        }
+    }
+}
+
 // Misnamed files in sets decoded in parallel: each read by its content, every time. (OpenImageIO's
 // own try-every-reader fallback raced here: 0-bit specs or failures at random.)
 TEST_F(Hostile, MisnamedFilesInParallelSets) {

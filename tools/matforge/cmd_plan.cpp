@@ -8,6 +8,7 @@
 // --changed-since: only the sets whose action key differs from (or is absent in) an earlier
 // run's manifest, each with its shard in the whole library's split; --commands then prints only
 // the shards that hold one.
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -17,8 +18,10 @@
 #include "command.hpp"
 #include "core/files.hpp"
 #include "core/json.hpp"
+#include "core/text.hpp"
 #include "core/version.hpp"
 #include "manifest/manifest.hpp"
+#include "preset/preset.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
 #include "sets/sets.hpp"
@@ -59,20 +62,50 @@ std::string self_binary() {
     return shell_word(ec ? std::string("matforge") : self.string());
 }
 
+// The preset as the shards must name it: a shipped name as it is (load_preset takes a shipped
+// name before a file of that name in the working folder), a file by its absolute path.
+std::string preset_word(const std::string& preset) { return shipped_preset_text(preset) ? preset : absolute(preset); }
+
 // The ingest command of shard I of N: this binary, the inputs, the output folder, the preset
-// (a preset file by its absolute path) and rules, as plan was given them.
+// and rules, as plan was given them.
 std::string shard_command(const PlanArgs& a, int index) {
-    std::error_code ec;
     std::string line = self_binary() + " ingest";
     for (const auto& in : a.inputs) line += " " + shell_word(absolute(in));
     line += " -o " + shell_word(absolute(a.out_dir));
-    line += " --preset " + shell_word(std::filesystem::is_regular_file(a.preset, ec) ? absolute(a.preset) : a.preset);
+    line += " --preset " + shell_word(preset_word(a.preset));
     if (!a.rules_file.empty()) line += " --rules " + shell_word(absolute(a.rules_file));
     return line + " --shard " + std::to_string(index) + "/" + std::to_string(a.shards);
 }
 
+// Why the commands cannot be printed one a line: a path with a control character (a newline
+// above all). Every runner of a command list (xargs -d '\n', GNU parallel, cuecmd, a
+// `while read` loop) splits lines before any shell sees the quotes, so a folder named
+// "lib<newline>touch X<newline>x" would run `touch X` as a command of its own. Empty: none.
+std::string line_breaking_path(const PlanArgs& a) {
+    std::vector<std::pair<std::string, std::string>> words{{"the output folder", absolute(a.out_dir)},
+                                                           {"the preset", preset_word(a.preset)}};
+    for (const auto& in : a.inputs) words.emplace_back("the input", absolute(in));
+    if (!a.rules_file.empty()) words.emplace_back("the rules file", absolute(a.rules_file));
+    std::error_code ec;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) words.emplace_back("this binary's path", self.string());
+    for (const auto& [what, w] : words)
+        for (const char c : w)
+            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+                char code[8];
+                std::snprintf(code, sizeof code, "0x%02x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+                return what + " \"" + terminal_safe(w) + "\" holds a control character (byte " + code +
+                       (c == '\n' ? ", a newline" : "") +
+                       "): a runner of one command a line would split the command there and run the rest as "
+                       "commands of their own; rename it, or run `matforge ingest ... --shard I/N` yourself";
+            }
+    return {};
+}
+
 ExitCode run_plan(const PlanArgs& a) {
     if (std::string why = no_usable_input({a.inputs.begin(), a.inputs.end()}); !why.empty()) return fail("plan", why);
+    if (a.commands)
+        if (std::string why = line_breaking_path(a); !why.empty()) return fail("plan", "--commands: " + why);
     std::string error;
     auto preset = load_preset(a.preset, error);
     if (!preset) return fail("plan", error);
