@@ -157,14 +157,30 @@ bool write_all(int fd, std::span<const unsigned char> bytes) {
 }
 }  // namespace
 
+std::string host_identity(std::string_view host_name, std::string_view boot_id, std::string_view pid_namespace) {
+    std::string readable;
+    for (const char c : host_name) {
+        if (readable.size() == 16) break;
+        if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-') readable += c;
+    }
+    Sha256 sha;
+    sha.update(host_name);
+    sha.update(std::string_view("\n", 1));
+    sha.update(boot_id);
+    sha.update(std::string_view("\n", 1));
+    sha.update(pid_namespace);
+    return (readable.empty() ? std::string("host") : readable) + "~" + sha.hex().substr(0, 16);
+}
+
 const std::string& this_host() {
     static const std::string host = [] {
         char buf[256] = {};
-        std::string h;
-        if (::gethostname(buf, sizeof buf - 1) == 0)
-            for (const char* c = buf; *c && h.size() < 32; ++c)
-                if (std::isalnum(static_cast<unsigned char>(*c)) || *c == '.' || *c == '_' || *c == '-') h += *c;
-        return h.empty() ? std::string("host") : h;
+        const std::string name = ::gethostname(buf, sizeof buf - 1) == 0 ? std::string(buf) : std::string();
+        std::string boot;
+        std::ifstream("/proc/sys/kernel/random/boot_id") >> boot;
+        std::error_code ec;
+        const std::string ns = std::filesystem::read_symlink("/proc/self/ns/pid", ec).string();
+        return host_identity(name, boot, ns);
     }();
     return host;
 }

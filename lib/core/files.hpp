@@ -54,7 +54,14 @@ struct TempOwner {
 };
 std::string temp_name(const std::string& final_name);
 std::optional<TempOwner> temp_owner(std::string_view name);
-// gethostname(), only [A-Za-z0-9._-] kept, at most 32 bytes: what temp_name() records.
+// Who may ask whether a writer's pid lives: the host name, this boot (a pid of an earlier boot is
+// no one), and the pid namespace (pods on one node, containers). The first 16 of the host name's
+// [A-Za-z0-9._-] for people, "~", then 16 hex digits of SHA-256 of all three whole: Kubernetes'
+// indexed-job pods share far longer prefixes than any cut of the name (issue 45: with 32 bytes,
+// one shard's sweep deleted another pod's live temporary).
+std::string host_identity(std::string_view host_name, std::string_view boot_id, std::string_view pid_namespace);
+// host_identity() of this process (gethostname(), /proc/sys/kernel/random/boot_id,
+// /proc/self/ns/pid): what temp_name() records.
 const std::string& this_host();
 // Removes, in `dir` (not recursive), our temporaries whose writer no longer exists: a killed
 // run's, never a running one's (another set of this run, another shard) nor a user's file. A

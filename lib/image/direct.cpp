@@ -37,6 +37,7 @@ struct Source {
     std::ifstream file;
     uint64_t size = 0;
     Kind kind = Kind::none;
+    bool jpeg_signature = false;  // a JPEG by its first bytes, whatever its name
 
     explicit Source(const InputFile& i) : in(i) {
         if (in.bytes) {
@@ -55,7 +56,8 @@ struct Source {
             return;
         }
         unsigned char riff[12] = {};
-        if (head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF && jpeg_name(in)) kind = Kind::jpeg;
+        jpeg_signature = head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF;
+        if (jpeg_signature && jpeg_name(in)) kind = Kind::jpeg;
         else if (std::memcmp(head, png::kSignature, 8) == 0) kind = Kind::png;
         else if (std::memcmp(head, "RIFF", 4) == 0 && in.extension() == kWebp && read(0, sizeof riff, riff) &&
                  std::memcmp(riff + 8, "WEBP", 4) == 0)
@@ -116,14 +118,30 @@ struct Raw {
     std::vector<uint8_t> samples;
 };
 
-bool decode_or_throw(const InputFile& in, Raw& raw) {
+// Why a JPEG this reader declines must not be decoded another way either (jpeg::check: a
+// declared size its data cannot hold, lost data), or empty. A whole file beyond whole()'s bound
+// is left to the module unchecked but for its header.
+std::string declined_jpeg(Source& src, bool header_only) {
+    if (!src.jpeg_signature) return {};
+    if (!header_only) {
+        const std::vector<unsigned char> file = whole(src);
+        if (!file.empty()) return jpeg::check(file.data(), file.size(), false, kMaxSampleBytes, file.size());
+    }
+    const uint64_t end = jpeg::first_scan_header_end(src.size, src.reader());
+    const std::vector<unsigned char> head = end ? src.bytes(end) : std::vector<unsigned char>{};
+    return head.empty() ? std::string() : jpeg::check(head.data(), head.size(), true, kMaxSampleBytes, src.size);
+}
+
+bool decode_or_throw(const InputFile& in, Raw& raw, std::string& refusal) {
     Source src(in);
     if (src.kind == Kind::jpeg) {
         std::vector<unsigned char> file = whole(src);
         jpeg::Plain p;
-        if (file.empty() || !jpeg::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, p.channels))
+        if (file.empty() || !jpeg::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p, file.size()) ||
+            !within_limits(p.width, p.height, p.channels)) {
+            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, false);
             return false;
+        }
         raw.info = jpeg_info(in, p);
         raw.bit_depth = 8;
         raw.samples = std::move(p.pixels);
@@ -145,21 +163,28 @@ bool decode_or_throw(const InputFile& in, Raw& raw) {
         // before the whole file is read or copied.
         png::Plain p;
         std::vector<unsigned char> head = src.bytes(std::min<uint64_t>(src.size, png::kHeaderBytes));
-        if (head.size() < png::kHeaderBytes || !png::plain_ihdr(head.data(), kMaxSampleBytes, p)) return false;
-        std::vector<unsigned char> file = whole(src);
-        if (file.empty() || !png::read_plain(file, kMaxSampleBytes, p) || !within_limits(p.width, p.height, p.channels))
+        if (head.size() < png::kHeaderBytes || !png::plain_ihdr(head.data(), kMaxSampleBytes, p)) {
+            refusal = png::size_refusal(src.size, src.reader());
             return false;
+        }
+        std::vector<unsigned char> file = whole(src);
+        if (file.empty() || !png::read_plain(file, kMaxSampleBytes, p) ||
+            !within_limits(p.width, p.height, p.channels)) {
+            refusal = png::size_refusal(src.size, src.reader());
+            return false;
+        }
         raw.info = info_of(p.width, p.height, p.channels, p.bit_depth, "png");
         raw.bit_depth = p.bit_depth;
         raw.samples = std::move(p.pixels);
         return true;
     }
+    refusal = declined_jpeg(src, false);  // a JPEG under another name
     return false;
 }
 
-bool decode(const InputFile& in, Raw& raw) {
+bool decode(const InputFile& in, Raw& raw, std::string& refusal) {
     try {
-        return decode_or_throw(in, raw);
+        return decode_or_throw(in, raw, refusal);
     } catch (const std::bad_alloc&) {
         raw = Raw{};
         return false;
@@ -181,16 +206,19 @@ void to_floats(const Raw& raw, size_t first, size_t n, float* out) {
     else to_float(raw.samples.data() + first, n, out);
 }
 
-bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<StatedColorSpace>& stated) {
+bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<StatedColorSpace>& stated,
+                        std::string& refusal) {
     Source src(in);
     if (src.kind == Kind::jpeg) {
         const uint64_t end = jpeg::first_scan_header_end(src.size, src.reader());
         if (end == 0) return false;
         const std::vector<unsigned char> head = src.bytes(end);
         jpeg::Plain p;
-        if (head.empty() || !jpeg::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, p.channels))
+        if (head.empty() || !jpeg::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p, src.size) ||
+            !within_limits(p.width, p.height, p.channels)) {
+            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, true);
             return false;
+        }
         info = jpeg_info(in, p);
         stated = StatedColorSpace{"sRGB", "jpeg"};
         return true;
@@ -209,26 +237,29 @@ bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<Stat
     if (src.kind == Kind::png) {
         png::Plain p;
         if (!png::read_plain_header(src.size, src.reader(), kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, p.channels))
+            !within_limits(p.width, p.height, p.channels)) {
+            refusal = png::size_refusal(src.size, src.reader());
             return false;
+        }
         info = info_of(p.width, p.height, p.channels, p.bit_depth, "png");
         return true;
     }
+    refusal = declined_jpeg(src, true);  // a JPEG under another name
     return false;
 }
 }  // namespace
 
-bool read_info(const InputFile& in, ImageInfo& info, std::optional<StatedColorSpace>& stated) {
+bool read_info(const InputFile& in, ImageInfo& info, std::optional<StatedColorSpace>& stated, std::string& refusal) {
     try {
-        return read_info_or_throw(in, info, stated);
+        return read_info_or_throw(in, info, stated, refusal);
     } catch (const std::bad_alloc&) {
         return false;
     }
 }
 
-bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_codes) {
+bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_codes, std::string& refusal) {
     Raw raw;
-    if (!decode(in, raw)) return false;
+    if (!decode(in, raw, refusal)) return false;
     Decoded d;
     if (keep_codes && raw.bit_depth == 8) {
         d.codes.width = raw.info.width;
@@ -248,11 +279,11 @@ bool read_image(const InputFile& in, Decoded& out, ImageInfo& info, bool keep_co
     return true;
 }
 
-bool read_bands(const InputFile& in, int band_rows, ImageInfo& info,
+bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& refusal,
                 const std::function<void(int, int, const float*)>& fn,
                 const std::function<void(int, int, const uint8_t*)>& codes) {
     Raw raw;
-    if (!decode(in, raw)) return false;
+    if (!decode(in, raw, refusal)) return false;
     band_rows = std::max(1, band_rows);
     const size_t row = static_cast<size_t>(raw.info.width) * static_cast<size_t>(raw.info.channels);
     const bool as_codes = codes && raw.bit_depth == 8;

@@ -176,8 +176,11 @@ std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
         HeaderRead h;
         std::optional<StatedColorSpace> stated;  // from the same open, where it is stated_color_space's
         ImageInfo direct_info;
-        if (direct::read_info(in, direct_info, stated)) {
+        std::string refusal;
+        if (direct::read_info(in, direct_info, stated, refusal)) {
             h.info = std::move(direct_info);
+        } else if (!refusal.empty()) {
+            h.error = in.display + ": " + refusal;
         } else if (const auto* t = table(h.error, in.display + ": ")) {
             h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error, stated); });
         }
@@ -191,7 +194,12 @@ std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
 
 // Decodes `in`: directly where image/direct.hpp reads it, else through the module.
 bool read_decoded(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error, bool keep_codes) {
-    if (direct::read_image(in, out, info, keep_codes)) return true;
+    std::string refusal;
+    if (direct::read_image(in, out, info, keep_codes, refusal)) return true;
+    if (!refusal.empty()) {
+        error = in.display + ": " + refusal;
+        return false;
+    }
     const auto* t = table(error, in.display + ": ");
     const bool ok = t && guarded(in, error, [&] { return t->read_image(in, out, info, error, keep_codes); });
     if (!ok) out = Decoded{};
@@ -217,7 +225,12 @@ bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
                 const std::function<void(int, int, const float*)>& fn,
                 const std::function<void(int, int, const uint8_t*)>& codes) {
-    if (direct::read_bands(in, band_rows, info, fn, codes)) return true;
+    std::string refusal;
+    if (direct::read_bands(in, band_rows, info, refusal, fn, codes)) return true;
+    if (!refusal.empty()) {
+        error = in.display + ": " + refusal;
+        return false;
+    }
     const auto* t = table(error, in.display + ": ");
     return t && guarded(in, error, [&] { return t->read_bands(in, band_rows, info, error, fn); });
 }
@@ -253,7 +266,8 @@ StatedColorSpace stated_color_space(const InputFile& in) {
         // A JPEG read directly is stated as OpenImageIO states every JPEG, without the module.
         ImageInfo info;
         std::optional<StatedColorSpace> stated;
-        if (direct::read_info(in, info, stated) && stated) return *stated;
+        std::string refusal;
+        if (direct::read_info(in, info, stated, refusal) && stated) return *stated;
         std::string error;
         const auto* t = table(error);
         if (!t) return StatedColorSpace{};

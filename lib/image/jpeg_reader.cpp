@@ -1,10 +1,12 @@
 #include "image/jpeg_reader.hpp"
 
+#include "core/limits.hpp"
 #include "image/exif.hpp"
 
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <string_view>
 
 #include <jerror.h>  // libjpeg's message codes (JWRN_JPEG_EOF)
@@ -13,13 +15,20 @@
 namespace mf::jpeg {
 namespace {
 
-// libjpeg's errors end in a longjmp back to read_plain; warnings are counted, and the one that
-// matters remembered: libjpeg answers a file that ends early with grey rows and a warning
-// (JWRN_JPEG_EOF), which OpenImageIO turns into a failed read (oiio_module.cpp ended_early).
+// Bytes an encoder may leave before the end-of-image marker after the last block (padding: a
+// few zero bytes from some encoders). More is the entropy decoder finishing out of step: 256
+// garbled bytes in the middle of a real 1024² file (sample_materials' Net004A colour map) leave
+// 40; no corpus JPEG leaves any.
+constexpr int kMaxPaddingBeforeEoi = 4;
+
+// libjpeg's errors end in a longjmp back to the caller; every warning is seen here (libjpeg's
+// own emit_message passes only the first to output_message, which is all OpenImageIO hears),
+// and the first that means lost data is kept with its text and the count of such warnings.
 struct ErrorManager {
     jpeg_error_mgr pub{};
     std::jmp_buf jump{};
-    bool ended_early = false;
+    int lost = 0;            // warnings that mean pixels were not decoded from the file's data
+    std::string first_lost;  // libjpeg's text of the first
 };
 
 [[noreturn]] void error_exit(j_common_ptr cinfo) {
@@ -27,12 +36,64 @@ struct ErrorManager {
     std::longjmp(err->jump, 1);
 }
 
+// Whether libjpeg's warning means decoded rows that are not the file's pixels: a segment cut
+// short or garbled (libjpeg then fills with zeros or carries on out of step), the file ending
+// early (grey rows). Not: an unknown JFIF revision or Adobe transform, a bad ICC marker (a
+// profile, not pixels), and a few extraneous bytes before the end-of-image marker once every
+// row is decoded (encoders' padding, seen on real vendor files with intact pixels).
+bool loses_data(const jpeg_error_mgr& e, const jpeg_decompress_struct& cinfo) {
+    switch (e.msg_code) {
+        case JWRN_ARITH_BAD_CODE:
+        case JWRN_BOGUS_PROGRESSION:
+        case JWRN_HIT_MARKER:
+        case JWRN_HUFF_BAD_CODE:
+        case JWRN_JPEG_EOF:
+        case JWRN_MUST_RESYNC:
+        case JWRN_NOT_SEQUENTIAL: return true;
+        case JWRN_EXTRANEOUS_DATA:
+            // msg_parm.i: {count, marker}. Bytes left over before EOI after the last MCU are
+            // padding when few; many mean the entropy decoder finished out of step.
+            return e.msg_parm.i[1] != 0xD9 || e.msg_parm.i[0] > kMaxPaddingBeforeEoi ||
+                   cinfo.output_scanline < cinfo.output_height;
+        default: return false;
+    }
+}
+
 void emit_message(j_common_ptr cinfo, int level) {
     auto* err = reinterpret_cast<ErrorManager*>(cinfo->err);
-    if (level < 0) {
-        ++err->pub.num_warnings;
-        if (err->pub.msg_code == JWRN_JPEG_EOF) err->ended_early = true;
+    if (level >= 0) return;
+    ++err->pub.num_warnings;
+    if (cinfo->is_decompressor && loses_data(err->pub, *reinterpret_cast<const jpeg_decompress_struct*>(cinfo)) &&
+        err->lost++ == 0) {
+        char text[JMSG_LENGTH_MAX];
+        (*cinfo->err->format_message)(cinfo, text);
+        err->first_lost = text;
     }
+}
+
+// Why the frame header cannot be the file's: more blocks than its data can code. Huffman coding
+// spends at least one bit on every block's DC coefficient (a sequential scan at least two: DC
+// and end-of-block), so a file of N bytes holds at most 8 N blocks; arithmetic coding can code a
+// flat block in far less, so it gets 64 blocks a bit. Empty when it fits. Checked after
+// jpeg_read_header (which sets each component's size in blocks) and before any pixel buffer.
+std::string size_refusal(const jpeg_decompress_struct& cinfo, uint64_t file_size) {
+    // Beyond kMaxImageSide² pixels the decoders' own limit refuses the file, in its words.
+    if (uint64_t{cinfo.image_width} * cinfo.image_height > uint64_t{kMaxImageSide} * uint64_t{kMaxImageSide}) return {};
+    uint64_t blocks = 0;
+    for (int c = 0; c < cinfo.num_components; ++c)
+        blocks += uint64_t{cinfo.comp_info[c].width_in_blocks} * cinfo.comp_info[c].height_in_blocks;
+    const uint64_t most = file_size * 8 * (cinfo.arith_code ? 64 : 1);
+    if (blocks <= most) return {};
+    return "its frame header declares " + std::to_string(cinfo.image_width) + "x" + std::to_string(cinfo.image_height) +
+           " pixels (" + std::to_string(blocks) + " blocks of 8x8), more than its " + std::to_string(file_size) +
+           " bytes can code (at most " + std::to_string(most) +
+           "): the file is cut short or its header is damaged; not decoded";
+}
+
+std::string damage_text(const ErrorManager& err) {
+    return "libjpeg reports lost data (" + err.first_lost +
+           (err.lost > 1 ? "; " + std::to_string(err.lost) + " such warnings" : std::string()) +
+           "): the file is cut short or its data corrupt, and those rows would be grey or garbage";
 }
 
 // What the saved APP1 markers state: the orientation, or false for any this reader leaves to
@@ -58,7 +119,8 @@ bool marker_facts(const jpeg_decompress_struct& cinfo, int& orientation) {
 
 }  // namespace
 
-bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64_t max_samples, Plain& out) {
+bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64_t max_samples, Plain& out,
+                uint64_t file_size) {
     out = Plain{};
     if (size < 4) return false;
     jpeg_decompress_struct cinfo{};
@@ -66,7 +128,8 @@ bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64
     cinfo.err = jpeg_std_error(&err.pub);
     err.pub.error_exit = error_exit;
     err.pub.emit_message = emit_message;
-    // Only trivially destructible locals live across setjmp; the pixels are written into `out`.
+    // Only trivially destructible locals live across setjmp (err's string is set only after a
+    // warning, never across the jump's return); the pixels are written into `out`.
     if (setjmp(err.jump)) {
         jpeg_destroy_decompress(&cinfo);
         out = Plain{};
@@ -75,8 +138,10 @@ bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64
     jpeg_create_decompress(&cinfo);
     jpeg_mem_src(&cinfo, data, static_cast<unsigned long>(size));
     jpeg_save_markers(&cinfo, JPEG_APP0 + 1, 0xFFFF);
-    bool plain = jpeg_read_header(&cinfo, TRUE) == JPEG_HEADER_OK && !err.ended_early;
-    plain = plain && cinfo.data_precision == 8 &&
+    bool plain = jpeg_read_header(&cinfo, TRUE) == JPEG_HEADER_OK;
+    if (plain) out.refusal = size_refusal(cinfo, file_size);
+    if (plain && err.lost) out.refusal = damage_text(err);
+    plain = plain && out.refusal.empty() && cinfo.data_precision == 8 &&
             ((cinfo.num_components == 1 && cinfo.jpeg_color_space == JCS_GRAYSCALE) ||
              (cinfo.num_components == 3 && (cinfo.jpeg_color_space == JCS_YCbCr || cinfo.jpeg_color_space == JCS_RGB)));
     plain = plain && cinfo.image_width > 0 && cinfo.image_height > 0 &&
@@ -85,7 +150,9 @@ bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64
     plain = plain && marker_facts(cinfo, out.orientation);
     if (!plain) {
         jpeg_destroy_decompress(&cinfo);
+        std::string refusal = std::move(out.refusal);
         out = Plain{};
+        out.refusal = std::move(refusal);
         return false;
     }
     out.width = static_cast<int>(cinfo.image_width);
@@ -109,14 +176,61 @@ bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64
         JSAMPROW rows[1] = {out.pixels.data() + row * cinfo.output_scanline};
         if (jpeg_read_scanlines(&cinfo, rows, 1) != 1) break;
     }
-    const bool whole = cinfo.output_scanline == cinfo.output_height && !err.ended_early;
-    if (whole) jpeg_finish_decompress(&cinfo);
+    bool whole = cinfo.output_scanline == cinfo.output_height;
+    if (whole) jpeg_finish_decompress(&cinfo);  // reads to EOI: warnings of the file's tail too
+    whole = whole && err.lost == 0;
+    const std::string damage = err.lost ? damage_text(err) : std::string();
     jpeg_destroy_decompress(&cinfo);
-    if (!whole || err.ended_early) {
+    if (!whole) {
         out = Plain{};
+        out.refusal = damage;
         return false;
     }
     return true;
+}
+
+std::string check(const unsigned char* data, size_t size, bool header_only, uint64_t max_samples, uint64_t file_size) {
+    if (size < 4) return {};
+    jpeg_decompress_struct cinfo{};
+    ErrorManager err;
+    cinfo.err = jpeg_std_error(&err.pub);
+    err.pub.error_exit = error_exit;
+    err.pub.emit_message = emit_message;
+    // No C++ object is made between here and a libjpeg call that may jump back: every string
+    // below is made once libjpeg is done (but for jpeg_destroy_decompress, which never jumps).
+    if (setjmp(err.jump)) {
+        jpeg_destroy_decompress(&cinfo);
+        return {};  // libjpeg cannot read it: the module's reader says why
+    }
+    jpeg_create_decompress(&cinfo);
+    jpeg_mem_src(&cinfo, data, static_cast<unsigned long>(size));
+    if (jpeg_read_header(&cinfo, TRUE) != JPEG_HEADER_OK) {
+        jpeg_destroy_decompress(&cinfo);
+        return {};
+    }
+    if (std::string why = size_refusal(cinfo, file_size); !why.empty() || err.lost) {
+        jpeg_destroy_decompress(&cinfo);
+        return why.empty() ? damage_text(err) : why;
+    }
+    if (header_only ||
+        uint64_t{cinfo.image_width} * cinfo.image_height * static_cast<uint64_t>(cinfo.num_components) > max_samples) {
+        jpeg_destroy_decompress(&cinfo);
+        return {};
+    }
+    // Every row decoded into one row of libjpeg's own memory and dropped: what is wanted is
+    // libjpeg's warnings (the fast DCT: warnings come from the entropy decoder, not the IDCT).
+    cinfo.dct_method = JDCT_IFAST;
+    cinfo.do_fancy_upsampling = FALSE;
+    jpeg_start_decompress(&cinfo);
+    JSAMPARRAY row = (*cinfo.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&cinfo), JPOOL_IMAGE,
+                                                cinfo.output_width * static_cast<JDIMENSION>(cinfo.output_components),
+                                                1);
+    while (cinfo.output_scanline < cinfo.output_height)
+        if (jpeg_read_scanlines(&cinfo, row, 1) != 1) break;
+    if (cinfo.output_scanline == cinfo.output_height) jpeg_finish_decompress(&cinfo);
+    const bool lost = err.lost > 0;
+    jpeg_destroy_decompress(&cinfo);
+    return lost ? damage_text(err) : std::string();
 }
 
 }  // namespace mf::jpeg

@@ -6,6 +6,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "image/read_at.hpp"
@@ -39,15 +40,28 @@ struct Plain {
     int width = 0, height = 0, channels = 0;
     int orientation = 1;          // EXIF's Orientation (tag 0x0112 of IFD0); 1 when there is none
     std::vector<uint8_t> pixels;  // rows of width * channels codes; empty after a header read
+    // Set when read_plain declines because the file is damaged (check() below says when): the
+    // caller reports it (UNREADABLE_FILE) instead of reading the file another way.
+    std::string refusal;
 };
 
 // Contract: reads `data` (a whole file, or for header_only at least its first_scan_header_end
-// bytes) when it is an 8-bit JPEG of one (grey) or three (YCbCr or RGB: decoded to RGB)
-// components, no larger than `max_samples`, whose only orientation is in one well-formed EXIF
-// block, and which libjpeg reads without a warning that the data ended early. Returns false,
-// leaving `out` empty, for anything else (CMYK/YCCK, 12-bit, an XMP orientation, two EXIF
-// blocks, an error, a file cut short): never an error of its own, the caller reads such a file
-// as before.
-bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64_t max_samples, Plain& out);
+// bytes of a file of `file_size` bytes) when it is an 8-bit JPEG of one (grey) or
+// three (YCbCr or RGB: decoded to RGB) components, no larger than `max_samples`, whose only
+// orientation is in one well-formed EXIF block, and which libjpeg reads without a warning of
+// lost data. Returns false, leaving `out` empty, for anything else (CMYK/YCCK, 12-bit, an XMP
+// orientation, two EXIF blocks, an error): never an error of its own, the caller reads such a
+// file as before — except a damaged one, for which `out.refusal` says why.
+bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64_t max_samples, Plain& out,
+                uint64_t file_size);
+
+// Why a JPEG read another way must not be trusted (empty: no reason), from libjpeg's reading of
+// it: its frame header declares more 8x8 blocks than its `file_size` bytes can code (refused on
+// the header, before anything is allocated), or, unless header_only, a decode of every row (at
+// most `max_samples`, into one row's buffer) raises a libjpeg warning that means lost data — a
+// segment cut short or garbled, data out of step, the file ending early ("Corrupt JPEG data:
+// ...", "Premature end of JPEG file"). The same rule read_plain applies, for the files it
+// declines (CMYK, XMP orientations, misnamed JPEGs) before OpenImageIO decodes them.
+std::string check(const unsigned char* data, size_t size, bool header_only, uint64_t max_samples, uint64_t file_size);
 
 }  // namespace mf::jpeg

@@ -1,5 +1,6 @@
 #include "image/png_reader.hpp"
 
+#include "core/limits.hpp"
 #include "image/exif.hpp"
 
 #include <libdeflate.h>
@@ -8,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <string>
 #include <string_view>
 
 namespace mf::png {
@@ -250,6 +252,41 @@ bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out) 
     out = ihdr;
     out.pixels = std::move(raw);
     return true;
+}
+
+std::string size_refusal(uint64_t size, const ReadAt& read) {
+    unsigned char head[kHeaderBytes];
+    if (size < kHeaderBytes || !read(0, sizeof head, head) || std::memcmp(head, kSignature, 8) != 0 ||
+        be32(head + 8) != 13 || std::memcmp(head + 12, "IHDR", 4) != 0)
+        return {};
+    const unsigned char* data = head + 16;
+    const uint64_t width = be32(data), height = be32(data + 4);
+    static constexpr int kChannels[] = {1, 0, 3, 1, 2, 0, 4};  // by colour type (3: palette index)
+    const int channels = data[9] < 7 ? kChannels[data[9]] : 0;
+    const uint64_t bits = uint64_t{data[8]} * static_cast<uint64_t>(channels);
+    // Beyond kMaxImageSide² pixels the decoders' own limit refuses the file, in its words.
+    if (width == 0 || height == 0 || bits == 0 || data[12] > 1 ||
+        width * height > uint64_t{kMaxImageSide} * uint64_t{kMaxImageSide})
+        return {};
+    uint64_t rows = 0;  // the filtered rows' bytes: each row's samples, rounded up to bytes, and its filter byte
+    for (const Pass& p : passes_of(static_cast<size_t>(width), static_cast<size_t>(height), data[12] == 1))
+        rows += uint64_t{p.height} * ((uint64_t{p.width} * bits + 7) / 8 + 1);
+    uint64_t idat = 0;
+    for (uint64_t at = kHeaderBytes; at + 8 <= size;) {  // after IHDR and its CRC
+        unsigned char chunk[8];
+        if (!read(at, 8, chunk)) break;
+        const uint64_t len = be32(chunk);
+        if (std::memcmp(chunk + 4, "IDAT", 4) == 0) idat += len;
+        if (std::memcmp(chunk + 4, "IEND", 4) == 0) break;
+        at += 12 + len;
+    }
+    constexpr uint64_t kDeflateMaxRatio = 1032;
+    const uint64_t most = kDeflateMaxRatio * idat + kDeflateMaxRatio;
+    if (rows <= most) return {};
+    return "its header declares " + std::to_string(width) + "x" + std::to_string(height) + " pixels (" +
+           std::to_string(rows) + " bytes of rows), more than its " + std::to_string(idat) +
+           " bytes of image data can inflate to (at most " + std::to_string(most) +
+           "): the file is cut short or its header is damaged; not decoded";
 }
 
 }  // namespace mf::png

@@ -7,6 +7,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "image/read_at.hpp"
@@ -59,5 +60,14 @@ bool read_plain_header(uint64_t size, const ReadAt& read, size_t max_bytes, Plai
 // before. `file` is used up (its image data moved together in place, then freed): at most the
 // file and the samples are held at once, where libpng streams, hence the bound.
 bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out);
+
+// Why a PNG of `size` bytes (any: palette, any depth, interlaced) cannot hold the image its IHDR
+// declares, or empty: the filtered rows it states (PNG spec 7.2, Adam7's passes included) are
+// more than its IDAT chunks' data can inflate to. Deflate's best ratio is 1032:1 (a 258-byte
+// match in at most 2 bits, RFC 1951 §3.2.5), so N bytes of IDAT hold at most 1032 N + 1032
+// bytes. Walks the chunk headers only (8 bytes each): a 177-byte file declaring 16384² RGBA
+// 16-bit is refused before anything is allocated, where OpenImageIO would allocate 2 GiB for
+// it. Empty too for a file that is not a PNG or whose chunks do not walk (the reader says why).
+std::string size_refusal(uint64_t size, const ReadAt& read);
 
 }  // namespace mf::png

@@ -349,6 +349,44 @@ bool sidecar_names_a_map(const fs::path& dir, const std::vector<std::string>& fi
     return false;
 }
 
+// Why a folder that made no set is still not nothing (issue 45: it vanished from a library
+// run): images whose names state no role beside a material document (MaterialX, glTF) that
+// cannot be read (not well-formed, too deep, too large) or names none of them (an entity left
+// unexpanded), so the maps it would have named are named by nothing. Empty when the folder has
+// no such document or no image. Called only for a folder that made no set.
+std::string unreadable_sidecar(const fs::path& dir, const std::vector<std::string>& files) {
+    std::string images;
+    int count = 0;
+    for (const std::string& f : files)
+        if (is_image_file(f) && count++ < 3) images += (images.empty() ? "" : ", ") + f;
+    if (count == 0) return {};
+    if (count > 3) images += ", … (" + std::to_string(count) + " images)";
+    for (const std::string& f : files) {
+        // MaterialX and glTF documents only: a .json beside images may be anything.
+        const std::string ext = ascii_lower(fs::path(f).extension().string());
+        if (!is_sidecar_name(f) || (ext != ".mtlx" && ext != ".gltf" && ext != ".glb")) continue;
+        std::error_code ec;
+        std::string error;
+        std::vector<unsigned char> bytes;
+        if (!fs::is_regular_file(dir / f, ec)) continue;
+        if (fs::file_size(dir / f, ec) > kSidecarMaxBytes)
+            error = "larger than " + std::to_string(kSidecarMaxBytes) + " bytes";
+        else if (!read_file(dir / f, bytes, error)) error = "cannot be read (" + error + ")";
+        else {
+            const SidecarRoles roles = sidecar_roles(f, std::string_view(reinterpret_cast<const char*>(bytes.data()),
+                                                                         bytes.size()));
+            error = roles.error;
+            // Read, but naming none of these images (an entity left unexpanded, another folder's
+            // file names): as unusable to this folder.
+            if (error.empty()) error = "it names none of them";
+        }
+        return dir.string() + ": " + images + " name no map role, and the sidecar " + f +
+               " that could name them is unusable (" + error +
+               "); no set is made of them — repair the sidecar, or name the maps by role (_Color, _Normal, ...)";
+    }
+    return {};
+}
+
 // The files of `dir` that are not folders (hidden ones left out), sorted; zips go to `zips`.
 bool list_folder(const fs::path& dir, std::vector<std::string>& files, std::vector<fs::path>* zips,
                  std::string& error) {
@@ -401,6 +439,10 @@ void scan_folder(Scan& scan, const fs::path& dir) {
     auto& mine = scan.seen[real_path(dir)];
     for (size_t i = before; i < scan.out.size(); ++i) mine.push_back(i);
     if (scan.out.size() > before) return;
+    if (std::string why = unreadable_sidecar(dir, files); !why.empty()) {
+        scan.failures.push_back({dir.string(), std::string(code::unrecognized_file), std::move(why)});
+        return;
+    }
     std::string unread;
     for (const std::string& f : files)
         if (unread_image_format(f)) unread += (unread.empty() ? "" : ", ") + f;

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -21,6 +22,12 @@ inline mf::InputFile in_memory(const std::vector<unsigned char>& bytes, const st
     in.display = name;
     in.bytes = std::make_shared<const std::vector<unsigned char>>(bytes);
     return in;
+}
+
+// A file's bytes (empty when it cannot be read).
+inline std::vector<unsigned char> file_bytes(const std::filesystem::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
 }
 
 inline nlohmann::json read_json(const std::filesystem::path& p) {

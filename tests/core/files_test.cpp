@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <set>
 
 #include <unistd.h>
 
@@ -103,6 +104,26 @@ TEST(AtomicWrite, TemporariesOfOtherHostsAreKeptUnlessTheFolderIsTheCallers) {
     EXPECT_TRUE(fs::exists(d / ours));  // this host's live writer's: never
     EXPECT_FALSE(mf::temp_owner(std::string(".x.png") + mf::kTempMarker + "-12-1"));
     fs::remove_all(d);
+}
+
+// Kubernetes indexed-job pods share long name prefixes (issue 45): every pod is its own host,
+// and so is a second boot or another pid namespace of one host; one host is one identity.
+TEST(AtomicWrite, HostIdentityTellsApartNamesThatShareLongPrefixes) {
+    const std::string prefix = "matforge-library-ingest-indexed-job-shard-runner-";
+    const std::string boot = "6f1c2a52-0d8e-4c1e-9d8b-1c2d3e4f5a6b", ns = "pid:[4026531836]";
+    std::set<std::string> ids;
+    for (int i = 0; i < 200; ++i) ids.insert(mf::host_identity(prefix + std::to_string(i) + "-x7k2q", boot, ns));
+    EXPECT_EQ(ids.size(), 200u);
+    const std::string one = mf::host_identity(prefix + "0-x7k2q", boot, ns);
+    EXPECT_EQ(one, mf::host_identity(prefix + "0-x7k2q", boot, ns));
+    EXPECT_NE(one, mf::host_identity(prefix + "0-x7k2q", "another-boot", ns));
+    EXPECT_NE(one, mf::host_identity(prefix + "0-x7k2q", boot, "pid:[4026532999]"));
+    EXPECT_LE(one.size(), 16u + 1u + 16u);
+    // Temporaries name it, and a name of ours reads it back.
+    const auto owner = mf::temp_owner(mf::temp_name("a.png"));
+    ASSERT_TRUE(owner);
+    EXPECT_EQ(owner->host, mf::this_host());
+    EXPECT_NE(mf::this_host().find('~'), std::string::npos);
 }
 
 // What no document of ours may hold is refused while parsing, naming the file and the problem.

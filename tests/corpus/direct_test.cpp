@@ -46,8 +46,10 @@ TEST(DirectCodecs, CorpusJpegsReadAsOpenImageIoReadsThem) {
         });
         ASSERT_GT(end, 0u);
         mf::jpeg::Plain head, whole;
-        const bool head_ok = mf::jpeg::read_plain(file.data(), static_cast<size_t>(end), true, uint64_t{1} << 30, head);
-        const bool whole_ok = mf::jpeg::read_plain(file.data(), file.size(), false, uint64_t{1} << 30, whole);
+        const bool head_ok = mf::jpeg::read_plain(file.data(), static_cast<size_t>(end), true, uint64_t{1} << 30, head,
+                                                  file.size());
+        const bool whole_ok = mf::jpeg::read_plain(file.data(), file.size(), false, uint64_t{1} << 30, whole,
+                                                   file.size());
         EXPECT_EQ(head_ok, whole_ok) << "the header read accepts what the decode accepts";
         if (!whole_ok) continue;
         ++accepted;

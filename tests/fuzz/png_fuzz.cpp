@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <libdeflate.h>
@@ -45,6 +46,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             return true;
         },
         size_t{1} << 24, head);
+    // The size check walks any PNG's chunk headers; it never doubts one the decode reads whole.
+    const std::string doubt = mf::png::size_refusal(file.size(), [&](uint64_t at, size_t n, unsigned char* out) {
+        if (at > file.size() || n > file.size() - at) return false;
+        std::copy_n(file.data() + at, n, out);
+        return true;
+    });
     mf::png::Plain p;
     if (!mf::png::read_plain(file, size_t{1} << 24, p)) {
         if (!p.pixels.empty()) std::abort();  // a refusal leaves nothing
@@ -55,6 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         p.pixels.size() !=
             static_cast<size_t>(p.width) * static_cast<size_t>(p.height) * static_cast<size_t>(p.channels) * bytes)
         std::abort();
+    if (!doubt.empty()) std::abort();
     if (!head_ok || head.width != p.width || head.height != p.height || head.channels != p.channels ||
         head.bit_depth != p.bit_depth)
         std::abort();  // what the decode reads, the header read states

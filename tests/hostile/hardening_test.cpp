@@ -6,6 +6,7 @@
 
 #include <sys/stat.h>
 
+#include <map>
 #include <set>
 
 #include "hostile_fixture.hpp"
@@ -546,6 +547,47 @@ TEST_F(Hostile, ForeignFilesInTheOutputFolder) {
     p = ingest();
     EXPECT_EQ(p.code, 0) << p.output;
     EXPECT_TRUE(fs::exists(out / marker));
+}
+
+// A folder whose maps only a broken MaterialX document names (issue 45) leaves a trace in a
+// library run: a failure naming the folder and the document, while the good set beside it is
+// made. Cut short, an undefined entity in place of a file name, nesting past libxml2's limit;
+// a defined internal entity is expanded and names its map.
+TEST_F(Hostile, FolderNamedOnlyByABrokenSidecarLeavesATrace) {
+    const std::map<std::string, std::string> docs{
+        {"cut", "<?xml version=\"1.0\"?><materialx version=\"1.38\"><nodegraph name=\"g\">"},
+        {"entity", "<?xml version=\"1.0\"?><!DOCTYPE materialx [<!ENTITY c \"img1.png\">]><materialx version=\"1.38\">"
+                   "<image name=\"base\" type=\"color3\"><input name=\"file\" type=\"filename\" value=\"&c;\"/></image>"
+                   "<standard_surface name=\"s\" type=\"surfaceshader\"><input name=\"base_color\" type=\"color3\" "
+                   "nodename=\"base\"/></standard_surface></materialx>"},
+        {"undefined", "<?xml version=\"1.0\"?><materialx version=\"1.38\"><image name=\"base\" type=\"color3\">"
+                      "<input name=\"file\" type=\"filename\" value=\"&nowhere;\"/></image></materialx>"},
+        {"deep", "<?xml version=\"1.0\"?><materialx>" +
+                     [] {
+                         std::string d;
+                         for (int i = 0; i < 300; ++i) d += "<a>";
+                         for (int i = 0; i < 300; ++i) d += "</a>";
+                         return d;
+                     }() +
+                     "</materialx>"},
+    };
+    for (const auto& [name, doc] : docs) {
+        write_bytes(in / name / "img1.png", encode(gradient(16, 16, 3)));
+        write_bytes(in / name / "img2.png", encode(gradient(16, 16, 1)));
+        write_text(in / name / (name + ".mtlx"), doc);
+    }
+    const Proc p = ingest({"--fail-on", "never"});
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_good_done();
+    for (const std::string name : {"cut", "deep", "undefined"}) {
+        SCOPED_TRACE(name);
+        expect_failure(p, "UNRECOGNIZED_FILE", (in / name).string() + ": img1.png, img2.png name no map role");
+        EXPECT_NE(p.output.find(name + ".mtlx"), std::string::npos) << p.output;
+    }
+    // An internal entity libxml2 expands names a file: that folder is a material.
+    const auto* e = mat("entity");
+    ASSERT_TRUE(e) << manifest.dump(1);
+    EXPECT_EQ((*e)["inputs"]["albedo"]["file"], "img1.png");
 }
 
 TEST_F(Hostile, ForeignManifestIsNotReplaced) {

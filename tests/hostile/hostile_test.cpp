@@ -54,6 +54,34 @@ TEST_F(Hostile, PngBomb100000Squared) { bomb("Hostile_Roughness.png", make_png(1
 
 TEST_F(Hostile, PngBombJustOverTheLimit) { bomb("Hostile_Roughness.png", make_png(16385, 16384, 8, 0, {}, {}, false)); }
 
+// Within the pixel limit but lying (issue 45): 16384² RGBA 16-bit (2 GiB of samples) in a file of
+// under 100 bytes, alone and inside a .zip — refused on the header, never allocated.
+TEST_F(Hostile, PngLyingHeaderWithinTheLimit) {
+    bomb("Hostile_Roughness.png", make_png(16384, 16384, 16, 6, {}, {}, false), "more than its 2 bytes of image data");
+}
+
+TEST_F(Hostile, PngLyingHeaderInsideZip) {
+    write_zip(in / "Zipped.zip", {{"Zipped_Color.png", encode(gradient(16, 16, 3))},
+                                  {"Zipped_Roughness.png", make_png(16384, 16384, 16, 6, {}, {}, false)}});
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_finding("Zipped", "UNREADABLE_FILE", "Zipped_Roughness.png", "declares 16384x16384 pixels");
+    EXPECT_LT(p.maxrss_kb, kBombRssLimitKb);
+}
+
+// A JPEG whose frame header claims 16384² over 2 KB of data: refused on the header.
+TEST_F(Hostile, JpegLyingHeader) {
+    Bytes jpeg = encode(gradient(64, 64, 3), "jpg");
+    bool patched = false;
+    for (size_t i = 2; i + 9 < jpeg.size() && !patched; ++i)
+        if (jpeg[i] == 0xFF && (jpeg[i + 1] == 0xC0 || jpeg[i + 1] == 0xC2)) {
+            jpeg[i + 5] = 0x40, jpeg[i + 6] = 0x00, jpeg[i + 7] = 0x40, jpeg[i + 8] = 0x00;
+            patched = true;
+        }
+    ASSERT_TRUE(patched);
+    bomb("Hostile_Roughness.jpg", jpeg, "declares 16384x16384 pixels");
+}
+
 TEST_F(Hostile, TiffBomb) { bomb("Hostile_Roughness.tif", make_tiff_bomb(100000, 100000)); }
 
 // OpenImageIO's BMP reader has a size check of its own, which fires first.

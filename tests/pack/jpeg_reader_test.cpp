@@ -6,6 +6,7 @@
 // OpenImageIO says.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <random>
@@ -17,6 +18,7 @@
 #include "image/image.hpp"
 #include "image/jpeg_reader.hpp"
 #include "oiio_oracle.hpp"
+#include "test_env.hpp"
 #include "test_files.hpp"
 
 namespace {
@@ -139,8 +141,9 @@ bool direct(const std::vector<unsigned char>& file, mf::jpeg::Plain& whole, mf::
         std::memcpy(o, file.data() + at, n);
         return true;
     });
-    const bool head_ok = end > 0 && mf::jpeg::read_plain(file.data(), static_cast<size_t>(end), true, 1u << 24, head);
-    const bool ok = mf::jpeg::read_plain(file.data(), file.size(), false, 1u << 24, whole);
+    const bool head_ok = end > 0 &&
+                         mf::jpeg::read_plain(file.data(), static_cast<size_t>(end), true, 1u << 24, head, file.size());
+    const bool ok = mf::jpeg::read_plain(file.data(), file.size(), false, 1u << 24, whole, file.size());
     EXPECT_EQ(head_ok, ok);
     return ok;
 }
@@ -232,19 +235,100 @@ TEST(JpegReader, LeavesOtherJpegsToOpenImageIo) {
     // A cut file: libjpeg would fill the rest with grey; OpenImageIO's read fails, and so does matforge's.
     const std::vector<unsigned char> cut(good.begin(), good.begin() + static_cast<long>(good.size() * 6 / 10));
     mf::jpeg::Plain whole, head;
-    EXPECT_FALSE(mf::jpeg::read_plain(cut.data(), cut.size(), false, 1u << 24, whole));
+    EXPECT_FALSE(mf::jpeg::read_plain(cut.data(), cut.size(), false, 1u << 24, whole, cut.size()));
     mf::Decoded d;
     mf::ImageInfo info;
     std::string err;
     EXPECT_FALSE(mf::read_image(in_memory(cut, "cut.jpg"), d, info, err));
-    EXPECT_NE(err.find("ends before its last pixel"), std::string::npos) << err;
+    EXPECT_NE(err.find("cut short"), std::string::npos) << err;
+    EXPECT_FALSE(whole.refusal.empty()) << "a cut file is refused, not left to OpenImageIO";
     // Over the size bound; then a JPEG under another name (OpenImageIO's reader by that name
     // would state another colour space): both left to OpenImageIO, which reads them.
-    EXPECT_FALSE(mf::jpeg::read_plain(good.data(), good.size(), false, 48 * 32 * 3 - 1, whole));
-    EXPECT_TRUE(mf::jpeg::read_plain(good.data(), good.size(), false, 48 * 32 * 3, whole));
+    EXPECT_FALSE(mf::jpeg::read_plain(good.data(), good.size(), false, 48 * 32 * 3 - 1, whole, good.size()));
+    EXPECT_TRUE(whole.refusal.empty());
+    EXPECT_TRUE(mf::jpeg::read_plain(good.data(), good.size(), false, 48 * 32 * 3, whole, good.size()));
     const auto misnamed = mf::read_info(in_memory(good, "albedo.png"), err);
     ASSERT_TRUE(misnamed) << err;
     EXPECT_EQ(misnamed->format, "jpeg");
+}
+
+// Damaged JPEGs (issue 45): libjpeg decodes them "successfully" with warnings and grey or
+// garbage rows. Every warning that means lost data makes the file unreadable, in the direct
+// reader and, for a JPEG it declines (here: under another name, and CMYK), before OpenImageIO
+// decodes it — the same rule, the same words. A frame header declaring more blocks than the
+// file can code is refused on the header. A few padding bytes before the end marker, which real
+// encoders leave, are no damage.
+TEST(JpegReader, DamagedJpegsAreUnreadableInBothReaders) {
+    const std::vector<unsigned char> real = mf::testfiles::file_bytes(
+        mf::testenv::source_dir() / "sample_materials/Net004A_1K-JPG/Net004A_1K-JPG_Color.jpg");
+    ASSERT_GT(real.size(), 100000u);
+    const size_t mid = real.size() / 2;
+    std::vector<std::pair<std::string, std::vector<unsigned char>>> damaged;
+    {  // cut in half, an end marker appended
+        std::vector<unsigned char> b(real.begin(), real.begin() + static_cast<long>(mid));
+        b.insert(b.end(), {0xFF, 0xD9});
+        damaged.emplace_back("cut in half with an end marker", b);
+    }
+    {  // 4 KiB zeroed
+        std::vector<unsigned char> b = real;
+        std::fill(b.begin() + static_cast<long>(mid), b.begin() + static_cast<long>(mid + 4096), 0);
+        damaged.emplace_back("4 KiB zeroed", b);
+    }
+    {  // 256 bytes garbled (no 0xFF: no marker made)
+        std::vector<unsigned char> b = real;
+        std::mt19937 rng(45);
+        for (size_t i = mid; i < mid + 256; ++i) b[i] = static_cast<unsigned char>(rng() % 255);
+        damaged.emplace_back("256 bytes garbled", b);
+    }
+    {  // a hole: 1 KiB of entropy data gone
+        std::vector<unsigned char> b = real;
+        b.erase(b.begin() + static_cast<long>(mid), b.begin() + static_cast<long>(mid + 1024));
+        damaged.emplace_back("a hole in the entropy data", b);
+    }
+    {  // a CMYK file (declined by the direct reader) cut in half
+        const std::vector<unsigned char> cmyk = make_jpeg(256, 256, 4, true);
+        std::vector<unsigned char> b(cmyk.begin(), cmyk.begin() + static_cast<long>(cmyk.size() / 2));
+        b.insert(b.end(), {0xFF, 0xD9});
+        damaged.emplace_back("a progressive CMYK file cut in half", b);
+    }
+    for (const auto& [what, bytes] : damaged)
+        for (const std::string name : {"damaged.jpg", "damaged.png"}) {
+            SCOPED_TRACE(what + " as " + name);
+            mf::Decoded d;
+            mf::ImageInfo info;
+            std::string err;
+            EXPECT_FALSE(mf::read_image(in_memory(bytes, name), d, info, err));
+            EXPECT_TRUE(err.find("libjpeg reports lost data") != std::string::npos ||
+                        err.find("cut short") != std::string::npos)
+                << err;
+            int bands = 0;
+            err.clear();
+            EXPECT_FALSE(mf::read_bands(in_memory(bytes, name), 64, info, err,
+                                        [&](int, int, const float*) { ++bands; }));
+            EXPECT_EQ(bands, 0) << "no band of a damaged file is handed on";
+            EXPECT_FALSE(err.empty());
+        }
+    // A 64x64 JPEG whose frame header claims 16384x16384: refused on the header read.
+    std::vector<unsigned char> forged = make_jpeg(64, 64, 3, false);
+    bool patched = false;
+    for (size_t i = 2; i + 9 < forged.size() && !patched; ++i)
+        if (forged[i] == 0xFF && forged[i + 1] == 0xC0) {  // SOF0: length(2) precision(1) height(2) width(2)
+            forged[i + 5] = 0x40, forged[i + 6] = 0x00, forged[i + 7] = 0x40, forged[i + 8] = 0x00;
+            patched = true;
+        }
+    ASSERT_TRUE(patched);
+    for (const std::string name : {"forged.jpg", "forged.tif"}) {
+        std::string err;
+        EXPECT_FALSE(mf::read_info(in_memory(forged, name), err)) << name;
+        EXPECT_NE(err.find("declares 16384x16384 pixels"), std::string::npos) << err;
+    }
+    // Padding before the end marker: read, as OpenImageIO reads it.
+    std::vector<unsigned char> padded = real;
+    ASSERT_EQ(padded[padded.size() - 2], 0xFF);
+    padded.insert(padded.end() - 2, {0x12, 0x34, 0x56});
+    mf::jpeg::Plain whole, head;
+    EXPECT_TRUE(direct(padded, whole, head));
+    EXPECT_EQ(mf::jpeg::check(padded.data(), padded.size(), false, 1u << 24, padded.size()), "");
 }
 
 }  // namespace

@@ -371,6 +371,39 @@ TEST(PngReader, ReadsAdam7AsOpenImageIoDoes) {
             }
 }
 
+// A lying header (issue 45): a 177-byte PNG declaring 16384x16384 RGBA 16-bit is refused on its
+// header, by name or not, before anything is allocated (OpenImageIO would allocate 2 GiB, then
+// fail for want of data); a real image whose data compresses far (a flat 4096x4096 grey: 1000
+// rows' worth a kilobyte) is not.
+TEST(PngReader, ADeclaredSizeItsDataCannotHoldIsRefused) {
+    std::vector<unsigned char> ihdr = {0, 0, 0x40, 0, 0, 0, 0x40, 0, 16, 6, 0, 0, 0};
+    std::vector<unsigned char> z(64);
+    uLongf zn = z.size();
+    const std::vector<unsigned char> row(64, 0);
+    ASSERT_EQ(compress(z.data(), &zn, row.data(), static_cast<uLong>(row.size())), Z_OK);
+    z.resize(zn);
+    std::vector<unsigned char> lie = file_of({Chunk{"IHDR", ihdr}, Chunk{"IDAT", z}, Chunk{"IEND", {}}});
+    for (const std::string name : {"lie.png", "lie.tif"}) {
+        std::string err;
+        EXPECT_FALSE(mf::read_info(mf::testfiles::in_memory(lie, name), err)) << name;
+        EXPECT_NE(err.find("declares 16384x16384 pixels"), std::string::npos) << err;
+        mf::Decoded d;
+        mf::ImageInfo info;
+        err.clear();
+        EXPECT_FALSE(mf::read_image(mf::testfiles::in_memory(lie, name), d, info, err));
+        EXPECT_NE(err.find("more than its"), std::string::npos) << err;
+    }
+    // A flat 4096x4096 grey PNG compresses over 500:1 (deflate's limit: 1032:1) and is read.
+    const int n = 4096;
+    const std::vector<uint8_t> flat(static_cast<size_t>(n) * n, 77);
+    const std::vector<unsigned char> file = encode(n, n, 1, 8, {}, flat);
+    ASSERT_LT(file.size() * 500, static_cast<size_t>(n) * n) << "the test needs a file that compresses over 500:1";
+    std::string err;
+    const auto info = mf::read_info(mf::testfiles::in_memory(file, "flat.png"), err);
+    ASSERT_TRUE(info) << err;
+    EXPECT_EQ(info->width, n);
+}
+
 TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
     const int w = 9, h = 5, channels = 3;
     const auto s8 = samples<uint8_t>(w, h, channels, true, 5);
