@@ -36,6 +36,7 @@ std::vector<File> material_files(const Preset& p, const EngineMaterial& e, const
 
 std::vector<File> folder_files(const EngineMaterial& e) {
     if (e.kind == MaterialFileKind::d3d11) return {hlsl_include()};
+    if (e.kind == MaterialFileKind::unreal) return {unreal_import_all()};
     return {};
 }
 

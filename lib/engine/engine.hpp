@@ -43,13 +43,15 @@ const manifest::Output* texture_of(const std::vector<Bound>& bound, std::string_
 // include is per folder).
 std::vector<File> material_files(const Preset& p, const EngineMaterial& e, const manifest::Material& m);
 
-// The files written once per output folder, whatever its sets: d3d11's matforge_material.hlsli.
+// The files written once per output folder, whatever its sets: d3d11's matforge_material.hlsli,
+// Unreal's import_all.py.
 std::vector<File> folder_files(const EngineMaterial& e);
 
 // One writer per engine (godot.cpp, unity.cpp, unreal.cpp, hlsl.cpp).
 std::vector<File> godot_files(const manifest::Material& m, const std::vector<Bound>& bound);
 std::vector<File> unity_files(const EngineMaterial& e, const manifest::Material& m, const std::vector<Bound>& bound);
 std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bound>& bound);
+File unreal_import_all();  // import_all.py: runs every material's script under the folder
 File hlsl_include();
 
 // How a person opens a material file of `format` (the manifest's material_files format), one

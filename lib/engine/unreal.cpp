@@ -5,7 +5,10 @@
 // and makes MI_<material>, an instance of /Game/Matforge/M_MatforgeORM (made by the script when
 // the project has none: BaseColor RGB to Base Color and A to Opacity / Opacity Mask, ORM R to
 // Ambient Occlusion, G to Roughness, B to Metallic, Normal to Normal, Emissive times
-// EmissiveStrength to Emissive Color).
+// EmissiveStrength to Emissive Color). Every instance sets every parameter (the engine's flat
+// normal and black where its set has no map, strength 0 without emission), so no instance shows
+// the parent's defaults, which are whichever set made it. import_all.py (a folder file) runs
+// every material's script.
 //
 // Checked against the Unreal Python API reference (AssetImportTask, AssetTools,
 // EditorAssetLibrary, MaterialEditingLibrary, Texture.srgb / compression_settings) and parsed
@@ -50,8 +53,17 @@ def import_textures():
     return textures
 
 
+def texture_for(textures, parameter):
+    """This set's texture for `parameter`, else the engine's neutral one (a flat normal, black)."""
+    if parameter in textures:
+        return textures[parameter]
+    return unreal.EditorAssetLibrary.load_asset(ENGINE_DEFAULTS[parameter])
+
+
 def parent_material(textures):
-    """/Game/Matforge/M_MatforgeORM, made when missing (its default textures: this set's)."""
+    """/Game/Matforge/M_MatforgeORM, made when missing. Every parameter has a default texture (this
+    set's, or the engine's neutral one where the set has none), so it compiles whichever set
+    makes it; each instance sets all of them (material_instance), so none shows another's."""
     if unreal.EditorAssetLibrary.does_asset_exist(PARENT):
         return unreal.EditorAssetLibrary.load_asset(PARENT)
     folder, name = PARENT.rsplit("/", 1)
@@ -69,8 +81,7 @@ def parent_material(textures):
         node = mel.create_material_expression(material, unreal.MaterialExpressionTextureSampleParameter2D, -600, row * 300)
         node.set_editor_property("parameter_name", parameter)
         node.set_editor_property("sampler_type", sampler)
-        if parameter in textures:
-            node.set_editor_property("texture", textures[parameter])
+        node.set_editor_property("texture", texture_for(textures, parameter))
         nodes[parameter] = node
     mel.connect_material_property(nodes["BaseColor"], "RGB", unreal.MaterialProperty.MP_BASE_COLOR)
     mel.connect_material_property(nodes["BaseColor"], "A", unreal.MaterialProperty.MP_OPACITY_MASK)
@@ -102,9 +113,9 @@ def material_instance(textures, parent):
                                       unreal.MaterialInstanceConstantFactoryNew())
     mel = unreal.MaterialEditingLibrary
     mel.set_material_instance_parent(instance, parent)
-    for parameter, texture in textures.items():
-        if parameter in ("BaseColor", "ORM", "Normal", "Emissive"):
-            mel.set_material_instance_texture_parameter_value(instance, parameter, texture)
+    # Every parameter, whatever the parent's defaults are (another set's, if it made the parent).
+    for parameter in ("BaseColor", "ORM", "Normal", "Emissive"):
+        mel.set_material_instance_texture_parameter_value(instance, parameter, texture_for(textures, parameter))
     mel.set_material_instance_scalar_parameter_value(instance, "EmissiveStrength", EMISSIVE_STRENGTH)
     overrides = instance.get_editor_property("base_property_overrides")
     overrides.set_editor_property("override_blend_mode", True)
@@ -131,7 +142,25 @@ std::pair<bool, const char*> settings(const EngineSlot& s) {
     return {s.srgb, s.srgb ? "TC_DEFAULT" : "TC_MASKS"};
 }
 
+// The folder's script: every material's import script under it, each on its own.
+constexpr const char* kImportAll = R"PY(# matforge: imports every material of this folder into /Game/Matforge: runs each
+# <material>/import_<material>.py under it, in name order. Each stands alone (its textures, its
+# instance, every parameter set), so the order changes nothing.
+# Run in the Unreal Editor (Tools > Execute Python Script) or
+#   UnrealEditor-Cmd Project.uproject -run=pythonscript -script=<this file>
+import os
+import runpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+for name in sorted(os.listdir(HERE)):
+    script = os.path.join(HERE, name, "import_" + name + ".py")
+    if os.path.isfile(script):
+        runpy.run_path(script, run_name="__main__")
+)PY";
+
 }  // namespace
+
+File unreal_import_all() { return {"import_all.py", "py", kImportAll}; }
 
 std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bound>& bound) {
     const fs::path script = fs::path(m.name) / ("import_" + m.name + ".py");
@@ -144,6 +173,7 @@ std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bo
                 ", " + string_literal(std::string(b.slot->slot)) + ", " + (srgb ? "True" : "False") + ", " +
                 string_literal(compression) + "),\n";
     }
+    const bool emissive = texture_of(bound, "Emissive") != nullptr;
     using manifest::AlphaMode;
     const char* blend = !m.alpha_mode || *m.alpha_mode == AlphaMode::opaque ? "BLEND_OPAQUE"
                         : *m.alpha_mode == AlphaMode::mask                  ? "BLEND_MASKED"
@@ -160,7 +190,11 @@ std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bo
                        "TEXTURES = [\n" +
                        list + "]\nBLEND_MODE = \"" + blend +
                        "\"\nOPACITY_MASK_CLIP_VALUE = " + scene_number(m.alpha_cutoff) +
-                       "\nEMISSIVE_STRENGTH = " + scene_number(m.emissive_strength) + "\n" + kBody;
+                       "\nEMISSIVE_STRENGTH = " + scene_number(emissive ? m.emissive_strength : 0.f) +
+                       "\n# The engine's own neutral textures for a slot this set has no map for.\n"
+                       "ENGINE_DEFAULTS = {\"Normal\": \"/Engine/EngineMaterials/FlatNormal\", "
+                       "\"Emissive\": \"/Engine/EngineResources/Black\"}\n" +
+                       kBody;
     return {{script.generic_string(), "py", std::move(text)}};
 }
 

@@ -66,6 +66,8 @@ inline constexpr std::string_view encoding_error_exceeded =
     "ENCODING_ERROR_EXCEEDED";  // a decoded block-compressed level over the preset's bound
 inline constexpr std::string_view material_file_skipped =
     "MATERIAL_FILE_SKIPPED";  // the preset's glTF not written (dx normals)
+inline constexpr std::string_view map_not_written =
+    "MAP_NOT_WRITTEN";  // a shading map the preset has no output for (d3d11: occlusion, emissive)
 inline constexpr std::string_view packed_channels_identical =
     "PACKED_CHANNELS_IDENTICAL";  // an ORM-style map whose R, G, B are one image
 inline constexpr std::string_view height_stored_as_depth =

@@ -6,6 +6,7 @@
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
@@ -86,6 +87,75 @@ std::vector<Pass> passes_of(size_t width, size_t height, bool interlaced) {
     return out;
 }
 
+// The text of a text chunk (tEXt as it is, zTXt and a compressed iTXt inflated, at most 4 MiB);
+// false when it cannot be had.
+bool chunk_text(std::string_view type, const unsigned char* data, uint32_t len, std::string& out) {
+    const auto* end = data + len;
+    const auto* nul = std::find(data, end, 0);
+    if (nul == end) return false;
+    const unsigned char* p = nul + 1;
+    bool compressed = type == "zTXt";
+    if (type == "zTXt") ++p;  // compression method
+    if (type == "iTXt") {     // compression flag, method, language tag\0, translated keyword\0
+        if (end - p < 2) return false;
+        compressed = p[0] != 0;
+        p += 2;
+        for (int field = 0; field < 2; ++field) {
+            p = std::find(p, end, 0);
+            if (p == end) return false;
+            ++p;
+        }
+    }
+    if (p > end) return false;
+    if (!compressed) {
+        out.assign(reinterpret_cast<const char*>(p), static_cast<size_t>(end - p));
+        return true;
+    }
+    const std::unique_ptr<libdeflate_decompressor, decltype(&libdeflate_free_decompressor)> inflater(
+        libdeflate_alloc_decompressor(), &libdeflate_free_decompressor);
+    out.assign(size_t{4} << 20, '\0');
+    size_t made = 0;
+    if (!inflater || libdeflate_zlib_decompress(inflater.get(), p, static_cast<size_t>(end - p), out.data(), out.size(),
+                                                &made) != LIBDEFLATE_SUCCESS)
+        return false;
+    out.resize(made);
+    return true;
+}
+
+// Whether ImageMagick's raw profile "\n<name>\n<spaces><length>\n<hex>" states no orientation
+// but 1: EXIF (optionally after "Exif\0\0") through exif::orientation, XMP by its
+// tiff:Orientation. Anything this cannot read is left to OpenImageIO (false).
+bool raw_profile_upright(std::string_view type, const std::string& key, const unsigned char* data, uint32_t len) {
+    std::string text;
+    if (!chunk_text(type, data, len, text)) return false;
+    size_t at = text.find('\n', 1);  // after "\n<name>"
+    if (text.empty() || text[0] != '\n' || at == std::string::npos) return false;
+    at = text.find('\n', at + 1);  // after the length
+    if (at == std::string::npos) return false;
+    std::string bytes;
+    auto nibble = [](char c) { return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1; };
+    int high = -1;
+    for (size_t i = at + 1; i < text.size(); ++i) {
+        const char c = text[i] >= 'A' && text[i] <= 'F' ? static_cast<char>(text[i] - 'A' + 'a') : text[i];
+        const int v = nibble(c);
+        if (v < 0) continue;  // line breaks
+        if (high < 0) high = v;
+        else bytes += static_cast<char>(high * 16 + v), high = -1;
+    }
+    if (key == "raw profile type xmp") {
+        const size_t o = bytes.find("Orientation");
+        if (o == std::string::npos) return true;
+        const size_t digit = bytes.find_first_of("0123456789", o);
+        return digit != std::string::npos && digit < o + 24 && bytes[digit] == '1' &&
+               (digit + 1 >= bytes.size() || !std::isdigit(static_cast<unsigned char>(bytes[digit + 1])));
+    }
+    size_t skip = bytes.compare(0, 6, std::string("Exif\0\0", 6)) == 0 ? 6 : 0;
+    int orientation = 0;
+    return exif::orientation(reinterpret_cast<const unsigned char*>(bytes.data()) + skip, bytes.size() - skip,
+                             orientation) &&
+           orientation == 1;
+}
+
 // Chunks that change no pixel OpenImageIO reads and no fact it states that matforge uses: text
 // but an orientation, EXIF of orientation 1, time, pixel size, image offset (matforge reads no
 // origin), and the colour chunks OpenImageIO 2.4 records as attributes without applying them
@@ -95,14 +165,18 @@ std::vector<Pass> passes_of(size_t width, size_t height, bool interlaced) {
 // OpenImageIO.
 bool inert(std::string_view type, const unsigned char* data, uint32_t len) {
     if (type == "tEXt" || type == "zTXt" || type == "iTXt") {
-        // OpenImageIO makes each text chunk an attribute named by its keyword, and reads an
-        // "Orientation" one as the orientation it notes (ORIENTATION_IGNORED): such a file is its.
+        // OpenImageIO makes each text chunk an attribute named by its keyword, reads an
+        // "Orientation" one as the orientation it notes (ORIENTATION_IGNORED), and decodes
+        // ImageMagick's raw profiles (hex-encoded EXIF or XMP, an orientation among them): a
+        // file whose text states an orientation other than 1 is its.
         std::string_view key(reinterpret_cast<const char*>(data), std::min<uint32_t>(len, 80));
         key = key.substr(0, key.find('\0'));
-        static constexpr std::string_view kOrientation = "orientation";
-        return !(key.size() == kOrientation.size() &&
-                 std::equal(key.begin(), key.end(), kOrientation.begin(),
-                            [](char a, char b) { return (a >= 'A' && a <= 'Z' ? a - 'A' + 'a' : a) == b; }));
+        std::string lower(key);
+        for (char& c : lower) c = c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
+        if (lower == "orientation") return false;
+        if (lower == "raw profile type exif" || lower == "raw profile type app1" || lower == "raw profile type xmp")
+            return raw_profile_upright(type, lower, data, len);
+        return true;
     }
     if (type == "eXIf") {  // inert when it states no orientation but 1 (image/exif.hpp)
         int orientation = 0;

@@ -603,9 +603,21 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     // Missing roles: constants where an output needs them, reported per the preset.
     std::set<Role> available;
     for (const auto& [r, route] : plan.routes) available.insert(r);
-    auto missing = missing_map_findings(preset, available, written_roles(preset, available), plan.constants,
-                                        opt.mode == PlanMode::decode);
+    const std::set<Role> written = written_roles(preset, available);
+    auto missing = missing_map_findings(preset, available, written, plan.constants, opt.mode == PlanMode::decode);
     plan.findings.insert(plan.findings.end(), missing.begin(), missing.end());
+    // A map that shades the surface but that no output of the preset holds (d3d11 has no
+    // occlusion or emission texture): said, never dropped without a word. Height, a displacement
+    // input, is not a shading term an engine without a slot for it loses.
+    for (const auto& [r, route] : plan.routes) {
+        if (written.count(r) || (r != Role::occlusion && r != Role::emissive && r != Role::opacity)) continue;
+        const std::string rn(role_name(r));
+        plan.findings.push_back(make_finding(code::map_not_written, r, plan.inputs.at(route.from).file,
+                                             "the preset '" + preset.name + "' has no output for " + rn + ": " +
+                                                 plan.inputs.at(route.from).file +
+                                                 " is read but not written, and the engine renders without it",
+                                             {{"preset", preset.name}}));
+    }
     return plan;
 }
 

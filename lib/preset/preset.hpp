@@ -78,6 +78,10 @@ std::optional<Preset> load_preset(const std::string& name_or_path, std::string& 
 
 // Names of the shipped presets, sorted.
 std::vector<std::string> shipped_presets();
+// The shipped presets a word people type for an engine, tool or format means ("unity":
+// unity-urp and unity-hdrp; "ue5": unreal; "blender", "three": gltf; "astc", "mobile":
+// vulkan-ktx2-astc), empty for any other: an unknown preset's error suggests by meaning.
+std::vector<std::string> presets_meant_by(const std::string& word);
 std::optional<std::string> shipped_preset_text(const std::string& name);
 
 }  // namespace mf

@@ -2,6 +2,7 @@
 
 #include <deque>
 #include <future>
+#include <map>
 #include <memory>
 
 #include "core/text.hpp"
@@ -133,6 +134,8 @@ public:
             flush(1);
         }
         flush(0);
+        for (const auto& [text, n] : repeated_notes_)
+            if (n > 1) say_("note said above, for " + std::to_string(n - 1) + " more material(s) too: " + text);
         return std::move(result_);
     }
 
@@ -223,7 +226,17 @@ private:
             Outcome o = pending_.front().get();
             pending_.pop_front();
             const Job& job = jobs_[reported_++];
-            for (const std::string& line : o.lines) say_(line);
+            for (const std::string& line : o.lines) {
+                // A note said for many materials alike (the same fallback, the same missing
+                // feature) is said once, and counted at the end (issue 45: once per material hid
+                // the rest of the log).
+                const size_t at = line.rfind("note: ", 0) == 0 ? 0 : line.find(": note: ");
+                if (at != std::string::npos) {
+                    const std::string text = line.substr(at == 0 ? 6 : at + 8);
+                    if (repeated_notes_[text]++ > 0) continue;
+                }
+                say_(line);
+            }
             ++(o.failed ? result_.failed : result_.rendered);
             if (!o.failed && opt_.contact_sheet)
                 result_.tiles.push_back({job.name, sf_.scene.width, sf_.scene.height, std::move(o.rgba8)});
@@ -235,6 +248,7 @@ private:
     const BatchOptions& opt_;
     const std::function<void(const std::string&)>& say_;
     BatchResult result_;
+    std::map<std::string, size_t> repeated_notes_;  // a note's text -> how many materials had it
     std::optional<render::Context> context_;
     std::optional<render::Renderer> renderer_;
     std::promise<void> made_early_;

@@ -627,7 +627,8 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
             continue;
         }
         // The folder is ours from here to the end (lock, journal): store/output_dir.hpp.
-        g.folder = OutputFolder::open({opt.out_dir, opt.manifest_name, opt.force}, result.error, result.usage_error);
+        g.folder = OutputFolder::open({opt.out_dir, opt.manifest_name, opt.force, g.ing->preset_.name, opt.replace},
+                                      result.error, result.usage_error);
         if (!g.folder) continue;
         remove_stale_temps(opt.out_dir);  // a killed run's, never a running one's
         g.run = std::make_unique<Run>(*g.folder, in_flight);

@@ -48,6 +48,9 @@ struct IngestOptions {
     // --force: replace a manifest.json matforge did not write, and files in the way of outputs
     // that no earlier run of ours wrote (store/output_dir.hpp).
     bool force = false;
+    // --replace: write into a folder whose manifest lists another preset's outputs (they are
+    // replaced, and removed where this preset does not write them); refused without it.
+    bool replace = false;
     // The result cache (store/cache.hpp): an unchanged set (same file contents, preset, rules,
     // OCIO config, matforge version) is restored from it instead of decoded and encoded again.
     // nullopt: no cache (--no-cache).

@@ -117,24 +117,46 @@ std::string write_json(const manifest::Manifest& r) {
                                 [&](size_t i) { return material_json(r.materials[i]); });
 }
 
-std::string write_text(const manifest::Manifest& r, FailOn fail_on) {
-    std::string out;
+namespace {
+
+// "  warning NAME_OF_CODE   role      message  [file]": one finding's line, codes in a column.
+std::string finding_line(const Finding& f, size_t code_w) {
+    std::string sev(severity_name(f.severity));
+    sev.resize(8, ' ');
+    std::string c = f.code;
+    c.resize(code_w + 2, ' ');
+    std::string role = f.role.empty() ? "-" : f.role;
+    role.resize(std::max<size_t>(role.size() + 1, 10), ' ');
+    return "  " + sev + c + role + f.message + (f.file.empty() ? "" : "  [" + f.file + "]") + "\n";
+}
+
+// "4 material(s): 0 error(s), 2 warning(s), 9 info — FAIL (--fail-on warning)"
+std::string verdict_text(const manifest::Manifest& r, FailOn fail_on) {
+    const Summary s = validate::summarize(r);
+    std::string out = std::to_string(r.materials.size()) + " material(s): " + std::to_string(s.error) + " error(s), " +
+                      std::to_string(s.warning) + " warning(s), " + std::to_string(s.info) + " info";
+    if (s.failures) out += "; " + std::to_string(s.failures) + " input(s) failed";
+    out += run_fails(s, fail_on) ? " — FAIL" : " — PASS";
+    return out + " (--fail-on " + std::string(fail_on_name(fail_on)) + ")\n";
+}
+
+size_t code_width(const manifest::Manifest& r) {
     size_t code_w = 0;
     for (const auto& m : r.materials)
         for (const auto& f : m.findings) code_w = std::max(code_w, f.code.size());
+    return code_w;
+}
+
+}  // namespace
+
+std::string write_text(const manifest::Manifest& r, FailOn fail_on) {
+    std::string out;
+    const size_t code_w = code_width(r);
     for (const auto& m : r.materials) {
         out += m.name + "  (" + m.source + ")\n";
         out += decisions_text(m);
         if (m.findings.empty()) out += "  ok: no findings\n";
-        for (const auto& f : m.findings) {
-            std::string sev(severity_name(f.severity));
-            sev.resize(8, ' ');
-            std::string c = f.code;
-            c.resize(code_w + 2, ' ');
-            std::string role = f.role.empty() ? "-" : f.role;
-            role.resize(std::max<size_t>(role.size() + 1, 10), ' ');
-            out += "  " + sev + c + role + f.message + (f.file.empty() ? "" : "  [" + f.file + "]") + "\n";
-        }
+        for (const auto& f : m.findings) out += finding_line(f, code_w);
         out += "\n";
     }
     if (!r.failures.empty()) {
@@ -142,14 +164,27 @@ std::string write_text(const manifest::Manifest& r, FailOn fail_on) {
         for (const auto& f : r.failures) out += "  " + f.source + "  " + f.code + "  " + f.message + "\n";
         out += "\n";
     }
-    const Summary s = validate::summarize(r);
-    const bool failed = run_fails(s, fail_on);
-    out += std::to_string(r.materials.size()) + " material(s): " + std::to_string(s.error) + " error(s), " +
-           std::to_string(s.warning) + " warning(s), " + std::to_string(s.info) + " info";
-    if (s.failures) out += "; " + std::to_string(s.failures) + " input(s) failed";
-    out += failed ? " — FAIL" : " — PASS";
-    out += " (--fail-on " + std::string(fail_on_name(fail_on)) + ")\n";
-    return out;
+    return out + verdict_text(r, fail_on);
+}
+
+std::string write_terminal_summary(const manifest::Manifest& r, FailOn fail_on) {
+    std::string out;
+    const size_t code_w = code_width(r);
+    size_t quiet = 0, infos = 0;
+    for (const auto& m : r.materials) {
+        std::string lines;
+        for (const auto& f : m.findings) {
+            if (f.severity == Severity::info) ++infos;
+            else lines += finding_line(f, code_w);
+        }
+        if (lines.empty()) ++quiet;
+        else out += m.name + "  (" + m.source + ")\n" + lines;
+    }
+    for (const auto& f : r.failures) out += f.source + "  " + f.code + "  " + f.message + "\n";
+    if (quiet || infos)
+        out += std::to_string(quiet) + " material(s) without an error or warning; " + std::to_string(infos) +
+               " info finding(s) not shown (the report holds them; --verbose prints the whole report)\n";
+    return out + verdict_text(r, fail_on);
 }
 
 std::string write_junit(const manifest::Manifest& r, FailOn fail_on) {

@@ -31,6 +31,10 @@ std::optional<Format> format_from_name(std::string_view name);  // "text" | "jso
 nlohmann::json report_json(const manifest::Manifest& r);  // {"report_version": 1, ...}
 std::string write_json(const manifest::Manifest& r);
 std::string write_text(const manifest::Manifest& r, validate::FailOn fail_on);
+// What a terminal shows of a run (issue 45: 287 lines for 10 warnings hid them): each material
+// with an error or warning and those findings, the inputs that failed, how many materials and
+// info findings are left out, and the verdict line write_text ends with. Never empty.
+std::string write_terminal_summary(const manifest::Manifest& r, validate::FailOn fail_on);
 std::string write_junit(const manifest::Manifest& r, validate::FailOn fail_on);
 std::string write_sarif(const manifest::Manifest& r);
 // One of the above by format (text as written: the caller makes it terminal-safe).

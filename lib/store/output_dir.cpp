@@ -148,6 +148,17 @@ std::unique_ptr<OutputFolder> OutputFolder::open(const Options& opt, std::string
             usage = true;
             return nullptr;
         }
+        const std::string earlier = why.empty() && j->is_object() && j->contains("preset") && (*j)["preset"].is_string()
+                                        ? (*j)["preset"].get<std::string>()
+                                        : std::string();
+        if (!earlier.empty() && !opt.preset.empty() && earlier != opt.preset && !opt.replace) {
+            error = opt.dir.string() + " holds the outputs of preset '" + earlier + "' (" + opt.manifest_name +
+                    " says so); writing preset '" + opt.preset +
+                    "' there would replace them and remove the rest (an engine project would lose every "
+                    "reference to them): choose another output folder, or pass --replace to replace them";
+            usage = true;
+            return nullptr;
+        }
     }
     journal_files(opt.dir / f->journal_name(), f->previous_);
     f->others_ = f->listed_elsewhere();

@@ -39,6 +39,11 @@ public:
         std::filesystem::path dir;
         std::string manifest_name = "manifest.json";
         bool force = false;  // --force: replace a foreign manifest and files matforge did not write
+        // The preset this run writes, and --replace: a manifest of ours that lists another
+        // preset's outputs is refused without it (usage), naming that preset: this run would
+        // replace them and remove the rest (inside an engine project, every reference to them).
+        std::string preset;
+        bool replace = false;
     };
     // nullopt + `error`; `usage` true when the refusal is about the choice of folder (a foreign
     // manifest: exit 2), false when the folder cannot be used now (locked, unwritable: exit 1).

@@ -186,6 +186,19 @@ TEST(UserFiles, UsageErrorsSuggestAndCreateNothing) {
     r = run("validate " + q(samples()) + " --preset Unrel");
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.output.find("did you mean 'unreal'?"), std::string::npos) << r.output;
+    // Engine names people type are answered by meaning, not spelling (issue 45).
+    for (const auto& [typed, meant] :
+         std::vector<std::pair<std::string, std::string>>{{"unity", "'unity-urp' (Unity URP Lit"},
+                                                          {"HDRP", "'unity-hdrp'"},
+                                                          {"ue5", "'unreal' (Unreal Engine"},
+                                                          {"blender", "'gltf'"},
+                                                          {"three", "'gltf'"},
+                                                          {"mobile", "'vulkan-ktx2-astc'"},
+                                                          {"ktx2", "'vulkan-ktx2'"}}) {
+        r = run("validate " + q(samples()) + " --preset " + typed);
+        EXPECT_EQ(r.code, 2) << typed;
+        EXPECT_NE(r.output.find("by that you may mean " + meant), std::string::npos) << typed << ": " << r.output;
+    }
     EXPECT_EQ(run("validate " + q(samples()) + " --preset UNREAL --report json").code, 0) << "names in any case";
     // A typo'd input: nothing created (no output folder, manifest or cache).
     r = run_env("MATFORGE_CACHE=" + q(work / "cache"), "ingest " + q(work / "no-such") + " -o " + q(work / "out"));

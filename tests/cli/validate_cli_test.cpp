@@ -137,3 +137,49 @@ TEST(IngestContent, UnnamedGlNormalDecidedFromContent) {
     EXPECT_EQ(u["materials"][0]["inputs"]["normal"]["normal_convention"], "gl");
     EXPECT_TRUE(has_finding(u["materials"][0], "NORMAL_CONVENTION_CONVERTED", "normal"));
 }
+
+// The terminal shows the signal (issue 45): without --verbose, the errors and warnings with their
+// materials, how many materials and infos were left out, and the verdict; with --report-file the
+// same summary still reaches the terminal (a red CI job never has an empty log), and the file
+// holds every finding.
+TEST(ValidateCli, TheTerminalShowsWarningsAndTheVerdict) {
+    const fs::path out = temp_dir("terminal");
+    const auto brief = run("validate " + q(samples()) + " --fail-on warning");
+    EXPECT_EQ(brief.code, 1) << brief.output;
+    EXPECT_NE(brief.output.find("METALNESS_NOT_BINARY"), std::string::npos) << brief.output;
+    EXPECT_EQ(brief.output.find("  info    "), std::string::npos) << "no info line: " << brief.output;
+    EXPECT_NE(brief.output.find("info finding(s) not shown"), std::string::npos) << brief.output;
+    EXPECT_NE(brief.output.find("— FAIL (--fail-on warning)"), std::string::npos) << brief.output;
+    const auto verbose = run("validate " + q(samples()) + " --fail-on warning --verbose");
+    EXPECT_EQ(verbose.code, 1);
+    EXPECT_NE(verbose.output.find("  info    "), std::string::npos) << verbose.output;
+    EXPECT_GT(verbose.output.size(), 2 * brief.output.size());
+    for (const std::string format : {"text", "json", "junit", "sarif"}) {
+        const auto r = run("validate " + q(samples()) + " --fail-on warning --report " + format + " --report-file " +
+                           q(out / ("r." + format)));
+        EXPECT_EQ(r.code, 1) << format;
+        EXPECT_NE(r.output.find("METALNESS_NOT_BINARY"), std::string::npos) << format << ": " << r.output;
+        EXPECT_NE(r.output.find("— FAIL (--fail-on warning)"), std::string::npos) << format << ": " << r.output;
+    }
+    EXPECT_NE(bytes_of(out / "r.text").find("  info    "), std::string::npos) << "the file is the whole report";
+}
+
+// A shading map the preset has no output for is said (issue 45): d3d11 writes no occlusion and no
+// emission texture, so a set with both gets MAP_NOT_WRITTEN (info) for each; gltf writes both.
+TEST(ValidateCli, MapsThePresetCannotWriteAreSaid) {
+    const fs::path set = mf::testenv::corpus_dir() / "real/ambientcg_OfficeCeiling005_1K-JPG";
+    auto not_written = [&](const std::string& preset) {
+        const auto r = run("validate " + q(set) + " --preset " + preset + " --report json --fail-on never");
+        EXPECT_EQ(r.code, 0) << r.output;
+        std::set<std::string> roles;
+        const nlohmann::json report = nlohmann::json::parse(r.output);  // named: a temporary's member would dangle
+        for (const auto& f : report["materials"][0]["findings"])
+            if (f["code"] == "MAP_NOT_WRITTEN") {
+                EXPECT_EQ(f["severity"], "info");
+                roles.insert(f["role"].get<std::string>());
+            }
+        return roles;
+    };
+    EXPECT_EQ(not_written("d3d11"), (std::set<std::string>{"emissive", "occlusion"}));
+    EXPECT_TRUE(not_written("gltf").empty());
+}

@@ -590,6 +590,27 @@ TEST_F(Hostile, FolderNamedOnlyByABrokenSidecarLeavesATrace) {
     EXPECT_EQ((*e)["inputs"]["albedo"]["file"], "img1.png");
 }
 
+// Another preset's outputs are not replaced without a word (issue 45): a second run with another
+// preset into the folder is refused (exit 2), naming the first preset, and changes nothing; with
+// --replace it runs.
+TEST_F(Hostile, AnotherPresetsOutputsAreNotReplacedUnlessAsked) {
+    Proc p = ingest({"--preset", "unity-urp"});
+    ASSERT_EQ(p.code, 0) << p.output;
+    const auto before = tree_hashes(out);
+    p = ingest({"--preset", "gltf"});
+    EXPECT_EQ(p.code, 2) << p.output;
+    EXPECT_NE(p.output.find("holds the outputs of preset 'unity-urp'"), std::string::npos) << p.output;
+    EXPECT_NE(p.output.find("--replace"), std::string::npos) << p.output;
+    EXPECT_EQ(tree_hashes(out), before) << "nothing changed";
+    p = ingest({"--preset", "gltf", "--replace"});
+    EXPECT_EQ(p.code, 0) << p.output;
+    manifest = read_json(out / "manifest.json");
+    EXPECT_EQ(manifest["preset"], "gltf");
+    expect_good_done();
+    p = ingest({"--preset", "gltf"});  // the same preset again: no question
+    EXPECT_EQ(p.code, 0) << p.output;
+}
+
 TEST_F(Hostile, ForeignManifestIsNotReplaced) {
     fs::create_directories(out);
     const std::string theirs = R"({"generator": "another tool 2.0", "assets": []})";
@@ -736,9 +757,11 @@ TEST_F(Hostile, StaleOutputsAreRemoved) {
     EXPECT_FALSE(fs::exists(out / "Good" / "Good_normal.png"));
     EXPECT_NE(p.output.find("note: removed Good/Good_normal.png"), std::string::npos) << p.output;
     EXPECT_TRUE(unlisted(out, manifest).empty()) << unlisted(out, manifest).front();
-    // Another preset: the gltf outputs go, except one the user changed since (kept, said so).
+    // Another preset (asked for: --replace): the gltf outputs go, except one the user changed
+    // since (kept, said so).
     write_text(out / "Good" / "Good_orm.png", "edited by hand");
-    p = spawn({bin(), "ingest", in.string(), "-o", out.string(), "--preset", "unreal", "--fail-on", "never"});
+    p = spawn({bin(), "ingest", in.string(), "-o", out.string(), "--preset", "unreal", "--fail-on", "never",
+               "--replace"});
     ASSERT_EQ(p.code, 0) << p.output;
     manifest = read_json(out / "manifest.json");
     EXPECT_FALSE(fs::exists(out / "Good" / "Good_basecolor.png"));

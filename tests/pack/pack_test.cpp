@@ -101,6 +101,21 @@ TEST(Presets, RejectsBrokenDocuments) {
         bad(R"({"name":"x","defaults":{"roughness":1e300},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
     EXPECT_TRUE(bad(
         R"({"name":"x","defaults":{"albedo":[0.5,"red",0.5]},"outputs":[{"suffix":"a","channels":{"R":"roughness"}}]})"));
+    // A suffix or file_pattern that the material files could not name the output by (a newline,
+    // a tab, USD's '@', a space, a '#'): refused, the suffix named (issue 45).
+    for (const std::string suffix : {"a\\nb", "a\\tb", "a@b", "a b", "a#b", "a\\u00e9"}) {
+        EXPECT_TRUE(bad(("{\"name\":\"x\",\"outputs\":[{\"suffix\":\"" + suffix +
+                         "\",\"channels\":{\"R\":\"roughness\"}}]}")
+                            .c_str()))
+            << suffix;
+    }
+    EXPECT_NE(err.find("suffix may hold only"), std::string::npos) << err;
+    EXPECT_TRUE(bad(
+        ("{\"name\":\"x\",\"file_pattern\":\"{material}/@{material}_{suffix}.{ext}\"," + ok_outputs + "}").c_str()));
+    EXPECT_FALSE(bad(("{\"name\":\"x\",\"file_pattern\":\"out-2/{material}/T_{material}.v1_{suffix}.{ext}\"," +
+                      ok_outputs + "}")
+                         .c_str()))
+        << err;
     EXPECT_FALSE(bad(("{\"name\":\"x\",\"preset_version\":1,\"max_size\":4096," + ok_outputs + "}").c_str())) << err;
     auto missing = mf::load_preset("no-such-preset", err);
     EXPECT_FALSE(missing);

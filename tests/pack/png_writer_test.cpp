@@ -423,6 +423,34 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
     auto ihdr_byte = [&](size_t at, unsigned char v) {
         return with([&](std::vector<Chunk>& c) { c[0].data[at] = v; });
     };
+    // ImageMagick keeps EXIF as hex text in a zTXt chunk "Raw profile type exif"; OpenImageIO reads
+    // the orientation in it (here 6), so the file is its, and matforge says ORIENTATION_IGNORED.
+    const std::vector<unsigned char> imagemagick_exif = with([](auto& c) {
+        const unsigned char exif[] = {'E',  'x', 'i', 'f', 0, 0, 'M', 'M', 0, 42, 0, 0, 0, 8, 0, 1, 0x01,
+                                      0x12, 0,   3,   0,   0, 0, 1,   0,   6, 0,  0, 0, 0, 0, 0, 0, 0};
+        std::string text = "\nexif\n      " + std::to_string(sizeof exif) + "\n";
+        static const char* hex = "0123456789abcdef";
+        for (unsigned char b : exif) text += {hex[b >> 4], hex[b & 15]};
+        text += "\n";
+        uLongf n = compressBound(static_cast<uLong>(text.size()));
+        std::vector<unsigned char> z(n);
+        compress(z.data(), &n, reinterpret_cast<const Bytef*>(text.data()), static_cast<uLong>(text.size()));
+        z.resize(n);
+        const std::string key = "Raw profile type exif";
+        std::vector<unsigned char> data(key.begin(), key.end());
+        data.push_back(0);
+        data.push_back(0);  // compression method: deflate
+        data.insert(data.end(), z.begin(), z.end());
+        put(c, 1, Chunk{"zTXt", data});
+    });
+    {
+        std::string err;
+        const auto info = mf::read_info(in_memory(imagemagick_exif, "magick.png"), err);
+        ASSERT_TRUE(info) << err;
+        bool noted = false;
+        for (const auto& n : info->notes) noted = noted || n.first == "ORIENTATION_IGNORED";
+        EXPECT_TRUE(noted) << "the orientation OpenImageIO reads is said, as for any other PNG it reads";
+    }
     const std::pair<std::string, std::vector<unsigned char>> refused[] = {
         {"2-bit samples", ihdr_byte(8, 2)},
         {"palette", ihdr_byte(9, 3)},
@@ -443,6 +471,7 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
         {"an orientation in text", with([](auto& c) {
              put(c, 1, Chunk{"tEXt", {'O', 'r', 'i', 'e', 'n', 't', 'a', 't', 'i', 'o', 'n', 0, '6'}});
          })},
+        {"ImageMagick's raw EXIF profile in zTXt", imagemagick_exif},
         {"IDAT split by another chunk", with([](auto& c) {
              Chunk second{"IDAT", {c[2].data.begin() + 4, c[2].data.end()}};
              c[2].data.resize(4);

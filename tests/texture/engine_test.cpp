@@ -337,6 +337,45 @@ void expect_unreal(const Ingested& r) {
 
 TEST(EngineFiles, UnrealSamples) { expect_unreal(ingested("unreal", "samples")); }
 
+// Each Unreal instance is complete on its own (issue 45): run one after the other in one project,
+// in either order, the parent made by the first compiles (a default texture on every parameter,
+// the engine's neutral ones where that set has none) and every instance sets every parameter —
+// a set without an emission map gets black and strength 0, never another set's glow. The
+// folder's import_all.py runs every script.
+TEST(EngineFiles, UnrealInstancesAreCompleteInAnyOrder) {
+    const Ingested& r = ingested("unreal", "corpus");
+    const std::string lit = "OfficeCeiling005", dark = "WoodFloor040";  // with and without an emission map
+    auto script = [](const std::string& m) { return m + "/import_" + m + ".py"; };
+    for (const auto& order : {std::vector<std::string>{lit, dark}, std::vector<std::string>{dark, lit}}) {
+        SCOPED_TRACE(order[0] + " first");
+        const auto reports = python_checker("unreal_check.py", {"--session", script(order[0]), script(order[1])},
+                                            r.out);
+        ASSERT_EQ(reports.size(), 2u);
+        ASSERT_TRUE(reports[0]["ok"].get<bool>()) << reports[0]["error"];
+        ASSERT_TRUE(reports[1]["ok"].get<bool>()) << reports[1]["error"];
+        EXPECT_TRUE(reports[0]["parent"]["created"].get<bool>());
+        EXPECT_FALSE(reports[1]["parent"]["created"].get<bool>()) << "the second reuses the first's parent";
+        const json& defaults = reports[1]["parent"]["defaults"];
+        for (const char* p : {"BaseColor", "ORM", "Normal", "Emissive"})
+            EXPECT_TRUE(defaults.contains(p)) << p << " has no default texture: the parent would not compile";
+        for (size_t i = 0; i < 2; ++i) {
+            const json& inst = reports[i]["instance"];
+            for (const char* p : {"BaseColor", "ORM", "Normal", "Emissive"})
+                EXPECT_TRUE(inst["textures"].contains(p)) << order[i] << " leaves " << p << " to the parent";
+            const bool has_emission = order[i] == lit;
+            EXPECT_EQ(inst["textures"]["Emissive"] == "/Engine/EngineResources/Black", !has_emission) << order[i];
+            EXPECT_EQ(inst["scalars"]["EmissiveStrength"].get<double>() > 0, has_emission) << order[i];
+        }
+    }
+    ASSERT_TRUE(fs::exists(r.out / "import_all.py"));
+    const auto all = python_checker("unreal_check.py", {"import_all.py"}, r.out);
+    ASSERT_EQ(all.size(), 1u);
+    ASSERT_TRUE(all[0]["ok"].get<bool>()) << all[0]["error"];
+    size_t outputs = 0;
+    for (const auto& m : r.manifest["materials"]) outputs += m["outputs"].size();
+    EXPECT_EQ(all[0]["imports"].size(), outputs) << "every material's textures imported";
+}
+
 // Every engine's files for the real corpus, from one run of the four presets: Godot's, Unity's
 // (HDRP and URP) and Unreal's readers as on the samples.
 TEST(EngineFiles, EveryEngineOnTheCorpusInOneRun) {

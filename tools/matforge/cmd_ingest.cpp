@@ -28,7 +28,7 @@ struct IngestArgs {
     std::vector<std::string> inputs;
     std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file, shard, cache, report, report_file;
     int jobs = 0;
-    bool quiet = false, force = false, no_cache = false;
+    bool quiet = false, force = false, replace = false, no_cache = false;
 };
 
 // --report: the manifest just written, read back, through the writers validate uses; the
@@ -148,6 +148,7 @@ ExitCode run_ingest(const IngestArgs& a) {
         opt.jobs = a.jobs;
         opt.rules = std::move(*rules);
         opt.force = a.force;
+        opt.replace = a.replace;
         if (!a.no_cache) opt.cache_dir = cache_folder(a.cache);
         if (opt.cache_dir) {
             const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
@@ -228,6 +229,9 @@ const Register register_ingest{
          sub.add_flag("--force", a->force,
                       "replace a manifest.json matforge did not write, and files in the way of outputs "
                       "that no earlier run wrote (refused without it)");
+         sub.add_flag("--replace", a->replace,
+                      "write into a folder that holds another preset's outputs, replacing them (refused "
+                      "without it)");
          return [a] { return run_ingest(*a); };
      },
      "convert material sets to engine-ready textures and a manifest.json"}};

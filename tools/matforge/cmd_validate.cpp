@@ -21,6 +21,7 @@ struct ValidateArgs {
     std::vector<std::string> inputs;
     std::string preset = "gltf", report = "text", report_file, rules_file, fail_on = "error";
     int jobs = 0;
+    bool verbose = false;
 };
 
 ExitCode run_validate(const ValidateArgs& a) {
@@ -61,10 +62,16 @@ ExitCode run_validate(const ValidateArgs& a) {
         report::Result r;
         if (!report::write_report(o, report, {}, r, error)) return fail("validate", error);
         for (const std::string& p : r.problems) say("validate", "report: " + p);
+        std::cerr << terminal_safe(report::write_terminal_summary(report, fail_on), true);
         return verdict_exit(fails);
     }
     const auto format = report::format_from_name(a.report).value_or(report::Format::text);
-    std::string text = report::write_findings(report, format, fail_on);
+    // The text report on a terminal: its errors and warnings and the verdict (--verbose: all of
+    // it). A report written to a file is whole, and the terminal still gets the summary on
+    // stderr: a red CI job never has an empty log.
+    const bool brief = format == report::Format::text && a.report_file.empty() && !a.verbose;
+    std::string text = brief ? report::write_terminal_summary(report, fail_on)
+                             : report::write_findings(report, format, fail_on);
     if (format == report::Format::text) text = terminal_safe(text, true);  // read in terminals
     if (a.report_file.empty()) {
         std::cout << text;
@@ -72,6 +79,8 @@ ExitCode run_validate(const ValidateArgs& a) {
     } else if (!write_file_atomic(a.report_file,
                                   std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error)) {
         return fail("validate", error);
+    } else {
+        std::cerr << terminal_safe(report::write_terminal_summary(report, fail_on), true);
     }
     return verdict_exit(fails);
 }
@@ -95,6 +104,9 @@ const Register register_validate{
              ->check(CLI::Range(0, 1024))
              ->capture_default_str();
          add_fail_on(sub, a->fail_on);
+         sub.add_flag("-v,--verbose", a->verbose,
+                      "print the whole text report (every material's maps and info findings), not only its "
+                      "errors, warnings and verdict");
          return [a] { return run_validate(*a); };
      },
      "check material sets (PBR plausibility, channels, normal convention) for CI"}};

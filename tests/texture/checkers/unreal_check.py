@@ -5,7 +5,10 @@ offers is one the Unreal Python API reference documents (AssetImportTask, AssetT
 AssetToolsHelpers, EditorAssetLibrary, MaterialEditingLibrary, Texture, TextureCompressionSettings,
 MaterialSamplerType, MaterialProperty, BlendMode), and anything else fails the script:
 
-    python3 unreal_check.py SCRIPT.py...
+    python3 unreal_check.py [--session] SCRIPT.py...
+
+(--session: the scripts run one after the other in one project, as an editor session runs them;
+else each in a fresh project)
 
 prints one JSON line per script: {file, ok, error, parses, imports: [{filename, exists,
 destination_path, automated, replace_existing}], textures: {asset path: {srgb, compression}},
@@ -30,13 +33,20 @@ class Recorder:
     def __init__(self):
         self.reset()
 
-    def reset(self):
-        self.imports, self.textures, self.assets = [], {}, {}
-        self.parent = {"created": False, "samplers": {}, "connections": [], "scalars": {}}
-        self.instance = {}
+    def reset(self, keep_assets=False):
+        """A fresh project, or with keep_assets the same project (its assets and parent) for the
+        next script: --session runs scripts one after the other as an editor session does."""
+        self.imports, self.textures, self.instance = [], {}, {}
+        if keep_assets:
+            self.parent["created"] = False
+            return
+        self.assets = {p: Texture2D(p) for p in ENGINE_CONTENT}
+        self.parent = {"created": False, "samplers": {}, "connections": [], "scalars": {}, "defaults": {}}
 
 
-R = Recorder()
+# Textures every Unreal project has (the engine's content): the flat normal map and black.
+ENGINE_CONTENT = ("/Engine/EngineMaterials/FlatNormal", "/Engine/EngineResources/Black")
+
 
 
 class Object:
@@ -90,6 +100,11 @@ class MaterialInstanceConstant(Object):
 
 class MaterialExpressionTextureSampleParameter2D(Object):
     PROPERTIES = ("parameter_name", "sampler_type", "texture", "group")
+
+    def set_editor_property(self, name, value):
+        super().set_editor_property(name, value)
+        if name == "texture":
+            R.parent["defaults"][self._props.get("parameter_name")] = value.path
 
 
 class MaterialExpressionScalarParameter(Object):
@@ -203,6 +218,9 @@ class MaterialEditingLibrary:
         R.instance["overrides"] = dict(o)
 
 
+R = Recorder()  # after the classes its reset() makes
+
+
 def fake_unreal():
     m = types.ModuleType("unreal")
     for obj in (AssetImportTask, AssetToolsHelpers, EditorAssetLibrary, MaterialEditingLibrary, Material,
@@ -225,8 +243,8 @@ def fake_unreal():
     return m
 
 
-def check(path):
-    R.reset()
+def check(path, session=False):
+    R.reset(keep_assets=session)
     out = {"file": path, "ok": False, "error": "", "parses": False}
     try:
         tree = ast.parse(open(path, encoding="utf-8").read(), path)
@@ -248,5 +266,9 @@ def check(path):
 
 
 if __name__ == "__main__":
-    for f in sys.argv[1:]:
-        print(json.dumps(check(f), sort_keys=True, default=str))
+    args = sys.argv[1:]
+    session = bool(args) and args[0] == "--session"
+    if session:
+        args = args[1:]
+    for i, f in enumerate(args):
+        print(json.dumps(check(f, session=session and i > 0), sort_keys=True, default=str))
