@@ -71,6 +71,13 @@ void emit_message(j_common_ptr cinfo, int level) {
     }
 }
 
+// `cinfo` reporting to `err` (called before setjmp; jpeg_create_decompress after it).
+void attach(jpeg_decompress_struct& cinfo, ErrorManager& err) {
+    cinfo.err = jpeg_std_error(&err.pub);
+    err.pub.error_exit = error_exit;
+    err.pub.emit_message = emit_message;
+}
+
 // Why the frame header cannot be the file's: more blocks than its data can code. Huffman coding
 // spends at least one bit on every block's DC coefficient (a sequential scan at least two: DC
 // and end-of-block), so a file of N bytes holds at most 8 N blocks; arithmetic coding can code a
@@ -125,9 +132,7 @@ bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64
     if (size < 4) return false;
     jpeg_decompress_struct cinfo{};
     ErrorManager err;
-    cinfo.err = jpeg_std_error(&err.pub);
-    err.pub.error_exit = error_exit;
-    err.pub.emit_message = emit_message;
+    attach(cinfo, err);
     // Only trivially destructible locals live across setjmp (err's string is set only after a
     // warning, never across the jump's return); the pixels are written into `out`.
     if (setjmp(err.jump)) {
@@ -193,9 +198,7 @@ std::string check(const unsigned char* data, size_t size, bool header_only, uint
     if (size < 4) return {};
     jpeg_decompress_struct cinfo{};
     ErrorManager err;
-    cinfo.err = jpeg_std_error(&err.pub);
-    err.pub.error_exit = error_exit;
-    err.pub.emit_message = emit_message;
+    attach(cinfo, err);
     // No C++ object is made between here and a libjpeg call that may jump back: every string
     // below is made once libjpeg is done (but for jpeg_destroy_decompress, which never jumps).
     if (setjmp(err.jump)) {

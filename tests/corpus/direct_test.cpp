@@ -22,6 +22,14 @@ std::vector<unsigned char> bytes_of(const corpus::fs::path& p) {
     return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
 }
 
+// `path` as an input file of matforge's readers.
+mf::InputFile input_of(const corpus::fs::path& path) {
+    mf::InputFile in;
+    in.display = path.string();
+    in.path = path;
+    return in;
+}
+
 std::vector<corpus::fs::path> corpus_files(std::initializer_list<const char*> extensions) {
     std::vector<corpus::fs::path> out;
     for (const auto& e : corpus::fs::recursive_directory_iterator(corpus::dir() / "real")) {
@@ -64,9 +72,7 @@ TEST(DirectCodecs, CorpusJpegsReadAsOpenImageIoReadsThem) {
         with_exif += o.spec.find_attribute("Exif:ColorSpace") || o.spec.find_attribute("ExposureTime") ||
                      o.spec.find_attribute("Exif:PixelXDimension");
         // And through matforge's readers, which take this path: the same codes and header.
-        mf::InputFile in;
-        in.display = path.string();
-        in.path = path;
+        const mf::InputFile in = input_of(path);
         std::string err;
         const auto info = mf::read_info(in, err);
         ASSERT_TRUE(info) << err;
@@ -108,16 +114,7 @@ TEST(DirectCodecs, CorpusPngsReadAsOpenImageIoReadsThem) {
         EXPECT_EQ(ok, !palette);
         if (palette) {
             ++palettes;
-            mf::InputFile in;
-            in.display = path.string();
-            in.path = path;
-            std::string err;
-            mf::Image img;
-            mf::ImageInfo info;
-            ASSERT_TRUE(mf::read_image(in, img, info, err)) << err;
-            const auto o = mf::testenv::oiio_read(bytes_of(path), "png", OIIO::TypeDesc::FLOAT);
-            ASSERT_EQ(img.pixels.size() * sizeof(float), o.pixels.size());
-            EXPECT_EQ(std::memcmp(img.pixels.data(), o.pixels.data(), o.pixels.size()), 0);
+            mf::testenv::expect_floats_as_openimageio(input_of(path), bytes_of(path), "png");
         }
         if (!ok) continue;
         ++accepted;
@@ -128,15 +125,9 @@ TEST(DirectCodecs, CorpusPngsReadAsOpenImageIoReadsThem) {
         EXPECT_EQ(p.bit_depth, static_cast<int>(o.spec.format.size()) * 8);
         EXPECT_EQ(o.spec.get_int_attribute("Orientation", 1), 1);
         // Through matforge's reader: every float as OpenImageIO's.
-        mf::InputFile in;
-        in.display = path.string();
-        in.path = path;
+        const mf::InputFile in = input_of(path);
+        mf::testenv::expect_floats_as_openimageio(in, bytes_of(path), "png");
         std::string err;
-        mf::Image img;
-        mf::ImageInfo info;
-        ASSERT_TRUE(mf::read_image(in, img, info, err)) << err;
-        ASSERT_EQ(img.pixels.size() * sizeof(float), o.pixels.size());
-        EXPECT_EQ(std::memcmp(img.pixels.data(), o.pixels.data(), o.pixels.size()), 0);
         const auto header = mf::read_info(in, err);
         ASSERT_TRUE(header) << err;
         EXPECT_EQ(header->bit_depth, p.bit_depth);
