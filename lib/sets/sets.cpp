@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <list>
@@ -551,9 +552,9 @@ namespace {
 // An entry larger than one read piece is judged by its first piece before the rest is inflated
 // (a 1 MiB zip can hold a 1 GiB entry of zeros named like a map): "" when it may be read, else
 // why not. Its header must name an image whose pixels its size could encode (twice the raw size:
-// no PNG, JPEG, TIFF or EXR of an image needs more), or, when the header is not in the first piece
-// (a TIFF may keep its directory at the end), the entry must be within what a set's file of
-// that kind holds in practice (kUnprobed).
+// no PNG, JPEG, TIFF or EXR of an image needs more), or, for a TIFF whose header is not in the
+// first piece (it may keep its directory at the end), the entry must be within what a set's file
+// of that kind holds in practice (kUnprobed). Bytes that begin no image are refused at once.
 std::string entry_beyond_its_image(const std::string& display, const std::vector<unsigned char>& bytes, size_t got,
                                    uint64_t size) {
     constexpr uint64_t kUnprobed = uint64_t{256} << 20;
@@ -563,9 +564,15 @@ std::string entry_beyond_its_image(const std::string& display, const std::vector
     std::string error;
     const auto info = read_info(head, error);
     if (!info) {
-        if (size <= kUnprobed) return {};
+        // Only a TIFF may keep its header (its directory) past the first piece; bytes that begin
+        // no image at all (a zip bomb's zeros) are refused here, however large.
+        const bool tiff = got >= 4 &&
+                          (std::memcmp(bytes.data(), "II*\0", 4) == 0 || std::memcmp(bytes.data(), "MM\0*", 4) == 0 ||
+                           std::memcmp(bytes.data(), "II+\0", 4) == 0 || std::memcmp(bytes.data(), "MM\0+", 4) == 0);
+        if (tiff && size <= kUnprobed) return {};
         if (error.rfind(display + ": ", 0) == 0) error.erase(0, display.size() + 2);  // the caller names it
-        return error + "; the rest of its " + std::to_string(size) + " bytes was not read";
+        return "its first " + std::to_string(got) + " bytes hold no image header matforge can read (" + error +
+               "); the rest of its " + std::to_string(size) + " bytes was not read";
     }
     const uint64_t raw = uint64_t(info->width) * uint64_t(info->height) * uint64_t(info->channels) *
                          uint64_t(std::max(1, info->bit_depth / 8));
@@ -629,6 +636,8 @@ InputFile MaterialSource::open(const std::string& file) const {
                                probed = true;
                                in.open_error = entry_beyond_its_image(in.display, *bytes, got, st.size);
                                if (!in.open_error.empty()) break;
+                               // Judged plausible: room for all of it at once, not doubled as it grows.
+                               bytes->reserve(static_cast<size_t>(st.size) + kChunk);
                            }
                        }
                        bytes->resize(got);

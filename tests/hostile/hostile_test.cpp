@@ -769,3 +769,20 @@ TEST_F(Hostile, ZipEntryLargerThanItsImageIsNotRead) {
     expect_finding("Zeros", "UNREADABLE_FILE", "Zeros_Normal.png", "more than any encoding of it needs");
     EXPECT_LT(p.maxrss_kb, kBombRssLimitKb);
 }
+
+// Round three's bomb at the size that slipped through (issue 45): an entry of exactly 256 MiB of
+// zeros was inflated whole (928 MB in validate) because a header not in the first MiB was allowed
+// up to that size — for any bytes, where only a TIFF keeps its header late. Now judged by its
+// first MiB in validate and ingest alike.
+TEST_F(Hostile, ZipEntryOfZerosAtTheOldBoundIsNotRead) {
+    write_zip(in / "Zeros.zip",
+              {{"Zeros_Color.png", encode(gradient(16, 16, 3))}, {"Zeros_Roughness.png", Bytes(size_t{256} << 20, 0)}});
+    const Proc v = spawn({bin(), "validate", (in / "Zeros.zip").string(), "--report", "json"}, 120);
+    EXPECT_EQ(v.code, 1) << v.output;
+    EXPECT_NE(v.output.find("bytes was not read"), std::string::npos) << v.output;
+    EXPECT_LT(v.maxrss_kb, 200 * 1024) << "the entry is judged by its first MiB";
+    const Proc p = ingest();
+    EXPECT_EQ(p.code, 1) << p.output;
+    expect_finding("Zeros", "UNREADABLE_FILE", "Zeros_Roughness.png", "bytes was not read");
+    EXPECT_LT(p.maxrss_kb, 200 * 1024);
+}
