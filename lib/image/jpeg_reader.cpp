@@ -28,6 +28,7 @@ struct ErrorManager {
     jpeg_error_mgr pub{};
     std::jmp_buf jump{};
     int lost = 0;            // warnings that mean pixels were not decoded from the file's data
+    bool decoding = false;   // past jpeg_start_decompress: the entropy-coded data is being read
     std::string first_lost;  // libjpeg's text of the first
 };
 
@@ -40,8 +41,10 @@ struct ErrorManager {
 // short or garbled (libjpeg then fills with zeros or carries on out of step), the file ending
 // early (grey rows). Not: an unknown JFIF revision or Adobe transform, a bad ICC marker (a
 // profile, not pixels), and a few extraneous bytes before the end-of-image marker once every
-// row is decoded (encoders' padding, seen on real vendor files with intact pixels).
-bool loses_data(const jpeg_error_mgr& e, const jpeg_decompress_struct& cinfo) {
+// row is decoded (encoders' padding), nor stray bytes between header segments before any pixel
+// is decoded (some writers leave them; the image data after them is whole).
+bool loses_data(const ErrorManager& err, const jpeg_decompress_struct& cinfo) {
+    const jpeg_error_mgr& e = err.pub;
     switch (e.msg_code) {
         case JWRN_ARITH_BAD_CODE:
         case JWRN_BOGUS_PROGRESSION:
@@ -53,8 +56,8 @@ bool loses_data(const jpeg_error_mgr& e, const jpeg_decompress_struct& cinfo) {
         case JWRN_EXTRANEOUS_DATA:
             // msg_parm.i: {count, marker}. Bytes left over before EOI after the last MCU are
             // padding when few; many mean the entropy decoder finished out of step.
-            return e.msg_parm.i[1] != 0xD9 || e.msg_parm.i[0] > kMaxPaddingBeforeEoi ||
-                   cinfo.output_scanline < cinfo.output_height;
+            return err.decoding && (e.msg_parm.i[1] != 0xD9 || e.msg_parm.i[0] > kMaxPaddingBeforeEoi ||
+                                    cinfo.output_scanline < cinfo.output_height);
         default: return false;
     }
 }
@@ -63,7 +66,7 @@ void emit_message(j_common_ptr cinfo, int level) {
     auto* err = reinterpret_cast<ErrorManager*>(cinfo->err);
     if (level >= 0) return;
     ++err->pub.num_warnings;
-    if (cinfo->is_decompressor && loses_data(err->pub, *reinterpret_cast<const jpeg_decompress_struct*>(cinfo)) &&
+    if (cinfo->is_decompressor && loses_data(*err, *reinterpret_cast<const jpeg_decompress_struct*>(cinfo)) &&
         err->lost++ == 0) {
         char text[JMSG_LENGTH_MAX];
         (*cinfo->err->format_message)(cinfo, text);
@@ -168,6 +171,7 @@ bool read_plain(const unsigned char* data, size_t size, bool header_only, uint64
         return true;
     }
     // libjpeg's defaults (islow DCT, fancy upsampling), as OpenImageIO leaves them.
+    err.decoding = true;
     jpeg_start_decompress(&cinfo);
     const size_t row = size_t{cinfo.output_width} * static_cast<size_t>(cinfo.output_components);
     if (static_cast<int>(cinfo.output_width) != out.width || static_cast<int>(cinfo.output_height) != out.height ||
@@ -224,6 +228,7 @@ std::string check(const unsigned char* data, size_t size, bool header_only, uint
     // libjpeg's warnings (the fast DCT: warnings come from the entropy decoder, not the IDCT).
     cinfo.dct_method = JDCT_IFAST;
     cinfo.do_fancy_upsampling = FALSE;
+    err.decoding = true;
     jpeg_start_decompress(&cinfo);
     JSAMPARRAY row = (*cinfo.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&cinfo), JPOOL_IMAGE,
                                                 cinfo.output_width * static_cast<JDIMENSION>(cinfo.output_components),

@@ -322,6 +322,19 @@ TEST(JpegReader, DamagedJpegsAreUnreadableInBothReaders) {
         EXPECT_FALSE(mf::read_info(in_memory(forged, name), err)) << name;
         EXPECT_NE(err.find("declares 16384x16384 pixels"), std::string::npos) << err;
     }
+    // Stray bytes between header segments, before any pixel is decoded: no data lost, read.
+    std::vector<unsigned char> stray = real;
+    size_t dqt = 2;
+    while (dqt + 1 < stray.size() && !(stray[dqt] == 0xFF && stray[dqt + 1] == 0xDB)) ++dqt;
+    ASSERT_LT(dqt + 1, stray.size());
+    stray.insert(stray.begin() + static_cast<long>(dqt), {0x12, 0x34, 0x56, 0x78, 0x9A});
+    {
+        mf::Decoded d;
+        mf::ImageInfo info;
+        std::string err;
+        EXPECT_TRUE(mf::read_image(in_memory(stray, "stray.jpg"), d, info, err)) << err;
+        EXPECT_EQ(mf::jpeg::check(stray.data(), stray.size(), false, 1u << 24, stray.size()), "");
+    }
     // Padding before the end marker: read, as OpenImageIO reads it.
     std::vector<unsigned char> padded = real;
     ASSERT_EQ(padded[padded.size() - 2], 0xFF);
