@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <set>
 
@@ -61,6 +62,23 @@ std::string write_ingest_report(const IngestArgs& a, const std::filesystem::path
     return {};
 }
 
+// The run's notes, each once; "removed <file>: <why>" lines of one reason beyond a few are
+// counted, not listed (a preset switch removed 200 files in 200 lines, which hid the rest).
+void say_notes(const std::string& command, const std::vector<std::string>& notes) {
+    constexpr size_t kListed = 3;
+    std::map<std::string, size_t> removed;  // why -> how many
+    for (const auto& n : notes) {
+        const size_t colon = n.find(": ");
+        if (n.rfind("removed ", 0) == 0 && colon != std::string::npos && ++removed[n.substr(colon + 2)] > kListed)
+            continue;
+        say(command, "note: " + n);
+    }
+    for (const auto& [why, count] : removed)
+        if (count > kListed)
+            say(command,
+                "note: removed " + std::to_string(count - kListed) + " more files for the same reason (" + why + ")");
+}
+
 // What one preset's run tells its user, and its exit code. `command`: "ingest", or with several
 // presets "ingest [NAME]".
 ExitCode report_run(const IngestArgs& a, const IngestOptions& opt, const IngestResult& r, const std::string& command) {
@@ -69,8 +87,7 @@ ExitCode report_run(const IngestArgs& a, const IngestOptions& opt, const IngestR
         return interrupted(command, "stopped before the end; " + manifest.string() +
                                         " is not written until a run completes (run the command again to finish)");
     if (!r.error.empty()) return fail(command, r.error, r.usage_error ? ExitCode::usage : ExitCode::findings);
-    if (!a.quiet)
-        for (const auto& n : r.notes) say(command, "note: " + n);
+    if (!a.quiet) say_notes(command, r.notes);
     for (const auto& p : r.cache_problems) say(command, "warning: cache: " + p);
     if (!a.quiet && opt.cache_dir && r.cache_hits + r.cache_misses > 0)
         say(command, "cache: " + std::to_string(r.cache_hits) + " sets restored, " + std::to_string(r.cache_misses) +
