@@ -9,8 +9,11 @@
 #include <string>
 #include <string_view>
 
-#include <jerror.h>  // libjpeg's message codes (JWRN_JPEG_EOF)
 #include <jpeglib.h>
+
+// After jpeglib.h: its jconfig.h says which codes exist (JWRN_ARITH_BAD_CODE with arithmetic
+// decoding, in libjpeg-turbo's 6.2 API).
+#include <jerror.h>
 
 namespace mf::jpeg {
 namespace {

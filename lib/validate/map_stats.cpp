@@ -606,8 +606,8 @@ void MapStats::packed_findings(const Emit& add) const {
     for (int c = 0; c < 3; ++c) varies = varies || (finite[c] > 0 && max[c] - min[c] > tol);
     const double share = ratio(gray_differing, pixels);
     if (!varies || share > t.grayscale_max_share) return;
-    std::vector<std::string> roles;
-    for (int c = 0; c < 3; ++c) roles.emplace_back(role_name(*channel_role(input.role, c)));
+    std::vector<std::string> roles(3);
+    for (int c = 0; c < 3; ++c) roles[static_cast<size_t>(c)] = role_name(*channel_role(input.role, c));
     add(code::packed_channels_identical, add.role,
         add.file + ": R, G and B hold one image (they differ in " + percent(share) +
             " of pixels): a greyscale map saved under a packed name, so " + roles[0] + ", " + roles[1] + " and " +
