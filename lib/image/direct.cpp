@@ -119,14 +119,12 @@ struct Raw {
 };
 
 // Why a JPEG this reader declines must not be decoded another way either (jpeg::check: a
-// declared size its data cannot hold, lost data), or empty. A whole file beyond whole()'s bound
-// is left to the module unchecked but for its header.
-std::string declined_jpeg(Source& src, bool header_only) {
+// declared size its data cannot hold, lost data), or empty. `file`: the whole file when the
+// caller has read it (a decode), else null (a header read: the header alone is checked). A whole
+// file beyond whole()'s bound is left to the module unchecked but for its header.
+std::string declined_jpeg(Source& src, const std::vector<unsigned char>* file) {
     if (!src.jpeg_signature) return {};
-    if (!header_only) {
-        const std::vector<unsigned char> file = whole(src);
-        if (!file.empty()) return jpeg::check(file.data(), file.size(), false, kMaxSampleBytes, file.size());
-    }
+    if (file && !file->empty()) return jpeg::check(file->data(), file->size(), false, kMaxSampleBytes, file->size());
     const uint64_t end = jpeg::first_scan_header_end(src.size, src.reader());
     const std::vector<unsigned char> head = end ? src.bytes(end) : std::vector<unsigned char>{};
     return head.empty() ? std::string() : jpeg::check(head.data(), head.size(), true, kMaxSampleBytes, src.size);
@@ -139,7 +137,7 @@ bool decode_or_throw(const InputFile& in, Raw& raw, std::string& refusal) {
         jpeg::Plain p;
         if (file.empty() || !jpeg::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p, file.size()) ||
             !within_limits(p.width, p.height, p.channels)) {
-            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, false);
+            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, &file);
             return false;
         }
         raw.info = jpeg_info(in, p);
@@ -178,7 +176,10 @@ bool decode_or_throw(const InputFile& in, Raw& raw, std::string& refusal) {
         raw.samples = std::move(p.pixels);
         return true;
     }
-    refusal = declined_jpeg(src, false);  // a JPEG under another name
+    if (src.jpeg_signature) {  // a JPEG under another name
+        const std::vector<unsigned char> file = whole(src);
+        refusal = declined_jpeg(src, &file);
+    }
     return false;
 }
 
@@ -216,7 +217,7 @@ bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<Stat
         jpeg::Plain p;
         if (head.empty() || !jpeg::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p, src.size) ||
             !within_limits(p.width, p.height, p.channels)) {
-            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, true);
+            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, nullptr);
             return false;
         }
         info = jpeg_info(in, p);
@@ -244,7 +245,7 @@ bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<Stat
         info = info_of(p.width, p.height, p.channels, p.bit_depth, "png");
         return true;
     }
-    refusal = declined_jpeg(src, true);  // a JPEG under another name
+    refusal = declined_jpeg(src, nullptr);  // a JPEG under another name
     return false;
 }
 }  // namespace

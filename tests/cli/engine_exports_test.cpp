@@ -11,6 +11,7 @@
 #include <set>
 
 #include "cli_util.hpp"
+#include "oiio_oracle.hpp"
 
 using namespace mft;
 
@@ -53,14 +54,7 @@ void oiio_write_png(const fs::path& p, int w, int h, int channels, const std::fu
                 px[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) *
                        static_cast<size_t>(channels) +
                    static_cast<size_t>(k)] = fill(x, y, k);
-    fs::create_directories(p.parent_path());
-    auto out = OIIO::ImageOutput::create(p.string());
-    ASSERT_TRUE(out);
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
-    if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
-    ASSERT_TRUE(out->open(p.string(), spec));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
-    out->close();
+    mf::testenv::oiio_write_png8(p, w, h, channels, px);
 }
 
 // The corpus set whose pixels the engine exports below are made of: a metal with a metalness map
@@ -152,6 +146,20 @@ void expect_channel(const Codes& got, int c, const std::function<int(int, int)>&
     EXPECT_EQ(wrong, 0) << what << ": pixels that differ from their source channel";
 }
 
+// The ORM output holds the source's maps code for code: R its occlusion (when `occlusion`: a set
+// packed without one gets a constant there), G its roughness, B its metalness. `how` says where
+// each came from in the packed input.
+void expect_source_orm(const Codes& orm, const Source& s, bool occlusion, const char* how) {
+    SCOPED_TRACE(how);
+    if (occlusion)
+        expect_channel(
+            orm, 0, [&](int x, int y) { return s.ao.at(x, y, 0); }, "occlusion");
+    expect_channel(
+        orm, 1, [&](int x, int y) { return s.rough.at(x, y, 0); }, "roughness");
+    expect_channel(
+        orm, 2, [&](int x, int y) { return s.metal.at(x, y, 0); }, "metalness");
+}
+
 }  // namespace engine_exports
 
 using namespace engine_exports;
@@ -185,11 +193,8 @@ TEST(EngineExports, UnityMetallicSmoothnessIsMetalAndInvertedSmoothness) {
     EXPECT_EQ(mat["inputs"]["normal"]["normal_convention"], "gl");  // Unity's convention
     EXPECT_EQ(mat.value("alpha_mode", "opaque"), "mask") << mat.dump(1);
     expect_quiet(mat);
-    const Codes orm = orm_of(set.parent_path().parent_path() / "out-unity", mat);
-    expect_channel(
-        orm, 1, [&](int x, int y) { return s.rough.at(x, y, 0); }, "roughness = 255 - smoothness");
-    expect_channel(
-        orm, 2, [&](int x, int y) { return s.metal.at(x, y, 0); }, "metalness = R");
+    expect_source_orm(orm_of(set.parent_path().parent_path() / "out-unity", mat), s, false,
+                      "roughness = 255 - smoothness (A), metalness = R");
 }
 
 // HDRP Lit's `_MaskMap`: R metallic, G occlusion, B detail mask (not a PBR role), A smoothness.
@@ -214,13 +219,7 @@ TEST(EngineExports, HdrpMaskMapUnpacksEveryChannel) {
     EXPECT_EQ(mat["inputs"]["mask_map"]["packing"],
               nlohmann::json({{"R", "metalness"}, {"G", "occlusion"}, {"A", "smoothness"}}));
     expect_quiet(mat);
-    const Codes orm = orm_of(out, mat);
-    expect_channel(
-        orm, 0, [&](int x, int y) { return s.ao.at(x, y, 0); }, "occlusion = G");
-    expect_channel(
-        orm, 1, [&](int x, int y) { return s.rough.at(x, y, 0); }, "roughness = 255 - A");
-    expect_channel(
-        orm, 2, [&](int x, int y) { return s.metal.at(x, y, 0); }, "metalness = R");
+    expect_source_orm(orm_of(out, mat), s, true, "occlusion = G, roughness = 255 - A, metalness = R");
 }
 
 // Packed maps whose names state their channel order, in any case and separator style.
@@ -253,13 +252,7 @@ TEST(EngineExports, PackedMapsUnpackInTheOrderTheirNamesState) {
         EXPECT_EQ(mat["inputs"][c.role]["file"], c.file) << mat["inputs"].dump(1);
         expect_quiet(mat);
         for (const auto& f : mat["findings"]) EXPECT_NE(f["code"], "PACKED_CHANNELS_IDENTICAL") << f.dump();
-        const Codes orm = orm_of(out, mat);
-        expect_channel(
-            orm, 0, [&](int x, int y) { return s.ao.at(x, y, 0); }, "occlusion");
-        expect_channel(
-            orm, 1, [&](int x, int y) { return s.rough.at(x, y, 0); }, "roughness");
-        expect_channel(
-            orm, 2, [&](int x, int y) { return s.metal.at(x, y, 0); }, "metalness");
+        expect_source_orm(orm_of(out, mat), s, true, "in the order the name states");
     }
 }
 

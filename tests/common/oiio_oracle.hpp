@@ -6,7 +6,9 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,20 @@ inline OiioRead oiio_read(const std::vector<unsigned char>& bytes, const std::st
     o.ok = in->read_image(0, 0, 0, o.spec.nchannels, type, o.pixels.data());
     if (!o.ok) ADD_FAILURE() << "OpenImageIO cannot read it: " << in->geterror();
     return o;
+}
+
+// An 8-bit PNG of `px` (interleaved, unassociated alpha) written by OpenImageIO (libpng): an
+// encoder independent of matforge's, for inputs the tests build. Folders are made.
+inline void oiio_write_png8(const std::filesystem::path& file, int w, int h, int channels,
+                            const std::vector<uint8_t>& px) {
+    std::filesystem::create_directories(file.parent_path());
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
+    if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
+    ASSERT_TRUE(out->open(file.string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
+    ASSERT_TRUE(out->close());
 }
 
 // matforge's read_image of `in` (which holds `bytes`) gives every float OpenImageIO's reader

@@ -13,6 +13,7 @@
 #include "core/files.hpp"
 #include "core/json.hpp"
 #include "manifest/spool.hpp"
+#include "oiio_oracle.hpp"
 #include "preview/preview.hpp"
 #include "test_dirs.hpp"
 #include "test_env.hpp"
@@ -26,16 +27,7 @@ namespace fs = std::filesystem;
 
 fs::path temp_dir(const std::string& name) { return mf::testdirs::fresh("matforge-preview-test-", name); }
 
-void write_png8(const fs::path& file, int w, int h, int channels, const std::vector<uint8_t>& px) {
-    fs::create_directories(file.parent_path());
-    auto out = OIIO::ImageOutput::create(file.string());
-    ASSERT_TRUE(out);
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
-    if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
-    ASSERT_TRUE(out->open(file.string(), spec));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
-    ASSERT_TRUE(out->close());
-}
+using mf::testenv::oiio_write_png8;
 
 // The typed manifest of `j`, every material loaded as the preview loads it.
 manifest::Manifest parse(const json& j) {
@@ -56,7 +48,7 @@ render::Material load(const manifest::Material& mm, const fs::path& dir, std::ve
 
 TEST(Manifest, SpecExampleMapsChannelsToRoles) {
     const fs::path dir = temp_dir("spec");
-    write_png8(dir / "Bricks059/Bricks059_orm.png", 2, 2, 3, std::vector<uint8_t>(12, 100));
+    oiio_write_png8(dir / "Bricks059/Bricks059_orm.png", 2, 2, 3, std::vector<uint8_t>(12, 100));
     const json j = json::parse(R"json({
       "manifest_version": 1,
       "generator": "matforge 0.1.0",
@@ -274,10 +266,10 @@ TEST(Manifest, MergeOfSpooledShardsIsTheWholeRun) {
 
 TEST(Manifest, SmoothnessConstantsUnusedAndConventions) {
     const fs::path dir = temp_dir("layouts");
-    write_png8(dir / "m/base.png", 2, 2, 4, std::vector<uint8_t>(16, 200));
-    write_png8(dir / "m/n.png", 2, 2, 3, std::vector<uint8_t>(12, 128));
-    write_png8(dir / "m/mask.png", 2, 2, 4, std::vector<uint8_t>(16, 50));
-    write_png8(dir / "m/h.png", 2, 2, 1, std::vector<uint8_t>(4, 50));
+    oiio_write_png8(dir / "m/base.png", 2, 2, 4, std::vector<uint8_t>(16, 200));
+    oiio_write_png8(dir / "m/n.png", 2, 2, 3, std::vector<uint8_t>(12, 128));
+    oiio_write_png8(dir / "m/mask.png", 2, 2, 4, std::vector<uint8_t>(16, 50));
+    oiio_write_png8(dir / "m/h.png", 2, 2, 1, std::vector<uint8_t>(4, 50));
     const json j = json::parse(R"({"manifest_version": 1, "materials": [{"name": "m", "outputs": [
         {"file": "m/base.png", "color_space": "sRGB", "channels": {"RGB": "albedo", "A": "opacity"}},
         {"file": "m/n.png", "color_space": "linear", "channels": {"RGB": "normal"}, "normal_convention": "dx"},
@@ -320,7 +312,7 @@ TEST(Manifest, ConstantsAreRangeCheckedAndApplied) {
 
 TEST(Manifest, TexturesOutsideTheManifestFolderAreRefusedUnlessAllowed) {
     const fs::path dir = temp_dir("outside");
-    write_png8(dir / "elsewhere/a.png", 2, 2, 3, std::vector<uint8_t>(12, 100));
+    oiio_write_png8(dir / "elsewhere/a.png", 2, 2, 3, std::vector<uint8_t>(12, 100));
     fs::create_directories(dir / "sub");  // the manifest's folder
     const json j = json::parse(R"({"manifest_version": 1, "materials": [{"name": "m", "outputs": [
         {"file": "../elsewhere/a.png", "color_space": "sRGB", "channels": {"RGB": "albedo"}}]}]})");
@@ -459,7 +451,7 @@ fs::path ingest_like(const fs::path& preset_file, const Source& src, const fs::p
             }
         }
         const std::string file = "Surface/Surface_" + o["suffix"].get<std::string>() + ".png";
-        write_png8(dir / file, kW, kH, nch, px);
+        oiio_write_png8(dir / file, kW, kH, nch, px);
         json out = {{"file", file},         {"color_space", o["color_space"]},
                     {"channels", channels}, {"width", kW},
                     {"height", kH},         {"bit_depth", 8}};

@@ -55,11 +55,17 @@ std::string absolute(const std::string& p) {
     return ec ? p : a.lexically_normal().generic_string();
 }
 
-// This binary, by its absolute path (a farm's node runs the same one on the shared file system).
-std::string self_binary() {
+// This binary's absolute path ("" when /proc cannot say).
+std::string self_path() {
     std::error_code ec;
     const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    return shell_word(ec ? std::string("matforge") : self.string());
+    return ec ? std::string() : self.string();
+}
+
+// This binary as the commands name it (a farm's node runs the same one on the shared file system).
+std::string self_binary() {
+    const std::string self = self_path();
+    return shell_word(self.empty() ? std::string("matforge") : self);
 }
 
 // The preset as the shards must name it: a shipped name as it is (load_preset takes a shipped
@@ -86,9 +92,7 @@ std::string line_breaking_path(const PlanArgs& a) {
                                                            {"the preset", preset_word(a.preset)}};
     for (const auto& in : a.inputs) words.emplace_back("the input", absolute(in));
     if (!a.rules_file.empty()) words.emplace_back("the rules file", absolute(a.rules_file));
-    std::error_code ec;
-    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) words.emplace_back("this binary's path", self.string());
+    if (const std::string self = self_path(); !self.empty()) words.emplace_back("this binary's path", self);
     for (const auto& [what, w] : words)
         for (const char c : w)
             if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
