@@ -57,7 +57,6 @@ constexpr EngineSlot kD3d11[] = {
     {"MetalnessMap", R::metalness, false, "R", false},
 };
 
-constexpr FileFormat kPng[] = {FileFormat::png};
 constexpr FileFormat kPngExr[] = {FileFormat::png, FileFormat::exr};
 constexpr FileFormat kUnityFormats[] = {FileFormat::png, FileFormat::exr, FileFormat::tif, FileFormat::tga};
 constexpr FileFormat kDds[] = {FileFormat::dds};

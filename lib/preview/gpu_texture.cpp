@@ -8,20 +8,13 @@
 
 namespace mf::preview {
 
-bool is_gpu_texture_file(const std::filesystem::path& file) {
-    const std::string ext = file.extension().string();
-    return ext == ".dds" || ext == ".DDS" || ext == ".ktx2" || ext == ".KTX2";
-}
-
 std::optional<render::Texture> read_gpu_texture(const std::filesystem::path& file, const BlockSupport& samples,
                                                 std::vector<std::string>& notes, std::string& error) {
     std::vector<uint8_t> bytes;
     if (!read_file(file, bytes, error)) return std::nullopt;
     texture::GpuTexture gt;
-    const bool ktx2 = file.extension() == ".ktx2" || file.extension() == ".KTX2";
-    if (!(ktx2 ? texture::read_ktx2(bytes, gt, error) : texture::read_dds(bytes, gt, error)) || gt.levels.empty() ||
-        !gt.format) {
-        error = file.string() + ": " + (error.empty() ? "no texture levels" : error);
+    if (!texture::read_gpu_texture(bytes, gt, error)) {
+        error = file.string() + ": " + error;
         return std::nullopt;
     }
     render::Texture t;
@@ -34,11 +27,8 @@ std::optional<render::Texture> read_gpu_texture(const std::filesystem::path& fil
         for (auto& l : gt.levels) t.block_levels.push_back(std::move(l.data));
         return t;
     }
-    texture::CodecOptions co;
-    co.format = gt.format;
-    co.srgb = gt.srgb;
     Image8 rgba;
-    if (!texture::decode_level(gt.levels[0].data, gt.levels[0].width, gt.levels[0].height, co, rgba, error)) {
+    if (!texture::decode_top_level(gt, 4, false, rgba, error)) {
         error = file.string() + ": " + error;
         return std::nullopt;
     }

@@ -3,6 +3,7 @@
 #include <map>
 
 #include "preview/preview.hpp"
+#include "texture/texture.hpp"
 
 namespace mf::preview {
 namespace {
@@ -83,8 +84,8 @@ std::optional<render::Material> load_material(const manifest::Material& mm, cons
             return std::nullopt;
         }
         const std::filesystem::path file = dir / o.file;
-        auto t = is_gpu_texture_file(file) ? read_gpu_texture(file, opt.samples, notes, error)
-                                           : read_texture(file, error);
+        auto t = texture::is_gpu_texture_name(file) ? read_gpu_texture(file, opt.samples, notes, error)
+                                                    : read_texture(file, error);
         if (!t) return std::nullopt;
         // A normal stored as X, Y only (BC5): the shader rebuilds Z.
         if (index == m.normal.texture) m.normal.z_from_xy = o.normal_z_reconstructed;

@@ -120,9 +120,9 @@ bool apply_scene_material(const SceneMaterial& s, render::Material& m, std::stri
 // ---- image files (through lib/image and lib/core)
 
 std::optional<render::Texture> read_texture(const std::filesystem::path& file, std::string& error);
-// A .dds or .ktx2 file (what ingest's GPU presets write): its blocks and mip chain as written
-// where `samples` says the device takes the format, else level 0 decoded on the CPU (a note).
-bool is_gpu_texture_file(const std::filesystem::path& file);
+// A .dds or .ktx2 file (what ingest's GPU presets write; texture::is_gpu_texture_name): its
+// blocks and mip chain as written where `samples` says the device takes the format, else level 0
+// decoded on the CPU (a note).
 std::optional<render::Texture> read_gpu_texture(const std::filesystem::path& file, const BlockSupport& samples,
                                                 std::vector<std::string>& notes, std::string& error);
 std::optional<render::Environment> read_environment(const std::filesystem::path& file, float intensity,

@@ -15,6 +15,7 @@
 #include "core/version.hpp"
 #include "report/card.hpp"
 #include "report/html.hpp"
+#include "texture/texture.hpp"
 
 namespace mf::report {
 namespace fs = std::filesystem;
@@ -114,6 +115,24 @@ private:
         ImageInfo info;
         return read_image(in, image, info, error);
     }
+    // A block-compressed output (.dds, .ktx2): level 0 decoded by the codec that wrote it (the
+    // blocks the engine samples, as the preview renders them), to the channels the manifest lists.
+    static bool read_blocks(const manifest::Output& o, const fs::path& file, Decoded& image, std::string& error) {
+        std::vector<uint8_t> bytes;
+        if (const auto why = not_a_regular_file(file)) {
+            error = file.string() + ": " + *why;
+            return false;
+        }
+        int channels = 0;
+        for (const Channel& c : o.channels) channels += c.key == "RGB" ? 3 : 1;
+        texture::GpuTexture gt;
+        if (!read_file(file, bytes, error) || !texture::read_gpu_texture(bytes, gt, error) ||
+            !texture::decode_top_level(gt, std::clamp(channels, 1, 4), o.normal_z_reconstructed, image.codes, error)) {
+            error = file.string() + ": " + error;
+            return false;
+        }
+        return true;
+    }
     static Image thumbnail_of(const Decoded& d, int max_size, bool srgb) {
         return d.is_codes() ? thumbnail(d.codes, max_size, srgb) : thumbnail(d.floats, max_size, srgb);
     }
@@ -155,7 +174,8 @@ private:
         }
         Decoded image;
         std::string error;
-        if (!read(base / o.file, image, error)) {
+        if (!(o.block_format.empty() ? read(base / o.file, image, error)
+                                     : read_blocks(o, base / o.file, image, error))) {
             pics.problem = error;
             return pics;
         }

@@ -75,7 +75,7 @@ AngleError normal_angle_error(const Image8& ref, const Image8& decoded, bool xy_
         const uint8_t* d = &decoded.pixels[p * dc];
         double ax = r[0] / 127.5 - 1.0, ay = r[1] / 127.5 - 1.0, az = r[2] / 127.5 - 1.0;
         double bx = d[0] / 127.5 - 1.0, by = d[1] / 127.5 - 1.0;
-        double bz = xy_only ? std::sqrt(std::max(0.0, 1.0 - bx * bx - by * by)) : d[2] / 127.5 - 1.0;
+        double bz = xy_only ? z_from_xy(bx, by) : d[2] / 127.5 - 1.0;
         unit(ax, ay, az);
         unit(bx, by, bz);
         const double deg = std::acos(std::clamp(ax * bx + ay * by + az * bz, -1.0, 1.0)) * 180.0 / std::numbers::pi;

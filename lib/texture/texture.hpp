@@ -13,6 +13,7 @@
 //  - errors are returned (false + text), never thrown.
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
@@ -130,6 +131,17 @@ struct Ktx2Options {
 bool write_ktx2(const GpuTexture& t, const Ktx2Options& opt, std::vector<uint8_t>& out, std::string& error);
 bool read_ktx2(std::span<const uint8_t> bytes, GpuTexture& t, std::string& error);
 
+// A DDS or KTX2 file's container, told apart by its magic bytes (not its name): read_dds or
+// read_ktx2. `is_gpu_texture_name`: the extensions matforge writes them under (.dds, .ktx2).
+bool read_gpu_texture(std::span<const uint8_t> bytes, GpuTexture& t, std::string& error);
+bool is_gpu_texture_name(const std::filesystem::path& file);
+
+// Level 0 of `t` decoded with the codec that wrote it, as a GPU samples it before sRGB decoding:
+// the first `channels` (1..4) of the decoded RGBA codes; `rebuild_z`: the third channel is the Z a
+// shader rebuilds from a BC5 normal's X and Y (sqrt(1 - x² - y²)). What `matforge report` shows of
+// a block-compressed output and what the preview uploads where the device cannot sample it.
+bool decode_top_level(const GpuTexture& t, int channels, bool rebuild_z, Image8& codes, std::string& error);
+
 // ---------------------------------------------------------------------------------------------
 // Errors of a decoded level against its source
 
@@ -142,6 +154,9 @@ struct AngleError {
 // Angles between the normals of `ref` (RGB codes) and of `decoded` (RGBA; with `xy_only` Z is
 // rebuilt from X and Y as an engine does for BC5).
 AngleError normal_angle_error(const Image8& ref, const Image8& decoded, bool xy_only);
+// The Z of a unit normal stored as X, Y only (BC5), as a shader rebuilds it: sqrt(1 - x² - y²),
+// 0 where x² + y² exceeds 1.
+double z_from_xy(double x, double y);
 
 // ---------------------------------------------------------------------------------------------
 // An output of a block-container preset, from the planes to the file's bytes

@@ -1,6 +1,7 @@
 // `matforge report` end to end on sample_materials: ingest (gltf), preview (lavapipe), report;
 // then the page is read back as files: a card per material, a row per finding, every picture a
 // PNG of the size asked, the same bytes on a second run, nothing outside the report's folder.
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -500,4 +501,61 @@ TEST(ReportCli, ValidateWritesThePageWithTheFindingsShares) {
                           (work / "lib/set/page").string()},
                          2));
     EXPECT_FALSE(fs::exists(work / "lib/set/page"));
+}
+
+// The GPU presets' outputs (.dds, .ktx2) are shown as the engine samples them: level 0 decoded
+// by the codec that wrote it (BC1/BC3 colour, BC4 scalars, BC5 normals with Z rebuilt), close to
+// the same map's PNG output of the gltf preset, with nothing "not shown" and no error line.
+TEST(ReportCli, BlockCompressedOutputsAreShownAsTheEngineSamplesThem) {
+    const fs::path work = temp_dir("gpu");
+    ASSERT_TRUE(matforge({"ingest", samples().string(), "-o", (work / "out").string(), "--preset",
+                          "gltf,d3d11,vulkan-ktx2", "-q", "--fail-on", "never"}));
+    // The thumbnail of each material's albedo and normal output in a preset's report.
+    auto thumbs = [&](const std::string& preset) {
+        const auto report = work / ("report-" + preset);
+        const auto p = mf::testbin::spawn({mf::testenv::bin(), "report",
+                                           (work / "out" / preset / "manifest.json").string(), "-o", report.string(),
+                                           "--thumb-size", "128"},
+                                          300);
+        EXPECT_EQ(p.code, 0) << p.output;
+        EXPECT_EQ(p.output.find(".dds:"), std::string::npos) << p.output;
+        EXPECT_EQ(p.output.find(".ktx2:"), std::string::npos) << p.output;
+        EXPECT_EQ(read_text(report / "index.html").find("not shown"), std::string::npos) << preset;
+        // "<material>/albedo" | "<material>/normal" -> the thumbnail and the normal's convention
+        std::map<std::string, std::pair<fs::path, std::string>> found;
+        const nlohmann::json manifest = read_json(work / "out" / preset / "manifest.json");
+        for (const auto& m : manifest["materials"])
+            for (const auto& o : m["outputs"]) {
+                const auto rgb = o["channels"].value("RGB", std::string());
+                if (rgb != "albedo" && rgb != "normal") continue;
+                const fs::path file = o["file"].get<std::string>();
+                found[m["name"].get<std::string>() + "/" + rgb] = {report / file.parent_path() /
+                                                                       ("out-" + file.stem().string() + ".png"),
+                                                                   o.value("normal_convention", std::string())};
+            }
+        return found;
+    };
+    const auto png = thumbs("gltf");
+    ASSERT_EQ(png.size(), 8u);  // four sets, an albedo and a normal each
+    for (const std::string preset : {"d3d11", "vulkan-ktx2"}) {
+        const auto gpu = thumbs(preset);
+        ASSERT_EQ(gpu.size(), 8u) << preset;
+        for (const auto& [what, thumb] : gpu) {
+            SCOPED_TRACE(preset + " " + what);
+            const mf::Image a = read_pixels(png.at(what).first);
+            mf::Image b = read_pixels(thumb.first);
+            // d3d11 writes DirectX normals, gltf OpenGL ones: the same surface with green flipped.
+            if (thumb.second != png.at(what).second)
+                for (size_t i = 1; i < b.pixels.size(); i += 3) b.pixels[i] = 1.f - b.pixels[i];
+            ASSERT_EQ(a.width, b.width);
+            ASSERT_EQ(a.height, b.height);
+            ASSERT_EQ(a.channels, b.channels);  // a grey blue channel would make the normal one channel
+            double se = 0;
+            for (size_t i = 0; i < a.pixels.size(); ++i) se += std::pow(double(a.pixels[i]) - double(b.pixels[i]), 2);
+            const double psnr = 10 * std::log10(double(a.pixels.size()) / std::max(se, 1e-12));
+            // A thumbnail averages blocks' errors away: BC1 level 0 is 37-46 dB here, its
+            // thumbnail well above; a normal without its Z (blue 0) would be under 10 dB.
+            EXPECT_GT(psnr, 36.0);
+        }
+    }
 }
