@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "base/srgb.hpp"
 #include "brdf_reference.hpp"
-#include "core/srgb.hpp"
 #include "render/brdf_harness.hpp"
 #include "render/render.hpp"
 

@@ -135,6 +135,24 @@ configure_sanitizer() {
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
 }
 
+# configure_plain BUILD_DIR gcc|clang: the build a user makes by hand (README: `cmake
+# -DCMAKE_BUILD_TYPE=Release`): CMake's own Release flags (-O3), one unit per file, tests and
+# benchmarks included, no flags of ours but warnings as errors (and ccache's path mapping), so a
+# warning only that build shows (GCC 12's -O3 diagnostics, clang's unused constants) fails CI
+# (scripts/plain-build.sh, .ci/run's `plain` stage).
+configure_plain() {
+  local compilers=(-DCMAKE_C_COMPILER=gcc -DCMAKE_CXX_COMPILER=g++)
+  [[ $2 == clang ]] && compilers=(-DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14)
+  mkdir -p "$1"
+  local launcher=()
+  if command -v ccache >/dev/null; then
+    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
+      "-DCMAKE_CXX_FLAGS=-ffile-prefix-map=$root/=" "-DCMAKE_C_FLAGS=-ffile-prefix-map=$root/=")
+  fi
+  cmake -S "$root" -B "$1" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMATFORGE_WERROR=ON "${compilers[@]}" \
+    "${launcher[@]}" >"$1/configure.log" 2>&1 || { cat "$1/configure.log" >&2; exit 1; }
+}
+
 # Sourced (scripts/demo.sh, scripts/test.sh): the functions only.
 [[ ${BASH_SOURCE[0]} != "$0" ]] && return 0
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 
 namespace mf::bench {
 

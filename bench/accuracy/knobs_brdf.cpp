@@ -11,8 +11,8 @@
 #include <cmath>
 #include <memory>
 
+#include "base/srgb.hpp"
 #include "brdf_reference.hpp"
-#include "core/srgb.hpp"
 #include "harness.hpp"
 
 namespace mf::bench {

@@ -10,7 +10,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "harness.hpp"
 #include "image/image.hpp"
 

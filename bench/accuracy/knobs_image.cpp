@@ -10,9 +10,9 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "base/srgb.hpp"
 #include "brdf_reference.hpp"
 #include "color/color.hpp"
-#include "core/srgb.hpp"
 #include "harness.hpp"
 #include "image/image.hpp"
 #include "pack/pack.hpp"

@@ -4,6 +4,8 @@
 #include <string_view>
 #include <vector>
 
+#include "base/ascii.hpp"  // ascii_lower, for every user of these helpers
+
 namespace mf {
 
 // `s` with every ill-formed UTF-8 sequence replaced by U+FFFD (one per maximal invalid
@@ -15,15 +17,6 @@ std::string utf8_or_replacement(std::string_view s);
 // other byte percent-encoded (upper-case hex). glTF's image URIs and the report's links use it,
 // so a name with spaces, '#', '%' or non-ASCII bytes resolves to the file on disk.
 std::string percent_encode_path(std::string_view path);
-
-// `s` with ASCII letters in lower case, other bytes unchanged: names compared as case-insensitive
-// file systems compare them (file names are bytes, not text in a locale).
-// Inline: lib/image's module, which links no library of ours, uses it through InputFile.
-inline std::string ascii_lower(std::string s) {
-    for (char& c : s)
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    return s;
-}
 
 // Lower case for comparing names as people write them: ASCII, and in UTF-8 the capitals of
 // Latin-1 (À–Þ), Latin Extended-A (Ā–ž, Ÿ), Greek (Α–Ω) and Cyrillic (Ѐ–Я) to their small

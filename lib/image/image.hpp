@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/limits.hpp"
-#include "core/text.hpp"
-#include "preset/vocabulary.hpp"
+#include "base/ascii.hpp"
+#include "base/limits.hpp"
+#include "base/vocabulary.hpp"
 
 namespace mf {
 

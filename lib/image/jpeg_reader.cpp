@@ -1,6 +1,6 @@
 #include "image/jpeg_reader.hpp"
 
-#include "core/limits.hpp"
+#include "base/limits.hpp"
 #include "image/exif.hpp"
 
 #include <csetjmp>

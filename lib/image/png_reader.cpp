@@ -1,6 +1,6 @@
 #include "image/png_reader.hpp"
 
-#include "core/limits.hpp"
+#include "base/limits.hpp"
 #include "image/exif.hpp"
 
 #include <libdeflate.h>
@@ -242,8 +242,10 @@ bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out) 
     const auto width = static_cast<uint32_t>(ihdr.width), height = static_cast<uint32_t>(ihdr.height);
     const int bpp = ihdr.channels * ihdr.bit_depth / 8;  // bytes per pixel
     size_t stream = 0;                                   // the IDAT chunks' data, moved together to the front of `file`
-    bool ended = false, idat_run_over = false;
-    std::string_view last;
+    // The chunk order is kept in flags, never in views of `file`: the IDAT data moved to the
+    // front overwrites the chunk headers already read (a first IDAT larger than what precedes it
+    // overwrites its own type), so a view would read pixels instead of "IDAT".
+    bool ended = false, in_idat_run = false, idat_run_over = false;
     for (size_t at = 8; !ended;) {
         if (size - at < 12) return false;
         const uint32_t len = be32(bytes + at);
@@ -251,8 +253,10 @@ bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out) 
         const std::string_view type(reinterpret_cast<const char*>(bytes + at + 4), 4);
         const unsigned char* data = bytes + at + 8;
         if (libdeflate_crc32(0, bytes + at + 4, len + 4) != be32(data + len)) return false;
+        // Read before the memmove below, which may move pixels over this very header.
+        const bool idat = at != 8 && type == "IDAT";
         if (at == 8) {  // IHDR, checked before the loop
-        } else if (type == "IDAT") {
+        } else if (idat) {
             if (idat_run_over) return false;
             // Behind everything already read (stream <= at): moving it overwrites nothing unread.
             std::memmove(bytes + stream, data, len);
@@ -262,9 +266,9 @@ bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out) 
         } else if (!inert(type, data, len)) {
             return false;
         }
-        if (last == "IDAT" && type != "IDAT") idat_run_over = true;
-        last = type;
         at += 12 + len;
+        if (in_idat_run && !idat) idat_run_over = true;
+        in_idat_run = idat;
     }
     if (stream == 0) return false;
 

@@ -4,7 +4,7 @@
 #include <array>
 #include <charconv>
 
-#include "core/limits.hpp"
+#include "base/limits.hpp"
 #include "core/text.hpp"
 
 namespace mf::naming {

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <set>
 
+#include "base/parallel.hpp"
 #include "core/files.hpp"
-#include "core/parallel.hpp"
 #include "findings/catalog.hpp"
 #include "plan/missing.hpp"
 #include "validate/validate.hpp"

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/budget.hpp"
+#include "base/budget.hpp"
 #include "findings/findings.hpp"
 #include "findings/rules.hpp"
 #include "image/image.hpp"

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <optional>
 
-#include "core/error.hpp"
+#include "base/error.hpp"
 #include "core/json.hpp"
 #include "core/text.hpp"
 #include "preset/texture_fields.hpp"

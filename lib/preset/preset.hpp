@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "base/vocabulary.hpp"
 #include "findings/findings.hpp"
 #include "material/channel.hpp"
 #include "material/roles.hpp"
-#include "preset/vocabulary.hpp"
 
 namespace mf {
 

@@ -4,7 +4,7 @@
 #include <array>
 #include <optional>
 
-#include "core/error.hpp"
+#include "base/error.hpp"
 #include "core/json.hpp"
 #include "preset/engine_slots.hpp"
 

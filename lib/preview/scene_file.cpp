@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "base/limits.hpp"
 #include "core/json.hpp"
-#include "core/limits.hpp"
 #include "preview/preview.hpp"
 
 namespace mf::preview {

@@ -8,11 +8,11 @@
 #include <thread>
 #include <tuple>
 
+#include "base/interrupt.hpp"
+#include "base/limits.hpp"
+#include "base/parallel.hpp"
 #include "core/files.hpp"
-#include "core/interrupt.hpp"
 #include "core/json.hpp"
-#include "core/limits.hpp"
-#include "core/parallel.hpp"
 #include "core/version.hpp"
 #include "findings/catalog.hpp"
 #include "manifest/spool.hpp"
@@ -130,19 +130,6 @@ Planes make_planes(SetPlan& plan) {
     return planes;
 }
 
-// Set indices, largest input first (longest-processing-time scheduling): a 4K set started last
-// would leave the other threads idle while it runs alone. Sizes come from the file system (a
-// set inside a .zip counts its archive's size); results keep input order whatever this says.
-std::vector<size_t> largest_first(const std::vector<MaterialSource>& sets) {
-    std::vector<uint64_t> bytes;
-    bytes.reserve(sets.size());
-    for (const auto& s : sets) bytes.push_back(set_bytes(s));
-    std::vector<size_t> order(sets.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return bytes[a] > bytes[b]; });
-    return order;
-}
-
 }  // namespace
 
 Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt)
@@ -151,16 +138,25 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
     if (opt_.normal_override) preset_.normal_convention = *opt_.normal_override;
 }
 
-struct Ingestor::Run {
-    Run(OutputFolder& f, std::atomic<int>& flight) : folder(f), in_flight(flight) {}
+// One preset's part of a pass: everything run() alone holds for its run. open() before the
+// sets, record() after each (serialized), finish() at the end; process() and compute() read the
+// run's folder, claims, context, cache and the pass's in-flight count through it.
+struct Ingestor::PresetRun {
+    PresetRun(const Ingestor& i, std::atomic<int>& flight) : ing(i), in_flight(flight) {}
+
+    const Ingestor& ing;
+    IngestResult result;
+    bool ready = false;  // open() went well: the sets run
     // The output folder, ours for the run (lock, journal, files that are not ours refused:
     // store/output_dir.hpp): every file of the run is written through it.
-    OutputFolder& folder;
+    std::unique_ptr<OutputFolder> folder;
     // The outputs whose paths another output claimed first: material -> suffix -> why.
     std::map<std::string, std::map<std::string, std::string>> refused;
     // The digest of everything but a set's files (process/work.hpp context_digest): the cache's
     // keys and a shard's run.
     std::string context;
+    std::string split;  // a shard's: the digest of the library's split (merge checks the parts)
+    std::optional<Cache> cache_store;
     Cache* cache = nullptr;  // null: no cache (--no-cache, or it could not be opened)
     std::mutex mutex;
     std::atomic<size_t> hits{0}, misses{0};
@@ -170,14 +166,29 @@ struct Ingestor::Run {
     // left idle (the batch's tail, or a single set) decodes and encodes on two threads; with
     // every worker busy, on one.
     std::atomic<int>& in_flight;
+    // Each set's entry goes to the spool (a temporary file) when the set is done: the run holds
+    // a tally and the file names of each set, not its entry (manifest/spool.hpp).
+    std::unique_ptr<manifest::MaterialSpool> spool;
+    std::string spool_error;
+    std::set<std::string> produced;  // every file the run wrote, for the folder's stale removal
+    size_t done = 0;
 
     bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
-        return folder.write(rel, bytes, error);
+        return folder->write(rel, bytes, error);
     }
     void cache_problem(std::string p) {
         std::lock_guard<std::mutex> lock(mutex);
         cache_problems.push_back(std::move(p));
     }
+    // Everything before the sets, on `batch` (already cut to the run's shard): the folder made
+    // and opened, every output path claimed, the cache, the spool. `ready` says it went well,
+    // else result.error (and usage_error) says why.
+    void open(const Batch& batch, std::string split_digest);
+    // Set `set`'s result into the spool and the tallies; `total`: the batch's sets (progress).
+    void record(const MaterialSource& set, MaterialResult&& r, size_t total);
+    // After every set: the manifest's head, the folder's and library files, the manifest written
+    // and the folder finished (store/output_dir.hpp), or result.error.
+    void finish(const Batch& batch);
 };
 
 // What the ingestors of run_together share of the set they process in turn: its decoded maps,
@@ -266,7 +277,8 @@ private:
     std::map<std::string, std::string> digests;
 };
 
-MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const {
+MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, PresetRun& run,
+                                 SetShare* share) const {
     // Sets whose outputs another set claimed first are computed (the refusals are this run's).
     const bool cacheable = run.cache && !run.cache_off && !run.refused.count(src.name);
     // Every set's action key goes into its entry (plan --changed-since); the cache remembers its
@@ -394,7 +406,7 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
     return Written{std::move(e), std::nullopt, std::move(gpu->findings)};
 }
 
-// GPUs and engines import at most kMaxImageSide pixels a side (core/limits.hpp): a larger
+// GPUs and engines import at most kMaxImageSide pixels a side (base/limits.hpp): a larger
 // output is written, and said so (once a set: the first such output).
 std::optional<Finding> too_large(const std::vector<Written>& written) {
     for (const auto& r : written)
@@ -411,7 +423,8 @@ std::optional<Finding> too_large(const std::vector<Written>& written) {
 
 }  // namespace
 
-MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const {
+MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget, PresetRun& run,
+                                 SetShare* share) const {
     struct InFlight {  // counts this set as running until it returns or throws
         std::atomic<int>& n;
         explicit InFlight(std::atomic<int>& c) : n(c) { ++n; }
@@ -449,7 +462,7 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     // The set's files are finished (fsync, journal, rename) by the folder's committer while the
     // next output is packed and encoded; the outputs are in place before the material files
     // that name them are written, and those before the set's entry is returned.
-    OutputFolder::Batch batch(run.folder);
+    OutputFolder::Batch batch(*run.folder);
     const auto batch_write = [&batch](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
         return batch.write(rel, b, e);
     };
@@ -544,21 +557,6 @@ std::string make_output_folder(const fs::path& out) {
     return {};
 }
 
-// Keeps the sets of shard (index, count) only (process/work: stable, balanced by size); returns
-// the digest of the library's split, which every shard of the run records.
-std::string keep_shard(std::vector<MaterialSource>& sets, std::pair<int, int> shard, const std::string& context) {
-    std::vector<uint64_t> bytes;
-    bytes.reserve(sets.size());
-    for (const auto& s : sets) bytes.push_back(set_bytes(s));
-    const std::vector<int> assigned = assign_shards(sets, bytes, shard.second);
-    std::string plan = plan_digest(sets, bytes, assigned, shard.second, context);
-    std::vector<MaterialSource> mine;
-    for (size_t i = 0; i < sets.size(); ++i)
-        if (assigned[i] == shard.first) mine.push_back(std::move(sets[i]));
-    sets = std::move(mine);
-    return plan;
-}
-
 // Every output path is claimed before any set runs, in set order: two outputs that would be
 // one file (a preset pattern that leaves names equal, names that differ in case only) are
 // refused the same way every run, and none is written twice. Returns set -> suffix -> why not.
@@ -576,106 +574,91 @@ std::map<std::string, std::map<std::string, std::string>> claim_outputs(OutputFo
     return refused;
 }
 
-// Whether two discoveries found the same sets (run_together: one list serves every ingestor).
-bool same_sets(const std::vector<MaterialSource>& a, const std::vector<MaterialSource>& b) {
-    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const MaterialSource& x, const MaterialSource& y) {
-        return x.name == y.name && x.root == y.root && x.zip_folder == y.zip_folder;
-    });
-}
-
 }  // namespace
 
 IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
-    return std::move(run_together({this}, inputs).front());
+    return std::move(run_together({this}, Batch::find(inputs, {opt_.out_dir})).front());
 }
 
-std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingestor*>& ingestors,
-                                                 const std::vector<fs::path>& inputs) {
-    // One ingestor's part of the pass: what run() alone holds for its run.
-    struct Target {
-        const Ingestor* ing = nullptr;
-        IngestResult result;
-        std::vector<InputFailure> source_failures;
-        std::unique_ptr<OutputFolder> folder;
-        std::unique_ptr<Run> run;
-        std::string plan;  // a shard's: the digest of the library's split
-        std::optional<Cache> cache;
-        std::unique_ptr<manifest::MaterialSpool> spool;
-        std::string spool_error;
-        std::set<std::string> produced;
-        size_t done = 0;
-        bool ready = false;  // everything before the sets went well
-    };
-    std::vector<Target> targets(ingestors.size());
-    std::atomic<int> in_flight{0};  // the pass's sets inside compute(), whichever preset's
-    std::vector<MaterialSource> sets;
-    bool have_sets = false;
-    for (size_t t = 0; t < targets.size(); ++t) {
-        Target& g = targets[t];
-        g.ing = ingestors[t];
-        const IngestOptions& opt = g.ing->opt_;
-        IngestResult& result = g.result;
-        if (result.error = make_output_folder(opt.out_dir); !result.error.empty()) continue;
-        std::string conflict;
-        std::vector<std::string> skipped;  // earlier output folders in the inputs: said as notes
-        std::vector<MaterialSource> found = find_material_sets(inputs, opt.out_dir, g.source_failures, &conflict,
-                                                               &skipped);
-        result.notes.insert(result.notes.end(), skipped.begin(), skipped.end());
-        if (!conflict.empty()) {
-            result.error = conflict;
-            result.usage_error = true;
-            continue;
-        }
-        // The folder is ours from here to the end (lock, journal): store/output_dir.hpp.
-        g.folder = OutputFolder::open({opt.out_dir, opt.manifest_name, opt.force, g.ing->preset_.name, opt.replace},
-                                      result.error, result.usage_error);
-        if (!g.folder) continue;
-        remove_stale_temps(opt.out_dir);  // a killed run's, never a running one's
-        g.run = std::make_unique<Run>(*g.folder, in_flight);
-        g.run->context = context_digest(g.ing->preset_, opt.rules, *g.ing->color_);
-        // A shard's: the digest of the library's split (merge checks the parts).
-        g.plan = opt.shard ? keep_shard(found, *opt.shard, g.run->context) : std::string();
-        if (!have_sets) {
-            sets = std::move(found);
-            have_sets = true;
-        } else if (!same_sets(found, sets)) {
-            result.error = opt.out_dir.string() +
-                           ": the inputs give other sets for this output folder than for the first one (an "
-                           "output folder inside an input); run each preset on its own";
-            result.usage_error = true;
-            continue;
-        }
-        g.run->refused = claim_outputs(*g.folder, g.ing->preset_, opt.manifest_name, sets);
-        if (!g.folder->begin(result.error)) continue;
-        // The cache never fails a run: one that cannot be opened is a problem reported, then off.
-        if (opt.cache_dir) {
-            std::string error;
-            g.cache = Cache::create(*opt.cache_dir, error);
-            if (g.cache) g.run->cache = &*g.cache;
-            else result.cache_problems.push_back(error + "; running without the cache");
-        }
-        // Each set's entry goes to the spool (a temporary file) when the set is done: the run
-        // holds a tally and the file names of each set, not its entry, and the manifest is written
-        // from the spool (manifest/spool.hpp).
-        g.spool = manifest::MaterialSpool::open(opt.out_dir, result.error);
-        g.ready = g.spool != nullptr;
+void Ingestor::PresetRun::open(const Batch& batch, std::string split_digest) {
+    const IngestOptions& opt = ing.opt_;
+    if (result.error = make_output_folder(opt.out_dir); !result.error.empty()) return;
+    result.notes = batch.skipped;  // earlier output folders in the inputs
+    if (!batch.output_conflict.empty()) {
+        result.error = batch.output_conflict;
+        result.usage_error = true;
+        return;
     }
-    const auto ready = static_cast<size_t>(std::count_if(targets.begin(), targets.end(),
-                                                         [](const Target& g) { return g.ready; }));
+    // The folder is ours from here to the end (lock, journal): store/output_dir.hpp.
+    folder = OutputFolder::open({opt.out_dir, opt.manifest_name, opt.force, ing.preset_.name, opt.replace},
+                                result.error, result.usage_error);
+    if (!folder) return;
+    remove_stale_temps(opt.out_dir);  // a killed run's, never a running one's
+    split = std::move(split_digest);
+    refused = claim_outputs(*folder, ing.preset_, opt.manifest_name, batch.sets);
+    if (!folder->begin(result.error)) return;
+    // The cache never fails a run: one that cannot be opened is a problem reported, then off.
+    if (opt.cache_dir) {
+        std::string error;
+        cache_store = Cache::create(*opt.cache_dir, error);
+        if (cache_store) cache = &*cache_store;
+        else result.cache_problems.push_back(error + "; running without the cache");
+    }
+    spool = manifest::MaterialSpool::open(opt.out_dir, result.error);
+    ready = spool != nullptr;
+}
+
+void Ingestor::PresetRun::record(const MaterialSource& set, MaterialResult&& r, size_t total) {
+    std::string error;
+    const bool spooled = r.failure || spool->add(r.entry, error);
+    ++done;
+    if (ing.opt_.progress) ing.opt_.progress(done, total, set.name, r);
+    if (!spooled) {
+        if (spool_error.empty()) spool_error = error;
+    } else if (r.failure) {
+        result.manifest.failures.push_back({source_of(set, ing.opt_.out_dir), std::string(code::unreadable_file),
+                                            *r.failure});
+    } else {
+        MaterialTally tally{r.entry.name, {}};
+        validate::add_material(tally.findings, r.entry.findings);
+        result.materials.push_back(std::move(tally));
+        for (const auto& o : r.entry.outputs) produced.insert(o.file);
+        for (const auto& f : r.entry.material_files) produced.insert(f.file);
+    }
+}
+
+std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingestor*>& ingestors, Batch batch) {
+    std::atomic<int> in_flight{0};  // the pass's sets inside compute(), whichever preset's
+    std::vector<std::unique_ptr<PresetRun>> runs;
     const IngestOptions& lead = ingestors.front()->opt_;
+    // --shard I/N: every preset of the pass runs the same shard (the CLI gives them one), split
+    // once; each records the split's digest under its own context.
+    std::vector<int> split;
+    if (lead.shard) split = batch.split(lead.shard->second);
+    std::vector<std::string> digests;
+    for (const Ingestor* ing : ingestors) {
+        auto& run = *runs.emplace_back(std::make_unique<PresetRun>(*ing, in_flight));
+        run.context = context_digest(ing->preset_, ing->opt_.rules, *ing->color_);
+        digests.push_back(lead.shard ? batch.split_digest(split, lead.shard->second, run.context) : std::string());
+    }
+    if (lead.shard) batch.keep_shard(split, lead.shard->first);
+    for (size_t t = 0; t < runs.size(); ++t) runs[t]->open(batch, std::move(digests[t]));
+    const auto ready = static_cast<size_t>(std::count_if(runs.begin(), runs.end(),
+                                                         [](const auto& r) { return r->ready; }));
     MemoryBudget budget(lead.memory_budget);
     std::mutex done_mutex;
-    const std::vector<size_t> order = largest_first(sets);
+    const std::vector<MaterialSource>& sets = batch.sets;
+    const std::vector<size_t> order = batch.largest_first();
     parallel_for(ready > 0 ? sets.size() : 0, lead.jobs, [&](size_t k) {
         const size_t i = order[k];
-        std::optional<SetShare> share;  // several ingestors: one decode, one encode of equal outputs
+        std::optional<SetShare> share;  // several presets: one decode, one encode of equal outputs
         if (ready > 1) share.emplace(static_cast<int>(ready));
-        for (Target& g : targets) {
-            if (!g.ready) continue;
+        for (auto& run : runs) {
+            if (!run->ready) continue;
             if (stop_requested()) return;  // a signal asked to stop: no new set starts
             MaterialResult r;
             try {
-                r = g.ing->process(sets[i], lead.memory_budget ? &budget : nullptr, *g.run, share ? &*share : nullptr);
+                r = run->ing.process(sets[i], lead.memory_budget ? &budget : nullptr, *run, share ? &*share : nullptr);
             } catch (const std::bad_alloc&) {  // exhaustion in one set must not stop the others
                 r = MaterialResult{};
                 r.failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
@@ -684,55 +667,38 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
                 r = MaterialResult{};
                 r.failure = sets[i].display + ": internal error: " + e.what();
             }
-            std::string error;
-            const bool spooled = r.failure || g.spool->add(r.entry, error);
             std::lock_guard lock(done_mutex);
-            ++g.done;
-            if (g.ing->opt_.progress) g.ing->opt_.progress(g.done, sets.size(), sets[i].name, r);
-            if (!spooled) {
-                if (g.spool_error.empty()) g.spool_error = error;
-            } else if (r.failure) {
-                g.result.manifest.failures.push_back({source_of(sets[i], g.ing->opt_.out_dir),
-                                                      std::string(code::unreadable_file), *r.failure});
-            } else {
-                MaterialTally tally{r.entry.name, {}};
-                validate::add_material(tally.findings, r.entry.findings);
-                g.result.materials.push_back(std::move(tally));
-                for (const auto& o : r.entry.outputs) g.produced.insert(o.file);
-                for (const auto& f : r.entry.material_files) g.produced.insert(f.file);
-            }
+            run->record(sets[i], std::move(r), sets.size());
         }
     });
     std::vector<IngestResult> results;
-    for (Target& g : targets) {
-        if (g.ready)
-            g.ing->finish(g.result, *g.folder, *g.run, *g.spool, g.spool_error, g.plan, sets.size(),
-                          std::move(g.source_failures), g.produced);
-        results.push_back(std::move(g.result));
+    for (auto& run : runs) {
+        if (run->ready) run->finish(batch);
+        results.push_back(std::move(run->result));
     }
     return results;
 }
 
-void Ingestor::finish(IngestResult& result, OutputFolder& folder, Run& run, manifest::MaterialSpool& spool,
-                      const std::string& spool_error, const std::string& plan, size_t sets,
-                      std::vector<InputFailure> source_failures, std::set<std::string>& produced) const {
+void Ingestor::PresetRun::finish(const Batch& batch) {
+    const IngestOptions& opt = ing.opt_;
+    const Preset& preset = ing.preset_;
     if (!spool_error.empty()) {
         result.error = spool_error;
         return;
     }
     manifest::Manifest& m = result.manifest;
     m.generator = std::string(kGenerator);
-    m.preset = preset_.name;
-    m.normal_convention = preset_.normal_convention;
-    m.thresholds = rules::threshold_table(opt_.rules.thresholds);
-    if (opt_.shard)
-        m.shard = manifest::Manifest::Shard{opt_.shard->first, opt_.shard->second, run.context, plan,
-                                            static_cast<int>(sets)};
-    for (auto& f : source_failures) {
-        f.source = relative_to(f.source, opt_.out_dir);
+    m.preset = preset.name;
+    m.normal_convention = preset.normal_convention;
+    m.thresholds = rules::threshold_table(opt.rules.thresholds);
+    if (opt.shard)
+        m.shard = manifest::Manifest::Shard{opt.shard->first, opt.shard->second, context, split,
+                                            static_cast<int>(batch.sets.size())};
+    for (InputFailure f : batch.failures) {
+        f.source = relative_to(f.source, opt.out_dir);
         m.failures.push_back(std::move(f));
     }
-    spool.sort();  // names are unique: one folder each
+    spool->sort();  // names are unique: one folder each
     std::sort(result.materials.begin(), result.materials.end(),
               [](const auto& a, const auto& b) { return a.name < b.name; });
     // By source, then code and message: a total order, the one `matforge merge` writes too.
@@ -740,30 +706,30 @@ void Ingestor::finish(IngestResult& result, OutputFolder& folder, Run& run, mani
         return std::tie(a.source, a.code, a.message) < std::tie(b.source, b.code, b.message);
     });
 
-    result.cache_hits = run.hits;
-    result.cache_misses = run.misses;
-    for (auto& p : run.cache_problems) result.cache_problems.push_back(std::move(p));
+    result.cache_hits = hits;
+    result.cache_misses = misses;
+    for (auto& p : cache_problems) result.cache_problems.push_back(std::move(p));
     if (stop_requested()) {  // stopped: the journal stays, no manifest (the next run finishes the job)
         result.interrupted = true;
         return;
     }
-    const WriteFile write = [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-        return folder.write(rel, b, e);
+    const WriteFile write_one = [&](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+        return folder->write(rel, b, e);
     };
     // The folder's own files (every shard alike), then library.gltf and the other libraries:
     // every material of the run in one file (not per shard: a shard sees its part).
-    if (!write_folder_files(preset_, write, m.library, result.error) ||
-        (!opt_.shard &&
+    if (!write_folder_files(preset, write_one, m.library, result.error) ||
+        (!opt.shard &&
          !write_library(
-             spool, opt_.out_dir, write,
-             [&](const std::string& rel, const ByteProducer& p, std::string& e) { return folder.write(rel, p, e); },
+             *spool, opt.out_dir, write_one,
+             [&](const std::string& rel, const ByteProducer& p, std::string& e) { return folder->write(rel, p, e); },
              m.library, result.error)))
         return;
     for (const auto& f : m.library) produced.insert(f.file);
     std::string err;
-    const ByteProducer text = [&](const ByteSink& sink) { return spool.write_manifest(m, sink, err); };
-    if (!folder.finish(text, produced, result.notes, err)) result.error = err;
-    remove_stale_temps(opt_.out_dir);
+    const ByteProducer text = [&](const ByteSink& sink) { return spool->write_manifest(m, sink, err); };
+    if (!folder->finish(text, produced, result.notes, err)) result.error = err;
+    remove_stale_temps(opt.out_dir);
 }
 
 }  // namespace mf

@@ -11,21 +11,17 @@
 #include <string>
 #include <vector>
 
+#include "base/budget.hpp"
 #include "color/color.hpp"
-#include "core/budget.hpp"
 #include "findings/findings.hpp"
 #include "findings/rules.hpp"
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
+#include "process/batch.hpp"
 #include "sets/sets.hpp"
 #include "validate/verdict.hpp"
 
 namespace mf {
-
-class OutputFolder;
-namespace manifest {
-class MaterialSpool;
-}
 
 struct MaterialResult {
     manifest::Material entry;            // one element of the manifest's "materials"
@@ -72,7 +68,7 @@ struct IngestResult {
     std::vector<MaterialTally> materials;
     std::string error;               // batch-level error (output folder unusable); empty when fine
     bool usage_error = false;        // `error` is about the choice of output folder (exit 2)
-    bool interrupted = false;        // stopped by a signal (core/interrupt.hpp): no manifest written
+    bool interrupted = false;        // stopped by a signal (base/interrupt.hpp): no manifest written
     std::vector<std::string> notes;  // outputs of earlier runs removed or kept (output_dir.hpp)
     // Sets restored from the cache, sets computed, and what went wrong with the cache (a corrupt
     // blob, a full disk: the cache turned itself off), one line each.
@@ -84,36 +80,33 @@ class Ingestor {
 public:
     Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt);
 
-    // Finds the sets, processes them in parallel, writes manifest.json atomically. Thread-safe:
-    // everything a run changes lives in its Run, not in the Ingestor.
+    // Finds the sets (Batch::find, never in the output folder), processes them in parallel,
+    // writes manifest.json atomically. Thread-safe: everything a run changes lives in its
+    // PresetRun, not in the Ingestor.
     IngestResult run(const std::vector<std::filesystem::path>& inputs) const;
 
     // Several ingestors (ingest --preset a,b: one per preset, each with its own output folder)
-    // over the same inputs in one pass: each set is processed by every ingestor in turn on one
-    // worker, its maps decoded once (plan/plan.hpp's PlanShare) and an output whose pixels and
-    // encoding equal one another ingestor encoded for that set encoded once. Each result, and
-    // every file, is what that ingestor's run() gives alone. The first ingestor's jobs, memory
-    // budget and progress serve the pass; the sets must be the same for all (the same inputs,
-    // shard and output folders outside them), else each result holds the error.
-    static std::vector<IngestResult> run_together(const std::vector<const Ingestor*>& ingestors,
-                                                  const std::vector<std::filesystem::path>& inputs);
+    // over one batch (found once, with every ingestor's output folder excluded) in one pass: each
+    // set is processed by every ingestor in turn on one worker, its maps decoded once
+    // (plan/plan.hpp's PlanShare) and an output whose pixels and encoding equal one another
+    // ingestor encoded for that set encoded once. Each result, and every file, is what that
+    // ingestor's run() gives alone. The first ingestor's jobs, memory budget, shard and progress
+    // serve the pass.
+    static std::vector<IngestResult> run_together(const std::vector<const Ingestor*>& ingestors, Batch batch);
 
 private:
     Preset preset_;
     std::shared_ptr<const ColorContext> color_;
     IngestOptions opt_;
-    struct Run;       // one run()'s state, shared by the sets it processes (ingest.cpp)
+    // One preset's part of a pass (its output folder, claims, cache, spool, tallies; open(),
+    // record() after each set, finish()): ingest.cpp.
+    struct PresetRun;
     struct SetShare;  // what the ingestors of run_together share of one set (ingest.cpp)
     // One set of `run`: restored from the run's cache, or computed. Validates it (every rule,
     // from the decoded pixels: each file is decoded once), converts and packs it, and writes
     // its outputs through the run's output folder. `share`: null for a run alone.
-    MaterialResult process(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const;
-    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget, Run& run, SetShare* share) const;
-    // After every set: the manifest's head, the folder's and library files, the manifest written
-    // and the folder finished (store/output_dir.hpp), or `result.error`.
-    void finish(IngestResult& result, OutputFolder& folder, Run& run, manifest::MaterialSpool& spool,
-                const std::string& spool_error, const std::string& plan, size_t sets,
-                std::vector<InputFailure> source_failures, std::set<std::string>& produced) const;
+    MaterialResult process(const MaterialSource& src, MemoryBudget* budget, PresetRun& run, SetShare* share) const;
+    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget, PresetRun& run, SetShare* share) const;
 };
 
 }  // namespace mf

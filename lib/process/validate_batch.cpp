@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <fstream>
 
-#include "core/interrupt.hpp"
+#include "base/interrupt.hpp"
+#include "base/parallel.hpp"
 #include "core/json.hpp"
-#include "core/parallel.hpp"
 #include "core/version.hpp"
 #include "plan/plan.hpp"
 #include "sets/sets.hpp"
@@ -58,15 +58,13 @@ std::optional<rules::RuleConfig> load_rule_config(const Preset& preset, const st
     return layered;
 }
 
-manifest::Manifest validate_inputs(const std::vector<std::filesystem::path>& inputs, const Preset& preset,
-                                   const ValidateBatchOptions& opt, std::vector<std::string>* notes) {
+manifest::Manifest validate_batch(const Batch& batch, const Preset& preset, const ValidateBatchOptions& opt) {
     manifest::Manifest report;
     report.generator = std::string(kGenerator);
     report.preset = preset.name;
     report.normal_convention = preset.normal_convention;
     report.thresholds = rules::threshold_table(opt.rules.thresholds);
-    std::vector<InputFailure> source_failures;
-    const auto sets = find_material_sets(inputs, {}, source_failures, nullptr, notes);
+    const std::vector<MaterialSource>& sets = batch.sets;
     std::vector<SetOutcome> outcomes(sets.size());
     parallel_for(sets.size(), opt.jobs, [&](size_t i) {
         if (stop_requested()) return;  // a signal asked to stop (the command reports it)
@@ -82,7 +80,7 @@ manifest::Manifest validate_inputs(const std::vector<std::filesystem::path>& inp
             report.failures.push_back({sets[i].display, std::string(code::unreadable_file), outcomes[i].failure});
         else report.materials.push_back(std::move(outcomes[i].report));
     }
-    for (auto& f : source_failures) report.failures.push_back(std::move(f));
+    for (const auto& f : batch.failures) report.failures.push_back(f);
     std::stable_sort(report.materials.begin(), report.materials.end(),
                      [](const auto& a, const auto& b) { return a.name < b.name; });
     return report;

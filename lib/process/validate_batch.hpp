@@ -8,6 +8,7 @@
 #include "findings/rules.hpp"
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
+#include "process/batch.hpp"
 
 namespace mf {
 
@@ -21,12 +22,10 @@ struct ValidateBatchOptions {
 std::optional<rules::RuleConfig> load_rule_config(const Preset& preset, const std::string& rules_file,
                                                   std::string& error);
 
-// Sets under `inputs` validated in parallel, as a manifest with no outputs (what ingest would
+// The sets of `batch` validated in parallel, as a manifest with no outputs (what ingest would
 // record of each set but what it writes: the report writers take either, report/formats.hpp):
 // materials in name order with their sources as the user gave them, failures after; the
-// preset, its normal convention and the thresholds applied. `notes` (when given): a line per
-// output folder of matforge met in the inputs and skipped.
-manifest::Manifest validate_inputs(const std::vector<std::filesystem::path>& inputs, const Preset& preset,
-                                   const ValidateBatchOptions& opt, std::vector<std::string>* notes = nullptr);
+// preset, its normal convention and the thresholds applied.
+manifest::Manifest validate_batch(const Batch& batch, const Preset& preset, const ValidateBatchOptions& opt);
 
 }  // namespace mf

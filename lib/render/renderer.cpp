@@ -10,7 +10,7 @@
 
 #include <utility>
 
-#include "core/limits.hpp"
+#include "base/limits.hpp"
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <type_traits>
 
-#include "core/srgb.hpp"  // header-only, standard library only
+#include "base/srgb.hpp"  // header-only, standard library only
 #include "render/internal.hpp"
 
 namespace mf::render::detail {

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <optional>
 
-#include "core/parallel.hpp"
+#include "base/parallel.hpp"
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "validate/albedo_class.hpp"
 #include "validate/validate.hpp"
 
@@ -13,7 +13,7 @@ namespace mf::report {
 namespace {
 
 // The sRGB curves through 65536-step tables with linear interpolation: within 1e-6 of the exact
-// IEC 61966-2-1 functions (core/srgb.hpp) on [0, 1], a few ns per value instead of a pow.
+// IEC 61966-2-1 functions (base/srgb.hpp) on [0, 1], a few ns per value instead of a pow.
 constexpr int kSteps = 65536;
 struct Curve {
     std::vector<float> table;

@@ -7,10 +7,10 @@
 #include <map>
 #include <span>
 
-#include "core/budget.hpp"
+#include "base/budget.hpp"
+#include "base/interrupt.hpp"
+#include "base/parallel.hpp"
 #include "core/files.hpp"
-#include "core/interrupt.hpp"
-#include "core/parallel.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
 #include "report/card.hpp"

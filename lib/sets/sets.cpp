@@ -147,7 +147,7 @@ std::string matforge_output_marker(const fs::path& dir) {
 }
 
 struct Scan {
-    const fs::path& exclude;
+    const std::vector<fs::path>& exclude;
     std::vector<MaterialSource>& out;
     std::vector<InputFailure>& failures;
     std::string* output_conflict;
@@ -495,7 +495,8 @@ void walk(Scan& scan, const fs::path& root) {
         std::error_code fec;
         // Real folders only: a symlink to a folder could loop back to an ancestor.
         if (it->is_directory(fec) && !it->is_symlink(fec) && !hidden(it->path().filename().string())) {
-            if (!scan.exclude.empty() && fs::equivalent(it->path(), scan.exclude, fec)) {
+            if (std::any_of(scan.exclude.begin(), scan.exclude.end(),
+                            [&](const fs::path& x) { return !x.empty() && fs::equivalent(it->path(), x, fec); })) {
                 if (scan.output_conflict && scan.output_conflict->empty())
                     *scan.output_conflict = set_in_output_folder(it->path());
                 continue;
@@ -749,7 +750,8 @@ std::string output_overlaps_input(const fs::path& out_dir, const std::vector<fs:
     return {};
 }
 
-std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inputs, const fs::path& exclude,
+std::vector<MaterialSource> find_material_sets(const std::vector<fs::path>& inputs,
+                                               const std::vector<fs::path>& exclude,
                                                std::vector<InputFailure>& failures, std::string* output_conflict,
                                                std::vector<std::string>* skipped) {
     std::vector<MaterialSource> sets;

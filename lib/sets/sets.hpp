@@ -30,19 +30,19 @@ struct MaterialSource {
     InputFile open(const std::string& file) const;  // zip entries are read into memory
 };
 
-// Every material set under `inputs`. Skips `exclude` (the output folder, when it lies inside an
-// input), hidden files and folders, __MACOSX, and does not follow symbolic links to folders
+// Every material set under `inputs`. Skips the folders of `exclude` (the run's output folders,
+// where they lie inside an input), hidden files and folders, __MACOSX, and does not follow symbolic links to folders
 // (no loops). A folder or archive reached twice (overlapping inputs, a link to a folder given as
 // an input) is read once (by real path), with DUPLICATE_INPUT on its sets. An input in which no
 // set is found, and a folder whose maps are only in formats matforge does not read, are
 // failures (UNRECOGNIZED_FILE) naming them. Names are made unique (case-insensitively) by
 // appending _2, _3 … in path order, skipping names other sets have.
-// `output_conflict` (when given): set to a message when `exclude` is itself the folder of a set
+// `output_conflict` (when given): set to a message when a folder of `exclude` is the folder of a set
 // (it holds the set's maps): that set would be dropped and the outputs written among its sources.
 // A folder holding a manifest or journal matforge wrote, or a report of `matforge report`, is an
 // output: it is skipped with all below it, and said in `skipped` (when given), one line each.
 std::vector<MaterialSource> find_material_sets(const std::vector<std::filesystem::path>& inputs,
-                                               const std::filesystem::path& exclude,
+                                               const std::vector<std::filesystem::path>& exclude,
                                                std::vector<InputFailure>& failures,
                                                std::string* output_conflict = nullptr,
                                                std::vector<std::string>* skipped = nullptr);

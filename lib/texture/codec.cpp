@@ -35,7 +35,7 @@
 #include <cstring>
 #include <memory>
 
-#include "core/parallel.hpp"
+#include "base/parallel.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {

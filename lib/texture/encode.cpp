@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "core/parallel.hpp"
+#include "base/parallel.hpp"
 #include "core/text.hpp"
 #include "findings/catalog.hpp"
 #include "texture/texture.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {

@@ -4,7 +4,7 @@
 #include <array>
 #include <limits>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "image/image.hpp"
 #include "validate/map_stats.hpp"
 

@@ -21,7 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/simd.hpp"
+#include "base/simd.hpp"
 #include "findings/rules.hpp"
 
 namespace mf::validate {

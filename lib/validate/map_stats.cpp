@@ -8,8 +8,8 @@
 #include <type_traits>
 #include <utility>
 
-#include "core/simd.hpp"
-#include "core/srgb.hpp"
+#include "base/simd.hpp"
+#include "base/srgb.hpp"
 #include "core/text.hpp"
 
 namespace mf::validate::detail {

@@ -12,7 +12,7 @@ namespace mf::validate::detail {
 // a / b as a fraction (0 when b is 0).
 inline double ratio(long long a, long long b) { return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0.0; }
 
-// mf::srgb_to_linear (core/srgb.hpp) of every 16-bit code k / 65535 (an 8-bit code k is the
+// mf::srgb_to_linear (base/srgb.hpp) of every 16-bit code k / 65535 (an 8-bit code k is the
 // 16-bit code 257 k): exact for integer files, a lookup instead of a pow per sample.
 const std::vector<float>& srgb_decode_table();
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/simd.hpp"
+#include "base/simd.hpp"
 
 namespace mf::validate {
 namespace {

@@ -13,7 +13,7 @@
 #include <functional>
 #include <map>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "corpus.hpp"
 #include "image/image.hpp"
 #include "validate/map_stats.hpp"

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
+#include "base/srgb.hpp"
 #include "color/color.hpp"
-#include "core/srgb.hpp"
 #include "image/image.hpp"
 #include "test_color.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "pack/pack.hpp"
 #include "test_color.hpp"
 

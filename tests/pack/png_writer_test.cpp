@@ -539,4 +539,30 @@ TEST(PngReader, LeavesEveryOtherPngToOpenImageIo) {
     EXPECT_EQ(d.codes.pixels, s8);
 }
 
+// IDAT chunks must be consecutive (PNG spec 5.6); libpng refuses IDAT, tEXt, IDAT. The reader
+// moves each IDAT's data to the front of the file as it goes: a first IDAT large enough to cover
+// its own chunk header must not erase what the reader knows of the chunk order.
+TEST(PngReader, AnIdatRunBrokenByAnotherChunkIsRefusedWhateverItsSize) {
+    const int w = 64, h = 64, channels = 3;
+    const std::vector<unsigned char> good = encode(w, h, channels, 8, {}, samples<uint8_t>(w, h, channels, true, 9));
+    std::vector<Chunk> c = chunks_of(good);  // IHDR, tEXt, IDAT, IEND
+    ASSERT_EQ(c[2].type, "IDAT");
+    ASSERT_GT(c[2].data.size(), 1000u);  // noise: the first part covers everything before it
+    Chunk tail{"IDAT", {c[2].data.end() - 4, c[2].data.end()}};
+    c[2].data.resize(c[2].data.size() - 4);
+    put(c, 3, Chunk{"tEXt", {'a', 0, 'b'}});
+    put(c, 4, tail);
+    std::vector<unsigned char> split = file_of(c);
+    mf::png::Plain p;
+    std::vector<unsigned char> copy = split;
+    EXPECT_FALSE(mf::png::read_plain(copy, kLimit, p));
+    EXPECT_TRUE(p.pixels.empty());
+    // Left to OpenImageIO, whose libpng refuses it: an error naming the file, no pixels.
+    mf::Decoded d;
+    mf::ImageInfo info;
+    std::string err;
+    EXPECT_FALSE(mf::read_image(in_memory(split, "split.png"), d, info, err));
+    EXPECT_NE(err.find("split.png"), std::string::npos) << err;
+}
+
 }  // namespace

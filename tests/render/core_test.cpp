@@ -2,7 +2,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "reference.hpp"
 #include "render/internal.hpp"
 #include "vulkan_fixture.hpp"
@@ -58,7 +58,7 @@ TEST_P(MipTest, ColorIsAveragedInLinearLight) {
 }
 
 TEST_P(MipTest, FloatColorIsDecodedExactlyNegativesMirrored) {
-    // A float texture tagged sRGB is decoded on the CPU with the exact curve (core/srgb.hpp) and
+    // A float texture tagged sRGB is decoded on the CPU with the exact curve (base/srgb.hpp) and
     // stored linear. Negatives are mirrored, −f(−x): down to −0.04045 that is the linear segment
     // continued (x / 12.92), below it the power segment, not a clamp to 0.
     const float values[6] = {0.5f, -0.02f, -0.5f, 0.04045f, 1.f, 0.f};

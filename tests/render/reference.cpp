@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "../stability/brdf_reference.hpp"
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 
 namespace mf::test {
 

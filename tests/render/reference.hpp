@@ -34,7 +34,7 @@ ReferenceImage render_reference(const render::Scene& scene, const render::Materi
 // (cpubrdf::specular_dfg), tabulated per roughness.
 std::array<double, 4> specular_dfg_correlated(double NoV, double roughness);
 
-// The sRGB curves are mf::linear_to_srgb / mf::srgb_to_linear (core/srgb.hpp).
+// The sRGB curves are mf::linear_to_srgb / mf::srgb_to_linear (base/srgb.hpp).
 int to_code(double encoded);  // round to nearest 8-bit code, clamped
 
 // Both shading paths (Scene::shading), which every reference test runs with the same bounds.

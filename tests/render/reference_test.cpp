@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "reference.hpp"
 #include "vulkan_fixture.hpp"
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "reference.hpp"
 #include "vulkan_fixture.hpp"
 

@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "vulkan_fixture.hpp"
 
 namespace mf::test {

@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
+#include "base/srgb.hpp"
 #include "core/files.hpp"
-#include "core/srgb.hpp"
 #include "core/text.hpp"
 #include "report/html.hpp"
 #include "report/images.hpp"

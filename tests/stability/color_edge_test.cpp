@@ -1,5 +1,5 @@
 // Colour transforms at the edges: 0, 1, negatives, NaN, ±Inf, denormals and values above 1,
-// through the exact IEC 61966-2-1 functions (lib/core/srgb.hpp) and the OpenColorIO context,
+// through the exact IEC 61966-2-1 functions (lib/base/srgb.hpp) and the OpenColorIO context,
 // then through pack_output + quantize to the codes a file gets.
 //
 // Intended behaviour (what the assertions pin down):
@@ -21,8 +21,8 @@
 #include <limits>
 #include <vector>
 
+#include "base/srgb.hpp"
 #include "color/color.hpp"
-#include "core/srgb.hpp"
 #include "image/image.hpp"
 #include "pack/pack.hpp"
 #include "preset/preset.hpp"

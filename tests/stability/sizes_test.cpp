@@ -7,7 +7,7 @@
 #include <cmath>
 #include <tuple>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "pack/pack.hpp"
 #include "stability_util.hpp"
 

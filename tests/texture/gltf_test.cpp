@@ -5,7 +5,7 @@
 #include <fstream>
 #include <set>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "core/text.hpp"
 #include "texture_cli.hpp"
 

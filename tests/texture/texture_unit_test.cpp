@@ -5,8 +5,8 @@
 #include <cstring>
 #include <random>
 
+#include "base/srgb.hpp"
 #include "core/json.hpp"
-#include "core/srgb.hpp"
 #include "gltf/gltf.hpp"
 #include "image/image.hpp"
 #include "preset/preset.hpp"

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "validate/map_stats.hpp"
 #include "validate/validate.hpp"
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "helpers.hpp"
 #include "validate/map_stats.hpp"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/srgb.hpp"
+#include "base/srgb.hpp"
 #include "validate/albedo_stats.hpp"
 #include "validate/map_stats.hpp"
 

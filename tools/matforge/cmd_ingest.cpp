@@ -116,16 +116,6 @@ ExitCode run_ingest(const IngestArgs& a) {
     if (!error.empty()) return fail("ingest", error);
     if (!a.report_file.empty() && a.report.empty()) return fail("ingest", "--report-file needs --report FORMAT");
     if (a.report == "html" && a.report_file.empty()) return fail("ingest", "--report html needs --report-file FOLDER");
-    if (!a.report_file.empty()) {  // checked before anything is read: the report never replaces an input
-        const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
-        std::vector<InputFailure> ignored;
-        const bool html = a.report == "html";
-        const std::filesystem::path written = html ? std::filesystem::path(a.report_file) / "index.html"
-                                                   : std::filesystem::path(a.report_file);
-        std::string why = written_file_conflict(written, inputs, find_material_sets(inputs, a.out_dir, ignored));
-        if (why.empty() && html) why = output_overlaps_input(a.report_file, inputs);
-        if (!why.empty()) return fail("ingest", "--report-file " + why);
-    }
     // --preset a,b: one output folder a preset, <out>/<its name>, each what a run of that preset
     // alone into that folder writes (process/ingest.hpp's run_together).
     std::vector<std::string> names;
@@ -198,9 +188,21 @@ ExitCode run_ingest(const IngestArgs& a) {
     std::vector<const Ingestor*> all;
     all.reserve(ingestors.size());
     for (const auto& i : ingestors) all.push_back(i.get());
-    std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+    // The sets, found once for every preset, never inside one of the run's output folders.
+    const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+    std::vector<std::filesystem::path> outputs;
+    for (const IngestOptions& o : options) outputs.push_back(o.out_dir);
+    Batch batch = Batch::find(inputs, outputs);
+    if (!a.report_file.empty()) {  // checked before any map is read: the report never replaces an input
+        const bool html = a.report == "html";
+        const std::filesystem::path written = html ? std::filesystem::path(a.report_file) / "index.html"
+                                                   : std::filesystem::path(a.report_file);
+        std::string why = written_file_conflict(written, inputs, batch.sets);
+        if (why.empty() && html) why = output_overlaps_input(a.report_file, inputs);
+        if (!why.empty()) return fail("ingest", "--report-file " + why);
+    }
     install_stop_handlers();
-    const std::vector<IngestResult> results = Ingestor::run_together(all, inputs);
+    const std::vector<IngestResult> results = Ingestor::run_together(all, std::move(batch));
     ExitCode worst = ExitCode::ok;
     for (size_t i = 0; i < results.size(); ++i) {
         const ExitCode code = report_run(a, options[i], results[i], labels[i]);

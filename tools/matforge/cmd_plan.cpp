@@ -22,6 +22,7 @@
 #include "core/version.hpp"
 #include "manifest/manifest.hpp"
 #include "preset/preset.hpp"
+#include "process/batch.hpp"
 #include "process/validate_batch.hpp"
 #include "process/work.hpp"
 #include "sets/sets.hpp"
@@ -127,59 +128,17 @@ ExitCode run_plan(const PlanArgs& a) {
                                         },
                                         error))
         return fail("plan", "--changed-since: " + error);
-    std::vector<InputFailure> failures;
     const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
-    std::vector<std::string> skipped;
-    const auto sets = find_material_sets(inputs, {}, failures, nullptr, &skipped);
-    for (const std::string& n : skipped) say("plan", "note: " + n);
-    if (std::string why = written_file_conflict(a.out, inputs, sets); !why.empty()) return fail("plan", "-o " + why);
-    const std::string context = context_digest(*preset, *rules, *color);
-    std::vector<uint64_t> bytes;
-    bytes.reserve(sets.size());
-    for (const auto& s : sets) bytes.push_back(set_bytes(s));
-    const std::vector<int> shard = assign_shards(sets, bytes, a.shards);
-    nlohmann::json list = nlohmann::json::array();
-    bool unreadable = !failures.empty();
-    size_t unchanged = 0;
+    const Batch batch = Batch::find(inputs);
+    for (const std::string& n : batch.skipped) say("plan", "note: " + n);
+    if (std::string why = written_file_conflict(a.out, inputs, batch.sets); !why.empty())
+        return fail("plan", "-o " + why);
+    Plan plan = Plan::of(batch, preset->name, context_digest(*preset, *rules, *color), a.shards,
+                         a.changed_since.empty() ? nullptr : &earlier);
+    if (!a.changed_since.empty()) plan.changed_since = a.changed_since;
     std::set<int> to_run;  // shards holding a listed set
-    for (size_t i = 0; i < sets.size(); ++i) {
-        nlohmann::json item{{"name", sets[i].name},
-                            {"source", sets[i].display},
-                            {"bytes", bytes[i]},
-                            {"files", sets[i].files.size()},
-                            {"shard", shard[i]}};
-        if (const auto key = action_key(sets[i], context, error)) item["key"] = *key;
-        else {
-            item["error"] = error;
-            unreadable = true;
-        }
-        if (!a.changed_since.empty()) {
-            const auto it = earlier.find(sets[i].name);
-            if (it != earlier.end() && !it->second.empty() && item.contains("key") && item["key"] == it->second) {
-                ++unchanged;
-                continue;
-            }
-        }
-        to_run.insert(shard[i]);
-        list.push_back(std::move(item));
-    }
-    nlohmann::json fl = nlohmann::json::array();
-    for (const auto& f : failures) fl.push_back(to_json(f));
-    // `plan`: what every shard's manifest records (process/work.hpp plan_digest); merge refuses
-    // parts of different plans.
-    const nlohmann::json plan{{"plan_version", 1},
-                              {"generator", kGenerator},
-                              {"preset", preset->name},
-                              {"context", context},
-                              {"plan", plan_digest(sets, bytes, shard, a.shards, context)},
-                              {"shards", a.shards},
-                              {"sets", list},
-                              {"failures", fl}};
-    nlohmann::json out = plan;
-    if (!a.changed_since.empty()) {
-        out["changed_since"] = a.changed_since;
-        out["unchanged"] = unchanged;
-    }
+    for (const Plan::Set& s : plan.sets) to_run.insert(s.shard);
+    const nlohmann::json out = plan.to_json();
     const std::string text = json_text(out);
     if (!write_file_atomic(a.out, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()), error))
         return fail("plan", error, ExitCode::findings);
@@ -192,7 +151,7 @@ ExitCode run_plan(const PlanArgs& a) {
                         shell_word("-of-" + std::to_string(a.shards) + ".json") + " -o " +
                         shell_word(absolute(a.out_dir) + "/manifest.json"));
     }
-    return unreadable ? ExitCode::findings : ExitCode::ok;
+    return plan.unreadable() ? ExitCode::findings : ExitCode::ok;
 }
 
 const Register register_plan{

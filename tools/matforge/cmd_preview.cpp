@@ -16,8 +16,8 @@
 #include <memory>
 #include <optional>
 
+#include "base/limits.hpp"
 #include "command.hpp"
-#include "core/limits.hpp"
 #include "core/text.hpp"
 #include "preview/batch.hpp"
 #include "preview/preview.hpp"

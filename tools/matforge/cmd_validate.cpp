@@ -35,11 +35,11 @@ ExitCode run_validate(const ValidateArgs& a) {
     const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
     const bool html = a.report == "html";
     if (html && a.report_file.empty()) return fail("validate", "--report html needs --report-file FOLDER");
-    if (!a.report_file.empty()) {  // checked before anything is read: the report never replaces an input
-        std::vector<InputFailure> ignored;
+    const Batch batch = Batch::find(inputs);
+    if (!a.report_file.empty()) {  // checked before any map is read: the report never replaces an input
         const std::filesystem::path written = html ? std::filesystem::path(a.report_file) / "index.html"
                                                    : std::filesystem::path(a.report_file);
-        std::string why = written_file_conflict(written, inputs, find_material_sets(inputs, {}, ignored));
+        std::string why = written_file_conflict(written, inputs, batch.sets);
         if (why.empty() && html) why = output_overlaps_input(a.report_file, inputs);
         if (!why.empty()) return fail("validate", "--report-file " + why);
     }
@@ -47,9 +47,8 @@ ExitCode run_validate(const ValidateArgs& a) {
     opt.jobs = a.jobs;
     opt.rules = std::move(*rules);
     install_stop_handlers();
-    std::vector<std::string> notes;
-    const manifest::Manifest report = validate_inputs(inputs, *preset, opt, &notes);
-    for (const std::string& n : notes) say("validate", "note: " + n);
+    for (const std::string& n : batch.skipped) say("validate", "note: " + n);
+    const manifest::Manifest report = validate_batch(batch, *preset, opt);
     if (stop_requested()) return interrupted("validate", "stopped before the end; no report is written");
     std::vector<std::string> names;
     for (const auto& m : report.materials) names.push_back(m.name);

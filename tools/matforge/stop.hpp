@@ -1,5 +1,5 @@
 // SIGINT and SIGTERM for the commands that write (ingest, validate): the first one asks the run
-// to stop (core/interrupt.hpp) and it ends cleanly; a second one ends the process at once (the
+// to stop (base/interrupt.hpp) and it ends cleanly; a second one ends the process at once (the
 // handler is reset, and atomic writes keep every final name complete even then).
 #pragma once
 #include <csignal>
@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "base/interrupt.hpp"
 #include "command.hpp"
-#include "core/interrupt.hpp"
 #include "findings/rules.hpp"
 
 namespace mf::cli {

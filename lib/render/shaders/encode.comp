@@ -16,7 +16,7 @@ layout(push_constant) uniform EncodePush {
 };
 
 // IEC 61966-2-1 encoding, the exact piecewise curve (not pow(x, 1/2.2)), for x ≥ 0: the caller
-// clamps negatives to 0 first. The C++ oracle (lib/core/srgb.hpp) mirrors negatives instead;
+// clamps negatives to 0 first. The C++ oracle (lib/base/srgb.hpp) mirrors negatives instead;
 // both give code 0, since quantize() clamps to [0, 1]. NaN ends as code 0 (quantize).
 float srgb_encode(float x) {
     return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;

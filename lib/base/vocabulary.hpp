@@ -1,8 +1,8 @@
 // The preset vocabulary, typed once when a preset is loaded (parse_preset): the file format, mip
 // filter, encoder effort, KTX2 supercompression and material file. lib/texture and lib/image
 // switch on these enums; word() is their spelling in presets (and in manifests), from_word()
-// reads it back, word_list() lists it for messages. Header only, standard library only: lib/image
-// (below lib/preset) includes it without linking lib/preset.
+// reads it back, word_list() lists it for messages. In lib/base (header-only, standard library
+// only) because lib/image, below lib/preset, names the file formats.
 #pragma once
 #include <array>
 #include <cstddef>
