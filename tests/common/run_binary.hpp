@@ -90,13 +90,13 @@ inline Proc spawn(const std::vector<std::string>& argv, double deadline_s = 300,
 // (test_dirs.hpp).
 inline void register_test_dir(const fs::path& d) { mf::testdirs::own(d); }
 
-// Copies `text` (a JSON document matforge wrote) into the spool when it is a manifest or a
-// validate report.
+// Copies `text` (a JSON document matforge wrote) into the spool when it is a manifest, a
+// validate report or a plan.
 inline void spool_text(const std::string& text, const std::string& label) {
     const std::optional<fs::path> spool = mf::testenv::schema_spool();
     if (!spool || text.find("\"generator\": \"matforge ") == std::string::npos ||
         (text.find("\"manifest_version\"") == std::string::npos &&
-         text.find("\"report_version\"") == std::string::npos))
+         text.find("\"report_version\"") == std::string::npos && text.find("\"plan_version\"") == std::string::npos))
         return;
     static std::atomic<int> n{0};
     std::error_code ec;
@@ -107,7 +107,7 @@ inline void spool_text(const std::string& text, const std::string& label) {
     std::ofstream(*spool / name, std::ios::binary) << text;
 }
 
-// Every manifest.json and JSON report under `dir` (symlinks not followed) into the spool.
+// Every manifest.json, JSON report and plan under `dir` (symlinks not followed) into the spool.
 inline void spool_folder(const fs::path& dir, const std::string& label) {
     std::error_code ec;
     for (fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end;
@@ -118,9 +118,11 @@ inline void spool_folder(const fs::path& dir, const std::string& label) {
         std::string head(64, '\0');
         f.read(head.data(), 64);
         head.resize(static_cast<size_t>(f.gcount()));
-        // Only what matforge wrote (json_text, sorted keys: "failures" comes first in both kinds),
-        // never a document a test made up as input.
-        if (head.rfind("{\n  \"failures\": ", 0) != 0) continue;
+        // Only what matforge wrote (json_text, sorted keys: "failures" comes first in manifests and
+        // reports, "changed_since" or "context" in plans), never a document a test made up as input.
+        if (head.rfind("{\n  \"failures\": ", 0) != 0 && head.rfind("{\n  \"context\": ", 0) != 0 &&
+            head.rfind("{\n  \"changed_since\": ", 0) != 0)
+            continue;
         f.seekg(0);
         const std::string text((std::istreambuf_iterator<char>(f)), {});
         spool_text(text, label);
