@@ -639,6 +639,19 @@ std::vector<Finding> reported_findings(std::vector<Finding> findings, const std:
     return findings;
 }
 
+manifest::Material material_entry(SetPlan& plan, const std::string& name, std::string source,
+                                  const rules::RuleConfig& rules) {
+    manifest::Material m;
+    m.name = name;
+    m.source = std::move(source);
+    m.convention = plan.convention;
+    m.status = plan.partial ? manifest::Status::partial : manifest::Status::ok;
+    m.inputs = manifest_inputs(plan);
+    m.constants = std::move(plan.constants);
+    m.findings = reported_findings(std::move(plan.findings), name, rules);
+    return m;
+}
+
 std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {
     std::vector<manifest::Input> inputs;
     for (const auto& [role, c] : plan.inputs) {

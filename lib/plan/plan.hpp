@@ -110,4 +110,11 @@ std::vector<Finding> reported_findings(std::vector<Finding> findings, const std:
 // The manifest entry's inputs of a plan (role order).
 std::vector<manifest::Input> manifest_inputs(const SetPlan& plan);
 
+// A set's manifest entry as its plan decides it, the one validate reports and ingest records
+// (ingest adds its outputs, material files, archive, emissive strength and alpha): name,
+// source, convention, status, inputs, constants, and the findings as reported under `rules`
+// (reported_findings). Moves the plan's constants and findings out.
+manifest::Material material_entry(SetPlan& plan, const std::string& name, std::string source,
+                                  const rules::RuleConfig& rules);
+
 }  // namespace mf

@@ -514,23 +514,19 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
             }
     if (auto f = too_large(written)) plan.findings.push_back(std::move(*f));
 
-    manifest::Material& m = res.entry;
+    std::vector<manifest::Output> outputs;
     for (auto& r : written) {  // preset order, whatever finished first
-        if (r.entry) m.outputs.push_back(std::move(*r.entry));
+        if (r.entry) outputs.push_back(std::move(*r.entry));
         if (r.failure) {
             plan.findings.push_back(std::move(*r.failure));
             plan.partial = true;
         }
         for (auto& f : r.notes) plan.findings.push_back(std::move(f));
     }
-    m.name = src.name;
-    m.source = source_of(src, opt_.out_dir);
+    manifest::Material& m = res.entry;
+    m = material_entry(plan, src.name, source_of(src, opt_.out_dir), opt_.rules);
+    m.outputs = std::move(outputs);
     if (src.is_zip) m.archive = relative_to(src.root, opt_.out_dir);
-    m.convention = plan.convention;
-    m.status = plan.partial ? manifest::Status::partial : manifest::Status::ok;
-    m.inputs = manifest_inputs(plan);
-    m.constants = std::move(plan.constants);
-    m.findings = reported_findings(std::move(plan.findings), src.name, opt_.rules);
     m.emissive_strength = emissive_strength;
     decide_alpha(preset_, planes, m);
     write_material_files(preset_, batch_write, m);

@@ -27,13 +27,7 @@ SetOutcome validate_one(const MaterialSource& src, const Preset& preset, const r
         out.failure = std::move(*plan.failure);
         return out;
     }
-    out.report.name = src.name;
-    out.report.source = src.display;
-    out.report.convention = plan.convention;
-    out.report.inputs = manifest_inputs(plan);
-    out.report.constants = std::move(plan.constants);
-    out.report.status = plan.partial ? manifest::Status::partial : manifest::Status::ok;
-    out.report.findings = reported_findings(std::move(plan.findings), src.name, rules);
+    out.report = material_entry(plan, src.name, src.display, rules);
     return out;
 }
 
