@@ -572,6 +572,21 @@ std::map<std::string, std::map<std::string, std::string>> claim_outputs(OutputFo
 
 }  // namespace
 
+std::optional<fs::path> preset_output_folder(const fs::path& out, const std::string& preset_name, size_t presets,
+                                             std::set<std::string>& taken, std::string& error) {
+    if (presets <= 1) return out;
+    const std::string& folder = preset_name;
+    if (folder.empty() || folder == "." || folder == ".." || folder.find_first_of("/\\") != std::string::npos) {
+        error = "the preset's name \"" + folder + "\" cannot name its output folder; give it a plain name";
+        return std::nullopt;
+    }
+    if (!taken.insert(folder).second) {
+        error = "two presets of the run are named \"" + folder + "\"; each preset writes <out>/<its name>";
+        return std::nullopt;
+    }
+    return out / folder;
+}
+
 IngestResult Ingestor::run(const std::vector<fs::path>& inputs) const {
     return std::move(run_together({this}, Batch::find(inputs, {opt_.out_dir})).front());
 }

@@ -76,6 +76,14 @@ struct IngestResult {
     std::vector<std::string> cache_problems;
 };
 
+// The output folder of a preset in a run into `out` of `presets` presets: `out` itself for one;
+// <out>/<the preset's name> for several (ingest --preset a,b: a complete folder each, what that
+// preset alone writes into it), so the name must be one plain path component and no two presets
+// of the run may share it (`taken` collects the names). nullopt + `error` saying which.
+std::optional<std::filesystem::path> preset_output_folder(const std::filesystem::path& out,
+                                                          const std::string& preset_name, size_t presets,
+                                                          std::set<std::string>& taken, std::string& error);
+
 class Ingestor {
 public:
     Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt);

@@ -79,7 +79,7 @@ TEST(MultiPreset, UnclearRequestsAreRefusedBeforeAnythingIsWritten) {
         EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
         EXPECT_FALSE(fs::exists(work / "out")) << args;
     };
-    refused("--preset gltf,gltf", "names \"gltf\" twice");
+    refused("--preset gltf,gltf", "two presets of the run are named \"gltf\"");
     refused("--preset gltf,", "names an empty preset");
     refused("--preset gltf,no-such-preset", "no-such-preset");
     refused("--preset gltf,unreal --report json", "--report takes one preset's run");

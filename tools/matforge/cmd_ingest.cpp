@@ -141,17 +141,9 @@ ExitCode run_ingest(const IngestArgs& a) {
         auto rules = load_rule_config(*preset, a.rules_file, error);
         if (!rules) return fail("ingest", error);
         IngestOptions opt;
-        opt.out_dir = a.out_dir;
-        if (several) {
-            // The preset's name is the folder's: one path component, and one folder a preset.
-            const std::string& folder = preset->name;
-            if (folder.empty() || folder == "." || folder == ".." || folder.find_first_of("/\\") != std::string::npos)
-                return fail("ingest", name + ": the preset's name \"" + folder +
-                                          "\" cannot name its output folder; give it a plain name");
-            if (!folders.insert(folder).second)
-                return fail("ingest", "--preset names \"" + folder + "\" twice; each preset writes <out>/<its name>");
-            opt.out_dir = std::filesystem::path(a.out_dir) / folder;
-        }
+        const auto folder = preset_output_folder(a.out_dir, preset->name, names.size(), folders, error);
+        if (!folder) return fail("ingest", name + ": " + error);
+        opt.out_dir = *folder;
         opt.jobs = a.jobs;
         opt.rules = std::move(*rules);
         opt.force = a.force;
