@@ -17,12 +17,13 @@ packages_build=(
   libopenimageio-dev libopencolorio-dev libopenexr-dev libcli11-dev nlohmann-json3-dev
   openimageio-tools  # OpenImageIO's CMake package names its tools: configuring fails without them
   libzip-dev libssl-dev libstb-dev libsquish-dev libastcenc-dev libzstd-dev
-  libpng-dev libdeflate-dev libjpeg-dev libwebp-dev  # lib/image/direct.hpp, png_writer.hpp
+  libdeflate-dev libjpeg-dev libwebp-dev  # lib/image/direct.hpp, png_writer.hpp
   libxml2-dev  # MaterialX sidecars (lib/material); the tests also parse JUnit with it
   libvulkan-dev glslc mesa-vulkan-drivers  # preview: shaders built by glslc, lavapipe without a GPU
 )
 packages_test=(
   libgtest-dev libgmock-dev libbenchmark-dev
+  libpng-dev       # tests/pack: interlaced PNGs the direct reader must leave to OpenImageIO
   vulkan-validationlayers  # every GPU test fails on a validation message
   python3 python3-jsonschema  # scripts/check-schemas.py (manifest and report schemas)
   python3-yaml     # tests/texture/checkers/unity_check.py (Unity .mat and .meta YAML)

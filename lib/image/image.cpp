@@ -340,7 +340,7 @@ std::string file_identity(const fs::path& file) {
 }  // namespace
 
 // The ingest cache's key names the libraries that decode and encode: OpenImageIO's file, and
-// libjpeg-turbo's and libwebp's, libdeflate and libpng (image/direct.hpp, png_writer.hpp). Asking the loaded
+// libjpeg-turbo's and libwebp's, and libdeflate (image/direct.hpp, png_writer.hpp). Asking the loaded
 // OpenImageIO costs loading it (0.3 s, 261 libraries) in every run, also one that finds
 // everything up to date, so its file is looked up where the build linked it. Where the loader
 // could pick another (LD_LIBRARY_PATH set, or no file there), the module is loaded and names the
@@ -364,7 +364,7 @@ std::string image_library_version() {
     };
     return "OpenImageIO " + file_identity(file) + ", libjpeg " + loaded(reinterpret_cast<void*>(&jpeg_read_header)) +
            ", libwebp " + loaded(reinterpret_cast<void*>(&WebPGetDecoderVersion)) +
-           ", libdeflate " MATFORGE_LIBDEFLATE_VERSION ", libpng " MATFORGE_LIBPNG_VERSION;
+           ", libdeflate " MATFORGE_LIBDEFLATE_VERSION;
 }
 
 std::string image_library_versions() {

@@ -128,7 +128,7 @@ struct EncodeOptions {
 };
 
 // OpenImageIO's version (its readers decode every input, its TIFF/EXR writers encode those
-// outputs) and the PNG writer's libraries (libdeflate, libpng), for the ingest cache's action key.
+// outputs) and the PNG writer's library (libdeflate), for the ingest cache's action key.
 std::string image_library_version();
 // For `matforge --version`: OpenImageIO's version (major.minor.patch) and the format libraries
 // it was built with, as it reports them ("png:libpng 1.6.39;jpeg:jpeg-turbo 2.1.5;...").

@@ -1,15 +1,15 @@
 #include "image/png_writer.hpp"
 
 #include <libdeflate.h>
-#include <png.h>
 
 #include <algorithm>
-#include <csetjmp>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+
+#include "image/png_reader.hpp"  // kSignature
 
 namespace mf::png {
 namespace {
@@ -86,56 +86,28 @@ void paeth_row(const uint8_t* cur, const uint8_t* up, size_t n, size_t bpp, uint
     row(cur, up, n, bpp, out);
 }
 
-// libpng reports a failure by longjmp to the setjmp in write_chunks; its message goes here.
-struct Failure {
-    char message[256] = {};
-};
-
-void on_error(png_structp png, png_const_charp message) {
-    auto* f = static_cast<Failure*>(png_get_error_ptr(png));
-    std::snprintf(f->message, sizeof f->message, "%s", message ? message : "libpng failed");
-    png_longjmp(png, 1);
+void put_be32(std::vector<unsigned char>& out, uint32_t v) {
+    const unsigned char b[4] = {static_cast<unsigned char>(v >> 24), static_cast<unsigned char>(v >> 16),
+                                static_cast<unsigned char>(v >> 8), static_cast<unsigned char>(v)};
+    out.insert(out.end(), b, b + 4);
 }
 
-void on_warning(png_structp, png_const_charp) {}
-
-// Appends to a vector whose capacity write() reserved for the whole file: nothing allocates (or
-// could throw) inside libpng's C frames.
-void on_write(png_structp png, png_bytep data, size_t n) {
-    auto* out = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(png));
-    out->insert(out->end(), data, data + n);
-}
-
-void on_flush(png_structp) {}
-
-// The file's chunks around the compressed stream `z`. Only plain C state lives here: a libpng
-// failure longjmps back into this frame.
-bool write_chunks(png_structp png, png_infop info, int width, int height, int color_type, int bit_depth,
-                  const unsigned char* z, size_t z_bytes) {
-    if (setjmp(png_jmpbuf(png))) return false;
-    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bit_depth, color_type,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    char key[] = "Software", text[] = "matforge";
-    png_text software{};
-    software.compression = PNG_TEXT_COMPRESSION_NONE;
-    software.key = key;
-    software.text = text;
-    software.text_length = sizeof text - 1;
-    png_set_text(png, info, &software, 1);
-    png_write_info(png, info);  // signature, IHDR, tEXt
-    // The image data as compressed here; libpng frames each chunk and computes its CRC.
-    for (size_t at = 0; at < z_bytes; at += kIdatBytes)
-        png_write_chunk(png, reinterpret_cast<png_const_bytep>("IDAT"), z + at, std::min(kIdatBytes, z_bytes - at));
-    png_write_chunk(png, reinterpret_cast<png_const_bytep>("IEND"), nullptr, 0);
-    return true;
+// One chunk (PNG spec 5.3): length, type, data, and the CRC-32 of type and data (ISO 3309, the
+// one zlib and libdeflate compute).
+void put_chunk(std::vector<unsigned char>& out, const char (&type)[5], const unsigned char* data, size_t n) {
+    put_be32(out, static_cast<uint32_t>(n));
+    const size_t from = out.size();
+    out.insert(out.end(), type, type + 4);
+    if (n) out.insert(out.end(), data, data + n);
+    put_be32(out, libdeflate_crc32(0, out.data() + from, n + 4));
 }
 
 }  // namespace
 
 bool write(const void* samples, int width, int height, int channels, int bit_depth, std::vector<unsigned char>& bytes,
            std::string& error) {
-    static constexpr int kColorType[] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
-                                         PNG_COLOR_TYPE_RGB_ALPHA};
+    // PNG spec 11.2.2's colour types: greyscale 0, greyscale with alpha 4, truecolour 2, with alpha 6.
+    static constexpr unsigned char kColorType[] = {0, 0, 4, 2, 6};
     if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (bit_depth != 8 && bit_depth != 16)) {
         error = "PNG cannot hold a " + std::to_string(width) + "x" + std::to_string(height) + " image of " +
                 std::to_string(channels) + " channels at " + std::to_string(bit_depth) + " bits";
@@ -184,26 +156,22 @@ bool write(const void* samples, int width, int height, int channels, int bit_dep
     }
     filtered.reset();
 
-    Failure failure;
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &failure, on_error, on_warning);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    if (!info) {
-        png_destroy_write_struct(&png, nullptr);
-        error = "encoding png: out of memory for libpng";
-        return false;
-    }
     const size_t chunks = (z_bytes + kIdatBytes - 1) / kIdatBytes;
+    static constexpr char kSoftware[] = "Software\0matforge";  // tEXt: keyword, NUL, text (no NUL at the end)
     bytes.clear();
     // Signature, IHDR, tEXt (Software=matforge), the IDAT chunks and IEND, exactly.
-    bytes.reserve(8 + 25 + (12 + sizeof "Software" + sizeof "matforge" - 1) + z_bytes + 12 * chunks + 12);
-    png_set_write_fn(png, &bytes, on_write, on_flush);
-    const bool ok = write_chunks(png, info, width, height, kColorType[channels], bit_depth, z.get(), z_bytes);
-    png_destroy_write_struct(&png, &info);
-    if (!ok) {
-        bytes.clear();
-        error = std::string("encoding png: ") + failure.message;
-    }
-    return ok;
+    bytes.reserve(8 + 25 + (12 + sizeof kSoftware - 1) + z_bytes + 12 * chunks + 12);
+    bytes.insert(bytes.end(), kSignature, kSignature + 8);
+    std::vector<unsigned char> ihdr;  // PNG spec 11.2.2: no compression, filter or interlace method but 0
+    put_be32(ihdr, static_cast<uint32_t>(width));
+    put_be32(ihdr, static_cast<uint32_t>(height));
+    ihdr.insert(ihdr.end(), {static_cast<unsigned char>(bit_depth), kColorType[channels], 0, 0, 0});
+    put_chunk(bytes, "IHDR", ihdr.data(), ihdr.size());
+    put_chunk(bytes, "tEXt", reinterpret_cast<const unsigned char*>(kSoftware), sizeof kSoftware - 1);
+    for (size_t at = 0; at < z_bytes; at += kIdatBytes)
+        put_chunk(bytes, "IDAT", z.get() + at, std::min(kIdatBytes, z_bytes - at));
+    put_chunk(bytes, "IEND", nullptr, 0);
+    return true;
 }
 
 }  // namespace mf::png
