@@ -10,8 +10,9 @@
 //  - memory: each map is streamed in bands of `band_rows` rows on its own reader thread; the
 //    maps a joint statistic needs are read in lockstep (albedo with metalness and opacity on the
 //    albedo's grid; normal with height on the normal's grid), resampled by nearest neighbour
-//    when sizes differ. Peak memory ≈ one band per map plus a few rows: an 8K set validates in
-//    tens of MB;
+//    when sizes differ. The rules hold ≈ one band per map plus a few rows (tens of MB for an 8K
+//    set); the peak is set by what the file's decoder holds (a PNG inflated whole, a progressive
+//    JPEG's coefficients: docs/rules.md states the measured figures);
 //  - output: findings sorted by catalog order (findings/catalog.hpp), then map order, at their
 //    catalog severity; the RuleConfig's thresholds decide them, its switches (off, severity
 //    overrides, suppressions) are the caller's to apply, once per set (apply_config).
