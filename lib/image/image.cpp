@@ -20,6 +20,7 @@
 #include <mutex>
 #include <new>
 
+#include "base/file_identity.hpp"
 #include "image/direct.hpp"
 #include "image/oiio_module.hpp"
 #include "image/png_writer.hpp"
@@ -115,17 +116,12 @@ auto guarded(const InputFile& in, std::string& error, F&& f) -> decltype(f()) {
 // times, 2.8 with these memos, and took 12 % less CPU). A file changed since is another key;
 // in-memory entries (.zip) are read each time.
 //
-// The key of a file on disk, empty for what is not one, and for a file changed in the last two
-// seconds: file times advance by the kernel's coarse clock (milliseconds), so a file rewritten
-// at the same size within one tick would keep its key (git's "racily clean" rule).
+// The key of a file on disk: its settled identity (base/file_identity.hpp, the rule the result
+// cache keeps digests by), empty for what is not one and for a file changed in the last seconds.
 std::string file_key(const InputFile& in) {
-    struct stat st {};
-    if (in.bytes || ::stat(in.path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return {};
-    if (std::time(nullptr) - std::max(st.st_mtim.tv_sec, st.st_ctim.tv_sec) < 2) return {};
-    return std::to_string(st.st_dev) + ':' + std::to_string(st.st_ino) + ':' + std::to_string(st.st_size) + ':' +
-           std::to_string(st.st_mtim.tv_sec) + '.' + std::to_string(st.st_mtim.tv_nsec) + ':' +
-           std::to_string(st.st_ctim.tv_sec) + '.' + std::to_string(st.st_ctim.tv_nsec) + ':' + in.display + '\n' +
-           in.path.string();
+    if (in.bytes) return {};
+    const std::string id = settled_identity(in.path);
+    return id.empty() ? id : id + ':' + in.display + '\n' + in.path.string();
 }
 
 template <class T>

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "base/file_identity.hpp"
 #include "core/files.hpp"
 #include "core/json.hpp"
 
@@ -27,16 +28,10 @@ bool is_sha(const std::string& s) {
            std::all_of(s.begin(), s.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
-// What a file's digest is remembered by. ctime cannot be set by a user: any write to the file
-// moves it, so a record that still matches describes the same bytes.
-std::string stat_line(const fs::path& file) {
-    struct stat st {};
-    if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return {};
-    std::ostringstream o;
-    o << st.st_dev << ' ' << st.st_ino << ' ' << st.st_size << ' ' << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec
-      << ' ' << st.st_ctim.tv_sec << '.' << st.st_ctim.tv_nsec;
-    return o.str();
-}
+// What a file's digest is remembered by: its settled identity (base/file_identity.hpp, the rule
+// lib/image keeps header reads by). A file changed within the last seconds has none: it is
+// hashed, and no hint is written for it (its times may not move at its next change).
+std::string stat_line(const fs::path& file) { return settled_identity(file); }
 
 std::optional<std::string> read_text(const fs::path& p) {
     std::vector<unsigned char> bytes;

@@ -2,9 +2,12 @@
 // the same bytes as a run without the cache, a changed file recomputes its set only, a corrupt
 // blob or an unusable cache never fails a run, and `matforge cache` reports and prunes it.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <map>
+#include <thread>
 
 #include "cli_util.hpp"
 
@@ -310,4 +313,38 @@ TEST(Cache, StatsAndPrune) {
     r = ingest(in, work / "out", cache);
     EXPECT_EQ(cache_line(r.output), std::make_pair(0, 2)) << r.output;
     EXPECT_EQ(bytes_of(work / "out/manifest.json"), before);
+}
+
+// The cache remembers a file's digest by its settled identity (base/file_identity.hpp), the rule
+// lib/image keeps header reads by: a file changed in the last two seconds is hashed and nothing is
+// remembered of it (a rewrite of the same size within one tick of the kernel's clock would keep
+// its times); once settled, its digest is remembered, and a change in place (the modification
+// time put back) is still seen by its change time.
+TEST(Cache, NothingIsRememberedOfAFileChangedInTheLastSeconds) {
+    const fs::path work = temp_dir("settled");
+    const fs::path in = two_sets(work);  // copied just now
+    const fs::path cache = work / "cache";
+    auto hints = [&] {
+        size_t n = 0;
+        std::error_code ec;
+        for (fs::recursive_directory_iterator it(cache / "stat", ec), end; !ec && it != end; it.increment(ec))
+            n += it->is_regular_file() ? 1 : 0;
+        return n;
+    };
+    auto r = ingest(in, work / "out", cache);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(hints(), 0u) << "inputs and outputs were all written in the last seconds";
+    std::this_thread::sleep_for(std::chrono::milliseconds(2100));
+    r = ingest(in, work / "out", cache);
+    EXPECT_EQ(cache_line(r.output), std::make_pair(2, 0)) << r.output;
+    EXPECT_GT(hints(), 8u) << "every settled input and output is remembered";
+    // Other pixels, the same size and modification time: only the change time tells it apart.
+    const fs::path map = in / "Net004A_1K-JPG" / "Net004A_1K-JPG_Color.jpg";
+    std::string bytes = bytes_of(map);
+    const auto mtime = fs::last_write_time(map);
+    bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+    std::ofstream(map, std::ios::binary | std::ios::trunc) << bytes;
+    fs::last_write_time(map, mtime);
+    r = ingest(in, work / "out", cache, " --fail-on never");
+    EXPECT_EQ(cache_line(r.output), std::make_pair(1, 1)) << r.output;
 }
