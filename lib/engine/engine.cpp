@@ -6,14 +6,10 @@
 
 namespace mf::engine {
 
-std::vector<Bound> bind(const Preset& p, const EngineMaterial& e, const manifest::Material& m) {
+std::vector<Bound> bind(const EngineMaterial& e, const manifest::Material& m) {
     std::vector<Bound> out;
     for (const manifest::Output& o : m.outputs)
-        for (const OutputSpec& spec : p.outputs)
-            if (p.output_path(m.name, spec) == o.file) {
-                if (const EngineSlot* s = slot_of(e, spec)) out.push_back({&o, s});
-                break;
-            }
+        if (const EngineSlot* s = slot_of(e, o.channels)) out.push_back({&o, s});
     return out;
 }
 
@@ -23,8 +19,8 @@ const manifest::Output* texture_of(const std::vector<Bound>& bound, std::string_
     return nullptr;
 }
 
-std::vector<File> material_files(const Preset& p, const EngineMaterial& e, const manifest::Material& m) {
-    const std::vector<Bound> bound = bind(p, e, m);
+std::vector<File> material_files(const EngineMaterial& e, const manifest::Material& m) {
+    const std::vector<Bound> bound = bind(e, m);
     switch (e.kind) {
         case MaterialFileKind::godot: return godot_files(m, bound);
         case MaterialFileKind::unity_hdrp:

@@ -5,7 +5,7 @@
 // (preset/engine_slots.hpp), so a reader of the manifest could rebuild them.
 //
 // Conventions of this module (decided once here):
-//  - a texture's slot is the one slot_of() gives its preset output; whether the engine samples it
+//  - a texture's slot is the one slot_of() gives the channels its manifest entry lists; whether the engine samples it
 //    as colour is the slot's (the preset check made it the output's color_space);
 //  - paths are relative to the file that names them (Godot resolves a relative ext_resource path
 //    against the .tres; Unity binds by guid; the Unreal script by its own folder);
@@ -33,15 +33,16 @@ struct Bound {
     const manifest::Output* output = nullptr;
     const EngineSlot* slot = nullptr;
 };
-// The outputs of `m` with their slots (manifest order); an output no slot reads is left out.
-std::vector<Bound> bind(const Preset& p, const EngineMaterial& e, const manifest::Material& m);
+// The outputs of `m` with their slots (manifest order), each bound by the channels its entry
+// lists (slot_of); an output no slot reads is left out.
+std::vector<Bound> bind(const EngineMaterial& e, const manifest::Material& m);
 // The bound texture read by `slot`, or nullptr.
 const manifest::Output* texture_of(const std::vector<Bound>& bound, std::string_view slot);
 
 // The material files of `m` for the preset's engine, in the order they are to be written
 // (textures' import settings before the material that names them): nothing for d3d11 (its
 // include is per folder).
-std::vector<File> material_files(const Preset& p, const EngineMaterial& e, const manifest::Material& m);
+std::vector<File> material_files(const EngineMaterial& e, const manifest::Material& m);
 
 // The files written once per output folder, whatever its sets: d3d11's matforge_material.hlsli,
 // Unreal's import_all.py.

@@ -69,7 +69,7 @@ constexpr std::array<EngineMaterial, 5> kEngines{{
     {MaterialFileKind::d3d11, "Direct3D 11 (matforge_material.hlsli)", NormalConvention::dx, kDds, kD3d11},
 }};
 
-bool holds(const ChannelSpec& c, const EngineSlot& s) {
+bool holds(const Channel& c, const EngineSlot& s) {
     return c.role == s.role &&
            ((c.kind == Channel::Kind::role && !s.smoothness) || (c.kind == Channel::Kind::smoothness && s.smoothness));
 }
@@ -82,11 +82,17 @@ const EngineMaterial* engine_material(MaterialFileKind kind) {
     return nullptr;
 }
 
-const EngineSlot* slot_of(const EngineMaterial& e, const OutputSpec& o) {
+template <class C>
+const EngineSlot* slot_reading(const EngineMaterial& e, const std::vector<C>& channels) {
     for (const EngineSlot& s : e.slots)
-        for (const ChannelSpec& c : o.channels)
+        for (const Channel& c : channels)
             if (holds(c, s)) return &s;
     return nullptr;
+}
+
+const EngineSlot* slot_of(const EngineMaterial& e, const OutputSpec& o) { return slot_reading(e, o.channels); }
+const EngineSlot* slot_of(const EngineMaterial& e, const std::vector<Channel>& written) {
+    return slot_reading(e, written);
 }
 
 bool check_engine_layout(const Preset& p, const EngineMaterial& e, std::string& error) {

@@ -34,8 +34,10 @@ struct EngineMaterial {
 const EngineMaterial* engine_material(MaterialFileKind kind);
 
 // The slot reading output `o` of a preset (the first slot one of whose roles `o` holds), or
-// nullptr when none does.
+// nullptr when none does; the same of an output written, by the channels its manifest entry
+// lists (what the material files bind: a reader of the manifest binds the same).
 const EngineSlot* slot_of(const EngineMaterial& e, const OutputSpec& o);
+const EngineSlot* slot_of(const EngineMaterial& e, const std::vector<Channel>& written);
 
 // Whether `p`'s outputs fit `e`: its normal convention and format, each output read by a slot,
 // each role in the channel and colour encoding the slot reads it from, a slot's roles in one

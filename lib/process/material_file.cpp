@@ -4,11 +4,11 @@
 
 #include "core/files.hpp"
 #include "engine/engine.hpp"
+#include "engine/gltf.hpp"
+#include "engine/mtlx.hpp"
+#include "engine/usd.hpp"
 #include "findings/catalog.hpp"
-#include "gltf/gltf.hpp"
-#include "mtlx/mtlx.hpp"
 #include "texture/texture.hpp"
-#include "usd/usd.hpp"
 
 namespace mf {
 namespace {
@@ -78,7 +78,7 @@ bool write_text(const WriteFile& write, const std::string& rel, const std::strin
 
 void write_material_files(const Preset& preset, const WriteFile& write, manifest::Material& m) {
     if (const EngineMaterial* e = engine_material(preset.material_file)) {
-        const auto files = engine::material_files(preset, *e, m);
+        const auto files = engine::material_files(*e, m);
         if (files.empty() || !normals_fit(e->normal, files.back().file, e->engine, m)) return;
         for (const engine::File& f : files)
             if (!write_text(write, f.file, f.format, f.text, m)) return;

@@ -9,7 +9,7 @@
 #include <set>
 
 #include "engine/engine.hpp"
-#include "mtlx/mtlx.hpp"
+#include "engine/mtlx.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;

@@ -7,7 +7,7 @@
 
 #include "base/srgb.hpp"
 #include "core/json.hpp"
-#include "gltf/gltf.hpp"
+#include "engine/gltf.hpp"
 #include "image/image.hpp"
 #include "preset/preset.hpp"
 #include "preset/texture_fields.hpp"

@@ -3,7 +3,7 @@
 format's text twin: a `#usda 1.0` header, layer metadata in parentheses, nested `def` prims
 with optional metadata, attributes `[uniform] TYPE NAME[.connect] [= VALUE]`, values that are
 strings, @asset paths@, </prim/paths.props>, tuples, arrays, numbers and tokens). It shares no
-code with matforge's writer (lib/usd).
+code with matforge's writer (lib/engine/usd.cpp).
 
     usda_check.py FILE...
 

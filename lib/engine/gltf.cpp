@@ -1,4 +1,4 @@
-#include "gltf/gltf.hpp"
+#include "engine/gltf.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "mtlx/mtlx.hpp"
+#include "engine/mtlx.hpp"
 
 #include <algorithm>
 #include <filesystem>

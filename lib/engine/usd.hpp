@@ -21,7 +21,7 @@
 
 #include "core/files.hpp"
 
-#include "gltf/gltf.hpp"
+#include "engine/gltf.hpp"
 #include "manifest/manifest.hpp"
 
 namespace mf::usd {

@@ -1,4 +1,4 @@
-#include "usd/usd.hpp"
+#include "engine/usd.hpp"
 
 #include <filesystem>
 #include <map>
