@@ -5,8 +5,9 @@
 //
 //     MATFORGE_UPDATE_GOLDEN=1 ctest --test-dir build -R Golden      (or scripts/golden.sh)
 //
-// The outputs do not depend on the output folder, the current folder or --jobs (checked when this
-// test was written: two runs, 1351 files, identical), so the record holds across machines.
+// The outputs do not depend on the current folder or --jobs (checked when this test was written:
+// two runs, 1351 files, identical); the manifests name their sources relative to themselves, so
+// the inputs are reached through links beside the output folder: the record holds in any clone.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -54,11 +55,16 @@ TEST(Golden, EveryPresetWritesTheRecordedBytes) {
             presets += (presets.empty() ? "" : ",") + line.substr(0, tab);
     ASSERT_NE(presets.find("gltf"), std::string::npos) << presets_run.output;
 
-    const fs::path out = mf::testdirs::fresh_for_test("matforge-golden-", "out");
-    const auto run = mf::testbin::spawn({mf::testenv::bin(), "ingest",
-                                         (mf::testenv::source_dir() / "sample_materials").string(),
-                                         (mf::testenv::corpus_dir() / "real").string(), "-o", out.string(), "--preset",
-                                         presets, "--no-cache", "--fail-on", "never", "--quiet"},
+    // The inputs through links beside the output folder: a manifest names its sources relative to
+    // itself, so the same relative paths in every clone, wherever it lies.
+    const fs::path work = mf::testdirs::fresh_for_test("matforge-golden-", "work");
+    fs::create_directories(work / "in");
+    fs::create_directory_symlink(mf::testenv::source_dir() / "sample_materials", work / "in" / "samples");
+    fs::create_directory_symlink(mf::testenv::corpus_dir() / "real", work / "in" / "corpus");
+    const fs::path out = work / "out";
+    const auto run = mf::testbin::spawn({mf::testenv::bin(), "ingest", (work / "in" / "samples").string(),
+                                         (work / "in" / "corpus").string(), "-o", out.string(), "--preset", presets,
+                                         "--no-cache", "--fail-on", "never", "--quiet"},
                                         1200);
     ASSERT_EQ(run.code, 0) << run.output;
     const auto now = digests_of(out);
