@@ -22,10 +22,10 @@ const manifest::Output* texture_of(const std::vector<Bound>& bound, std::string_
 std::vector<File> material_files(const EngineMaterial& e, const manifest::Material& m) {
     const std::vector<Bound> bound = bind(e, m);
     switch (e.kind) {
-        case MaterialFileKind::godot: return godot_files(m, bound);
+        case MaterialFileKind::godot: return godot_files(e, m, bound);
         case MaterialFileKind::unity_hdrp:
         case MaterialFileKind::unity_urp: return unity_files(e, m, bound);
-        case MaterialFileKind::unreal: return unreal_files(m, bound);
+        case MaterialFileKind::unreal: return unreal_files(e, m, bound);
         default: return {};
     }
 }

@@ -48,10 +48,11 @@ std::vector<File> material_files(const EngineMaterial& e, const manifest::Materi
 // Unreal's import_all.py.
 std::vector<File> folder_files(const EngineMaterial& e);
 
-// One writer per engine (godot.cpp, unity.cpp, unreal.cpp, hlsl.cpp).
-std::vector<File> godot_files(const manifest::Material& m, const std::vector<Bound>& bound);
+// One writer per engine (godot.cpp, unity.cpp, unreal.cpp, hlsl.cpp); each iterates its engine's
+// slot table (preset/engine_slots.hpp) and names no slot itself.
+std::vector<File> godot_files(const EngineMaterial& e, const manifest::Material& m, const std::vector<Bound>& bound);
 std::vector<File> unity_files(const EngineMaterial& e, const manifest::Material& m, const std::vector<Bound>& bound);
-std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bound>& bound);
+std::vector<File> unreal_files(const EngineMaterial& e, const manifest::Material& m, const std::vector<Bound>& bound);
 File unreal_import_all();  // import_all.py: runs every material's script under the folder
 File hlsl_include();
 

@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string import_file(const manifest::Output& o, const EngineSlot& slot) {
-    const bool normal = slot.role == Role::normal;
+    const bool normal = slot.reads_role(Role::normal);
     return std::string("[remap]\n\nimporter=\"texture\"\ntype=\"CompressedTexture2D\"\n\n[params]\n\n") +
            "compress/mode=2\ncompress/high_quality=false\ncompress/lossy_quality=0.7\ncompress/hdr_compression=1\n"
            "compress/normal_map=" +
@@ -43,7 +43,7 @@ std::string import_file(const manifest::Output& o, const EngineSlot& slot) {
 
 }  // namespace
 
-std::vector<File> godot_files(const manifest::Material& m, const std::vector<Bound>& bound) {
+std::vector<File> godot_files(const EngineMaterial& e, const manifest::Material& m, const std::vector<Bound>& bound) {
     std::vector<File> files;
     files.reserve(bound.size() + 1);
     const fs::path tres = fs::path(m.name) / (m.name + ".tres");
@@ -51,34 +51,32 @@ std::vector<File> godot_files(const manifest::Material& m, const std::vector<Bou
     int id = 0;
     for (const Bound& b : bound)
         files.push_back({b.output->file + ".import", "import", import_file(*b.output, *b.slot)});
-    // One ext_resource per slot's texture, in the table's order.
-    auto slot_line = [&](std::string_view slot) -> std::string {
-        const manifest::Output* o = texture_of(bound, slot);
-        if (!o) return {};
-        const std::string rid = std::to_string(++id);
-        ext += "[ext_resource type=\"Texture2D\" path=" +
-               string_literal(fs::path(o->file).lexically_relative(tres.parent_path()).generic_string()) + " id=\"" +
-               rid + "\"]\n";
-        return std::string(slot) + " = ExtResource(\"" + rid + "\")\n";
-    };
     res += "resource_name = " + string_literal(m.name) + "\n";
-    res += slot_line("albedo_texture");
+    // One ext_resource per slot's texture, in the table's order, each with the property that turns
+    // its slot on.
     using manifest::AlphaMode;
-    if (m.alpha_mode && *m.alpha_mode != AlphaMode::opaque) {
-        res += *m.alpha_mode == AlphaMode::mask
-                   ? "transparency = 2\nalpha_scissor_threshold = " + scene_number(m.alpha_cutoff) + "\n"
-                   : "transparency = 1\n";
-        res += "cull_mode = 2\n";  // a cut-out or translucent sheet is seen from both sides (the glTF's doubleSided)
+    for (const EngineSlot& s : e.slots) {
+        if (const manifest::Output* o = texture_of(bound, s.slot)) {
+            const std::string rid = std::to_string(++id);
+            ext += "[ext_resource type=\"Texture2D\" path=" +
+                   string_literal(fs::path(o->file).lexically_relative(tres.parent_path()).generic_string()) +
+                   " id=\"" + rid + "\"]\n";
+            const std::string enable = s.enable.empty() ? "" : std::string(s.enable) + " = true\n";
+            if (!s.enable_after) res += enable;
+            res += std::string(s.slot) + " = ExtResource(\"" + rid + "\")\n";
+            if (s.enable_after) res += enable;
+            if (s.reads_role(Role::emissive) && m.emissive_strength != 1.f)
+                res += "emission_energy_multiplier = " + scene_number(m.emissive_strength) + "\n";
+        }
+        // How the slot reading opacity is used, after it (whether or not the set has a texture).
+        if (s.reads_role(Role::opacity) && m.alpha_mode && *m.alpha_mode != AlphaMode::opaque) {
+            res += *m.alpha_mode == AlphaMode::mask
+                       ? "transparency = 2\nalpha_scissor_threshold = " + scene_number(m.alpha_cutoff) + "\n"
+                       : "transparency = 1\n";
+            res +=
+                "cull_mode = 2\n";  // a cut-out or translucent sheet is seen from both sides (the glTF's doubleSided)
+        }
     }
-    if (const std::string line = slot_line("orm_texture"); !line.empty()) res += line + "ao_enabled = true\n";
-    if (const std::string line = slot_line("normal_texture"); !line.empty()) res += "normal_enabled = true\n" + line;
-    if (const std::string line = slot_line("emission_texture"); !line.empty()) {
-        res += "emission_enabled = true\n" + line;
-        if (m.emissive_strength != 1.f)
-            res += "emission_energy_multiplier = " + scene_number(m.emissive_strength) + "\n";
-    }
-    if (const std::string line = slot_line("heightmap_texture"); !line.empty())
-        res += "heightmap_enabled = true\n" + line;
     res += "texture_filter = 5\n";  // linear, mipmaps, anisotropic: what Godot's own demo materials use
     // load_steps: the external resources + 1 (Godot 4.0-4.5 write it; 4.6 reads and ignores it).
     files.push_back({tres.generic_string(), "tres",

@@ -55,7 +55,7 @@ bool holds_opacity(const manifest::Output& o) {
 
 std::string texture_meta(const std::string& guid, const manifest::Output& o, const EngineSlot& slot,
                          const manifest::Material& m) {
-    const bool normal = slot.role == Role::normal, alpha = holds_opacity(o);
+    const bool normal = slot.reads_role(Role::normal), alpha = holds_opacity(o);
     const std::string size = std::to_string(max_texture_size(o));
     using manifest::AlphaMode;
     const bool cutout = alpha && m.alpha_mode && *m.alpha_mode == AlphaMode::mask;
@@ -108,12 +108,19 @@ struct Props {
 std::string material(const EngineMaterial& e, const manifest::Material& m, const std::vector<Bound>& bound,
                      const std::string& guid_prefix) {
     Props p;
-    auto bind_slot = [&](std::string_view slot, std::string_view keyword) {
-        const manifest::Output* o = texture_of(bound, slot);
-        p.texture(slot, o ? guid_of(guid_prefix + std::string(slot)) : "");
-        if (o && !keyword.empty()) p.keywords.emplace_back(keyword);
-        return o != nullptr;
-    };
+    // Every slot, in the table's order: its texture (or none), and the keywords a texture turns on.
+    bool emits = false;
+    for (const EngineSlot& s : e.slots) {
+        const manifest::Output* o = texture_of(bound, s.slot);
+        p.texture(s.slot, o ? guid_of(guid_prefix + std::string(s.slot)) : "");
+        if (!o) continue;
+        emits = emits || s.reads_role(Role::emissive);
+        for (size_t at = 0; at < s.enable.size();) {
+            const size_t end = std::min(s.enable.find(' ', at), s.enable.size());
+            p.keywords.emplace_back(s.enable.substr(at, end - at));
+            at = end + 1;
+        }
+    }
     using manifest::AlphaMode;
     const bool cutout = m.alpha_mode && *m.alpha_mode == AlphaMode::mask;
     const bool blend = m.alpha_mode && *m.alpha_mode == AlphaMode::blend;
@@ -121,11 +128,6 @@ std::string material(const EngineMaterial& e, const manifest::Material& m, const
     std::string shader, queue = cutout ? "2450" : blend ? "3000" : "-1";
     if (hdrp(e)) {
         shader = "6e4ae4064600d784cac1e41a9e6f2e59";
-        bind_slot("_BaseColorMap", "");
-        if (bind_slot("_NormalMap", "_NORMALMAP")) p.keywords.emplace_back("_NORMALMAP_TANGENT_SPACE");
-        bind_slot("_MaskMap", "_MASKMAP");
-        bind_slot("_HeightMap", "_HEIGHTMAP");
-        const bool emits = bind_slot("_EmissiveColorMap", "_EMISSIVE_COLOR_MAP");
         p.number("_AlphaCutoff", m.alpha_cutoff);
         p.number("_AlphaCutoffEnable", cutout ? 1.f : 0.f);
         p.number("_AORemapMax", 1.f);
@@ -148,12 +150,6 @@ std::string material(const EngineMaterial& e, const manifest::Material& m, const
         if (blend) p.keywords.emplace_back("_SURFACE_TYPE_TRANSPARENT");
     } else {
         shader = "933532a4fcc9baf4fa0491de14d08ed7";
-        bind_slot("_BaseMap", "");
-        bind_slot("_BumpMap", "_NORMALMAP");
-        bind_slot("_MetallicGlossMap", "_METALLICSPECGLOSSMAP");
-        bind_slot("_OcclusionMap", "_OCCLUSIONMAP");
-        bind_slot("_ParallaxMap", "_PARALLAXMAP");
-        const bool emits = bind_slot("_EmissionMap", "_EMISSION");
         p.number("_AlphaClip", cutout ? 1.f : 0.f);
         p.number("_BumpScale", 1.f);
         p.number("_Cull", cutout || blend ? 0.f : 2.f);

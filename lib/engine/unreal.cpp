@@ -134,14 +134,6 @@ textures = import_textures()
 material_instance(textures, parent_material(textures))
 )PY";
 
-// Each slot's import settings: (sRGB, compression).
-std::pair<bool, const char*> settings(const EngineSlot& s) {
-    if (s.role == Role::normal) return {false, "TC_NORMALMAP"};
-    if (s.slot == "ORM") return {false, "TC_MASKS"};
-    if (s.role == Role::height) return {false, "TC_GRAYSCALE"};
-    return {s.srgb, s.srgb ? "TC_DEFAULT" : "TC_MASKS"};
-}
-
 // The folder's script: every material's import script under it, each on its own.
 constexpr const char* kImportAll = R"PY(# matforge: imports every material of this folder into /Game/Matforge: runs each
 # <material>/import_<material>.py under it, in name order. Each stands alone (its textures, its
@@ -162,18 +154,25 @@ for name in sorted(os.listdir(HERE)):
 
 File unreal_import_all() { return {"import_all.py", "py", kImportAll}; }
 
-std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bound>& bound) {
+std::vector<File> unreal_files(const EngineMaterial& e, const manifest::Material& m, const std::vector<Bound>& bound) {
     const fs::path script = fs::path(m.name) / ("import_" + m.name + ".py");
     const std::string id = scene_identifier(m.name);
     std::string list;
+    bool emissive = false;
     for (const Bound& b : bound) {
-        const auto [srgb, compression] = settings(*b.slot);
         list += "    (" +
                 string_literal(fs::path(b.output->file).lexically_relative(script.parent_path()).generic_string()) +
-                ", " + string_literal(std::string(b.slot->slot)) + ", " + (srgb ? "True" : "False") + ", " +
-                string_literal(compression) + "),\n";
+                ", " + string_literal(std::string(b.slot->slot)) + ", " + (b.slot->srgb ? "True" : "False") + ", " +
+                string_literal(std::string(b.slot->compression)) + "),\n";
+        emissive = emissive || b.slot->reads_role(Role::emissive);
     }
-    const bool emissive = texture_of(bound, "Emissive") != nullptr;
+    // The engine's neutral texture of each slot that has one (the parent reads it where a set has
+    // no map).
+    std::string defaults;
+    for (const EngineSlot& s : e.slots)
+        if (!s.fallback.empty())
+            defaults += (defaults.empty() ? "" : ", ") + string_literal(std::string(s.slot)) + ": " +
+                        string_literal(std::string(s.fallback));
     using manifest::AlphaMode;
     const char* blend = !m.alpha_mode || *m.alpha_mode == AlphaMode::opaque ? "BLEND_OPAQUE"
                         : *m.alpha_mode == AlphaMode::mask                  ? "BLEND_MASKED"
@@ -192,9 +191,8 @@ std::vector<File> unreal_files(const manifest::Material& m, const std::vector<Bo
                        "\"\nOPACITY_MASK_CLIP_VALUE = " + scene_number(m.alpha_cutoff) +
                        "\nEMISSIVE_STRENGTH = " + scene_number(emissive ? m.emissive_strength : 0.f) +
                        "\n# The engine's own neutral textures for a slot this set has no map for.\n"
-                       "ENGINE_DEFAULTS = {\"Normal\": \"/Engine/EngineMaterials/FlatNormal\", "
-                       "\"Emissive\": \"/Engine/EngineResources/Black\"}\n" +
-                       kBody;
+                       "ENGINE_DEFAULTS = {" +
+                       defaults + "}\n" + kBody;
     return {{script.generic_string(), "py", std::move(text)}};
 }
 

@@ -1,5 +1,6 @@
 #include "preset/engine_slots.hpp"
 
+#include <algorithm>
 #include <array>
 #include <map>
 
@@ -8,53 +9,70 @@ namespace {
 
 using R = Role;
 
+// Each table lists an engine's slots in the order its material file names them (the writers
+// follow it), with the roles each reads.
+
 // Godot 4 ORMMaterial3D (docs: "Standard Material 3D and ORM Material 3D"): albedo_texture
-// sampled as colour (source_color) with alpha; orm_texture R occlusion, G roughness, B metallic;
-// normal_texture (+Y); emission_texture (colour); heightmap_texture (R, white = high).
+// sampled as colour (source_color) with alpha; orm_texture R occlusion, G roughness, B metallic
+// (read with ao_enabled); normal_texture (+Y); emission_texture (colour); heightmap_texture
+// (R, white = high). A slot other than albedo's and the ORM's is read only with its *_enabled.
+constexpr SlotRead kAlbedoRgbA[] = {{R::albedo, false, "RGB"}, {R::opacity, false, "A"}};
+constexpr SlotRead kOrm[] = {{R::occlusion, false, "R"}, {R::roughness, false, "G"}, {R::metalness, false, "B"}};
+constexpr SlotRead kNormalRgb[] = {{R::normal, false, "RGB"}};
+constexpr SlotRead kEmissiveRgb[] = {{R::emissive, false, "RGB"}};
+constexpr SlotRead kHeightR[] = {{R::height, false, "R"}};
 constexpr EngineSlot kGodot[] = {
-    {"albedo_texture", R::albedo, false, "RGB", true},     {"albedo_texture", R::opacity, false, "A", true},
-    {"orm_texture", R::occlusion, false, "R", false},      {"orm_texture", R::roughness, false, "G", false},
-    {"orm_texture", R::metalness, false, "B", false},      {"normal_texture", R::normal, false, "RGB", false},
-    {"emission_texture", R::emissive, false, "RGB", true}, {"heightmap_texture", R::height, false, "R", false},
+    {"albedo_texture", true, kAlbedoRgbA, "", false, "", ""},
+    {"orm_texture", false, kOrm, "ao_enabled", true, "", ""},
+    {"normal_texture", false, kNormalRgb, "normal_enabled", false, "", ""},
+    {"emission_texture", true, kEmissiveRgb, "emission_enabled", false, "", ""},
+    {"heightmap_texture", false, kHeightR, "heightmap_enabled", false, "", ""},
 };
 // Unity HDRP Lit (HDRP docs, "Lit shader", "Mask Map"): _BaseColorMap RGB + alpha; _MaskMap R
 // metallic, G ambient occlusion, B detail mask, A smoothness; _NormalMap (+Y, OpenGL);
-// _HeightMap R; _EmissiveColorMap colour.
+// _HeightMap R; _EmissiveColorMap colour. Each map turns on its shader keyword.
+constexpr SlotRead kHdrpMask[] = {{R::metalness, false, "R"}, {R::occlusion, false, "G"}, {R::roughness, true, "A"}};
 constexpr EngineSlot kHdrp[] = {
-    {"_BaseColorMap", R::albedo, false, "RGB", true}, {"_BaseColorMap", R::opacity, false, "A", true},
-    {"_MaskMap", R::metalness, false, "R", false},    {"_MaskMap", R::occlusion, false, "G", false},
-    {"_MaskMap", R::roughness, true, "A", false},     {"_NormalMap", R::normal, false, "RGB", false},
-    {"_HeightMap", R::height, false, "R", false},     {"_EmissiveColorMap", R::emissive, false, "RGB", true},
+    {"_BaseColorMap", true, kAlbedoRgbA, "", false, "", ""},
+    {"_NormalMap", false, kNormalRgb, "_NORMALMAP _NORMALMAP_TANGENT_SPACE", false, "", ""},
+    {"_MaskMap", false, kHdrpMask, "_MASKMAP", false, "", ""},
+    {"_HeightMap", false, kHeightR, "_HEIGHTMAP", false, "", ""},
+    {"_EmissiveColorMap", true, kEmissiveRgb, "_EMISSIVE_COLOR_MAP", false, "", ""},
 };
 // Unity URP Lit (URP docs, "Lit Shader"): _BaseMap RGB + alpha; _MetallicGlossMap R metallic,
 // A smoothness (_SmoothnessTextureChannel 0); _BumpMap; _OcclusionMap and _ParallaxMap are read
 // from G by URP's shaders, the same as R in the grey one-channel files written for them;
-// _EmissionMap colour.
+// _EmissionMap colour. Each map turns on its shader keyword.
+constexpr SlotRead kUrpMetallic[] = {{R::metalness, false, "R"}, {R::roughness, true, "A"}};
+constexpr SlotRead kOcclusionR[] = {{R::occlusion, false, "R"}};
 constexpr EngineSlot kUrp[] = {
-    {"_BaseMap", R::albedo, false, "RGB", true},
-    {"_BaseMap", R::opacity, false, "A", true},
-    {"_MetallicGlossMap", R::metalness, false, "R", false},
-    {"_MetallicGlossMap", R::roughness, true, "A", false},
-    {"_BumpMap", R::normal, false, "RGB", false},
-    {"_OcclusionMap", R::occlusion, false, "R", false},
-    {"_ParallaxMap", R::height, false, "R", false},
-    {"_EmissionMap", R::emissive, false, "RGB", true},
+    {"_BaseMap", true, kAlbedoRgbA, "", false, "", ""},
+    {"_BumpMap", false, kNormalRgb, "_NORMALMAP", false, "", ""},
+    {"_MetallicGlossMap", false, kUrpMetallic, "_METALLICSPECGLOSSMAP", false, "", ""},
+    {"_OcclusionMap", false, kOcclusionR, "_OCCLUSIONMAP", false, "", ""},
+    {"_ParallaxMap", false, kHeightR, "_PARALLAXMAP", false, "", ""},
+    {"_EmissionMap", true, kEmissiveRgb, "_EMISSION", false, "", ""},
 };
 // Unreal Engine (the import script's material instance, engine/unreal.cpp): BaseColor (sRGB,
 // opacity in A), ORM packed R occlusion, G roughness, B metallic (TC_MASKS, no sRGB), Normal
-// (TC_NORMALMAP, DirectX -Y), Emissive (sRGB), Height (R).
+// (TC_NORMALMAP, DirectX -Y), Emissive (sRGB), Height (R, TC_GRAYSCALE). Where a set has no
+// normal or emissive map, the instance reads the engine's flat normal and black.
 constexpr EngineSlot kUnreal[] = {
-    {"BaseColor", R::albedo, false, "RGB", true},  {"BaseColor", R::opacity, false, "A", true},
-    {"ORM", R::occlusion, false, "R", false},      {"ORM", R::roughness, false, "G", false},
-    {"ORM", R::metalness, false, "B", false},      {"Normal", R::normal, false, "RGB", false},
-    {"Emissive", R::emissive, false, "RGB", true}, {"Height", R::height, false, "R", false},
+    {"BaseColor", true, kAlbedoRgbA, "", false, "TC_DEFAULT", ""},
+    {"ORM", false, kOrm, "", false, "TC_MASKS", ""},
+    {"Normal", false, kNormalRgb, "", false, "TC_NORMALMAP", "/Engine/EngineMaterials/FlatNormal"},
+    {"Emissive", true, kEmissiveRgb, "", false, "TC_DEFAULT", "/Engine/EngineResources/Black"},
+    {"Height", false, kHeightR, "", false, "TC_GRAYSCALE", ""},
 };
 // Direct3D 11 (matforge_material.hlsli, engine/hlsl.cpp): Texture2D Albedo (sRGB view, opacity
 // in A), NormalMap (BC5 X, Y; Z rebuilt), RoughnessMap and MetalnessMap (.r).
+constexpr SlotRead kRoughnessR[] = {{R::roughness, false, "R"}};
+constexpr SlotRead kMetalnessR[] = {{R::metalness, false, "R"}};
 constexpr EngineSlot kD3d11[] = {
-    {"Albedo", R::albedo, false, "RGB", true},         {"Albedo", R::opacity, false, "A", true},
-    {"NormalMap", R::normal, false, "RGB", false},     {"RoughnessMap", R::roughness, false, "R", false},
-    {"MetalnessMap", R::metalness, false, "R", false},
+    {"Albedo", true, kAlbedoRgbA, "", false, "", ""},
+    {"NormalMap", false, kNormalRgb, "", false, "", ""},
+    {"RoughnessMap", false, kRoughnessR, "", false, "", ""},
+    {"MetalnessMap", false, kMetalnessR, "", false, "", ""},
 };
 
 constexpr FileFormat kPngExr[] = {FileFormat::png, FileFormat::exr};
@@ -69,12 +87,19 @@ constexpr std::array<EngineMaterial, 5> kEngines{{
     {MaterialFileKind::d3d11, "Direct3D 11 (matforge_material.hlsli)", NormalConvention::dx, kDds, kD3d11},
 }};
 
+bool holds(const Channel& c, const SlotRead& r) {
+    return c.role == r.role &&
+           ((c.kind == Channel::Kind::role && !r.smoothness) || (c.kind == Channel::Kind::smoothness && r.smoothness));
+}
 bool holds(const Channel& c, const EngineSlot& s) {
-    return c.role == s.role &&
-           ((c.kind == Channel::Kind::role && !s.smoothness) || (c.kind == Channel::Kind::smoothness && s.smoothness));
+    return std::any_of(s.reads.begin(), s.reads.end(), [&](const SlotRead& r) { return holds(c, r); });
 }
 
 }  // namespace
+
+bool EngineSlot::reads_role(Role r) const {
+    return std::any_of(reads.begin(), reads.end(), [r](const SlotRead& x) { return x.role == r; });
+}
 
 const EngineMaterial* engine_material(MaterialFileKind kind) {
     for (const auto& e : kEngines)
@@ -124,23 +149,23 @@ bool check_engine_layout(const Preset& p, const EngineMaterial& e, std::string& 
                     "' both go there";
             return false;
         }
-        for (const EngineSlot& s : e.slots) {
-            for (const ChannelSpec& c : o.channels) {
-                if (!holds(c, s)) continue;
-                const std::string what = "'" + o.suffix + "' holds " + std::string(role_name(s.role)) +
-                                         (s.smoothness ? " (as smoothness)" : "") + " in " + c.key + "; ";
-                if (s.slot != slot->slot) {
-                    error = where + what + "the engine reads it from " + std::string(s.slot) + ", not " +
-                            std::string(slot->slot);
-                    return false;
+        for (const EngineSlot& s : e.slots)
+            for (const SlotRead& r : s.reads)
+                for (const ChannelSpec& c : o.channels) {
+                    if (!holds(c, r)) continue;
+                    const std::string what = "'" + o.suffix + "' holds " + std::string(role_name(r.role)) +
+                                             (r.smoothness ? " (as smoothness)" : "") + " in " + c.key + "; ";
+                    if (s.slot != slot->slot) {
+                        error = where + what + "the engine reads it from " + std::string(s.slot) + ", not " +
+                                std::string(slot->slot);
+                        return false;
+                    }
+                    if (c.key != r.key || o.srgb != s.srgb) {
+                        error = where + what + std::string(s.slot) + " reads it from " + std::string(r.key) +
+                                (s.srgb ? " as sRGB" : " as linear data");
+                        return false;
+                    }
                 }
-                if (c.key != s.key || o.srgb != s.srgb) {
-                    error = where + what + std::string(s.slot) + " reads it from " + std::string(s.key) +
-                            (s.srgb ? " as sRGB" : " as linear data");
-                    return false;
-                }
-            }
-        }
     }
     return true;
 }

@@ -1,8 +1,10 @@
 // The texture slots of each engine material a preset's `material_file` names (godot,
 // unity-hdrp, unity-urp, unreal, d3d11): which role the engine reads from which channel of
-// which slot's texture, and whether it samples that texture as sRGB. The preset check
-// (check_engine_layout, at load) and the writers (lib/engine) read these tables alone, so a
-// preset whose layout an engine's slots cannot read is refused before any set is ingested.
+// which slot's texture, whether it samples that texture as sRGB, and what a writer does with a
+// slot the set has a texture for (the property or keywords that turn it on, Unreal's import
+// settings and fallback). The preset check (check_engine_layout, at load) and the writers
+// (lib/engine) read these tables alone: a slot's name is typed once, here, and a preset whose
+// layout an engine's slots cannot read is refused before any set is ingested.
 // (The glTF's slots are glTF 2.0's own: preset/texture_fields.cpp check_gltf_layout.)
 #pragma once
 #include <span>
@@ -14,12 +16,26 @@
 
 namespace mf {
 
-struct EngineSlot {
-    std::string_view slot;    // the engine's name of the texture ("albedo_texture", "_MaskMap", ...)
-    Role role;                // what it reads there
+// One role an engine reads from a texture slot.
+struct SlotRead {
+    Role role;
     bool smoothness = false;  // stored as 1 - roughness (role roughness)
     std::string_view key;     // the channel it reads it from: "RGB", "R", "G", "B", "A"
-    bool srgb = false;        // the engine samples the texture as sRGB colour
+};
+
+// One texture slot of an engine's material, with everything a writer needs of it: the writers
+// (lib/engine) iterate these rows and never name a slot.
+struct EngineSlot {
+    std::string_view slot;  // the engine's name of the texture ("albedo_texture", "_MaskMap", ...)
+    bool srgb = false;      // the engine samples the texture as sRGB colour
+    std::span<const SlotRead> reads;
+    // When the set has this slot's texture: Godot, the property set to true ("normal_enabled");
+    // Unity, the shader keywords turned on (space-separated).
+    std::string_view enable;
+    bool enable_after = false;      // Godot: the property follows the texture's line (ao_enabled)
+    std::string_view compression;   // Unreal: the import's TextureCompressionSettings
+    std::string_view fallback;      // Unreal: the engine's own texture where the set has none
+    bool reads_role(Role r) const;  // one of `reads` is `r`
 };
 
 struct EngineMaterial {
@@ -27,7 +43,7 @@ struct EngineMaterial {
     std::string_view engine;              // "Godot 4 ORMMaterial3D", ...
     NormalConvention normal;              // the tangent-space convention its normal slot reads
     std::span<const FileFormat> formats;  // the texture files it imports
-    std::span<const EngineSlot> slots;    // in the order the engine's material lists them
+    std::span<const EngineSlot> slots;    // in the order the material file lists them
 };
 
 // nullptr for none and gltf.

@@ -465,7 +465,7 @@ TEST(EngineFiles, AnyNameMakesFilesTheReadersParse) {
         }
         return paths;
     };
-    const auto tres = write_all(mf::engine::godot_files(m, {}));
+    const auto tres = write_all(mf::engine::godot_files(*mf::engine_material(mf::MaterialFileKind::godot), m, {}));
     const auto godot = python_checker("godot_check.py", {tres.back()}, dir / "lib");
     ASSERT_EQ(godot.size(), 1u);
     ASSERT_TRUE(godot[0]["ok"].get<bool>()) << godot[0]["error"];
@@ -477,7 +477,7 @@ TEST(EngineFiles, AnyNameMakesFilesTheReadersParse) {
     ASSERT_EQ(unity.size(), 1u);
     ASSERT_TRUE(unity[0]["ok"].get<bool>()) << unity[0]["error"];
     EXPECT_EQ(unity[0]["name"], want);
-    const auto py = write_all(mf::engine::unreal_files(m, {}));
+    const auto py = write_all(mf::engine::unreal_files(*mf::engine_material(mf::MaterialFileKind::unreal), m, {}));
     const auto unreal = python_checker("unreal_check.py", {py[0]}, dir / "lib");
     ASSERT_EQ(unreal.size(), 1u);
     ASSERT_TRUE(unreal[0]["parses"].get<bool>()) << unreal[0]["error"];
