@@ -30,63 +30,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The matforge_oiio module, loaded once, on first use, in the places a build or an install
-// puts it: beside the executable (a copied tree), the install's library folder relative to the
-// executable's (MATFORGE_OIIO_MODULE_RELDIR: bin/../lib/<arch>/matforge), then the build tree
-// (MATFORGE_OIIO_MODULE_BUILT: tests and benchmarks run from their own folders). Never closed.
-struct Module {
-    const oiio_module::Table* table = nullptr;
-    std::string error;
-};
-
-Module load_module() {
-    std::vector<fs::path> places;
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        places.push_back(exe.parent_path() / oiio_module::kFileName);
-        places.push_back(exe.parent_path() / MATFORGE_OIIO_MODULE_RELDIR / oiio_module::kFileName);
-    }
-    places.emplace_back(MATFORGE_OIIO_MODULE_BUILT);
-    Module m;
-    std::string tried;
-    for (const fs::path& p : places) {
-        if (!fs::exists(p, ec)) {
-            tried += (tried.empty() ? "" : ", ") + p.lexically_normal().string() + " (absent)";
-            continue;
-        }
-        void* handle = ::dlopen(p.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            const char* why = ::dlerror();
-            tried += (tried.empty() ? "" : ", ") + p.lexically_normal().string() + " (" + (why ? why : "?") + ")";
-            continue;
-        }
-        using Entry = const oiio_module::Table* (*)();
-        auto* entry = reinterpret_cast<Entry>(::dlsym(handle, oiio_module::kEntry));
-        const oiio_module::Table* t = entry ? entry() : nullptr;
-        if (!t || t->abi != oiio_module::kAbi || t->size != sizeof(oiio_module::Table)) {
-            tried += (tried.empty() ? "" : ", ") + p.lexically_normal().string() + " (of another matforge build)";
-            continue;  // the handle stays open: closing a module that ran no code gains nothing
-        }
-        m.table = t;
-        return m;
-    }
-    m.error = "matforge's image decoders and encoders (" + std::string(oiio_module::kFileName) +
-              ", OpenImageIO) could not be loaded; tried " + tried + "; reinstall matforge";
-    return m;
-}
-
-const Module& module() {
-    static const Module m = load_module();
-    return m;
-}
-
-// The table, or nullptr with `error` set to `prefix` and why it is missing.
-const oiio_module::Table* table(std::string& error, const std::string& prefix = {}) {
-    const Module& m = module();
-    if (!m.table) error = prefix + m.error;
-    return m.table;
-}
+// The OpenImageIO module's table (image/oiio_loader.cpp), loaded on first use.
+using oiio_module::table;
 
 // Some OpenImageIO plugins throw on hostile bytes (the GIF reader's vector resize, bad_alloc on
 // absurd headers): every decode is guarded here, at the module boundary, and becomes an error.

@@ -42,4 +42,9 @@ struct Table {
     std::string (*format_libraries)();  // "png:libpng 1.6.39 jpeg:jpeg-turbo 2.1.5 ..."
 };
 
+// The module's table, loaded on the first call (image/oiio_loader.cpp: beside the executable,
+// the install's library folder, then the build tree), or nullptr with `error` set to `prefix`
+// and every place tried. Thread-safe; never unloaded.
+const Table* table(std::string& error, const std::string& prefix = {});
+
 }  // namespace mf::oiio_module
