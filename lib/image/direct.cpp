@@ -130,53 +130,117 @@ std::string declined_jpeg(Source& src, const std::vector<unsigned char>* file) {
     return head.empty() ? std::string() : jpeg::check(head.data(), head.size(), true, kMaxSampleBytes, src.size);
 }
 
+// One decode per codec (the source sniffed as it): false + `refusal` as direct.hpp says.
+bool jpeg_decode(const InputFile& in, Source& src, Raw& raw, std::string& refusal) {
+    std::vector<unsigned char> file = whole(src);
+    jpeg::Plain p;
+    if (file.empty() || !jpeg::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p, file.size()) ||
+        !within_limits(p.width, p.height, p.channels)) {
+        refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, &file);
+        return false;
+    }
+    raw.info = jpeg_info(in, p);
+    raw.bit_depth = 8;
+    raw.samples = std::move(p.pixels);
+    return true;
+}
+
+bool webp_decode(const InputFile&, Source& src, Raw& raw, std::string&) {
+    std::vector<unsigned char> file = whole(src);
+    webp::Plain p;
+    if (file.empty() || !webp::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p) ||
+        !within_limits(p.width, p.height, p.channels))
+        return false;
+    raw.info = info_of(p.width, p.height, p.channels, 8, kWebp);
+    raw.bit_depth = 8;
+    raw.samples = std::move(p.pixels);
+    return true;
+}
+
+bool png_decode(const InputFile&, Source& src, Raw& raw, std::string& refusal) {
+    // The head first: any other PNG (palette, interlaced, too large) is left to OpenImageIO
+    // before the whole file is read or copied.
+    png::Plain p;
+    std::vector<unsigned char> head = src.bytes(std::min<uint64_t>(src.size, png::kHeaderBytes));
+    if (head.size() < png::kHeaderBytes || !png::plain_ihdr(head.data(), kMaxSampleBytes, p)) {
+        refusal = png::size_refusal(src.size, src.reader());
+        return false;
+    }
+    std::vector<unsigned char> file = whole(src);
+    if (file.empty() || !png::read_plain(file, kMaxSampleBytes, p) || !within_limits(p.width, p.height, p.channels)) {
+        refusal = png::size_refusal(src.size, src.reader());
+        return false;
+    }
+    raw.info = info_of(p.width, p.height, p.channels, p.bit_depth, "png");
+    raw.bit_depth = p.bit_depth;
+    raw.samples = std::move(p.pixels);
+    return true;
+}
+
+// One header read per codec: false + `refusal` as direct.hpp says.
+bool jpeg_header(const InputFile& in, Source& src, ImageInfo& info, std::optional<StatedColorSpace>& stated,
+                 std::string& refusal) {
+    const uint64_t end = jpeg::first_scan_header_end(src.size, src.reader());
+    if (end == 0) return false;
+    const std::vector<unsigned char> head = src.bytes(end);
+    jpeg::Plain p;
+    if (head.empty() || !jpeg::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p, src.size) ||
+        !within_limits(p.width, p.height, p.channels)) {
+        refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, nullptr);
+        return false;
+    }
+    info = jpeg_info(in, p);
+    stated = StatedColorSpace{"sRGB", "jpeg"};
+    return true;
+}
+
+bool webp_header(const InputFile&, Source& src, ImageInfo& info, std::optional<StatedColorSpace>& stated,
+                 std::string&) {
+    // The RIFF header and the first chunk's, which state the size, alpha and animation.
+    const std::vector<unsigned char> head = src.bytes(std::min<uint64_t>(src.size, 4096));
+    webp::Plain p;
+    if (head.empty() || !webp::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p) ||
+        !within_limits(p.width, p.height, p.channels))
+        return false;
+    info = info_of(p.width, p.height, p.channels, 8, kWebp);
+    stated = StatedColorSpace{"sRGB", kWebp};
+    return true;
+}
+
+bool png_header(const InputFile&, Source& src, ImageInfo& info, std::optional<StatedColorSpace>&,
+                std::string& refusal) {
+    png::Plain p;
+    if (!png::read_plain_header(src.size, src.reader(), kMaxSampleBytes, p) ||
+        !within_limits(p.width, p.height, p.channels)) {
+        refusal = png::size_refusal(src.size, src.reader());
+        return false;
+    }
+    info = info_of(p.width, p.height, p.channels, p.bit_depth, "png");
+    return true;
+}
+
+// The direct readers, one row each: what Source sniffed a file as picks its row. A file no row
+// takes is the OpenImageIO module's (image.cpp asks it next).
+struct Codec {
+    Kind kind;
+    bool (*header)(const InputFile&, Source&, ImageInfo&, std::optional<StatedColorSpace>&, std::string& refusal);
+    bool (*decode)(const InputFile&, Source&, Raw&, std::string& refusal);
+};
+constexpr Codec kCodecs[] = {
+    {Kind::jpeg, jpeg_header, jpeg_decode},
+    {Kind::png, png_header, png_decode},
+    {Kind::webp, webp_header, webp_decode},
+};
+const Codec* codec_of(Kind kind) {
+    for (const Codec& c : kCodecs)
+        if (c.kind == kind) return &c;
+    return nullptr;
+}
+
 bool decode_or_throw(const InputFile& in, Raw& raw, std::string& refusal) {
     Source src(in);
-    if (src.kind == Kind::jpeg) {
-        std::vector<unsigned char> file = whole(src);
-        jpeg::Plain p;
-        if (file.empty() || !jpeg::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p, file.size()) ||
-            !within_limits(p.width, p.height, p.channels)) {
-            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, &file);
-            return false;
-        }
-        raw.info = jpeg_info(in, p);
-        raw.bit_depth = 8;
-        raw.samples = std::move(p.pixels);
-        return true;
-    }
-    if (src.kind == Kind::webp) {
-        std::vector<unsigned char> file = whole(src);
-        webp::Plain p;
-        if (file.empty() || !webp::read_plain(file.data(), file.size(), false, kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, p.channels))
-            return false;
-        raw.info = info_of(p.width, p.height, p.channels, 8, kWebp);
-        raw.bit_depth = 8;
-        raw.samples = std::move(p.pixels);
-        return true;
-    }
-    if (src.kind == Kind::png) {
-        // The head first: any other PNG (palette, interlaced, too large) is left to OpenImageIO
-        // before the whole file is read or copied.
-        png::Plain p;
-        std::vector<unsigned char> head = src.bytes(std::min<uint64_t>(src.size, png::kHeaderBytes));
-        if (head.size() < png::kHeaderBytes || !png::plain_ihdr(head.data(), kMaxSampleBytes, p)) {
-            refusal = png::size_refusal(src.size, src.reader());
-            return false;
-        }
-        std::vector<unsigned char> file = whole(src);
-        if (file.empty() || !png::read_plain(file, kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, p.channels)) {
-            refusal = png::size_refusal(src.size, src.reader());
-            return false;
-        }
-        raw.info = info_of(p.width, p.height, p.channels, p.bit_depth, "png");
-        raw.bit_depth = p.bit_depth;
-        raw.samples = std::move(p.pixels);
-        return true;
-    }
-    if (src.jpeg_signature) {  // a JPEG under another name
+    if (const Codec* c = codec_of(src.kind)) return c->decode(in, src, raw, refusal);
+    if (src.jpeg_signature) {  // a JPEG under another name: refused here when damaged, else the module's
         const std::vector<unsigned char> file = whole(src);
         refusal = declined_jpeg(src, &file);
     }
@@ -210,41 +274,7 @@ void to_floats(const Raw& raw, size_t first, size_t n, float* out) {
 bool read_info_or_throw(const InputFile& in, ImageInfo& info, std::optional<StatedColorSpace>& stated,
                         std::string& refusal) {
     Source src(in);
-    if (src.kind == Kind::jpeg) {
-        const uint64_t end = jpeg::first_scan_header_end(src.size, src.reader());
-        if (end == 0) return false;
-        const std::vector<unsigned char> head = src.bytes(end);
-        jpeg::Plain p;
-        if (head.empty() || !jpeg::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p, src.size) ||
-            !within_limits(p.width, p.height, p.channels)) {
-            refusal = !p.refusal.empty() ? p.refusal : declined_jpeg(src, nullptr);
-            return false;
-        }
-        info = jpeg_info(in, p);
-        stated = StatedColorSpace{"sRGB", "jpeg"};
-        return true;
-    }
-    if (src.kind == Kind::webp) {
-        // The RIFF header and the first chunk's, which state the size, alpha and animation.
-        const std::vector<unsigned char> head = src.bytes(std::min<uint64_t>(src.size, 4096));
-        webp::Plain p;
-        if (head.empty() || !webp::read_plain(head.data(), head.size(), true, kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, p.channels))
-            return false;
-        info = info_of(p.width, p.height, p.channels, 8, kWebp);
-        stated = StatedColorSpace{"sRGB", kWebp};
-        return true;
-    }
-    if (src.kind == Kind::png) {
-        png::Plain p;
-        if (!png::read_plain_header(src.size, src.reader(), kMaxSampleBytes, p) ||
-            !within_limits(p.width, p.height, p.channels)) {
-            refusal = png::size_refusal(src.size, src.reader());
-            return false;
-        }
-        info = info_of(p.width, p.height, p.channels, p.bit_depth, "png");
-        return true;
-    }
+    if (const Codec* c = codec_of(src.kind)) return c->header(in, src, info, stated, refusal);
     refusal = declined_jpeg(src, nullptr);  // a JPEG under another name
     return false;
 }
