@@ -173,7 +173,8 @@ struct Ingestor::PresetRun {
     std::set<std::string> produced;  // every file the run wrote, for the folder's stale removal
     size_t done = 0;
 
-    bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) {
+    // Through the folder (a unique_ptr: its constness is not the run's).
+    bool write(const std::string& rel, std::span<const unsigned char> bytes, std::string& error) const {
         return folder->write(rel, bytes, error);
     }
     void cache_problem(std::string p) {

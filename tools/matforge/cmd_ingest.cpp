@@ -183,6 +183,7 @@ ExitCode run_ingest(const IngestArgs& a) {
     // The sets, found once for every preset, never inside one of the run's output folders.
     const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
     std::vector<std::filesystem::path> outputs;
+    outputs.reserve(options.size());
     for (const IngestOptions& o : options) outputs.push_back(o.out_dir);
     Batch batch = Batch::find(inputs, outputs);
     if (!a.report_file.empty()) {  // checked before any map is read: the report never replaces an input
