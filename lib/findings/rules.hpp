@@ -98,6 +98,8 @@ struct Thresholds {
     double opacity_max_invisible_share = 0.999;
     // NORMAL_CONVENTION_MISMATCH / _UNKNOWN: confidence (0–1) a content verdict needs.
     double normal_convention_min_confidence = 0.6;
+
+    bool operator==(const Thresholds&) const = default;
 };
 
 // The strict variant of the numbers above (PBR Guide strict bounds: 50–243 sRGB).
@@ -107,6 +109,7 @@ struct Suppression {
     std::string material = "*";  // glob over the material name
     std::string code;            // finding code, or "*"
     std::string reason;          // kept for the docs/audit; not printed in reports
+    bool operator==(const Suppression&) const = default;
 };
 
 // A file the rules say is no map (an all-black placeholder a vendor ships, a stray export):
@@ -115,6 +118,7 @@ struct Exclusion {
     std::string file;            // glob over the file's path in the set ('/'-separated) or its name
     std::string material = "*";  // glob over the material name
     std::string reason;          // said in the finding
+    bool operator==(const Exclusion&) const = default;
 };
 
 struct RuleConfig {
@@ -123,6 +127,10 @@ struct RuleConfig {
     std::vector<std::string> disabled;                      // codes never reported
     std::vector<Suppression> suppressions;
     std::vector<Exclusion> exclusions;
+
+    // Two configurations are equal when every field is: what a memo of their results is keyed by
+    // (plan/plan.hpp PlanShare), never a text made of them.
+    bool operator==(const RuleConfig&) const = default;
 
     // The first exclusion that leaves `file` (relative to the set) of `material` out, or null.
     const Exclusion* excluded(std::string_view material, std::string_view file) const;

@@ -138,20 +138,18 @@ bool PlanShare::read(const InputFile& in, const std::string& file, DecodedMap& o
 
 validate::SetValidation PlanShare::validate(const std::vector<validate::MapInput>& maps, const rules::RuleConfig& rules,
                                             const validate::ValidateOptions& vo) {
-    std::string key = rules::describe(rules).dump();
-    for (const auto& m : maps) {
-        key += '\n' + std::string(role_name(m.role)) + '\t' + m.name + '\t' + m.file.display + '\t' +
-               (m.alternate ? "alternate" : "") + '\t' + std::to_string(static_cast<int>(m.name_convention)) + '\t' +
-               std::to_string(static_cast<int>(m.engine_convention));
-        for (const Role r : m.unused) key += '\t' + std::string(role_name(r));
-    }
+    std::vector<MapKey> keys;
+    keys.reserve(maps.size());
+    for (const auto& m : maps)
+        keys.push_back({m.role, m.name, m.file.display, m.alternate, m.name_convention, m.engine_convention, m.unused});
     {
         std::lock_guard lock(mutex_);
-        if (const auto it = validated_.find(key); it != validated_.end()) return it->second;
+        for (const Validated& v : validated_)
+            if (v.rules == rules && v.maps == keys) return v.result;
     }
     validate::SetValidation v = validate::validate_set(maps, rules, vo);
     std::lock_guard lock(mutex_);
-    validated_.emplace(std::move(key), v);
+    validated_.push_back({rules, std::move(keys), v});
     return v;
 }
 

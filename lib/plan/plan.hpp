@@ -60,10 +60,24 @@ private:
         bool taken = false;             // the last reader took the map
         std::string error;
     };
+    // What validate_set judges a set by: the rules config and each map's role, file and flags.
+    struct MapKey {
+        Role role;
+        std::string name, display;
+        bool alternate;
+        NormalConvention name_convention, engine_convention;
+        std::vector<Role> unused;
+        bool operator==(const MapKey&) const = default;
+    };
+    struct Validated {
+        rules::RuleConfig rules;
+        std::vector<MapKey> maps;
+        validate::SetValidation result;
+    };
     int plans_;
     std::mutex mutex_;
     std::map<std::string, Entry> entries_;
-    std::map<std::string, validate::SetValidation> validated_;  // by (maps, rules) key
+    std::vector<Validated> validated_;  // one per distinct (rules, maps): a set's presets, a few
 };
 
 struct PlanOptions {
