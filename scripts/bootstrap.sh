@@ -23,7 +23,7 @@ packages_build=(
 )
 packages_test=(
   libgtest-dev libgmock-dev libbenchmark-dev
-  libpng-dev       # tests/pack: interlaced PNGs the direct reader must leave to OpenImageIO
+  libpng-dev       # tests/image: interlaced PNGs the direct reader must leave to OpenImageIO
   vulkan-validationlayers  # every GPU test fails on a validation message
   python3 python3-jsonschema  # scripts/check-schemas.py (manifest and report schemas)
   python3-yaml     # tests/texture/checkers/unity_check.py (Unity .mat and .meta YAML)

@@ -1,6 +1,6 @@
 // matforge's PNG encoder: the chunks framed here (four kinds: IHDR, tEXt, IDAT, IEND; CRCs by
 // libdeflate), libdeflate compresses the pixels. libpng, stb_image and zlib read its files back
-// in the tests (tests/pack/png_writer_test.cpp): independent decoders.
+// in the tests (tests/image/png_writer_test.cpp): independent decoders.
 // image.cpp sends every PNG output here (encode_image); OpenImageIO writes the other formats.
 //
 // Why not libpng's own writer: it can only compress through zlib, whose deflate was a third of
