@@ -71,4 +71,26 @@ struct RoleSource {
 };
 RoleSource role_source(const manifest::Material& m, Role role);
 
+// The surface inputs the MaterialX and USD files bind, in the order both list them: the role
+// each reads, whether its map is colour (sRGB), and its name and type in MaterialX's gltf_pbr and
+// in USD's UsdPreviewSurface. One table for both writers (mtlx.cpp, usd.cpp).
+struct SurfaceInput {
+    struct Name {
+        const char* input;
+        const char* type;
+    };
+    Role role;
+    bool color;
+    Name mtlx, usd;
+};
+inline constexpr SurfaceInput kSurfaceInputs[] = {
+    {Role::albedo, true, {"base_color", "color3"}, {"diffuseColor", "color3f"}},
+    {Role::opacity, false, {"alpha", "float"}, {"opacity", "float"}},
+    {Role::metalness, false, {"metallic", "float"}, {"metallic", "float"}},
+    {Role::roughness, false, {"roughness", "float"}, {"roughness", "float"}},
+    {Role::occlusion, false, {"occlusion", "float"}, {"occlusion", "float"}},
+    {Role::normal, false, {"normal", "vector3"}, {"normal", "normal3f"}},
+    {Role::emissive, true, {"emissive", "color3"}, {"emissiveColor", "color3f"}},
+};
+
 }  // namespace mf::gltf

@@ -16,18 +16,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// gltf_pbr's input for each role, its MaterialX type, and whether the map is colour (sRGB).
+// One row of gltf::kSurfaceInputs as gltf_pbr names it: the input, its MaterialX type, the role,
+// whether the map is colour (sRGB).
 struct Slot {
     const char* input;
     const char* type;
     Role role;
     bool color;
-};
-constexpr Slot kSlots[] = {
-    {"base_color", "color3", Role::albedo, true},   {"alpha", "float", Role::opacity, false},
-    {"metallic", "float", Role::metalness, false},  {"roughness", "float", Role::roughness, false},
-    {"occlusion", "float", Role::occlusion, false}, {"normal", "vector3", Role::normal, false},
-    {"emissive", "color3", Role::emissive, true},
 };
 
 int channel_index(const std::string& key) {
@@ -45,7 +40,8 @@ public:
     std::string body() {
         std::set<std::string> connected;  // gltf_pbr inputs read from a texture
         std::string s = "  <gltf_pbr name=\"" + name_ + "_shader\" type=\"surfaceshader\">\n";
-        for (const Slot& slot : kSlots) {
+        for (const gltf::SurfaceInput& row : gltf::kSurfaceInputs) {
+            const Slot slot{row.mtlx.input, row.mtlx.type, row.role, row.color};
             const gltf::RoleSource src = gltf::role_source(m_, slot.role);
             const auto node = src.output ? read(*src.output, *src.channel, slot) : std::nullopt;
             const std::string head = "    <input name=\"" + std::string(slot.input) + "\" type=\"" + slot.type + "\" ";

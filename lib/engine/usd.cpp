@@ -19,12 +19,6 @@ struct Slot {
     Role role;
     bool color;
 };
-constexpr Slot kSlots[] = {
-    {"diffuseColor", "color3f", Role::albedo, true},    {"opacity", "float", Role::opacity, false},
-    {"metallic", "float", Role::metalness, false},      {"roughness", "float", Role::roughness, false},
-    {"occlusion", "float", Role::occlusion, false},     {"normal", "normal3f", Role::normal, false},
-    {"emissiveColor", "color3f", Role::emissive, true},
-};
 
 // USD string and asset literals: '"' and '\' escaped; '@' cannot be escaped in an @asset@ path.
 std::string usd_string(const std::string& s) {
@@ -44,7 +38,8 @@ public:
     std::string layer() {
         std::set<std::string> connected;  // UsdPreviewSurface inputs read from a texture
         std::string s = "    def Shader \"Surface\"\n    {\n        uniform token info:id = \"UsdPreviewSurface\"\n";
-        for (const Slot& slot : kSlots) {
+        for (const gltf::SurfaceInput& row : gltf::kSurfaceInputs) {
+            const Slot slot{row.usd.input, row.usd.type, row.role, row.color};
             const gltf::RoleSource src = gltf::role_source(m_, slot.role);
             const std::string head = "        " + std::string(slot.type) + " inputs:" + slot.input;
             std::string out, tex;
