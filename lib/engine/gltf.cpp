@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 #include <numbers>
+#include <set>
 #include <stdexcept>
 
 #include "core/files.hpp"
@@ -14,6 +15,7 @@
 #include "core/spool.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
+#include "preset/engine_slots.hpp"
 
 namespace mf::gltf {
 namespace fs = std::filesystem;
@@ -169,56 +171,51 @@ bool material_gltf(const manifest::Material& m, const std::string& gltf_file, co
         doc["textures"].push_back({{"sampler", 0}, {"source", doc["images"].size() - 1}});
         return doc["textures"].size() - 1;
     };
+    // Each slot of the glTF's table (preset/engine_slots.cpp) names the texture that binds it,
+    // outputs in the manifest's order: an ORM texture serves two slots.
+    const EngineMaterial& e = *engine_material(MaterialFileKind::gltf);
     json mat = {{"name", m.name}};
     json pbr = json::object();
-    bool base_color = false, mr = false;
+    std::set<std::string_view> bound;
     for (const manifest::Output& o : m.outputs) {
         if (o.format != "png") {
             error = o.file + ": glTF textures are PNG or JPEG, not " + o.format;
             return false;
         }
-        if (holds(o, "RGB", Role::albedo) && o.srgb) {
-            pbr["baseColorTexture"] = {{"index", texture_of(o)}};
-            base_color = true;
+        for (const EngineSlot& s : e.slots) {
+            const Role role = s.reads.front().role;
+            // A slot named only where the set has a map: a constant has nothing to reference.
+            if (!s.binds(o.channels, o.srgb) || (s.map_only && has_constant(m, role))) continue;
+            if (s.reads_role(Role::normal) && o.normal_convention && *o.normal_convention != e.normal) {
+                error = o.file + ": glTF normal textures are " + std::string(convention_name(e.normal)) +
+                        "; this one is " + std::string(convention_name(*o.normal_convention)) +
+                        " (--normal-convention)";
+                return false;
+            }
+            (s.group.empty() ? mat : pbr[std::string(s.group)])[std::string(s.slot)] = {{"index", texture_of(o)}};
+            bound.insert(s.slot);
             using manifest::AlphaMode;
-            if (holds(o, "A", Role::opacity) && m.alpha_mode && *m.alpha_mode != AlphaMode::opaque) {
+            if (s.reads_role(Role::opacity) && holds(o, "A", Role::opacity) && m.alpha_mode &&
+                *m.alpha_mode != AlphaMode::opaque) {
                 mat["alphaMode"] = *m.alpha_mode == AlphaMode::mask ? "MASK" : "BLEND";
                 if (*m.alpha_mode == AlphaMode::mask) mat["alphaCutoff"] = m.alpha_cutoff;
                 mat["doubleSided"] = true;  // seen through, the far side shows
             }
-        }
-        if (holds(o, "G", Role::roughness) && holds(o, "B", Role::metalness) && !o.srgb) {
-            pbr["metallicRoughnessTexture"] = {{"index", texture_of(o)}};
-            mr = true;
-        }
-        // An occlusion the set has no map of is a constant 1: nothing to reference.
-        if (holds(o, "R", Role::occlusion) && !o.srgb && !has_constant(m, Role::occlusion))
-            mat["occlusionTexture"] = {{"index", texture_of(o)}};
-        if (holds(o, "RGB", Role::normal)) {
-            if (o.normal_convention && *o.normal_convention != NormalConvention::gl) {
-                error = o.file + ": glTF normal textures are +Y (gl); this one is " +
-                        std::string(convention_name(*o.normal_convention)) + " (--normal-convention)";
-                return false;
-            }
-            mat["normalTexture"] = {{"index", texture_of(o)}};
-        }
-        if (holds(o, "RGB", Role::emissive) && o.srgb) {
-            mat["emissiveTexture"] = {{"index", texture_of(o)}};
-            mat["emissiveFactor"] = {1.0, 1.0, 1.0};  // the default 0 would switch the texture off
-            if (m.emissive_strength > 1.f) {
-                mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", m.emissive_strength}};
-                doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
+            if (role == Role::emissive) {
+                mat["emissiveFactor"] = {1.0, 1.0, 1.0};  // the default 0 would switch the texture off
+                if (m.emissive_strength > 1.f) {
+                    mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", m.emissive_strength}};
+                    doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
+                }
             }
         }
     }
-    if (!base_color || !mr) {
-        error = m.name + ": no " +
-                std::string(base_color ? "metallicRoughness (G roughness, B metalness)"
-                                       : "base color (sRGB RGB albedo)") +
-                " output to reference";
-        return false;
-    }
-    mat["pbrMetallicRoughness"] = std::move(pbr);
+    for (const EngineSlot& s : e.slots)
+        if (s.reads.front().required && !bound.count(s.slot)) {
+            error = m.name + ": no output for the glTF's " + std::string(s.slot) + " to reference";
+            return false;
+        }
+    for (auto& [group, slots] : pbr.items()) mat[group] = std::move(slots);
     doc["materials"] = json::array({std::move(mat)});
     json primitive = add_sphere(doc, bin_uri);
     primitive["material"] = 0;

@@ -18,6 +18,7 @@
 #include "core/version.hpp"
 #include "engine/engine.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace mf::engine {
@@ -70,33 +71,24 @@ def parent_material(textures):
     tools = unreal.AssetToolsHelpers.get_asset_tools()
     material = tools.create_asset(name, folder, unreal.Material, unreal.MaterialFactoryNew())
     mel = unreal.MaterialEditingLibrary
-    samplers = {
-        "BaseColor": unreal.MaterialSamplerType.SAMPLERTYPE_COLOR,
-        "ORM": unreal.MaterialSamplerType.SAMPLERTYPE_MASKS,
-        "Normal": unreal.MaterialSamplerType.SAMPLERTYPE_NORMAL,
-        "Emissive": unreal.MaterialSamplerType.SAMPLERTYPE_COLOR,
-    }
-    nodes = {}
-    for row, (parameter, sampler) in enumerate(samplers.items()):
+    for row, (parameter, sampler, feeds) in enumerate(PARAMETERS):
         node = mel.create_material_expression(material, unreal.MaterialExpressionTextureSampleParameter2D, -600, row * 300)
         node.set_editor_property("parameter_name", parameter)
-        node.set_editor_property("sampler_type", sampler)
+        node.set_editor_property("sampler_type", getattr(unreal.MaterialSamplerType, sampler))
         node.set_editor_property("texture", texture_for(textures, parameter))
-        nodes[parameter] = node
-    mel.connect_material_property(nodes["BaseColor"], "RGB", unreal.MaterialProperty.MP_BASE_COLOR)
-    mel.connect_material_property(nodes["BaseColor"], "A", unreal.MaterialProperty.MP_OPACITY_MASK)
-    mel.connect_material_property(nodes["BaseColor"], "A", unreal.MaterialProperty.MP_OPACITY)
-    mel.connect_material_property(nodes["ORM"], "R", unreal.MaterialProperty.MP_AMBIENT_OCCLUSION)
-    mel.connect_material_property(nodes["ORM"], "G", unreal.MaterialProperty.MP_ROUGHNESS)
-    mel.connect_material_property(nodes["ORM"], "B", unreal.MaterialProperty.MP_METALLIC)
-    mel.connect_material_property(nodes["Normal"], "RGB", unreal.MaterialProperty.MP_NORMAL)
-    strength = mel.create_material_expression(material, unreal.MaterialExpressionScalarParameter, -600, 1200)
-    strength.set_editor_property("parameter_name", "EmissiveStrength")
-    strength.set_editor_property("default_value", 1.0)
-    emissive = mel.create_material_expression(material, unreal.MaterialExpressionMultiply, -250, 900)
-    mel.connect_material_expressions(nodes["Emissive"], "RGB", emissive, "A")
-    mel.connect_material_expressions(strength, "", emissive, "B")
-    mel.connect_material_property(emissive, "", unreal.MaterialProperty.MP_EMISSIVE_COLOR)
+        for output, prop in feeds:
+            if prop != "MP_EMISSIVE_COLOR":
+                mel.connect_material_property(node, output, getattr(unreal.MaterialProperty, prop))
+                continue
+            # Emissive colour is the texture times EmissiveStrength (HDR emission, normalized).
+            strength = mel.create_material_expression(material, unreal.MaterialExpressionScalarParameter, -600,
+                                                      len(PARAMETERS) * 300)
+            strength.set_editor_property("parameter_name", "EmissiveStrength")
+            strength.set_editor_property("default_value", 1.0)
+            emissive = mel.create_material_expression(material, unreal.MaterialExpressionMultiply, -250, row * 300)
+            mel.connect_material_expressions(node, output, emissive, "A")
+            mel.connect_material_expressions(strength, "", emissive, "B")
+            mel.connect_material_property(emissive, "", unreal.MaterialProperty.MP_EMISSIVE_COLOR)
     mel.recompile_material(material)
     unreal.EditorAssetLibrary.save_loaded_asset(material)
     return material
@@ -114,7 +106,7 @@ def material_instance(textures, parent):
     mel = unreal.MaterialEditingLibrary
     mel.set_material_instance_parent(instance, parent)
     # Every parameter, whatever the parent's defaults are (another set's, if it made the parent).
-    for parameter in ("BaseColor", "ORM", "Normal", "Emissive"):
+    for parameter, _, _ in PARAMETERS:
         mel.set_material_instance_texture_parameter_value(instance, parameter, texture_for(textures, parameter))
     mel.set_material_instance_scalar_parameter_value(instance, "EmissiveStrength", EMISSIVE_STRENGTH)
     overrides = instance.get_editor_property("base_property_overrides")
@@ -167,12 +159,26 @@ std::vector<File> unreal_files(const EngineMaterial& e, const manifest::Material
         emissive = emissive || b.slot->reads_role(Role::emissive);
     }
     // The engine's neutral texture of each slot that has one (the parent reads it where a set has
-    // no map).
-    std::string defaults;
-    for (const EngineSlot& s : e.slots)
+    // no map), and the parent's parameters: each slot with a sampler, the inputs its channels feed.
+    std::string defaults, parameters;
+    for (const EngineSlot& s : e.slots) {
         if (!s.fallback.empty())
             defaults += (defaults.empty() ? "" : ", ") + string_literal(std::string(s.slot)) + ": " +
                         string_literal(std::string(s.fallback));
+        if (s.sampler.empty()) continue;
+        std::string feeds;
+        for (const SlotRead& r : s.reads) {
+            std::string_view inputs = r.input;
+            while (!inputs.empty()) {
+                const size_t end = std::min(inputs.find(' '), inputs.size());
+                feeds += std::string(feeds.empty() ? "" : ", ") + "(" + string_literal(std::string(r.key)) + ", " +
+                         string_literal(std::string(inputs.substr(0, end))) + ")";
+                inputs.remove_prefix(std::min(end + 1, inputs.size()));
+            }
+        }
+        parameters += "    (" + string_literal(std::string(s.slot)) + ", " + string_literal(std::string(s.sampler)) +
+                      ", [" + feeds + "]),\n";
+    }
     using manifest::AlphaMode;
     const char* blend = !m.alpha_mode || *m.alpha_mode == AlphaMode::opaque ? "BLEND_OPAQUE"
                         : *m.alpha_mode == AlphaMode::mask                  ? "BLEND_MASKED"
@@ -192,7 +198,10 @@ std::vector<File> unreal_files(const EngineMaterial& e, const manifest::Material
                        "\nEMISSIVE_STRENGTH = " + scene_number(emissive ? m.emissive_strength : 0.f) +
                        "\n# The engine's own neutral textures for a slot this set has no map for.\n"
                        "ENGINE_DEFAULTS = {" +
-                       defaults + "}\n" + kBody;
+                       defaults +
+                       "}\n# The parent's texture parameters: (parameter, sampler type, [(channel, material input)])\n"
+                       "PARAMETERS = [\n" +
+                       parameters + "]\n" + kBody;
     return {{script.generic_string(), "py", std::move(text)}};
 }
 

@@ -5,7 +5,6 @@
 #include <OpenImageIO/oiioversion.h>
 
 #include <dlfcn.h>
-#include <sys/stat.h>
 
 #include <cstdio>  // before jpeglib.h, which uses FILE
 
@@ -13,9 +12,9 @@
 #include <webp/decode.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <map>
 #include <mutex>
 #include <new>
@@ -54,8 +53,24 @@ auto guarded(const InputFile& in, std::string& error, F&& f) -> decltype(f()) {
     return {};
 }
 
-// What a file's header says, remembered for the process by the file's identity and change
-// times: a set's plan reads each map's header once per preset and the checks read it again, and
+// The order of every read, decided here once: the direct readers first (image/direct.hpp); a
+// file one of them refuses (damaged, lying about its size) fails with its reason and goes no
+// further; one they leave (another format, a kind they do not read) goes to the OpenImageIO
+// module, guarded. `direct(refusal)` and `module(table)` say whether they read it.
+template <class Direct, class Module>
+bool direct_then_module(const InputFile& in, std::string& error, Direct&& direct, Module&& module) {
+    std::string refusal;
+    if (direct(refusal)) return true;
+    if (!refusal.empty()) {
+        error = in.display + ": " + refusal;
+        return false;
+    }
+    const auto* t = table(error, in.display + ": ");
+    return t && guarded(in, error, [&] { return module(*t); });
+}
+
+// What a file's header says, remembered for the run (ReadScope) by the file's identity and
+// change times: a set's plan reads each map's header once per preset and the checks read it again, and
 // OpenImageIO's JPEG reader entropy-decodes a progressive file whole to open it (52 of the
 // corpus's 91 JPEGs are progressive: an ingest of it for glTF and HDRP opened each JPEG 4.8
 // times, 2.8 with these memos, and took 12 % less CPU). A file changed since is another key;
@@ -63,8 +78,13 @@ auto guarded(const InputFile& in, std::string& error, F&& f) -> decltype(f()) {
 //
 // The key of a file on disk: its settled identity (base/file_identity.hpp, the rule the result
 // cache keeps digests by), empty for what is not one and for a file changed in the last seconds.
+std::atomic<int>& open_scopes() {
+    static std::atomic<int> n{0};
+    return n;
+}
+
 std::string file_key(const InputFile& in) {
-    if (in.bytes) return {};
+    if (in.bytes || open_scopes().load() == 0) return {};
     const std::string id = settled_identity(in.path);
     return id.empty() ? id : id + ':' + in.display + '\n' + in.path.string();
 }
@@ -91,6 +111,11 @@ public:
         return value;
     }
 
+    void clear() {
+        std::lock_guard lock(mutex_);
+        entries_.clear();
+    }
+
 private:
     static constexpr size_t kMaxEntries = 1u << 16;
     std::mutex mutex_;
@@ -111,20 +136,28 @@ FileMemo<StatedColorSpace>& stated_memo() {
 }
 }  // namespace
 
+ReadScope::ReadScope() { ++open_scopes(); }
+ReadScope::ReadScope(const ReadScope&) { ++open_scopes(); }
+ReadScope::~ReadScope() {
+    if (--open_scopes() > 0) return;
+    header_memo().clear();
+    stated_memo().clear();
+}
+
 std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
     const std::string key = file_key(in);
     HeaderRead r = header_memo().get(key, [&] {
         HeaderRead h;
         std::optional<StatedColorSpace> stated;  // from the same open, where it is stated_color_space's
-        ImageInfo direct_info;
-        std::string refusal;
-        if (direct::read_info(in, direct_info, stated, refusal)) {
-            h.info = std::move(direct_info);
-        } else if (!refusal.empty()) {
-            h.error = in.display + ": " + refusal;
-        } else if (const auto* t = table(h.error, in.display + ": ")) {
-            h.info = guarded(in, h.error, [&] { return t->read_info(in, h.error, stated); });
-        }
+        ImageInfo info;
+        if (direct_then_module(
+                in, h.error, [&](std::string& refusal) { return direct::read_info(in, info, stated, refusal); },
+                [&](const oiio_module::Table& t) {
+                    auto read = t.read_info(in, h.error, stated);
+                    if (read) info = std::move(*read);
+                    return read.has_value();
+                }))
+            h.info = std::move(info);
         // The colour-tag check then needs no open of its own (a JPEG's costs a decode).
         if (stated) stated_memo().put(key, *stated);
         return h;
@@ -135,14 +168,9 @@ std::optional<ImageInfo> read_info(const InputFile& in, std::string& error) {
 
 // Decodes `in`: directly where image/direct.hpp reads it, else through the module.
 bool read_decoded(const InputFile& in, Decoded& out, ImageInfo& info, std::string& error, bool keep_codes) {
-    std::string refusal;
-    if (direct::read_image(in, out, info, keep_codes, refusal)) return true;
-    if (!refusal.empty()) {
-        error = in.display + ": " + refusal;
-        return false;
-    }
-    const auto* t = table(error, in.display + ": ");
-    const bool ok = t && guarded(in, error, [&] { return t->read_image(in, out, info, error, keep_codes); });
+    const bool ok = direct_then_module(
+        in, error, [&](std::string& refusal) { return direct::read_image(in, out, info, keep_codes, refusal); },
+        [&](const oiio_module::Table& t) { return t.read_image(in, out, info, error, keep_codes); });
     if (!ok) out = Decoded{};
     return ok;
 }
@@ -166,14 +194,9 @@ bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string
 bool read_bands(const InputFile& in, int band_rows, ImageInfo& info, std::string& error,
                 const std::function<void(int, int, const float*)>& fn,
                 const std::function<void(int, int, const uint8_t*)>& codes) {
-    std::string refusal;
-    if (direct::read_bands(in, band_rows, info, refusal, fn, codes)) return true;
-    if (!refusal.empty()) {
-        error = in.display + ": " + refusal;
-        return false;
-    }
-    const auto* t = table(error, in.display + ": ");
-    return t && guarded(in, error, [&] { return t->read_bands(in, band_rows, info, error, fn); });
+    return direct_then_module(
+        in, error, [&](std::string& refusal) { return direct::read_bands(in, band_rows, info, refusal, fn, codes); },
+        [&](const oiio_module::Table& t) { return t.read_bands(in, band_rows, info, error, fn); });
 }
 
 // PNG is matforge's own writer (png_writer.hpp says why); every other format OpenImageIO's.
@@ -204,21 +227,24 @@ bool encode_image(const Image8& img, const EncodeOptions& opt, std::vector<unsig
 
 StatedColorSpace stated_color_space(const InputFile& in) {
     return stated_memo().get(file_key(in), [&] {
-        // A JPEG read directly is stated as OpenImageIO states every JPEG, without the module.
-        ImageInfo info;
-        std::optional<StatedColorSpace> stated;
-        std::string refusal;
-        if (direct::read_info(in, info, stated, refusal) && stated) return *stated;
-        std::string error;
-        const auto* t = table(error);
-        if (!t) return StatedColorSpace{};
+        // A JPEG read directly is stated as OpenImageIO states every JPEG, without the module; a
+        // reader that throws on hostile bytes states nothing (decoding the file reports it).
         StatedColorSpace s;
-        // A reader that throws on hostile bytes states nothing; decoding the file reports it.
-        const bool ok = guarded(in, error, [&] {
-            s = t->stated_color_space(in);
-            return true;
-        });
-        return ok ? s : StatedColorSpace{};
+        std::string error;
+        direct_then_module(
+            in, error,
+            [&](std::string& refusal) {
+                ImageInfo info;
+                std::optional<StatedColorSpace> stated;
+                if (!direct::read_info(in, info, stated, refusal) || !stated) return false;
+                s = *stated;
+                return true;
+            },
+            [&](const oiio_module::Table& t) {
+                s = t.stated_color_space(in);
+                return true;
+            });
+        return s;
     });
 }
 

@@ -94,6 +94,20 @@ struct ImageInfo {
 inline constexpr int64_t kMaxPixels = int64_t{kMaxImageSide} * kMaxImageSide;
 inline constexpr int kMaxChannels = 8;
 
+// A run's read memo. While a ReadScope is alive (process/batch.hpp's Batch holds one for its
+// run), what a file's header says (read_info, stated_color_space) is remembered by the file's
+// settled identity (base/file_identity.hpp: the rule the result cache keeps digests by; a file
+// changed in the last seconds is not remembered); when the last scope ends, the memo is dropped.
+// So a process that runs batch after batch (the Python bindings) holds nothing between runs,
+// and nothing is remembered outside one. Copies count as scopes of their own.
+class ReadScope {
+public:
+    ReadScope();
+    ReadScope(const ReadScope&);
+    ReadScope& operator=(const ReadScope&) = default;  // both are counted already
+    ~ReadScope();
+};
+
 // Header only (cheap). Returns nullopt and sets `error` when the file is not a readable image.
 std::optional<ImageInfo> read_info(const InputFile& in, std::string& error);
 

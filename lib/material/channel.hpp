@@ -13,6 +13,7 @@ struct Channel {
     Kind kind = Kind::unused;
     Role role = Role::albedo;  // kind == role (and smoothness: roughness, stored as 1 - roughness)
     float value = 0.f;         // kind == constant
+    bool operator==(const Channel&) const = default;
 };
 
 }  // namespace mf

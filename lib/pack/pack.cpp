@@ -337,12 +337,9 @@ Size output_size(const OutputSpec& o, const Planes& planes, const Preset& preset
 namespace {
 
 // Channel k of the default color of a missing RGB role, in the output's encoding.
-float default_rgb(const ChannelSpec& c, int k, const OutputSpec& o, const Preset& preset, const ColorContext& color) {
-    const std::array<float, 3> def = c.role == Role::normal   ? std::array<float, 3>{0.5f, 0.5f, 1.f}
-                                     : c.role == Role::albedo ? preset.default_albedo
-                                                              : std::array<float, 3>{0.f, 0.f, 0.f};
-    float v = def[static_cast<size_t>(k)];
-    if (o.srgb && c.role != Role::normal) {
+float default_rgb(const PackSpec::Written& w, int k, bool srgb, const ColorContext& color) {
+    float v = w.missing[static_cast<size_t>(k)];
+    if (srgb && w.channel.role != Role::normal) {
         float rgb[3] = {v, v, v};
         color.convert(rgb, 1, ColorEncoding::linear, ColorEncoding::srgb);
         v = rgb[0];
@@ -351,14 +348,13 @@ float default_rgb(const ChannelSpec& c, int k, const OutputSpec& o, const Preset
 }
 
 // The value of a missing scalar role (inverted for a smoothness channel).
-float default_scalar(const ChannelSpec& c, const Preset& preset) {
-    const float v = preset.default_value(c.role);
-    return c.kind == ChannelSpec::Kind::smoothness ? 1.f - v : v;
+float default_scalar(const PackSpec::Written& w) {
+    return w.channel.kind == Channel::Kind::smoothness ? 1.f - w.missing[0] : w.missing[0];
 }
 
-int channel_count(const std::vector<ChannelSpec>& channels) {
+int channel_count(const PackSpec& spec) {
     int n = 0;
-    for (const auto& c : channels) n += c.key == "RGB" ? 3 : 1;
+    for (const auto& w : spec.channels) n += w.channel.key == "RGB" ? 3 : 1;
     return n;
 }
 
@@ -455,13 +451,11 @@ void assemble_codes(Image8& out, const std::vector<CodeSource>& sources) {
 // float walk's result gives: constants are quantized once, codes copied (inverted as 255 - k),
 // normals decoded and re-encoded through the same block loops.
 template <class T>
-BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
-                        const ColorContext& color) {
+BasicImage<T> pack_walk(const PackSpec& spec, const Planes& planes, const ColorContext& color) {
     constexpr bool kCodes = std::is_same_v<T, uint8_t>;
-    const auto channels = effective_channels(o, planes);
-    const int nch = channel_count(channels);
-    BasicImage<T> out(size.width, size.height, nch);
-    const size_t n = static_cast<size_t>(size.width) * size.height;
+    const int nch = channel_count(spec);
+    BasicImage<T> out(spec.size.width, spec.size.height, nch);
+    const size_t n = static_cast<size_t>(spec.size.width) * spec.size.height;
     // Codes: each output channel's source is recorded, and the pixels are then assembled in one
     // pass (assemble_codes), not one strided pass over the whole output per channel.
     std::vector<CodeSource> sources(static_cast<size_t>(nch));
@@ -495,7 +489,8 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
         }
     };
     int dst = 0;
-    for (const auto& c : channels) {
+    for (const auto& w : spec.channels) {
+        const Channel& c = w.channel;
         if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused) {
             fill(dst++, c.kind == ChannelSpec::Kind::constant ? c.value : 0.f);
             continue;
@@ -503,15 +498,15 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
         const auto it = planes.find(c.role);
         if (c.key != "RGB") {
             BasicImage<T> scratch;
-            if (it == planes.end()) fill(dst++, default_scalar(c, preset));
+            if (it == planes.end()) fill(dst++, default_scalar(w));
             else copy(dst++, view(c.role, it->second, scratch), 0, c.kind == ChannelSpec::Kind::smoothness);
             continue;
         }
         if (it == planes.end()) {  // default color or flat normal
-            for (int k = 0; k < 3; ++k) fill(dst + k, default_rgb(c, k, o, preset, color));
+            for (int k = 0; k < 3; ++k) fill(dst + k, default_rgb(w, k, spec.srgb, color));
         } else if (c.role == Role::normal) {
             const RolePlane& p = it->second;
-            const float to = ysign_of(preset.normal_convention);
+            const float to = ysign_of(spec.normal_to.value_or(NormalConvention::gl));
             const std::array<float, 256>& unorm = unorm8_values();
             BasicImage<T> scratch;
             const BasicImage<T>& stored = view(c.role, p, scratch);  // codes, or unit GL vectors
@@ -548,7 +543,7 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
         } else {
             BasicImage<T> scratch;
             const BasicImage<T>* rgb = &view(c.role, it->second, scratch);
-            const ColorEncoding want = o.srgb ? ColorEncoding::srgb : ColorEncoding::linear;
+            const ColorEncoding want = spec.srgb ? ColorEncoding::srgb : ColorEncoding::linear;
             if constexpr (!kCodes) {  // codes are already in the output's encoding (pack_output8)
                 if (it->second.encoding != want) {
                     if (rgb != &scratch) scratch = *rgb;
@@ -566,55 +561,54 @@ BasicImage<T> pack_walk(const OutputSpec& o, const Planes& planes, const Preset&
 
 }  // namespace
 
-Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
-                  const ColorContext& color) {
-    return pack_walk<float>(o, planes, preset, size, color);
+PackSpec pack_spec(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size) {
+    PackSpec spec{size, o.srgb, o.bit_depth, preset.format, std::nullopt, {}, {}};
+    for (const auto& c : effective_channels(o, planes)) {
+        PackSpec::Written w{static_cast<const Channel&>(c), {}};
+        const bool reads = c.kind == Channel::Kind::role || c.kind == Channel::Kind::smoothness;
+        if (reads && c.role == Role::normal) spec.normal_to = preset.normal_convention;
+        if (reads && planes.count(c.role) &&
+            std::find(spec.roles.begin(), spec.roles.end(), c.role) == spec.roles.end())
+            spec.roles.push_back(c.role);
+        if (reads && !planes.count(c.role)) {
+            if (c.key != "RGB") w.missing[0] = preset.default_value(c.role);
+            else if (c.role == Role::normal) w.missing = {0.5f, 0.5f, 1.f};
+            else if (c.role == Role::albedo) w.missing = preset.default_albedo;
+        }
+        spec.channels.push_back(std::move(w));
+    }
+    return spec;
 }
 
-std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
-                                   const ColorContext& color) {
-    if (o.bit_depth != 8 || preset.format == FileFormat::exr) return std::nullopt;  // 8-bit integer formats only
-    for (const auto& c : effective_channels(o, planes)) {
+Image pack_output(const PackSpec& spec, const Planes& planes, const ColorContext& color) {
+    return pack_walk<float>(spec, planes, color);
+}
+
+std::optional<Image8> pack_output8(const PackSpec& spec, const Planes& planes, const ColorContext& color) {
+    if (spec.bit_depth != 8 || spec.format == FileFormat::exr) return std::nullopt;  // 8-bit integer formats only
+    for (const auto& w : spec.channels) {
+        const Channel& c = w.channel;
         const auto it = planes.find(c.role);
         if (c.kind == ChannelSpec::Kind::constant || c.kind == ChannelSpec::Kind::unused || it == planes.end())
             continue;
         const RolePlane& p = it->second;
-        if (!p.is_codes() || p.width() != size.width || p.height() != size.height) return std::nullopt;
+        if (!p.is_codes() || p.width() != spec.size.width || p.height() != spec.size.height) return std::nullopt;
         // Color codes are sRGB-encoded: only an sRGB output takes them as they are.
         if (c.key == "RGB" && c.role != Role::normal &&
-            p.encoding != (o.srgb ? ColorEncoding::srgb : ColorEncoding::linear))
+            p.encoding != (spec.srgb ? ColorEncoding::srgb : ColorEncoding::linear))
             return std::nullopt;
     }
-    return pack_walk<uint8_t>(o, planes, preset, size, color);
+    return pack_walk<uint8_t>(spec, planes, color);
 }
 
-std::string pack_recipe(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size) {
-    auto exact = [](float v) { return std::to_string(std::bit_cast<uint32_t>(v)); };  // two values, two texts
-    // Everything pack_walk and pack_output8 read: the size, the output's encoding, each written
-    // channel, the defaults of missing roles, and the normal convention written.
-    std::string r = std::to_string(size.width) + 'x' + std::to_string(size.height) + ' ' +
-                    (o.srgb ? "srgb" : "linear") + ' ' + std::to_string(o.bit_depth) + ' ' +
-                    std::string(word(preset.format));
-    for (const auto& c : effective_channels(o, planes)) {
-        r += '|' + c.key + ' ' + std::to_string(static_cast<int>(c.kind)) + ' ' + std::string(role_name(c.role)) + ' ' +
-             exact(c.value);
-        if (c.kind != ChannelSpec::Kind::role && c.kind != ChannelSpec::Kind::smoothness) continue;
-        if (c.role == Role::normal) r += std::string(" to ") + std::string(convention_name(preset.normal_convention));
-        if (planes.count(c.role)) continue;
-        if (c.role == Role::albedo)
-            for (float v : preset.default_albedo) r += ' ' + exact(v);
-        else r += " default " + exact(preset.default_value(c.role));
-    }
-    return r;
+Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
+                  const ColorContext& color) {
+    return pack_output(pack_spec(o, planes, preset, size), planes, color);
 }
 
-std::vector<Role> plane_roles(const OutputSpec& o, const Planes& planes) {
-    std::vector<Role> roles;
-    for (const auto& c : effective_channels(o, planes))
-        if ((c.kind == ChannelSpec::Kind::role || c.kind == ChannelSpec::Kind::smoothness) && planes.count(c.role) &&
-            std::find(roles.begin(), roles.end(), c.role) == roles.end())
-            roles.push_back(c.role);
-    return roles;
+std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
+                                   const ColorContext& color) {
+    return pack_output8(pack_spec(o, planes, preset, size), planes, color);
 }
 
 bool same_plane(const RolePlane& a, const RolePlane& b) {

@@ -6,9 +6,11 @@
 //  - normal: 3 channels, unit vectors in the OpenGL (+Y) tangent convention, components in [-1,1];
 //  - every other role: 1 channel of data in [0,1] (values outside are kept and clamped on output).
 #pragma once
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "color/color.hpp"
 #include "image/image.hpp"
@@ -71,6 +73,7 @@ void fit_plane(Role role, RolePlane& plane, int w, int h, const ColorContext& co
 // max_size (0 = no limit); constant_size² when no role has a map.
 struct Size {
     int width = 0, height = 0;
+    bool operator==(const Size&) const = default;
 };
 Size output_size(const OutputSpec& o, const Planes& planes, const Preset& preset);
 
@@ -80,26 +83,45 @@ bool output_needed(const OutputSpec& o, const Planes& planes);
 // The channels actually written (optional channels dropped when their role has no map).
 std::vector<ChannelSpec> effective_channels(const OutputSpec& o, const Planes& planes);
 
-// Packs `planes` into one output image in its file encoding ([0,1], sRGB where the output's
-// color roles are sRGB). Planes must already be at `size` (fit_plane). Missing roles take the
-// preset's default value.
-Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
-                  const ColorContext& color);
+// Everything packing an output reads besides its planes' pixels, as a value: pack_spec takes it
+// from the output, the planes present and the preset, and pack_output and pack_output8 read
+// nothing else. So two outputs of equal specs over equal planes (same_plane for each of `roles`)
+// pack equal images, whatever their names and presets, and may share one encoding
+// (process/share.hpp). The ColorContext is the caller's to compare.
+struct PackSpec {
+    struct Written {
+        Channel channel;  // as written: optional channels of missing roles are dropped
+        // A role without a plane: its default in linear values (albedo's three; a scalar's in
+        // [0], before a smoothness channel's inversion; a normal's flat 0.5, 0.5, 1); zeros when
+        // the role has a plane.
+        std::array<float, 3> missing{};
+        bool operator==(const Written&) const = default;
+    };
+    Size size;
+    bool srgb = false;  // the output's color channels are sRGB-encoded
+    int bit_depth = 8;
+    FileFormat format = FileFormat::png;
+    std::optional<NormalConvention> normal_to;  // the convention a normal channel is written in
+    std::vector<Written> channels;
+    std::vector<Role> roles;  // the roles whose planes it reads, in channel order
+    bool operator==(const PackSpec&) const = default;
+};
+PackSpec pack_spec(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size);
 
+// Packs `planes` into one output image in its file encoding ([0,1], sRGB where the output's
+// color roles are sRGB). Planes must already be at `spec.size` (fit_plane).
+Image pack_output(const PackSpec& spec, const Planes& planes, const ColorContext& color);
 // The same output as 8-bit codes made straight from codes planes, with no float image: what
 // quantizing pack_output's result gives, code for code (tests/pack check every code). nullopt
 // when the output is not 8-bit integer (16-bit, EXR), a plane it reads is float, or a color
 // plane's encoding is not the output's (then use pack_output).
+std::optional<Image8> pack_output8(const PackSpec& spec, const Planes& planes, const ColorContext& color);
+// The same, the spec taken from `o` (pack_spec).
+Image pack_output(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
+                  const ColorContext& color);
 std::optional<Image8> pack_output8(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size,
                                    const ColorContext& color);
 
-// What pack_output and pack_output8 read of an output besides the pixels of its planes, as
-// text: two outputs of equal recipes over equal planes (same_plane for each of plane_roles) pack
-// equal images, whatever their names, and may share one encoding (process/ingest's SetShare).
-// The ColorContext is the caller's to compare.
-std::string pack_recipe(const OutputSpec& o, const Planes& planes, const Preset& preset, Size size);
-// The roles whose planes an output reads.
-std::vector<Role> plane_roles(const OutputSpec& o, const Planes& planes);
 // Whether two planes hold the same samples in the same form.
 bool same_plane(const RolePlane& a, const RolePlane& b);
 

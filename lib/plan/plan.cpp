@@ -103,34 +103,42 @@ std::optional<bool> is_colour_image(const InputFile& in, const rules::Thresholds
 
 }  // namespace
 
-bool PlanShare::read(const InputFile& in, const std::string& file, DecodedMap& out, std::string& error) {
-    bool taken = false;
+namespace {
+// A map read from its file, for one plan or a share's readers.
+bool read_map(const InputFile& in, SharedMap& out, std::string& error) {
+    auto m = std::make_shared<DecodedMap>();
+    const bool ok = read_image(in, m->img, m->info, error);
+    out = ok ? std::move(m) : nullptr;
+    return ok;
+}
+}  // namespace
+
+bool PlanShare::read(const InputFile& in, const std::string& file, SharedMap& out, std::string& error) {
+    auto decode = [&] { return read_map(in, out, error); };
     {
         std::lock_guard lock(mutex_);
         const auto it = entries_.find(file);
-        if (it != entries_.end() && !it->second.taken) {
-            if (!it->second.map) {
-                error = it->second.error;
+        if (it != entries_.end() && !it->second.gone) {
+            if (it->second.error) {
+                error = *it->second.error;
                 return false;
             }
-            // A copy (the plan frees or moves its maps as it goes), or the kept map itself for
-            // the last plan that reads it (one read more, as a file two roles read, decodes again).
-            if (++it->second.reads < plans_) {
-                out = *it->second.map;
-            } else {
-                out = std::move(*it->second.map);
+            out = it->second.map;
+            // The last plan that reads it: the share lets go (one read more, as a file two roles
+            // read, decodes again).
+            if (++it->second.reads >= plans_) {
                 it->second.map.reset();
-                it->second.taken = true;
+                it->second.gone = true;
             }
             return true;
         }
-        if (it != entries_.end()) taken = true;
+        if (it != entries_.end()) return decode();
     }
-    if (taken) return read_image(in, out.img, out.info, error);
     Entry e;
-    const bool ok = read_image(in, out.img, out.info, error);
+    const bool ok = decode();
     if (ok && plans_ > 1) e.map = out;
     else if (!ok) e.error = error;
+    e.gone = ok && plans_ <= 1;
     std::lock_guard lock(mutex_);
     entries_.emplace(file, std::move(e));
     return ok;
@@ -183,7 +191,7 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
     }
     struct Outcome {
         const Candidate* used = nullptr;
-        DecodedMap decoded;
+        SharedMap decoded;
         std::optional<validate::MapInput> map;
         std::vector<std::pair<const Candidate*, std::string>> errors;
     };
@@ -199,13 +207,12 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
                 continue;
             }
             if (mode == PlanMode::decode) {
-                if (share ? share->read(in, c->file, o.decoded, err)
-                          : read_image(in, o.decoded.img, o.decoded.info, err)) {
+                if (share ? share->read(in, c->file, o.decoded, err) : read_map(in, o.decoded, err)) {
                     validate::MapInput m;
                     m.role = role;
                     m.file = in;
                     m.name = c->file;
-                    m.info = o.decoded.info;
+                    m.info = o.decoded->info;
                     m.color_tag = validate::read_color_tag(in);
                     m.name_convention = c->match.normal;
                     o.map = std::move(m);
@@ -548,9 +555,8 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     plan.findings.insert(plan.findings.end(), excluded.begin(), excluded.end());
     plan.findings.insert(plan.findings.end(), src.findings.begin(), src.findings.end());  // NAMES_MERGED, …
     plan.footprint = estimated_bytes(d);
-    // A share keeps a copy of each decoded map for the set's next plan: half as much again.
-    if (opt.mode == PlanMode::decode)
-        plan.lease = std::make_unique<BudgetLease>(opt.budget, opt.share ? plan.footprint / 2 * 3 : plan.footprint);
+    // A share keeps no copy: the set's next plan reads the same decoded maps (SharedMap).
+    if (opt.mode == PlanMode::decode) plan.lease = std::make_unique<BudgetLease>(opt.budget, plan.footprint);
 
     // Sets of 4 Mpixel maps and up decode their maps on two threads, and any set while a core is
     // idle; small ones stay on one otherwise (the batch is already parallel across sets).
@@ -569,7 +575,8 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     vo.material = src.name;
     if (opt.mode == PlanMode::decode) {
         std::map<std::string, const DecodedMap*> by_display;
-        for (const auto& [role, c] : plan.inputs) by_display[files.open(c.file).display] = &plan.decoded.at(c.file);
+        for (const auto& [role, c] : plan.inputs)
+            by_display[files.open(c.file).display] = plan.decoded.at(c.file).get();
         vo.reader = memory_reader(std::move(by_display));
     }
     const validate::SetValidation checked = opt.share ? opt.share->validate(maps, *opt.rules, vo)

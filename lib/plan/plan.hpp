@@ -36,18 +36,21 @@ struct DecodedMap {
     Decoded img;  // 8-bit files stay codes until a step needs floats
     ImageInfo info;
 };
+// A decoded map is never changed once read: the plans of one set (ingest --preset a,b) and the
+// planes made from it read the same pixels.
+using SharedMap = std::shared_ptr<const DecodedMap>;
 
 // What the plans of one set share (ingest --preset a,b: one plan per preset, on one worker, one
 // after another). A file decodes to the same pixels whatever the preset: the first plan that
-// reads a file decodes it and keeps a copy, later plans copy that (or get the same error), and
-// the last of `plans` readers takes the copy itself. The rules judge the same maps under the same
+// reads a file decodes it, later plans get the same map (or the same error), and the share lets
+// go of it when the last of `plans` readers has it. The rules judge the same maps under the same
 // rules config alike: validate_set runs once per distinct (maps, rules) pair. Thread-safe (a plan
 // decodes its maps on up to two threads).
 class PlanShare {
 public:
     explicit PlanShare(int plans) : plans_(plans) {}
-    // As read_image(in, out.img, out.info, error), from the share when `file` was read before.
-    bool read(const InputFile& in, const std::string& file, DecodedMap& out, std::string& error);
+    // As read_image(in, out->img, out->info, error), from the share when `file` was read before.
+    bool read(const InputFile& in, const std::string& file, SharedMap& out, std::string& error);
     // As validate::validate_set(maps, rules, vo), from the share when the same maps (role, file,
     // flags) were validated under the same rules before.
     validate::SetValidation validate(const std::vector<validate::MapInput>& maps, const rules::RuleConfig& rules,
@@ -55,10 +58,10 @@ public:
 
 private:
     struct Entry {
-        std::optional<DecodedMap> map;  // empty when the read failed or the last reader took it
-        int reads = 1;                  // plans that have read it
-        bool taken = false;             // the last reader took the map
-        std::string error;
+        SharedMap map;                     // null when the read failed or the last reader has it
+        int reads = 1;                     // plans that have read it
+        bool gone = false;                 // every plan has read it: a further read decodes anew
+        std::optional<std::string> error;  // why the read failed
     };
     // What validate_set judges a set by: the rules config and each map's role, file and flags.
     struct MapKey {
@@ -97,7 +100,7 @@ struct SetPlan {
     std::string convention;                       // naming family most maps follow
     std::map<Role, Candidate> inputs;             // input role -> the file that was read
     Routes routes;                                // output role -> where its values come from
-    std::map<std::string, DecodedMap> decoded;    // decode mode: by file
+    std::map<std::string, SharedMap> decoded;     // decode mode: by file
     std::optional<manifest::NormalFacts> normal;  // the routed normal map's convention verdict
     int width = 0, height = 0;                    // the set's output size (largest routed map, within max_size)
     std::vector<manifest::Constant> constants;    // generated for roles the outputs need

@@ -1,15 +1,15 @@
-// The texture slots of each engine material a preset's `material_file` names (godot,
+// The texture slots of each engine material a preset's `material_file` names (gltf, godot,
 // unity-hdrp, unity-urp, unreal, d3d11): which role the engine reads from which channel of
 // which slot's texture, whether it samples that texture as sRGB, and what a writer does with a
 // slot the set has a texture for (the property or keywords that turn it on, Unreal's import
 // settings and fallback). The preset check (check_engine_layout, at load) and the writers
 // (lib/engine) read these tables alone: a slot's name is typed once, here, and a preset whose
 // layout an engine's slots cannot read is refused before any set is ingested.
-// (The glTF's slots are glTF 2.0's own: preset/texture_fields.cpp check_gltf_layout.)
 #pragma once
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "material/roles.hpp"
 #include "preset/preset.hpp"
@@ -18,24 +18,33 @@ namespace mf {
 
 // One role an engine reads from a texture slot.
 struct SlotRead {
-    Role role;
-    bool smoothness = false;  // stored as 1 - roughness (role roughness)
-    std::string_view key;     // the channel it reads it from: "RGB", "R", "G", "B", "A"
+    Role role{};
+    bool smoothness = false;   // stored as 1 - roughness (role roughness)
+    std::string_view key{};    // the channel it reads it from: "RGB", "R", "G", "B", "A"
+    bool required = false;     // the material needs it (glTF: albedo, roughness, metalness)
+    std::string_view input{};  // Unreal: the parent material's inputs it feeds (MP_*, space-separated)
 };
 
 // One texture slot of an engine's material, with everything a writer needs of it: the writers
 // (lib/engine) iterate these rows and never name a slot.
 struct EngineSlot {
-    std::string_view slot;  // the engine's name of the texture ("albedo_texture", "_MaskMap", ...)
-    bool srgb = false;      // the engine samples the texture as sRGB colour
-    std::span<const SlotRead> reads;
+    std::string_view slot{};  // the engine's name of the texture ("albedo_texture", "_MaskMap", ...)
+    bool srgb = false;        // the engine samples the texture as sRGB colour
+    std::span<const SlotRead> reads{};
     // When the set has this slot's texture: Godot, the property set to true ("normal_enabled");
     // Unity, the shader keywords turned on (space-separated).
-    std::string_view enable;
-    bool enable_after = false;      // Godot: the property follows the texture's line (ao_enabled)
-    std::string_view compression;   // Unreal: the import's TextureCompressionSettings
-    std::string_view fallback;      // Unreal: the engine's own texture where the set has none
-    bool reads_role(Role r) const;  // one of `reads` is `r`
+    std::string_view enable{};
+    bool enable_after = false;       // Godot: the property follows the texture's line (ao_enabled)
+    std::string_view compression{};  // Unreal: the import's TextureCompressionSettings
+    std::string_view fallback{};     // Unreal: the engine's own texture where the set has none
+    std::string_view sampler{};      // Unreal: the parent's sampler (SAMPLERTYPE_*); empty: not a parameter of it
+    std::string_view group{};        // glTF: the object holding the slot ("pbrMetallicRoughness"), else the material
+    bool map_only = false;           // glTF: named only where the set has a map of its role (occlusion: else 1)
+    bool reads_role(Role r) const;   // one of `reads` is `r`
+    // Whether the texture of `written` (a manifest entry's channels, in `srgb` or not) is read by
+    // this slot: it holds the slot's first read and every required one, in their channels, and
+    // is sampled as the slot samples.
+    bool binds(const std::vector<Channel>& written, bool srgb) const;
 };
 
 struct EngineMaterial {
@@ -44,9 +53,15 @@ struct EngineMaterial {
     NormalConvention normal;              // the tangent-space convention its normal slot reads
     std::span<const FileFormat> formats;  // the texture files it imports
     std::span<const EngineSlot> slots;    // in the order the material file lists them
+    // One texture may serve several slots (glTF: one ORM texture serves occlusionTexture and
+    // metallicRoughnessTexture); else each texture has one slot.
+    bool shared_textures = false;
+    // Outputs no slot reads are written beside the material (glTF: a height map for other tools);
+    // else the preset is refused.
+    bool other_outputs = false;
 };
 
-// nullptr for none and gltf.
+// nullptr for none.
 const EngineMaterial* engine_material(MaterialFileKind kind);
 
 // The slot reading output `o` of a preset (the first slot one of whose roles `o` holds), or

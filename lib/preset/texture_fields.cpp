@@ -113,44 +113,6 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
     return true;
 }
 
-// The glTF material model (glTF 2.0 section 3.9): baseColorTexture (sRGB RGB, A = alpha),
-// normalTexture (linear RGB, +Y), metallicRoughnessTexture (G roughness, B metalness, linear),
-// occlusionTexture (R, linear), emissiveTexture (sRGB RGB). A preset whose layout the
-// material's slots cannot reference cannot get a .gltf.
-bool check_gltf_layout(const Preset& p, std::string& error) {
-    const std::string where = "material_file gltf: ";
-    if (p.format != FileFormat::png)
-        return fail(error, where + "glTF 2.0 textures are PNG or JPEG (core); this preset writes " +
-                               std::string(word(p.format)));
-    auto find = [&](Role r) -> std::pair<const OutputSpec*, const ChannelSpec*> {
-        for (const auto& o : p.outputs)
-            for (const auto& c : o.channels)
-                if ((c.kind == ChannelSpec::Kind::role || c.kind == ChannelSpec::Kind::smoothness) && c.role == r)
-                    return {&o, &c};
-        return {nullptr, nullptr};
-    };
-    const auto [albedo_o, albedo_c] = find(Role::albedo);
-    if (!albedo_o || albedo_c->key != "RGB" || !albedo_o->srgb)
-        return fail(error, where + "baseColorTexture needs an sRGB output with albedo in RGB");
-    if (const auto [o, c] = find(Role::opacity); o && (o != albedo_o || c->key != "A"))
-        return fail(error, where + "glTF reads opacity from the base color's alpha; this preset writes it elsewhere");
-    if (const auto [o, c] = find(Role::normal); o && (o->srgb || c->key != "RGB"))
-        return fail(error, where + "normalTexture needs a linear output with the normal in RGB");
-    const auto [rough_o, rough_c] = find(Role::roughness);
-    const auto [metal_o, metal_c] = find(Role::metalness);
-    if (!rough_o || !metal_o || rough_o != metal_o || rough_c->key != "G" || metal_c->key != "B" ||
-        rough_c->kind != ChannelSpec::Kind::role || rough_o->srgb)
-        return fail(error, where + "metallicRoughnessTexture reads roughness from G and metalness from B of one linear "
-                                   "output; no output of this preset has that layout");
-    if (const auto [o, c] = find(Role::occlusion); o && (o->srgb || c->key != "R"))
-        return fail(error, where + "occlusionTexture reads occlusion from R of a linear output");
-    if (const auto [o, c] = find(Role::emissive); o && (!o->srgb || c->key != "RGB"))
-        return fail(error, where + "emissiveTexture needs an sRGB output with emissive in RGB");
-    if (p.normal_convention != NormalConvention::gl)
-        return fail(error, where + "glTF normal textures are +Y (normal_convention gl)");
-    return true;
-}
-
 }  // namespace
 
 const BlockFormatInfo* block_format_info(std::string_view name) {
@@ -244,7 +206,6 @@ bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error
                         where + "block_format: required with format " + format + " (" + block_format_names() + ")");
         if (!check_block_format(p, o, where, error)) return false;
     }
-    if (p.material_file == MaterialFileKind::gltf) return check_gltf_layout(p, error);
     const EngineMaterial* e = engine_material(p.material_file);
     return !e || check_engine_layout(p, *e, error);
 }

@@ -22,16 +22,16 @@ std::vector<size_t> Batch::largest_first() const {
     return order;
 }
 
-std::vector<int> Batch::split(int n) const { return assign_shards(sets, bytes, n); }
+Batch::Split Batch::split(int n) const { return {n, assign_shards(sets, bytes, n)}; }
 
-std::string Batch::split_digest(const std::vector<int>& shard, int n, const std::string& context) const {
-    return plan_digest(sets, bytes, shard, n, context);
+std::string Batch::split_digest(const Split& split, const std::string& context) const {
+    return plan_digest(sets, bytes, split.shard, split.n, context);
 }
 
-void Batch::keep_shard(const std::vector<int>& shard, int index) {
+void Batch::keep_shard(const Split& split, int index) {
     size_t kept = 0;
     for (size_t i = 0; i < sets.size(); ++i)
-        if (shard[i] == index) {
+        if (split.shard[i] == index) {
             if (kept != i) {  // a self-move would empty the set
                 sets[kept] = std::move(sets[i]);
                 bytes[kept] = bytes[i];
@@ -50,11 +50,11 @@ Plan Plan::of(const Batch& batch, const std::string& preset, const std::string& 
     p.context = context;
     p.shards = shards;
     p.failures = batch.failures;
-    const std::vector<int> shard = batch.split(shards);
-    p.digest = batch.split_digest(shard, shards, context);
+    const Batch::Split split = batch.split(shards);
+    p.digest = batch.split_digest(split, context);
     for (size_t i = 0; i < batch.sets.size(); ++i) {
         const MaterialSource& src = batch.sets[i];
-        Set s{src.name, src.display, batch.bytes[i], src.files.size(), shard[i], std::nullopt, std::nullopt};
+        Set s{src.name, src.display, batch.bytes[i], src.files.size(), split.shard[i], std::nullopt, std::nullopt};
         std::string error;
         if (auto key = action_key(src, context, error)) s.key = std::move(key);
         else s.error = std::move(error);

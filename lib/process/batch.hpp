@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "findings/findings.hpp"
+#include "image/image.hpp"
 #include "sets/sets.hpp"
 
 namespace mf {
@@ -21,6 +22,9 @@ struct Batch {
     std::vector<InputFailure> failures;  // inputs that gave no set, or could not be read
     std::vector<std::string> skipped;    // output folders of earlier runs under the inputs, one line each
     std::string output_conflict;         // an output folder that is a set's own folder (a usage error)
+    // The run's read memo (image/image.hpp): headers read while finding the sets and planning
+    // them are remembered until the batch is gone.
+    ReadScope reads;
 
     // Every set under `inputs`, never inside `outputs` (the run's output folders, where they lie
     // inside an input).
@@ -30,13 +34,18 @@ struct Batch {
     // Set indices by decreasing size, ties in discovery order (longest processing time first: a
     // 4K set started last would leave the other threads idle while it runs alone).
     std::vector<size_t> largest_first() const;
-    // shard[i] in [0, n) for set i (process/work.hpp assign_shards: balanced by size, stable).
-    std::vector<int> split(int n) const;
-    // The digest of the library's split into n shards under `context` (process/work.hpp
-    // plan_digest): every shard of one run records it, `merge` compares them.
-    std::string split_digest(const std::vector<int>& shard, int n, const std::string& context) const;
-    // Keeps only the sets `shard` (a split()) gives `index`, in order.
-    void keep_shard(const std::vector<int>& shard, int index);
+    // The library split into `n` shards: shard[i] in [0, n) for set i (process/work.hpp
+    // assign_shards: balanced by size, stable).
+    struct Split {
+        int n = 1;
+        std::vector<int> shard;
+    };
+    Split split(int n) const;
+    // The digest of `split` under `context` (process/work.hpp plan_digest): every shard of one
+    // run records it, `merge` compares them.
+    std::string split_digest(const Split& split, const std::string& context) const;
+    // Keeps only the sets `split` gives shard `index`, in order.
+    void keep_shard(const Split& split, int index);
 };
 
 // `matforge plan`'s work list, version 1 (docs/plan.schema.json).

@@ -20,6 +20,7 @@
 #include "plan/plan.hpp"
 #include "preset/texture_fields.hpp"
 #include "process/material_file.hpp"
+#include "process/share.hpp"
 #include "process/work.hpp"
 #include "store/cache.hpp"
 #include "store/output_dir.hpp"
@@ -82,44 +83,48 @@ float normalize_hdr_emissive(Planes& planes, const Preset& preset) {
     return brightest;
 }
 
-// Canonical planes per output role from the plan's routes (pack/pack.hpp's conventions). A
-// decoded map is freed after its last plane is made: peak memory is one set's maps.
+// Canonical planes per output role from the plan's routes (pack/pack.hpp's conventions), made
+// from the decoded maps, which other plans of the set may be reading (plan/plan.hpp SharedMap).
+// A map is let go after its last plane is made: peak memory is one set's maps and planes.
 Planes make_planes(SetPlan& plan) {
     std::map<std::string, int> uses;
     for (const auto& [out, r] : plan.routes) ++uses[plan.inputs.at(r.from).file];
     Planes planes;
     for (const auto& [out, route] : plan.routes) {
         const std::string& file = plan.inputs.at(route.from).file;
-        DecodedMap& l = plan.decoded.at(file);
+        const SharedMap& held = plan.decoded.at(file);
         const bool last_use = --uses[file] == 0;
+        const DecodedMap& l = *held;
+        const Decoded& img = l.img;
+        // At its last use by the only plan still holding it (the share has let go: no other plan
+        // can reach it), a map's image that is the plane as it is moves into the plane instead of
+        // being copied (the map was made mutable by read_map; SharedMap's const is for readers).
+        Decoded* own = last_use && held.use_count() == 1 ? &const_cast<DecodedMap&>(l).img : nullptr;
         RolePlane plane;
-        Decoded& img = l.img;
         if (out == Role::albedo || out == Role::emissive) {
             if (img.is_codes())
-                plane.codes = last_use && img.codes.channels == 3 ? std::move(img.codes) : to_rgb(img.codes);
-            else plane.image = last_use && img.floats.channels == 3 ? std::move(img.floats) : to_rgb(img.floats);
+                plane.codes = own && img.codes.channels == 3 ? std::move(own->codes) : to_rgb(img.codes);
+            else plane.image = own && img.floats.channels == 3 ? std::move(own->floats) : to_rgb(img.floats);
             plane.encoding = l.info.is_float ? ColorEncoding::linear : ColorEncoding::srgb;
         } else if (out == Role::normal) {
             // An empty blue is dropped: the two-channel path rebuilds Z from X and Y.
-            if (plan.normal_z_rebuilt && img.channels() >= 3) {
-                if (img.is_codes()) img.codes = first_two_channels(img.codes);
-                else img.floats = first_two_channels(img.floats);
-            }
+            const bool xy = plan.normal_z_rebuilt && img.channels() >= 3;
             if (img.is_codes()) {  // decoded when packed (pack_output8) or resampled (fit_plane)
-                plane.codes = last_use ? std::move(img.codes) : img.codes;
+                plane.codes = xy ? first_two_channels(img.codes) : own ? std::move(own->codes) : img.codes;
                 plane.codes_convention = plan.normal_from();
+            } else if (xy) {
+                decode_normal(first_two_channels(img.floats), plan.normal_from(), plane.image);
             } else {
                 decode_normal(img.floats, plan.normal_from(), plane.image);
             }
         } else {
             const int ch = route.channel < 0 ? 0 : route.channel;
             if (img.is_codes()) {
-                plane.codes = last_use && img.codes.channels == 1 ? std::move(img.codes)
-                                                                  : extract_channel(img.codes, ch);
+                plane.codes = own && img.codes.channels == 1 ? std::move(own->codes) : extract_channel(img.codes, ch);
                 if (route.invert) invert(plane.codes);
             } else {
-                plane.image = last_use && img.floats.channels == 1 ? std::move(img.floats)
-                                                                   : extract_channel(img.floats, ch);
+                plane.image = own && img.floats.channels == 1 ? std::move(own->floats)
+                                                              : extract_channel(img.floats, ch);
                 if (route.invert) invert(plane.image);
             }
         }
@@ -190,92 +195,6 @@ struct Ingestor::PresetRun {
     // After every set: the manifest's head, the folder's and library files, the manifest written
     // and the folder finished (store/output_dir.hpp), or result.error.
     void finish(const Batch& batch);
-};
-
-// What the ingestors of run_together share of the set they process in turn: its decoded maps,
-// and its encoded outputs (an output's pixels are a function of its recipe and planes, its bytes
-// of its pixels and EncodeOptions: image/image.hpp encodes deterministically).
-struct Ingestor::SetShare {
-    explicit SetShare(int plans) : plan(plans) {}
-    PlanShare plan;
-
-    // The set's input digests, read and hashed once for every ingestor of the pass (without a
-    // cache, which remembers them by stat).
-    std::optional<std::string> digest(const InputFile& in, std::string& error) {
-        const std::string key = in.display + '\n' + in.path.string();
-        {
-            std::lock_guard lock(mutex);
-            if (const auto it = digests.find(key); it != digests.end()) return it->second;
-        }
-        std::optional<std::string> sha = read_and_hash(in, error);
-        if (sha) {
-            std::lock_guard lock(mutex);
-            digests.emplace(key, *sha);
-        }
-        return sha;
-    }
-
-    // What an output's pixels are made of: its recipe (pack_recipe: the channels, encoding,
-    // size, defaults), the color context that converts its colors, and the planes of `roles`.
-    struct Source {
-        std::string recipe;
-        const ColorContext* color;
-        std::shared_ptr<const Planes> planes;
-        std::vector<Role> roles;
-        bool same_as(const Source& o) const {
-            return recipe == o.recipe && color == o.color && roles == o.roles &&
-                   (planes == o.planes || std::all_of(roles.begin(), roles.end(), [&](Role r) {
-                        return same_plane(planes->at(r), o.planes->at(r));
-                    }));
-        }
-    };
-
-    // `bytes` of an output packed and encoded by `fresh`, and their SHA-256 in `sha`: an output
-    // of the same source done so before is neither packed, encoded nor hashed again (its
-    // EncodeOptions, the format and bit depth, are in the recipe). The planes stay with the kept
-    // encoding until the set is done.
-    template <class Fresh>
-    bool encode(Source source, Fresh fresh, std::vector<unsigned char>& bytes, std::string& sha) {
-        std::vector<std::shared_ptr<const Kept>> kept_now;
-        {
-            std::lock_guard lock(mutex);
-            kept_now = kept;
-        }
-        // Compared outside the lock (another output of the set may be packing meanwhile).
-        for (const auto& k : kept_now)
-            if (k->source.same_as(source)) {
-                bytes = k->bytes;
-                sha = k->sha;
-                return true;
-            }
-        if (!fresh()) return false;
-        sha = sha256_hex(bytes);
-        std::lock_guard lock(mutex);
-        // Kept up to a bound (planes counted once): an 8K set's planes and outputs are gigabytes,
-        // and sharing is a saving, never needed for the result.
-        uint64_t size = bytes.size();
-        if (!counted.count(source.planes.get()))
-            for (const auto& [r, p] : *source.planes)
-                size += p.codes.pixels.size() + p.image.pixels.size() * sizeof(float);
-        if (kept_bytes + size > kMaxKeptBytes) return true;
-        kept_bytes += size;
-        counted.insert(source.planes.get());
-        kept.push_back(std::make_shared<const Kept>(Kept{std::move(source), bytes, sha}));
-        return true;
-    }
-
-private:
-    struct Kept {
-        Source source;
-        std::vector<unsigned char> bytes;
-        std::string sha;
-    };
-    static constexpr uint64_t kMaxKeptBytes = uint64_t{256} << 20;
-    std::mutex mutex;
-    uint64_t kept_bytes = 0;
-    std::vector<std::shared_ptr<const Kept>> kept;
-    std::set<const Planes*> counted;
-    std::map<std::string, std::string> digests;
 };
 
 MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, PresetRun& run,
@@ -479,17 +398,15 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                             std::string& e) {
                             // 8-bit outputs of codes planes go from codes to codes; anything else
                             // through floats.
+                            const PackSpec spec = pack_spec(o, planes, preset_, size);
                             auto fresh = [&] {
-                                const EncodeOptions enc{preset_.format, o.bit_depth};
-                                std::optional<Image8> packed8 = pack_output8(o, planes, preset_, size, *color_);
+                                const EncodeOptions enc{spec.format, spec.bit_depth};
+                                std::optional<Image8> packed8 = pack_output8(spec, planes, *color_);
                                 return packed8 ? encode_image(*packed8, enc, bytes, e)
-                                               : encode_image(pack_output(o, planes, preset_, size, *color_), enc,
-                                                              bytes, e);
+                                               : encode_image(pack_output(spec, planes, *color_), enc, bytes, e);
                             };
                             if (!share) return fresh();
-                            return share->encode({pack_recipe(o, planes, preset_, size), color_.get(), shared_planes,
-                                                  plane_roles(o, planes)},
-                                                 fresh, bytes, sha);
+                            return share->encode({spec, color_.get(), shared_planes}, fresh, bytes, sha);
                         }};
     // Outputs are packed and encoded on two threads (each output on one: deflate is serial) while
     // a worker is idle (above).
@@ -645,15 +562,15 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
     const IngestOptions& lead = ingestors.front()->opt_;
     // --shard I/N: every preset of the pass runs the same shard (the CLI gives them one), split
     // once; each records the split's digest under its own context.
-    std::vector<int> split;
-    if (lead.shard) split = batch.split(lead.shard->second);
+    const std::optional<Batch::Split> split = lead.shard ? std::optional(batch.split(lead.shard->second))
+                                                         : std::nullopt;
     std::vector<std::string> digests;
     for (const Ingestor* ing : ingestors) {
         auto& run = *runs.emplace_back(std::make_unique<PresetRun>(*ing, in_flight));
         run.context = context_digest(ing->preset_, ing->opt_.rules, *ing->color_);
-        digests.push_back(lead.shard ? batch.split_digest(split, lead.shard->second, run.context) : std::string());
+        digests.push_back(split ? batch.split_digest(*split, run.context) : std::string());
     }
-    if (lead.shard) batch.keep_shard(split, lead.shard->first);
+    if (split) batch.keep_shard(*split, lead.shard->first);
     for (size_t t = 0; t < runs.size(); ++t) runs[t]->open(batch, std::move(digests[t]));
     const auto ready = static_cast<size_t>(std::count_if(runs.begin(), runs.end(),
                                                          [](const auto& r) { return r->ready; }));

@@ -23,6 +23,8 @@
 
 namespace mf {
 
+class SetShare;  // process/share.hpp
+
 struct MaterialResult {
     manifest::Material entry;            // one element of the manifest's "materials"
     std::optional<std::string> failure;  // nothing could be produced (goes to "failures")
@@ -109,7 +111,6 @@ private:
     // One preset's part of a pass (its output folder, claims, cache, spool, tallies; open(),
     // record() after each set, finish()): ingest.cpp.
     struct PresetRun;
-    struct SetShare;  // what the ingestors of run_together share of one set (ingest.cpp)
     // One set of `run`: restored from the run's cache, or computed. Validates it (every rule,
     // from the decoded pixels: each file is decoded once), converts and packs it, and writes
     // its outputs through the run's output folder. `share`: null for a run alone.

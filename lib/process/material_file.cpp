@@ -77,16 +77,17 @@ bool write_text(const WriteFile& write, const std::string& rel, const std::strin
 }  // namespace
 
 void write_material_files(const Preset& preset, const WriteFile& write, manifest::Material& m) {
-    if (const EngineMaterial* e = engine_material(preset.material_file)) {
+    const EngineMaterial* e = engine_material(preset.material_file);
+    if (!e) return;
+    if (e->kind != MaterialFileKind::gltf) {
         const auto files = engine::material_files(*e, m);
         if (files.empty() || !normals_fit(e->normal, files.back().file, e->engine, m)) return;
         for (const engine::File& f : files)
             if (!write_text(write, f.file, f.format, f.text, m)) return;
         return;
     }
-    if (preset.material_file != MaterialFileKind::gltf) return;
     const std::string gltf_rel = m.name + "/" + m.name + ".gltf", bin_rel = m.name + "/" + m.name + ".bin";
-    if (!normals_fit(NormalConvention::gl, gltf_rel, "glTF", m)) return;
+    if (!normals_fit(e->normal, gltf_rel, "glTF", m)) return;
     gltf::Files files;
     std::string error;
     if (!gltf::material_gltf(m, gltf_rel, m.name + ".bin", files, error) ||

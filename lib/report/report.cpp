@@ -102,32 +102,29 @@ private:
         return pic;
     }
 
-    // An 8-bit file is kept as its codes (a quarter of the memory of floats: an 8192² RGBA map
-    // is 256 MB, not 1 GB), any other as floats.
-    bool read(const fs::path& file, Decoded& image, std::string& error) {
+    // An output or preview file as the engine samples it: an 8-bit file kept as its codes (a
+    // quarter of the memory of floats: an 8192² RGBA map is 256 MB, not 1 GB), any other as
+    // floats; a block-compressed output (.dds, .ktx2; `o` names its block format) level 0
+    // decoded by the codec that wrote it (the blocks the engine samples, as the preview renders
+    // them), to the channels the manifest lists. Only a regular file is opened (never a link).
+    static bool read(const fs::path& file, const manifest::Output* o, Decoded& image, std::string& error) {
         if (const auto why = not_a_regular_file(file)) {
             error = file.string() + ": " + *why;
             return false;
         }
-        InputFile in;
-        in.display = file.string();
-        in.path = file;
-        ImageInfo info;
-        return read_image(in, image, info, error);
-    }
-    // A block-compressed output (.dds, .ktx2): level 0 decoded by the codec that wrote it (the
-    // blocks the engine samples, as the preview renders them), to the channels the manifest lists.
-    static bool read_blocks(const manifest::Output& o, const fs::path& file, Decoded& image, std::string& error) {
-        std::vector<uint8_t> bytes;
-        if (const auto why = not_a_regular_file(file)) {
-            error = file.string() + ": " + *why;
-            return false;
+        if (!o || o->block_format.empty()) {
+            InputFile in;
+            in.display = file.string();
+            in.path = file;
+            ImageInfo info;
+            return read_image(in, image, info, error);
         }
         int channels = 0;
-        for (const Channel& c : o.channels) channels += c.key == "RGB" ? 3 : 1;
+        for (const Channel& c : o->channels) channels += c.key == "RGB" ? 3 : 1;
+        std::vector<uint8_t> bytes;
         texture::GpuTexture gt;
         if (!read_file(file, bytes, error) || !texture::read_gpu_texture(bytes, gt, error) ||
-            !texture::decode_top_level(gt, std::clamp(channels, 1, 4), o.normal_z_reconstructed, image.codes, error)) {
+            !texture::decode_top_level(gt, std::clamp(channels, 1, 4), o->normal_z_reconstructed, image.codes, error)) {
             error = file.string() + ": " + error;
             return false;
         }
@@ -158,7 +155,7 @@ private:
         if (!file) return std::nullopt;
         Decoded image;
         std::string error;
-        if (!read(*file, image, error)) {
+        if (!read(*file, nullptr, image, error)) {
             problem(error);
             return std::nullopt;
         }
@@ -174,8 +171,7 @@ private:
         }
         Decoded image;
         std::string error;
-        if (!(o.block_format.empty() ? read(base / o.file, image, error)
-                                     : read_blocks(o, base / o.file, image, error))) {
+        if (!read(base / o.file, &o, image, error)) {
             pics.problem = error;
             return pics;
         }
@@ -242,7 +238,7 @@ private:
             const fs::path file = dir_ / m_.source / in.file;
             Decoded image;
             std::string error;
-            if (!read(file, image, error)) {
+            if (!read(file, nullptr, image, error)) {
                 problem("source " + error);
                 pics_.sources.emplace_back();
                 continue;

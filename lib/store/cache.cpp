@@ -1,7 +1,5 @@
 #include "store/cache.hpp"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>

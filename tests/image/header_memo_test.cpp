@@ -1,7 +1,8 @@
-// lib/image remembers a file's header for the run by its identity and change times
-// (image.cpp, file_key): an unchanged file is not opened again, a changed one is read anew even
-// when its size and modification time are kept, and a file changed within the last two seconds
-// is never remembered (its times may not have moved).
+// lib/image remembers a file's header for the run (while a ReadScope is alive) by its identity
+// and change times (image.cpp, file_key): an unchanged file is not opened again, a changed one is
+// read anew even when its size and modification time are kept, a file changed within the last
+// two seconds is never remembered (its times may not have moved), and nothing is remembered once
+// the run's last scope is gone.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,7 +42,47 @@ int width_of(const fs::path& file) {
     return info ? info->width : -1;
 }
 
+// Bytes this process has read through read(2) and its kind (/proc/self/io rchar): a header
+// served from the memo reads none of the file.
+long long bytes_read() {
+    std::ifstream io("/proc/self/io");
+    std::string key;
+    long long value = 0;
+    while (io >> key >> value)
+        if (key == "rchar:") return value;
+    ADD_FAILURE() << "no rchar in /proc/self/io";
+    return -1;
+}
+
+TEST(HeaderMemo, HeadersAreRememberedWhileARunIsOpenAndForgottenAfter) {
+    const fs::path dir = mf::testdirs::fresh("matforge-header-scope-", "png");
+    const fs::path file = dir / "Map_Color.png";
+    overwrite(file, png(16, 8));
+    std::this_thread::sleep_for(std::chrono::milliseconds(2100));  // settled: may be remembered
+    // What a read of the header adds to the bytes read, less what reading /proc/self/io costs.
+    const long long io0 = bytes_read();
+    const long long itself = bytes_read() - io0;
+    auto read_costs = [&] {
+        const long long before = bytes_read();
+        EXPECT_EQ(width_of(file), 16);
+        return bytes_read() - before - itself;
+    };
+    EXPECT_GT(read_costs(), 0) << "no run open: read";
+    EXPECT_GT(read_costs(), 0) << "no run open: read again, nothing remembered";
+    {
+        const mf::ReadScope run;
+        EXPECT_GT(read_costs(), 0) << "first read of the run";
+        EXPECT_EQ(read_costs(), 0) << "remembered for the run";
+        const mf::ReadScope copy = run;  // a batch moved or copied keeps the run open
+        EXPECT_EQ(read_costs(), 0);
+    }
+    EXPECT_GT(read_costs(), 0) << "the run is over: its memo was dropped";
+    const mf::ReadScope next;
+    EXPECT_GT(read_costs(), 0) << "a new run starts with nothing remembered";
+}
+
 TEST(HeaderMemo, AFileChangedInPlaceIsReadAgainEvenWithItsSizeAndMtimeKept) {
+    const mf::ReadScope run;
     const fs::path dir = mf::testdirs::fresh("matforge-header-memo-", "png");
     const fs::path file = dir / "Map_Color.png";
     auto wide = png(8, 4), tall = png(4, 8);

@@ -296,20 +296,21 @@ TEST(Quantize, MatchesClampAndRoundHalfUp) {
     }
 }
 
-// pack_recipe is what lets two presets of one run share an output (process/ingest's SetShare):
+// The pack spec is what lets two presets of one run share an output (process/ingest's SetShare):
 // over every shipped preset's outputs (which differ in channels, order, constants, defaults,
-// encoding, bit depth and normal convention), two outputs whose packed images differ must have
-// different recipes, and equal recipes must pack equal images. Planes with and without
-// metalness and albedo (defaults written), and a plane that differs in one code, which
-// same_plane tells apart.
-TEST(PackRecipe, EqualRecipesPackEqualImagesAndDifferentImagesHaveDifferentRecipes) {
+// encoding, bit depth and normal convention), equal specs must pack equal images, and the packer
+// reads nothing but the spec and the planes (an image packed from a spec equals the one packed
+// from the output and preset it came from). Planes with and without metalness and albedo
+// (defaults written), and a plane that differs in one code, which same_plane tells apart.
+TEST(PackSpec, EqualSpecsPackEqualImages) {
     auto color = color_context();
     for (const bool metal : {true, false})
         for (const bool albedo : {true, false}) {
             mf::Planes planes = make_planes(metal);
             if (!albedo) planes.erase(mf::Role::albedo);
             struct Out {
-                std::string name, recipe;
+                std::string name;
+                mf::PackSpec spec;
                 mf::Image img;
             };
             std::vector<Out> outs;
@@ -319,25 +320,27 @@ TEST(PackRecipe, EqualRecipesPackEqualImagesAndDifferentImagesHaveDifferentRecip
                 ASSERT_TRUE(preset) << err;
                 for (const auto& o : preset->outputs) {
                     const mf::Size size{2, 1};
-                    outs.push_back({name + "/" + o.suffix + "/" + std::to_string(o.bit_depth),
-                                    mf::pack_recipe(o, planes, *preset, size),
-                                    mf::pack_output(o, planes, *preset, size, *color)});
+                    Out out{name + "/" + o.suffix + "/" + std::to_string(o.bit_depth),
+                            mf::pack_spec(o, planes, *preset, size), mf::pack_output(o, planes, *preset, size, *color)};
+                    const mf::Image from_spec = mf::pack_output(out.spec, planes, *color);
+                    EXPECT_EQ(from_spec.pixels, out.img.pixels) << out.name;
+                    outs.push_back(std::move(out));
                 }
             }
-            int equal_recipes = 0, different_images = 0;
+            int equal_specs = 0, different_images = 0;
             for (size_t i = 0; i < outs.size(); ++i)
                 for (size_t j = i + 1; j < outs.size(); ++j) {
                     const bool same_image = outs[i].img.channels == outs[j].img.channels &&
                                             outs[i].img.pixels == outs[j].img.pixels;
-                    if (outs[i].recipe == outs[j].recipe) {
-                        ++equal_recipes;
-                        EXPECT_TRUE(same_image) << outs[i].name << " and " << outs[j].name << ": " << outs[i].recipe;
+                    if (outs[i].spec == outs[j].spec) {
+                        ++equal_specs;
+                        EXPECT_TRUE(same_image) << outs[i].name << " and " << outs[j].name;
                     }
                     different_images += same_image ? 0 : 1;
                 }
             // The shipped presets share outputs (glTF's and HDRP's base color and normal map) and
             // differ in most: both sides of the property are exercised.
-            EXPECT_GT(equal_recipes, 0);
+            EXPECT_GT(equal_specs, 0);
             EXPECT_GT(different_images, 100);
         }
     mf::Planes a = make_planes(), b = make_planes();
@@ -350,5 +353,6 @@ TEST(PackRecipe, EqualRecipesPackEqualImagesAndDifferentImagesHaveDifferentRecip
     mf::ChannelSpec c;
     c.key = "R", c.kind = mf::Channel::Kind::smoothness, c.role = mf::Role::roughness;
     smooth.channels = {c};
-    EXPECT_EQ(mf::plane_roles(smooth, a), std::vector<mf::Role>{mf::Role::roughness});
+    mf::Preset preset;
+    EXPECT_EQ(mf::pack_spec(smooth, a, preset, {2, 1}).roles, std::vector<mf::Role>{mf::Role::roughness});
 }

@@ -503,7 +503,44 @@ TEST(PresetFields, ImpossibleFormatsNameTheField) {
         "supercompression: zstd is a KTX2 scheme");
     has(preset_error("dds", kAlbedo + R"(, "block_format": "bc1"})", R"("constant_size": 2,)"), "constant_size");
     has(preset_error("png", kAlbedo + "}", R"("material_file": "gltf",)"),
-        "material_file gltf: metallicRoughnessTexture");
+        "metallicRoughnessTexture needs an output with roughness in G, metalness in B (linear)");
+}
+
+// The glTF's slots are checked at load from the same table its writer iterates
+// (preset/engine_slots.cpp): one ORM may serve occlusionTexture and metallicRoughnessTexture, an
+// output no slot reads is written beside the material, and everything the material cannot read
+// as the preset writes it is refused, naming the slot.
+TEST(PresetFields, GltfLayoutIsCheckedFromTheSlotTable) {
+    const std::string gltf = R"("material_file": "gltf",)";
+    const std::string orm = R"({"suffix": "orm", "channels": {"R": "occlusion", "G": "roughness", "B": "metalness"}})";
+    const std::string height = R"({"suffix": "h", "channels": {"R": "height"}})";
+    EXPECT_EQ(preset_error("png", kAlbedo + "}," + orm, gltf), "");
+    EXPECT_EQ(preset_error("png", kAlbedo + "}," + orm + "," + height, gltf), "");
+    auto has = [](const std::string& error, const std::string& what) {
+        EXPECT_NE(error.find(what), std::string::npos) << error;
+    };
+    has(preset_error("tga", kAlbedo + "}," + orm, gltf), "it imports png; this preset writes tga");
+    has(preset_error("png", kAlbedo + "}," + orm, gltf + R"("normal_convention": "dx",)"),
+        "its normal slot reads gl normals; this preset's normal_convention is dx");
+    // Smoothness is not roughness: metallicRoughnessTexture has nothing to read.
+    has(preset_error("png",
+                     kAlbedo + R"(}, {"suffix": "m", "channels": {"R": 1.0, "G": "smoothness", "B": "metalness"}})",
+                     gltf),
+        "metallicRoughnessTexture needs an output with roughness in G, metalness in B");
+    // Roughness and metalness in two textures: the slot reads one.
+    has(preset_error("png", kAlbedo + R"(}, {"suffix": "r", "channels": {"R": 1.0, "G": "roughness"}},
+                     {"suffix": "m", "channels": {"R": 1.0, "G": 1.0, "B": "metalness"}})",
+                     gltf),
+        "metallicRoughnessTexture reads one texture; 'r' and 'm' both go there");
+    has(preset_error("png", kAlbedo + R"(}, {"suffix": "o", "channels": {"R": "opacity"}},)" + orm, gltf),
+        "'o' holds opacity in R; baseColorTexture reads it from A as sRGB");
+    has(preset_error("png",
+                     kAlbedo + "}," + orm +
+                         R"(, {"suffix": "n", "color_space": "srgb", "channels": {"RGB": "normal"}})",
+                     gltf),
+        "'n' holds normal in RGB; normalTexture reads it from RGB as linear data");
+    has(preset_error("png", R"({"suffix": "c", "channels": {"RGB": "albedo"}},)" + orm, gltf),
+        "'c' holds albedo in RGB; baseColorTexture reads it from RGB as sRGB");
     // BC5 takes the RGB normal (X, Y stored).
     EXPECT_EQ(preset_error("ktx2", R"({"suffix": "n", "channels": {"RGB": "normal"}, "block_format": "bc5"})"), "");
 }

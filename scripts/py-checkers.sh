@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the real implementations the tests open matforge's material files with, from PyPI,
+# into a virtual environment of the build tree (never committed, never vendored):
+#   usd-core   OpenUSD (Pixar's pxr modules): Usd.Stage.Open and UsdUtils.ComplianceChecker on
+#              every .usda and library.usda (tests/texture/checkers/usd_open.py)
+#   materialx  MaterialX 1.39 (the Academy Software Foundation's Python bindings): validation with
+#              the standard libraries and GLSL generated for every material (mtlx_open.py)
+#   pyktx      libktx (Khronos KTX-Software): every .ktx2 loaded by ktxTexture2 (ktx_open.py)
+# Usage: scripts/py-checkers.sh [DIR]   (default build/py; the tests run DIR/bin/python)
+# The interpreter is Debian's /usr/bin/python3 (3.11, with its venv module: package python3-venv)
+# where it exists, else the python3 on PATH: each wheel above is built for CPython 3.11.
+# Pinned versions: a new release must not change a test's verdict unnoticed.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+dir=${1:-$root/build/py}
+packages=(usd-core==26.11 materialx==1.39.5 pyktx==4.4.2)
+want=$(printf '%s\n' "${packages[@]}")
+[[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -x $dir/bin/python ]] && exit 0
+mkdir -p "$dir"
+# Test processes run in parallel and each may call this: one installs, the others wait.
+exec 9>"$dir/.lock"
+flock 9
+[[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -x $dir/bin/python ]] && exit 0
+python=/usr/bin/python3
+[[ -x $python ]] || python=$(command -v python3)
+if [[ ! -x $dir/bin/python ]]; then
+  "$python" -m venv "$dir" >&2 || {
+    echo "py-checkers: $python cannot make a virtual environment (Debian: apt-get install python3-venv)" >&2
+    exit 1
+  }
+fi
+"$dir/bin/python" -m pip install --quiet --disable-pip-version-check --no-input "${packages[@]}" >&2
+echo "$want" > "$dir/installed.txt"
