@@ -28,6 +28,7 @@ function(matforge_test name)
   set(_env "MATFORGE_SOURCE_DIR=${PROJECT_SOURCE_DIR};MATFORGE_CACHE=${MATFORGE_TEST_CACHE}")
   string(APPEND _env ";MATFORGE_BIN=$<TARGET_FILE:matforge>;MATFORGE_GEN_SAMPLES=$<TARGET_FILE:gen_samples>")
   string(APPEND _env ";MATFORGE_CORPUS_DIR=${MATFORGE_CORPUS_DIR};MATFORGE_NPM_DIR=${PROJECT_BINARY_DIR}/npm")
+  string(APPEND _env ";MATFORGE_PY_DIR=${PROJECT_BINARY_DIR}/py")
   if(MATFORGE_SANITIZE)
     # Third-party leaks only (scripts/lsan.supp says which and why), for the test and every
     # matforge it runs, also when ctest is run by hand in the sanitizer build.

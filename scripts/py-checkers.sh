@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
 # Installs the real implementations the tests open matforge's material files with, from PyPI,
 # into a virtual environment of the build tree (never committed, never vendored):
-#   usd-core   OpenUSD (Pixar's pxr modules): Usd.Stage.Open and UsdUtils.ComplianceChecker on
-#              every .usda and library.usda (tests/texture/checkers/usd_open.py)
-#   materialx  MaterialX 1.39 (the Academy Software Foundation's Python bindings): validation with
-#              the standard libraries and GLSL generated for every material (mtlx_open.py)
-#   pyktx      libktx (Khronos KTX-Software): every .ktx2 loaded by ktxTexture2 (ktx_open.py)
+#   usd-core   OpenUSD (Pixar's pxr modules): Usd.Stage.Open and the validators usdchecker runs
+#              (UsdValidation) on every .usda and library.usda (tests/texture/checkers/usd_open.py)
+# (PyPI's pyktx 4.4.2 is a source package that builds against an installed libktx, which Debian
+# 12 does not package: the .ktx2 files are read by npm ktx-parse until libktx is built here.)
 # Usage: scripts/py-checkers.sh [DIR]   (default build/py; the tests run DIR/bin/python)
 # The interpreter is Debian's /usr/bin/python3 (3.11, with its venv module: package python3-venv)
 # where it exists, else the python3 on PATH: each wheel above is built for CPython 3.11.
@@ -13,7 +12,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 dir=${1:-$root/build/py}
-packages=(usd-core==26.11 materialx==1.39.5 pyktx==4.4.2)
+packages=(usd-core==26.11)
 want=$(printf '%s\n' "${packages[@]}")
 [[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -x $dir/bin/python ]] && exit 0
 mkdir -p "$dir"

@@ -1,7 +1,8 @@
 // USD text layers of a set's written textures (<material>/<material>.usda), beside the glTF and
 // the MaterialX document: a UsdPreviewSurface material any USD host opens (usdview, Omniverse,
 // Houdini Solaris, Maya, Blender built with USD). No USD library is packaged in Debian: the text
-// is written here and checked by an independent parser (tests/texture/checkers/usda_check.py).
+// is written here, and the tests open it with OpenUSD itself (PyPI usd-core:
+// tests/texture/checkers/usd_open.py, Usd.Stage.Open and usdchecker's validators).
 //
 // Conventions of this module (decided once here):
 //  - `def Material "<name>"` is the layer's defaultPrim; under it a `UsdPreviewSurface` shader

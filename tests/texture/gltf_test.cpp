@@ -281,38 +281,40 @@ void expect_mtlx(const std::vector<const Run*>& runs) {
     }
 }
 
-// The USD layer beside each .gltf, read by an independent parser written from the USD grammar
-// (checkers/usda_check.py): its defaultPrim is a Material whose surface is a UsdPreviewSurface;
-// every connection resolves; every written texture is read by a UsdUVTexture whose st comes
-// from a UsdPrimvarReader_float2 of "st", in sRGB for colour maps and raw for data; each
-// role's input reads the channel the manifest names; the normal is rescaled to [-1, 1].
+// The USD layer beside each .gltf, opened by OpenUSD itself (checkers/usd_open.py: PyPI
+// usd-core's Usd.Stage.Open, UsdShade and UsdValidation): it composes without an error and every
+// validator usdchecker runs passes (the UsdPreviewSurface rules: a normal map's scale and bias,
+// each input's type as the shader's Sdr definition declares it; missing references; metadata);
+// its defaultPrim is a Material whose surface is a UsdPreviewSurface; every connection resolves;
+// every written texture is read by a UsdUVTexture whose file USD's asset resolver finds at the
+// output's path, whose st comes from a UsdPrimvarReader_float2 of "st", in sRGB for colour maps and
+// raw for data; each role's input reads the channel the manifest names; the normal is rescaled
+// to [-1, 1].
 void expect_usda(const Run& r) {
-    std::vector<std::string> argv{"python3",
-                                  mf::testenv::source_dir().string() + "/tests/texture/checkers/usda_check.py"};
+    std::vector<std::string> files;
     std::vector<const json*> mats;
     for (const auto& m : r.manifest["materials"])
         for (const auto& f : m["material_files"])
             if (f["format"] == "usda") {
-                argv.push_back((r.out / f["file"].get<std::string>()).string());
+                files.push_back((r.out / f["file"].get<std::string>()).string());
                 mats.push_back(&m);
-                EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(argv.back()))) << argv.back();
+                EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(files.back()))) << files.back();
             }
     ASSERT_EQ(mats.size(), r.manifest["materials"].size()) << "one .usda per material";
-    const auto p = mf::testbin::spawn(argv, 120);
-    ASSERT_EQ(p.code, 0) << p.output;
-    std::istringstream lines(p.output);
+    const std::vector<json> reps = py_checker("usd_open.py", files);
+    ASSERT_EQ(reps.size(), mats.size());
     static const std::map<std::string, std::string> kInput{
         {"albedo", "inputs:diffuseColor"},   {"opacity", "inputs:opacity"},     {"metalness", "inputs:metallic"},
         {"roughness", "inputs:roughness"},   {"occlusion", "inputs:occlusion"}, {"normal", "inputs:normal"},
         {"emissive", "inputs:emissiveColor"}};
-    size_t i = 0;
-    for (std::string line; std::getline(lines, line); ++i) {
-        ASSERT_LT(i, mats.size());
-        const json rep = json::parse(line);
+    for (size_t i = 0; i < reps.size(); ++i) {
+        const json& rep = reps[i];
         const json& m = *mats[i];
         SCOPED_TRACE(rep["file"].get<std::string>());
         ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+        EXPECT_TRUE(rep["validation"].empty()) << rep["validation"].dump(1);
         EXPECT_TRUE(rep["unresolved"].empty()) << rep["unresolved"];
+        EXPECT_EQ(rep["metadata"]["upAxis"], "Y");
         const std::string root = "/" + rep["metadata"]["defaultPrim"].get<std::string>();
         const json& prims = rep["prims"];
         ASSERT_EQ(prims[root]["type"], "Material");
@@ -321,16 +323,14 @@ void expect_usda(const Run& r) {
         EXPECT_EQ(prims[shader]["attributes"]["info:id"]["value"], "UsdPreviewSurface");
         const json& in = prims[shader]["attributes"];
         for (const auto& o : m["outputs"]) {
-            const std::string file = fs::path(o["file"].get<std::string>()).filename().string();
-            std::string reader;  // the UsdUVTexture reading this file
-            for (const auto& [path, prim] : prims.items())
-                if (prim["attributes"].contains("inputs:file") &&
-                    prim["attributes"]["inputs:file"]["value"]["asset"] == file)
-                    reader = path;
-            ASSERT_FALSE(reader.empty()) << file << " is written but not read";
+            const fs::path written = fs::weakly_canonical(r.out / o["file"].get<std::string>());
+            std::string reader;  // the UsdUVTexture whose file USD resolves to this output
+            for (const auto& [attr, asset] : rep["assets"].items())
+                if (fs::path(asset["resolved"].get<std::string>()) == written) reader = attr.substr(0, attr.find('.'));
+            ASSERT_FALSE(reader.empty()) << written << " is written but no texture resolves to it";
             const json& ra = prims[reader]["attributes"];
             EXPECT_EQ(ra["info:id"]["value"], "UsdUVTexture");
-            EXPECT_EQ(ra["inputs:sourceColorSpace"]["value"], o["color_space"] == "sRGB" ? "sRGB" : "raw") << file;
+            EXPECT_EQ(ra["inputs:sourceColorSpace"]["value"], o["color_space"] == "sRGB" ? "sRGB" : "raw") << written;
             const std::string st = ra["inputs:st"]["connect"]["path"];
             const json& st_prim = prims[st.substr(0, st.find('.'))]["attributes"];
             EXPECT_EQ(st_prim["info:id"]["value"], "UsdPrimvarReader_float2");
@@ -349,26 +349,31 @@ void expect_usda(const Run& r) {
             }
         }
     }
-    EXPECT_EQ(i, mats.size());
-    // The reader is no rubber stamp: a layer whose texture prims were renamed has connections to
-    // nothing, and text that is not USD is an error.
-    const auto raw = read_bytes(argv[2]);
-    std::string text(raw.begin(), raw.end());
-    for (size_t at; (at = text.find("def Shader \"Tex_")) != std::string::npos;)
-        text.replace(at, 15, "def Shader \"Gone_");
-    write_text(r.out / "broken.usda", text);
-    write_text(r.out / "not.usda", "#usda 1.0\ndef Material \"M\" {\n  float x = @\n}\n");
-    const auto bad = mf::testbin::spawn({argv[0], argv[1], (r.out / "broken.usda").string(),
-                                         (r.out / "not.usda").string()},
-                                        60);
-    std::istringstream bl(bad.output);
-    std::string l1, l2;
-    std::getline(bl, l1);
-    std::getline(bl, l2);
-    EXPECT_FALSE(json::parse(l1)["unresolved"].empty()) << l1;
-    EXPECT_FALSE(json::parse(l2)["ok"].get<bool>()) << l2;
-    fs::remove(r.out / "broken.usda");
-    fs::remove(r.out / "not.usda");
+    // OpenUSD is no rubber stamp here: a layer whose texture prims were renamed has connections to
+    // nothing, an 8-bit normal map without its scale fails UsdPreviewSurface's normal-map rule, a texture
+    // that is not there is unresolved, and text that is not USD does not open.
+    const auto raw = read_bytes(files.front());
+    const std::string text(raw.begin(), raw.end());
+    auto variant = [&](const std::string& name, std::string t, const std::string& from, const std::string& to) {
+        for (size_t at = 0; !from.empty() && (at = t.find(from, at)) != std::string::npos; at += to.size())
+            t.replace(at, from.size(), to);
+        write_text(fs::path(files.front()).parent_path() / name, t);
+        return (fs::path(files.front()).parent_path() / name).string();
+    };
+    const std::vector<std::string> bad{variant("broken.usda", text, "def Shader \"Tex_", "def Shader \"Gone_"),
+                                       variant("scale.usda", text, "float4 inputs:scale = (2, 2, 2, 1)", ""),
+                                       variant("gone.usda", text, ".png@", "_gone.png@"),
+                                       variant("not.usda", "#usda 1.0\ndef Material \"M\" {\n  float x = @\n}\n", "",
+                                               "")};
+    const std::vector<json> b = py_checker("usd_open.py", bad);
+    ASSERT_EQ(b.size(), 4u);
+    EXPECT_FALSE(b[0]["unresolved"].empty()) << b[0].dump();
+    if (text.find("inputs:scale") != std::string::npos) {
+        EXPECT_NE(b[1]["validation"].dump().find("NormalMapTextureValidator"), std::string::npos) << b[1].dump();
+    }
+    EXPECT_NE(b[2]["validation"].dump().find("MissingReferenceValidator"), std::string::npos) << b[2].dump();
+    EXPECT_FALSE(b[3]["ok"].get<bool>()) << b[3].dump();
+    for (const auto& f : bad) fs::remove(f);
 }
 
 }  // namespace
@@ -379,7 +384,7 @@ TEST(Gltf, UsdLayerBesideEachGltfReadsEveryTexture) {
 }
 
 // library.usda references every material's layer under /Materials (the manifest lists it with
-// its hash); the independent reader finds each referenced file.
+// its hash); OpenUSD composes it, finding each referenced layer, and validates it.
 TEST(Gltf, UsdLibraryReferencesEveryMaterialLayer) {
     const auto& r = ingested("samples");
     bool listed = false;
@@ -390,25 +395,28 @@ TEST(Gltf, UsdLibraryReferencesEveryMaterialLayer) {
             EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(r.out / "library.usda")));
         }
     ASSERT_TRUE(listed) << r.manifest["library"].dump();
-    const auto p = mf::testbin::spawn({"python3",
-                                       mf::testenv::source_dir().string() + "/tests/texture/checkers/usda_check.py",
-                                       (r.out / "library.usda").string()},
-                                      60);
-    ASSERT_EQ(p.code, 0) << p.output;
-    const json rep = json::parse(p.output.substr(0, p.output.find('\n')));
+    const std::vector<json> reps = py_checker("usd_open.py", {(r.out / "library.usda").string()});
+    ASSERT_EQ(reps.size(), 1u);
+    const json& rep = reps[0];
     ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+    EXPECT_TRUE(rep["validation"].empty()) << rep["validation"].dump(1);
     EXPECT_TRUE(rep["unresolved"].empty()) << rep["unresolved"];
     EXPECT_EQ(rep["metadata"]["defaultPrim"], "Materials");
     EXPECT_EQ(rep["prims"]["/Materials"]["type"], "Scope");
     std::set<std::string> referenced;
-    for (const auto& [path, prim] : rep["prims"].items())
+    size_t shaders = 0;
+    for (const auto& [path, prim] : rep["prims"].items()) {
         for (const auto& ref : prim.value("references", json::array())) referenced.insert(ref.get<std::string>());
+        // Composed: the referenced layers' shaders are on the library's stage.
+        if (prim["type"] == "Shader" && prim["attributes"]["info:id"]["value"] == "UsdPreviewSurface") ++shaders;
+    }
     std::set<std::string> layers;
     for (const auto& m : r.manifest["materials"])
         for (const auto& f : m["material_files"])
             if (f["format"] == "usda") layers.insert(f["file"].get<std::string>());
     EXPECT_EQ(referenced, layers);
     EXPECT_EQ(layers.size(), r.manifest["materials"].size());
+    EXPECT_EQ(shaders, layers.size());
 }
 
 // library.mtlx holds every material's MaterialX elements in one document that MaterialX's own

@@ -68,6 +68,34 @@ inline bool npm_checkers_installed() {
     return installed;
 }
 
+// Whether scripts/py-checkers.sh has made the PyPI checkers' environment (once per process).
+inline bool py_checkers_installed() {
+    static const bool installed = [] {
+        const auto p = mf::testbin::spawn({mf::testenv::source_dir().string() + "/scripts/py-checkers.sh",
+                                           mf::testenv::py_dir().string()},
+                                          600);
+        EXPECT_EQ(p.code, 0) << "scripts/py-checkers.sh: " << p.output;
+        return p.code == 0;
+    }();
+    return installed;
+}
+
+// Runs `PY_DIR/bin/python SCRIPT ARGS...` (tests/texture/checkers, on the real implementations
+// from PyPI) and parses one JSON line per file.
+inline std::vector<json> py_checker(const std::string& script, const std::vector<std::string>& args) {
+    if (!py_checkers_installed()) return {};
+    std::vector<std::string> argv{(mf::testenv::py_dir() / "bin" / "python").string(),
+                                  mf::testenv::source_dir().string() + "/tests/texture/checkers/" + script};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const auto p = mf::testbin::spawn(argv, 300);
+    EXPECT_EQ(p.code, 0) << p.output;
+    std::vector<json> out;
+    std::istringstream lines(p.output);
+    for (std::string line; std::getline(lines, line);)
+        if (!line.empty() && line[0] == '{') out.push_back(json::parse(line));
+    return out;
+}
+
 // Runs `node SCRIPT NPM_DIR ARGS...` (tests/texture/checkers) and parses one JSON line per file.
 inline std::vector<json> node_checker(const std::string& script, const std::vector<fs::path>& files) {
     if (!npm_checkers_installed()) return {};
