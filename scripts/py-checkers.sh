@@ -3,6 +3,9 @@
 # into a virtual environment of the build tree (never committed, never vendored):
 #   usd-core   OpenUSD (Pixar's pxr modules): Usd.Stage.Open and the validators usdchecker runs
 #              (UsdValidation) on every .usda and library.usda (tests/texture/checkers/usd_open.py)
+#   materialx  MaterialX 1.39 (the Academy Software Foundation's bindings): every .mtlx validated
+#              with the standard libraries, GLSL generated for each material and compiled by
+#              glslang (tests/texture/checkers/mtlx_open.py)
 # (PyPI's pyktx 4.4.2 is a source package that builds against an installed libktx, which Debian
 # 12 does not package: the .ktx2 files are read by npm ktx-parse until libktx is built here.)
 # Usage: scripts/py-checkers.sh [DIR]   (default build/py; the tests run DIR/bin/python)
@@ -12,7 +15,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 dir=${1:-$root/build/py}
-packages=(usd-core==26.11)
+packages=(usd-core==26.11 materialx==1.39.5)
 want=$(printf '%s\n' "${packages[@]}")
 [[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -x $dir/bin/python ]] && exit 0
 mkdir -p "$dir"

@@ -59,7 +59,9 @@ TEST(HeaderMemo, HeadersAreRememberedWhileARunIsOpenAndForgottenAfter) {
     const fs::path file = dir / "Map_Color.png";
     overwrite(file, png(16, 8));
     std::this_thread::sleep_for(std::chrono::milliseconds(2100));  // settled: may be remembered
-    // What a read of the header adds to the bytes read, less what reading /proc/self/io costs.
+    // What a read of the header adds to the bytes read, less what reading /proc/self/io costs
+    // (which varies by a byte or two as its numbers gain digits). Opening the PNG reads at least
+    // its signature and IHDR (33 bytes); a remembered header reads nothing.
     const long long io0 = bytes_read();
     const long long itself = bytes_read() - io0;
     auto read_costs = [&] {
@@ -67,18 +69,19 @@ TEST(HeaderMemo, HeadersAreRememberedWhileARunIsOpenAndForgottenAfter) {
         EXPECT_EQ(width_of(file), 16);
         return bytes_read() - before - itself;
     };
-    EXPECT_GT(read_costs(), 0) << "no run open: read";
-    EXPECT_GT(read_costs(), 0) << "no run open: read again, nothing remembered";
+    constexpr long long kSlack = 8, kHeader = 33;
+    EXPECT_GE(read_costs(), kHeader) << "no run open: read";
+    EXPECT_GE(read_costs(), kHeader) << "no run open: read again, nothing remembered";
     {
         const mf::ReadScope run;
-        EXPECT_GT(read_costs(), 0) << "first read of the run";
-        EXPECT_EQ(read_costs(), 0) << "remembered for the run";
+        EXPECT_GE(read_costs(), kHeader) << "first read of the run";
+        EXPECT_LE(read_costs(), kSlack) << "remembered for the run";
         const mf::ReadScope copy = run;  // a batch moved or copied keeps the run open
-        EXPECT_EQ(read_costs(), 0);
+        EXPECT_LE(read_costs(), kSlack);
     }
-    EXPECT_GT(read_costs(), 0) << "the run is over: its memo was dropped";
+    EXPECT_GE(read_costs(), kHeader) << "the run is over: its memo was dropped";
     const mf::ReadScope next;
-    EXPECT_GT(read_costs(), 0) << "a new run starts with nothing remembered";
+    EXPECT_GE(read_costs(), kHeader) << "a new run starts with nothing remembered";
 }
 
 TEST(HeaderMemo, AFileChangedInPlaceIsReadAgainEvenWithItsSizeAndMtimeKept) {
