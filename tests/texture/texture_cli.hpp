@@ -56,37 +56,19 @@ inline std::vector<uint8_t> read_bytes(const fs::path& p) {
     return b;
 }
 
-// Whether scripts/npm-checkers.sh has installed the npm checkers (it runs once per process).
-inline bool npm_checkers_installed() {
-    static const bool installed = [] {
-        const auto p = mf::testbin::spawn({mf::testenv::source_dir().string() + "/scripts/npm-checkers.sh",
-                                           mf::testenv::npm_dir().string()},
-                                          300);
-        EXPECT_EQ(p.code, 0) << "scripts/npm-checkers.sh: " << p.output;
-        return p.code == 0;
-    }();
-    return installed;
+// Whether scripts/SCRIPT has installed its checkers into `dir` (run once per process and script:
+// npm-checkers.sh, py-checkers.sh).
+inline bool checkers_installed(const std::string& script, const fs::path& dir) {
+    static std::map<std::string, bool> done;  // a test program runs its tests on one thread
+    if (const auto it = done.find(script); it != done.end()) return it->second;
+    const auto p = mf::testbin::spawn({mf::testenv::source_dir().string() + "/scripts/" + script, dir.string()}, 600);
+    EXPECT_EQ(p.code, 0) << "scripts/" << script << ": " << p.output;
+    return done[script] = p.code == 0;
 }
+inline bool npm_checkers_installed() { return checkers_installed("npm-checkers.sh", mf::testenv::npm_dir()); }
 
-// Whether scripts/py-checkers.sh has made the PyPI checkers' environment (once per process).
-inline bool py_checkers_installed() {
-    static const bool installed = [] {
-        const auto p = mf::testbin::spawn({mf::testenv::source_dir().string() + "/scripts/py-checkers.sh",
-                                           mf::testenv::py_dir().string()},
-                                          600);
-        EXPECT_EQ(p.code, 0) << "scripts/py-checkers.sh: " << p.output;
-        return p.code == 0;
-    }();
-    return installed;
-}
-
-// Runs `PY_DIR/bin/python SCRIPT ARGS...` (tests/texture/checkers, on the real implementations
-// from PyPI) and parses one JSON line per file.
-inline std::vector<json> py_checker(const std::string& script, const std::vector<std::string>& args) {
-    if (!py_checkers_installed()) return {};
-    std::vector<std::string> argv{(mf::testenv::py_dir() / "bin" / "python").string(),
-                                  mf::testenv::source_dir().string() + "/tests/texture/checkers/" + script};
-    argv.insert(argv.end(), args.begin(), args.end());
+// Runs a checker (argv) and parses its JSON lines, one per file it was given.
+inline std::vector<json> json_lines(const std::vector<std::string>& argv) {
     const auto p = mf::testbin::spawn(argv, 300);
     EXPECT_EQ(p.code, 0) << p.output;
     std::vector<json> out;
@@ -96,19 +78,24 @@ inline std::vector<json> py_checker(const std::string& script, const std::vector
     return out;
 }
 
-// Runs `node SCRIPT NPM_DIR ARGS...` (tests/texture/checkers) and parses one JSON line per file.
+// Runs `PY_DIR/bin/python SCRIPT ARGS...` (tests/texture/checkers, on the real implementations
+// from PyPI: scripts/py-checkers.sh).
+inline std::vector<json> py_checker(const std::string& script, const std::vector<std::string>& args) {
+    if (!checkers_installed("py-checkers.sh", mf::testenv::py_dir())) return {};
+    std::vector<std::string> argv{(mf::testenv::py_dir() / "bin" / "python").string(),
+                                  mf::testenv::source_dir().string() + "/tests/texture/checkers/" + script};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return json_lines(argv);
+}
+
+// Runs `node SCRIPT NPM_DIR ARGS...` (tests/texture/checkers).
 inline std::vector<json> node_checker(const std::string& script, const std::vector<fs::path>& files) {
     if (!npm_checkers_installed()) return {};
     std::vector<std::string> argv{"node", mf::testenv::source_dir().string() + "/tests/texture/checkers/" + script,
                                   mf::testenv::npm_dir().string()};
     for (const auto& f : files) argv.push_back(f.string());
-    const auto p = mf::testbin::spawn(argv, 300);
-    EXPECT_EQ(p.code, 0) << p.output;
-    std::vector<json> out;
-    std::istringstream lines(p.output);
-    for (std::string line; std::getline(lines, line);)
-        if (!line.empty() && line[0] == '{') out.push_back(json::parse(line));
-    EXPECT_EQ(out.size(), files.size()) << p.output;
+    std::vector<json> out = json_lines(argv);
+    EXPECT_EQ(out.size(), files.size());
     return out;
 }
 
