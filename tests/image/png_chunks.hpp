@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
 #include "image/image.hpp"
 
 namespace pngtest {
@@ -106,6 +109,20 @@ inline std::vector<unsigned char> encode(int w, int h, int channels, int depth, 
         EXPECT_TRUE(mf::encode_image(img, {mf::FileFormat::png, 16}, png, err)) << err;
     }
     return png;
+}
+
+// 8-bit samples written by OpenImageIO (libpng, zlib) with libpng filter mask `filter` (0: its
+// adaptive default, which picks among all five per row).
+inline std::vector<unsigned char> libpng_file(int w, int h, int channels, const std::vector<uint8_t>& s8, int filter) {
+    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (filter) spec.attribute("png:filter", filter);
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput vec(bytes);
+    auto out = OIIO::ImageOutput::create("x.png");
+    EXPECT_TRUE(out && out->set_ioproxy(&vec) && out->open("x.png", spec) &&
+                out->write_image(OIIO::TypeDesc::UINT8, s8.data()) && out->close());
+    return bytes;
 }
 
 }  // namespace pngtest

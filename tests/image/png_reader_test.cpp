@@ -27,20 +27,6 @@ using mf::testfiles::in_memory;
 
 constexpr size_t kLimit = size_t{1} << 30;
 
-// 8-bit samples written by OpenImageIO (libpng, zlib) with libpng filter mask `filter` (0: its
-// adaptive default, which picks among all five per row).
-std::vector<unsigned char> libpng_file(int w, int h, int channels, const std::vector<uint8_t>& s8, int filter) {
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (filter) spec.attribute("png:filter", filter);
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput vec(bytes);
-    auto out = OIIO::ImageOutput::create("x.png");
-    EXPECT_TRUE(out && out->set_ioproxy(&vec) && out->open("x.png", spec) &&
-                out->write_image(OIIO::TypeDesc::UINT8, s8.data()) && out->close());
-    return bytes;
-}
-
 TEST(PngReader, ReadsEveryFilterAndLayoutExactly) {
     const int sizes[][2] = {{1, 1}, {7, 3}, {3, 7}, {33, 17}, {300, 2}};
     unsigned seed = 100;

@@ -17,23 +17,11 @@
 #include "image/webp_reader.hpp"
 #include "oiio_oracle.hpp"
 #include "test_files.hpp"
+#include "test_webp.hpp"
 
 namespace {
 
-std::vector<unsigned char> make_webp(int w, int h, int channels, bool lossless) {
-    std::vector<uint8_t> px(static_cast<size_t>(w) * static_cast<size_t>(h) * static_cast<size_t>(channels));
-    std::mt19937 rng(static_cast<unsigned>(w * 13 + h + channels));
-    for (size_t i = 0; i < px.size(); ++i) px[i] = static_cast<uint8_t>((i * 7 + (rng() & 31)) & 0xFF);
-    uint8_t* out = nullptr;
-    const int stride = w * channels;
-    const size_t n = channels == 3 ? (lossless ? WebPEncodeLosslessRGB(px.data(), w, h, stride, &out)
-                                               : WebPEncodeRGB(px.data(), w, h, stride, 80.f, &out))
-                                   : (lossless ? WebPEncodeLosslessRGBA(px.data(), w, h, stride, &out)
-                                               : WebPEncodeRGBA(px.data(), w, h, stride, 80.f, &out));
-    std::vector<unsigned char> bytes(out, out + n);
-    WebPFree(out);
-    return bytes;
-}
+using mf::testwebp::make_webp;
 
 using mf::testfiles::in_memory;
 
