@@ -3,6 +3,8 @@
 # into a virtual environment of the build tree (never committed, never vendored):
 #   usd-core   OpenUSD (Pixar's pxr modules): Usd.Stage.Open and the validators usdchecker runs
 #              (UsdValidation) on every .usda and library.usda (tests/texture/checkers/usd_open.py)
+#   bpy        Blender 4.5 as a Python module: every .gltf imported by Blender's own glTF importer,
+#              each texture found in its Principled BSDF input (tests/texture/checkers/blender_open.py)
 #   materialx  MaterialX 1.39 (the Academy Software Foundation's bindings): every .mtlx validated
 #              with the standard libraries, GLSL generated for each material and compiled by
 #              glslang (tests/texture/checkers/mtlx_open.py)
@@ -15,7 +17,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 dir=${1:-$root/build/py}
-packages=(usd-core==26.11 materialx==1.39.5)
+packages=(usd-core==26.11 materialx==1.39.5 bpy==4.5.15)
 want=$(printf '%s\n' "${packages[@]}")
 [[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -x $dir/bin/python ]] && exit 0
 mkdir -p "$dir"

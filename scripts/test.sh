@@ -19,7 +19,7 @@ install_set test
 configure "$root/build" -DMATFORGE_TESTS=ON -DMATFORGE_BENCHMARKS=ON
 build_quietly "$root/build"
 "$root/scripts/npm-checkers.sh" "$root/build/npm"  # glTF-Validator and ktx-parse for tests/texture
-"$root/scripts/py-checkers.sh" "$root/build/py"     # OpenUSD and MaterialX for tests/texture
+"$root/scripts/py-checkers.sh" "$root/build/py"     # OpenUSD, MaterialX, Blender for tests/texture
 echo "test: release build $((SECONDS - t0)) s" >&2
 t0=$SECONDS
 # With the sanitizer stage to follow, the release build runs only what that stage leaves out.

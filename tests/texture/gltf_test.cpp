@@ -570,3 +570,78 @@ TEST(Gltf, MaterialXGeneratesGlslThatCompilesForEveryMaterial) {
     fs::remove(one / "not.mtlx");
     fs::remove_all(r.out / "glsl");
 }
+
+// Blender itself (PyPI bpy 4.5, checkers/blender_open.py) imports every .gltf of the samples and
+// the corpus through its own glTF importer, and the material it makes reads each written texture
+// where the manifest says: base colour (RGB) and alpha (A, where the set is cut out or blended)
+// from the sRGB base colour texture, metallic (B) and roughness (G) through a Separate Color of
+// the ORM, the normal through a Normal Map node, emission from its sRGB texture; every data
+// texture Non-Color, every image loaded at the written size. Blender is no rubber stamp: a
+// texture that is not there loads nothing, and a .gltf that is not JSON does not import.
+TEST(Gltf, BlenderImportsEveryGltfWithEachTextureInItsSlot) {
+    static const std::map<std::string, std::pair<std::string, std::string>> kSlot{
+        // role -> (Principled BSDF input, channel Blender reads it from)
+        {"albedo", {"Base Color", "RGB"}}, {"opacity", {"Alpha", "A"}},   {"metalness", {"Metallic", "B"}},
+        {"roughness", {"Roughness", "G"}}, {"normal", {"Normal", "RGB"}}, {"emissive", {"Emission Color", "RGB"}}};
+    for (const auto* r : {&ingested("samples"), &ingested("corpus")}) {
+        std::vector<std::string> files;
+        std::vector<const json*> mats;
+        for (const auto& m : r->manifest["materials"])
+            for (const auto& f : m["material_files"])
+                if (f["format"] == "gltf") {
+                    files.push_back((r->out / f["file"].get<std::string>()).string());
+                    mats.push_back(&m);
+                }
+        ASSERT_EQ(mats.size(), r->manifest["materials"].size());
+        const std::vector<json> reps = py_checker("blender_open.py", files);
+        ASSERT_EQ(reps.size(), mats.size());
+        for (size_t i = 0; i < reps.size(); ++i) {
+            const json& m = *mats[i];
+            SCOPED_TRACE(reps[i]["file"].get<std::string>());
+            ASSERT_TRUE(reps[i]["ok"].get<bool>()) << reps[i]["error"];
+            ASSERT_EQ(reps[i]["materials"].size(), 1u);
+            const json& in = reps[i]["materials"][0]["inputs"];
+            size_t bound = 0;
+            for (const auto& o : m["outputs"])
+                for (const auto& [key, role] : o["channels"].items()) {
+                    const auto slot = kSlot.find(role.get<std::string>());
+                    if (slot == kSlot.end()) continue;
+                    if (role == "opacity" && m.value("alpha_mode", std::string("opaque")) == "opaque") continue;
+                    const auto& [input, channel] = slot->second;
+                    ASSERT_TRUE(in.contains(input))
+                        << role << " is written (" << o["file"] << ") but " << input << " reads no texture";
+                    const json& got = in[input];
+                    EXPECT_EQ(fs::path(got["image"].get<std::string>()),
+                              fs::weakly_canonical(r->out / o["file"].get<std::string>()))
+                        << input;
+                    EXPECT_EQ(got["channel"], channel) << input;
+                    EXPECT_EQ(got["colorspace"], o["color_space"] == "sRGB" ? "sRGB" : "Non-Color") << input;
+                    EXPECT_TRUE(got["loaded"].get<bool>()) << input;
+                    EXPECT_EQ(got["size"], json::array({o["width"], o["height"]})) << input;
+                    if (role == "normal") {
+                        EXPECT_EQ(got["via"], json::array({"NORMAL_MAP"}));
+                    }
+                    ++bound;
+                }
+            EXPECT_EQ(bound, in.size()) << "Blender reads no texture matforge did not write for it: " << in.dump();
+        }
+    }
+    const auto& r = ingested("samples");
+    const std::string name = r.manifest["materials"][0]["name"];
+    const fs::path dir = r.out / name;
+    const auto raw = read_bytes(dir / (name + ".gltf"));
+    std::string text(raw.begin(), raw.end());
+    const size_t at = text.find("_orm.png");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 8, "_gone.png");
+    write_text(dir / "gone.gltf", text);
+    write_text(dir / "not.gltf", "{not json");
+    const std::vector<json> bad = py_checker("blender_open.py",
+                                             {(dir / "gone.gltf").string(), (dir / "not.gltf").string()});
+    ASSERT_EQ(bad.size(), 2u);
+    ASSERT_TRUE(bad[0]["ok"].get<bool>()) << bad[0]["error"];
+    EXPECT_FALSE(bad[0]["materials"][0]["inputs"]["Roughness"]["loaded"].get<bool>()) << bad[0].dump();
+    EXPECT_FALSE(bad[1]["ok"].get<bool>());
+    fs::remove(dir / "gone.gltf");
+    fs::remove(dir / "not.gltf");
+}
