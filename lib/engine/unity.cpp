@@ -29,6 +29,18 @@ namespace fs = std::filesystem;
 
 bool hdrp(const EngineMaterial& e) { return e.kind == MaterialFileKind::unity_hdrp; }
 
+// HDRP's material version (its AssetVersion MonoBehaviour, version 13, as HDRP 14 and later
+// save a Lit material beside it): without it HDRP's material post-processor takes the material
+// for version 0 and runs every upgrade on import, rewriting the .mat (its manifest hash goes
+// stale), one of which copies _Metallic into _MetallicRemapMax.
+constexpr const char* kHdrpAssetVersion =
+    "--- !u!114 &7421316734529413221\nMonoBehaviour:\n  m_ObjectHideFlags: 11\n"
+    "  m_CorrespondingSourceObject: {fileID: 0}\n  m_PrefabInstance: {fileID: 0}\n  m_PrefabAsset: {fileID: 0}\n"
+    "  m_GameObject: {fileID: 0}\n  m_Enabled: 1\n  m_EditorHideFlags: 0\n"
+    "  m_Script: {fileID: 11500000, guid: da692e001514ec24dbc4cca1949ff7e8, type: 3}\n  m_Name: \n"
+    "  m_EditorClassIdentifier: \n  version: 13\n  hdPluginSubTargetMaterialVersions:\n    m_Keys: []\n"
+    "    m_Values: \n";
+
 // A YAML scalar: plain when it is letters, digits, '_', '-', '.' and inner spaces (as Unity writes
 // names), else double-quoted (string_literal: a YAML double-quoted scalar reads its escapes).
 std::string yaml_scalar(const std::string& s) {
@@ -53,6 +65,13 @@ bool holds_opacity(const manifest::Output& o) {
     });
 }
 
+// Whether the texture's A channel holds anything (opacity, smoothness, a constant): Unity keeps
+// A only with alphaUsage 1 (From Input); 0 (None) drops it, and HDRP's mask map or URP's
+// metallic map would then read smoothness 1 everywhere (what Unity's own samples' mask maps say).
+bool has_alpha(const manifest::Output& o) {
+    return std::any_of(o.channels.begin(), o.channels.end(), [](const Channel& c) { return c.key == "A"; });
+}
+
 std::string texture_meta(const std::string& guid, const manifest::Output& o, const EngineSlot& slot,
                          const manifest::Material& m) {
     const bool normal = slot.reads_role(Role::normal), alpha = holds_opacity(o);
@@ -75,7 +94,7 @@ std::string texture_meta(const std::string& guid, const manifest::Output& o, con
            "\n  textureSettings:\n    serializedVersion: 2\n    filterMode: 1\n    aniso: 1\n    mipBias: 0\n"
            "    wrapU: 0\n    wrapV: 0\n    wrapW: 0\n  nPOTScale: 1\n  lightmap: 0\n  compressionQuality: 50\n"
            "  spriteMode: 0\n  alignment: 0\n  alphaUsage: " +
-           (alpha ? "1" : "0") + "\n  alphaIsTransparency: " + (alpha ? "1" : "0") +
+           (has_alpha(o) ? "1" : "0") + "\n  alphaIsTransparency: " + (alpha ? "1" : "0") +
            "\n  textureType: " + (normal ? "1" : "0") +
            "\n  textureShape: 1\n  singleChannelComponent: 0\n  maxTextureSizeSet: 0\n  compressionQualitySet: 0\n"
            "  textureFormatSet: 0\n  ignorePngGamma: 0\n  applyGammaDecoding: 0\n  platformSettings:\n"
@@ -186,7 +205,7 @@ std::string material(const EngineMaterial& e, const manifest::Material& m, const
            "\n  disabledShaderPasses: []\n  m_LockedProperties: \n  m_SavedProperties:\n    serializedVersion: 3\n"
            "    m_TexEnvs:\n" +
            p.tex + "    m_Ints: []\n    m_Floats:\n" + p.floats + "    m_Colors:\n" + p.colors +
-           "  m_BuildTextureStacks: []\n  m_AllowLocking: 1\n";
+           "  m_BuildTextureStacks: []\n  m_AllowLocking: 1\n" + (hdrp(e) ? std::string(kHdrpAssetVersion) : "");
 }
 
 }  // namespace

@@ -212,6 +212,10 @@ void expect_unity(const Ingested& r, bool hdrp) {
         EXPECT_EQ(rep["shader_file_id"], 4800000);
         EXPECT_EQ(rep["shader_guid"], hdrp ? "6e4ae4064600d784cac1e41a9e6f2e59" : "933532a4fcc9baf4fa0491de14d08ed7");
         EXPECT_EQ(rep["mat_meta"]["importer"], json::array({"NativeFormatImporter"}));
+        // HDRP's material version beside the Material (else HDRP upgrades and rewrites it on import).
+        EXPECT_EQ(rep["asset_versions"],
+                  hdrp ? json::array({{{"script_guid", "da692e001514ec24dbc4cca1949ff7e8"}, {"version", 13}}})
+                       : json::array());
         const auto at = channels_of(m);
         const std::set<std::string> keywords(rep["keywords"].begin(), rep["keywords"].end());
         std::set<std::string> used;
@@ -234,6 +238,8 @@ void expect_unity(const Ingested& r, bool hdrp) {
             EXPECT_EQ(imp["mipmaps"]["sRGBTexture"], (*o)["color_space"] == "sRGB" ? 1 : 0) << file;
             EXPECT_EQ(imp["textureType"], holds(*o, "RGB", "normal") ? 1 : 0) << file;
             EXPECT_EQ(imp["alphaIsTransparency"], holds(*o, "A", "opacity") ? 1 : 0) << file;
+            // A kept wherever it holds anything (the mask map's smoothness too): 0 drops it.
+            EXPECT_EQ(imp["alphaUsage"], (*o)["channels"].contains("A") ? 1 : 0) << file;
             EXPECT_GE(imp["maxTextureSize"].get<int>(), std::max((*o)["width"].get<int>(), (*o)["height"].get<int>()));
         }
         if (hdrp && at.count("RGB:normal")) {

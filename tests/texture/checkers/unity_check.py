@@ -13,6 +13,7 @@ mat_meta: the .mat's own .meta guid and importer, guids_unique: no two .meta fil
 share a guid}."""
 import json
 import os
+import re
 import sys
 
 import yaml
@@ -30,8 +31,12 @@ UnityLoader.add_multi_constructor("tag:unity3d.com,2011:", unity_object)
 
 
 def load(path):
+    """Every object of a Unity file. Unity states its %TAG once for the whole stream and starts
+    each object with `--- !u!<class> &<id>` (a material beside HDRP's AssetVersion is two); YAML
+    scopes a %TAG to the first document, so the shorthand is written out in full for the rest."""
     with open(path, encoding="utf-8") as f:
-        return list(yaml.load_all(f, Loader=UnityLoader))
+        text = re.sub(r"!u!(\d+)", r"!<tag:unity3d.com,2011:\1>", f.read())
+    return list(yaml.load_all(text, Loader=UnityLoader))
 
 
 def metas(root):
@@ -71,6 +76,9 @@ def check(root, path, by_guid, dupes):
                 hit = by_guid.get(g)
                 out["textures"][slot] = {"guid": g, "file_id": t["fileID"], "file": hit[0] if hit else None,
                                          "importer": hit[1].get("TextureImporter") if hit else None}
+        # The other objects of the file: HDRP's AssetVersion MonoBehaviour (its script's guid, version).
+        out["asset_versions"] = [{"script_guid": str(d["MonoBehaviour"]["m_Script"]["guid"]),
+                                  "version": d["MonoBehaviour"]["version"]} for d in docs[1:] if "MonoBehaviour" in d]
         own = load(path + ".meta")[0]
         out["mat_meta"] = {"guid": str(own["guid"]), "importer": list(k for k in own if k.endswith("Importer"))}
         out["guids_unique"] = not dupes
