@@ -110,7 +110,9 @@ Planes make_planes(SetPlan& plan) {
             // An empty blue is dropped: the two-channel path rebuilds Z from X and Y.
             const bool xy = plan.normal_z_rebuilt && img.channels() >= 3;
             if (img.is_codes()) {  // decoded when packed (pack_output8) or resampled (fit_plane)
-                plane.codes = xy ? first_two_channels(img.codes) : own ? std::move(own->codes) : img.codes;
+                if (xy) plane.codes = first_two_channels(img.codes);
+                else if (own) plane.codes = std::move(own->codes);
+                else plane.codes = img.codes;
                 plane.codes_convention = plan.normal_from();
             } else if (xy) {
                 decode_normal(first_two_channels(img.floats), plan.normal_from(), plane.image);
