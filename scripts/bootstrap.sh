@@ -27,6 +27,7 @@ packages_test=(
   vulkan-validationlayers  # every GPU test fails on a validation message
   python3 python3-jsonschema  # scripts/check-schemas.py (manifest and report schemas)
   python3-venv     # scripts/py-checkers.sh: OpenUSD, MaterialX and Blender (bpy) from PyPI, pinned, under build/
+  libgl1 libsm6 libice6 libx11-6 libxcb1 libxext6 libxfixes3 libxi6 libxrender1 libxkbcommon0  # what bpy links and does not bundle
   python3-yaml     # tests/texture/checkers/unity_check.py (Unity .mat and .meta YAML)
   glslang-tools    # tests/render: the d3d11 HLSL include compiled by glslang's HLSL front end
   slurm-wlm munge  # scripts/cluster-demo.sh (sharded ingest on a one-node Slurm cluster)
