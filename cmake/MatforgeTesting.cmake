@@ -1,4 +1,5 @@
-# matforge_test(name [RUNS_BINARY] [LOCK name] [SLOW regex...] SOURCES... LIBS ...): one
+# matforge_test(name [RUNS_BINARY] [LOCK name] [SLOW regex...] [ENGINE_PROOF regex...] SOURCES...
+# LIBS ...): one
 # GoogleTest program, discovered by ctest. Every test gets a ctest label: `unit` (in-process) or
 # `integration` (RUNS_BINARY), and `slow` when its name matches one of the SLOW regular
 # expressions (anchored; each with its reason in the caller's CMakeLists.txt): the sanitizer
@@ -6,7 +7,9 @@
 # (scripts/test.sh alone runs everything in release). LOCK: its tests never run at the same time
 # as another test holding that ctest RESOURCE_LOCK (tests that share costly results through the
 # test cache: the first computes, the others restore, instead of all computing at once under
-# ctest -j).
+# ctest -j). ENGINE_PROOF: the tests (anchored regular expressions) in which a real engine or DCC
+# opens what matforge wrote (OpenUSD, Blender, Godot, MaterialX, libktx, three.js): label
+# `engine-proof`, so `ctest -L engine-proof` runs exactly the proof.
 # RUNS_BINARY: the tests run the matforge binary (MATFORGE_BIN) and can generate synthetic
 # sets (MATFORGE_GEN_SAMPLES, tests/common/synthetic_sets.hpp), and every manifest and
 # validate report they leave behind is copied to the schema spool (tests/common/run_binary.hpp),
@@ -17,7 +20,7 @@ set(MATFORGE_SCHEMA_SPOOL ${PROJECT_BINARY_DIR}/schema-spool)
 # Emptied with the spool at the start of a ctest run.
 set(MATFORGE_TEST_CACHE ${PROJECT_BINARY_DIR}/test-cache)
 function(matforge_test name)
-  cmake_parse_arguments(T "RUNS_BINARY" "LOCK" "SLOW;SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(T "RUNS_BINARY" "LOCK" "SLOW;ENGINE_PROOF;SOURCES;LIBS" ${ARGN})
   add_executable(test_${name} ${T_SOURCES})
   matforge_target_defaults(test_${name})
   # OpenImageIO directly too: tests write and read files with it as an independent check.
@@ -28,7 +31,7 @@ function(matforge_test name)
   set(_env "MATFORGE_SOURCE_DIR=${PROJECT_SOURCE_DIR};MATFORGE_CACHE=${MATFORGE_TEST_CACHE}")
   string(APPEND _env ";MATFORGE_BIN=$<TARGET_FILE:matforge>;MATFORGE_GEN_SAMPLES=$<TARGET_FILE:gen_samples>")
   string(APPEND _env ";MATFORGE_CORPUS_DIR=${MATFORGE_CORPUS_DIR};MATFORGE_NPM_DIR=${PROJECT_BINARY_DIR}/npm")
-  string(APPEND _env ";MATFORGE_PY_DIR=${PROJECT_BINARY_DIR}/py")
+  string(APPEND _env ";MATFORGE_PY_DIR=${PROJECT_BINARY_DIR}/py;MATFORGE_KTX_DIR=${PROJECT_BINARY_DIR}/ktx")
   if(MATFORGE_SANITIZE)
     # Third-party leaks only (scripts/lsan.supp says which and why), for the test and every
     # matforge it runs, also when ctest is run by hand in the sanitizer build.
@@ -49,6 +52,7 @@ function(matforge_test name)
     string(APPEND _props " RESOURCE_LOCK ${T_LOCK}")
   endif()
   list(JOIN T_SLOW "|" _slow)
+  list(JOIN T_ENGINE_PROOF "|" _proof)
   gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60)
   # The properties go on the discovered tests from a file ctest reads after their list
   # (test_<name>_TESTS), not through gtest_discover_tests(PROPERTIES): CMake 3.25 splits a
@@ -56,11 +60,16 @@ function(matforge_test name)
   # the tests, and every property after it was lost (checked with ctest --show-only=json-v1).
   # file(GENERATE): the environment names the binaries by $<TARGET_FILE:...>.
   set(_file ${CMAKE_CURRENT_BINARY_DIR}/test_${name}_properties.cmake)
-  set(_body "foreach(_t IN LISTS test_${name}_TESTS)\n  set_tests_properties(\"\${_t}\" PROPERTIES ${_props} LABELS ${_label})\n")
+  # Labels: unit or integration; `slow` (left to the release build when sanitizing);
+  # `engine-proof` (a real engine or DCC opens the files: ctest -L engine-proof).
+  set(_body "foreach(_t IN LISTS test_${name}_TESTS)\n  set(_labels ${_label})\n")
   if(_slow)
-    string(APPEND _body "  if(_t MATCHES \"^(${_slow})$\")\n    set_tests_properties(\"\${_t}\" PROPERTIES LABELS \"${_label};slow\")\n  endif()\n")
+    string(APPEND _body "  if(_t MATCHES \"^(${_slow})$\")\n    list(APPEND _labels slow)\n  endif()\n")
   endif()
-  string(APPEND _body "endforeach()\n")
+  if(_proof)
+    string(APPEND _body "  if(_t MATCHES \"^(${_proof})$\")\n    list(APPEND _labels engine-proof)\n  endif()\n")
+  endif()
+  string(APPEND _body "  set_tests_properties(\"\${_t}\" PROPERTIES ${_props} LABELS \"\${_labels}\")\nendforeach()\n")
   file(GENERATE OUTPUT ${_file} CONTENT "${_body}")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${_file})
 endfunction()

@@ -38,6 +38,10 @@ packages_test=(
 # tests/texture run the npm checkers (scripts/npm-checkers.sh); a Node.js that bundles npm
 # (NodeSource's) conflicts with Debian's npm package.
 command -v npm >/dev/null || packages_test+=(nodejs npm)
+# scripts/ktx-checker.sh builds libktx with Cargo (rustup's, where there is one, is as good) from
+# crates it downloads with curl.
+packages_test+=(curl)
+command -v cargo >/dev/null || packages_test+=(cargo)
 packages_dev=(
   clang-14 libclang-rt-14-dev  # the sanitizer + fuzzer build (scripts/test.sh, scripts/fuzz.sh)
   clang-tidy-14 clang-format-14  # scripts/tidy.sh, scripts/format.sh --check

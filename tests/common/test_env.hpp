@@ -28,6 +28,7 @@ inline std::string bin() { return required("MATFORGE_BIN"); }                   
 inline std::string gen_samples() { return required("MATFORGE_GEN_SAMPLES"); }    // tools/gen_samples
 inline std::filesystem::path npm_dir() { return required("MATFORGE_NPM_DIR"); }  // scripts/npm-checkers.sh
 inline std::filesystem::path py_dir() { return required("MATFORGE_PY_DIR"); }    // scripts/py-checkers.sh
+inline std::filesystem::path ktx_dir() { return required("MATFORGE_KTX_DIR"); }  // scripts/ktx-checker.sh
 // The real-material corpus (tests/data/corpus: truth.json and real/<set>/).
 inline std::filesystem::path corpus_dir() { return required("MATFORGE_CORPUS_DIR"); }
 // Where manifests and reports go for schema_check; unset for tests that run no binary.

@@ -504,12 +504,12 @@ TEST(ReportCli, ValidateWritesThePageWithTheFindingsShares) {
 }
 
 // The GPU presets' outputs (.dds, .ktx2) are shown as the engine samples them: level 0 decoded
-// by the codec that wrote it (BC1/BC3 colour, BC4 scalars, BC5 normals with Z rebuilt), close to
+// by the codec that wrote it (BC1/BC3 colour, BC4 scalars, BC5 normals with Z rebuilt, ASTC), close to
 // the same map's PNG output of the gltf preset, with nothing "not shown" and no error line.
 TEST(ReportCli, BlockCompressedOutputsAreShownAsTheEngineSamplesThem) {
     const fs::path work = temp_dir("gpu");
     ASSERT_TRUE(matforge({"ingest", samples().string(), "-o", (work / "out").string(), "--preset",
-                          "gltf,d3d11,vulkan-ktx2", "-q", "--fail-on", "never"}));
+                          "gltf,d3d11,vulkan-ktx2,vulkan-ktx2-astc", "-q", "--fail-on", "never"}));
     // The thumbnail of each material's albedo and normal output in a preset's report.
     auto thumbs = [&](const std::string& preset) {
         const auto report = work / ("report-" + preset);
@@ -537,7 +537,7 @@ TEST(ReportCli, BlockCompressedOutputsAreShownAsTheEngineSamplesThem) {
     };
     const auto png = thumbs("gltf");
     ASSERT_EQ(png.size(), 8u);  // four sets, an albedo and a normal each
-    for (const std::string preset : {"d3d11", "vulkan-ktx2"}) {
+    for (const std::string preset : {"d3d11", "vulkan-ktx2", "vulkan-ktx2-astc"}) {
         const auto gpu = thumbs(preset);
         ASSERT_EQ(gpu.size(), 8u) << preset;
         for (const auto& [what, thumb] : gpu) {
@@ -556,6 +556,7 @@ TEST(ReportCli, BlockCompressedOutputsAreShownAsTheEngineSamplesThem) {
             // A thumbnail averages blocks' errors away: BC1 level 0 is 37-46 dB here, its
             // thumbnail well above; a normal without its Z (blue 0) would be under 10 dB.
             EXPECT_GT(psnr, 36.0);
+            std::cout << preset << " " << what << ": thumbnail " << psnr << " dB\n";
         }
     }
 }

@@ -180,6 +180,91 @@ TEST(VulkanKtx2, KtxParseReadsHeaderDfdAndLevels) {
     }
 }
 
+namespace {
+
+// FNV-1a 64, as tests/texture/checkers/ktx_open prints each level's digest.
+std::string fnv1a_hex(std::span<const uint8_t> bytes) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (const uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ull;
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+    return text;
+}
+
+// libktx itself (KTX-Software's loader: ktxTexture2_CreateFromNamedFile, then its image data
+// loaded, zstd inflated by libktx) on every .ktx2 of an ingest: the format, size and levels the
+// manifest lists, and each level's inflated bytes the very blocks matforge's own reader (what the
+// preview and the report decode) gets from the file. Returns how many files it checked.
+size_t expect_libktx_loads(const fs::path& out, const json& manifest, const std::string& preset) {
+    std::vector<fs::path> files;
+    std::vector<json> outputs;
+    for (const auto& m : manifest["materials"])
+        for (const auto& o : m["outputs"]) {
+            files.push_back(out / o["file"].get<std::string>());
+            outputs.push_back(o);
+        }
+    const auto loaded = ktx_checker(files);
+    EXPECT_EQ(loaded.size(), files.size()) << preset;
+    size_t checked = 0;
+    for (size_t i = 0; i < std::min(files.size(), loaded.size()); ++i) {
+        const json& k = loaded[i];
+        const json& o = outputs[i];
+        const std::string who = preset + " " + o["file"].get<std::string>();
+        EXPECT_TRUE(k["ok"].get<bool>()) << who << ": " << k["error"];
+        if (!k["ok"].get<bool>()) continue;
+        EXPECT_EQ(k["vk_format"], kVkFormats.at(o["gpu_format"])) << who;
+        EXPECT_EQ(k["width"], o["width"]) << who;
+        EXPECT_EQ(k["height"], o["height"]) << who;
+        EXPECT_EQ(k["depth"], 1) << who;
+        EXPECT_EQ(k["layers"], 1) << who;
+        EXPECT_EQ(k["faces"], 1) << who;
+        EXPECT_EQ(k["compressed"], true) << who;
+        EXPECT_EQ(k["supercompression"], 2) << who << ": zstd";
+        EXPECT_EQ(k["oetf"], o["color_space"] == "sRGB" ? 2 : 1) << who << ": KHR_DF_TRANSFER";
+        EXPECT_EQ(k["writer"], "matforge 0.1.0") << who;
+        EXPECT_EQ(k["levels"], o["levels"].size()) << who;
+        mf::texture::GpuTexture t;
+        std::string err;
+        EXPECT_TRUE(mf::texture::read_gpu_texture(read_bytes(files[i]), t, err)) << who << ": " << err;
+        EXPECT_EQ(k["level_fnv1a"].size(), t.levels.size()) << who;
+        for (size_t l = 0; l < std::min(t.levels.size(), k["level_fnv1a"].size()); ++l) {
+            EXPECT_EQ(k["level_bytes"][l], t.levels[l].data.size()) << who << " level " << l;
+            EXPECT_EQ(k["level_fnv1a"][l], fnv1a_hex(t.levels[l].data)) << who << " level " << l;
+        }
+        ++checked;
+    }
+    return checked;
+}
+
+}  // namespace
+
+TEST(VulkanKtx2, LibktxLoadsEveryFileAsTheManifestSays) {
+    // sample_materials/ with the shipped presets; the corpus with the same presets capped at
+    // 256² (a user preset: `max_size`), so that every corpus set's maps are written as KTX2
+    // without minutes of encoding 2K and 4K maps.
+    const fs::path scratch = fs::temp_directory_path() / ("matforge-texture-libktx-" + std::to_string(::getpid()));
+    fs::remove_all(scratch);
+    mf::testbin::register_test_dir(scratch);
+    size_t files = 0, corpus_files = 0;
+    for (const std::string preset : {"vulkan-ktx2", "vulkan-ktx2-astc"}) {
+        const auto& in = ingested(preset);
+        files += expect_libktx_loads(in.out, in.manifest, preset);
+        const auto shown = matforge({"presets", "show", preset});
+        ASSERT_EQ(shown.code, 0) << shown.output;
+        json p = json::parse(shown.output.substr(shown.output.find('{')));
+        p["name"] = preset + "-256";
+        p["max_size"] = 256;
+        const fs::path file = scratch / (preset + "-256.json");
+        write_text(file, p.dump(2));
+        const fs::path out = scratch / preset;
+        const json manifest = ingest({corpus()}, out, file.string(), {"--fail-on", "never"});
+        EXPECT_GE(manifest["materials"].size(), 15u);
+        corpus_files += expect_libktx_loads(out, manifest, preset + "-256 (corpus)");
+    }
+    EXPECT_GE(files, 2u * 4 * 3);
+    EXPECT_GE(corpus_files, 2u * 15 * 3);
+}
+
 TEST(GpuPresets, ErrorsStayWithinTheShippedBounds) {
     // The shipped bounds (level 0's) hold on the samples; what the manifest records is plausible
     // for each format (BC1 color ~35-46 dB, BC5 normals under a degree on average at level 0).

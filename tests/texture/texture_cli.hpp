@@ -6,9 +6,11 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -86,6 +88,17 @@ inline std::vector<json> py_checker(const std::string& script, const std::vector
                                   mf::testenv::source_dir().string() + "/tests/texture/checkers/" + script};
     argv.insert(argv.end(), args.begin(), args.end());
     return json_lines(argv);
+}
+
+// Runs libktx's loader on `files` (tests/texture/checkers/ktx_open, built by
+// scripts/ktx-checker.sh): one JSON line per file.
+inline std::vector<json> ktx_checker(const std::vector<fs::path>& files) {
+    if (!checkers_installed("ktx-checker.sh", mf::testenv::ktx_dir())) return {};
+    std::vector<std::string> argv{(mf::testenv::ktx_dir() / "release" / "ktx_open").string()};
+    for (const auto& f : files) argv.push_back(f.string());
+    std::vector<json> out = json_lines(argv);
+    EXPECT_EQ(out.size(), files.size());
+    return out;
 }
 
 // Runs `node SCRIPT NPM_DIR ARGS...` (tests/texture/checkers).
@@ -221,6 +234,82 @@ inline void expect_recorded_error(const json& output, size_t level, const mf::Im
         const int channels = std::min(ref.channels, f->channels);
         EXPECT_NEAR(mf::texture::psnr(ref, decoded, channels), rec["psnr_db"].get<double>(), 0.002) << who;
     }
+}
+
+// Two renders of one material (8-bit sRGB PNGs of one size, RGB read) compared where both drew
+// it: the PSNR (peak 255) over the pixels lit (any channel above 0) in both pictures whose four
+// neighbours are lit in both too, so a silhouette's partly covered pixels, which each renderer
+// filters its own way, stay out. `lit_a`, `lit_b`: each picture's lit pixels.
+struct Compared {
+    double psnr_db = 0;
+    size_t interior = 0, lit_a = 0, lit_b = 0;
+};
+inline Compared interior_psnr(const fs::path& a, const fs::path& b) {
+    auto rgb = [](const fs::path& file, int& w, int& h) {
+        std::vector<uint8_t> px;
+        auto in = OIIO::ImageInput::open(file.string());
+        EXPECT_TRUE(in) << file << ": " << OIIO::geterror();
+        if (!in) return px;
+        w = in->spec().width, h = in->spec().height;
+        px.resize(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
+        EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data())) << file << ": " << in->geterror();
+        return px;
+    };
+    int wa = 0, ha = 0, wb = 0, hb = 0;
+    const auto pa = rgb(a, wa, ha), pb = rgb(b, wb, hb);
+    Compared c;
+    EXPECT_TRUE(wa == wb && ha == hb && !pa.empty()) << a << " and " << b << " differ in size";
+    if (wa != wb || ha != hb || pa.empty()) return c;
+    const auto at = [&](int x, int y) {
+        return (static_cast<size_t>(y) * static_cast<size_t>(wa) + static_cast<size_t>(x)) * 3;
+    };
+    const auto lit = [&](const std::vector<uint8_t>& p, int x, int y) {
+        if (x < 0 || y < 0 || x >= wa || y >= ha) return false;
+        const size_t i = at(x, y);
+        return p[i] > 0 || p[i + 1] > 0 || p[i + 2] > 0;
+    };
+    double sum = 0;
+    for (int y = 0; y < ha; ++y)
+        for (int x = 0; x < wa; ++x) {
+            c.lit_a += lit(pa, x, y);
+            c.lit_b += lit(pb, x, y);
+            bool inside = true;
+            for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+                inside = inside && lit(pa, x + dx, y + dy) && lit(pb, x + dx, y + dy);
+            if (!inside) continue;
+            for (size_t k = 0; k < 3; ++k) {
+                const double d = double(pa[at(x, y) + k]) - double(pb[at(x, y) + k]);
+                sum += d * d;
+            }
+            ++c.interior;
+        }
+    const double mse = c.interior ? sum / (3.0 * static_cast<double>(c.interior)) : 0.0;
+    c.psnr_db = mse > 0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : 99.0;
+    return c;
+}
+
+// `matforge preview MANIFEST --scene reference --aa 4` at `size` into `dir`: the picture another
+// renderer's (Blender's, Godot's) is held against, in the same scene (docs/preview.md).
+inline void preview_reference(const fs::path& manifest, const fs::path& dir, int size) {
+    const auto p = matforge({"preview", manifest.string(), "-o", dir.string(), "--scene", "reference", "--size",
+                             std::to_string(size), "--aa", "4"});
+    EXPECT_EQ(p.code, 0) << p.output;
+}
+
+// Another renderer's picture of a material against the preview's: at least `min_db` over the
+// pixels both drew, away from the silhouette, on more than 1000 of them; its lit pixels within
+// `lit` (low, high) times the preview's (a cut-out drawn solid, or half the sphere missing, is
+// far outside). Prints the figures (ctest --verbose) for docs/engines.md.
+inline void expect_agrees_with_preview(const fs::path& preview_png, const fs::path& other_png, double min_db,
+                                       std::pair<double, double> lit, const std::string& who) {
+    const Compared c = interior_psnr(preview_png, other_png);
+    EXPECT_GE(c.psnr_db, min_db) << who;
+    EXPECT_GT(c.interior, 1000u) << who;
+    ASSERT_GT(c.lit_a, 0u) << who;
+    const double ratio = static_cast<double>(c.lit_b) / static_cast<double>(c.lit_a);
+    EXPECT_GT(ratio, lit.first) << who;
+    EXPECT_LT(ratio, lit.second) << who;
+    std::cout << who << ": " << c.psnr_db << " dB over " << c.interior << " px, lit ratio " << ratio << "\n";
 }
 
 }  // namespace mtt

@@ -17,6 +17,8 @@ import sys
 
 import bpy
 
+from blender_gltf import import_gltf
+
 INPUTS = ("Base Color", "Alpha", "Metallic", "Roughness", "Normal", "Emission Color")
 
 
@@ -42,15 +44,8 @@ def image_source(socket, via):
 
 
 def open_one(path):
-    rep = {"file": path, "ok": False, "error": "", "materials": []}
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    try:
-        result = bpy.ops.import_scene.gltf(filepath=path)
-    except RuntimeError as e:
-        rep["error"] = str(e).strip()
-        return rep
-    if "FINISHED" not in result:
-        rep["error"] = "the importer returned " + str(result)
+    rep = {"file": path, "ok": False, "error": import_gltf(path), "materials": []}
+    if rep["error"]:
         return rep
     rep["ok"] = True
     for mat in bpy.data.materials:
