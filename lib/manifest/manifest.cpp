@@ -164,6 +164,7 @@ Output output_of(const json& j, const std::string& where) {
         if (*z != "reconstructed") fail(where, "\"normal_z\" must be \"reconstructed\"");
         o.normal_z_reconstructed = true;
     }
+    if (member(j, "dilated_texels")) o.dilated_texels = int_of(j, "dilated_texels", where, 0);
     if (const json* levels = member(j, "levels")) {
         if (!levels->is_array()) fail(where, "\"levels\" is not an array");
         for (size_t i = 0; i < levels->size(); ++i) {
@@ -183,6 +184,7 @@ Output output_of(const json& j, const std::string& where) {
             e.psnr_db = number("psnr_db", 100.0);
             e.mean_angle_deg = number("mean_angle_deg", 180.0);
             e.max_angle_deg = number("max_angle_deg", 180.0);
+            e.coverage = number("coverage", 1.0);
             o.levels.push_back(e);
         }
     }
@@ -335,6 +337,7 @@ json to_json(const Output& o) {
     if (!o.gpu_format.empty()) j["gpu_format"] = o.gpu_format;
     if (!o.supercompression.empty()) j["supercompression"] = o.supercompression;
     if (o.normal_z_reconstructed) j["normal_z"] = "reconstructed";
+    if (o.dilated_texels) j["dilated_texels"] = *o.dilated_texels;
     if (!o.levels.empty()) {
         json levels = json::array();
         for (const LevelError& e : o.levels) {
@@ -342,6 +345,7 @@ json to_json(const Output& o) {
             if (e.psnr_db) l["psnr_db"] = *e.psnr_db;
             if (e.mean_angle_deg) l["mean_angle_deg"] = *e.mean_angle_deg;
             if (e.max_angle_deg) l["max_angle_deg"] = *e.max_angle_deg;
+            if (e.coverage) l["coverage"] = *e.coverage;
             levels.push_back(std::move(l));
         }
         j["levels"] = std::move(levels);

@@ -57,6 +57,9 @@ struct LevelError {
     int width = 0, height = 0;
     std::optional<double> psnr_db;                        // color and data; 100 = identical
     std::optional<double> mean_angle_deg, max_angle_deg;  // normals
+    // An alpha-tested cut-out's share of the level's texels its alpha test at the material's
+    // cutoff keeps (each level's alpha scaled to keep level 0's: texture::make_mips).
+    std::optional<double> coverage;
 };
 
 struct Output {
@@ -74,7 +77,10 @@ struct Output {
     std::string gpu_format;               // the container's format name (DXGI_FORMAT_BC1_UNORM_SRGB, VK_FORMAT_...)
     std::string supercompression;         // "zstd" when the KTX2 levels are supercompressed
     bool normal_z_reconstructed = false;  // a normal stored as X, Y only (BC5): Z = sqrt(1 - x² - y²)
-    std::vector<LevelError> levels;       // every mip level, largest first
+    // Texels never shown (under the alpha test, or alpha 0 in a blend) whose colour was filled from
+    // the nearest shown ones before the mips and blocks (texture::dilate_under_alpha).
+    std::optional<int64_t> dilated_texels;
+    std::vector<LevelError> levels;  // every mip level, largest first
 };
 
 // A file describing the material for an engine or viewer (the glTF of a set and its buffer).

@@ -325,6 +325,7 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
     e.supercompression = gpu->supercompression;
     e.normal_z_reconstructed = gpu->normal_xy;
     e.levels = std::move(gpu->levels);
+    e.dilated_texels = gpu->dilated_texels;
     return Written{std::move(e), std::nullopt, std::move(gpu->findings)};
 }
 

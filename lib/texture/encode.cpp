@@ -43,6 +43,44 @@ Image channel_floats(const Image8& img, int channel) {
     return out;
 }
 
+// A cut-out's alpha test must keep level 0's coverage as the GPU decodes a level, not only as
+// make_mips stores it: a block codec moves alpha near the cutoff, most where a block spans much of
+// a small level (ASTC 6x6 kept 0.035 of Net004A's 16x16 level against 0.223 at level 0). Where
+// the decoded coverage strays more than half a point from `target`, the level's alpha is scaled
+// again with the encoder in the loop (bisection on the scale, as make_mips does on the stored
+// codes; a few encodes of a small level) and the closest is kept: `level`, `blocks` and `decoded`
+// become that one's.
+bool keep_decoded_coverage(Image8& level, int alpha_at, float cutoff, double target, const CodecOptions& codec,
+                           std::vector<uint8_t>& blocks, Image8& decoded, std::string& error) {
+    constexpr double kTolerance = 0.005;
+    double best_error = std::abs(alpha_coverage(decoded, alpha_at, cutoff) - target);
+    if (best_error <= kTolerance) return true;
+    const Image8 stored = level;
+    const auto c = static_cast<size_t>(stored.channels), a = static_cast<size_t>(alpha_at);
+    Image8 trial;
+    std::vector<uint8_t> trial_blocks;
+    Image8 trial_decoded;
+    float lo = 0.25f, hi = 4.f;
+    for (int step = 0; step < 12 && best_error > kTolerance; ++step) {
+        const float scale = std::sqrt(lo * hi);
+        trial = stored;
+        for (size_t p = a; p < trial.pixels.size(); p += c)
+            trial.pixels[p] = quantize8(static_cast<float>(stored.pixels[p]) / 255.f * scale);
+        if (!encode_level(trial, codec, trial_blocks, error) ||
+            !decode_level(trial_blocks, trial.width, trial.height, codec, trial_decoded, error))
+            return false;
+        const double got = alpha_coverage(trial_decoded, alpha_at, cutoff);
+        (got < target ? lo : hi) = scale;
+        if (std::abs(got - target) < best_error) {
+            best_error = std::abs(got - target);
+            level = trial;
+            blocks = trial_blocks;
+            decoded = trial_decoded;
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
 double psnr(const Image8& ref, const Image8& decoded, int channels) {
@@ -104,9 +142,20 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     packed8.reset();
 
     const int opacity_at = channel_of(written, Role::opacity);
-    const bool cutout = opacity_at >= 0 && classify_opacity(channel_floats(level0, opacity_at)) == AlphaUse::cutout;
+    const AlphaUse alpha = opacity_at >= 0 ? classify_opacity(channel_floats(level0, opacity_at)) : AlphaUse::opaque;
+    const bool cutout = alpha == AlphaUse::cutout;
     const std::vector<ChannelKind> kinds = channel_kinds(written, o.srgb, cutout);
     const bool normal = std::find(kinds.begin(), kinds.end(), ChannelKind::normal) != kinds.end();
+
+    // Before any filtering or block fit, the colour of the texels never shown (under a cut-out's
+    // alpha test, or alpha 0 in a blend) is the nearest shown colour, not what the source left
+    // there (black, mostly): no dark fringe in any mip or block (dilate_under_alpha).
+    if (preset.mips && alpha != AlphaUse::opaque) {
+        uint8_t shown_from = 1;
+        if (cutout)  // the first code the alpha test keeps, compared as alpha_coverage compares
+            while (shown_from < 255 && static_cast<float>(shown_from) / 255.f < preset.alpha_cutoff) ++shown_from;
+        out.dilated_texels = static_cast<int64_t>(dilate_under_alpha(level0, kinds, opacity_at, shown_from));
+    }
 
     // Direct3D 11 creates a BC texture only when its top level is a multiple of 4 wide and high.
     if (preset.format == FileFormat::dds && (level0.width % 4 || level0.height % 4)) {
@@ -143,7 +192,9 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     codec.effort = o.effort.value_or(preset.effort);
     codec.normal_xy = normal && f->name == "bc5";
     codec.mask = !o.srgb && !normal && n > 1;
-    const int compared = std::min(n, f->channels);
+    // A cut-out's alpha is measured by what its test keeps (`coverage`), which keep_decoded_coverage
+    // may buy with a rescaled alpha: its PSNR is the colour's.
+    const int compared = cutout ? std::min({n, f->channels, opacity_at}) : std::min(n, f->channels);
 
     GpuTexture tex;
     tex.format = f;
@@ -153,14 +204,19 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     out.levels.assign(chain.size(), {});
     std::vector<std::string> errors(chain.size());
     // Levels on `jobs` threads, largest first (level 0 is three quarters of the work).
+    const double coverage0 = cutout ? alpha_coverage(chain[0], opacity_at, preset.alpha_cutoff) : 0.0;
     parallel_for(chain.size(), ctx.jobs, [&](size_t i) {
-        const Image8& level = chain[i];
+        Image8& level = chain[i];
         Level& l = tex.levels[i];
         l.width = level.width;
         l.height = level.height;
         Image8 decoded;
         if (!encode_level(level, codec, l.data, errors[i]) ||
             !decode_level(l.data, level.width, level.height, codec, decoded, errors[i]))
+            return;
+        if (cutout && i > 0 &&
+            !keep_decoded_coverage(level, opacity_at, preset.alpha_cutoff, coverage0, codec, l.data, decoded,
+                                   errors[i]))
             return;
         manifest::LevelError& e = out.levels[i];
         e.width = level.width;
@@ -172,6 +228,8 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
         } else {
             e.psnr_db = round3(psnr(level, decoded, compared));
         }
+        // What the alpha test keeps of the level as the GPU decodes it (RGBA codes).
+        if (cutout) e.coverage = std::round(alpha_coverage(decoded, opacity_at, preset.alpha_cutoff) * 1e4) / 1e4;
     });
     for (const auto& e : errors)
         if (!e.empty()) {

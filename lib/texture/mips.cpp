@@ -149,20 +149,20 @@ void renormalize_normals(Image& img, const std::vector<ChannelKind>& kinds) {
     }
 }
 
+// A value of the filtering domain (domain_tables) back to a code; `alpha_scale` for alpha_tested.
+uint8_t code_of(ChannelKind kind, float v, float alpha_scale = 1.f) {
+    return kind == ChannelKind::srgb_color     ? srgb_encode(v)
+           : kind == ChannelKind::normal       ? quantize8(v * 0.5f + 0.5f)
+           : kind == ChannelKind::alpha_tested ? quantize8(v * alpha_scale)
+                                               : quantize8(v);
+}
+
 Image8 to_codes(const Image& img, const std::vector<ChannelKind>& kinds, const std::vector<float>& alpha_scale) {
     Image8 out(img.width, img.height, img.channels);
     const auto c = static_cast<size_t>(img.channels);
     const size_t n = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
-    for (size_t k = 0; k < c; ++k) {
-        const ChannelKind kind = kinds[k];
-        for (size_t p = 0; p < n; ++p) {
-            const float v = img.pixels[p * c + k];
-            out.pixels[p * c + k] = kind == ChannelKind::srgb_color     ? srgb_encode(v)
-                                    : kind == ChannelKind::normal       ? quantize8(v * 0.5f + 0.5f)
-                                    : kind == ChannelKind::alpha_tested ? quantize8(v * alpha_scale[k])
-                                                                        : quantize8(v);
-        }
-    }
+    for (size_t k = 0; k < c; ++k)
+        for (size_t p = 0; p < n; ++p) out.pixels[p * c + k] = code_of(kinds[k], img.pixels[p * c + k], alpha_scale[k]);
     return out;
 }
 
@@ -260,6 +260,67 @@ std::vector<Image8> make_mips(const Image8& level0, const std::vector<ChannelKin
         chain.push_back(to_codes(stored, kinds, alpha_scale));
     }
     return chain;
+}
+
+size_t dilate_under_alpha(Image8& img, const std::vector<ChannelKind>& kinds, int alpha_channel, uint8_t shown_from) {
+    const int w = img.width, h = img.height;
+    const auto c = static_cast<size_t>(img.channels), a = static_cast<size_t>(alpha_channel);
+    const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+    // 0: not shown and not yet filled; 1: shown or filled by an earlier ring; 2: in the ring.
+    std::vector<uint8_t> state(n);
+    size_t shown = 0;
+    for (size_t p = 0; p < n; ++p) {
+        state[p] = img.pixels[p * c + a] >= shown_from ? 1 : 0;
+        shown += state[p];
+    }
+    if (shown == 0 || shown == n) return 0;
+    const auto tables = domain_tables(kinds);
+    // The 8 neighbours of p, wrapping as the mips do (materials tile).
+    auto each_neighbour = [&](size_t p, auto&& f) {
+        const auto x = static_cast<int>(p % static_cast<size_t>(w)), y = static_cast<int>(p / static_cast<size_t>(w));
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+                if (dx || dy)
+                    f(static_cast<size_t>((y + dy + h) % h) * static_cast<size_t>(w) +
+                      static_cast<size_t>((x + dx + w) % w));
+    };
+    std::vector<size_t> ring;
+    for (size_t p = 0; p < n; ++p) {
+        if (state[p]) continue;
+        bool next_to_filled = false;
+        each_neighbour(p, [&](size_t q) { next_to_filled = next_to_filled || state[q] == 1; });
+        if (next_to_filled) ring.push_back(p), state[p] = 2;
+    }
+    std::vector<uint8_t> codes;
+    size_t filled = 0;
+    while (!ring.empty()) {
+        // Every texel of the ring from the texels filled before it, then the ring is filled.
+        codes.assign(ring.size() * c, 0);
+        for (size_t i = 0; i < ring.size(); ++i) {
+            std::array<float, 4> sum{};
+            int count = 0;
+            each_neighbour(ring[i], [&](size_t q) {
+                if (state[q] != 1) return;
+                for (size_t k = 0; k < c; ++k) sum[k] += tables[k][img.pixels[q * c + k]];
+                ++count;
+            });
+            for (size_t k = 0; k < c; ++k)
+                if (k != a) codes[i * c + k] = code_of(kinds[k], sum[k] / static_cast<float>(count));
+        }
+        for (size_t i = 0; i < ring.size(); ++i) {
+            for (size_t k = 0; k < c; ++k)
+                if (k != a) img.pixels[ring[i] * c + k] = codes[i * c + k];
+            state[ring[i]] = 1;
+        }
+        filled += ring.size();
+        std::vector<size_t> next;
+        for (const size_t p : ring)
+            each_neighbour(p, [&](size_t q) {
+                if (state[q] == 0) next.push_back(q), state[q] = 2;
+            });
+        ring = std::move(next);
+    }
+    return filled;
 }
 
 Image8 resize(const Image8& level, const std::vector<ChannelKind>& kinds, int w, int h) {

@@ -62,6 +62,16 @@ int mip_count(int width, int height);
 // Level 0 (as given) and every smaller level down to 1x1.
 std::vector<Image8> make_mips(const Image8& level0, const std::vector<ChannelKind>& kinds, const MipOptions& options);
 
+// Colour into the texels a renderer never shows — alpha channel `alpha_channel` below
+// `shown_from` (a cut-out's alpha test; 1 for a blend: alpha 0) — from the nearest shown texels,
+// so that filtering (mips, an engine's bilinear lookups) and block compression never mix their
+// colour (often black) into what is shown: the dark fringe at every edge of every mip. Grows
+// ring by ring over the 8 neighbours, wrapping as the mips do; each texel of a ring takes the
+// mean of its neighbours filled before it, in each channel's filtering domain (sRGB colour in
+// linear light). Every channel but alpha is filled; alpha is left as it is, so what the alpha
+// test shows is unchanged. Returns the texels filled (0: none shown, or every texel shown).
+size_t dilate_under_alpha(Image8& img, const std::vector<ChannelKind>& kinds, int alpha_channel, uint8_t shown_from);
+
 // Resamples a level to w x h in the filtering domain of its channels (Kaiser, wrapping).
 Image8 resize(const Image8& level, const std::vector<ChannelKind>& kinds, int w, int h);
 
@@ -167,7 +177,8 @@ struct EncodedOutput {
     std::string block_format, gpu_format, supercompression;
     bool normal_xy = false;
     std::vector<manifest::LevelError> levels;
-    std::vector<Finding> findings;  // RESIZED (top level brought to a multiple of 4), errors over the bound
+    std::optional<int64_t> dilated_texels;  // dilate_under_alpha's count, where the output has alpha
+    std::vector<Finding> findings;          // RESIZED (top level brought to a multiple of 4), errors over the bound
 };
 
 struct EncodeContext {

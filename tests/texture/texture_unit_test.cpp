@@ -140,6 +140,52 @@ TEST(Mips, AlphaTestCoverageIsKept) {
     EXPECT_LT(mt::alpha_coverage(plain[3], 0, 0.5f), 0.6 * c0);  // what the scaling fixes
 }
 
+TEST(Mips, HiddenTexelsTakeTheNearestShownColour) {
+    using K = mt::ChannelKind;
+    const std::vector<K> kinds{K::srgb_color, K::srgb_color, K::srgb_color, K::alpha_tested};
+    // 16 x 4, wrapping: shown red at x = 2, shown blue at x = 12, the rest hidden and black.
+    const Image8 src = make(16, 4, 4, [](int x, int) {
+        return x == 2    ? std::array<uint8_t, 4>{255, 0, 0, 255}
+               : x == 12 ? std::array<uint8_t, 4>{0, 0, 255, 200}
+                         : std::array<uint8_t, 4>{0, 0, 0, 100};  // under a 0.5 cutoff: 128 is the first code shown
+    });
+    Image8 img = src;
+    EXPECT_EQ(mt::dilate_under_alpha(img, kinds, 3, 128), 14u * 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 16; ++x) {
+            SCOPED_TRACE("x " + std::to_string(x));
+            EXPECT_EQ(img.at(x, y, 3), src.at(x, y, 3)) << "alpha is left as it is";
+            const int to_red = std::min((x - 2 + 16) % 16, (2 - x + 16) % 16);
+            const int to_blue = std::min((x - 12 + 16) % 16, (12 - x + 16) % 16);
+            if (to_red < to_blue) {
+                EXPECT_EQ(img.at(x, y, 0), 255);
+                EXPECT_EQ(img.at(x, y, 2), 0);
+            } else if (to_blue < to_red) {
+                EXPECT_EQ(img.at(x, y, 0), 0);
+                EXPECT_EQ(img.at(x, y, 2), 255);
+            } else {  // x = 7 (and 15, across the wrap): halfway, the mean in linear light
+                EXPECT_EQ(img.at(x, y, 0), 188) << "sRGB 188 is linear 0.5";
+                EXPECT_EQ(img.at(x, y, 2), 188);
+            }
+        }
+    // A blend shows every texel above alpha 0 (shown_from 1): nothing is hidden here.
+    img = src;
+    EXPECT_EQ(mt::dilate_under_alpha(img, kinds, 3, 1), 0u);
+    EXPECT_EQ(img.pixels, src.pixels);
+    // Nothing shown: nothing to take a colour from.
+    Image8 hidden = src;
+    for (size_t p = 3; p < hidden.pixels.size(); p += 4) hidden.pixels[p] = 0;
+    img = hidden;
+    EXPECT_EQ(mt::dilate_under_alpha(img, kinds, 3, 128), 0u);
+    EXPECT_EQ(img.pixels, hidden.pixels);
+    // Data channels (a linear packed map) are averaged as stored.
+    const std::vector<K> data{K::data, K::data, K::data, K::alpha_tested};
+    img = src;
+    mt::dilate_under_alpha(img, data, 3, 128);
+    EXPECT_EQ(img.at(7, 0, 0), 128);
+    EXPECT_EQ(img.at(7, 0, 2), 128);
+}
+
 TEST(Mips, ToksvigWidensRoughnessWhereNormalsSpread) {
     // Level-0 normals alternating between two tilted directions: the footprint's average is
     // short, so the level's roughness grows; flat normals leave it alone.
