@@ -1,7 +1,7 @@
 // Headless Chromium driven over the DevTools protocol on a pipe (--remote-debugging-pipe: JSON
 // messages separated by NUL on file descriptors 3 and 4), so there is no port, no network and no
-// npm package: node and Debian's chromium are all it needs. Used by scripts/browser-check.mjs and
-// tests/texture/checkers/mtlx_render.mjs.
+// npm package: node and Debian's chromium are all it needs. Used by scripts/browser-check.mjs,
+// tests/texture/checkers/mtlx_render.mjs and godot_load.mjs.
 //
 //   const browser = startChromium({ name, flags, binary });
 //   await browser.send(method, params, sessionId)  // the result; rejects naming the method on an error
@@ -13,6 +13,9 @@ import { spawn } from 'node:child_process';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+
+// WebGL 2 in headless Chromium without a GPU: SwiftShader, through ANGLE.
+export const WEBGL_FLAGS = ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'];
 
 // `name` prefixes the profile folder and the messages; `flags` come after the common ones.
 export function startChromium({ name = 'chromium', flags = [], binary = '/usr/bin/chromium' } = {}) {

@@ -54,13 +54,13 @@
 //   4x4 samples a pixel and averages them before the sRGB curve; Godot's Compatibility renderer
 //   writes sRGB codes (linear_to_srgb in scene.glsl), read back as they are.
 import { createHash } from 'node:crypto';
-import { createServer } from 'node:http';
-import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { deflateSync } from 'node:zlib';
-import { basename, extname, join, normalize, relative, resolve, sep } from 'node:path';
+import { basename, join, relative, resolve, sep } from 'node:path';
 
-import { startChromium } from '../../../scripts/devtools-pipe.mjs';
+import { startChromium, WEBGL_FLAGS } from '../../../scripts/devtools-pipe.mjs';
+import { serve } from '../../../scripts/loopback-server.mjs';
 
 const [npmDir, rootDir, outDir, ...tres] = process.argv.slice(2);
 if (!tres.length) {
@@ -359,24 +359,14 @@ window.startCheck = async (files) => {
 };
 </script></body></html>`;
 
-const server = createServer((req, res) => {
-  const url = decodeURIComponent(req.url.split('?')[0]);
-  const headers = { 'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp' };
-  let file = null;
-  if (url === '/') { res.writeHead(200, { ...headers, 'content-type': 'text/html' }); return res.end(page); }
-  if (url === '/check.pck') file = join(work, 'check.pck');
-  else if (url.startsWith('/godot/')) file = join(template, normalize(url.slice(7)));
-  else if (url.startsWith('/root/')) file = join(root, normalize(url.slice(6)));
-  if (!file || !existsSync(file) || !statSync(file).isFile()) { res.writeHead(404, headers); return res.end(); }
-  const type = { '.js': 'text/javascript', '.wasm': 'application/wasm', '.html': 'text/html' }[extname(file)];
-  res.writeHead(200, { ...headers, 'content-type': type || 'application/octet-stream' });
-  res.end(readFileSync(file));
+// Cross-origin isolation, as the template asks (its ensureCrossOriginIsolationHeaders).
+const { server, port } = await serve({
+  page, folders: { '/godot/': template, '/root/': root }, files: { '/check.pck': join(work, 'check.pck') },
+  headers: { 'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp' },
 });
-await new Promise((r) => server.listen(0, '127.0.0.1', r));
-const port = server.address().port;
 
 const browser = startChromium({
-  name: 'godot-load', flags: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+  name: 'godot-load', flags: WEBGL_FLAGS,
 });
 const { send, log } = browser;
 

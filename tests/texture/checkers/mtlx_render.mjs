@@ -11,17 +11,15 @@
 // 0-1; PSNR of the two 192² pictures) and writes OUT_DIR/NAME.mtlx.png and NAME.gltf.png.
 // Served over a local HTTP server (three's loaders fetch; file:// cannot), Chromium driven over
 // the DevTools protocol on a pipe (scripts/devtools-pipe.mjs).
-import { createServer } from 'node:http';
-import { existsSync, readFileSync, writeFileSync } from 'node:fs';
-import { join, resolve, extname, normalize } from 'node:path';
+import { writeFileSync } from 'node:fs';
+import { join, resolve } from 'node:path';
 
-import { startChromium } from '../../../scripts/devtools-pipe.mjs';
+import { startChromium, WEBGL_FLAGS } from '../../../scripts/devtools-pipe.mjs';
+import { serve } from '../../../scripts/loopback-server.mjs';
 
 const [npmDir, rootDir, outDir, ...names] = process.argv.slice(2);
 const modules = resolve(npmDir, 'node_modules');
 const root = resolve(rootDir);
-const types = { '.js': 'text/javascript', '.mjs': 'text/javascript', '.html': 'text/html', '.png': 'image/png',
-                '.mtlx': 'application/xml', '.gltf': 'model/gltf+json', '.bin': 'application/octet-stream' };
 const page = `<!doctype html><html><body style="margin:0;background:#000">
 <canvas id="c" width="192" height="192"></canvas>
 <script type="importmap">{"imports": {"three": "/npm/three/build/three.webgpu.js",
@@ -72,21 +70,10 @@ window.renderOne = async (name) => {
 window.ready = true;
 </script></body></html>`;
 
-const server = createServer((req, res) => {
-  const url = decodeURIComponent(req.url.split('?')[0]);
-  let file = null;
-  if (url === '/') { res.writeHead(200, { 'content-type': 'text/html' }); return res.end(page); }
-  if (url.startsWith('/npm/')) file = join(modules, normalize(url.slice(5)));
-  else if (url.startsWith('/root/')) file = join(root, normalize(url.slice(6)));
-  if (!file || !existsSync(file)) { res.writeHead(404); return res.end(); }
-  res.writeHead(200, { 'content-type': types[extname(file)] || 'application/octet-stream' });
-  res.end(readFileSync(file));
-});
-await new Promise((r) => server.listen(0, '127.0.0.1', r));
-const port = server.address().port;
+const { server, port } = await serve({ page, folders: { '/npm/': modules, '/root/': root } });
 
 const browser = startChromium({
-  name: 'mtlx-render', flags: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+  name: 'mtlx-render', flags: WEBGL_FLAGS,
 });
 const { send, log } = browser;
 browser.listen((msg) => {
