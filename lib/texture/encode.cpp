@@ -151,9 +151,8 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
     // alpha test, or alpha 0 in a blend) is the nearest shown colour, not what the source left
     // there (black, mostly): no dark fringe in any mip or block (dilate_under_alpha).
     if (preset.mips && alpha != AlphaUse::opaque) {
-        uint8_t shown_from = 1;
-        if (cutout)  // the first code the alpha test keeps, compared as alpha_coverage compares
-            while (shown_from < 255 && static_cast<float>(shown_from) / 255.f < preset.alpha_cutoff) ++shown_from;
+        const auto shown_from = static_cast<uint8_t>(cutout ? std::clamp(first_kept_code(preset.alpha_cutoff), 1, 255)
+                                                            : 1);
         out.dilated_texels = static_cast<int64_t>(dilate_under_alpha(level0, kinds, opacity_at, shown_from));
     }
 

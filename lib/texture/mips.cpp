@@ -171,8 +171,8 @@ double coverage_of(const Image& img, size_t channel, float cutoff, float scale) 
     const size_t n = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
     size_t above = 0;
     // The stored code is what the alpha test sees: compare quantized values.
-    for (size_t p = 0; p < n; ++p)
-        above += static_cast<float>(quantize8(img.pixels[p * c + channel] * scale)) / 255.f >= cutoff;
+    const int kept = first_kept_code(cutoff);
+    for (size_t p = 0; p < n; ++p) above += quantize8(img.pixels[p * c + channel] * scale) >= kept;
     return n ? static_cast<double>(above) / static_cast<double>(n) : 0.0;
 }
 
@@ -329,12 +329,18 @@ Image8 resize(const Image8& level, const std::vector<ChannelKind>& kinds, int w,
     return to_codes(img, kinds, std::vector<float>(kinds.size(), 1.f));
 }
 
+int first_kept_code(float cutoff) {
+    int code = 0;
+    while (code < 256 && static_cast<float>(code) / 255.f < cutoff) ++code;
+    return code;
+}
+
 double alpha_coverage(const Image8& img, int channel, float cutoff) {
     const auto c = static_cast<size_t>(img.channels);
     const size_t n = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
+    const int kept = first_kept_code(cutoff);
     size_t above = 0;
-    for (size_t p = 0; p < n; ++p)
-        above += static_cast<float>(img.pixels[p * c + static_cast<size_t>(channel)]) / 255.f >= cutoff;
+    for (size_t p = 0; p < n; ++p) above += img.pixels[p * c + static_cast<size_t>(channel)] >= kept;
     return n ? static_cast<double>(above) / static_cast<double>(n) : 0.0;
 }
 

@@ -63,7 +63,7 @@ int mip_count(int width, int height);
 std::vector<Image8> make_mips(const Image8& level0, const std::vector<ChannelKind>& kinds, const MipOptions& options);
 
 // Colour into the texels a renderer never shows — alpha channel `alpha_channel` below
-// `shown_from` (a cut-out's alpha test; 1 for a blend: alpha 0) — from the nearest shown texels,
+// `shown_from` (a cut-out's alpha test: first_kept_code; 1 for a blend: alpha 0) — from the nearest shown texels,
 // so that filtering (mips, an engine's bilinear lookups) and block compression never mix their
 // colour (often black) into what is shown: the dark fringe at every edge of every mip. Grows
 // ring by ring over the 8 neighbours, wrapping as the mips do; each texel of a ring takes the
@@ -74,6 +74,11 @@ size_t dilate_under_alpha(Image8& img, const std::vector<ChannelKind>& kinds, in
 
 // Resamples a level to w x h in the filtering domain of its channels (Kaiser, wrapping).
 Image8 resize(const Image8& level, const std::vector<ChannelKind>& kinds, int w, int h);
+
+// The first code (0..255) an alpha test at `cutoff` keeps: code / 255 >= cutoff; 256 keeps none.
+// The one comparison behind alpha_coverage, the mips' coverage scaling and dilate_under_alpha's
+// shown texels.
+int first_kept_code(float cutoff);
 
 // Share of texels whose `channel` is at least `cutoff` (the alpha test's coverage).
 double alpha_coverage(const Image8& img, int channel, float cutoff);

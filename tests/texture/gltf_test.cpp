@@ -496,16 +496,8 @@ TEST(Gltf, MaterialXRendersAsItsGltfInThreeJs) {
 TEST(Gltf, MaterialXCheckerRefusesBrokenDocuments) {
     const auto& r = ingested("samples");
     const fs::path doc = r.out / "Metal_Damaged_001" / "Metal_Damaged_001.mtlx";
-    const std::vector<uint8_t> bytes = read_bytes(doc);
-    const std::string text(bytes.begin(), bytes.end());
     auto broken = [&](const std::string& from, const std::string& to, const std::string& name) {
-        const size_t at = text.find(from);
-        EXPECT_NE(at, std::string::npos) << from;
-        std::string t = text;
-        if (at != std::string::npos) t.replace(at, from.size(), to);
-        const fs::path f = r.out / name;
-        std::ofstream(f) << t;
-        return f;
+        return damaged_copy(doc, from, to, r.out / name);
     };
     const std::vector<fs::path> files{doc, broken("name=\"base_color\"", "name=\"base_colour\"", "misspelled.mtlx"),
                                       broken("name=\"base_color\" type=\"color3\"",
@@ -553,12 +545,7 @@ TEST(Gltf, MaterialXGeneratesGlslThatCompilesForEveryMaterial) {
     }
     const auto& r = ingested("samples");
     const fs::path one = r.out / r.manifest["materials"][0]["name"].get<std::string>();
-    const auto raw = read_bytes(one / (one.filename().string() + ".mtlx"));
-    std::string text(raw.begin(), raw.end());
-    const size_t at = text.find("type=\"color3\"");
-    ASSERT_NE(at, std::string::npos);
-    text.replace(at, 13, "type=\"float\"");
-    write_text(one / "typed.mtlx", text);
+    damaged_copy(one / (one.filename().string() + ".mtlx"), "type=\"color3\"", "type=\"float\"", one / "typed.mtlx");
     write_text(one / "not.mtlx", "<materialx");
     const std::vector<json> bad = py_checker("mtlx_open.py", {(r.out / "glsl").string(), (one / "typed.mtlx").string(),
                                                               (one / "not.mtlx").string()});
@@ -629,12 +616,7 @@ TEST(Gltf, BlenderImportsEveryGltfWithEachTextureInItsSlot) {
     const auto& r = ingested("samples");
     const std::string name = r.manifest["materials"][0]["name"];
     const fs::path dir = r.out / name;
-    const auto raw = read_bytes(dir / (name + ".gltf"));
-    std::string text(raw.begin(), raw.end());
-    const size_t at = text.find("_orm.png");
-    ASSERT_NE(at, std::string::npos);
-    text.replace(at, 8, "_gone.png");
-    write_text(dir / "gone.gltf", text);
+    damaged_copy(dir / (name + ".gltf"), "_orm.png", "_gone.png", dir / "gone.gltf");
     write_text(dir / "not.gltf", "{not json");
     const std::vector<json> bad = py_checker("blender_open.py",
                                              {(dir / "gone.gltf").string(), (dir / "not.gltf").string()});

@@ -393,6 +393,15 @@ double shown_luminance(const mf::Image8& rgba, uint8_t shown_from) {
     return n ? sum / static_cast<double>(n) : 0.0;
 }
 
+// Net004A's base colour output, the one holding its opacity, in `manifest`.
+const json* net_base_colour(const json& manifest) {
+    for (const auto& m : manifest["materials"])
+        if (m["name"] == "Net004A")
+            for (const auto& o : m["outputs"])
+                if (o["channels"].value("A", "") == "opacity") return &o;
+    return nullptr;
+}
+
 }  // namespace
 
 // A real cut-out, sample_materials' Net004A (a net whose source colour map fills the holes with
@@ -412,11 +421,7 @@ TEST(GpuPresets, CutOutKeepsItsCoverageAndItsEdgesTakeTheShownColour) {
     for (const char* preset : {"d3d11", "vulkan-ktx2", "vulkan-ktx2-astc"}) {
         SCOPED_TRACE(preset);
         const auto& in = ingested(preset);
-        const json* out = nullptr;
-        for (const auto& m : in.manifest["materials"])
-            if (m["name"] == "Net004A")
-                for (const auto& o : m["outputs"])
-                    if (o["channels"].value("A", "") == "opacity") out = &o;
+        const json* out = net_base_colour(in.manifest);
         ASSERT_TRUE(out) << "Net004A's base colour with its opacity";
         const json& o = *out;
         EXPECT_GT(o.value("dilated_texels", 0), 1024 * 1024 / 3) << "the holes are most of the net";
@@ -476,11 +481,7 @@ TEST(GpuPresets, CutOutKeepsItsCoverageAndItsEdgesTakeTheShownColour) {
     }
     // The shown brightness down the chain, with and without the fill (the same mips otherwise).
     const auto& in = ingested("vulkan-ktx2");
-    const json* twin = nullptr;
-    for (const auto& m : in.twin["materials"])
-        if (m["name"] == "Net004A")
-            for (const auto& o : m["outputs"])
-                if (o["channels"].value("A", "") == "opacity") twin = &o;
+    const json* twin = net_base_colour(in.twin);
     ASSERT_TRUE(twin);
     using K = mf::texture::ChannelKind;
     const std::vector<K> kinds{K::srgb_color, K::srgb_color, K::srgb_color, K::alpha_tested};

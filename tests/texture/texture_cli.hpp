@@ -251,40 +251,26 @@ struct Compared {
     size_t interior = 0, lit_a = 0, lit_b = 0;
 };
 inline Compared interior_psnr(const fs::path& a, const fs::path& b) {
-    auto rgb = [](const fs::path& file, int& w, int& h) {
-        std::vector<uint8_t> px;
-        auto in = OIIO::ImageInput::open(file.string());
-        EXPECT_TRUE(in) << file << ": " << OIIO::geterror();
-        if (!in) return px;
-        w = in->spec().width, h = in->spec().height;
-        px.resize(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
-        EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data())) << file << ": " << in->geterror();
-        return px;
-    };
-    int wa = 0, ha = 0, wb = 0, hb = 0;
-    const auto pa = rgb(a, wa, ha), pb = rgb(b, wb, hb);
+    const mf::Image8 pa = read_codes(a), pb = read_codes(b);
     Compared c;
-    EXPECT_TRUE(wa == wb && ha == hb && !pa.empty()) << a << " and " << b << " differ in size";
-    if (wa != wb || ha != hb || pa.empty()) return c;
-    const auto at = [&](int x, int y) {
-        return (static_cast<size_t>(y) * static_cast<size_t>(wa) + static_cast<size_t>(x)) * 3;
-    };
-    const auto lit = [&](const std::vector<uint8_t>& p, int x, int y) {
-        if (x < 0 || y < 0 || x >= wa || y >= ha) return false;
-        const size_t i = at(x, y);
-        return p[i] > 0 || p[i + 1] > 0 || p[i + 2] > 0;
+    EXPECT_TRUE(pa.width == pb.width && pa.height == pb.height && pa.channels >= 3 && pb.channels >= 3)
+        << a << " and " << b << " differ in size or are not colour";
+    if (pa.width != pb.width || pa.height != pb.height || pa.channels < 3 || pb.channels < 3) return c;
+    const auto lit = [&](const mf::Image8& p, int x, int y) {
+        if (x < 0 || y < 0 || x >= p.width || y >= p.height) return false;
+        return p.at(x, y, 0) > 0 || p.at(x, y, 1) > 0 || p.at(x, y, 2) > 0;
     };
     double sum = 0;
-    for (int y = 0; y < ha; ++y)
-        for (int x = 0; x < wa; ++x) {
+    for (int y = 0; y < pa.height; ++y)
+        for (int x = 0; x < pa.width; ++x) {
             c.lit_a += lit(pa, x, y);
             c.lit_b += lit(pb, x, y);
             bool inside = true;
             for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
                 inside = inside && lit(pa, x + dx, y + dy) && lit(pb, x + dx, y + dy);
             if (!inside) continue;
-            for (size_t k = 0; k < 3; ++k) {
-                const double d = double(pa[at(x, y) + k]) - double(pb[at(x, y) + k]);
+            for (int k = 0; k < 3; ++k) {
+                const double d = double(pa.at(x, y, k)) - double(pb.at(x, y, k));
                 sum += d * d;
             }
             ++c.interior;
@@ -292,6 +278,19 @@ inline Compared interior_psnr(const fs::path& a, const fs::path& b) {
     const double mse = c.interior ? sum / (3.0 * static_cast<double>(c.interior)) : 0.0;
     c.psnr_db = mse > 0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : 99.0;
     return c;
+}
+
+// A copy of `file` at `copy` with the first `from` replaced by `to` (which must be there): what
+// the checkers' own tests hand them to show that they refuse a broken file.
+inline fs::path damaged_copy(const fs::path& file, const std::string& from, const std::string& to,
+                             const fs::path& copy) {
+    const auto raw = read_bytes(file);
+    std::string text(raw.begin(), raw.end());
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from << " is not in " << file;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    write_text(copy, text);
+    return copy;
 }
 
 // `matforge preview MANIFEST --scene reference --aa 4` at `size` into `dir`: the picture another
