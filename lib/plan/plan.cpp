@@ -144,6 +144,16 @@ bool PlanShare::read(const InputFile& in, const std::string& file, SharedMap& ou
     return ok;
 }
 
+validate::ColorTagInfo PlanShare::color_tag(const InputFile& in, const std::string& file) {
+    {
+        std::lock_guard lock(mutex_);
+        if (const auto it = tags_.find(file); it != tags_.end()) return it->second;
+    }
+    validate::ColorTagInfo tag = validate::read_color_tag(in);  // outside the lock: another map may be decoding
+    std::lock_guard lock(mutex_);
+    return tags_.emplace(file, std::move(tag)).first->second;
+}
+
 validate::SetValidation PlanShare::validate(const std::vector<validate::MapInput>& maps, const rules::RuleConfig& rules,
                                             const validate::ValidateOptions& vo) {
     std::vector<MapKey> keys;
@@ -213,7 +223,7 @@ void read_choices(SetPlan& plan, Files& files, const SetDiscovery& d, PlanMode m
                     m.file = in;
                     m.name = c->file;
                     m.info = o.decoded->info;
-                    m.color_tag = validate::read_color_tag(in);
+                    m.color_tag = share ? share->color_tag(in, c->file) : validate::read_color_tag(in);
                     m.name_convention = c->match.normal;
                     o.map = std::move(m);
                 }

@@ -40,8 +40,9 @@ struct DecodedMap {
 // planes made from it read the same pixels.
 using SharedMap = std::shared_ptr<const DecodedMap>;
 
-// What the plans of one set share (ingest --preset a,b: one plan per preset, on one worker, one
-// after another). A file decodes to the same pixels whatever the preset: the first plan that
+// What the plans of one set share (ingest --preset a,b and --tiers: one plan per preset and tier,
+// on one worker, one after another). A file decodes to the same pixels whatever the preset and
+// its max_size (a tier resamples the decoded map afterwards): the first plan that
 // reads a file decodes it, later plans get the same map (or the same error), and the share lets
 // go of it when the last of `plans` readers has it. The rules judge the same maps under the same
 // rules config alike: validate_set runs once per distinct (maps, rules) pair. Thread-safe (a plan
@@ -51,6 +52,9 @@ public:
     explicit PlanShare(int plans) : plans_(plans) {}
     // As read_image(in, out->img, out->info, error), from the share when `file` was read before.
     bool read(const InputFile& in, const std::string& file, SharedMap& out, std::string& error);
+    // As validate::read_color_tag(in), from the share when `file`'s tag was read before: a PNG's
+    // chunks are read once for every plan, as its pixels are.
+    validate::ColorTagInfo color_tag(const InputFile& in, const std::string& file);
     // As validate::validate_set(maps, rules, vo), from the share when the same maps (role, file,
     // flags) were validated under the same rules before.
     validate::SetValidation validate(const std::vector<validate::MapInput>& maps, const rules::RuleConfig& rules,
@@ -80,7 +84,8 @@ private:
     int plans_;
     std::mutex mutex_;
     std::map<std::string, Entry> entries_;
-    std::vector<Validated> validated_;  // one per distinct (rules, maps): a set's presets, a few
+    std::map<std::string, validate::ColorTagInfo> tags_;  // by file
+    std::vector<Validated> validated_;                    // one per distinct (rules, maps): a set's presets, a few
 };
 
 struct PlanOptions {

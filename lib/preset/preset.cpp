@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 
 #include "base/error.hpp"
@@ -180,11 +181,28 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error) {
         const auto format = from_word<FileFormat>(j.value("format", "png"));
         if (!format) return fail(error, "format must be " + word_list<FileFormat>());
         p.format = *format;
-        const auto max_size = int_field(j, "max_size", 0, 0, 65536);
+        // A list is resolution tiers (ingest writes each into <out>/<tier>); a number one limit.
+        const bool tiered = j.contains("max_size") && j.at("max_size").is_array();
+        const auto max_size = tiered ? std::optional<int>(0) : int_field(j, "max_size", 0, 0, kMaxTier);
         const auto constant_size = int_field(j, "constant_size", 2, 1, 64);
         if (!max_size || !constant_size)
-            return fail(error, "max_size must be within 0..65536 (0: no limit) and constant_size within 1..64");
+            return fail(error, "max_size must be within 0..65536 (0: no limit), or a list of tiers such as [512, "
+                               "1024, 2048], and constant_size within 1..64");
         p.max_size = *max_size;
+        if (tiered) {
+            std::vector<long long> given;
+            for (const auto& t : j.at("max_size")) {
+                const auto side = json_int(t, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+                if (!side)
+                    return fail(error, "max_size: " + t.dump() +
+                                           " is not a whole number of pixels (a list of tiers: [512, 1024, 2048])");
+                given.push_back(*side);
+            }
+            auto tiers = check_tiers(given, "max_size", error);
+            if (!tiers) return false;
+            p.tiers = std::move(*tiers);
+            p.max_size = p.tiers.back();
+        }
         p.constant_size = *constant_size;
         p.file_pattern = j.value("file_pattern", p.file_pattern);
         if (p.file_pattern.find("{suffix}") == std::string::npos || p.file_pattern.find("..") != std::string::npos ||
@@ -290,6 +308,63 @@ std::optional<Preset> load_preset(const std::string& name_or_path, std::string& 
         return std::nullopt;
     }
     return p;
+}
+
+std::optional<std::vector<int>> check_tiers(const std::vector<long long>& tiers, const std::string& what,
+                                            std::string& error) {
+    if (tiers.empty()) {
+        error = what + ": no tier given (a list of largest sides in pixels, such as 512,1024,2048)";
+        return std::nullopt;
+    }
+    std::vector<int> out;
+    for (const long long t : tiers) {
+        if (t < 1 || t > kMaxTier) {
+            error = what + ": " + std::to_string(t) + " is no tier: a tier is the largest side of the outputs, 1.." +
+                    std::to_string(kMaxTier) + " pixels" +
+                    (t == 0 ? " (0, no limit, is a preset's single max_size, not a tier)" : "");
+            return std::nullopt;
+        }
+        if (std::find(out.begin(), out.end(), t) != out.end()) {
+            error = what + ": " + std::to_string(t) + " is given twice; each tier is written once, into <out>/" +
+                    std::to_string(t);
+            return std::nullopt;
+        }
+        out.push_back(static_cast<int>(t));
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::optional<std::vector<int>> parse_tiers(const std::string& list, std::string& error) {
+    std::vector<long long> given;
+    for (size_t at = 0; at <= list.size();) {
+        const size_t comma = std::min(list.find(',', at), list.size());
+        std::string item = list.substr(at, comma - at);
+        at = comma + 1;
+        item.erase(0, item.find_first_not_of(' '));
+        item.erase(item.find_last_not_of(' ') + 1);
+        const bool negative = !item.empty() && item.front() == '-';
+        const std::string digits = negative ? item.substr(1) : item;
+        if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+            error = "--tiers \"" + terminal_safe(list) + "\": " +
+                    (item.empty() ? std::string("an empty tier")
+                                  : "\"" + terminal_safe(item) + "\" is not a whole number of pixels") +
+                    " (tiers are the outputs' largest sides, comma-separated: --tiers 512,1024,2048)";
+            return std::nullopt;
+        }
+        // Past 10 digits a tier is out of range anyway: no overflow to read it.
+        const long long value = digits.size() > 10 ? kMaxTier + 1LL : std::stoll(digits);
+        given.push_back(negative ? -value : value);
+    }
+    return check_tiers(given, "--tiers", error);
+}
+
+Preset with_max_size(const Preset& p, int tier) {
+    Preset t = p;
+    t.max_size = tier;
+    t.tiers.clear();
+    t.source_json["max_size"] = tier;
+    return t;
 }
 
 std::vector<std::string> presets_meant_by(const std::string& word) {

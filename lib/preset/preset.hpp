@@ -47,7 +47,10 @@ struct Preset {
     std::vector<std::string> sources;
     NormalConvention normal_convention = NormalConvention::gl;
     FileFormat format = FileFormat::png;
-    int max_size = 0;       // 0 = no limit; larger maps are downsampled
+    int max_size = 0;  // 0 = no limit; larger maps are downsampled (a list's largest tier)
+    // "max_size": [512, 1024, 2048]: resolution tiers, ascending (empty for a number). `ingest`
+    // runs one preset per tier (with_max_size), each into <out>/<tier>; validate judges the largest.
+    std::vector<int> tiers;
     int constant_size = 2;  // size of an output made only of constants
     std::string file_pattern = "{material}/{material}_{suffix}.{ext}";
     std::array<float, 3> default_albedo{0.5f, 0.5f, 0.5f};
@@ -75,6 +78,20 @@ bool parse_preset(const nlohmann::json& j, Preset& p, std::string& error);
 
 // `name_or_path`: a shipped preset's name (embedded in the binary) or a JSON file path.
 std::optional<Preset> load_preset(const std::string& name_or_path, std::string& error);
+
+// Resolution tiers (ingest --tiers 512,1024, a preset's "max_size": [512, 1024]): each a side in
+// 1..kMaxTier pixels, no two equal. Returned ascending; nullopt + `error` saying which entry is
+// wrong and why. parse_tiers reads the option's text ("512,1024,2048"); check_tiers judges the
+// numbers, `what` naming the list in the error ("--tiers", "max_size").
+inline constexpr int kMaxTier = 65536;
+std::optional<std::vector<int>> parse_tiers(const std::string& list, std::string& error);
+std::optional<std::vector<int>> check_tiers(const std::vector<long long>& tiers, const std::string& what,
+                                            std::string& error);
+
+// The preset of one tier: `p` with `max_size` = `tier` and no tiers, its source_json saying so
+// (the action key is then that of a preset file of this max_size: ingest --tiers writes each tier
+// what that file writes alone).
+Preset with_max_size(const Preset& p, int tier);
 
 // Names of the shipped presets, sorted.
 std::vector<std::string> shipped_presets();

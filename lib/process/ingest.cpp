@@ -143,6 +143,9 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
     : preset_(std::move(preset)), color_(std::move(color)), opt_(std::move(opt)) {
     // --normal-convention overrides the preset everywhere: choice, conversion, encoding, manifest.
     if (opt_.normal_override) preset_.normal_convention = *opt_.normal_override;
+    nlohmann::json text = preset_.source_json;
+    if (text.is_object()) text.erase("max_size");
+    encoding_key_ = text.dump() + '\n' + std::string(convention_name(preset_.normal_convention));
 }
 
 // One preset's part of a pass: everything run() alone holds for its run. open() before the
@@ -261,6 +264,9 @@ struct OutputJob {
     // in run_together, which also gives the bytes' SHA-256 (else left empty).
     std::function<bool(const OutputSpec&, Size, std::vector<unsigned char>&, std::string& sha, std::string&)>
         pack_encode;
+    // The same for a block-compressed container (dds, ktx2): texture::encode_output, through the
+    // set's share in run_together.
+    std::function<bool(const OutputSpec&, Size, texture::EncodedOutput&, std::string&)> encode_blocks;
 };
 
 struct Written {
@@ -292,8 +298,7 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
     std::optional<texture::EncodedOutput> gpu;  // dds, ktx2: the mip levels in GPU blocks (lib/texture)
     if (is_block_container(job.preset.format)) {
         gpu.emplace();
-        encoded = texture::encode_output(o, job.planes, size, {&job.preset, &job.color, std::string(kGenerator), 1},
-                                         *gpu, err);
+        encoded = job.encode_blocks(o, size, *gpu, err);
         bytes = std::move(gpu->bytes);
     } else {
         encoded = job.pack_encode(o, size, bytes, sha, err);
@@ -389,6 +394,27 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
     const auto batch_write = [&batch](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
         return batch.write(rel, b, e);
     };
+    // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
+    const auto pack_encode = [&](const OutputSpec& o, Size size, std::vector<unsigned char>& bytes, std::string& sha,
+                                 std::string& e) {
+        const PackSpec spec = pack_spec(o, planes, preset_, size);
+        auto fresh = [&] {
+            const EncodeOptions enc{spec.format, spec.bit_depth};
+            std::optional<Image8> packed8 = pack_output8(spec, planes, *color_);
+            return packed8 ? encode_image(*packed8, enc, bytes, e)
+                           : encode_image(pack_output(spec, planes, *color_), enc, bytes, e);
+        };
+        if (!share) return fresh();
+        return share->encode({spec, color_.get(), shared_planes}, fresh, bytes, sha);
+    };
+    const auto encode_blocks = [&](const OutputSpec& o, Size size, texture::EncodedOutput& out, std::string& e) {
+        auto fresh = [&](texture::EncodedOutput& into) {
+            return texture::encode_output(o, planes, size, {&preset_, color_.get(), std::string(kGenerator), 1}, into,
+                                          e);
+        };
+        if (!share) return fresh(out);
+        return share->encode_blocks({encoding_key_, o.suffix, size, color_.get(), shared_planes}, fresh, out);
+    };
     const OutputJob job{preset_,
                         *color_,
                         plan,
@@ -397,20 +423,8 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
                         Size{w, h},
                         refused == run.refused.end() ? nullptr : &refused->second,
                         batch_write,
-                        [&](const OutputSpec& o, Size size, std::vector<unsigned char>& bytes, std::string& sha,
-                            std::string& e) {
-                            // 8-bit outputs of codes planes go from codes to codes; anything else
-                            // through floats.
-                            const PackSpec spec = pack_spec(o, planes, preset_, size);
-                            auto fresh = [&] {
-                                const EncodeOptions enc{spec.format, spec.bit_depth};
-                                std::optional<Image8> packed8 = pack_output8(spec, planes, *color_);
-                                return packed8 ? encode_image(*packed8, enc, bytes, e)
-                                               : encode_image(pack_output(spec, planes, *color_), enc, bytes, e);
-                            };
-                            if (!share) return fresh();
-                            return share->encode({spec, color_.get(), shared_planes}, fresh, bytes, sha);
-                        }};
+                        pack_encode,
+                        encode_blocks};
     // Outputs are packed and encoded on two threads (each output on one: deflate is serial) while
     // a worker is idle (above).
     parallel_for_spare(wanted.size(), spare_core, [&](size_t i) {

@@ -95,7 +95,8 @@ public:
     // PresetRun, not in the Ingestor.
     IngestResult run(const std::vector<std::filesystem::path>& inputs) const;
 
-    // Several ingestors (ingest --preset a,b: one per preset, each with its own output folder)
+    // Several ingestors (ingest --preset a,b: one per preset, each with its own output folder;
+    // ingest --tiers: one per tier, the preset with that max_size)
     // over one batch (found once, with every ingestor's output folder excluded) in one pass: each
     // set is processed by every ingestor in turn on one worker, its maps decoded once
     // (plan/plan.hpp's PlanShare) and an output whose pixels and encoding equal one another
@@ -108,6 +109,10 @@ private:
     Preset preset_;
     std::shared_ptr<const ColorContext> color_;
     IngestOptions opt_;
+    // The preset's text but for max_size, and its normal convention: a block-compressed output of
+    // two ingestors of equal keys (the tiers of one preset), equal size and equal planes is
+    // encoded once in run_together (process/share.hpp BlockSource).
+    std::string encoding_key_;
     // One preset's part of a pass (its output folder, claims, cache, spool, tallies; open(),
     // record() after each set, finish()): ingest.cpp.
     struct PresetRun;

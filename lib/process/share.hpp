@@ -1,9 +1,10 @@
-// What the presets of one pass share of the set they process in turn (ingest --preset a,b:
-// process/ingest.hpp run_together), each thing keyed by the values it is made of, never by
-// names: the set's decoded maps and validations (plan/plan.hpp PlanShare: by file, and by rules
-// config and maps), its input digests (by file), and its encoded outputs (by pack spec, colour
-// context and planes: an output's pixels are a function of those, its bytes of its pixels and
-// EncodeOptions, since image/image.hpp encodes deterministically). Lives for one set.
+// What the presets of one pass share of the set they process in turn (ingest --preset a,b and
+// --tiers: process/ingest.hpp run_together), each thing keyed by the values it is made of, never
+// by names: the set's decoded maps and validations (plan/plan.hpp PlanShare: by file, and by
+// rules config and maps), its input digests (by file), and its encoded outputs (by pack spec,
+// colour context and planes: an output's pixels are a function of those, its bytes of its pixels
+// and EncodeOptions, since image/image.hpp encodes deterministically; a block-compressed one by
+// its preset's text, output, size, colour context and planes). Lives for one set.
 // Thread-safe: a set's outputs are packed and encoded on up to two threads.
 #pragma once
 #include <functional>
@@ -19,6 +20,7 @@
 #include "pack/pack.hpp"
 #include "plan/plan.hpp"
 #include "sets/sets.hpp"
+#include "texture/texture.hpp"
 
 namespace mf {
 
@@ -46,7 +48,33 @@ public:
     // encoding until the set is done.
     bool encode(Source source, const std::function<bool()>& fresh, std::vector<unsigned char>& bytes, std::string& sha);
 
+    // What a block-compressed output (dds, ktx2: texture::encode_output) is made of: the text of
+    // its preset but for max_size (the set's size is decided before, plan/plan.cpp; the encoder
+    // reads the preset's mips, filters, formats and bounds) with its normal convention, the
+    // output's suffix, the size, the colour context and every plane of the set (a roughness mip
+    // chain reads the normals' spread: toksvig). The tiers of ingest --tiers at or above a set's
+    // size write the same textures.
+    struct BlockSource {
+        std::string preset;  // Ingestor's encoding_key
+        std::string suffix;
+        Size size;
+        const ColorContext* color;
+        std::shared_ptr<const Planes> planes;
+        bool same_as(const BlockSource& o) const;
+    };
+
+    // `out` encoded by `fresh` (texture::encode_output's result: bytes, levels, findings): an
+    // output of the same source done so before is not encoded again. Kept like `encode`'s.
+    bool encode_blocks(BlockSource source, const std::function<bool(texture::EncodedOutput&)>& fresh,
+                       texture::EncodedOutput& out);
+
 private:
+    struct KeptBlocks {
+        BlockSource source;
+        texture::EncodedOutput encoded;
+    };
+    // Counts `planes` and `bytes` against kMaxKeptBytes (planes once); false when over (not kept).
+    bool keep_within_bound(const Planes* planes, uint64_t bytes);
     struct Kept {
         Source source;
         std::vector<unsigned char> bytes;
@@ -58,6 +86,7 @@ private:
     std::mutex mutex_;
     uint64_t kept_bytes_ = 0;
     std::vector<std::shared_ptr<const Kept>> kept_;
+    std::vector<std::shared_ptr<const KeptBlocks>> kept_blocks_;
     std::set<const Planes*> counted_;
     std::map<std::string, std::string> digests_;
 };

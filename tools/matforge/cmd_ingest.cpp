@@ -1,5 +1,5 @@
-// matforge ingest <input>... -o <out-dir> [--preset NAME|FILE] [--jobs N] [--fail-on ...]
-//                 [--report text|json|junit|sarif|html [--report-file F]]
+// matforge ingest <input>... -o <out-dir> [--preset NAME|FILE[,...]] [--tiers N,N...] [--jobs N]
+//                 [--fail-on ...] [--report text|json|junit|sarif|html [--report-file F]]
 // The report is written from the manifest the run wrote, by validate's writers (lib/report).
 #include <unistd.h>
 
@@ -28,8 +28,9 @@ namespace {
 struct IngestArgs {
     std::vector<std::string> inputs;
     std::string out_dir, preset = "gltf", fail_on = "error", normal, rules_file, shard, cache, report, report_file;
+    std::string tiers;  // --tiers 512,1024: given when `tiers_given` (an empty value is an error, not "none")
     int jobs = 0;
-    bool quiet = false, force = false, replace = false, no_cache = false;
+    bool quiet = false, force = false, replace = false, no_cache = false, tiers_given = false;
 };
 
 // --report: the manifest just written, read back, through the writers validate uses; the
@@ -80,7 +81,7 @@ void say_notes(const std::string& command, const std::vector<std::string>& notes
 }
 
 // What one preset's run tells its user, and its exit code. `command`: "ingest", or with several
-// presets "ingest [NAME]".
+// runs "ingest [FOLDER]", the run's folder under the output folder (NAME, TIER, NAME/TIER).
 ExitCode report_run(const IngestArgs& a, const IngestOptions& opt, const IngestResult& r, const std::string& command) {
     const std::filesystem::path manifest = opt.out_dir / opt.manifest_name;
     if (r.interrupted)
@@ -128,45 +129,44 @@ ExitCode run_ingest(const IngestArgs& a) {
     if (several && !a.report.empty())
         return fail("ingest", "--report takes one preset's run; with several, run `matforge validate` or `matforge "
                               "report` on each preset's folder");
+    // --tiers 512,1024: each preset once per tier, with that max_size, into <its folder>/<tier>;
+    // it replaces the presets' own max_size (a number, or a list of tiers).
+    std::optional<std::vector<int>> tiers;
+    if (a.tiers_given && !(tiers = parse_tiers(a.tiers, error))) return fail("ingest", error);
     auto color = ColorContext::create(error);
     if (!color) return fail("ingest", error);
     std::vector<std::unique_ptr<Ingestor>> ingestors;
     std::vector<IngestOptions> options;
     std::set<std::string> folders;
-    std::vector<std::string> labels;  // each preset's run says its own summary
-    for (const std::string& name : names) {
-        if (name.empty()) return fail("ingest", "--preset \"" + a.preset + "\" names an empty preset");
-        auto preset = load_preset(name, error);
-        if (!preset) return fail("ingest", error);
-        auto rules = load_rule_config(*preset, a.rules_file, error);
-        if (!rules) return fail("ingest", error);
+    std::vector<std::string> labels;  // each run says its own summary
+    // One run of the pass: `preset` (a tier's, with its max_size) into `folder`, labelled `label`.
+    // Empty, or why the run cannot be.
+    auto add_run = [&](Preset preset, const rules::RuleConfig& rules, const std::filesystem::path& folder,
+                       const std::string& label) -> std::string {
         IngestOptions opt;
-        const auto folder = preset_output_folder(a.out_dir, preset->name, names.size(), folders, error);
-        if (!folder) return fail("ingest", name + ": " + error);
-        opt.out_dir = *folder;
+        opt.out_dir = folder;
         opt.jobs = a.jobs;
-        opt.rules = std::move(*rules);
+        opt.rules = rules;
         opt.force = a.force;
         opt.replace = a.replace;
         if (!a.no_cache) opt.cache_dir = cache_folder(a.cache);
         if (opt.cache_dir) {
             const std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
-            if (std::string why = cache_overlaps(*opt.cache_dir, opt.out_dir, inputs); !why.empty())
-                return fail("ingest", why);
+            if (std::string why = cache_overlaps(*opt.cache_dir, opt.out_dir, inputs); !why.empty()) return why;
             // A folder the user named must be a cache (or new); the default one, if foreign, is
             // left alone with a warning and the run goes on without it (process/ingest.cpp).
             const bool named = !a.cache.empty() || std::getenv("MATFORGE_CACHE") != nullptr;
-            if (std::string why = Cache::unusable(*opt.cache_dir); named && !why.empty()) return fail("ingest", why);
+            if (std::string why = Cache::unusable(*opt.cache_dir); named && !why.empty()) return why;
         }
         if (!a.normal.empty()) opt.normal_override = convention_from_name(a.normal);
         if (!a.shard.empty()) {
             opt.shard = parse_shard(a.shard);
-            if (!opt.shard) return fail("ingest", "--shard must be I/N with 0 <= I < N, not \"" + a.shard + "\"");
+            if (!opt.shard) return "--shard must be I/N with 0 <= I < N, not \"" + a.shard + "\"";
             opt.manifest_name = "manifest.shard-" + std::to_string(opt.shard->first) + "-of-" +
                                 std::to_string(opt.shard->second) + ".json";
         }
         const bool tty = ::isatty(STDERR_FILENO) && !a.quiet;
-        if (tty && ingestors.empty()) {  // one progress line: the first preset's (the others follow it set by set)
+        if (tty && ingestors.empty()) {  // one progress line: the first run's (the others follow it set by set)
             opt.progress = [](size_t done, size_t total, const std::string& set, const MaterialResult& r) {
                 std::cerr << "\r\033[K[" << done << "/" << total << "] " << terminal_safe(set) << " " << set_status(r)
                           << std::flush;
@@ -174,9 +174,35 @@ ExitCode run_ingest(const IngestArgs& a) {
             };
         }
         options.push_back(opt);
-        labels.push_back(several ? "ingest [" + preset->name + "]" : "ingest");
-        ingestors.push_back(std::make_unique<Ingestor>(std::move(*preset), color, std::move(opt)));
+        labels.push_back(label);
+        ingestors.push_back(std::make_unique<Ingestor>(std::move(preset), color, std::move(opt)));
+        return {};
+    };
+    for (const std::string& name : names) {
+        if (name.empty()) return fail("ingest", "--preset \"" + a.preset + "\" names an empty preset");
+        auto preset = load_preset(name, error);
+        if (!preset) return fail("ingest", error);
+        auto rules = load_rule_config(*preset, a.rules_file, error);
+        if (!rules) return fail("ingest", error);
+        const auto folder = preset_output_folder(a.out_dir, preset->name, names.size(), folders, error);
+        if (!folder) return fail("ingest", name + ": " + error);
+        const std::vector<int> preset_tiers = tiers ? *tiers : preset->tiers;
+        const std::string prefix = several ? preset->name + "/" : "";
+        std::string why;
+        if (preset_tiers.empty()) {
+            const std::string label = several ? "ingest [" + preset->name + "]" : "ingest";
+            why = add_run(std::move(*preset), *rules, *folder, label);
+        }
+        for (size_t t = 0; t < preset_tiers.size() && why.empty(); ++t) {
+            const std::string tier = std::to_string(preset_tiers[t]);
+            why = add_run(with_max_size(*preset, preset_tiers[t]), *rules, *folder / tier,
+                          "ingest [" + prefix + tier + "]");
+        }
+        if (!why.empty()) return fail("ingest", why);
     }
+    if (ingestors.size() > 1 && !a.report.empty())  // one preset, several tiers
+        return fail("ingest", "--report takes one run's findings; with several tiers, run `matforge validate` or "
+                              "`matforge report` on each tier's folder");
     std::vector<const Ingestor*> all;
     all.reserve(ingestors.size());
     for (const auto& i : ingestors) all.push_back(i.get());
@@ -216,6 +242,13 @@ const Register register_ingest{
                         "shipped preset name (see 'matforge presets') or a JSON file; several, comma-separated "
                         "(gltf,unity-hdrp), write each into <out>/<its name> in one pass: each set decoded once")
              ->capture_default_str();
+         const std::string tiers_help =
+             "resolution tiers: largest output sides in pixels (1-65536), comma-separated (512,1024,2048); each "
+             "tier written into <out>/<tier> (<out>/<preset>/<tier> with several presets), what the preset with "
+             "that max_size writes there alone, in one pass: each map decoded once for every tier; never "
+             "upsampled (smaller sets keep their size). Replaces the presets' max_size (a preset's list "
+             "\"max_size\": [512, 1024] gives its tiers without this option)";
+         CLI::Option* tiers = sub.add_option("--tiers", a->tiers, tiers_help)->type_name("N,N...");
          sub.add_option("-j,--jobs", a->jobs, "sets processed in parallel (0 = all cores)")
              ->check(CLI::Range(0, 1024))
              ->capture_default_str();
@@ -244,7 +277,10 @@ const Register register_ingest{
          sub.add_flag("--replace", a->replace,
                       "write into a folder that holds another preset's outputs, replacing them (refused "
                       "without it)");
-         return [a] { return run_ingest(*a); };
+         return [a, tiers] {
+             a->tiers_given = tiers->count() > 0;
+             return run_ingest(*a);
+         };
      },
      "convert material sets to engine-ready textures and a manifest.json"}};
 

@@ -114,6 +114,10 @@ ExitCode run_plan(const PlanArgs& a) {
     std::string error;
     auto preset = load_preset(a.preset, error);
     if (!preset) return fail("plan", error);
+    // An action key is one max_size's (the resolved preset's): a list of tiers has one per tier.
+    if (!preset->tiers.empty())
+        return fail("plan", a.preset + ": max_size is a list of tiers; a plan's action keys are those of one "
+                                       "max_size: plan each tier with a preset file of that max_size");
     auto rules = load_rule_config(*preset, a.rules_file, error);
     if (!rules) return fail("plan", error);
     auto color = ColorContext::create(error);
