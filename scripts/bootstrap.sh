@@ -26,7 +26,7 @@ packages_test=(
   libpng-dev       # tests/image: interlaced PNGs the direct reader must leave to OpenImageIO
   vulkan-validationlayers  # every GPU test fails on a validation message
   python3 python3-jsonschema  # scripts/check-schemas.py (manifest and report schemas)
-  python3-venv     # scripts/py-checkers.sh: OpenUSD, MaterialX and Blender (bpy) from PyPI, pinned, under build/
+  python3-venv     # scripts/py-checkers.sh: OpenUSD, MaterialX, Blender (bpy), texture2ddecoder from PyPI, pinned, under build/
   libgl1 libsm6 libice6 libx11-6 libxcb1 libxext6 libxfixes3 libxi6 libxrender1 libxkbcommon0  # what bpy links and does not bundle
   python3-yaml     # tests/texture/checkers/unity_check.py (Unity .mat and .meta YAML)
   glslang-tools    # tests/render: the d3d11 HLSL include compiled by glslang's HLSL front end

@@ -8,6 +8,11 @@
 #   materialx  MaterialX 1.39 (the Academy Software Foundation's bindings): every .mtlx validated
 #              with the standard libraries, GLSL generated for each material and compiled by
 #              glslang (tests/texture/checkers/mtlx_open.py)
+#   texture2ddecoder  K0lb3's BCn/ASTC/ETC decoders (C++ from AssetStudio's Texture2DDecoder, a
+#              cp311-abi3 manylinux wheel): the independent decoder of every level of matforge's
+#              BC1/BC3/BC4/BC5/BC7 .dds files and of the peers' (tests/texture/checkers/bc_decode.py,
+#              bench/texture/bc7_vs_bc7e.sh)
+#   numpy      1.26 (what bpy 4.5 requires anyway): the PSNR of bench/texture/psnr_rgba.py
 # (PyPI's pyktx 4.4.2 is a source package that builds against an installed libktx, which Debian
 # 12 does not package: the .ktx2 files are read by npm ktx-parse until libktx is built here.)
 # Usage: scripts/py-checkers.sh [DIR]   (default build/py; the tests run DIR/bin/python)
@@ -17,7 +22,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 dir=${1:-$root/build/py}
-packages=(usd-core==26.11 materialx==1.39.5 bpy==4.5.15)
+packages=(usd-core==26.11 materialx==1.39.5 bpy==4.5.15 texture2ddecoder==1.0.6 numpy==1.26.4)
 want=$(printf '%s\n' "${packages[@]}")
 [[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -x $dir/bin/python ]] && exit 0
 mkdir -p "$dir"

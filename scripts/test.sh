@@ -19,7 +19,7 @@ install_set test
 configure "$root/build" -DMATFORGE_TESTS=ON -DMATFORGE_BENCHMARKS=ON
 build_quietly "$root/build"
 "$root/scripts/npm-checkers.sh" "$root/build/npm"  # glTF-Validator, ktx-parse, MaterialX, three.js, Godot
-"$root/scripts/py-checkers.sh" "$root/build/py"     # OpenUSD, MaterialX, Blender for tests/texture
+"$root/scripts/py-checkers.sh" "$root/build/py"     # OpenUSD, MaterialX, Blender, texture2ddecoder for tests/texture
 "$root/scripts/ktx-checker.sh" "$root/build/ktx"    # libktx for tests/texture (VulkanKtx2: slow, release only)
 echo "test: release build $((SECONDS - t0)) s" >&2
 t0=$SECONDS

@@ -64,5 +64,9 @@ std::vector<Variant> quantize_variants(const Config& c);
 std::vector<Variant> normal_variants(const Config& c);
 std::vector<Variant> brdf_variants(const Config& c);
 std::vector<Variant> stats_variants(const Config& c);
+// lib/texture (knobs_texture.cpp): block encoders, a cut-out's mips and edges.
+std::vector<Variant> encoder_variants(const Config& c);
+std::vector<Variant> cutout_mip_variants(const Config& c);
+std::vector<Variant> cutout_edge_variants(const Config& c);
 
 }  // namespace mf::bench

@@ -90,7 +90,9 @@ const char* knob_intro(const std::string& knob) {
     if (knob.rfind("normal", 0) == 0)
         return "A 1024² bumpy normal map, roughness 0.25, standard BRDF (double), light and viewer ±24° so the flat highlight is at n = +Z. "
                "Truth: full-resolution shading averaged over each level-3 texel's 8×8 footprint. Error of the level-3 preview in display codes "
-               "(sRGB of radiance) and radiance. All stored at 8 bits. Time: building the whole mip chain of a 1K map.";
+               "(sRGB of radiance) and radiance. All stored at 8 bits. Time: building the whole mip chain of a 1K map. "
+               "Toksvig's roughness is on by default in the presets with mips (the preset field `toksvig` defaults to `mips`; "
+               "lib/texture's make_mips widens the roughness from the normal map's 8-bit codes).";
     if (knob.rfind("BRDF", 0) == 0)
         return "A 128² sphere, one directional light (intensity 3), roughness bands (0.045 through the highlight, 0.2, 0.5, 1), metal on the right. "
                "Reference: accurate model, double, 256 samples per pixel. Samples: D3D11 standard MSAA positions. "
@@ -100,6 +102,25 @@ const char* knob_intro(const std::string& knob) {
                "(in sRGB codes): mean, 5th and 95th percentile; shares below code 30 and above 240 (% points). Error: against every pixel. "
                "The 5th percentile sits at the gap between the dark corner (5 % of pixels) and the bricks, so a sample that moves it "
                "by a few pixels' worth jumps it by ~55 codes: percentiles at a gap need every pixel or a wide tolerance.";
+    if (knob.rfind("block encoders", 0) == 0)
+        return "Poly Haven's brown_planks_09 albedo (tests/data/corpus/real, 1K JPEG; --quick: its middle 256²) as 8-bit sRGB RGB codes, "
+               "encoded by texture::encode_level (sRGB formats, one thread) and decoded back by decode_level. Error: the decoded "
+               "codes against the source's over R, G, B; the note gives the PSNR over the three channels and the bytes per texel. "
+               "Time: encode_level alone. BC1 fast/normal: stb_dxt, thorough: libsquish's cluster fit; BC7: matforge's own "
+               "encoder (lib/texture/bc7.hpp); ASTC: Arm's astcenc (fast/medium/thorough presets).";
+    if (knob.rfind("cut-out mips", 0) == 0)
+        return "ambientCG's Net004A (colour + opacity as A, 1K; --quick: the middle 256², so its 16×16 level is 16× smaller, "
+               "not 64×). Error: the alpha test's coverage (alpha ≥ 0.5) of the 16×16 mip level minus level 0's, in % points "
+               "(both columns; the note gives the worst level down to 16×16). Alpha averaged as data thins the strands away; "
+               "alpha_tested (texture::make_mips) keeps the coverage; \"then BC7\" is that chain encoded and decoded as the GPU "
+               "samples it, without the re-encoding the ingest's encode_output does where the decoded coverage strays "
+               "(keep_decoded_coverage). Time: make_mips of the whole chain (+ BC7 of every level) per 1K map.";
+    if (knob.rfind("cut-out edges", 0) == 0)
+        return "Net004A as above. The hidden texels (A < 128) with a shown 8-neighbour: the code distance of their BC7-decoded "
+               "(normal effort) colour from the mean of their shown neighbours in linear light (source codes), per channel, "
+               "as tests/texture/gpu_presets_test.cpp measures the ingested outputs. Without the fill, whatever colour the "
+               "source left in the holes is what bilinear lookups, mips and the block fit mix into the net's edges. "
+               "Time: dilate_under_alpha (alpha in channel 3, shown from code 128: the presets' cutoff 0.5) per 1K map.";
     return "";
 }
 
@@ -131,7 +152,10 @@ int main(int argc, char** argv) {
                                                     {"quantize", mf::bench::quantize_variants},
                                                     {"normal", mf::bench::normal_variants},
                                                     {"brdf", mf::bench::brdf_variants},
-                                                    {"validation", mf::bench::stats_variants}};
+                                                    {"validation", mf::bench::stats_variants},
+                                                    {"encoders", mf::bench::encoder_variants},
+                                                    {"cut-out mips", mf::bench::cutout_mip_variants},
+                                                    {"cut-out edges", mf::bench::cutout_edge_variants}};
     try {
         for (const auto& [name, make] : makers) {
             if (!only.empty() && std::string(name).find(only) == std::string::npos) continue;
@@ -228,7 +252,8 @@ int main(int argc, char** argv) {
         std::map<std::string, size_t> index;
         for (const Variant& v : variants) {
             const double x = ms_per_mpx(v);
-            if (!(x > 0)) continue;  // untimed rows
+            // Untimed rows, and rows with no error in codes (a coverage in % points).
+            if (!(x > 0) || !std::isfinite(v.mean_codes)) continue;
             if (!index.count(v.knob)) index[v.knob] = series.size(), series.push_back({v.knob, {}});
             series[index[v.knob]].points.push_back({x, v.mean_codes, v.tag});
         }

@@ -3,13 +3,17 @@
 // bench/texture/run.sh, which times each process (wall, /usr/bin/time) and writes the table.
 //
 //   texture_bench encode IN.png OUT.dds|OUT.ktx2 FORMAT EFFORT [--srgb] [--normal] [--mips]
-//                        [--threads N]
+//                        [--threads N] [--encode-seconds]
 //       reads IN (lib/image), encodes level 0 (with --mips: the whole chain, lib/texture's
 //       filters) with matforge's codec for FORMAT (bc1, bc3, bc4, bc5, astc-4x4, astc-6x6, ...)
 //       at EFFORT (fast, normal, thorough) on N threads (default 1), writes the container;
 //       --normal: IN is a normal map (BC5: X, Y kept; mips renormalized). Prints the seconds
 //       from reading IN to the file written: the time per map inside a run (`ingest` pays its
-//       process start-up, OpenImageIO's plugins, once per run, not per map).
+//       process start-up, OpenImageIO's plugins, once per run, not per map). With
+//       --encode-seconds, two more figures on that line: texture::encode_level for level 0 alone
+//       (no reading, no mips, no container, no writing), its wall seconds, then its CPU seconds
+//       (std::clock: every thread of the process added up), which is what bc7enc's "Total encoding
+//       time" line measures (clock() around its encoding loop; bench/texture/bc7_vs_bc7e.sh).
 //   texture_bench decode IN.dds|IN.ktx2 OUT.png
 //       level 0 decoded back with the codec that wrote it (libsquish, astcenc).
 //   texture_bench psnr REF DECODED CHANNELS
@@ -22,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <iostream>
 #include <numbers>
 #include <string>
@@ -70,13 +75,14 @@ int fail(const std::string& what) {
 int encode(int argc, char** argv) {
     if (argc < 6) return fail("encode IN OUT FORMAT EFFORT [--srgb] [--normal] [--mips]");
     const std::string in = argv[2], out = argv[3];
-    bool srgb = false, normal = false, mips = false;
+    bool srgb = false, normal = false, mips = false, encode_seconds = false;
     int threads = 1;
     for (int i = 6; i < argc; ++i) {
         const std::string f = argv[i];
         srgb = srgb || f == "--srgb";
         normal = normal || f == "--normal";
         mips = mips || f == "--mips";
+        encode_seconds = encode_seconds || f == "--encode-seconds";
         if (f == "--threads" && i + 1 < argc) threads = std::max(1, std::atoi(argv[++i]));
     }
     // OpenImageIO is a module loaded on the first read (lib/image): once per `ingest` run, so
@@ -111,9 +117,16 @@ int encode(int argc, char** argv) {
     mf::texture::GpuTexture t;
     t.format = opt.format;
     t.srgb = opt.srgb;
+    double level0_seconds = 0, level0_cpu_seconds = 0;
     for (const Image8& level : chain) {
         mf::texture::Level l{level.width, level.height, {}};
+        const auto e0 = std::chrono::steady_clock::now();
+        const std::clock_t c0 = std::clock();
         if (!mf::texture::encode_level(level, opt, l.data, error)) return fail(in + ": " + error);
+        if (t.levels.empty()) {
+            level0_cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+            level0_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();
+        }
         t.levels.push_back(std::move(l));
     }
     std::vector<uint8_t> bytes;
@@ -124,7 +137,9 @@ int encode(int argc, char** argv) {
         bytes = mf::texture::write_dds(t);
     }
     if (!mf::write_file_atomic(out, bytes, error)) return fail(error);
-    std::printf("%.4f\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    std::printf("%.4f", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (encode_seconds) std::printf(" %.4f %.4f", level0_seconds, level0_cpu_seconds);
+    std::printf("\n");
     return 0;
 }
 

@@ -19,6 +19,7 @@ constexpr std::array kFormats{
     BlockFormatInfo{"bc3", 4, 4, 16, 4, true, true, false},
     BlockFormatInfo{"bc4", 4, 4, 8, 1, false, true, false},
     BlockFormatInfo{"bc5", 4, 4, 16, 2, false, true, false},
+    BlockFormatInfo{"bc7", 4, 4, 16, 4, true, true, false},
     BlockFormatInfo{"astc-4x4", 4, 4, 16, 4, true, false, false},
     BlockFormatInfo{"astc-5x5", 5, 5, 16, 4, true, false, false},
     BlockFormatInfo{"astc-6x6", 6, 6, 16, 4, true, false, false},
@@ -80,7 +81,7 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
         const std::string name(f->name);
         if (p.format == FileFormat::dds && !f->in_dds)
             return fail(error, field + ": " + name +
-                                   " has no DXGI format; DDS carries bc1, bc3, bc4 and bc5 (ASTC goes in ktx2)");
+                                   " has no DXGI format; DDS carries bc1, bc3, bc4, bc5 and bc7 (ASTC goes in ktx2)");
         if (f->hdr && o.bit_depth == 8)
             return fail(error,
                         field + ": " + name + " encodes float (HDR) samples; this output is 8-bit (bit_depth 8)");
@@ -91,8 +92,9 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
             return fail(error, field + ": block formats store 8-bit samples; bit_depth must be 8, not " +
                                    std::to_string(o.bit_depth));
         if (o.srgb && !f->has_srgb)
-            return fail(error, field + ": " + name +
-                                   " has no sRGB variant; use it for linear data (color_space linear) or pick bc1/bc3");
+            return fail(
+                error, field + ": " + name +
+                           " has no sRGB variant; use it for linear data (color_space linear) or pick bc1, bc3 or bc7");
     }
     for (int n : written_counts(o)) {
         const BlockFormatInfo* f = block_format_for(o, n);
@@ -103,10 +105,11 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
         const bool fits = xy_normal ||
                           (n <= f->channels && (f->name != "bc4" || n == 1) && (f->name != "bc5" || n == 2));
         if (!fits)
-            return fail(error, field + ": " + name + " stores " + std::to_string(f->channels) + " channel" +
-                                   (f->channels == 1 ? "" : "s") + "; this output writes " + std::to_string(n) + " (" +
-                                   layout(o, n) + ")" +
-                                   (n == 4 && !o.block_format_alpha ? ": set block_format_alpha (bc3) for it" : ""));
+            return fail(error,
+                        field + ": " + name + " stores " + std::to_string(f->channels) + " channel" +
+                            (f->channels == 1 ? "" : "s") + "; this output writes " + std::to_string(n) + " (" +
+                            layout(o, n) + ")" +
+                            (n == 4 && !o.block_format_alpha ? ": set block_format_alpha (bc3 or bc7) for it" : ""));
     }
     if (o.block_format_alpha && written_counts(o).back() != 4)
         return fail(error, where + "block_format_alpha: this output never writes 4 channels");
@@ -134,7 +137,10 @@ const BlockFormatInfo* block_format_for(const OutputSpec& o, int written_channel
 bool parse_texture_fields(const nlohmann::json& j, Preset& p, std::string& error) {
     const bool container = is_block_container(p.format);
     const auto mips = bool_field(j, "mips", false);
-    const auto toksvig = bool_field(j, "toksvig", false);
+    // Specular anti-aliasing is on wherever there are mips (issue 48: glTF-Transform's, three.js's
+    // and Bevy's users ask for it because their engines no longer do it at run time); it acts on
+    // outputs with roughness, in sets with a normal map (encode_output).
+    const auto toksvig = mips ? bool_field(j, "toksvig", *mips) : std::nullopt;
     if (!mips || !toksvig) return fail(error, "mips and toksvig must be true or false");
     p.mips = *mips;
     p.toksvig = *toksvig;

@@ -1,5 +1,5 @@
 // Block codecs from Debian's libraries: stb_dxt (libstb-dev) and libsquish for BC1-BC5, astcenc
-// for ASTC LDR.
+// for ASTC LDR; BC7 is matforge's own (bc7.hpp), as no Debian package encodes it.
 //
 // Which BC encoder for which effort was decided by measurement (docs/texture/results.md,
 // bench/texture/run.sh; 1K albedo and packed ORM photographs of the corpus, one thread):
@@ -36,12 +36,21 @@
 #include <memory>
 
 #include "base/parallel.hpp"
+#include "texture/bc7.hpp"
 #include "texture/texture.hpp"
 
 namespace mf::texture {
 namespace {
 
 bool is_astc(const BlockFormatInfo& f) { return f.name.substr(0, 4) == "astc"; }
+
+// BC7 is matforge's own encoder (bc7.hpp): Debian packages none.
+bc7::Options bc7_options(const CodecOptions& opt, const Image8& level) {
+    bc7::Options o;
+    o.level = opt.effort == Effort::fast ? 0 : opt.effort == Effort::normal ? 1 : 2;
+    o.alpha_data = level.channels == 4;
+    return o;
+}
 
 // The colour encoder of BC1 and BC3 at an effort (see the top of this file).
 bool stb_colour(const BlockFormatInfo& f, Effort effort) {
@@ -214,6 +223,7 @@ bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint
     const int flags = squish_flags(f, opt.effort);
     const bool stb = stb_colour(f, opt.effort);
     const int stb_mode = opt.effort == Effort::fast ? STB_DXT_NORMAL : STB_DXT_HIGHQUAL;
+    const bc7::Options bc7 = bc7_options(opt, level);
     const int bw = (level.width + 3) / 4, bh = (level.height + 3) / 4;
     // Rows of blocks are independent: any number of threads writes the same bytes.
     parallel_for(static_cast<size_t>(bh), std::max(1, opt.threads), [&](size_t row) {
@@ -224,6 +234,10 @@ bool encode_level(const Image8& level, const CodecOptions& opt, std::vector<uint
             gather_block(level, bx, by, opt.normal_xy, rgba, mask);
             uint8_t* out = &blocks[(static_cast<size_t>(by) * static_cast<size_t>(bw) + static_cast<size_t>(bx)) *
                                    static_cast<size_t>(f.block_bytes)];
+            if (f.name == "bc7") {
+                bc7::encode_block(rgba.data(), bc7, out);
+                continue;
+            }
             if (stb && f.name == "bc1") {
                 // Texels past the edge repeat the edge (gather_block): they cost the fit nothing.
                 rgba_opaque(rgba);
@@ -270,7 +284,9 @@ bool decode_level(std::span<const uint8_t> blocks, int width, int height, const 
         for (int bx = 0; bx < bw; ++bx) {
             const uint8_t* in = &blocks[(static_cast<size_t>(by) * static_cast<size_t>(bw) + static_cast<size_t>(bx)) *
                                         static_cast<size_t>(f.block_bytes)];
-            if (f.name == "bc4" || f.name == "bc5") {
+            if (f.name == "bc7") {
+                bc7::decode_block(in, texels.data());
+            } else if (f.name == "bc4" || f.name == "bc5") {
                 // One channel block per 8 bytes: R, then G for BC5.
                 for (size_t half = 0; half < (f.name == "bc5" ? 2u : 1u); ++half) {
                     decode_alpha(in + 8 * half, values);
@@ -301,7 +317,8 @@ bool decode_level(std::span<const uint8_t> blocks, int width, int height, const 
 std::string encoder_versions() {
     // stb_dxt, libsquish and astcenc report no version at run time: the package versions CMake found.
     return std::string("stb_dxt ") + MATFORGE_STB_VERSION + ", squish " + MATFORGE_SQUISH_VERSION + ", astcenc " +
-           MATFORGE_ASTCENC_VERSION + ", zstd " + ZSTD_versionString();
+           MATFORGE_ASTCENC_VERSION + ", zstd " + ZSTD_versionString() + ", bc7 " +
+           std::to_string(bc7::kEncoderVersion);
 }
 
 }  // namespace mf::texture

@@ -31,6 +31,7 @@ constexpr Dxgi kDxgi[] = {
     {"bc3", 77, 78, "DXGI_FORMAT_BC3_UNORM", "DXGI_FORMAT_BC3_UNORM_SRGB"},
     {"bc4", 80, 0, "DXGI_FORMAT_BC4_UNORM", ""},
     {"bc5", 83, 0, "DXGI_FORMAT_BC5_UNORM", ""},
+    {"bc7", 98, 99, "DXGI_FORMAT_BC7_UNORM", "DXGI_FORMAT_BC7_UNORM_SRGB"},
 };
 
 const Dxgi* dxgi_of(const BlockFormatInfo* f) {
@@ -102,7 +103,7 @@ bool read_dds(std::span<const uint8_t> b, GpuTexture& t, std::string& error) {
             t.srgb = format == d.srgb;
         }
     if (!t.format) {
-        error = "DXGI format " + std::to_string(format) + " is not one matforge reads (BC1, BC3, BC4, BC5)";
+        error = "DXGI format " + std::to_string(format) + " is not one matforge reads (BC1, BC3, BC4, BC5, BC7)";
         return false;
     }
     if (get32(b, 132) != kDimensionTexture2d || get32(b, 140) != 1) {

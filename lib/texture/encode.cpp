@@ -29,6 +29,15 @@ int channel_of(const std::vector<ChannelSpec>& written, Role role, bool* smoothn
     return -1;
 }
 
+// The preset's output holding the normal map (RGB normal), nullptr when none.
+const OutputSpec* normal_output(const Preset& preset) {
+    for (const OutputSpec& o : preset.outputs)
+        if (!o.channels.empty() && o.channels[0].key == "RGB" && o.channels[0].kind == ChannelSpec::Kind::role &&
+            o.channels[0].role == Role::normal)
+            return &o;
+    return nullptr;
+}
+
 Image8 quantized(const Image& img) {
     Image8 out(img.width, img.height, img.channels);
     for (size_t i = 0; i < img.pixels.size(); ++i) out.pixels[i] = quantize8(img.pixels[i]);
@@ -45,32 +54,40 @@ Image channel_floats(const Image8& img, int channel) {
 
 // A cut-out's alpha test must keep level 0's coverage as the GPU decodes a level, not only as
 // make_mips stores it: a block codec moves alpha near the cutoff, most where a block spans much of
-// a small level (ASTC 6x6 kept 0.035 of Net004A's 16x16 level against 0.223 at level 0). Where
-// the decoded coverage strays more than half a point from `target`, the level's alpha is scaled
-// again with the encoder in the loop (bisection on the scale, as make_mips does on the stored
-// codes; a few encodes of a small level) and the closest is kept: `level`, `blocks` and `decoded`
-// become that one's.
+// a small level (ASTC 6x6 kept 0.035 of Net004A's 16x16 level against 0.223 at level 0), and at the
+// smallest levels coverage scaling leaves most alphas within a code or two of the cutoff (Net004A's
+// 16x16 level: 22 % at 128, the rest at 127; BC7 moved it to 0.14). Where the decoded coverage strays
+// more than half a point from `target`, the level's alpha is encoded again, pushed away from the
+// cutoff by kStretch (each texel stays on its side of the test, so what the test keeps is what
+// make_mips stored, and the codec's small errors no longer cross it), then, if still off, scaled
+// as make_mips scales (bisection, with the encoder in the loop), and the closest is kept: `level`,
+// `blocks` and `decoded` become that one's.
 bool keep_decoded_coverage(Image8& level, int alpha_at, float cutoff, double target, const CodecOptions& codec,
                            std::vector<uint8_t>& blocks, Image8& decoded, std::string& error) {
     constexpr double kTolerance = 0.005;
+    constexpr int kStretch = 8;
     double best_error = std::abs(alpha_coverage(decoded, alpha_at, cutoff) - target);
     if (best_error <= kTolerance) return true;
     const Image8 stored = level;
     const auto c = static_cast<size_t>(stored.channels), a = static_cast<size_t>(alpha_at);
+    const int kept = std::clamp(first_kept_code(cutoff), 1, 255);
     Image8 trial;
     std::vector<uint8_t> trial_blocks;
     Image8 trial_decoded;
-    float lo = 0.25f, hi = 4.f;
-    for (int step = 0; step < 12 && best_error > kTolerance; ++step) {
-        const float scale = std::sqrt(lo * hi);
+    // Scale 1 first (the stretch alone), then the bisection.
+    float lo = 0.25f, hi = 4.f, scale = 1.f;
+    for (int step = 0; step < 13 && best_error > kTolerance; ++step, scale = std::sqrt(lo * hi)) {
         trial = stored;
-        for (size_t p = a; p < trial.pixels.size(); p += c)
-            trial.pixels[p] = quantize8(static_cast<float>(stored.pixels[p]) / 255.f * scale);
+        for (size_t p = a; p < trial.pixels.size(); p += c) {
+            const int v = quantize8(static_cast<float>(stored.pixels[p]) / 255.f * scale);
+            trial.pixels[p] = static_cast<uint8_t>(v >= kept ? std::min(255, kept + (v - kept + 1) * kStretch - 1)
+                                                             : std::max(0, kept - (kept - v) * kStretch));
+        }
         if (!encode_level(trial, codec, trial_blocks, error) ||
             !decode_level(trial_blocks, trial.width, trial.height, codec, trial_decoded, error))
             return false;
         const double got = alpha_coverage(trial_decoded, alpha_at, cutoff);
-        (got < target ? lo : hi) = scale;
+        if (step > 0) (got < target ? lo : hi) = scale;
         if (std::abs(got - target) < best_error) {
             best_error = std::abs(got - target);
             level = trial;
@@ -173,10 +190,18 @@ bool encode_output(const OutputSpec& o, const Planes& planes, Size size, const E
         mo.filter = preset.mip_filter;
         mo.alpha_cutoff = preset.alpha_cutoff;
         Image normals;
-        if (preset.toksvig && planes.count(Role::normal)) {
+        const OutputSpec* normal_map = preset.toksvig ? normal_output(preset) : nullptr;
+        if (normal_map && planes.count(Role::normal)) {
             mo.roughness_channel = channel_of(written, Role::roughness, &mo.smoothness);
             if (mo.roughness_channel >= 0) {
-                normals = plane_floats(Role::normal, planes.at(Role::normal));
+                // The spread of the normals the engine samples: the normal map's 8-bit codes as its
+                // own output's level 0 holds them, at this output's size.
+                std::optional<Image8> codes = pack_output8(*normal_map, planes, preset, size, *ctx.color);
+                Image8 n8 = codes ? std::move(*codes)
+                                  : quantized(pack_output(*normal_map, planes, preset, size, *ctx.color));
+                if (n8.width != level0.width || n8.height != level0.height)
+                    n8 = resize(n8, std::vector<ChannelKind>(3, ChannelKind::normal), level0.width, level0.height);
+                normals = normals_from_codes(n8);
                 mo.normals = &normals;
             }
         }

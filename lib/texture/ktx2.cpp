@@ -22,7 +22,8 @@ constexpr std::array<uint8_t, 12> kIdentifier{0xAB, 'K', 'T', 'X', ' ', '2', '0'
 constexpr uint32_t kSchemeNone = 0, kSchemeZstd = 2;
 
 // khr_df.h values.
-constexpr uint32_t kModelBc1a = 128, kModelBc3 = 130, kModelBc4 = 131, kModelBc5 = 132, kModelAstc = 162;
+constexpr uint32_t kModelBc1a = 128, kModelBc3 = 130, kModelBc4 = 131, kModelBc5 = 132, kModelBc7 = 134,
+                   kModelAstc = 162;
 constexpr uint32_t kPrimariesBt709 = 1;
 constexpr uint32_t kTransferLinear = 1, kTransferSrgb = 2;
 constexpr uint32_t kQualifierLinear = 0x10;  // a sample not sRGB-encoded in an sRGB format (alpha)
@@ -38,6 +39,7 @@ constexpr Vk kVk[] = {
     {"bc3", 137, 138, "VK_FORMAT_BC3_UNORM_BLOCK", "VK_FORMAT_BC3_SRGB_BLOCK"},
     {"bc4", 139, 0, "VK_FORMAT_BC4_UNORM_BLOCK", ""},
     {"bc5", 141, 0, "VK_FORMAT_BC5_UNORM_BLOCK", ""},
+    {"bc7", 145, 146, "VK_FORMAT_BC7_UNORM_BLOCK", "VK_FORMAT_BC7_SRGB_BLOCK"},
     {"astc-4x4", 157, 158, "VK_FORMAT_ASTC_4x4_UNORM_BLOCK", "VK_FORMAT_ASTC_4x4_SRGB_BLOCK"},
     {"astc-5x5", 161, 162, "VK_FORMAT_ASTC_5x5_UNORM_BLOCK", "VK_FORMAT_ASTC_5x5_SRGB_BLOCK"},
     {"astc-6x6", 165, 166, "VK_FORMAT_ASTC_6x6_UNORM_BLOCK", "VK_FORMAT_ASTC_6x6_SRGB_BLOCK"},
@@ -64,6 +66,7 @@ std::vector<uint8_t> make_dfd(const GpuTexture& t) {
     else if (f.name == "bc3") model = kModelBc3, samples = {{15, 0, 64}, {0, 64, 64}};  // BC3_ALPHA, BC3_COLOR
     else if (f.name == "bc4") model = kModelBc4, samples = {{0, 0, 64}};                // BC4_DATA
     else if (f.name == "bc5") model = kModelBc5, samples = {{0, 0, 64}, {1, 64, 64}};   // BC5_RED, BC5_GREEN
+    else if (f.name == "bc7") model = kModelBc7, samples = {{0, 0, 128}};               // BC7_COLOR
     else samples = {{0, 0, 128}};                                                       // ASTC_DATA
     std::vector<uint8_t> d;
     const auto block_size = static_cast<uint32_t>(24 + 16 * samples.size());
@@ -189,7 +192,7 @@ bool read_ktx2(std::span<const uint8_t> b, GpuTexture& t, std::string& error) {
             t.srgb = format == v.srgb;
         }
     if (!t.format) {
-        error = "VkFormat " + std::to_string(format) + " is not one matforge reads (BC1, BC3, BC4, BC5, ASTC LDR)";
+        error = "VkFormat " + std::to_string(format) + " is not one matforge reads (BC1, BC3, BC4, BC5, BC7, ASTC LDR)";
         return false;
     }
     if (depth != 0 || layers != 0 || faces != 1 || width == 0 || height == 0 || width > 65536 || height > 65536 ||
@@ -227,7 +230,7 @@ bool read_ktx2(std::span<const uint8_t> b, GpuTexture& t, std::string& error) {
         t.levels.push_back(std::move(l));
         w = std::max(1, w / 2), h = std::max(1, h / 2);
     }
-    // Straight alpha present: a BC3 texture (opaque BC1 carries none).
+    // Straight alpha present: a BC3 texture (opaque BC1 carries none; a BC7 block says for itself).
     t.alpha = t.format->name == "bc3";
     return true;
 }

@@ -217,6 +217,22 @@ std::vector<ChannelKind> channel_kinds(const std::vector<ChannelSpec>& written, 
     return kinds;
 }
 
+Image normals_from_codes(const Image8& codes) {
+    Image out(codes.width, codes.height, 3);
+    const auto c = static_cast<size_t>(codes.channels);
+    for (size_t p = 0; p < static_cast<size_t>(codes.width) * static_cast<size_t>(codes.height); ++p) {
+        std::array<float, 3> n{};
+        float len = 0;
+        for (size_t k = 0; k < 3; ++k) {
+            n[k] = static_cast<float>(codes.pixels[p * c + k]) / 127.5f - 1.f;
+            len += n[k] * n[k];
+        }
+        len = len > 0 ? 1.f / std::sqrt(len) : 0.f;
+        for (size_t k = 0; k < 3; ++k) out.pixels[p * 3 + k] = n[k] * len;
+    }
+    return out;
+}
+
 int mip_count(int width, int height) {
     int n = 1;
     for (int m = std::max(width, height); m > 1; m /= 2) ++n;

@@ -52,13 +52,17 @@ struct MipOptions {
     float alpha_cutoff = 0.5f;  // the alpha test whose coverage alpha_tested channels keep
     // Toksvig (2005): the roughness channel `roughness_channel` (stored as 1 - r when
     // `smoothness`) of each level is widened by the spread of the level's normals, from the
-    // unnormalized filtered `normals` (unit vectors at the level-0 size, 3 channels).
+    // unnormalized filtered `normals` (unit vectors at the level-0 size, 3 channels: the normal
+    // map as written, normals_from_codes).
     int roughness_channel = -1;
     bool smoothness = false;
     const Image* normals = nullptr;
 };
 
 int mip_count(int width, int height);
+// Unit vectors (3 floats) from a normal map's 8-bit RGB codes (n * 0.5 + 0.5), renormalized as a
+// shader does after sampling: what Toksvig's spread is measured on, the normals an engine sees.
+Image normals_from_codes(const Image8& codes);
 // Level 0 (as given) and every smaller level down to 1x1.
 std::vector<Image8> make_mips(const Image8& level0, const std::vector<ChannelKind>& kinds, const MipOptions& options);
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iostream>
 
 #include "cli_util.hpp"
 
@@ -46,8 +47,9 @@ TEST(PreviewCli, EveryPresetPreviewsTheSameImage) {
 // normals with Z rebuilt in the shader). Against the PNG ingest's preview of the same set, what
 // differs is the block-compression error and the file's own mips (Kaiser-filtered at ingest,
 // where the renderer box-filters a PNG's): stated bound (docs/preview.md) mean <= 2.5 codes and
-// 99.5th percentile <= 20 codes over the lit sphere (measured: d3d11 1.73 / 14, vulkan-ktx2
-// 2.00 / 17).
+// 99.5th percentile <= 20 codes over the lit sphere. The GPU presets are run with their specular
+// anti-aliasing off here: it widens the roughness mips on purpose, which the PNG's have not
+// (with it: p99.5 31 codes on this 96-pixel sphere, where far mips are sampled).
 TEST(PreviewCli, GpuPresetsPreviewLikeThePngIngest) {
     const fs::path work = temp_dir("gpu");
     // The path pinned: the look-dev default (`auto`) could pick either from one run to the next.
@@ -55,7 +57,15 @@ TEST(PreviewCli, GpuPresetsPreviewLikeThePngIngest) {
         " --size 96 --device cpu --light dir:0.5,-0.6,-0.62:3 --light point:-2,1,2:12 --shading raster";
     auto render = [&](const std::string& preset) {
         const fs::path out = work / preset;
-        auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out) + " --preset " + preset);
+        std::string use = preset;
+        if (preset != "gltf") {
+            auto shown = run("presets show " + preset);
+            nlohmann::json p = nlohmann::json::parse(shown.output.substr(shown.output.find('{')));
+            p["toksvig"] = false;
+            use = (work / (preset + ".json")).string();
+            write_text(use, p.dump());
+        }
+        auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(out) + " --preset " + q(use));
         EXPECT_EQ(r.code, 0) << preset << ": " << r.output;
         r = run("preview " + q(out / "manifest.json") + " -o " + q(out / "preview") + args);
         EXPECT_EQ(r.code, 0) << preset << ": " << r.output;
@@ -76,6 +86,7 @@ TEST(PreviewCli, GpuPresetsPreviewLikeThePngIngest) {
         for (int v : diffs) mean += v;
         mean /= static_cast<double>(diffs.size());
         const int p995 = diffs[diffs.size() * 995 / 1000];
+        std::cout << preset << ": mean " << mean << ", p99.5 " << p995 << " codes\n";
         EXPECT_LE(mean, 2.5) << preset << " (p99.5 " << p995 << ", max " << diffs.back() << ")";
         EXPECT_LE(p995, 20) << preset << " (mean " << mean << ", max " << diffs.back() << ")";
         // A compressed preset previews differently from a PNG one, however little: the files

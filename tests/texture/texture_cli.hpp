@@ -155,9 +155,11 @@ inline mf::Image8 read_codes(const fs::path& png) {
 }
 
 // The mip chain a GPU output encodes, rebuilt from its PNG twin's level 0 and the manifest
-// entry's channels (as ingest builds it: texture/mips).
-inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Image8& level0,
-                                               const std::string& filter) {
+// entry's channels (as ingest builds it: texture/mips); `normal_codes`: the set's normal map as
+// its PNG twin holds it, whose spread widens a roughness channel's mips (the presets' default
+// specular anti-aliasing; nullptr for a set without one).
+inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Image8& level0, const std::string& filter,
+                                               const mf::Image8* normal_codes = nullptr) {
     std::vector<mf::ChannelSpec> written;
     for (const char* key : {"RGB", "R", "G", "B", "A"}) {
         if (!output["channels"].contains(key)) continue;
@@ -182,6 +184,16 @@ inline std::vector<mf::Image8> reference_chain(const json& output, const mf::Ima
     const auto kinds = mf::texture::channel_kinds(written, output["color_space"] == "sRGB", cutout);
     mf::texture::MipOptions o;
     o.filter = filter == "box" ? mf::MipFilter::box : mf::MipFilter::kaiser;
+    mf::Image normals;
+    int at = 0;
+    for (const auto& c : written) {
+        if (normal_codes && c.kind == mf::ChannelSpec::Kind::role && c.role == mf::Role::roughness) {
+            normals = mf::texture::normals_from_codes(*normal_codes);
+            o.normals = &normals;
+            o.roughness_channel = at;
+        }
+        at += c.key == "RGB" ? 3 : 1;
+    }
     // The colour under the alpha (a cut-out's test at the presets' 0.5: codes from 128; a blend's
     // 0) filled before the mips, as ingest does.
     mf::Image8 filled = level0;
@@ -216,6 +228,37 @@ inline std::vector<mf::Image8> oiio_levels(const fs::path& dds, const fs::path& 
         levels.push_back(std::move(img));
     }
     return levels;
+}
+
+// Every mip level of a DDS decoded by PyPI's texture2ddecoder (tests/texture/checkers/bc_decode.py,
+// which parses the DDS itself): RGBA codes, largest first.
+inline std::vector<mf::Image8> texture2d_levels(const fs::path& dds, const fs::path& scratch) {
+    std::vector<mf::Image8> levels;
+    if (!checkers_installed("py-checkers.sh", mf::testenv::py_dir())) return levels;
+    const fs::path out = scratch / (dds.stem().string() + ".texture2d");
+    const auto p = mf::testbin::spawn({(mf::testenv::py_dir() / "bin" / "python").string(),
+                                       mf::testenv::source_dir().string() + "/tests/texture/checkers/bc_decode.py",
+                                       dds.string(), out.string()},
+                                      300);
+    EXPECT_EQ(p.code, 0) << p.output;
+    if (p.code != 0) return levels;
+    for (const auto& l : mf::testfiles::read_json(out / "levels.json")) {
+        mf::Image8 img(l["width"].get<int>(), l["height"].get<int>(), 4);
+        const auto bytes = read_bytes(out / l["file"].get<std::string>());
+        EXPECT_EQ(bytes.size(), img.pixels.size()) << dds;
+        if (bytes.size() == img.pixels.size()) std::memcpy(img.pixels.data(), bytes.data(), bytes.size());
+        levels.push_back(std::move(img));
+    }
+    return levels;
+}
+
+// Every mip level of a DDS through a decoder other than matforge's: OpenImageIO's (BC1-BC5; its
+// 2.4 reads no BC7), texture2ddecoder's (BC7).
+inline std::vector<mf::Image8> independent_levels(const fs::path& dds, const fs::path& scratch) {
+    const std::vector<uint8_t> b = read_bytes(dds);
+    uint32_t dxgi = 0;
+    if (b.size() >= 132) std::memcpy(&dxgi, b.data() + 128, 4);
+    return dxgi == 98 || dxgi == 99 ? texture2d_levels(dds, scratch) : oiio_levels(dds, scratch);
 }
 
 inline bool xy_only(const json& output) { return output.value("normal_z", "") == "reconstructed"; }
