@@ -523,7 +523,7 @@ struct Search {
     uint32_t nudge_below;  // endpoints nudged where a fit leaves less error per texel than this
 };
 Search search_of(int level) {
-    if (level <= 0) return {1, 1, 0, 0, false, 128, false, 4, 0};
+    if (level <= 0) return {1, 1, 0, 0, false, 128, false, 4, 2};
     if (level == 1) return {1, 1, 0, 0, false, 16, true, 8, 2};
     return {2, 4, 2, 3, true, 0, true, 16, 1u << 20};
 }
