@@ -108,7 +108,7 @@ int expand(int v, int n) {
 int interpolate(int e0, int e1, int w) { return ((64 - w) * e0 + w * e1 + 32) >> 6; }
 
 struct BitWriter {
-    uint8_t* out;
+    uint8_t* out = nullptr;
     int pos = 0;
     void put(unsigned v, int n) {
         for (int i = 0; i < n; ++i, ++pos)
@@ -116,7 +116,7 @@ struct BitWriter {
     }
 };
 struct BitReader {
-    const uint8_t* in;
+    const uint8_t* in = nullptr;
     int pos = 0;
     int get(int n) {
         int v = 0;
@@ -177,7 +177,8 @@ struct FitSpec {
     int index_bits = 2;
     bool opaque = false;
     bool all_pbits = true;
-    uint32_t nudge_below = 0;  // nudge_endpoints after a fit leaving less error per texel
+    uint32_t nudge_below = 0;        // nudge_endpoints after a fit leaving less error per texel
+    float nudge_flatter_than = 0.f;  // ... of texels whose scatter per texel is below this
 };
 
 struct SubsetFit {
@@ -241,7 +242,7 @@ void try_endpoints(const Source& src, const Subset& s, const FitSpec& f, const F
     std::array<std::array<int, 4>, 2> v{};  // endpoint codes
     for (size_t j = 0; j < 2; ++j)
         for (size_t c = C0; c < C0 + NC; ++c)
-            v[j][c] = f.opaque && c == 3 ? 255 : std::clamp(static_cast<int>(ep[j][c] + 0.5f), 0, 255);
+            v[j][c] = f.opaque && c == 3 ? 255 : static_cast<int>(std::clamp(std::lround(ep[j][c]), 0L, 255L));
     // The quantization error of endpoint j under p-bit p.
     const auto quant_error = [&](size_t j, int p) {
         int err = 0;
@@ -393,7 +394,10 @@ SubsetFit fit_subset(const Source& src, const Subset& s, const FitSpec& f, int r
         try_endpoints<NC, C0>(src, s, f, ep, best);
         if (best.err >= before) break;
     }
-    if (best.err > 0 && best.err <= f.nudge_below * static_cast<uint32_t>(s.n))
+    float scatter = 0;  // per texel, summed over the channels
+    for (size_t c = 0; c < NC; ++c) scatter += cov[c][c];
+    if (best.err > 0 && best.err <= f.nudge_below * static_cast<uint32_t>(s.n) &&
+        scatter <= f.nudge_flatter_than * static_cast<float>(n))
         nudge_endpoints<NC, C0>(src, s, f, best);
     return best;
 }
@@ -506,9 +510,10 @@ uint32_t alpha_error_at_255(const Source& src) {
 // (bench/texture/bc7_vs_bc7e.sh): the p-bits of mode 6 are worth 0.3-0.6 dB and are always
 // searched; searching those of the 2-subset modes adds 0.04 dB for 20 % more time. Textured
 // photographs gain little from the partitioned modes where one line already fits a block to a
-// summed squared error of 16 (1/3 per sample); smooth and flat ones (3dtextures' Obsidian,
-// ambientCG's OfficeCeiling005) need them and the endpoint nudge there: 54.6 -> 67.3 and 64.0 ->
-// 66.1 dB, for 1.9 times the instructions. Blocks with alpha (a cut-out's edges) rank mode 7's
+// summed squared error of 32 (2/3 per sample), nor from the endpoint nudge; smooth and flat ones
+// (3dtextures' Obsidian, ambientCG's OfficeCeiling005) need both: 54.6 -> 67.3 and 64.0 -> 66.0
+// dB. The nudge goes to flat subsets only (scatter under 16 per texel): on the textured ones it
+// bought 0.04 dB for a fifth of the time. Blocks with alpha (a cut-out's edges) rank mode 7's
 // partitions less well: fitting 8 rather than 1 gains 0.9 dB on ambientCG's Net004A.
 struct Search {
     int refine;            // least-squares rounds per subset
@@ -520,12 +525,13 @@ struct Search {
     uint32_t split_above;  // the partitioned modes are tried where mode 6 leaves more error
     bool mode3;            // mode 3 beside mode 1 on the ranked partitions
     int parts7;            // partitions fitted in mode 7 (blocks with alpha)
-    uint32_t nudge_below;  // endpoints nudged where a fit leaves less error per texel than this
+    uint32_t nudge_below;      // endpoints nudged where a fit leaves less error per texel than this
+    float nudge_flatter_than;  // ... in subsets whose texels scatter less than this (per texel)
 };
 Search search_of(int level) {
-    if (level <= 0) return {1, 1, 0, 0, false, 128, false, 4, 2};
-    if (level == 1) return {1, 1, 0, 0, false, 16, true, 8, 2};
-    return {2, 4, 2, 3, true, 0, true, 16, 1u << 20};
+    if (level <= 0) return {1, 1, 0, 0, false, 128, false, 4, 2, 16.f};
+    if (level == 1) return {1, 1, 0, 0, false, 32, true, 8, 2, 16.f};
+    return {2, 4, 2, 3, true, 0, true, 16, 1u << 20, 1e9f};
 }
 
 // One block's search: its texels, whether every alpha is 255, whether alpha is data.
@@ -549,6 +555,7 @@ Encoded encode_joint(const Block& b, int mode, int partition) {
     f.opaque = fit_alpha && b.opaque;
     f.all_pbits = b.search.all_pbits || mode == 6;
     f.nudge_below = b.search.nudge_below;
+    f.nudge_flatter_than = b.search.nudge_flatter_than;
     Encoded e;
     e.mode = mode, e.partition = partition;
     e.err = m.alpha_bits == 0 && b.alpha_data ? alpha_error_at_255(b.src) : 0;
@@ -732,7 +739,7 @@ PartitionScores score_partitions(const Moments<NC>& mo, int subsets) {
 // the 2^bits index steps (a uniform spread of variance v over K steps leaves v / (K - 1)^2): the
 // off-line scatter alone ranks every partition of a grey block equal.
 int best_partitions(const PartitionScores& sc, int partitions, int index_bits, int count, std::array<int, 64>& out) {
-    const float steps = static_cast<float>((1 << index_bits) - 1);
+    const auto steps = static_cast<float>((1 << index_bits) - 1);
     const float w = 1.0f / (steps * steps);
     std::array<std::pair<float, int>, 64> score{};
     for (size_t p = 0; p < static_cast<size_t>(partitions); ++p) {
@@ -762,7 +769,7 @@ void decode_block(const uint8_t in[16], uint8_t rgba[64]) {
     const ModeInfo& m = kModes[static_cast<size_t>(mode)];
     BitReader r{in, mode + 1};
     const int partition = r.get(m.partition_bits), rotation = r.get(m.rotation_bits), isb = r.get(m.isb_bits);
-    const auto ne = static_cast<size_t>(2 * m.subsets);
+    const size_t ne = 2 * static_cast<size_t>(m.subsets);
     std::array<std::array<int, 4>, 6> ep{};
     for (size_t c = 0; c < 3; ++c)
         for (size_t e = 0; e < ne; ++e) ep[e][c] = r.get(m.color_bits);
