@@ -516,15 +516,15 @@ uint32_t alpha_error_at_255(const Source& src) {
 // bought 0.04 dB for a fifth of the time. Blocks with alpha (a cut-out's edges) rank mode 7's
 // partitions less well: fitting 8 rather than 1 gains 0.9 dB on ambientCG's Net004A.
 struct Search {
-    int refine;            // least-squares rounds per subset
-    int parts2;            // 2-subset partitions fitted in modes 1 and 3 (7 with alpha)
-    int parts3;            // 3-subset partitions fitted in modes 0 and 2 (0: not tried)
-    int rotations;         // channel rotations of modes 4 and 5 on opaque blocks (0: not tried)
-    bool all_pbits;        // every p-bit combination in every mode (else mode 6's only, and the
-                           // nearest per endpoint in the others)
-    uint32_t split_above;  // the partitioned modes are tried where mode 6 leaves more error
-    bool mode3;            // mode 3 beside mode 1 on the ranked partitions
-    int parts7;            // partitions fitted in mode 7 (blocks with alpha)
+    int refine;                // least-squares rounds per subset
+    int parts2;                // 2-subset partitions fitted in modes 1 and 3 (7 with alpha)
+    int parts3;                // 3-subset partitions fitted in modes 0 and 2 (0: not tried)
+    int rotations;             // channel rotations of modes 4 and 5 on opaque blocks (0: not tried)
+    bool all_pbits;            // every p-bit combination in every mode (else mode 6's only, and the
+                               // nearest per endpoint in the others)
+    uint32_t split_above;      // the partitioned modes are tried where mode 6 leaves more error
+    bool mode3;                // mode 3 beside mode 1 on the ranked partitions
+    int parts7;                // partitions fitted in mode 7 (blocks with alpha)
     uint32_t nudge_below;      // endpoints nudged where a fit leaves less error per texel than this
     float nudge_flatter_than;  // ... in subsets whose texels scatter less than this (per texel)
 };
