@@ -160,6 +160,19 @@ const QuantTable& quant() {
 // ---------------------------------------------------------------------------------------------
 // The encoder
 
+// Four lanes of a vector (GCC's and Clang's vector extension: SSE on x86-64, NEON on ARM, plain
+// code elsewhere): four texels in `assign`, four partitions in the ranking.
+using Lanes = float __attribute__((vector_size(16)));
+using IntLanes = int __attribute__((vector_size(16)));
+using LaneMask = IntLanes;          // a comparison's result: -1 (true) or 0 in each lane
+using Row = std::array<Lanes, 16>;  // one value of the 64 partitions
+
+Lanes splat(float v) { return Lanes{v, v, v, v}; }
+Lanes select(LaneMask m, Lanes a, Lanes b) {
+    return reinterpret_cast<Lanes>((reinterpret_cast<LaneMask>(a) & m) | (reinterpret_cast<LaneMask>(b) & ~m));
+}
+IntLanes select(LaneMask m, IntLanes a, IntLanes b) { return (a & m) | (b & ~m); }
+
 struct Source {
     std::array<std::array<int, 4>, 16> px{};
 };
@@ -196,14 +209,14 @@ struct Subset {
 // The fitting routines work on the NC channels from C0 (RGB: 3, 0; RGBA: 4, 0; alpha: 1, 3).
 
 // Indices nearest the palette of decoded endpoints `e`, and their error over the fitted channels.
+// The palette lies (to rounding) on the segment: each texel is projected on it, and of the two
+// entries either side of the projection the nearer is taken (to rounding, the nearest). Four
+// texels at a time in vector lanes, each entry computed as the decoder does, no palette table.
 template <size_t NC, size_t C0>
 uint32_t assign(const Source& src, const Subset& s, const FitSpec& f, const Endpoints& e,
                 std::array<uint8_t, 16>& idx) {
     const int k_count = 1 << f.index_bits;
     const uint8_t* w = weights(f.index_bits);
-    std::array<std::array<int, NC>, 16> pal{};
-    for (int k = 0; k < k_count; ++k)
-        for (size_t c = 0; c < NC; ++c) pal[static_cast<size_t>(k)][c] = interpolate(e[0][C0 + c], e[1][C0 + c], w[k]);
     std::array<int, NC> d{};
     int dd = 0;
     for (size_t c = 0; c < NC; ++c) {
@@ -211,26 +224,50 @@ uint32_t assign(const Source& src, const Subset& s, const FitSpec& f, const Endp
         dd += d[c] * d[c];
     }
     const float scale = dd > 0 ? static_cast<float>(k_count - 1) / static_cast<float>(dd) : 0.0f;
+    const auto n = static_cast<size_t>(s.n);
     uint32_t total = 0;
-    for (size_t i = 0; i < static_cast<size_t>(s.n); ++i) {
-        const auto& x = src.px[s.tex[i]];
-        // The palette lies (to rounding) on the segment: project, then test the neighbours.
-        int dot = 0;
-        for (size_t c = 0; c < NC; ++c) dot += (x[C0 + c] - e[0][C0 + c]) * d[c];
-        // The two palette entries either side of the projection (to rounding, the nearest is one).
-        const int lo = std::clamp(static_cast<int>(static_cast<float>(dot) * scale), 0, k_count - 2);
-        const int hi = lo + 1;
-        int best_k = lo, best = std::numeric_limits<int>::max();
-        for (int j = lo; j <= hi; ++j) {
-            int err = 0;
-            for (size_t c = 0; c < NC; ++c) {
-                const int diff = pal[static_cast<size_t>(j)][c] - x[C0 + c];
-                err += diff * diff;
-            }
-            if (err < best) best = err, best_k = j;
+    // In float lanes (SSE2 multiplies floats, not 32-bit integers): every value here is an integer
+    // below 2^24, so each product and sum is exact and the results are the integer ones.
+    std::array<float, NC> df{}, base{};
+    for (size_t c = 0; c < NC; ++c) {
+        df[c] = static_cast<float>(d[c]);
+        base[c] = static_cast<float>(64 * e[0][C0 + c] + 32);
+    }
+    for (size_t i0 = 0; i0 < n; i0 += 4) {
+        // Past the subset's end, lanes repeat its last texel (left out of the sums below).
+        const auto& p0 = src.px[s.tex[i0]];
+        const auto& p1 = src.px[s.tex[std::min(i0 + 1, n - 1)]];
+        const auto& p2 = src.px[s.tex[std::min(i0 + 2, n - 1)]];
+        const auto& p3 = src.px[s.tex[std::min(i0 + 3, n - 1)]];
+        std::array<Lanes, NC> x{};
+        for (size_t c = 0; c < NC; ++c)
+            x[c] = __builtin_convertvector((IntLanes{p0[C0 + c], p1[C0 + c], p2[C0 + c], p3[C0 + c]}), Lanes);
+        Lanes dot{};
+        for (size_t c = 0; c < NC; ++c) dot += (x[c] - static_cast<float>(e[0][C0 + c])) * df[c];
+        IntLanes lo = __builtin_convertvector(dot * scale, IntLanes);
+        lo = select(lo < 0, IntLanes{}, lo);
+        lo = select(lo > k_count - 2, IntLanes{} + (k_count - 2), lo);
+        const Lanes w_lo = __builtin_convertvector((IntLanes{w[lo[0]], w[lo[1]], w[lo[2]], w[lo[3]]}), Lanes);
+        const Lanes w_hi = __builtin_convertvector((IntLanes{w[lo[0] + 1], w[lo[1] + 1], w[lo[2] + 1], w[lo[3] + 1]}),
+                                                   Lanes);
+        Lanes err_lo{}, err_hi{};
+        for (size_t c = 0; c < NC; ++c) {
+            // ((64 - w) e0 + w e1 + 32) >> 6, as the decoder interpolates (truncation is the
+            // floor: the sum is positive)
+            const Lanes v_lo = __builtin_convertvector(
+                __builtin_convertvector((w_lo * df[c] + base[c]) * (1.0f / 64.0f), IntLanes), Lanes);
+            const Lanes v_hi = __builtin_convertvector(
+                __builtin_convertvector((w_hi * df[c] + base[c]) * (1.0f / 64.0f), IntLanes), Lanes);
+            err_lo += (v_lo - x[c]) * (v_lo - x[c]);
+            err_hi += (v_hi - x[c]) * (v_hi - x[c]);
         }
-        idx[i] = static_cast<uint8_t>(best_k);
-        total += static_cast<uint32_t>(best);
+        const LaneMask hi = err_hi < err_lo;
+        const IntLanes best = __builtin_convertvector(select(hi, err_hi, err_lo), IntLanes);
+        const IntLanes k = select(hi, lo + 1, lo);
+        for (size_t l = 0; l < 4 && i0 + l < n; ++l) {
+            idx[i0 + l] = static_cast<uint8_t>(k[l]);
+            total += static_cast<uint32_t>(best[l]);
+        }
     }
     return total;
 }
@@ -606,15 +643,6 @@ Encoded encode_separate(const Block& b, int mode, int rotation, int isb) {
 // left out; the few best are fitted in full. The 64 partitions are scored four at a time in the
 // lanes of a vector (GCC's and Clang's vector extension: SSE on x86-64, NEON on ARM, plain code
 // elsewhere): this ranking would otherwise cost as much as all the fits together.
-
-using Lanes = float __attribute__((vector_size(16)));  // 4 partitions
-using LaneMask = int __attribute__((vector_size(16)));
-using Row = std::array<Lanes, 16>;  // one value of the 64 partitions
-
-Lanes splat(float v) { return Lanes{v, v, v, v}; }
-Lanes select(LaneMask m, Lanes a, Lanes b) {
-    return reinterpret_cast<Lanes>((reinterpret_cast<LaneMask>(a) & m) | (reinterpret_cast<LaneMask>(b) & ~m));
-}
 
 // Which texels each partition puts in subsets 1 and 2 (subset 0 is the rest), as 0/1 factors,
 // and the subsets' texel counts.
