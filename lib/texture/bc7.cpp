@@ -107,12 +107,20 @@ int expand(int v, int n) {
 
 int interpolate(int e0, int e1, int w) { return ((64 - w) * e0 + w * e1 + 32) >> 6; }
 
+// Bits from the least significant up, into two 64-bit halves; `flush` stores the 16 bytes
+// little-endian.
 struct BitWriter {
-    uint8_t* out = nullptr;
+    std::array<uint64_t, 2> word{};
     int pos = 0;
     void put(unsigned v, int n) {
-        for (int i = 0; i < n; ++i, ++pos)
-            if ((v >> i) & 1u) out[pos >> 3] = static_cast<uint8_t>(out[pos >> 3] | (1u << (pos & 7)));
+        const uint64_t bits = v & ((1u << n) - 1u);
+        const int at = pos & 63;
+        word[static_cast<size_t>(pos >> 6)] |= bits << at;
+        if (at + n > 64) word[1] |= bits >> (64 - at);
+        pos += n;
+    }
+    void flush(uint8_t* out) const {
+        for (size_t i = 0; i < 16; ++i) out[i] = static_cast<uint8_t>(word[i / 8] >> (8 * (i % 8)));
     }
 };
 struct BitReader {
@@ -272,14 +280,23 @@ uint32_t assign(const Source& src, const Subset& s, const FitSpec& f, const Endp
     return total;
 }
 
+// The 8-bit code nearest a fitted endpoint value, clamped (halves away from zero, as std::lround;
+// below 0.5, NaN included, 0): for a value of at least 0.5, adding 0.5 in float is exact below
+// 2^23, so the truncation is the rounding.
+int code_of(float v) {
+    if (!(v >= 0.5f)) return 0;
+    if (v >= 254.5f) return 255;
+    const float up = v + 0.5f;
+    return static_cast<int>(up);
+}
+
 // Quantizes endpoints `ep` under the p-bits allowed and keeps the best in `best`.
 template <size_t NC, size_t C0>
 void try_endpoints(const Source& src, const Subset& s, const FitSpec& f, const FloatEnds& ep, SubsetFit& best) {
     const QuantTable& qt = quant();
     std::array<std::array<int, 4>, 2> v{};  // endpoint codes
     for (size_t j = 0; j < 2; ++j)
-        for (size_t c = C0; c < C0 + NC; ++c)
-            v[j][c] = f.opaque && c == 3 ? 255 : static_cast<int>(std::clamp(std::lround(ep[j][c]), 0L, 255L));
+        for (size_t c = C0; c < C0 + NC; ++c) v[j][c] = f.opaque && c == 3 ? 255 : code_of(ep[j][c]);
     // The quantization error of endpoint j under p-bit p.
     const auto quant_error = [&](size_t j, int p) {
         int err = 0;
@@ -509,9 +526,8 @@ void fix_anchors(Encoded& e) {
 }
 
 void pack(const Encoded& e, uint8_t out[16]) {
-    std::memset(out, 0, 16);
     const ModeInfo& m = kModes[static_cast<size_t>(e.mode)];
-    BitWriter w{out};
+    BitWriter w;
     w.put(1u << e.mode, e.mode + 1);
     w.put(static_cast<unsigned>(e.partition), m.partition_bits);
     w.put(static_cast<unsigned>(e.rotation), m.rotation_bits);
@@ -535,6 +551,7 @@ void pack(const Encoded& e, uint8_t out[16]) {
         w.put(first[static_cast<size_t>(t)], m.index_bits - (is_anchor(m.subsets, e.partition, t) ? 1 : 0));
     if (m.index2_bits)
         for (int t = 0; t < 16; ++t) w.put(second[static_cast<size_t>(t)], m.index2_bits - (t == 0 ? 1 : 0));
+    w.flush(out);
 }
 
 uint32_t alpha_error_at_255(const Source& src) {
