@@ -138,11 +138,11 @@ struct BitReader {
 // (4..8 bits) and p-bit (0, 1, none).
 
 struct QuantTable {
-    // [bits - 4][p: 0, 1, 2 = none][code] -> stored value
+    // [bits - 4][p: 0, 1, 2 = none][code] -> stored value (8 stored bits come without a p-bit)
     std::array<std::array<std::array<uint8_t, 256>, 3>, 5> q{};
     QuantTable() {
         for (int bits = 4; bits <= 8; ++bits)
-            for (int p = 0; p < 3; ++p)
+            for (int p = bits < 8 ? 0 : 2; p < 3; ++p)
                 for (int v = 0; v < 256; ++v) {
                     int best = 0, best_d = 1 << 30;
                     for (int s = 0; s < (1 << bits); ++s) {
