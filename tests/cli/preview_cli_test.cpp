@@ -49,7 +49,8 @@ TEST(PreviewCli, EveryPresetPreviewsTheSameImage) {
 // where the renderer box-filters a PNG's): stated bound (docs/preview.md) mean <= 2.5 codes and
 // 99.5th percentile <= 20 codes over the lit sphere. The GPU presets are run with their specular
 // anti-aliasing off here: it widens the roughness mips on purpose, which the PNG's have not
-// (with it: p99.5 31 codes on this 96-pixel sphere, where far mips are sampled).
+// (with it: p99.5 31 codes on this 96-pixel sphere, where far mips are sampled). Measured:
+// d3d11 0.90 / 11, vulkan-ktx2 0.89 / 12, vulkan-ktx2-astc 0.20 / 2 (BC1: 1.73 / 14, 2.00 / 17).
 TEST(PreviewCli, GpuPresetsPreviewLikeThePngIngest) {
     const fs::path work = temp_dir("gpu");
     // The path pinned: the look-dev default (`auto`) could pick either from one run to the next.
