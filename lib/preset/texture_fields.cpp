@@ -62,11 +62,6 @@ std::string layout(const OutputSpec& o, int channels) {
     return s;
 }
 
-bool is_rgb_normal(const OutputSpec& o) {
-    return !o.channels.empty() && o.channels[0].key == "RGB" && o.channels[0].kind == ChannelSpec::Kind::role &&
-           o.channels[0].role == Role::normal;
-}
-
 // The channel counts an output can be written with: with and without a dropped last channel.
 std::vector<int> written_counts(const OutputSpec& o) {
     const int n = o.channel_count();
@@ -117,6 +112,11 @@ bool check_block_format(const Preset& p, const OutputSpec& o, const std::string&
 }
 
 }  // namespace
+
+bool is_rgb_normal(const OutputSpec& o) {
+    return !o.channels.empty() && o.channels[0].key == "RGB" && o.channels[0].kind == ChannelSpec::Kind::role &&
+           o.channels[0].role == Role::normal;
+}
 
 const BlockFormatInfo* block_format_info(std::string_view name) {
     for (const auto& f : kFormats)

@@ -30,6 +30,9 @@ std::string block_format_names();
 // an output of a format without blocks).
 const BlockFormatInfo* block_format_for(const OutputSpec& o, int written_channels);
 
+// Whether output `o` is a normal map: its RGB holds the normal role.
+bool is_rgb_normal(const OutputSpec& o);
+
 // Reads the fields above from preset document `j` into `p` (whose outputs are already parsed, in
 // the document's order) and checks them against the format and the channel layouts. False +
 // `error` naming the field.

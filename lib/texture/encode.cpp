@@ -32,9 +32,7 @@ int channel_of(const std::vector<ChannelSpec>& written, Role role, bool* smoothn
 // The preset's output holding the normal map (RGB normal), nullptr when none.
 const OutputSpec* normal_output(const Preset& preset) {
     for (const OutputSpec& o : preset.outputs)
-        if (!o.channels.empty() && o.channels[0].key == "RGB" && o.channels[0].kind == ChannelSpec::Kind::role &&
-            o.channels[0].role == Role::normal)
-            return &o;
+        if (is_rgb_normal(o)) return &o;
     return nullptr;
 }
 
