@@ -20,6 +20,7 @@ packages_build=(
   libdeflate-dev libjpeg-dev libwebp-dev  # lib/image/direct.hpp, png_writer.hpp
   libxml2-dev  # MaterialX sidecars (lib/material); the tests also parse JUnit with it
   libvulkan-dev glslc mesa-vulkan-drivers  # preview: shaders built by glslc, lavapipe without a GPU
+  spirv-cross  # report --viewer: the renderer's shaders translated to ESSL 3.00 (WebGL2) at build time
 )
 packages_test=(
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -6,7 +6,8 @@
 #   validate              -> OUT/validate.json (JSON report; its summary line on the terminal)
 #   preview               -> OUT/preview/<material>.png and OUT/contact_sheet.png
 #                            (a GPU when there is one, else Mesa's lavapipe on the CPU)
-#   report                -> OUT/report/index.html (one static page: previews, maps, findings)
+#   report                -> OUT/report/index.html (one static page: previews, maps, findings,
+#                            each material turned in WebGL2 with --viewer)
 # Usage: scripts/demo.sh [OUT]   (default: out/ in the clone, ignored by git). The ingest cache
 # goes where it always does (~/.cache/matforge, or $MATFORGE_CACHE), never into the clone.
 set -euo pipefail
@@ -36,6 +37,6 @@ step "validate sample_materials/ -> validate.json" \
 "$mf" validate "$root/sample_materials" --report text --fail-on never | tail -n 1 | sed 's/^/demo:   /' >&2
 step "preview every material (Cook-Torrance, look-dev studio) -> preview/, contact_sheet.png" \
   "$mf" preview "$out/manifest.json" -o "$out/preview" --contact-sheet "$out/contact_sheet.png"
-step "report -> report/index.html" "$mf" report "$out/manifest.json" -o "$out/report" --previews "$out/preview"
+step "report -> report/index.html" "$mf" report "$out/manifest.json" -o "$out/report" --previews "$out/preview" --viewer
 echo "demo: all done in $((SECONDS - t_start)) s. Open $out/report/index.html in a browser;" \
   "the glTF materials are $out/<material>/<material>.gltf and $out/library.gltf" >&2

@@ -199,7 +199,7 @@ bool material_gltf(const manifest::Material& m, const std::string& gltf_file, co
                 *m.alpha_mode != AlphaMode::opaque) {
                 mat["alphaMode"] = *m.alpha_mode == AlphaMode::mask ? "MASK" : "BLEND";
                 if (*m.alpha_mode == AlphaMode::mask) mat["alphaCutoff"] = m.alpha_cutoff;
-                mat["doubleSided"] = true;  // seen through, the far side shows
+                mat["doubleSided"] = manifest::double_sided(m.alpha_mode);
             }
             if (role == Role::emissive) {
                 mat["emissiveFactor"] = {1.0, 1.0, 1.0};  // the default 0 would switch the texture off

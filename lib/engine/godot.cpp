@@ -73,8 +73,7 @@ std::vector<File> godot_files(const EngineMaterial& e, const manifest::Material&
             res += *m.alpha_mode == AlphaMode::mask
                        ? "transparency = 2\nalpha_scissor_threshold = " + scene_number(m.alpha_cutoff) + "\n"
                        : "transparency = 1\n";
-            res +=
-                "cull_mode = 2\n";  // a cut-out or translucent sheet is seen from both sides (the glTF's doubleSided)
+            if (manifest::double_sided(m.alpha_mode)) res += "cull_mode = 2\n";
         }
     }
     res += "texture_filter = 5\n";  // linear, mipmaps, anisotropic: what Godot's own demo materials use

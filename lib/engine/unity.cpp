@@ -151,7 +151,7 @@ std::string material(const EngineMaterial& e, const manifest::Material& m, const
         p.number("_AlphaCutoffEnable", cutout ? 1.f : 0.f);
         p.number("_AORemapMax", 1.f);
         p.number("_AORemapMin", 0.f);
-        p.number("_DoubleSidedEnable", cutout || blend ? 1.f : 0.f);
+        p.number("_DoubleSidedEnable", manifest::double_sided(m.alpha_mode) ? 1.f : 0.f);
         p.number("_EmissiveIntensity", emits ? emissive : 1.f);
         p.number("_Metallic", 1.f);
         p.number("_MetallicRemapMax", 1.f);
@@ -165,13 +165,13 @@ std::string material(const EngineMaterial& e, const manifest::Material& m, const
         p.color("_EmissiveColor", emits ? emissive : 0.f);
         p.color("_EmissiveColorLDR", emits ? 1.f : 0.f);
         if (cutout) p.keywords.emplace_back("_ALPHATEST_ON");
-        if (cutout || blend) p.keywords.emplace_back("_DOUBLESIDED_ON");
+        if (manifest::double_sided(m.alpha_mode)) p.keywords.emplace_back("_DOUBLESIDED_ON");
         if (blend) p.keywords.emplace_back("_SURFACE_TYPE_TRANSPARENT");
     } else {
         shader = "933532a4fcc9baf4fa0491de14d08ed7";
         p.number("_AlphaClip", cutout ? 1.f : 0.f);
         p.number("_BumpScale", 1.f);
-        p.number("_Cull", cutout || blend ? 0.f : 2.f);
+        p.number("_Cull", manifest::double_sided(m.alpha_mode) ? 0.f : 2.f);  // 0: off (both sides), 2: back
         p.number("_Cutoff", m.alpha_cutoff);
         p.number("_GlossMapScale", 1.f);
         p.number("_Metallic", 1.f);

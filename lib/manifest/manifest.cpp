@@ -271,6 +271,8 @@ Material material_of(const json& j, const std::string& at) {
 
 std::string_view status_name(Status s) { return s == Status::ok ? "ok" : "partial"; }
 
+bool double_sided(std::optional<AlphaMode> a) { return a && *a != AlphaMode::opaque; }
+
 std::string_view alpha_mode_name(AlphaMode a) {
     return a == AlphaMode::opaque ? "opaque" : a == AlphaMode::mask ? "mask" : "blend";
 }

@@ -104,6 +104,9 @@ enum class Status { ok, partial };  // partial: some map could not be read or wr
 // alpha_mode, Godot transparency, Unity _ALPHATEST_ON / _SURFACE_TYPE_TRANSPARENT, ...).
 enum class AlphaMode { opaque, mask, blend };
 std::string_view alpha_mode_name(AlphaMode a);  // "opaque" | "mask" | "blend"
+// Whether a material is seen from both sides: a cut-out or translucent sheet shows its far side
+// (glTF doubleSided, Godot cull_mode, Unity _DoubleSidedEnable, the preview's far side).
+bool double_sided(std::optional<AlphaMode> a);
 
 struct Material {
     std::string name;

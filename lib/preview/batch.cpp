@@ -1,9 +1,13 @@
 #include "preview/batch.hpp"
 
+#include <algorithm>
+#include <condition_variable>
 #include <deque>
-#include <future>
+#include <exception>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 #include "core/text.hpp"
 
@@ -77,122 +81,237 @@ struct Outcome {
     std::vector<uint8_t> rgba8;
 };
 
-// The reading half, on a worker thread: files decoded, textures converted and their mips made
+// The reading half, on a worker: files decoded, textures converted and their mips made
 // (render::Renderer::prepare makes no Vulkan call that needs the renderer's thread).
 struct Loaded {
     std::optional<render::PreparedMaterial> prepared;
     std::vector<std::string> notes;
     std::string error;
+    uint64_t bytes = 0;  // held against the budget until uploaded
 };
 
-std::future<Outcome> ready_outcome(Outcome o) {
-    std::promise<Outcome> p;
-    p.set_value(std::move(o));
-    return p.get_future();
-}
+// Thrown inside a worker's read when the batch stops before the renderers exist.
+struct Stopped {};
 
-// How many materials the reading runs ahead of the rendering, after one of `bytes` of
-// textures: two, one where the textures took more than 128 MB (4K maps), none past 512 MB (8K:
-// each in memory alone, as without the pipeline). On lavapipe, whose passes are not all
-// multithreaded, reading ahead fills idle cores.
-size_t read_ahead(size_t bytes) { return bytes > (size_t{512} << 20) ? 0 : bytes > (size_t{128} << 20) ? 1 : 2; }
-
-// One pipeline run: the readers, the renderer's thread (the caller's), the writers.
+// One pipeline run: the workers, the lanes, and the caller's thread saying the outcomes in order.
+// Every shared field below is guarded by mutex_ and signalled by changed_.
 class Batch {
 public:
     Batch(const SceneFile& sf, const std::vector<Job>& jobs, const BatchOptions& opt,
           const std::function<void(const std::string&)>& say)
-        : sf_(sf), jobs_(jobs), opt_(opt), say_(say) {}
+        : sf_(sf), jobs_(jobs), opt_(opt), say_(say), loaded_(jobs.size()), outcomes_(jobs.size()) {}
+
+    ~Batch() { shut_down(); }
+    Batch(const Batch&) = delete;
+    Batch& operator=(const Batch&) = delete;
 
     BatchResult run() {
-        // The first material is read while the device starts and the scene's load-time passes
-        // run (the studio environment's prefiltering): the reading waits for the renderer only
-        // where it needs it, to know a GPU texture file's formats and to prepare the textures.
-        if (!jobs_.empty()) launch();
-        // Destroyed before `loading_` (which waits for the readers): unset, it wakes them.
-        std::promise<void> made = std::move(made_early_);
+        // The first materials are read while the device starts and the scene's load-time passes
+        // run (the studio environment's prefiltering): a read waits for the renderers only where
+        // it needs them, to know a GPU texture file's formats and to prepare the textures.
+        const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+        const unsigned workers = opt_.jobs > 0 ? opt_.jobs : hw;
+        for (unsigned w = 0; w < std::max(1u, workers) && !jobs_.empty(); ++w)
+            workers_.emplace_back([this] { work(); });
         try {
             context_.emplace(opt_.context);
+            const unsigned lanes =
+                std::max(1u, std::min<unsigned>(opt_.lanes > 0 ? opt_.lanes : lanes_for(context_->info()),
+                                                static_cast<unsigned>(std::max<size_t>(1, jobs_.size()))));
             if (opt_.progress)
                 say_(context_->info().name + (context_->info().cpu ? " (CPU)" : "") + ", " +
                      std::to_string(sf_.scene.width) + "x" + std::to_string(sf_.scene.height) + ", " +
-                     std::to_string(jobs_.size()) + " material(s)");
-            renderer_.emplace(*context_, sf_.scene);
-            made.set_value();
+                     std::to_string(jobs_.size()) + " material(s)" +
+                     (lanes > 1 ? ", " + std::to_string(lanes) + " lanes" : ""));
+            // Made on this thread one after another (render::Device's shading choice is measured by
+            // the first); the later lanes' notes repeat the first's.
+            for (unsigned k = 0; k < lanes; ++k) {
+                renderers_.push_back(std::make_unique<render::Renderer>(*context_, sf_.scene));
+                std::vector<std::string> notes = renderers_.back()->take_notes();
+                if (k == 0)
+                    for (const std::string& n : notes) say_("note: " + n);
+            }
         } catch (...) {
-            made.set_exception(std::current_exception());
+            stop();
             throw;
         }
-        for (const std::string& n : renderer_->take_notes()) say_("note: " + n);
-        for (size_t i = 0; i < jobs_.size(); ++i) {
-            if (launched_ == i) launch();
-            Loaded l = loading_.front().get();
-            loading_.pop_front();
-            const size_t ahead = read_ahead(l.prepared ? l.prepared->bytes() : 0);
-            while (launched_ < jobs_.size() && launched_ <= i + ahead) launch();
-            pending_.push_back(render_one(i, std::move(l)));
-            flush(1);
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            ready_ = true;
         }
-        flush(0);
+        changed_.notify_all();
+        for (size_t k = 0; k < renderers_.size(); ++k) lanes_.emplace_back([this, k] { lane(k); });
+
+        for (size_t i = 0; i < jobs_.size(); ++i) {
+            Outcome o;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                changed_.wait(lock, [&] { return outcomes_[i].has_value() || fatal_; });
+                if (!outcomes_[i]) break;  // a lane's renderer failed: nothing later is said
+                o = std::move(*outcomes_[i]);
+                outcomes_[i].reset();
+                held_ -= o.rgba8.size();
+            }
+            changed_.notify_all();
+            report(i, std::move(o));
+        }
+        shut_down();
+        if (fatal_) std::rethrow_exception(fatal_);
         for (const auto& [text, n] : repeated_notes_)
             if (n > 1) say_("note said above, for " + std::to_string(n - 1) + " more material(s) too: " + text);
         return std::move(result_);
     }
 
 private:
-    void launch() {
-        const size_t i = launched_++;
-        loading_.push_back(std::async(std::launch::async, [this, i] { return load(i); }));
+    // Stops the lanes and workers (a worker finishes the writes queued) and waits for them; the
+    // drawn materials they free go before the renderers that made them.
+    void shut_down() {
+        stop();
+        for (std::thread& t : lanes_) t.join();
+        lanes_.clear();
+        for (std::thread& t : workers_) t.join();
+        workers_.clear();
     }
 
-    Loaded load(size_t i) {
+    void stop() {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            stopping_ = true;
+        }
+        changed_.notify_all();
+    }
+
+    // Whether a worker may start reading the next material: always when nothing is held or being
+    // read (a material larger than the budget runs alone); else when the largest material seen
+    // so far still fits (before any was seen, two read at once).
+    bool may_read() const {
+        if (next_read_ >= jobs_.size()) return false;
+        if (held_ == 0 && reading_ == 0) return true;
+        if (largest_ == 0) return reading_ < 2;
+        return held_ + (reading_ + 1) * largest_ <= opt_.memory_budget;
+    }
+
+    void work() {
+        std::unique_lock<std::mutex> lock(mutex_);
+        for (;;) {
+            changed_.wait(lock, [&] { return !writes_.empty() || stopping_ || may_read(); });
+            if (!writes_.empty()) {  // first: a write frees memory and lets the outcome be said
+                std::function<void()> write = std::move(writes_.front());
+                writes_.pop_front();
+                lock.unlock();
+                write();
+                lock.lock();
+                continue;
+            }
+            if (stopping_) return;
+            const size_t i = next_read_++;
+            ++reading_;
+            lock.unlock();
+            Loaded l = read(i);
+            lock.lock();
+            --reading_;
+            held_ += l.bytes;
+            largest_ = std::max(largest_, l.bytes);
+            loaded_[i] = std::move(l);
+            changed_.notify_all();
+        }
+    }
+
+    // Blocks until the renderers exist; throws Stopped when the batch stops first.
+    render::Renderer& renderer_for(size_t i) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        changed_.wait(lock, [&] { return ready_ || stopping_; });
+        if (!ready_) throw Stopped{};
+        return *renderers_[i % renderers_.size()];
+    }
+
+    Loaded read(size_t i) {
         Loaded l;
         try {
-            auto m = jobs_[i].load(
-                [&](uint32_t f) {
-                    ready_.get();
-                    return renderer_->samples(f);
-                },
-                l.notes, l.error);
+            auto m = jobs_[i].load([&](uint32_t f) { return renderer_for(i).samples(f); }, l.notes, l.error);
             if (m) {
-                ready_.get();
-                l.prepared = renderer_->prepare(*m);
+                l.prepared = renderer_for(i).prepare(*m);
+                l.bytes = l.prepared->bytes();
             }
+        } catch (const Stopped&) {
+            l.error = "stopped";
         } catch (const std::exception& e) {  // this material's textures (or the renderer); the others go on
             l.error = e.what();
         }
         return l;
     }
 
-    // Upload and draw on this thread; encode and write on a thread of its own while the next
-    // material renders.
-    std::future<Outcome> render_one(size_t i, Loaded l) {
+    // Lane k: materials k, k + lanes, … in order (each prepared for this lane's renderer).
+    void lane(size_t k) {
+        for (size_t i = k; i < jobs_.size(); i += renderers_.size()) {
+            Loaded l;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                changed_.wait(lock, [&] { return loaded_[i].has_value() || stopping_; });
+                if (!loaded_[i]) return;
+                l = std::move(*loaded_[i]);
+                loaded_[i].reset();
+            }
+            try {
+                render_one(k, i, std::move(l));
+            } catch (...) {  // the renderer itself (render_one keeps a material's own failure)
+                {
+                    const std::lock_guard<std::mutex> lock(mutex_);
+                    if (!fatal_) fatal_ = std::current_exception();
+                    stopping_ = true;
+                }
+                changed_.notify_all();
+                return;
+            }
+        }
+    }
+
+    void finish(size_t i, Outcome o, uint64_t released) {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            held_ += o.rgba8.size();
+            held_ -= released;
+            outcomes_[i] = std::move(o);
+        }
+        changed_.notify_all();
+    }
+
+    // Upload and draw on lane k's thread; encode and write on a worker while the lane goes on.
+    void render_one(size_t k, size_t i, Loaded l) {
         const Job& job = jobs_[i];
+        render::Renderer& r = *renderers_[k];
         Outcome o;
         for (const std::string& n : l.notes) o.lines.push_back("note: " + n);
         if (!l.prepared) {
             o.lines.push_back(job.name + ": " + l.error);
             o.failed = true;
-            return ready_outcome(std::move(o));
+            finish(i, std::move(o), l.bytes);
+            return;
         }
         try {
-            render::GpuMaterial gm = renderer_->upload(std::move(*l.prepared));
-            for (const std::string& n : renderer_->take_notes()) o.lines.push_back(job.name + ": note: " + n);
+            render::GpuMaterial gm = r.upload(std::move(*l.prepared));
+            l.prepared.reset();
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                held_ -= l.bytes;  // its host copy is on the device now
+            }
+            changed_.notify_all();
+            for (const std::string& n : r.take_notes()) o.lines.push_back(job.name + ": note: " + n);
             const bool png = opt_.format == "png";
             std::vector<uint8_t> rgba8;
             std::vector<float> rgba32f;
-            if (png || opt_.contact_sheet) rgba8 = renderer_->render(gm, sf_.output).rgba8;
+            if (png || opt_.contact_sheet) rgba8 = r.render(gm, sf_.output).rgba8;
             if (!png) {
                 render::OutputOptions lin;
                 lin.format = render::PixelFormat::rgba32f;
-                rgba32f = renderer_->render(gm, lin).rgba32f;
+                rgba32f = r.render(gm, lin).rgba32f;
             }
             const std::filesystem::path out = opt_.out / (job.stem + "." + opt_.format);
             std::string progress = "[" + std::to_string(i + 1) + "/" + std::to_string(jobs_.size()) + "] ";
-            return std::async(std::launch::async, [this, &job, png, out, progress = std::move(progress),
-                                                   o = std::move(o), rgba8 = std::move(rgba8),
-                                                   rgba32f = std::move(rgba32f), gm = std::move(gm)]() mutable {
-                { render::GpuMaterial freed = std::move(gm); }  // its device objects, off the render thread
+            auto write = [this, i, &job, png, out, progress = std::move(progress), o = std::move(o),
+                          rgba8 = std::move(rgba8), rgba32f = std::move(rgba32f),
+                          gm = std::make_shared<render::GpuMaterial>(std::move(gm))]() mutable {
+                gm.reset();  // its device objects, off the lane's thread
                 const uint32_t w = sf_.scene.width, h = sf_.scene.height;
                 std::string error;
                 bool written = false;
@@ -208,39 +327,39 @@ private:
                     o.lines.push_back(progress + out.string());
                 }
                 o.rgba8 = std::move(rgba8);
-                return std::move(o);
-            });
+                finish(i, std::move(o), 0);
+            };
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                writes_.emplace_back(std::move(write));
+            }
+            changed_.notify_all();
         } catch (const render::NoDeviceError&) {
             throw;
         } catch (const std::exception& e) {  // this material's upload or draw failed; the others go on
             o.lines.push_back(job.name + ": " + e.what());
             o.failed = true;
-            return ready_outcome(std::move(o));
+            finish(i, std::move(o), l.prepared ? l.bytes : 0);
         }
     }
 
-    // Outcomes in job order, said as they complete; at most `keep` left in flight (the last
-    // material's image may still be being written while the next one renders).
-    void flush(size_t keep) {
-        while (pending_.size() > keep) {
-            Outcome o = pending_.front().get();
-            pending_.pop_front();
-            const Job& job = jobs_[reported_++];
-            for (const std::string& line : o.lines) {
-                // A note said for many materials alike (the same fallback, the same missing
-                // feature) is said once, and counted at the end (issue 45: once per material hid
-                // the rest of the log).
-                const size_t at = line.rfind("note: ", 0) == 0 ? 0 : line.find(": note: ");
-                if (at != std::string::npos) {
-                    const std::string text = line.substr(at == 0 ? 6 : at + 8);
-                    if (repeated_notes_[text]++ > 0) continue;
-                }
-                say_(line);
+    // Material i's outcome, said on the caller's thread in job order.
+    void report(size_t i, Outcome o) {
+        const Job& job = jobs_[i];
+        for (const std::string& line : o.lines) {
+            // A note said for many materials alike (the same fallback, the same missing
+            // feature) is said once, and counted at the end (issue 45: once per material hid
+            // the rest of the log).
+            const size_t at = line.rfind("note: ", 0) == 0 ? 0 : line.find(": note: ");
+            if (at != std::string::npos) {
+                const std::string text = line.substr(at == 0 ? 6 : at + 8);
+                if (repeated_notes_[text]++ > 0) continue;
             }
-            ++(o.failed ? result_.failed : result_.rendered);
-            if (!o.failed && opt_.contact_sheet)
-                result_.tiles.push_back({job.name, sf_.scene.width, sf_.scene.height, std::move(o.rgba8)});
+            say_(line);
         }
+        ++(o.failed ? result_.failed : result_.rendered);
+        if (!o.failed && opt_.contact_sheet)
+            result_.tiles.push_back({job.name, sf_.scene.width, sf_.scene.height, std::move(o.rgba8)});
     }
 
     const SceneFile& sf_;
@@ -250,17 +369,29 @@ private:
     BatchResult result_;
     std::map<std::string, size_t> repeated_notes_;  // a note's text -> how many materials had it
     std::optional<render::Context> context_;
-    std::optional<render::Renderer> renderer_;
-    std::promise<void> made_early_;
-    std::shared_future<void> ready_ = made_early_.get_future().share();
-    // Declared after the renderer: destroyed first, so every reader and writer has finished
-    // (a future from std::async waits in its destructor) before the renderer goes.
-    std::deque<std::future<Outcome>> pending_;
-    std::deque<std::future<Loaded>> loading_;
-    size_t launched_ = 0, reported_ = 0;
+    std::vector<std::unique_ptr<render::Renderer>> renderers_;  // one per lane
+
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    bool ready_ = false;     // the renderers exist
+    bool stopping_ = false;  // done, or a renderer failed: lanes and workers end
+    std::exception_ptr fatal_;
+    size_t next_read_ = 0, reading_ = 0;
+    uint64_t held_ = 0;     // bytes of prepared textures and unsaid images
+    uint64_t largest_ = 0;  // the largest prepared material so far
+    std::vector<std::optional<Loaded>> loaded_;
+    std::vector<std::optional<Outcome>> outcomes_;
+    std::deque<std::function<void()>> writes_;
+    // Declared last: destroyed (joined, by shut_down) before the renderers and the context.
+    std::vector<std::thread> lanes_, workers_;
 };
 
 }  // namespace
+
+unsigned lanes_for(const render::DeviceInfo& device) {
+    if (device.cpu) return 1;
+    return std::clamp(std::thread::hardware_concurrency() / 4, 1u, 4u);
+}
 
 BatchResult render_batch(const SceneFile& sf, const std::vector<Job>& jobs, const BatchOptions& opt,
                          const std::function<void(const std::string&)>& say) {

@@ -1,11 +1,21 @@
-// `matforge preview`'s batch: the materials of a manifest (or a scene file's own) rendered in
-// order, each loaded, uploaded, rendered and written; one that fails is reported and the others
-// are still rendered. A pipeline: while material i renders (on the device, or lavapipe's
-// threads), materials i+1 and i+2 are read and their textures prepared on other threads, and
-// material i-1's image is encoded and written on another. Messages come out in job order, as
-// one loop would say them. The command (options, exit codes) is tools/matforge/cmd_preview.cpp.
+// `matforge preview`'s batch: the materials of a manifest (or a scene file's own) rendered, each
+// loaded, uploaded, rendered and written; one that fails is reported and the others are still
+// rendered. A pipeline at the device's pace (issue 49):
+//  - workers (one per hardware thread, BatchOptions::jobs) read materials in manifest order and
+//    prepare their textures, as far ahead as a memory budget allows (the bytes of prepared
+//    textures and rendered images held, not a count: 1K materials run far ahead, 8K ones alone);
+//  - lanes (renderers of one device, each on its own thread with its own command pool, targets
+//    and readback; the queue is shared under a lock) upload and draw, so that one material's
+//    submit-and-wait overlaps the next one's: on a GPU the host, not the device, was the limit
+//    (docs/bench/README.md, A library on the H200); one lane on lavapipe, whose rasterizer
+//    already runs on every core;
+//  - the same workers encode and write the images (first, before reading more) and free the
+//    drawn materials' device objects.
+// Messages come out in job order, as one loop would say them. The command (options, exit codes)
+// is tools/matforge/cmd_preview.cpp.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -47,7 +57,16 @@ struct BatchOptions {
     std::string format = "png";  // "png" (8-bit sRGB) | "exr" (linear float)
     bool contact_sheet = false;  // keep each image's 8-bit pixels as a SheetTile
     bool progress = false;       // a line per image written, and the device's line first
+    unsigned jobs = 0;           // workers reading and writing; 0: one per hardware thread
+    unsigned lanes = 0;          // renderers fed at once; 0: by the device (lanes_for)
+    // Bytes of prepared textures and rendered images held at once; a material larger than the
+    // whole is still rendered, alone.
+    uint64_t memory_budget = uint64_t{1} << 30;
 };
+
+// The lanes a batch uses on `device` when BatchOptions::lanes is 0: one on a CPU device, else one
+// per four hardware threads, 1..4 (the H200 host: 4; measured in docs/bench/README.md).
+unsigned lanes_for(const render::DeviceInfo& device);
 
 struct BatchResult {
     size_t rendered = 0, failed = 0;

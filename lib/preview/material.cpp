@@ -97,6 +97,16 @@ std::optional<render::Material> load_material(const manifest::Material& mm, cons
         m.textures.push_back(std::move(*t));
     }
     m.emissive.strength = mm.emissive_strength;  // an HDR emissive stored as emissive / strength
+    // As the material files say (gltf.cpp: alphaMode, alphaCutoff, doubleSided): a cut-out is
+    // cut at the preset's cutoff and its far side shows through, as in every engine.
+    if (mm.alpha_mode) {
+        using manifest::AlphaMode;
+        m.alpha_mode = *mm.alpha_mode == AlphaMode::mask    ? render::AlphaMode::mask
+                       : *mm.alpha_mode == AlphaMode::blend ? render::AlphaMode::blend
+                                                            : render::AlphaMode::opaque;
+        m.alpha_cutoff = mm.alpha_cutoff;
+        m.double_sided = manifest::double_sided(mm.alpha_mode);
+    }
     for (const manifest::Constant& c : mm.constants) {
         if (c.role == Role::albedo || c.role == Role::emissive) {
             const auto& v = c.value;

@@ -134,6 +134,11 @@ void Renderer::Impl::record_raster(VkCommandBuffer cmd, const GpuMaterial::Impl&
     const VkBuffer vb = vertices.buffer;
     d.fn.vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
     d.fn.vkCmdBindIndexBuffer(cmd, indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    if (m.constants.double_sided) {  // the far side first: the near one blends over it
+        d.fn.vkCmdSetCullMode(cmd, VK_CULL_MODE_FRONT_BIT);
+        d.fn.vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
+    }
+    d.fn.vkCmdSetCullMode(cmd, VK_CULL_MODE_BACK_BIT);
     d.fn.vkCmdDrawIndexed(cmd, index_count, 1, 0, 0, 0);
     if (m.ground_pipeline) {  // Scene::ground: the floor under the shape, its own variant
         d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.ground_pipeline);

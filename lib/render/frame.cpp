@@ -125,6 +125,7 @@ void Renderer::Impl::write_frame(const Material& m) {
     f.ground[2] = scene.ground.roughness;
     f.ground[3] = static_cast<float>(std::tan(double{scene.ground.light_deg} * std::numbers::pi / 180.0));
     f.occluder[3] = shape_radius;  // centred at the origin, where every shape sits
+    f.alpha[0] = m.alpha_cutoff;
     // Column-major for GLSL; the identity but for the cube (the sphere and plane are not turned).
     const Rotation rot = scene.shape.type == ShapeType::cube ? cube_rotation()
                                                              : Rotation{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};

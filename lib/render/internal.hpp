@@ -118,5 +118,31 @@ VkSpecializationInfo spec_info(const VkSpecializationMapEntry (&entries)[N], con
     static_assert(N * 4 == sizeof(Values), "a field without a map entry");
     return {static_cast<uint32_t>(N), entries, sizeof(Values), &values};
 }
+template <class Values, size_t N>
+VkSpecializationInfo spec_info(const std::array<VkSpecializationMapEntry, N>& entries, const Values& values) {
+    static_assert(N * 4 == sizeof(Values), "a field without a map entry");
+    return {static_cast<uint32_t>(N), entries.data(), sizeof(Values), &values};
+}
+
+// A row of a constant table that others read too (shade.frag's, for the report's WebGL2 view,
+// export.cpp): the id, the field, and whether the shader declares it bool (VkBool32 in the struct).
+struct SpecField {
+    int id;
+    size_t offset;
+    bool boolean;
+};
+template <size_t N>
+constexpr std::array<VkSpecializationMapEntry, N> spec_entries(const SpecField (&fields)[N]) {
+    std::array<VkSpecializationMapEntry, N> e{};
+    for (size_t i = 0; i < N; ++i) e[i] = spec_entry(fields[i].id, fields[i].offset);
+    return e;
+}
+template <size_t N>
+constexpr bool spec_entries_distinct(const std::array<VkSpecializationMapEntry, N>& e) {
+    for (size_t i = 0; i < N; ++i)
+        for (size_t j = i + 1; j < N; ++j)
+            if (e[i].constantID == e[j].constantID || e[i].offset == e[j].offset) return false;
+    return true;
+}
 
 }  // namespace mf::render::detail

@@ -30,35 +30,7 @@ constexpr uint32_t kEncodeComp[] =
 
 using gpu::ShadeSpecialization;
 
-constexpr VkSpecializationMapEntry kShadeEntries[] = {
-    spec_entry(gpu::kSpecNumDirectional, offsetof(ShadeSpecialization, num_directional)),
-    spec_entry(gpu::kSpecNumPoint, offsetof(ShadeSpecialization, num_point)),
-    spec_entry(gpu::kSpecBrdfModel, offsetof(ShadeSpecialization, brdf_model)),
-    spec_entry(gpu::kSpecAnalyticSphere, offsetof(ShadeSpecialization, analytic_sphere)),
-    spec_entry(gpu::kSpecHasEnv, offsetof(ShadeSpecialization, has_env)),
-    spec_entry(gpu::kSpecAlbedoTex, offsetof(ShadeSpecialization, albedo_tex)),
-    spec_entry(gpu::kSpecEmissiveTex, offsetof(ShadeSpecialization, emissive_tex)),
-    spec_entry(gpu::kSpecNormalTex, offsetof(ShadeSpecialization, normal_tex)),
-    spec_entry(gpu::kSpecNormalGreenDown, offsetof(ShadeSpecialization, normal_green_down)),
-    spec_entry(gpu::kSpecRoughnessTex, offsetof(ShadeSpecialization, roughness_tex)),
-    spec_entry(gpu::kSpecRoughnessChannel, offsetof(ShadeSpecialization, roughness_channel)),
-    spec_entry(gpu::kSpecRoughnessInvert, offsetof(ShadeSpecialization, roughness_invert)),
-    spec_entry(gpu::kSpecMetalnessTex, offsetof(ShadeSpecialization, metalness_tex)),
-    spec_entry(gpu::kSpecMetalnessChannel, offsetof(ShadeSpecialization, metalness_channel)),
-    spec_entry(gpu::kSpecMetalnessInvert, offsetof(ShadeSpecialization, metalness_invert)),
-    spec_entry(gpu::kSpecOcclusionTex, offsetof(ShadeSpecialization, occlusion_tex)),
-    spec_entry(gpu::kSpecOcclusionChannel, offsetof(ShadeSpecialization, occlusion_channel)),
-    spec_entry(gpu::kSpecOcclusionInvert, offsetof(ShadeSpecialization, occlusion_invert)),
-    spec_entry(gpu::kSpecOpacityTex, offsetof(ShadeSpecialization, opacity_tex)),
-    spec_entry(gpu::kSpecOpacityChannel, offsetof(ShadeSpecialization, opacity_channel)),
-    spec_entry(gpu::kSpecOpacityInvert, offsetof(ShadeSpecialization, opacity_invert)),
-    spec_entry(gpu::kSpecNormalZFromXy, offsetof(ShadeSpecialization, normal_z_from_xy)),
-    spec_entry(gpu::kSpecGround, offsetof(ShadeSpecialization, ground)),
-    spec_entry(gpu::kSpecFillOnly, offsetof(ShadeSpecialization, fill_only)),
-    spec_entry(gpu::kSpecMsaa, offsetof(ShadeSpecialization, msaa)),
-    spec_entry(gpu::kSpecShape, offsetof(ShadeSpecialization, shape)),
-    spec_entry(gpu::kSpecSamples, offsetof(ShadeSpecialization, samples)),
-};
+constexpr auto kShadeEntries = spec_entries(kShadeFields);
 static_assert(spec_entries_distinct(kShadeEntries), "an id or field mapped twice");
 
 uint32_t flag(bool b) { return b ? 1u : 0u; }
@@ -197,6 +169,8 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     if (!env) occlusion.texture = -1;
     scalar(occlusion, c.occlusion_tex, c.occlusion_channel, c.occlusion_invert);
     scalar(m.opacity, c.opacity_tex, c.opacity_channel, c.opacity_invert);
+    c.alpha_mode = static_cast<int32_t>(m.alpha_mode);
+    c.double_sided = flag(m.double_sided);
     return c;
 }
 
@@ -225,6 +199,9 @@ std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
     if (c.emissive_tex >= 0) os << " emissive:tex";
     if (c.opacity_tex >= 0) os << " opacity:tex";
     if (c.occlusion_tex >= 0) os << " occlusion:tex";
+    if (c.alpha_mode == gpu::kAlphaMask) os << " mask";
+    if (c.alpha_mode == gpu::kAlphaOpaque) os << " opaque";
+    if (c.double_sided) os << " double-sided";
     if (scene.ground.enabled) os << " ground";
     if (c.msaa) os << " msaa" << static_cast<uint32_t>(samples);
     if (compute) os << " compute" << (c.samples > 1 ? " samples" + std::to_string(c.samples) : "");
@@ -278,7 +255,9 @@ Unique<VkPipeline> Renderer::Impl::graphics_pipeline(const ShadeSpecialization& 
     auto vp = vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
     vp.viewportCount = 1;
     vp.scissorCount = 1;
-    // Back faces culled (every shape is closed); a depth test where culling is not enough.
+    // Back faces culled (every shape is closed), but for a double-sided material: its back faces
+    // are drawn first (record_raster sets the cull mode per draw); a depth test where culling is
+    // not enough.
     auto rs =
         vk_struct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
     rs.polygonMode = VK_POLYGON_MODE_FILL;
@@ -295,12 +274,21 @@ Unique<VkPipeline> Renderer::Impl::graphics_pipeline(const ShadeSpecialization& 
     VkPipelineColorBlendAttachmentState blend{};
     blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                            VK_COLOR_COMPONENT_A_BIT;
+    if (constants.double_sided) {  // shade.frag writes premultiplied radiance: the far side shows through
+        blend.blendEnable = VK_TRUE;
+        blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend.colorBlendOp = VK_BLEND_OP_ADD;
+        blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     auto cb = vk_struct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
     cb.attachmentCount = 1;
     cb.pAttachments = &blend;
-    const VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    const VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE};
     auto ds = vk_struct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
-    ds.dynamicStateCount = 2;
+    ds.dynamicStateCount = 3;
     ds.pDynamicStates = dyn;
     auto rendering = vk_struct<VkPipelineRenderingCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO);
     rendering.colorAttachmentCount = 1;

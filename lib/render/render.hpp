@@ -287,6 +287,11 @@ struct NormalRole {
 
 inline constexpr size_t kMaxTextures = gpu::kMaxTextures;
 
+// How a material's opacity applies (glTF 2.0 alphaMode): blend mixes the surface over what lies
+// behind it by opacity; mask makes it opaque at or above Material::alpha_cutoff and drops it below
+// (a cut-out: a net, foliage); opaque ignores opacity.
+enum class AlphaMode { blend, mask, opaque };
+
 // A field added here is copied by roles_of (upload.cpp), which copies everything but the texels.
 struct Material {
     std::string name;
@@ -302,6 +307,12 @@ struct Material {
     // texture's texels square on the shape is the caller's choice: preview::uv_for_aspect).
     std::array<float, 2> uv_scale{1.f, 1.f};
     std::array<float, 2> uv_offset{0.f, 0.f};
+    AlphaMode alpha_mode = AlphaMode::blend;
+    float alpha_cutoff = 0.5f;  // with AlphaMode::mask, within [0, 1]
+    // The shape's far side shaded too, under the near one, its normal reversed (glTF
+    // doubleSided): what engines show through a cut-out or translucent sheet. Raster: the back
+    // faces drawn before the front ones, each blended; compute: the ray's far hit under its near one.
+    bool double_sided = false;
 };
 
 // Throws Error when roles point at missing textures or a normal map is also marked sRGB.
@@ -425,5 +436,49 @@ public:
 private:
     std::unique_ptr<Impl> impl_;
 };
+
+// ---------------------------------------------------------------------------------------------
+// Export (export.cpp): what another renderer of the same shaders needs to draw a material as this
+// one does. The report's WebGL2 viewer (lib/report/viewer.cpp) draws shade.vert and shade.frag,
+// translated to ESSL 3.00 at build time, with these: nothing of the scene is computed twice.
+// Call them where render() is called, never during one: they use the renderer's uniform block,
+// command pool and queue.
+
+// A specialization constant of shade.frag: its id (a gpu::kSpec*) and value.
+struct SpecConstant {
+    int id = 0;
+    int32_t value = 0;
+    bool boolean = false;  // a bool constant (VkBool32): value 0 or 1
+};
+struct ShadingExport {
+    // The variant of shade.frag for the material in this scene, its textures read as stored (no
+    // channel stored inverted, as Scene::fast_textures may upload them).
+    std::vector<SpecConstant> constants;
+    gpu::FrameData frame{};  // the uniform block render() draws the material with
+};
+ShadingExport export_shading(Renderer& renderer, const Material& material);
+
+// A sampled image of the renderer read back: levels[m] holds mip m, `layers` images of its size
+// (width >> m, height >> m, at least 1) one after the other, rows top to bottom, RGBA floats.
+// A cube's layers are its faces +X, −X, +Y, −Y, +Z, −Z.
+struct ImageExport {
+    uint32_t width = 0, height = 0, layers = 0;
+    std::vector<std::vector<float>> levels;
+};
+struct LightingExport {
+    ImageExport brdf_lut;              // (A, B, 1 − E, 1 − E_avg) over (√(n·v) across, roughness down)
+    ImageExport specular, irradiance;  // the environment's GGX-prefiltered and E(n)/π cubes
+    float anisotropy = 0.f;            // the material textures' maximum anisotropy (0: off)
+};
+// The image-based lighting the renderer computed at construction. Throws Error when the scene
+// has no environment.
+LightingExport export_lighting(Renderer& renderer);
+
+struct MeshExport {
+    std::vector<float> vertices;    // 12 floats a vertex: position, normal, tangent (xyz, w: bitangent sign), uv
+    std::vector<uint32_t> indices;  // triangles, counter-clockwise seen from outside
+    bool depth_test = false;        // drawn with a depth test (back-face culling alone cannot order it)
+};
+MeshExport export_mesh(const Renderer& renderer);  // the scene's shape as the raster path draws it
 
 }  // namespace mf::render

@@ -25,6 +25,11 @@ std::optional<Brdf> parse_brdf(std::string_view s) {
     return std::nullopt;
 }
 
+static_assert(static_cast<int>(AlphaMode::blend) == gpu::kAlphaBlend &&
+                  static_cast<int>(AlphaMode::mask) == gpu::kAlphaMask &&
+                  static_cast<int>(AlphaMode::opaque) == gpu::kAlphaOpaque,
+              "ShadeSpecialization::alpha_mode carries render::AlphaMode as it is");
+
 static_assert(static_cast<int>(Tonemap::none) == gpu::kTonemapNone &&
                   static_cast<int>(Tonemap::neutral) == gpu::kTonemapNeutral &&
                   static_cast<int>(Tonemap::aces) == gpu::kTonemapAces,
@@ -77,6 +82,8 @@ void check_material(const Material& m) {
     }
     if (m.normal.texture >= 0 && m.textures[static_cast<size_t>(m.normal.texture)].srgb)
         throw Error("material '" + m.name + "': the normal map is marked sRGB");
+    if (!(m.alpha_cutoff >= 0.f && m.alpha_cutoff <= 1.f))
+        throw Error("material '" + m.name + "': alpha_cutoff must be within [0, 1]");
     for (const float v : {m.uv_scale[0], m.uv_scale[1], m.uv_offset[0], m.uv_offset[1]})
         if (!std::isfinite(v)) throw Error("material '" + m.name + "': uv_scale and uv_offset must be finite");
     if (!(m.uv_scale[0] > 0.f && m.uv_scale[1] > 0.f))
@@ -137,7 +144,10 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
 }
 
 Renderer::Impl::~Impl() {
-    if (d.device) d.fn.vkDeviceWaitIdle(d.device);
+    if (d.device) {
+        const std::lock_guard<std::mutex> lock(d.queue_mutex);
+        d.fn.vkDeviceWaitIdle(d.device);
+    }
 }
 
 namespace {

@@ -9,6 +9,7 @@
 //                  copy, readback
 //   ibl.cpp        load-time passes: BRDF table, environment cube and its prefiltered maps
 #pragma once
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,6 +35,41 @@ inline constexpr uint32_t kIblStorageImages = 24;  // 1 table + 1 cube + ≤ 9 m
 
 // Workgroups of kTile × kTile invocations covering `n` texels.
 inline uint32_t tile_groups(uint32_t n) { return (n + gpu::kTile - 1) / gpu::kTile; }
+
+// shade.frag's (and shade.comp's) specialization constants, mapped by name: adding one cannot
+// shift the others. pipelines.cpp makes the pipelines' map entries of it; export.cpp hands the
+// same constants to the report's WebGL2 view.
+inline constexpr detail::SpecField kShadeFields[] = {
+    {gpu::kSpecNumDirectional, offsetof(gpu::ShadeSpecialization, num_directional), false},
+    {gpu::kSpecNumPoint, offsetof(gpu::ShadeSpecialization, num_point), false},
+    {gpu::kSpecBrdfModel, offsetof(gpu::ShadeSpecialization, brdf_model), false},
+    {gpu::kSpecAnalyticSphere, offsetof(gpu::ShadeSpecialization, analytic_sphere), true},
+    {gpu::kSpecHasEnv, offsetof(gpu::ShadeSpecialization, has_env), true},
+    {gpu::kSpecAlbedoTex, offsetof(gpu::ShadeSpecialization, albedo_tex), false},
+    {gpu::kSpecEmissiveTex, offsetof(gpu::ShadeSpecialization, emissive_tex), false},
+    {gpu::kSpecNormalTex, offsetof(gpu::ShadeSpecialization, normal_tex), false},
+    {gpu::kSpecNormalGreenDown, offsetof(gpu::ShadeSpecialization, normal_green_down), true},
+    {gpu::kSpecRoughnessTex, offsetof(gpu::ShadeSpecialization, roughness_tex), false},
+    {gpu::kSpecRoughnessChannel, offsetof(gpu::ShadeSpecialization, roughness_channel), false},
+    {gpu::kSpecRoughnessInvert, offsetof(gpu::ShadeSpecialization, roughness_invert), true},
+    {gpu::kSpecMetalnessTex, offsetof(gpu::ShadeSpecialization, metalness_tex), false},
+    {gpu::kSpecMetalnessChannel, offsetof(gpu::ShadeSpecialization, metalness_channel), false},
+    {gpu::kSpecMetalnessInvert, offsetof(gpu::ShadeSpecialization, metalness_invert), true},
+    {gpu::kSpecOcclusionTex, offsetof(gpu::ShadeSpecialization, occlusion_tex), false},
+    {gpu::kSpecOcclusionChannel, offsetof(gpu::ShadeSpecialization, occlusion_channel), false},
+    {gpu::kSpecOcclusionInvert, offsetof(gpu::ShadeSpecialization, occlusion_invert), true},
+    {gpu::kSpecOpacityTex, offsetof(gpu::ShadeSpecialization, opacity_tex), false},
+    {gpu::kSpecOpacityChannel, offsetof(gpu::ShadeSpecialization, opacity_channel), false},
+    {gpu::kSpecOpacityInvert, offsetof(gpu::ShadeSpecialization, opacity_invert), true},
+    {gpu::kSpecNormalZFromXy, offsetof(gpu::ShadeSpecialization, normal_z_from_xy), true},
+    {gpu::kSpecGround, offsetof(gpu::ShadeSpecialization, ground), true},
+    {gpu::kSpecFillOnly, offsetof(gpu::ShadeSpecialization, fill_only), true},
+    {gpu::kSpecMsaa, offsetof(gpu::ShadeSpecialization, msaa), true},
+    {gpu::kSpecShape, offsetof(gpu::ShadeSpecialization, shape), false},
+    {gpu::kSpecSamples, offsetof(gpu::ShadeSpecialization, samples), false},
+    {gpu::kSpecAlphaMode, offsetof(gpu::ShadeSpecialization, alpha_mode), false},
+    {gpu::kSpecDoubleSided, offsetof(gpu::ShadeSpecialization, double_sided), true},
+};
 
 struct Renderer::Impl {
     detail::Device& d;

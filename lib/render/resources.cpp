@@ -187,7 +187,10 @@ void Submission::finish(std::vector<PassTime>& times) {
     auto si = vk_struct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd_;
-    VK_CHECK(d_.fn.vkQueueSubmit(d_.queue, 1, &si, fence));
+    {
+        const std::lock_guard<std::mutex> lock(d_.queue_mutex);
+        VK_CHECK(d_.fn.vkQueueSubmit(d_.queue, 1, &si, fence));
+    }
     VK_CHECK(d_.fn.vkWaitForFences(d_.device, 1, &fence_handle, VK_TRUE, UINT64_MAX));
 
     std::vector<uint64_t> stamps(2 * names_.size(), 0);

@@ -241,6 +241,9 @@ Material roles_of(const Material& m) {
     c.opacity = m.opacity;
     c.uv_scale = m.uv_scale;
     c.uv_offset = m.uv_offset;
+    c.alpha_mode = m.alpha_mode;
+    c.alpha_cutoff = m.alpha_cutoff;
+    c.double_sided = m.double_sided;
     return c;
 }
 

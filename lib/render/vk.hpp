@@ -6,6 +6,7 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -109,7 +110,8 @@ static_assert(sizeof(void*) == 8, "non-dispatchable handles must be distinct typ
     X(vkCmdCopyImageToBuffer)         \
     X(vkCmdPushConstants)             \
     X(vkCmdSetViewport)               \
-    X(vkCmdSetScissor)
+    X(vkCmdSetScissor)                \
+    X(vkCmdSetCullMode)
 
 struct Functions {
     PFN_vkGetInstanceProcAddr vkGetInstanceProcAddr = nullptr;
@@ -163,6 +165,9 @@ struct Device {
         bool measured = false, compute = false;
         double raster_ms = 0.0, compute_ms = 0.0;
     } shading_choice;
+    // vkQueueSubmit and vkDeviceWaitIdle need the queue externally synchronized: several
+    // renderers of one context may submit from their own threads (preview's lanes).
+    mutable std::mutex queue_mutex;
 
     // A memory type index with all of `flags` among `type_bits`; throws when there is none.
     uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;

@@ -91,6 +91,7 @@ private:
         if (pics_.preview)
             h += "<figure class=\"preview\">" + img(*pics_.preview, m_.name + " preview") +
                  "<figcaption>preview</figcaption></figure>\n";
+        if (pics_.viewer) h += Viewer::card_html(*pics_.viewer, stem_);
         outputs_html(h);
         material_files_html(h);
         h += "</div>\n</div>\n";
@@ -378,6 +379,9 @@ const char* const kStyle =
     "nav.pager button{font:inherit;padding:2px 8px}nav.pager button[aria-current]{font-weight:bold;background:#1e2a38;color:#fff}"
     ".verdict .conv{font-size:15px}\n";
 
+// Paging, filtering and the interactive views' loader (report/viewer.hpp): when a card's view is
+// opened, the viewer with its look-dev data and then the card's material, each by a <script>
+// element (a page opened from disk may not fetch). No comment inside: the page holds no "//".
 const char* const kScript = R"js(
 (function () {
   "use strict";
@@ -442,6 +446,24 @@ const char* const kScript = R"js(
     filter.addEventListener("change", function () { apply(); page = 1; draw(); });
   }
   window.addEventListener("hashchange", function () { go(location.hash); });
+  Array.prototype.forEach.call(document.querySelectorAll("div.viewer"), function (v) { v.hidden = false; });
+  function load(src, box, then) {
+    var s = document.createElement("script");
+    s.src = src;
+    s.onload = then;
+    s.onerror = function () { box.querySelector(".viewer-status").textContent = src + " did not load"; };
+    document.head.appendChild(s);
+  }
+  document.addEventListener("click", function (e) {
+    var b = e.target.closest ? e.target.closest("button.viewer-open") : null;
+    if (!b) return;
+    var box = b.closest("div.viewer"), stem = box.getAttribute("data-stem");
+    var open = function () { window.mfViewer.open(box).catch(function () {}); };
+    var material = function () {
+      if (window.mfViewer.materials[stem]) open(); else load(box.getAttribute("data-src"), box, open);
+    };
+    if (window.mfViewer) material(); else load(box.getAttribute("data-lookdev"), box, material);
+  });
   apply();
   go(location.hash);
 })();

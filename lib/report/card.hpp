@@ -9,6 +9,7 @@
 
 #include "manifest/manifest.hpp"
 #include "report/images.hpp"
+#include "report/viewer.hpp"
 
 namespace mf::report {
 
@@ -32,6 +33,7 @@ struct MaterialPictures {
     std::optional<Pic> albedo, metalness;         // the overlays
     std::vector<OutputPics> outputs, compare;     // per manifest output (and --compare's)
     std::vector<Pic> sources;                     // per input; rel empty: not shown
+    std::optional<ViewerCard> viewer;             // the interactive view (--viewer)
     AlbedoStats albedo_stats;
     MetalnessStats metal_stats;
 };

@@ -1,11 +1,17 @@
 #include "report/report.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
+#include <condition_variable>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <mutex>
+#include <set>
 #include <span>
+#include <thread>
 
 #include "base/budget.hpp"
 #include "base/interrupt.hpp"
@@ -42,7 +48,85 @@ bool inside(const fs::path& rel) {
     return !n.is_absolute() && !n.empty() && *n.begin() != "..";
 }
 
-// The work of one material: its pictures and its card.
+// The pictures' atomic writes finished (each file's fsync, its rename, its folder's fsync) on a
+// thread of their own, as ingest's output folder finishes its files: the workers that decode and
+// encode never wait on the disk (the corpus's 239 pictures were 484 fsyncs on the workers, a
+// worker idle through each), and a group of files costs one fsync of their folder, not one each.
+class Committer {
+public:
+    struct Failure {
+        size_t job;
+        std::string rel, error;
+    };
+    Committer() : thread_([this] { loop(); }) {}
+    Committer(const Committer&) = delete;
+    Committer& operator=(const Committer&) = delete;
+    ~Committer() { finish(); }
+
+    // Waits while kMaxQueued files are waiting already: each holds two descriptors (the file and
+    // its folder), and a slow disk must not run a large library's report out of them.
+    void add(size_t job, std::string rel, StagedFile file) {
+        {
+            std::unique_lock lock(mutex_);
+            room_.wait(lock, [this] { return queue_.size() < kMaxQueued; });
+            queue_.push_back({job, std::move(rel), std::move(file)});
+        }
+        wake_.notify_one();
+    }
+    // Every file added is in place (or failed): the failures, in the order they came.
+    std::vector<Failure> finish() {
+        {
+            const std::lock_guard lock(mutex_);
+            done_ = true;
+        }
+        wake_.notify_one();
+        if (thread_.joinable()) thread_.join();
+        return std::move(failures_);
+    }
+
+private:
+    struct Item {
+        size_t job;
+        std::string rel;
+        StagedFile file;
+    };
+    void loop() {
+        for (;;) {
+            std::vector<Item> group;
+            {
+                std::unique_lock lock(mutex_);
+                wake_.wait(lock, [this] { return done_ || !queue_.empty(); });
+                if (queue_.empty()) return;
+                group.swap(queue_);
+            }
+            room_.notify_all();
+            std::vector<bool> placed(group.size());
+            for (size_t i = 0; i < group.size(); ++i) {
+                std::string error;
+                placed[i] = group[i].file.sync(error) && group[i].file.rename(error);
+                if (!placed[i]) failures_.push_back({group[i].job, group[i].rel, error});
+            }
+            std::set<std::pair<dev_t, ino_t>> folders;  // each folder of the group synced once
+            for (size_t i = 0; i < group.size(); ++i) {
+                struct stat st {};
+                const int dir = group[i].file.folder();
+                if (placed[i] && ::fstat(dir, &st) == 0 && folders.emplace(st.st_dev, st.st_ino).second)
+                    ::fsync(dir);  // makes the renames durable
+            }
+        }
+    }
+
+    static constexpr size_t kMaxQueued = 128;
+    std::mutex mutex_;
+    std::condition_variable wake_, room_;
+    std::vector<Item> queue_;
+    bool done_ = false;
+    std::vector<Failure> failures_;  // the thread's own until finish() joins it
+    std::thread thread_;             // last: started once the members above exist
+};
+
+// The work of one material: its pictures (run(), on a worker) and its card (card(), once its
+// pictures are in place).
 class MaterialJob {
 public:
     MaterialJob(const Options& o, const fs::path& manifest_dir, const manifest::Material& m, std::string stem,
@@ -57,17 +141,44 @@ public:
           other_preset_(std::move(other_preset)) {}
 
     void run() {
+        if (viewer) pics_.viewer = viewer->material(m_, dir_, stem_, problems);  // first: its maps freed before ours
         if (opt_.previews) pics_.preview = preview_pic(*opt_.previews, "preview.png");
         read_outputs();
         if (opt_.sources) read_sources();
         overlays();
         if (other_) compare();
-        card();
+    }
+
+    void card() {
+        CardHtml c = write_card({m_, pics_, *opt_.thresholds, stem_, index_, other_, other_preset_});
+        card_html = std::move(c.card);
+        sheet_html = std::move(c.tile);
+    }
+
+    // A picture whose write did not finish (Committer): a note, and the card shows none there.
+    void unwritten(const std::string& rel, const std::string& error) {
+        problem(error);
+        --images;
+        auto drop = [&rel](std::optional<Pic>& p) {
+            if (p && p->rel == rel) p.reset();
+        };
+        for (std::optional<Pic>* p :
+             {&pics_.preview, &pics_.compare_preview, &pics_.sheet, &pics_.albedo, &pics_.metalness})
+            drop(*p);
+        for (std::vector<OutputPics>* list : {&pics_.outputs, &pics_.compare})
+            for (OutputPics& o : *list) {
+                if (o.main.rel == rel) o.main = Pic{};
+                std::erase_if(o.channels, [&rel](const auto& c) { return c.second.rel == rel; });
+            }
+        for (Pic& p : pics_.sources)
+            if (p.rel == rel) p = Pic{};
     }
 
     std::string card_html, sheet_html;
     std::vector<std::string> problems;
     size_t images = 0;
+    const Viewer* viewer = nullptr;  // --viewer
+    Committer* committer = nullptr;  // finishes the pictures' writes
 
 private:
     void problem(const std::string& what) { problems.push_back(m_.name + ": " + what); }
@@ -92,10 +203,12 @@ private:
         }
         const std::string hash = sha256_hex(bytes);
         if (const auto it = written_.find(hash); it != written_.end()) return it->second;
-        if (!write_file_under(opt_.out, stem_ + "/" + name, bytes, error)) {
+        std::optional<StagedFile> staged;  // none: the file holds these bytes already
+        if (!stage_file_under(opt_.out, stem_ + "/" + name, bytes, staged, error)) {
             problem(error);
             return std::nullopt;
         }
+        if (staged) committer->add(index_, stem_ + "/" + name, std::move(*staged));
         ++images;
         const Pic pic{stem_ + "/" + name, image.width, image.height};
         written_.emplace(hash, pic);
@@ -302,12 +415,6 @@ private:
         }
     }
 
-    void card() {
-        CardHtml c = write_card({m_, pics_, *opt_.thresholds, stem_, index_, other_, other_preset_});
-        card_html = std::move(c.card);
-        sheet_html = std::move(c.tile);
-    }
-
     const Options& opt_;
     const fs::path& dir_;
     const manifest::Material& m_;
@@ -372,6 +479,17 @@ uint64_t decoded_bytes(const manifest::Material& m) {
         plane = std::max(plane, pixels * sample);
     }
     return largest + albedo + 2 * plane;
+}
+
+// The pixels a material's job decodes (its outputs, and its sources unless --no-sources): what
+// its time grows with, to order the jobs by.
+uint64_t pixels_to_read(const manifest::Material& m, const Options& o) {
+    uint64_t n = 0;
+    auto add = [&n](int w, int h) { n += uint64_t(std::max(w, 0)) * uint64_t(std::max(h, 0)); };
+    for (const manifest::Output& out : m.outputs) add(out.width, out.height);
+    if (o.sources)
+        for (const manifest::Input& in : m.inputs) add(in.width, in.height);
+    return n;
 }
 
 // The report folder may be neither the output folder of the manifest (which holds what the
@@ -465,24 +583,47 @@ bool write_page(const Options& options, const manifest::Manifest& m_in, const fs
     for (const auto& mm : m->materials) names.push_back(mm.name);
     const std::vector<std::string> stems = material_stems(names);
 
+    std::unique_ptr<Viewer> viewer;  // --viewer: the look-dev renderers and viewer/lookdev.js
+    if (opt.viewer) {
+        std::string why;
+        viewer = Viewer::create(opt, *m, why);
+        if (!viewer) result.problems.push_back("interactive views: " + why);
+    }
+    Committer committer;
     std::vector<std::unique_ptr<MaterialJob>> jobs;
     for (size_t i = 0; i < m->materials.size(); ++i) {
         const auto it = other_by_name.find(m->materials[i].name);
         jobs.push_back(std::make_unique<MaterialJob>(opt, dir, m->materials[i], stems[i], i,
                                                      it == other_by_name.end() ? nullptr : it->second, other_dir,
                                                      other ? other->preset : std::string()));
+        jobs.back()->viewer = viewer.get();
+        jobs.back()->committer = &committer;
     }
+    // The largest materials first (longest-processing-time order): the last to start is then a
+    // small one, and no core idles through a large material's tail at the end. The page keeps
+    // the manifest's order (each job's results stay in its slot).
+    std::vector<size_t> order(jobs.size());
+    std::vector<uint64_t> work(jobs.size());
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        order[i] = i;
+        work[i] = pixels_to_read(m->materials[i], opt);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return work[a] > work[b]; });
     // A stop asked by a signal: no new material starts, and no page is written that would name
     // pictures of materials never done (the CLI exits 130/143).
     MemoryBudget budget(opt.memory_budget);
-    parallel_for(jobs.size(), opt.jobs, [&](size_t i) {
+    parallel_for(jobs.size(), opt.jobs, [&](size_t k) {
+        const size_t i = order[k];
         const BudgetLease lease(&budget, decoded_bytes(m->materials[i]));
         if (!stop_requested()) jobs[i]->run();
     });
+    // The cards once every picture is in place, so a picture whose write failed is not shown.
+    for (const Committer::Failure& f : committer.finish()) jobs[f.job]->unwritten(f.rel, f.error);
     if (stop_requested()) {
         error = "stopped before the end; no index.html written";
         return false;
     }
+    parallel_for(jobs.size(), opt.jobs, [&](size_t i) { jobs[i]->card(); });
 
     std::set<std::string> codes;
     std::map<std::string, std::array<size_t, 2>> by_code;  // code -> (findings, materials)
@@ -508,7 +649,9 @@ bool write_page(const Options& options, const manifest::Manifest& m_in, const fs
          // Nothing but this folder's pictures and the inline style and script: the page must open
          // the same from disk, from a CI artifact or with no network at all.
          "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src 'self' file: data:; "
-         "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">\n"
+         "style-src 'unsafe-inline'; script-src 'unsafe-inline'" +
+         std::string(viewer ? " file:" : "") +  // the views' data: <script src> of files beside the page
+         "\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
          "<title>matforge report — " +
          markup_escape(label) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body data-page-size=\"" +
@@ -557,6 +700,7 @@ bool write_page(const Options& options, const manifest::Manifest& m_in, const fs
         result.images += j->images;
         result.problems.insert(result.problems.end(), j->problems.begin(), j->problems.end());
     }
+    if (viewer) viewer->state_sizes(h);
     result.index = opt.out / "index.html";
     auto bytes = [](const std::string& s) {
         return std::span(reinterpret_cast<const unsigned char*>(s.data()), s.size());

@@ -38,6 +38,9 @@ struct Options {
     int jobs = 0;                                           // materials in parallel; 0 = one per hardware thread
     bool sources = true;         // thumbnails of the source maps (the "before" of before/after)
     bool allow_outside = false;  // read outputs that lie outside the manifest's folder
+    // Each card's interactive view (report/viewer.hpp): the material turned in WebGL2 under the
+    // look-dev lighting of `matforge preview`; needs a Vulkan device (a GPU, else lavapipe).
+    bool viewer = false;
     // The thresholds the overlays judge by; nullopt: the manifest's (the run's rules), so the
     // page's shares are its findings'.
     std::optional<rules::Thresholds> thresholds;

@@ -416,3 +416,35 @@ TEST(PreviewCli, NoVulkanDriverIsAConfigurationErrorNamingThePackage) {
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.output.find("mesa-vulkan-drivers"), std::string::npos) << r.output;
 }
+
+// Issue 49: the batch at the device's pace (lanes drawing at once, workers reading ahead and
+// writing) gives the pictures, the contact sheet and the messages of one lane and one worker,
+// byte for byte: the corpus's sets (a cut-out, a packed ORM, JPEG and WebP sources) ingested once,
+// previewed with 1 lane / 1 worker and with 3 lanes / 4 workers, materials failing among them
+// (an output deleted) reported in manifest order while the others render.
+TEST(PreviewCli, LanesAndWorkersChangeNoPictureNorMessage) {
+    const fs::path work = temp_dir("lanes");
+    auto r = run("ingest " + q(mf::testenv::corpus_dir() / "real") + " -o " + q(work / "out") + " --fail-on never");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json manifest = read_json(work / "out" / "manifest.json");
+    ASSERT_GE(manifest["materials"].size(), 12u);
+    // Two materials lose a texture: each is reported, in its place, and the rest still render.
+    for (const size_t i : {size_t{1}, size_t{6}})
+        fs::remove(work / "out" / manifest["materials"][i]["outputs"][0]["file"].get<std::string>());
+    std::map<std::string, std::string> pictures[2];
+    std::string said[2];
+    for (int k = 0; k < 2; ++k) {
+        const fs::path dir = work / ("p" + std::to_string(k));
+        r = run("preview " + q(work / "out" / "manifest.json") + " -o " + q(dir) +
+                " --size 64 --device cpu --shading raster --contact-sheet " +
+                q(work / ("sheet" + std::to_string(k) + ".png")) + (k == 0 ? " --lanes 1 -j 1" : " --lanes 3 -j 4"));
+        EXPECT_EQ(r.code, 1) << r.output;  // the two materials without their texture
+        pictures[k] = mf::testfiles::files_under(dir);
+        said[k] = r.output.substr(0, r.output.rfind("matforge preview:"));  // the last line names the time
+    }
+    EXPECT_EQ(pictures[0].size(), manifest["materials"].size() - 2);
+    EXPECT_TRUE(pictures[0] == pictures[1]) << "the same pictures, byte for byte";
+    EXPECT_EQ(said[0], said[1]);
+    EXPECT_NE(said[0].find(manifest["materials"][1]["name"].get<std::string>()), std::string::npos) << said[0];
+    EXPECT_EQ(mf::testfiles::file_bytes(work / "sheet0.png"), mf::testfiles::file_bytes(work / "sheet1.png"));
+}

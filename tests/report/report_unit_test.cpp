@@ -200,3 +200,128 @@ TEST(Thumbnail, BoxFilterInLinearLightAndNeverEnlarged) {
     EXPECT_NEAR(data.at(1, 0, 1), 0.5f, 1e-6f);
     EXPECT_EQ(mf::report::thumbnail(src, 64, true).width, 4);
 }
+
+// ---- thumbnails of 8-bit codes (summed exactly as integers) against the float pictures
+
+namespace report_unit_codes {
+
+// Codes of a w x h picture of `channels`, from a fixed pseudo-random sequence (the full range:
+// 0 and 255 included, so the sums see the sRGB curve's two ends).
+mf::Image8 codes_picture(int w, int h, int channels, uint32_t seed) {
+    mf::Image8 img(w, h, channels);
+    for (uint8_t& v : img.pixels) {
+        seed = seed * 1664525u + 1013904223u;
+        v = static_cast<uint8_t>(seed >> 24);
+    }
+    return img;
+}
+
+// Every value of both pictures equal, bit for bit.
+void expect_same(const mf::Image& a, const mf::Image& b) {
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    ASSERT_EQ(a.channels, b.channels);
+    size_t differ = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i] ? 1 : 0;
+    EXPECT_EQ(differ, 0u) << "of " << a.pixels.size() << " values";
+}
+
+}  // namespace report_unit_codes
+
+TEST(ReportThumbnail, CodesGiveTheFloatPicturesThumbnailBitForBit) {
+    using namespace report_unit_codes;
+    // Sizes that do not divide (boxes of 2 and 3 columns, rows alike), one that does, a picture
+    // no larger than the thumbnail (kept as it is) and a strip (one output row).
+    const int sizes[][3] = {{37, 23, 16}, {64, 64, 16}, {12, 9, 16}, {301, 5, 40}};
+    for (const auto& s : sizes)
+        for (int channels = 1; channels <= 4; ++channels)
+            for (const bool srgb : {true, false}) {
+                SCOPED_TRACE(std::to_string(s[0]) + "x" + std::to_string(s[1]) + " to " + std::to_string(s[2]) +
+                             ", channels " + std::to_string(channels) + (srgb ? ", sRGB" : ", data"));
+                const mf::Image8 codes = codes_picture(s[0], s[1], channels,
+                                                       static_cast<uint32_t>(channels * 7 + srgb));
+                const mf::Image floats = mf::to_float(codes);
+                expect_same(mf::report::thumbnail(codes, s[2], srgb), mf::report::thumbnail(floats, s[2], srgb));
+                for (int ch = 0; ch < channels; ++ch)
+                    expect_same(mf::report::channel_thumbnail(codes, ch, s[2] / 4),
+                                mf::report::channel_thumbnail(floats, ch, s[2] / 4));
+            }
+}
+
+TEST(ReportThumbnail, EachPixelIsTheMeanOfTheSourcePixelsItCovers) {
+    // 10 x 7 to at most 4: 4 x 3 (7 * 0.4 = 2.8 rounds to 3). Source column x goes to output
+    // column x * 4 / 10 (columns 0-2, 3-4, 5-7, 8-9); output row oy holds the source rows
+    // [oy * 7 / 3, (oy + 1) * 7 / 3) (rows 0-1, 2-3, 4-6).
+    const mf::Image8 codes = report_unit_codes::codes_picture(10, 7, 1, 5);
+    const mf::Image t = mf::report::thumbnail(codes, 4, false);
+    ASSERT_EQ(t.width, 4);
+    ASSERT_EQ(t.height, 3);
+    const int col0[5] = {0, 3, 5, 8, 10}, row0[4] = {0, 2, 4, 7};
+    for (int oy = 0; oy < 3; ++oy)
+        for (int ox = 0; ox < 4; ++ox) {
+            double sum = 0;
+            for (int y = row0[oy]; y < row0[oy + 1]; ++y)
+                for (int x = col0[ox]; x < col0[ox + 1]; ++x) sum += codes.at(x, y) / 255.0;
+            const double mean = sum / ((col0[ox + 1] - col0[ox]) * (row0[oy + 1] - row0[oy]));
+            EXPECT_NEAR(t.at(ox, oy, 0), mean, 1e-6) << ox << "," << oy;
+            EXPECT_EQ(t.at(ox, oy, 1), t.at(ox, oy, 0));  // grey
+        }
+}
+
+TEST(ReportThumbnail, TheLargestExactBoxAndOneBeyondItAgreeWithTheFloats) {
+    using namespace report_unit_codes;
+    // 8192 x 512 to 16: boxes of 512 x 512 = 2^18 pixels, the most whose integer sums are taken
+    // (in units of 2^-35: up to 2^53); 8192 x 513 boxes one row more, which the double sums make.
+    for (const int h : {512, 513}) {
+        SCOPED_TRACE(h);
+        mf::Image8 codes = codes_picture(8192, h, 1, 11);
+        std::fill_n(codes.pixels.begin(), 8192 * 16, uint8_t{255});  // a run of the largest value
+        const mf::Image floats = mf::to_float(codes);
+        const mf::Image a = mf::report::thumbnail(codes, 16, true), b = mf::report::thumbnail(floats, 16, true);
+        ASSERT_EQ(a.width, 16);
+        expect_same(a, b);
+    }
+}
+
+TEST(ReportOverlays, CodesAndFloatsGiveTheSamePicturesAndCounts) {
+    using namespace report_unit_codes;
+    // A 3-channel albedo of 29 x 17 over a smaller metalness (5 x 4, stored inverted) and an
+    // opacity of 2 x 2, sampled by nearest neighbour: the same overlays and counts from codes
+    // and from floats, and the counts those of Scalar::at pixel by pixel.
+    const mf::Image8 albedo = codes_picture(29, 17, 3, 3), metal = codes_picture(5, 4, 2, 4),
+                     alpha = codes_picture(2, 2, 1, 9);
+    const mf::Image albedo_f = mf::to_float(albedo), metal_f = mf::to_float(metal), alpha_f = mf::to_float(alpha);
+    mf::report::Scalar m8, o8, mf_, of;
+    m8.codes = &metal;
+    mf_.image = &metal_f;
+    m8.channel = mf_.channel = 1;
+    m8.invert = mf_.invert = true;
+    o8.codes = &alpha;
+    of.image = &alpha_f;
+    const mf::rules::Thresholds t;
+    for (const int size : {0, 8}) {
+        SCOPED_TRACE(size);
+        mf::report::AlbedoStats s8, sf;
+        expect_same(mf::report::albedo_overlay(albedo, true, m8, o8, t, s8, size),
+                    mf::report::albedo_overlay(albedo_f, true, mf_, of, t, sf, size));
+        EXPECT_EQ(s8.pixels, 29u * 17u);
+        EXPECT_EQ(s8.counts.visible, sf.counts.visible);
+        EXPECT_EQ(s8.counts.metal_dark, sf.counts.metal_dark);
+        EXPECT_EQ(s8.counts.dielectric_dark, sf.counts.dielectric_dark);
+        mf::report::MetalnessStats n8, nf;
+        expect_same(mf::report::metalness_overlay(m8, 29, 17, t, n8, size),
+                    mf::report::metalness_overlay(mf_, 29, 17, t, nf, size));
+        size_t visible = 0, zero = 0, between = 0;
+        for (int y = 0; y < 17; ++y)
+            for (int x = 0; x < 29; ++x) {
+                visible += of.at(x, y, 29, 17) >= t.opacity_visible ? 1 : 0;
+                const float v = m8.at(x, y, 29, 17);
+                zero += v < 0.5f / 255.f ? 1 : 0;
+                between += v > t.dielectric_max && v < t.metal_min ? 1 : 0;
+            }
+        EXPECT_EQ(s8.counts.visible, static_cast<long long>(visible));
+        EXPECT_EQ(n8.zero, zero);
+        EXPECT_EQ(n8.between, between);
+        EXPECT_EQ(nf.between, between);
+    }
+}

@@ -2,7 +2,7 @@
 //   [--shape sphere|cube|plane] [--light SPEC]... [--env FILE.hdr|.exr] [--format png|exr]
 //   [--contact-sheet FILE.png] [--device auto|gpu|cpu] [--brdf standard|accurate|assignment]
 //   [--aa N|msaaN] [--textures fast|exact] [--shading auto|raster|compute] [--allow-outside]
-//   [--vk-validation]
+//   [-j N] [--lanes N] [--vk-validation]
 // Options -> scene -> materials -> images: the options become a scene (build_scene), the
 // manifest's materials (or the scene's own) jobs, and lib/preview's batch renders them
 // (preview/batch.hpp: the pipeline, messages in manifest order); this file maps the outcome to
@@ -35,6 +35,7 @@ struct PreviewArgs {
     std::vector<std::string> lights;
     std::string format = "png", device = "auto";
     bool validation = false, allow_outside = false, ground = false;
+    unsigned jobs = 0, lanes = 0;
 };
 
 // The scene with the command line's overrides applied; nullopt after printing a usage error.
@@ -132,6 +133,8 @@ ExitCode run_preview(const PreviewArgs& a) {
     opt.out = a.out;
     opt.format = a.format;
     opt.contact_sheet = !a.contact_sheet.empty();
+    opt.jobs = a.jobs;
+    opt.lanes = a.lanes;
     // Progress on a terminal, quiet otherwise (scripts read the exit code and the files).
     opt.progress = ::isatty(STDERR_FILENO);
     std::error_code ec;
@@ -261,6 +264,14 @@ const Register register_preview{
              ->check(CLI::IsMember({"standard", "accurate", "assignment"}));
          sub.add_flag("--allow-outside", a->allow_outside,
                       "read manifest textures that lie outside the manifest's folder");
+         sub.add_option("-j,--jobs", a->jobs,
+                        "threads reading materials and writing images, 0..1024; 0 = one per hardware thread "
+                        "(default 0)")
+             ->check(CLI::Range(0u, 1024u));
+         sub.add_option("--lanes", a->lanes,
+                        "materials uploaded and drawn at once, 0..16; 0 = by the device: 1 on a CPU device, "
+                        "else one per 4 hardware threads up to 4 (default 0)")
+             ->check(CLI::Range(0u, 16u));
          sub.add_flag("--vk-validation", a->validation,
                       "run with the Khronos validation layer and report its messages (diagnostics; slow)");
          return [a] { return run_preview(*a); };

@@ -1,6 +1,6 @@
 // matforge report <manifest.json> -o <dir> [--previews DIR] [--compare MANIFEST2]
 //   [--compare-previews DIR] [--thumb-size N] [--page-size N] [--jobs N] [--no-sources]
-//   [--allow-outside] [--quiet]
+//   [--allow-outside] [--viewer] [--quiet]
 // One static HTML page (dir/index.html, pictures in dir/<material>/, rules in dir/rules.html)
 // that opens from disk with no network.
 #include <chrono>
@@ -17,7 +17,7 @@ namespace {
 struct ReportArgs {
     std::string manifest, out, previews, compare, compare_previews;
     int thumb_size = 256, page_size = 50, jobs = 0;
-    bool no_sources = false, allow_outside = false, quiet = false;
+    bool no_sources = false, allow_outside = false, viewer = false, quiet = false;
 };
 
 ExitCode run_report(const ReportArgs& a) {
@@ -40,6 +40,7 @@ ExitCode run_report(const ReportArgs& a) {
     o.jobs = a.jobs;
     o.sources = !a.no_sources;
     o.allow_outside = a.allow_outside;
+    o.viewer = a.viewer;
     const auto start = std::chrono::steady_clock::now();
     report::Result r;
     std::string error;
@@ -85,6 +86,10 @@ const Register register_report{
          sub.add_flag("--no-sources", a->no_sources, "no thumbnails of the source maps (faster on large libraries)");
          sub.add_flag("--allow-outside", a->allow_outside,
                       "read manifest outputs that lie outside the manifest's folder");
+         sub.add_flag("--viewer", a->viewer,
+                      "on each card an interactive view: the material turned in WebGL2 (sphere, plane, shaderball) "
+                      "under the look-dev lighting of `matforge preview`, drawn by its own shaders; maps at most "
+                      "512 px a side, loaded when a view is opened; needs a Vulkan device (a GPU, else lavapipe)");
          sub.add_flag("-q,--quiet", a->quiet, "no summary line on stderr");
          return [a] { return run_report(*a); };
      },

@@ -121,8 +121,14 @@ MF_CONST int kSpecFillOnly = 23;       // write a constant and return: the fill-
 MF_CONST int kSpecMsaa = 24;           // multisampled (Scene::msaa): the sphere's ray through the centroid
 MF_CONST int kSpecShape = 25;          // shade.comp: the kShape* intersected by the primary rays
 MF_CONST int kSpecSamples = 26;        // shade.comp: rays a pixel at the standard msaa positions (1, 2, 4, 8)
+MF_CONST int kSpecAlphaMode = 27;      // a kAlpha* value: how opacity applies (render::AlphaMode)
+MF_CONST int kSpecDoubleSided = 28;    // the far side shaded too, its normal reversed (glTF doubleSided)
 
 // Shapes shade.comp intersects analytically (render::ShapeType in the same order).
+MF_CONST int kAlphaBlend = 0;  // render::AlphaMode, as it is
+MF_CONST int kAlphaMask = 1;
+MF_CONST int kAlphaOpaque = 2;
+
 MF_CONST int kShapeSphere = 0;
 MF_CONST int kShapeCube = 1;
 MF_CONST int kShapePlane = 2;
@@ -159,6 +165,7 @@ struct FrameData {
     vec4 uv;           // xy: scale, zw: offset of the texture coordinates (tiling)
     vec4 ground;       // x: height of the ground plane; y: its albedo (grey); z: its roughness; w: tan of the key light's angular radius
     vec4 occluder;     // xyz: centre, w: radius of the shape's bounding sphere (the ground's shadow)
+    vec4 alpha;        // x: the cutoff of a mask (kAlphaMask): opaque at or above, dropped below
     mat4 shape_rotation;  // the cube's turn, object to world (shade.comp intersects it in object space)
     LightData lights[kMaxLights];
 };
@@ -195,11 +202,24 @@ struct GridPush {
     int model;   // sphere: kBrdfStandard, kBrdfAccurate or kBrdfUnnormalizedDiffuse
 };
 
+// ---- export.comp (render/export.cpp): a sampled image read back as floats, one mip at a time
+
+MF_CONST int kBindingExportSource = 0;  // sampler2DArray: a 2D image (1 layer) or a cube (6 layers)
+MF_CONST int kBindingExportTexels = 1;  // storage buffer of vec4: layer by layer, rows top to bottom
+
+struct ExportParams {
+    uint width;   // of the mip read
+    uint height;
+    uint layers;
+    uint mip;
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 32);
-static_assert(sizeof(FrameData) == 2 * 64 + 13 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
+static_assert(sizeof(FrameData) == 2 * 64 + 14 * 16 + kMaxLights * sizeof(LightData), "std140 layout");
 static_assert(sizeof(EncodeParams) == 28 && sizeof(IblParams) == 16 && sizeof(GridPush) == 16);
 static_assert(sizeof(GridInput) == 64);
+static_assert(sizeof(ExportParams) == 16);
 
 // ---- specialization constant values (C++ only): one 4-byte field per constant (int32, or
 // uint32 holding a VkBool32), mapped to its id by name where the pipeline is made, so adding a
@@ -234,6 +254,8 @@ struct ShadeSpecialization {
     uint32_t msaa = 0;
     int32_t shape = kShapeSphere;
     int32_t samples = 1;
+    int32_t alpha_mode = kAlphaBlend;
+    uint32_t double_sided = 0;
 
     // The texture slots the variant samples (−1 where a role is a constant).
     std::array<int32_t, 7> texture_slots() const {

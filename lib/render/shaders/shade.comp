@@ -41,10 +41,11 @@ vec2 face_st(vec3 p, vec3 t, vec3 b, float h) {
     return vec2(dot(p, t), -dot(p, b)) * (0.5 / h) + 0.5;  // st's t = 1 − v
 }
 
-// The front face of the cube (edge frame.shape.x, turned by frame.shape_rotation) that the ray
-// enters, by the slab method in object space. Faces as geometry.cpp's make_cube: ±X and ±Z have
-// b = +Y and t = b × n, ±Y have t = +X and b = n × t.
-bool cube_hit(vec3 o, vec3 d, out SurfacePoint s) {
+// The face of the cube (edge frame.shape.x, turned by frame.shape_rotation) that the ray enters
+// (or with `far`, leaves: a double-sided material's far side), by the slab method in object
+// space. Faces as geometry.cpp's make_cube: ±X and ±Z have b = +Y and t = b × n, ±Y have t = +X
+// and b = n × t.
+bool cube_hit(vec3 o, vec3 d, bool far, out SurfacePoint s) {
     mat3 rot = mat3(frame.shape_rotation);
     vec3 lo = transpose(rot) * o, ld = transpose(rot) * d;
     float h = 0.5 * frame.shape.x;
@@ -53,13 +54,15 @@ bool cube_hit(vec3 o, vec3 d, out SurfacePoint s) {
     vec3 near3 = min(t0, t1), far3 = max(t0, t1);
     float tn = max(max(near3.x, near3.y), near3.z), tf = min(min(far3.x, far3.y), far3.z);
     s.p = vec3(0.0);
-    if (tn > tf || tn <= 0.0) return false;  // missed, or seen from inside: back faces are culled
-    int axis = near3.x == tn ? 0 : near3.y == tn ? 1 : 2;
+    s.back = far;
+    if (tn > tf || tn <= 0.0) return false;  // missed, or seen from inside (never in a scene)
+    float th = far ? tf : tn;
+    int axis = far ? (far3.x == tf ? 0 : far3.y == tf ? 1 : 2) : (near3.x == tn ? 0 : near3.y == tn ? 1 : 2);
     vec3 ln = vec3(0.0);
-    ln[axis] = ld[axis] < 0.0 ? 1.0 : -1.0;  // the face the ray enters faces it
+    ln[axis] = (ld[axis] < 0.0) != far ? 1.0 : -1.0;  // outward: the face the ray enters faces it
     vec3 lt = axis == 1 ? vec3(1.0, 0.0, 0.0) : cross(vec3(0.0, 1.0, 0.0), ln);
     vec3 lb = cross(ln, lt);
-    vec3 lp = lo + tn * ld;
+    vec3 lp = lo + th * ld;
     lp[axis] = ln[axis] * h;  // exactly on the face
     s.p = rot * lp;
     s.n = rot * ln;
@@ -69,11 +72,13 @@ bool cube_hit(vec3 o, vec3 d, out SurfacePoint s) {
     return true;
 }
 
-// The plane: side frame.shape.x in XY through the origin, facing +Z (t = +X, b = +Y), one-sided.
-bool plane_hit(vec3 o, vec3 d, out SurfacePoint s) {
+// The plane: side frame.shape.x in XY through the origin, facing +Z (t = +X, b = +Y); seen from
+// behind, its back (`far`: a double-sided material's).
+bool plane_hit(vec3 o, vec3 d, bool far, out SurfacePoint s) {
     float h = 0.5 * frame.shape.x;
     s.p = vec3(0.0);
-    if (d.z >= 0.0) return false;  // its back, culled
+    s.back = far;
+    if (far ? d.z <= 0.0 : d.z >= 0.0) return false;  // the other side
     float t = -o.z / d.z;
     vec3 p = o + t * d;
     p.z = 0.0;
@@ -86,9 +91,10 @@ bool plane_hit(vec3 o, vec3 d, out SurfacePoint s) {
     return true;
 }
 
-bool sphere_point(vec3 o, vec3 d, out SurfacePoint s) {
+bool sphere_point(vec3 o, vec3 d, bool far, out SurfacePoint s) {
     float t;
-    bool hit = sphere_intersect(o, d, frame.shape.x, t);
+    bool hit = sphere_intersect(o, d, frame.shape.x, far, t);
+    s.back = far;
     s.p = o + t * d;
     s.n = normalize(s.p);
     s.st = sphere_st(s.n);
@@ -98,10 +104,10 @@ bool sphere_point(vec3 o, vec3 d, out SurfacePoint s) {
     return hit && t > 0.0;  // from inside, or behind the camera: back faces, culled by the raster path
 }
 
-bool shape_hit(vec3 o, vec3 d, out SurfacePoint s) {
-    if (SHAPE == kShapeCube) return cube_hit(o, d, s);
-    if (SHAPE == kShapePlane) return plane_hit(o, d, s);
-    return sphere_point(o, d, s);
+bool shape_hit(vec3 o, vec3 d, bool far, out SurfacePoint s) {
+    if (SHAPE == kShapeCube) return cube_hit(o, d, far, s);
+    if (SHAPE == kShapePlane) return plane_hit(o, d, far, s);
+    return sphere_point(o, d, far, s);
 }
 
 // st where the ray d meets the plane tangent to the surface at s: the first-order (u, v) of the
@@ -122,14 +128,32 @@ vec2 st_step(vec2 from, vec2 to) {
     return step;
 }
 
-vec3 radiance_at(vec2 pos) {
-    vec3 o = frame.camera_position.xyz;
-    SurfacePoint s;
-    if (!shape_hit(o, ray_direction(pos), s)) return frame.background.rgb;
-    if (FILL_ONLY) return frame.albedo.rgb;
+// The hit's shading (rgb) and coverage (a), with its texture footprint from the neighbours' rays.
+vec4 shade_hit(vec3 o, vec2 pos, SurfacePoint s) {
     s.st_dx = st_step(s.st, neighbour_st(o, ray_direction(pos + vec2(1.0, 0.0)), s));
     s.st_dy = st_step(s.st, neighbour_st(o, ray_direction(pos + vec2(0.0, 1.0)), s));
-    return shade_point(s);
+    return shade_surface(s);
+}
+
+vec3 radiance_at(vec2 pos) {
+    vec3 o = frame.camera_position.xyz;
+    vec3 d = ray_direction(pos);
+    SurfacePoint s, back;
+    bool front = shape_hit(o, d, false, s);
+    // Double-sided: the far side under the near one, as the raster path's two draws blend them.
+    bool far_side = DOUBLE_SIDED && shape_hit(o, d, true, back);
+    if (!front && !far_side) return frame.background.rgb;
+    if (FILL_ONLY) return frame.albedo.rgb;
+    vec3 color = frame.background.rgb;
+    if (far_side) {
+        vec4 c = shade_hit(o, pos, back);
+        color = mix(color, c.rgb, c.a);
+    }
+    if (front) {
+        vec4 c = shade_hit(o, pos, s);
+        color = mix(color, c.rgb, c.a);
+    }
+    return color;
 }
 
 void main() {

@@ -20,8 +20,8 @@ layout(location = 0) out vec4 out_radiance;
 // Multisampled, the shader runs once for all covered samples of a pixel, whose centre may lie
 // outside the sphere at the silhouette: the ray goes through the centroid of the covered samples
 // on the mesh instead, which lies within the sphere (the mesh's triangles are chords of it), so
-// it always hits.
-bool sphere_hit(out vec3 p) {
+// it always hits. A back face (double-sided materials) takes the ray's far hit.
+bool sphere_hit(bool far, out vec3 p) {
     vec3 o = frame.camera_position.xyz;
     vec3 d;
     if (MSAA) {
@@ -31,7 +31,7 @@ bool sphere_hit(out vec3 p) {
         d = normalize(frame.ray_forward.xyz + ndc.x * frame.ray_right.xyz - ndc.y * frame.ray_up.xyz);
     }
     float t;
-    bool hit = sphere_intersect(o, d, frame.shape.x, t);
+    bool hit = sphere_intersect(o, d, frame.shape.x, far, t);
     p = o + t * d;
     return hit;
 }
@@ -51,9 +51,10 @@ void main() {
     s.n = normalize(v_normal);
     s.t = v_tangent.xyz;
     s.bsign = v_tangent.w;
+    s.back = !gl_FrontFacing;  // drawn only for double-sided materials (pipelines culls them otherwise)
     if (ANALYTIC_SPHERE) {
         vec3 hit;
-        if (sphere_hit(hit)) {
+        if (sphere_hit(s.back, hit)) {
             s.p = hit;
             s.n = normalize(hit);
             s.st = sphere_st(s.n);
@@ -61,5 +62,10 @@ void main() {
             s.bsign = 1.0;
         }
     }
-    out_radiance = vec4(shade_point(s), 1.0);
+    vec4 c = shade_surface(s);
+    // A cut-out texel leaves what is behind it, and no depth (the shaderball's ring over its ball).
+    if (ALPHA_MODE == kAlphaMask && c.a == 0.0) discard;
+    // Double-sided: far faces first, then near ones, each blended over the target (premultiplied:
+    // ONE, ONE_MINUS_SRC_ALPHA), which starts as the background. Single-sided: written as it is.
+    out_radiance = DOUBLE_SIDED ? vec4(c.rgb * c.a, c.a) : vec4(mix(frame.background.rgb, c.rgb, c.a), 1.0);
 }

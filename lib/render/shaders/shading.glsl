@@ -38,6 +38,8 @@ layout(constant_id = kSpecOcclusionInvert) const bool OCCLUSION_INVERT = false;
 layout(constant_id = kSpecOpacityTex) const int OPACITY_TEX = -1;
 layout(constant_id = kSpecOpacityChannel) const int OPACITY_CH = 0;
 layout(constant_id = kSpecOpacityInvert) const bool OPACITY_INVERT = false;
+layout(constant_id = kSpecAlphaMode) const int ALPHA_MODE = kAlphaBlend;  // a kAlpha* value
+layout(constant_id = kSpecDoubleSided) const bool DOUBLE_SIDED = false;
 
 const bool NEEDS_LUT = HAS_ENV || BRDF_MODEL == kBrdfAccurate;
 
@@ -61,6 +63,10 @@ struct SurfacePoint {
     vec3 t;        // tangent (∂p/∂u), not necessarily orthogonal to n
     float bsign;   // sign of the bitangent (toward +v)
     vec2 st, st_dx, st_dy;
+    // The shape's far side, seen through a double-sided material: n, t and bsign are the
+    // surface's own (outward), and the shading normal is reversed (glTF 2.0, 3.9.5: "back-face
+    // must have its normals reversed before the lighting equation is evaluated").
+    bool back;
 };
 
 vec4 sample_role(int slot, vec2 st, vec2 dx, vec2 dy) {
@@ -77,10 +83,11 @@ float scalar_role(int slot, int ch, bool invert, float constant, vec2 st, vec2 d
     return pick(sample_role(slot, st, dx, dy), ch, invert);
 }
 
-// Near hit of the ray o + t·d (d unit) on the sphere of radius r at the origin; false on a miss.
-// Ray Tracing Gems ch. 7 (Haines et al. 2019): the discriminant from the distance of the centre
-// to the ray, and the near root from c / q, avoid both cancellations.
-bool sphere_intersect(vec3 o, vec3 d, float r, out float t) {
+// Near (or with `far`, far) hit of the ray o + t·d (d unit) on the sphere of radius r at the
+// origin, seen from outside; false on a miss. Ray Tracing Gems ch. 7 (Haines et al. 2019): the
+// discriminant from the distance of the centre to the ray, and the roots as c / q and q, avoid
+// both cancellations.
+bool sphere_intersect(vec3 o, vec3 d, float r, bool far, out float t) {
     float b = dot(o, d);
     vec3 f = o - b * d;
     float disc = r * r - dot(f, f);
@@ -88,7 +95,7 @@ bool sphere_intersect(vec3 o, vec3 d, float r, out float t) {
     if (disc < 0.0) return false;
     float q = -b + sign(-b) * sqrt(disc);
     float c = dot(o, o) - r * r;
-    t = c / q;
+    t = far ? q : c / q;
     return true;
 }
 
@@ -132,8 +139,10 @@ float sphere_occlusion(vec3 p, vec3 n) {
     return clamp(dot(n, d) * inversesqrt(D2) * r * r / D2, 0.0, 1.0);
 }
 
-// Linear radiance leaving `s` toward the camera, blended over the background by opacity.
-vec3 shade_point(SurfacePoint s) {
+// Linear radiance leaving `s` toward the camera (rgb) and the share of what lies behind it that
+// the surface covers (a): its opacity as ALPHA_MODE applies it (glTF alphaMode: a mask is
+// opaque at or above its cutoff and drops the rest; opaque ignores opacity).
+vec4 shade_surface(SurfacePoint s) {
     vec3 p = s.p;
     vec3 n = s.n;
     vec3 t = normalize(s.t - n * dot(n, s.t));  // Gram-Schmidt: interpolation bends it off the normal
@@ -152,6 +161,7 @@ vec3 shade_point(SurfacePoint s) {
         float len2 = dot(mapped, mapped);
         if (len2 > 1e-12) n = mapped * inversesqrt(len2);  // a zero texel keeps the surface normal
     }
+    if (s.back) n = -n;  // the tangent frame reversed with it, as three.js's faceDirection does
 
     vec3 albedo = ALBEDO_TEX >= 0 ? sample_role(ALBEDO_TEX, st, st_dx, st_dy).rgb : frame.albedo.rgb;
     if (GROUND) {  // a grey dielectric, flat (its variant samples no texture)
@@ -239,7 +249,15 @@ vec3 shade_point(SurfacePoint s) {
     }
 
     color += emitted;
-    return mix(frame.background.rgb, color, clamp(opacity, 0.0, 1.0));
+    if (ALPHA_MODE == kAlphaMask) opacity = opacity >= frame.alpha.x ? 1.0 : 0.0;
+    if (ALPHA_MODE == kAlphaOpaque) opacity = 1.0;
+    return vec4(color, clamp(opacity, 0.0, 1.0));
+}
+
+// Linear radiance toward the camera of a single-sided surface, over the background.
+vec3 shade_point(SurfacePoint s) {
+    vec4 c = shade_surface(s);
+    return mix(frame.background.rgb, c.rgb, c.a);
 }
 
 #endif

@@ -10,9 +10,10 @@ mapping (Standard view: the sRGB curve only), box pixel filter one pixel wide.
     blender_render.py [--usd] SIZE SAMPLES OUT_DIR FILE.gltf...
 
 prints one JSON line per file: {"file", "ok", "error", "png": OUT_DIR/<stem>.blender(.usd).png,
-"seconds"}. Single-sided, as the preview draws (back faces transparent through the shader's
-Backfacing output: Cycles has no back-face culling); what the preview leaves out of a glTF
-(double-sided cut-outs) is issue 49's.
+"seconds"}. Sided as the glTF asks, as the preview draws it: a material the importer marks
+single-sided (backface culling on: the glTF's doubleSided false) gets its back faces transparent
+through the shader's Backfacing output (Cycles has no back-face culling); a double-sided one (a
+cut-out) shows its far side. With `--usd`, the USD material is sided as the glTF beside it.
 """
 import json
 import math
@@ -126,10 +127,13 @@ def render_one(path, usd, size, samples, out_dir):
         # A USD mesh carries its texture coordinates as the primvar the layer's
         # UsdPrimvarReader_float2 names ("st"); the glTF's are Blender's "UVMap".
         meshes[0].data.uv_layers[0].name = "st"
+    # The glTF's doubleSided, as Blender's importer keeps it (use_backface_culling = not doubleSided).
+    culled = any(m.use_backface_culling for m in meshes[0].data.materials if m)
+    if material is not None:
         meshes[0].data.materials.clear()
         meshes[0].data.materials.append(material)
     for mat in meshes[0].data.materials:
-        if mat and mat.use_nodes:
+        if mat and mat.use_nodes and culled:
             single_sided(mat)
     stage(size, samples)
     bpy.context.scene.render.filepath = png

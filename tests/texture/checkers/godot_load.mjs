@@ -47,9 +47,9 @@
 //   its GGX specular likewise takes color * energy * PI (drivers/gles3/shaders/scene.glsl,
 //   light_compute): energy 3 / PI.
 // - Each material is drawn as loaded (Godot's default Burley diffuse included, where the preview
-//   has Lambert's) except, on a copy, back faces culled (the preview draws front faces only: a
-//   double-sided preview is matforge's issue 49) and parallax off (the preview does not simulate
-//   height; Godot's parallax shifts texels: 8 to 12 dB less agreement on the samples).
+//   has Lambert's, and its cull mode: a cut-out's far side shows, as in the preview) except, on a
+//   copy, parallax off (the preview does not simulate height; Godot's parallax shifts texels: 8
+//   to 12 dB less agreement on the samples).
 // - Rendered at 4x the size and averaged 4x4 in linear radiance, as the preview's --aa 4 shades
 //   4x4 samples a pixel and averages them before the sRGB curve; Godot's Compatibility renderer
 //   writes sRGB codes (linear_to_srgb in scene.glsl), read back as they are.
@@ -247,13 +247,11 @@ func _ready() -> void:
 					if v is Texture2D and v.resource_path != "":
 						out["imports"][v.resource_path.trim_prefix("res://")] = config(v.resource_path + ".import")
 			if res is Material:
-				# As loaded, but for what the preview does not draw (see the header): back faces
-				# and parallax, off on a copy.
+				# As loaded, but for what the preview does not draw (see the header): parallax,
+				# off on a copy.
 				var drawn: Material = res
-				if res is BaseMaterial3D and (res.cull_mode == BaseMaterial3D.CULL_DISABLED or res.heightmap_enabled):
+				if res is BaseMaterial3D and res.heightmap_enabled:
 					drawn = res.duplicate()
-					if drawn.cull_mode == BaseMaterial3D.CULL_DISABLED:
-						drawn.cull_mode = BaseMaterial3D.CULL_BACK
 					drawn.heightmap_enabled = false
 				sphere.material_override = drawn
 				for f in 3:
