@@ -26,5 +26,10 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)   # dpkg-shlibdeps: every library the bin
 # absent), so dpkg-shlibdeps cannot see them: the Vulkan loader, and Mesa's drivers for preview
 # without a GPU (lavapipe).
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "libvulkan1, mesa-vulkan-drivers")
+# The Python module (MATFORGE_PYTHON, python/CMakeLists.txt) is built for Debian 12's python3;
+# the command never needs it.
+if(MATFORGE_PYTHON)
+  set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3 (>= 3.11), python3 (<< 3.12)")
+endif()
 set(CPACK_STRIP_FILES ON)
 include(CPack)

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages matforge needs when they are missing, then configures and builds.
-#   scripts/bootstrap.sh --install build|test|dev   install one package set (each holds the one
-#                                                   before it) and exit
+#   scripts/bootstrap.sh --install build|python|test|dev   install one package set (each holds
+#                                                   the one before it) and exit
 #   scripts/bootstrap.sh BUILD_DIR [cmake args...]  install the test set, configure, build all
 #   scripts/bootstrap.sh --packages-only            the same as --install dev (CI's first step)
-# The sets: build = what building and running matforge needs (scripts/demo.sh); test = what the
-# tests add (scripts/test.sh); dev = what CI adds (clang for the sanitizer and fuzzer build,
-# clang-tidy, clang-format, ccache).
+# The sets: build = what building and running matforge needs (scripts/demo.sh); python = what
+# its Python module adds (`pip install .`, scripts/package.sh); test = what the tests add
+# (scripts/test.sh); dev = what CI adds (clang for the sanitizer and fuzzer build, clang-tidy,
+# clang-format, ccache).
 # The build prints one line per tenth of the work; the compiler's full output is in
 # BUILD_DIR/build.log, and its end is printed when the build fails.
 set -euo pipefail
@@ -21,6 +22,11 @@ packages_build=(
   libxml2-dev  # MaterialX sidecars (lib/material); the tests also parse JUnit with it
   libvulkan-dev glslc mesa-vulkan-drivers  # preview: shaders built by glslc, lavapipe without a GPU
   spirv-cross  # report --viewer: the renderer's shaders translated to ESSL 3.00 (WebGL2) at build time
+)
+packages_python=(
+  python3-dev      # Python.h of Debian's python3, which the module is built for
+  python3-venv     # `pip install .` into a virtual environment (Debian's python3 is externally managed)
+  pybind11-dev     # the module's bindings in a CMake build (`pip install .` takes PyPI's, pinned in pyproject.toml)
 )
 packages_test=(
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -53,9 +59,10 @@ install_set() {
   local set=$1 wanted=()
   case $set in
     build) wanted=("${packages_build[@]}") ;;
-    test) wanted=("${packages_build[@]}" "${packages_test[@]}") ;;
-    dev) wanted=("${packages_build[@]}" "${packages_test[@]}" "${packages_dev[@]}") ;;
-    *) echo "bootstrap: unknown package set '$set' (build, test or dev)" >&2; exit 2 ;;
+    python) wanted=("${packages_build[@]}" "${packages_python[@]}") ;;
+    test) wanted=("${packages_build[@]}" "${packages_python[@]}" "${packages_test[@]}") ;;
+    dev) wanted=("${packages_build[@]}" "${packages_python[@]}" "${packages_test[@]}" "${packages_dev[@]}") ;;
+    *) echo "bootstrap: unknown package set '$set' (build, python, test or dev)" >&2; exit 2 ;;
   esac
   local missing=()
   for p in "${wanted[@]}"; do
@@ -124,13 +131,15 @@ configure() {
 }
 export CCACHE_BASEDIR=$root CCACHE_NOHASHDIR=1
 
-# configure_release BUILD_DIR: the binary alone, built fast (scripts/demo.sh, scripts/package.sh):
-# no tests or benchmarks (so no test packages), -O2 as every tested build, no debug information.
-# Measured in a bare Debian 12 chroot on 2 cores: 90 s against 163 s for the per-file
-# RelWithDebInfo build.
+# configure_release BUILD_DIR [cmake args...]: the binary alone, built fast (scripts/demo.sh,
+# scripts/package.sh, which adds the Python module): no tests or benchmarks (so no test
+# packages), -O2 as every tested build, no debug information. Measured in a bare Debian 12
+# chroot on 2 cores: 90 s against 163 s for the per-file RelWithDebInfo build.
 configure_release() {
-  configure "$1" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DMATFORGE_TESTS=OFF \
-    -DMATFORGE_BENCHMARKS=OFF
+  local build=$1
+  shift
+  configure "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DMATFORGE_TESTS=OFF \
+    -DMATFORGE_BENCHMARKS=OFF "$@"
 }
 
 # configure_sanitizer BUILD_DIR: clang-14 with ASan + UBSan + LSan on every target of ours
@@ -165,11 +174,12 @@ configure_plain() {
 [[ ${BASH_SOURCE[0]} != "$0" ]] && return 0
 
 case ${1:-} in
-  --install) install_set "${2:?--install build, test or dev}"; exit 0 ;;
+  --install) install_set "${2:?--install build, python, test or dev}"; exit 0 ;;
   --packages-only) install_set dev; exit 0 ;;
 esac
 build=${1:-$root/build}
 shift || true
 install_set test
-configure "$build" "$@"
+# The test build: the Python module too (its tests import it: python/CMakeLists.txt).
+configure "$build" -DMATFORGE_PYTHON=ON "$@"
 build_quietly "$build"

@@ -9,6 +9,7 @@
 //   browser.listen((message) => ...)               // every event
 //   browser.log                                    // Chromium's stdout and stderr, in chunks
 //   await browser.close()                          // see close()
+//   const page = await openPage(browser, url)      // a new tab at url: { sessionId, evaluate, waitFor }
 import { spawn } from 'node:child_process';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -92,4 +93,23 @@ export function startChromium({ name = 'chromium', flags = [], binary = '/usr/bi
     });
   }
   return { child, log, send, once, listen: (fn) => listeners.add(fn), close };
+}
+
+// A new tab on `url` with the Runtime domain on: `evaluate(expression)` awaits a promise and returns
+// its value by value (throwing what the page threw), `waitFor(expression)` polls it every 100 ms
+// until it is true, up to 20 s.
+export async function openPage(browser, url) {
+  const { targetId } = await browser.send('Target.createTarget', { url: 'about:blank' });
+  const { sessionId } = await browser.send('Target.attachToTarget', { targetId, flatten: true });
+  await browser.send('Runtime.enable', {}, sessionId);
+  await browser.send('Page.navigate', { url }, sessionId);
+  const evaluate = async (expression) => {
+    const r = await browser.send('Runtime.evaluate', { expression, awaitPromise: true, returnByValue: true }, sessionId);
+    if (r.exceptionDetails) throw new Error(JSON.stringify(r.exceptionDetails).slice(0, 600));
+    return r.result.value;
+  };
+  const waitFor = async (expression) => {
+    for (let i = 0; i < 200 && !(await evaluate(expression)); ++i) await new Promise((r) => setTimeout(r, 100));
+  };
+  return { sessionId, evaluate, waitFor };
 }

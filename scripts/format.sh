@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # clang-format-14 with the committed .clang-format over our C++ (*.cpp, *.hpp, *.h in lib/,
-# tools/, tests/, bench/; the GLSL shaders are not C++ and are left alone).
+# tools/, tests/, bench/, python/; the GLSL shaders are not C++ and are left alone).
 #   scripts/format.sh [FILE...]           rewrite the files in place (default: all of them)
 #   scripts/format.sh --check [FILE...]   list the files that differ, with their changed-line
 #                                         counts; exit 1 if any does, 0 if none
@@ -20,7 +20,8 @@ else
   # Tracked and new (not ignored) files, so build folders and scratch copies never count.
   mapfile -t files < <(git ls-files --cached --others --exclude-standard -- \
     'lib/*.cpp' 'lib/*.hpp' 'lib/*.h' 'tools/*.cpp' 'tools/*.hpp' 'tools/*.h' \
-    'tests/*.cpp' 'tests/*.hpp' 'tests/*.h' 'bench/*.cpp' 'bench/*.hpp' 'bench/*.h' |
+    'tests/*.cpp' 'tests/*.hpp' 'tests/*.h' 'bench/*.cpp' 'bench/*.hpp' 'bench/*.h' \
+    'python/*.cpp' 'python/*.hpp' |
     grep -v '/shaders/' | sort -u | while read -r f; do [[ -f $f ]] && echo "$f"; done)
 fi
 ((${#files[@]})) || { echo "format: no files" >&2; exit 2; }

@@ -13,6 +13,8 @@
 #              BC1/BC3/BC4/BC5/BC7 .dds files and of the peers' (tests/texture/checkers/bc_decode.py,
 #              bench/texture/bc7_vs_bc7e.sh)
 #   numpy      1.26 (what bpy 4.5 requires anyway): the PSNR of bench/texture/psnr_rgba.py
+#   pytest     runs the Python module's tests (python/tests, examples/: ctest's python.*), which
+#              import the module the build made for this interpreter
 # (PyPI's pyktx 4.4.2 is a source package that builds against an installed libktx, which Debian
 # 12 does not package: the .ktx2 files are read by npm ktx-parse until libktx is built here.)
 # Usage: scripts/py-checkers.sh [DIR]   (default build/py; the tests run DIR/bin/python)
@@ -22,7 +24,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 dir=${1:-$root/build/py}
-packages=(usd-core==26.11 materialx==1.39.5 bpy==4.5.15 texture2ddecoder==1.0.6 numpy==1.26.4)
+packages=(usd-core==26.11 materialx==1.39.5 bpy==4.5.15 texture2ddecoder==1.0.6 numpy==1.26.4 pytest==8.4.2)
 want=$(printf '%s\n' "${packages[@]}")
 [[ -f $dir/installed.txt && $(cat "$dir/installed.txt") == "$want" && -x $dir/bin/python ]] && exit 0
 mkdir -p "$dir"

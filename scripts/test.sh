@@ -16,7 +16,7 @@ source "$root/scripts/bootstrap.sh"
 
 t0=$SECONDS
 install_set test
-configure "$root/build" -DMATFORGE_TESTS=ON -DMATFORGE_BENCHMARKS=ON
+configure "$root/build" -DMATFORGE_TESTS=ON -DMATFORGE_BENCHMARKS=ON -DMATFORGE_PYTHON=ON
 build_quietly "$root/build"
 "$root/scripts/npm-checkers.sh" "$root/build/npm"  # glTF-Validator, ktx-parse, MaterialX, three.js, Godot
 "$root/scripts/py-checkers.sh" "$root/build/py"     # OpenUSD, MaterialX, Blender, texture2ddecoder for tests/texture

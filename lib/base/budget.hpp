@@ -2,6 +2,7 @@
 // stays bounded however many sets a batch holds. A request larger than the whole budget is
 // granted when nothing else is held (one huge set still runs, alone).
 #pragma once
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -14,7 +15,12 @@ public:
 
     void acquire(uint64_t bytes) {
         std::unique_lock lock(mutex_);
-        freed_.wait(lock, [&] { return used_ == 0 || used_ + bytes <= capacity_; });
+        const auto fits = [&] { return used_ == 0 || used_ + bytes <= capacity_; };
+        if (!fits()) {
+            ++waiting_;
+            freed_.wait(lock, fits);
+            --waiting_;
+        }
         used_ += bytes;
     }
     void release(uint64_t bytes) {
@@ -25,10 +31,14 @@ public:
         freed_.notify_all();
     }
     uint64_t capacity() const { return capacity_; }
+    // Threads waiting in acquire() now: workers whose cores are idle (ingest lends them to the
+    // sets running: process/ingest.cpp).
+    int waiting() const { return waiting_.load(); }
 
 private:
     uint64_t capacity_;
     uint64_t used_ = 0;
+    std::atomic<int> waiting_{0};
     std::mutex mutex_;
     std::condition_variable freed_;
 };

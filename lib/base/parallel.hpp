@@ -4,7 +4,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <queue>
 #include <thread>
 #include <vector>
 
@@ -52,5 +57,92 @@ void parallel_for_spare(size_t n, S&& spare, F&& fn) {
     worker();
     helper.join();
 }
+
+// Tasks posted by one owner thread as it makes them, run largest first by the owner (run()) and
+// by one more thread while `spare()` holds (a core of the batch is idle): parallel_for_spare over
+// a list that grows while it runs (ingest: a set's outputs of every preset, posted as each
+// preset's planes are made, so no preset waits for the one before). The helper sleeps while
+// nothing is queued and looks every millisecond while tasks wait and no core is spare. A task
+// must not throw; tasks of equal cost run in the order posted.
+class SpareTasks {
+public:
+    explicit SpareTasks(std::function<bool()> spare) : spare_(std::move(spare)) {}
+    ~SpareTasks() { run(); }
+    SpareTasks(const SpareTasks&) = delete;
+    SpareTasks& operator=(const SpareTasks&) = delete;
+
+    void post(uint64_t cost, std::function<void()> task) {
+        {
+            std::lock_guard lock(mutex_);
+            queue_.push(Task{cost, posted_++, std::move(task)});
+            if (!helper_.joinable() && spare_) helper_ = std::thread([this] { help(); });
+        }
+        changed_.notify_all();
+    }
+
+    // Runs tasks on this thread until none is queued, then waits for the helper's; every task
+    // posted before is done when it returns. Tasks may be posted again afterwards.
+    void run() {
+        while (take_and_run()) {
+        }
+        {
+            std::unique_lock lock(mutex_);
+            changed_.wait(lock, [&] { return running_ == 0; });
+            closed_ = true;
+        }
+        changed_.notify_all();
+        if (helper_.joinable()) helper_.join();
+        std::lock_guard lock(mutex_);
+        closed_ = false;
+    }
+
+private:
+    struct Task {
+        uint64_t cost;
+        uint64_t order;
+        std::function<void()> fn;
+        bool operator<(const Task& o) const { return cost != o.cost ? cost < o.cost : order > o.order; }
+    };
+    // Takes the largest task and runs it; false when none is queued.
+    bool take_and_run() {
+        std::function<void()> fn;
+        {
+            std::lock_guard lock(mutex_);
+            if (queue_.empty()) return false;
+            fn = std::move(const_cast<Task&>(queue_.top()).fn);  // popped next: its function may go
+            queue_.pop();
+            ++running_;
+        }
+        fn();
+        {
+            std::lock_guard lock(mutex_);
+            --running_;
+        }
+        changed_.notify_all();
+        return true;
+    }
+    void help() {
+        std::unique_lock lock(mutex_);
+        while (!closed_) {
+            if (queue_.empty()) {
+                changed_.wait(lock);
+                continue;
+            }
+            lock.unlock();
+            const bool spare = spare_();
+            if (!spare || !take_and_run()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            lock.lock();
+        }
+    }
+
+    std::function<bool()> spare_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::priority_queue<Task> queue_;
+    uint64_t posted_ = 0;
+    int running_ = 0;
+    bool closed_ = false;
+    std::thread helper_;
+};
 
 }  // namespace mf

@@ -15,9 +15,11 @@ namespace {
 namespace fs = std::filesystem;
 
 // The matforge_oiio module, loaded once, on first use, in the places a build or an install
-// puts it: beside the executable (a copied tree), the install's library folder relative to the
-// executable's (MATFORGE_OIIO_MODULE_RELDIR: bin/../lib/<arch>/matforge), then the build tree
-// (MATFORGE_OIIO_MODULE_BUILT: tests and benchmarks run from their own folders). Never closed.
+// puts it: beside the file holding this code when that is not the executable (the Python
+// extension, whose package carries the module), beside the executable (a copied tree), the
+// install's library folder relative to the executable's (MATFORGE_OIIO_MODULE_RELDIR:
+// bin/../lib/<arch>/matforge), then the build tree (MATFORGE_OIIO_MODULE_BUILT: tests and
+// benchmarks run from their own folders). Never closed.
 struct Module {
     const Table* table = nullptr;
     std::string error;
@@ -25,8 +27,13 @@ struct Module {
 
 Module load_module() {
     std::vector<fs::path> places;
-    std::error_code ec;
+    std::error_code ec, here_ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    Dl_info self{};
+    if (::dladdr(reinterpret_cast<void*>(&load_module), &self) != 0 && self.dli_fname) {
+        const fs::path here = fs::weakly_canonical(self.dli_fname, here_ec);
+        if (!here_ec && (ec || here != exe)) places.push_back(here.parent_path() / kFileName);
+    }
     if (!ec) {
         places.push_back(exe.parent_path() / kFileName);
         places.push_back(exe.parent_path() / MATFORGE_OIIO_MODULE_RELDIR / kFileName);

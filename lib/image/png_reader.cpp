@@ -2,69 +2,37 @@
 
 #include "base/limits.hpp"
 #include "image/exif.hpp"
+#include "image/png_unfilter.hpp"
 
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
-#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace mf::png {
 namespace {
 
-// Reverses the Paeth filter (PNG spec 9.4) of one row in place (`row` holds the filtered bytes,
-// `up` the row above, reconstructed, or zeros). Each pixel depends on the one before it; its
-// channels are independent chains, which the processor overlaps. (Per-pixel vector forms ran no
-// faster here: the chain from one pixel to the next sets the pace.)
-template <int Bpp>
-void unpaeth(uint8_t* row, const uint8_t* up, size_t width) {
-    int a[Bpp] = {}, c[Bpp] = {};
-    for (size_t x = 0; x < width; ++x) {
-        uint8_t* px = row + x * Bpp;
-        const uint8_t* above = up + x * Bpp;
-        for (int k = 0; k < Bpp; ++k) {
-            const int b = above[k];
-            const int pa = std::abs(b - c[k]), pb = std::abs(a[k] - c[k]), pc = std::abs(a[k] + b - 2 * c[k]);
-            const int by_b = pb <= pc ? b : c[k];
-            const int pred = (pa <= pb && pa <= pc) ? a[k] : by_b;
-            a[k] = (px[k] + pred) & 0xFF;
-            px[k] = static_cast<uint8_t>(a[k]);
-            c[k] = b;
-        }
+// PNG's big-endian 16-bit samples in the host's order: on a little-endian host each sample's two
+// bytes swapped, 8 samples a step (GCC vectorizes neither a byte loop nor a rotate of each).
+void to_host_order16(std::vector<uint8_t>& samples) {
+    if constexpr (std::endian::native == std::endian::big) return;
+    using U16x8 = uint16_t __attribute__((vector_size(16)));
+    uint8_t* p = samples.data();
+    const size_t n = samples.size() & ~size_t{1};
+    size_t i = 0;
+    for (; i + 16 <= n; i += 16) {
+        U16x8 v;
+        std::memcpy(&v, p + i, 16);
+        v = (v << 8) | (v >> 8);
+        std::memcpy(p + i, &v, 16);
     }
-}
-
-// Reverses row filter `type` (PNG spec 9.2) in place; false for an unknown type.
-bool unfilter(int type, uint8_t* row, const uint8_t* up, size_t width, int bpp) {
-    const size_t n = width * static_cast<size_t>(bpp);
-    const auto k = static_cast<size_t>(bpp);
-    switch (type) {
-        case 0: return true;
-        case 1:
-            for (size_t i = k; i < n; ++i) row[i] = static_cast<uint8_t>(row[i] + row[i - k]);
-            return true;
-        case 2:
-            for (size_t i = 0; i < n; ++i) row[i] = static_cast<uint8_t>(row[i] + up[i]);
-            return true;
-        case 3:  // the first pixel has no left neighbour (0): its own loop, none of it in the chain
-            for (size_t i = 0; i < std::min(k, n); ++i) row[i] = static_cast<uint8_t>(row[i] + up[i] / 2);
-            for (size_t i = k; i < n; ++i) row[i] = static_cast<uint8_t>(row[i] + (row[i - k] + up[i]) / 2);
-            return true;
-        case 4:
-            switch (bpp) {  // bytes per pixel: 1-4 channels of 8 bits, or 1-4 of 16
-                case 1: unpaeth<1>(row, up, width); return true;
-                case 2: unpaeth<2>(row, up, width); return true;
-                case 3: unpaeth<3>(row, up, width); return true;
-                case 4: unpaeth<4>(row, up, width); return true;
-                case 6: unpaeth<6>(row, up, width); return true;
-                default: unpaeth<8>(row, up, width); return true;
-            }
-        default: return false;
-    }
+    for (; i < n; i += 2) std::swap(p[i], p[i + 1]);
 }
 
 // One reduced image of the stream: its size and where its pixels go (column x0 + i dx, row y0 + j dy).
@@ -241,10 +209,13 @@ bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out) 
     if (size < kHeaderBytes || !plain_ihdr(bytes, max_bytes, ihdr)) return false;
     const auto width = static_cast<uint32_t>(ihdr.width), height = static_cast<uint32_t>(ihdr.height);
     const int bpp = ihdr.channels * ihdr.bit_depth / 8;  // bytes per pixel
-    size_t stream = 0;                                   // the IDAT chunks' data, moved together to the front of `file`
-    // The chunk order is kept in flags, never in views of `file`: the IDAT data moved to the
-    // front overwrites the chunk headers already read (a first IDAT larger than what precedes it
-    // overwrites its own type), so a view would read pixels instead of "IDAT".
+    // The IDAT chunks' data, `stream` bytes at `stream_at`: the first chunk's where it is, each
+    // later one moved back over the 12 bytes of CRC and header between them (a copy of the
+    // chunks after the first, not of the whole stream).
+    size_t stream_at = 0, stream = 0;
+    // The chunk order is kept in flags, never in views of `file`: the IDAT data moved back
+    // overwrites the chunk headers already read (its own length and type), so a view would read
+    // pixels instead of "IDAT".
     bool ended = false, in_idat_run = false, idat_run_over = false;
     for (size_t at = 8; !ended;) {
         if (size - at < 12) return false;
@@ -258,8 +229,10 @@ bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out) 
         if (at == 8) {  // IHDR, checked before the loop
         } else if (idat) {
             if (idat_run_over) return false;
-            // Behind everything already read (stream <= at): moving it overwrites nothing unread.
-            std::memmove(bytes + stream, data, len);
+            // Behind everything already read (stream_at + stream <= at): moving it overwrites
+            // nothing unread.
+            if (stream == 0) stream_at = at + 8;
+            else std::memmove(bytes + stream_at + stream, data, len);
             stream += len;
         } else if (type == "IEND") {
             ended = true;
@@ -283,50 +256,48 @@ bool read_plain(std::vector<unsigned char>& file, size_t max_bytes, Plain& out) 
     size_t used = 0, made = 0;
     // The whole stream, exactly the rows' bytes: anything short, long or damaged is not plain.
     if (!inflater ||
-        libdeflate_zlib_decompress_ex(inflater.get(), bytes, stream, raw.data(), raw.size(), &used, &made) !=
-            LIBDEFLATE_SUCCESS ||
+        libdeflate_zlib_decompress_ex(inflater.get(), bytes + stream_at, stream, raw.data(), raw.size(), &used,
+                                      &made) != LIBDEFLATE_SUCCESS ||
         used != stream || made != raw.size())
         return false;
     std::vector<unsigned char>().swap(file);
 
-    // Rows are reconstructed in place behind their filter bytes.
+    // Each row is reconstructed over its filter byte and the rows before it (png_unfilter.hpp
+    // reads a row ahead of where it writes): the passes' rows end up together, in one pass over
+    // the bytes.
     const size_t row_bytes = size_t{width} * static_cast<size_t>(bpp);
     const std::vector<uint8_t> zeros(row_bytes, 0);
-    size_t at = 0;
+    const UnfilterIsa isa = best_unfilter_isa();
+    size_t at = 0, out_at = 0;  // where the pass's filtered rows are, and where its pixels go
     for (const Pass& p : passes) {
         const size_t pass_row = p.width * static_cast<size_t>(bpp);
         for (size_t y = 0; y < p.height; ++y) {
-            uint8_t* row = raw.data() + at + y * (pass_row + 1);
-            const uint8_t* up = y ? row - pass_row : zeros.data();
-            if (!unfilter(row[0], row + 1, up, p.width, bpp)) return false;
+            const uint8_t* row = raw.data() + at + y * (pass_row + 1);
+            uint8_t* to = raw.data() + out_at + y * pass_row;
+            if (!unfilter_row(row[0], row + 1, to, y ? to - pass_row : zeros.data(), p.width, bpp, isa)) return false;
         }
         at += p.height * (pass_row + 1);
+        out_at += p.height * pass_row;
     }
-    if (!ihdr.interlaced) {  // the rows moved together over their filter bytes
-        for (size_t y = 0; y < height; ++y)
-            std::memmove(raw.data() + y * row_bytes, raw.data() + y * (row_bytes + 1) + 1, row_bytes);
+    if (!ihdr.interlaced) {
         raw.resize(row_bytes * height);
     } else {  // each pass's pixels to their places in the image
         std::vector<uint8_t> image(row_bytes * height);
-        at = 0;
+        out_at = 0;
         for (const Pass& p : passes) {
             const size_t pass_row = p.width * static_cast<size_t>(bpp);
             for (size_t y = 0; y < p.height; ++y) {
-                const uint8_t* src = raw.data() + at + y * (pass_row + 1) + 1;
+                const uint8_t* src = raw.data() + out_at + y * pass_row;
                 uint8_t* dst = image.data() + (p.y0 + y * p.dy) * row_bytes + p.x0 * static_cast<size_t>(bpp);
                 for (size_t x = 0; x < p.width; ++x)
                     std::memcpy(dst + x * p.dx * static_cast<size_t>(bpp), src + x * static_cast<size_t>(bpp),
                                 static_cast<size_t>(bpp));
             }
-            at += p.height * (pass_row + 1);
+            out_at += p.height * pass_row;
         }
         raw = std::move(image);
     }
-    if (ihdr.bit_depth == 16)  // PNG's samples are big-endian
-        for (size_t i = 0; i + 1 < raw.size(); i += 2) {
-            const auto v = static_cast<uint16_t>((raw[i] << 8) | raw[i + 1]);
-            std::memcpy(raw.data() + i, &v, 2);
-        }
+    if (ihdr.bit_depth == 16) to_host_order16(raw);
     out = ihdr;
     out.pixels = std::move(raw);
     return true;

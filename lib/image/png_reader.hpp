@@ -1,9 +1,9 @@
 // A reader for plain PNGs (those matforge writes, png_writer.hpp, and vendors' height and
-// texture maps), with libdeflate's inflate: the preview of a library of `gltf` outputs spent 38 %
-// of its CPU in libpng and zlib decoding them (perf, 100 1K materials on lavapipe), and a run
-// that decodes none of its files through OpenImageIO never loads it (image/direct.hpp). Every
-// other PNG, and any file this reader doubts, is left to OpenImageIO (libpng and zlib) by the
-// caller.
+// texture maps), with libdeflate's inflate and vector row filters (png_unfilter.hpp): the preview
+// of a library of `gltf` outputs spent 38 % of its CPU in libpng and zlib decoding them (perf, 100
+// 1K materials on lavapipe), and a run that decodes none of its files through OpenImageIO never
+// loads it (image/direct.hpp). Every other PNG, and any file this reader doubts, is left to
+// OpenImageIO (libpng and zlib) by the caller.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -191,6 +191,46 @@ Output output_of(const json& j, const std::string& where) {
     return o;
 }
 
+bool bool_of(const json& o, const char* key, const std::string& where) {
+    const json* v = member(o, key);
+    if (!v) return false;
+    if (!v->is_boolean()) fail(where, std::string("\"") + key + "\" is not a boolean");
+    return v->get<bool>();
+}
+
+Provenance provenance_of(const json& j, const std::string& where) {
+    object_of(j, where);
+    Provenance p;
+    p.vendor = string_of(j, "vendor", where, false);
+    p.vendor_name = string_of(j, "vendor_name", where, false);
+    p.asset_id = string_of(j, "asset_id", where, false);
+    p.asset_id_from = string_of(j, "asset_id_from", where, false);
+    p.attribution = string_of(j, "attribution", where, false);
+    p.url = string_of(j, "url", where, false);
+    if (const json* l = member(j, "licence")) {
+        const std::string at = where + ": licence";
+        object_of(*l, at);
+        Provenance::Licence lic;
+        lic.spdx = string_of(*l, "spdx", at, false);
+        lic.name = string_of(*l, "name", at, true);
+        lic.url = string_of(*l, "url", at, false);
+        lic.attribution_required = bool_of(*l, "attribution_required", at);
+        lic.vendor_licence = bool_of(*l, "vendor_licence", at);
+        const json* e = member(*l, "evidence");
+        if (!e) fail(at, "no \"evidence\"");
+        const std::string eat = at + ": evidence";
+        object_of(*e, eat);
+        lic.evidence.how = string_of(*e, "how", eat, true);
+        if (lic.evidence.how != "vendor" && lic.evidence.how != "file" && lic.evidence.how != "sidecar")
+            fail(eat, "\"how\" must be \"vendor\", \"file\" or \"sidecar\"");
+        lic.evidence.file = string_of(*e, "file", eat, false);
+        lic.evidence.field = string_of(*e, "field", eat, false);
+        lic.evidence.detail = string_of(*e, "detail", eat, false);
+        p.licence = std::move(lic);
+    }
+    return p;
+}
+
 Material material_of(const json& j, const std::string& at) {
     object_of(j, at);
     Material m;
@@ -200,6 +240,7 @@ Material material_of(const json& j, const std::string& at) {
     m.source = string_of(j, "source", where, false);
     if (member(j, "archive")) m.archive = string_of(j, "archive", where, true);
     m.convention = string_of(j, "convention", where, false);
+    if (const json* p = member(j, "provenance")) m.provenance = provenance_of(*p, where + ": provenance");
     m.key = string_of(j, "key", where, false);
     const std::string status = string_of(j, "status", where, false, "ok");
     if (status != "ok" && status != "partial") fail(where, "\"status\" must be \"ok\" or \"partial\"");
@@ -355,6 +396,34 @@ json to_json(const Output& o) {
     return j;
 }
 
+json to_json(const Provenance& p) {
+    json j = json::object();
+    const auto put = [&](const char* key, const std::string& v) {
+        if (!v.empty()) j[key] = v;
+    };
+    put("vendor", p.vendor);
+    put("vendor_name", p.vendor_name);
+    put("asset_id", p.asset_id);
+    put("asset_id_from", p.asset_id_from);
+    put("attribution", p.attribution);
+    put("url", p.url);
+    if (p.licence) {
+        const Provenance::Licence& l = *p.licence;
+        json lj = {{"name", l.name}};
+        if (!l.spdx.empty()) lj["spdx"] = l.spdx;
+        if (!l.url.empty()) lj["url"] = l.url;
+        lj["attribution_required"] = l.attribution_required;
+        if (l.vendor_licence) lj["vendor_licence"] = true;
+        json e = {{"how", l.evidence.how}};
+        if (!l.evidence.file.empty()) e["file"] = l.evidence.file;
+        if (!l.evidence.field.empty()) e["field"] = l.evidence.field;
+        if (!l.evidence.detail.empty()) e["detail"] = l.evidence.detail;
+        lj["evidence"] = std::move(e);
+        j["licence"] = std::move(lj);
+    }
+    return j;
+}
+
 namespace {
 
 // material_files and library: [{file, format, sha256}, ...]
@@ -395,6 +464,7 @@ json to_json(const Material& m) {
     j["source"] = m.source;
     if (m.archive) j["archive"] = *m.archive;
     j["convention"] = m.convention;
+    if (m.provenance) j["provenance"] = to_json(*m.provenance);
     if (!m.key.empty()) j["key"] = m.key;
     j["status"] = status_name(m.status);
     j["inputs"] = to_json(m.inputs);

@@ -19,6 +19,7 @@
 
 #include "findings/findings.hpp"
 #include "material/channel.hpp"
+#include "material/provenance.hpp"
 #include "material/roles.hpp"
 
 namespace mf::manifest {
@@ -113,6 +114,9 @@ struct Material {
     std::string source;                  // relative to the manifest's folder
     std::optional<std::string> archive;  // the .zip holding the set
     std::string convention;              // naming family
+    // Where the set comes from and under what licence (material/provenance.hpp); absent when
+    // nothing is known (its LICENCE_UNKNOWN finding says why) and in older manifests.
+    std::optional<Provenance> provenance;
     // The set's action key (process/work.hpp action_key: its files' contents and everything that
     // decides its outputs), "" when a file could not be read: `plan --changed-since` compares it.
     std::string key;
@@ -164,6 +168,7 @@ nlohmann::json to_json(const Input& in);
 nlohmann::json to_json(const std::vector<Input>& inputs);        // {role: input, ...}
 nlohmann::json to_json(const std::vector<Constant>& constants);  // {role: number or [r, g, b], ...}
 nlohmann::json to_json(const Output& out);
+nlohmann::json to_json(const Provenance& p);
 nlohmann::json to_json(const Material& m);
 nlohmann::json to_json(const Manifest& m);
 // The manifest file's text: the bytes of core's json_text(to_json(m)), made one material at a

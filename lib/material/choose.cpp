@@ -10,6 +10,7 @@
 #include "material/classify.hpp"
 #include "material/discovery.hpp"
 #include "material/families.hpp"
+#include "material/provenance.hpp"
 #include "material/routing.hpp"
 
 namespace mf {
@@ -275,6 +276,40 @@ void mark_strays(std::map<Role, std::vector<Ranked>>& by_role) {
     }
 }
 
+// A picture of the material its vendor ships (discovery.hpp SetDiscovery::preview).
+struct PreviewCandidate {
+    std::string file;
+    int rank = 0;      // -1 a sidecar lists it, else preview_rank's word (0: ambientCG's "<id>.png")
+    std::string stem;  // the material name the file names ("" none)
+    std::string family, rule;
+};
+
+// The set's preview among `found`: a candidate that names the set's material (a stem of its
+// maps), or no material where the folder is the set's alone; the plainest, then the largest.
+std::optional<Candidate> choose_preview(const std::vector<PreviewCandidate>& found,
+                                        const std::set<std::string>& map_stems, const ChoicePolicy& policy,
+                                        const std::function<std::optional<HeaderInfo>(const std::string&)>& header) {
+    std::optional<Candidate> best;
+    std::tuple<int, int, std::string> best_key;
+    for (const PreviewCandidate& p : found) {
+        const bool named = !p.stem.empty();
+        if (p.rank >= 0 && (named ? !map_stems.count(naming::normalized_key(p.stem)) : policy.shared_folder)) continue;
+        Candidate c;
+        c.file = p.file;
+        c.match.role = Role::preview;
+        c.match.family = p.family;
+        c.match.rule = p.rule;
+        if (header)
+            if (auto h = header(p.file)) c.header = *h;
+        const std::tuple<int, int, std::string> key{p.rank, -std::max(c.header.width, c.header.height), p.file};
+        if (!best || key < best_key) {
+            best = std::move(c);
+            best_key = key;
+        }
+    }
+    return best;
+}
+
 }  // namespace
 
 SetDiscovery discover_set(const std::vector<std::string>& files,
@@ -294,6 +329,7 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
 
     std::vector<Finding> unrecognized;
     std::vector<std::pair<std::string, size_t>> untagged;  // images whose names state no role, their finding
+    std::vector<PreviewCandidate> previews;
     std::vector<RoleTag> tags;
     std::map<Role, std::vector<Ranked>> by_role;
     auto add_candidate = [&](Candidate c) {
@@ -309,6 +345,7 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
                                                                           : "sidecar not read (" + err + ")"));
             continue;
         }
+        if (is_licence_file_name(file)) continue;  // read for the set's provenance (provenance.hpp)
         if (!is_image_file(file)) {
             unrecognized.push_back(unrecognized_finding(file, "not an image"));
             continue;
@@ -343,6 +380,12 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
             continue;
         }
         if (a.clutter) {
+            if (const auto rank = naming::preview_rank(a)) {
+                const bool render = a.clutter->kind == naming::ClutterKind::render;
+                previews.push_back({file, *rank, naming::join_name(a.tokens, a.clutter->token), "generic",
+                                    render ? "generic:Material_NNNN (a preview render)"
+                                           : "generic:_" + a.tokens[a.clutter->token].text + " (a preview image)"});
+            }
             unrecognized.push_back(unrecognized_finding(file, naming::clutter_reason(a.clutter->kind)));
             continue;
         }
@@ -385,6 +428,38 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
             add_candidate({file, m, {}});
             unrecognized.erase(unrecognized.begin() + static_cast<std::ptrdiff_t>(finding_at));
         }
+    }
+
+    // The vendor's preview: named by a sidecar, ambientCG's untagged "<id>.png" beside its
+    // "<id>_<res>-<format>_*" maps, or an image the name calls a preview or render.
+    if (!by_role.empty()) {
+        std::set<std::string> map_stems;
+        for (const auto& [role, ranked] : by_role)
+            for (const Ranked& r : ranked) map_stems.insert(naming::normalized_key(material_stem(r.cand.file)));
+        const std::set<std::string> in_set(sorted.begin(), sorted.end());
+        for (const auto& s : sidecars)
+            for (const std::string& file : s.facts.previews)
+                if (in_set.count(file) && is_image_file(file))
+                    previews.push_back({file, -1, "", "megascans", "megascans:previews.images[].uri"});
+        // (The untagged-albedo rule above never applies in an ambientCG set.) Only beside maps of
+        // ambientCG's own layout, "<id>_<res>-<FORMAT>_<Map>": its "_Color" tag alone is no download
+        // of it ("Platform.jpg" beside "Platform_Color.jpg" stays unrecognized).
+        std::set<std::string> ambientcg_ids;
+        for (const auto& [role, ranked] : by_role)
+            for (const Ranked& r : ranked) {
+                const auto a = naming::analyse(r.cand.file);
+                for (size_t i = 0; a.tag && i + 1 < a.tag->first_token; ++i)
+                    if (a.tokens[i].kind == naming::Kind::resolution && a.tokens[i + 1].kind == naming::Kind::format)
+                        ambientcg_ids.insert(naming::normalized_key(material_stem(r.cand.file)));
+            }
+        if (out.convention == "ambientcg")
+            for (const auto& u : untagged)
+                if (lower_copy(extension_of(u.first)) == "png" &&
+                    ambientcg_ids.count(naming::normalized_key(material_stem(u.first))))
+                    previews.push_back({u.first, 0, material_stem(u.first), "ambientcg",
+                                        "ambientcg:<id>.png (the vendor's preview)"});
+        out.preview = choose_preview(previews, map_stems, policy, header);
+        if (out.preview) std::erase_if(unrecognized, [&](const Finding& f) { return f.file == out.preview->file; });
     }
 
     std::map<Role, Ambiguity> ambiguities;

@@ -207,6 +207,19 @@ std::string_view clutter_reason(ClutterKind k) {
     return "clutter";
 }
 
+std::optional<int> preview_rank(const NameAnalysis& a) {
+    if (!a.clutter) return std::nullopt;
+    if (a.clutter->kind == ClutterKind::render) return 2;
+    if (a.clutter->kind != ClutterKind::preview) return std::nullopt;
+    const std::string& w = a.tokens[a.clutter->token].low;
+    if (w.starts_with("preview")) return 1;
+    if (w == "render" || w == "renders") return 2;
+    if (w == "sphere") return 3;
+    if (w == "cube") return 4;
+    if (w == "flat" || w == "plane" || w == "cylinder") return 5;
+    return 6;  // thumb…, icon, swatch(es), screenshot
+}
+
 NameAnalysis analyse(std::string_view filename) {
     NameAnalysis a;
     a.tokens = tokenize(stem_of(filename));

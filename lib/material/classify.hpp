@@ -45,6 +45,13 @@ struct NameAnalysis {
 // after it becomes a format tag.
 NameAnalysis analyse(std::string_view filename);
 
+// Whether clutter is a picture of the material, and how plainly its name says so (smaller is
+// plainer): 1 "preview", 2 a render ("render", "renders", 3dtextures.me's "Material_NNNN"),
+// 3 "sphere", 4 "cube", 5 "flat", "plane", "cylinder", 6 a thumbnail, icon, swatch or
+// screenshot. nullopt for names that are no clutter or clutter of another kind (masks,
+// placeholders, billboards). 0 is left for a vendor's preview named by its id alone (ambientCG).
+std::optional<int> preview_rank(const NameAnalysis& a);
+
 // Material name tokens in [0, end), tags dropped, joined by '_' except across a camel-case
 // boundary ("DamagedHelmet" stays one word).
 std::string join_name(const std::vector<Token>& tokens, size_t end);

@@ -26,7 +26,10 @@
 //  - Clutter (never a map, reported as UNRECOGNIZED_FILE info with its kind): previews,
 //    thumbnails, swatches, icons, renders ("Material_1639": a 3dtextures.me preview), ID and other
 //    masks with no PBR role ("_mask", "_IdMap"), all-black placeholders ("_black"), and Megascans
-//    billboard maps (a plant's far-LOD impostor, "Billboard" anywhere in the name).
+//    billboard maps (a plant's far-LOD impostor, "Billboard" anywhere in the name). The set's
+//    own preview among them is its `preview` instead (SetDiscovery::preview).
+//  - Licence and readme files (provenance.hpp is_licence_file_name) are no maps and not reported:
+//    they are read for the set's provenance.
 //  - Sidecars (optional): a role a glTF material or a Megascans JSON states for a file beats the
 //    name's; the Megascans JSON beats a glTF. Where the name agrees on the role, what else it
 //    states is kept (opacity in A, a GL/DX tag the sidecar leaves open). Billboard names stay
@@ -115,11 +118,24 @@ struct SidecarMap {
     NameMatch match;   // family "gltf" or "megascans", rule e.g. "gltf:materials[0].normalTexture"
 };
 
+// What a sidecar states of the asset's origin, for its provenance (material/provenance.hpp):
+// empty where it says nothing. glTF: `asset.copyright` and the `asset.extras` a store writes
+// (Sketchfab's "license", "author", "title", "source"); Megascans: "id", "name", a "license" or
+// "licence" member if any, and "previews" (the vendor's preview images, resolved like maps).
+struct SidecarFacts {
+    std::string asset_id, title, author, copyright, source_url;
+    std::string licence;        // the text of the member that states a licence
+    std::string licence_field;  // that member's path ("asset.extras.license", "license")
+    std::vector<std::string> previews;
+    bool operator==(const SidecarFacts&) const = default;
+};
+
 struct SidecarRoles {
     std::string source;  // the sidecar's path as given
     SidecarKind kind = SidecarKind::none;
     std::vector<SidecarMap> maps;  // one per file, in the sidecar's order (first role wins)
     std::string error;             // why nothing could be read; empty when the text was read
+    SidecarFacts facts;
 };
 
 // glTF 2.0 (.gltf JSON, or .glb: its JSON chunk): for every material, baseColorTexture → albedo
@@ -171,12 +187,23 @@ struct RoleChoice {
 struct ChoicePolicy {
     NormalConvention preferred_normal = NormalConvention::gl;  // the preset's convention
     int max_size = 0;                                          // preset size limit; 0 = none
+    // The set shares its folder with other sets (a flat folder split by name, sets.hpp): a
+    // preview image that names no material ("Material_1586.jpg") is then no set's preview.
+    bool shared_folder = false;
 };
 
 struct SetDiscovery {
     std::string convention;           // the family most maps follow ("generic" when mixed/none)
     std::vector<RoleChoice> choices;  // one per input role present, in Role order
     std::vector<Finding> findings;    // AMBIGUOUS_MAP, UNRECOGNIZED_FILE (info)
+    // The vendor's preview image of the material (role preview), when the set has maps: one a
+    // Megascans JSON lists, ambientCG's "<id>.png" beside "<id>_<res>-<format>_*" maps, or an
+    // image whose name says preview, thumbnail, render, sphere, cube or flat (Poliigon
+    // "_Preview1", "_Sphere"; 3dtextures.me's "Material_NNNN") and names the set's material or
+    // no material (not in a shared folder). Best first: the sidecar's, then by the word (the id
+    // alone, preview, render, sphere, cube, flat, thumbnail), the largest, the name. Never a
+    // choice: never read as a map, validated or packed. Other previews stay UNRECOGNIZED_FILE.
+    std::optional<Candidate> preview;
 };
 
 // Classify the files of one set, choose one file per input role deterministically, and resolve
@@ -216,7 +243,9 @@ struct StemMerge {
 
 // Split one folder's files into material groups by material_stem (case-insensitive, separators
 // unified). Files with no stem, clutter and unrecognized files join the group whose stem is the
-// longest prefix of their own name, else the first group. Groups are returned sorted by stem;
+// longest prefix of their own name, else the first group; a licence or readme file
+// (provenance.hpp is_licence_file_name) that names no group joins every group: it speaks for
+// the folder. Groups are returned sorted by stem;
 // `name` is the stem in its first-seen original case, or `fallback_name` for the empty stem.
 // `merge` is set when files spell the group's name differently: the caller decides whether that
 // is worth a warning (tags only: one material at several sizes or formats, expected; a spelling
@@ -225,6 +254,7 @@ struct FileGroup {
     std::string name;
     std::vector<std::string> files;
     std::optional<StemMerge> merge;
+    bool shared = false;  // the folder held other groups too (ChoicePolicy::shared_folder)
 };
 std::vector<FileGroup> group_files(const std::vector<std::string>& files, const std::string& fallback_name);
 

@@ -5,6 +5,7 @@
 
 #include "material/classify.hpp"
 #include "material/discovery.hpp"
+#include "material/provenance.hpp"
 
 namespace mf {
 namespace {
@@ -100,7 +101,7 @@ std::vector<FileGroup> group_files(const std::vector<std::string>& files, const 
         // Keys and names compare with separators unified: "Wood-Planks 2K.json" belongs to
         // the stem "Wood_Planks".
         const auto key = naming::normalized_key(naming::base_name(file));
-        auto target = groups.begin();
+        auto target = groups.end();
         size_t best = 0;
         for (auto it = groups.begin(); it != groups.end(); ++it) {
             const auto& stem = it->first;
@@ -109,12 +110,16 @@ std::vector<FileGroup> group_files(const std::vector<std::string>& files, const 
                 target = it;
             }
         }
-        target->second.files.push_back(file);
+        if (target != groups.end()) target->second.files.push_back(file);
+        else if (is_licence_file_name(file))  // the folder's licence: every set's
+            for (auto& g : groups) g.second.files.push_back(file);
+        else groups.begin()->second.files.push_back(file);
     }
     std::vector<FileGroup> out;
     for (auto& [key, group] : groups) {
         std::sort(group.files.begin(), group.files.end());
         if (const auto it = spellings.find(key); it != spellings.end()) group.merge = merge_of(group.name, it->second);
+        group.shared = groups.size() > 1;
         out.push_back(std::move(group));
     }
     return out;

@@ -27,6 +27,7 @@ constexpr std::array<RoleTraits, kRoleCount> kTraits{{
     {Role::mra, "mra", false, false, 3, true},
     {Role::rma, "rma", false, false, 3, true},
     {Role::rm, "rm", false, false, 2, true},
+    {Role::preview, "preview", false, true, 4, false},
 }};
 }  // namespace
 

@@ -34,8 +34,12 @@ enum class Role {
     mra,                  // "_MRA", "_MRAO": R metalness, G roughness, B occlusion
     rma,                  // "_RMA", "_RMAO": R roughness, G metalness, B occlusion
     rm,                   // "_RoughnessMetallic": R roughness, G metalness
+    // The vendor's own picture of the material (ambientCG "<id>.png", Poliigon "_Preview1",
+    // Megascans "_Preview", 3dtextures.me "Material_NNNN"): recorded and shown, never read as a
+    // map, validated or packed (discovery.hpp SetDiscovery::preview).
+    preview,
 };
-inline constexpr int kRoleCount = 21;
+inline constexpr int kRoleCount = 22;
 inline constexpr int kOutputRoleCount = 8;
 
 enum class NormalConvention { unknown, gl, dx };                      // gl: +Y (green up), dx: -Y

@@ -57,7 +57,29 @@ std::optional<std::string_view> glb_json(std::string_view bytes, std::string& er
     return bytes.substr(20, length);
 }
 
+std::string string_member(const json* j, const char* key) {
+    const json* v = member(j, key);
+    return v && v->is_string() ? v->get<std::string>() : std::string();
+}
+
+// glTF 2.0 §5.5 asset: "copyright", "a copyright message suitable for display to credit the
+// content creator"; stores put their listing in `extras` (Sketchfab: license, author, title, source).
+void read_gltf_asset(const json& root, SidecarFacts& facts) {
+    const json* asset = member(&root, "asset");
+    facts.copyright = string_member(asset, "copyright");
+    const json* extras = member(asset, "extras");
+    facts.author = string_member(extras, "author");
+    facts.title = string_member(extras, "title");
+    facts.source_url = string_member(extras, "source");
+    for (const char* key : {"license", "licence"})
+        if (std::string text = string_member(extras, key); !text.empty() && facts.licence.empty()) {
+            facts.licence = std::move(text);
+            facts.licence_field = std::string("asset.extras.") + key;
+        }
+}
+
 void read_gltf(const json& root, std::string_view source, SidecarRoles& out) {
+    read_gltf_asset(root, out.facts);
     const json* images = member(&root, "images");
     const json* textures = member(&root, "textures");
     const json* materials = member(&root, "materials");
@@ -185,6 +207,22 @@ bool read_megascans(const json& root, std::string_view source, SidecarRoles& out
                     uri = name;
             }
             add(type_of(e), uri, "maps[]");
+        }
+    // The asset's own facts: its id (the one in its file names), its name, a licence member if
+    // the file has one (Bridge exports have none), and the preview images it lists.
+    out.facts.asset_id = string_member(&root, "id");
+    out.facts.title = string_member(&root, "name");
+    for (const char* key : {"license", "licence"})
+        if (std::string text = string_member(&root, key); !text.empty() && out.facts.licence.empty()) {
+            out.facts.licence = std::move(text);
+            out.facts.licence_field = key;
+        }
+    if (const json* images = member(member(&root, "previews"), "images"); images && images->is_array())
+        for (const auto& image : *images) {
+            const json* uri = member(&image, "uri");
+            if (!uri || !uri->is_string()) continue;
+            if (auto file = resolve(source, uri->get_ref<const std::string&>(), false))
+                out.facts.previews.push_back(std::move(*file));
         }
     if (components && components->is_array())
         for (const auto& c : *components) {

@@ -30,6 +30,46 @@ Finding make_finding(std::string_view code, Role role, std::string file, std::st
     return finding(code, std::string(role_name(role)), std::move(file), std::move(msg), std::move(figures));
 }
 
+// The first `max` bytes of a file of the set; a larger file is refused with `too_large` unless
+// `head_only`. "" + `error` when it cannot be read.
+std::string read_text(const InputFile& in, size_t max, bool head_only, const char* too_large, std::string& error) {
+    std::string text;
+    if (in.bytes) {
+        if (in.bytes->size() > max && !head_only) error = too_large;
+        else
+            text.assign(in.bytes->begin(),
+                        in.bytes->begin() + static_cast<std::ptrdiff_t>(std::min(in.bytes->size(), max)));
+    } else if (!in.open_error.empty()) {
+        error = in.open_error;
+    } else if (const auto why = not_a_regular_file(in.path)) {
+        error = *why;
+    } else {
+        std::error_code ec;
+        const auto size = std::filesystem::file_size(in.path, ec);
+        if (ec) error = ec.message();
+        else if (size > max && !head_only) error = too_large;
+        else {
+            std::ifstream stream(in.path, std::ios::binary);
+            text.resize(std::min<uintmax_t>(size, max));
+            stream.read(text.data(), static_cast<std::streamsize>(text.size()));
+            text.resize(static_cast<size_t>(stream.gcount()));
+        }
+    }
+    return text;
+}
+
+// The set's licence and readme files (material/provenance.hpp), the first kLicenceFileMaxBytes of each.
+std::vector<SetText> read_licence_files(Files& files, const std::vector<std::string>& candidates) {
+    std::vector<SetText> out;
+    for (const std::string& f : candidates) {
+        if (!is_licence_file_name(f)) continue;
+        SetText t{f, {}, {}};
+        t.text = read_text(files.open(f), kLicenceFileMaxBytes, true, "", t.error);
+        out.push_back(std::move(t));
+    }
+    return out;
+}
+
 // The set's glTF and Megascans JSON sidecars, read for the roles they state (at most
 // kSidecarMaxBytes each: a .glb's JSON chunk comes first; a larger .gltf or .json is left to the
 // names, with the reason).
@@ -38,30 +78,8 @@ std::vector<SidecarRoles> read_sidecars(Files& files) {
     for (const std::string& f : files.src.files) {
         if (!is_sidecar_name(f)) continue;
         const InputFile& in = files.open(f);
-        const bool glb = in.extension() == "glb";
-        std::string text, error;
-        if (in.bytes) {
-            if (in.bytes->size() > kSidecarMaxBytes && !glb) error = "larger than 8 MiB";
-            else
-                text.assign(in.bytes->begin(),
-                            in.bytes->begin() +
-                                static_cast<std::ptrdiff_t>(std::min(in.bytes->size(), kSidecarMaxBytes)));
-        } else if (!in.open_error.empty()) {
-            error = in.open_error;
-        } else if (const auto why = not_a_regular_file(in.path)) {
-            error = *why;
-        } else {
-            std::error_code ec;
-            const auto size = std::filesystem::file_size(in.path, ec);
-            if (ec) error = ec.message();
-            else if (size > kSidecarMaxBytes && !glb) error = "larger than 8 MiB";
-            else {
-                std::ifstream stream(in.path, std::ios::binary);
-                text.resize(std::min<uintmax_t>(size, kSidecarMaxBytes));
-                stream.read(text.data(), static_cast<std::streamsize>(text.size()));
-                text.resize(static_cast<size_t>(stream.gcount()));
-            }
-        }
+        std::string error;
+        const std::string text = read_text(in, kSidecarMaxBytes, in.extension() == "glb", "larger than 8 MiB", error);
         if (!error.empty()) {
             SidecarRoles failed;
             failed.source = f;
@@ -531,12 +549,12 @@ NormalConvention SetPlan::normal_from() const {
 
 namespace {
 
-SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::map<std::string, std::string>& failed,
-                  std::map<std::string, std::string>& newly_failed) {
-    const Preset& preset = *opt.preset;
-    SetPlan plan;
-    Files files{src, {}};
-
+// Discovery, the start of every plan: each file's role by its name and the set's sidecars, the
+// rules' exclusions, one file chosen per role (headers read through `files`); the findings it
+// raises, then the set's own (NAMES_MERGED, …), then LICENCE_UNKNOWN when the set's provenance
+// (into `provenance` when given) has no licence.
+SetDiscovery discover_in(const MaterialSource& src, Files& files, const Preset& preset, const rules::RuleConfig* rules,
+                         Provenance* provenance = nullptr) {
     auto header = [&](const std::string& f) -> std::optional<HeaderInfo> {
         std::string err;
         auto info = read_info(files.open(f), err);
@@ -547,7 +565,7 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     std::vector<std::string> candidates;
     std::vector<Finding> excluded;
     for (const std::string& f : src.files) {
-        const rules::Exclusion* e = opt.rules ? opt.rules->excluded(src.name, f) : nullptr;
+        const rules::Exclusion* e = rules ? rules->excluded(src.name, f) : nullptr;
         if (!e) {
             candidates.push_back(f);
             continue;
@@ -556,14 +574,32 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
                                 (e->reason.empty() ? std::string() : ": " + e->reason) + ")";
         excluded.push_back(finding(code::unrecognized_file, "", f, why + "; not used as a map", {{"reason", why}}));
     }
-    const rules::Thresholds thresholds = opt.rules ? opt.rules->thresholds : rules::Thresholds{};
+    const rules::Thresholds thresholds = rules ? rules->thresholds : rules::Thresholds{};
     auto colour = [&](const std::string& f) { return is_colour_image(files.open(f), thresholds); };
-    const SetDiscovery d = discover_set(candidates, header, ChoicePolicy{preset.normal_convention, preset.max_size},
-                                        read_sidecars(files), colour);
+    const std::vector<SidecarRoles> sidecars = read_sidecars(files);
+    SetDiscovery d = discover_set(candidates, header,
+                                  ChoicePolicy{preset.normal_convention, preset.max_size, src.shared_folder}, sidecars,
+                                  colour);
+    d.findings.insert(d.findings.end(), excluded.begin(), excluded.end());
+    d.findings.insert(d.findings.end(), src.findings.begin(), src.findings.end());
+    ProvenanceResult found = find_provenance({candidates, d, sidecars, read_licence_files(files, candidates),
+                                              src.shared_folder});
+    if (!found.provenance.licence)
+        d.findings.push_back(finding(code::licence_unknown, "", std::move(found.unknown_file), std::move(found.unknown),
+                                     std::move(found.figures)));
+    if (provenance) *provenance = std::move(found.provenance);
+    return d;
+}
+
+SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::map<std::string, std::string>& failed,
+                  std::map<std::string, std::string>& newly_failed) {
+    const Preset& preset = *opt.preset;
+    SetPlan plan;
+    Files files{src, {}};
+    const SetDiscovery d = discover_in(src, files, preset, opt.rules, &plan.provenance);
     plan.convention = d.convention;
+    plan.preview = d.preview;
     plan.findings = d.findings;
-    plan.findings.insert(plan.findings.end(), excluded.begin(), excluded.end());
-    plan.findings.insert(plan.findings.end(), src.findings.begin(), src.findings.end());  // NAMES_MERGED, …
     plan.footprint = estimated_bytes(d);
     // A share keeps no copy: the set's next plan reads the same decoded maps (SharedMap).
     if (opt.mode == PlanMode::decode) plan.lease = std::make_unique<BudgetLease>(opt.budget, plan.footprint);
@@ -638,6 +674,11 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
 
 }  // namespace
 
+SetDiscovery discover_roles(const MaterialSource& src, const Preset& preset, const rules::RuleConfig* rules) {
+    Files files{src, {}};
+    return discover_in(src, files, preset, rules);
+}
+
 SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt) {
     std::map<std::string, std::string> failed;
     for (;;) {  // at most once more per chosen map: each pass fails at least one more file
@@ -662,6 +703,7 @@ manifest::Material material_entry(SetPlan& plan, const std::string& name, std::s
     m.convention = plan.convention;
     m.status = plan.partial ? manifest::Status::partial : manifest::Status::ok;
     m.inputs = manifest_inputs(plan);
+    if (!plan.provenance.empty()) m.provenance = plan.provenance;
     m.constants = std::move(plan.constants);
     m.findings = reported_findings(std::move(plan.findings), name, rules);
     return m;
@@ -688,6 +730,21 @@ std::vector<manifest::Input> manifest_inputs(const SetPlan& plan) {
         // An opacity map no route reads is not applied (route(): it would hide the whole surface).
         // A normal map that is no normal map (NORMAL_INVALID) is not applied either (route()).
         in.unused = (role == Role::opacity || role == Role::normal) && !plan.routes.count(role);
+        inputs.push_back(std::move(in));
+    }
+    if (plan.preview) {  // recorded as discovery found it (its header): never read as a map
+        const Candidate& c = *plan.preview;
+        manifest::Input in;
+        in.role = Role::preview;
+        in.file = c.file;
+        in.family = c.match.family;
+        in.rule = c.match.rule;
+        in.width = c.header.width;
+        in.height = c.header.height;
+        in.channels = c.header.channels;
+        in.bit_depth = c.header.bit_depth;
+        in.is_float = c.header.is_float;
+        in.color_space = c.header.is_float ? "linear" : "sRGB";
         inputs.push_back(std::move(in));
     }
     return inputs;

@@ -20,6 +20,7 @@
 #include "image/image.hpp"
 #include "manifest/manifest.hpp"
 #include "material/discovery.hpp"
+#include "material/provenance.hpp"
 #include "material/routing.hpp"
 #include "preset/preset.hpp"
 #include "sets/sets.hpp"
@@ -104,6 +105,8 @@ struct PlanOptions {
 struct SetPlan {
     std::string convention;                       // naming family most maps follow
     std::map<Role, Candidate> inputs;             // input role -> the file that was read
+    std::optional<Candidate> preview;             // the vendor's preview image (never read as a map)
+    Provenance provenance;                        // vendor, asset id, licence (LICENCE_UNKNOWN when none)
     Routes routes;                                // output role -> where its values come from
     std::map<std::string, SharedMap> decoded;     // decode mode: by file
     std::optional<manifest::NormalFacts> normal;  // the routed normal map's convention verdict
@@ -122,6 +125,13 @@ struct SetPlan {
 
 SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt);
 
+// Discovery alone, as plan_set begins: each file's role by its name and the set's sidecars, one
+// file chosen per role (headers read, no map decoded but where the pixels decide a name's role),
+// and the findings discovery raises (AMBIGUOUS_MAP, UNRECOGNIZED_FILE with the rules'
+// exclusions, the set's own NAMES_MERGED, …) as raised, the rules config not applied. For a
+// caller that wants the roles without the rules' verdicts (the Python bindings' discover()).
+SetDiscovery discover_roles(const MaterialSource& src, const Preset& preset, const rules::RuleConfig* rules);
+
 // The set's findings as reported (the manifest entry, validate's reports): the plan's, with any
 // ingest added while writing and encoding, and the rules config (disabled codes, severity
 // overrides, suppressions) applied. Its one application: after every stage has raised its
@@ -129,12 +139,12 @@ SetPlan plan_set(const MaterialSource& src, const PlanOptions& opt);
 std::vector<Finding> reported_findings(std::vector<Finding> findings, const std::string& material,
                                        const rules::RuleConfig& rules);
 
-// The manifest entry's inputs of a plan (role order).
+// The manifest entry's inputs of a plan (role order; the vendor's preview last, as role preview).
 std::vector<manifest::Input> manifest_inputs(const SetPlan& plan);
 
 // A set's manifest entry as its plan decides it, the one validate reports and ingest records
 // (ingest adds its outputs, material files, archive, emissive strength and alpha): name,
-// source, convention, status, inputs, constants, and the findings as reported under `rules`
+// source, convention, status, inputs, constants, provenance, and the findings as reported under `rules`
 // (reported_findings). Moves the plan's constants and findings out.
 manifest::Material material_entry(SetPlan& plan, const std::string& name, std::string source,
                                   const rules::RuleConfig& rules);

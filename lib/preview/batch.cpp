@@ -123,14 +123,26 @@ public:
                      std::to_string(sf_.scene.width) + "x" + std::to_string(sf_.scene.height) + ", " +
                      std::to_string(jobs_.size()) + " material(s)" +
                      (lanes > 1 ? ", " + std::to_string(lanes) + " lanes" : ""));
-            // Made on this thread one after another (render::Device's shading choice is measured by
-            // the first); the later lanes' notes repeat the first's.
-            for (unsigned k = 0; k < lanes; ++k) {
-                renderers_.push_back(std::make_unique<render::Renderer>(*context_, sf_.scene));
-                std::vector<std::string> notes = renderers_.back()->take_notes();
-                if (k == 0)
-                    for (const std::string& n : notes) say_("note: " + n);
-            }
+            // The first lane alone (it measures render::Device's shading choice), then the others at
+            // once: each compiles its load-time passes' pipelines (the context's pipeline cache
+            // serves the later ones) and runs them. Their notes repeat the first's.
+            renderers_.push_back(std::make_unique<render::Renderer>(*context_, sf_.scene));
+            for (const std::string& n : renderers_.back()->take_notes()) say_("note: " + n);
+            renderers_.resize(lanes);
+            std::vector<std::exception_ptr> failed(lanes);
+            std::vector<std::thread> making;
+            for (unsigned k = 1; k < lanes; ++k)
+                making.emplace_back([&, k] {
+                    try {
+                        renderers_[k] = std::make_unique<render::Renderer>(*context_, sf_.scene);
+                        renderers_[k]->take_notes();
+                    } catch (...) {
+                        failed[k] = std::current_exception();
+                    }
+                });
+            for (std::thread& t : making) t.join();
+            for (const std::exception_ptr& e : failed)
+                if (e) std::rethrow_exception(e);
         } catch (...) {
             stop();
             throw;

@@ -137,6 +137,20 @@ Planes make_planes(SetPlan& plan) {
     return planes;
 }
 
+// A set's presets planned before their outputs are written, together (run_together): two, so
+// a set holds at most two presets' planes, what its plan's lease counts (plan/plan.cpp: its maps
+// and the planes made of them).
+constexpr size_t kPresetsAtOnce = 2;
+
+// Counts a set as running until it is done or throws.
+struct InFlight {
+    std::atomic<int>& n;
+    explicit InFlight(std::atomic<int>& c) : n(c) { ++n; }
+    ~InFlight() { --n; }
+    InFlight(const InFlight&) = delete;
+    InFlight& operator=(const InFlight&) = delete;
+};
+
 }  // namespace
 
 Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, IngestOptions opt)
@@ -152,7 +166,7 @@ Ingestor::Ingestor(Preset preset, std::shared_ptr<const ColorContext> color, Ing
 // sets, record() after each (serialized), finish() at the end; process() and compute() read the
 // run's folder, claims, context, cache and the pass's in-flight count through it.
 struct Ingestor::PresetRun {
-    PresetRun(const Ingestor& i, std::atomic<int>& flight) : ing(i), in_flight(flight) {}
+    explicit PresetRun(const Ingestor& i) : ing(i) {}
 
     const Ingestor& ing;
     IngestResult result;
@@ -172,10 +186,6 @@ struct Ingestor::PresetRun {
     std::atomic<size_t> hits{0}, misses{0};
     std::atomic<bool> cache_off{false};  // after a store failed: the cache is off for the rest of the run
     std::vector<std::string> cache_problems;
-    // Sets inside compute() now, of every preset of the pass (run_together): a set with a worker
-    // left idle (the batch's tail, or a single set) decodes and encodes on two threads; with
-    // every worker busy, on one.
-    std::atomic<int>& in_flight;
     // Each set's entry goes to the spool (a temporary file) when the set is done: the run holds
     // a tally and the file names of each set, not its entry (manifest/spool.hpp).
     std::unique_ptr<manifest::MaterialSpool> spool;
@@ -201,51 +211,6 @@ struct Ingestor::PresetRun {
     // and the folder finished (store/output_dir.hpp), or result.error.
     void finish(const Batch& batch);
 };
-
-MaterialResult Ingestor::process(const MaterialSource& src, MemoryBudget* budget, PresetRun& run,
-                                 SetShare* share) const {
-    // Sets whose outputs another set claimed first are computed (the refusals are this run's).
-    const bool cacheable = run.cache && !run.cache_off && !run.refused.count(src.name);
-    // Every set's action key goes into its entry (plan --changed-since); the cache remembers its
-    // files' digests by stat, without it they are read and hashed.
-    std::string key_error;
-    Digest digest;
-    if (run.cache) digest = [&](const InputFile& in, std::string& e) { return run.cache->digest(in, e); };
-    else if (share) digest = [share](const InputFile& in, std::string& e) { return share->digest(in, e); };
-    const std::optional<std::string> action = action_key(src, run.context, key_error, digest);
-    const std::optional<std::string> key = cacheable ? action : std::nullopt;
-    auto write = [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-        return run.write(rel, b, e);
-    };
-    if (key) {
-        std::vector<std::string> corrupt;
-        auto hit = run.cache->restore(*key, src.name, opt_.out_dir, write, corrupt);
-        for (auto& c : corrupt) run.cache_problem(src.display + ": " + c + "; the set was computed again");
-        if (hit) {
-            ++run.hits;
-            MaterialResult res;
-            res.entry = std::move(hit->entry);
-            res.entry.key = *key;
-            res.entry.source = source_of(src, opt_.out_dir);
-            if (src.is_zip) res.entry.archive = relative_to(src.root, opt_.out_dir);
-            return res;
-        }
-    }
-    MaterialResult res = compute(src, budget, run, share);
-    // Only a complete result records its key and is kept: a set with an output that could not be
-    // written (partial), or one stopped by a signal, is not "unchanged" to plan --changed-since
-    // and is computed again next time.
-    const bool complete = !res.failure && res.entry.status == manifest::Status::ok && !stop_requested();
-    if (action && complete) res.entry.key = *action;
-    if (!key) return res;
-    ++run.misses;
-    std::string error;
-    if (complete && !run.cache_off && !run.cache->store(*key, res.entry, opt_.out_dir, error) &&
-        !run.cache_off.exchange(true))
-        run.cache_problem(run.cache->dir().string() + ": cannot store results (" + error +
-                          "); the cache is off for the rest of this run");
-    return res;
-}
 
 namespace {
 
@@ -275,6 +240,25 @@ struct Written {
     std::vector<Finding> notes;  // block-compressed outputs: resized top level, error over the bound
 };
 
+// An output's size: the set's, or the preset's constant size for one made of constants only.
+Size output_size(const OutputSpec& o, const Planes& planes, const Preset& preset, Size set_size) {
+    const auto roles = o.roles();
+    const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return planes.count(r) > 0; });
+    return any_map ? set_size : Size{preset.constant_size, preset.constant_size};
+}
+
+// What packing and encoding an output costs, roughly: enough to start a set's largest outputs
+// first (run_together). Its samples, block compression weighing more than deflate (measured on
+// the corpus: a BC7 or ASTC level with its mips takes several times a PNG's time).
+uint64_t output_cost(const OutputSpec& o, Size size, const Preset& preset) {
+    constexpr uint64_t kBlockWeight = 8;
+    const uint64_t samples = static_cast<uint64_t>(std::max(size.width, 1)) *
+                             static_cast<uint64_t>(std::max(size.height, 1)) *
+                             static_cast<uint64_t>(std::max(o.channel_count(), 1)) *
+                             static_cast<uint64_t>(o.bit_depth > 8 ? 2 : 1);
+    return samples * (is_block_container(preset.format) ? kBlockWeight : 1);
+}
+
 // Packs, encodes and writes one output through the run's folder; its manifest entry, or why not.
 Written write_output(const OutputSpec& o, const OutputJob& job) {
     auto failed = [](std::string msg) {
@@ -289,8 +273,7 @@ Written write_output(const OutputSpec& o, const OutputJob& job) {
             return failed(why->second + "; not written");
     if (stop_requested()) return failed(rel + ": not written (interrupted)");
     const auto roles = o.roles();
-    const bool any_map = std::any_of(roles.begin(), roles.end(), [&](Role r) { return job.planes.count(r) > 0; });
-    const Size size = any_map ? job.size : Size{job.preset.constant_size, job.preset.constant_size};
+    const Size size = output_size(o, job.planes, job.preset, job.size);
     std::vector<unsigned char> bytes;
     std::string sha;  // of `bytes`, when the encoder had it
     std::string err;
@@ -351,48 +334,115 @@ std::optional<Finding> too_large(const std::vector<Written>& written) {
 
 }  // namespace
 
-MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget, PresetRun& run,
-                                 SetShare* share) const {
-    struct InFlight {  // counts this set as running until it returns or throws
-        std::atomic<int>& n;
-        explicit InFlight(std::atomic<int>& c) : n(c) { ++n; }
-        ~InFlight() { --n; }
-        InFlight(const InFlight&) = delete;
-        InFlight& operator=(const InFlight&) = delete;
-    } in_flight(run.in_flight);
-    MaterialResult res;
-    // While a worker is idle (a set alone, or the batch's tail, which may begin midway through this
-    // set) a second thread joins this set's decoding and encoding, so a re-ingest of one changed
-    // set keeps both cores busy; with every worker busy that would only oversubscribe.
-    const int workers = opt_.jobs > 0 ? opt_.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-    const std::function<bool()> spare_core = [&run, workers] { return run.in_flight.load() < workers; };
-    SetPlan plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, budget, spare_core,
-                                             share ? &share->plan : nullptr});
-    if (plan.failure) {
-        res.failure = std::move(plan.failure);
-        return res;
-    }
-    // Shared with the set's share, which keeps them with the encodings made from them.
-    const auto made = std::make_shared<Planes>(make_planes(plan));
-    const int w = plan.width, h = plan.height;
-    for (auto& [r, p] : *made) fit_plane(r, p, w, h, *color_);
-    const float emissive_strength = normalize_hdr_emissive(*made, preset_);
-    const std::shared_ptr<const Planes> shared_planes = made;
-    const Planes& planes = *shared_planes;
-
-    // Pack, encode, write.
-    remove_stale_temps(opt_.out_dir / src.name, /*other_hosts=*/true);  // only this set writes here
-    std::vector<const OutputSpec*> wanted;
-    for (const auto& o : preset_.outputs)
-        if (output_needed(o, planes)) wanted.push_back(&o);
-    std::vector<Written> written(wanted.size());
-    const auto refused = run.refused.find(src.name);
+// One preset's part of a set in a pass, from begin() to end(): the set restored from the cache
+// (`result`), or its plan, its planes and the outputs its tasks write.
+struct Ingestor::SetWork {
+    SetWork(const MaterialSource& s, PresetRun& r, SetShare* sh) : src(s), run(r), share(sh) {}
+    const MaterialSource& src;
+    PresetRun& run;
+    SetShare* share;
+    // The set's action key (its entry's, when complete), and the cache's key when it may be
+    // restored from or stored into the cache.
+    std::optional<std::string> action, key;
+    std::optional<MaterialResult> result;  // restored, or failed before any output
+    bool restored = false;
+    SetPlan plan;
+    std::shared_ptr<const Planes> planes;  // shared with the set's share
+    float emissive_strength = 1.f;
+    std::vector<const OutputSpec*> wanted;  // preset order
+    std::vector<Written> written;           // wanted[i]'s, by its task
+    // wanted[i]'s place among the set's encodings (a pass of several presets; else null).
+    std::vector<std::shared_ptr<SetShare::Claim>> claims;
     // The set's files are finished (fsync, journal, rename) by the folder's committer while the
     // next output is packed and encoded; the outputs are in place before the material files
     // that name them are written, and those before the set's entry is returned.
-    OutputFolder::Batch batch(*run.folder);
-    const auto batch_write = [&batch](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
-        return batch.write(rel, b, e);
+    std::unique_ptr<OutputFolder::Batch> batch;
+};
+
+std::unique_ptr<Ingestor::SetWork> Ingestor::begin(const MaterialSource& src, const SetStage& stage, PresetRun& run,
+                                                   SetShare* share) const {
+    auto work = std::make_unique<SetWork>(src, run, share);
+    // Sets whose outputs another set claimed first are computed (the refusals are this run's).
+    const bool cacheable = run.cache && !run.cache_off && !run.refused.count(src.name);
+    // Every set's action key goes into its entry (plan --changed-since); the cache remembers its
+    // files' digests by stat, without it they are read and hashed.
+    std::string key_error;
+    Digest digest;
+    if (run.cache) digest = [&](const InputFile& in, std::string& e) { return run.cache->digest(in, e); };
+    else if (share) digest = [share](const InputFile& in, std::string& e) { return share->digest(in, e); };
+    work->action = action_key(src, run.context, key_error, digest);
+    if (cacheable) work->key = work->action;
+    if (work->key) {
+        auto write = [&run](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+            return run.write(rel, b, e);
+        };
+        std::vector<std::string> corrupt;
+        auto hit = run.cache->restore(*work->key, src.name, opt_.out_dir, write, corrupt);
+        for (auto& c : corrupt) run.cache_problem(src.display + ": " + c + "; the set was computed again");
+        if (hit) {
+            ++run.hits;
+            MaterialResult& res = work->result.emplace();
+            res.entry = std::move(hit->entry);
+            res.entry.key = *work->key;
+            res.entry.source = source_of(src, opt_.out_dir);
+            if (src.is_zip) res.entry.archive = relative_to(src.root, opt_.out_dir);
+            work->restored = true;
+            return work;
+        }
+    }
+
+    work->plan = plan_set(src, PlanOptions{&preset_, &opt_.rules, PlanMode::decode, stage.budget, stage.spare_core,
+                                           share ? &share->plan : nullptr});
+    SetPlan& plan = work->plan;
+    if (plan.failure) {
+        work->result.emplace().failure = std::move(plan.failure);
+        return work;
+    }
+    // Shared with the set's share, which keeps them with the encodings made from them.
+    const auto made = std::make_shared<Planes>(make_planes(plan));
+    for (auto& [r, p] : *made) fit_plane(r, p, plan.width, plan.height, *color_);
+    work->emissive_strength = normalize_hdr_emissive(*made, preset_);
+    work->planes = made;
+
+    remove_stale_temps(opt_.out_dir / src.name, /*other_hosts=*/true);  // only this set writes here
+    for (const auto& o : preset_.outputs)
+        if (output_needed(o, *work->planes)) work->wanted.push_back(&o);
+    work->written.resize(work->wanted.size());
+    work->claims.resize(work->wanted.size());
+    work->batch = std::make_unique<OutputFolder::Batch>(*run.folder);
+    return work;
+}
+
+void Ingestor::post_outputs(SetWork& work, SpareTasks& tasks) const {
+    if (work.result) return;
+    const Size set_size{work.plan.width, work.plan.height};
+    for (size_t i = 0; i < work.wanted.size(); ++i) {
+        const OutputSpec& o = *work.wanted[i];
+        const Size size = output_size(o, *work.planes, preset_, set_size);
+        // An output equal to one another preset of the pass writes for the set is encoded once:
+        // the first claim encodes, the others wait for its bytes, so they go last.
+        std::shared_ptr<SetShare::Claim>& claim = work.claims[i];
+        if (work.share && is_block_container(preset_.format))
+            claim = work.share->claim(SetShare::BlockSource{encoding_key_, o.suffix, size, color_.get(), work.planes});
+        else if (work.share)
+            claim = work.share->claim(SetShare::Source{pack_spec(o, *work.planes, preset_, size), color_.get(),
+                                                       work.planes});
+        const uint64_t cost = claim && !claim->leads() ? 0 : output_cost(o, size, preset_);
+        tasks.post(cost, [this, &work, i] {
+            write_one(work, i);
+            if (auto& done = work.claims[i]) {  // its followers go on, with its bytes or their own
+                work.share->settle(*done);
+                done.reset();
+            }
+        });
+    }
+}
+
+void Ingestor::write_one(SetWork& work, size_t i) const {
+    const Planes& planes = *work.planes;
+    SetShare::Claim* claim = work.claims[i].get();
+    const auto batch_write = [&work](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+        return work.batch->write(rel, b, e);
     };
     // 8-bit outputs of codes planes go from codes to codes; anything else through floats.
     const auto pack_encode = [&](const OutputSpec& o, Size size, std::vector<unsigned char>& bytes, std::string& sha,
@@ -404,43 +454,68 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
             return packed8 ? encode_image(*packed8, enc, bytes, e)
                            : encode_image(pack_output(spec, planes, *color_), enc, bytes, e);
         };
-        if (!share) return fresh();
-        return share->encode({spec, color_.get(), shared_planes}, fresh, bytes, sha);
+        if (!claim) return fresh();
+        return work.share->encode(*claim, fresh, bytes, sha);
     };
     const auto encode_blocks = [&](const OutputSpec& o, Size size, texture::EncodedOutput& out, std::string& e) {
         auto fresh = [&](texture::EncodedOutput& into) {
             return texture::encode_output(o, planes, size, {&preset_, color_.get(), std::string(kGenerator), 1}, into,
                                           e);
         };
-        if (!share) return fresh(out);
-        return share->encode_blocks({encoding_key_, o.suffix, size, color_.get(), shared_planes}, fresh, out);
+        if (!claim) return fresh(out);
+        return work.share->encode_blocks(*claim, fresh, out);
     };
+    const auto refused = work.run.refused.find(work.src.name);
     const OutputJob job{preset_,
                         *color_,
-                        plan,
+                        work.plan,
                         planes,
-                        src.name,
-                        Size{w, h},
-                        refused == run.refused.end() ? nullptr : &refused->second,
+                        work.src.name,
+                        Size{work.plan.width, work.plan.height},
+                        refused == work.run.refused.end() ? nullptr : &refused->second,
                         batch_write,
                         pack_encode,
                         encode_blocks};
-    // Outputs are packed and encoded on two threads (each output on one: deflate is serial) while
-    // a worker is idle (above).
-    parallel_for_spare(wanted.size(), spare_core, [&](size_t i) {
-        try {
-            written[i] = write_output(*wanted[i], job);
-        } catch (const std::bad_alloc&) {  // parallel_for's fn must not throw
-            written[i].failure = finding(code::output_write_failed, "", "",
-                                         preset_.output_path(src.name, *wanted[i]) +
-                                             ": out of memory while packing or encoding it (" + std::to_string(w) +
-                                             "x" + std::to_string(h) +
-                                             "); run with fewer --jobs, or set the preset's max_size");
-        } catch (const std::exception& e) {
-            written[i].failure = finding(code::output_write_failed, "", "",
-                                         preset_.output_path(src.name, *wanted[i]) + ": " + e.what());
-        }
-    });
+    const OutputSpec& o = *work.wanted[i];
+    Written& written = work.written[i];
+    try {
+        written = write_output(o, job);
+    } catch (const std::bad_alloc&) {  // a task must not throw
+        written.failure = finding(code::output_write_failed, "", "",
+                                  preset_.output_path(work.src.name, o) +
+                                      ": out of memory while packing or encoding it (" +
+                                      std::to_string(work.plan.width) + "x" + std::to_string(work.plan.height) +
+                                      "); run with fewer --jobs, or set the preset's max_size");
+    } catch (const std::exception& e) {
+        written.failure = finding(code::output_write_failed, "", "",
+                                  preset_.output_path(work.src.name, o) + ": " + e.what());
+    }
+}
+
+MaterialResult Ingestor::end(SetWork& work) const {
+    if (work.restored) return std::move(*work.result);
+    MaterialResult res = work.result ? std::move(*work.result) : finish_outputs(work);
+    PresetRun& run = work.run;
+    // Only a complete result records its key and is kept: a set with an output that could not be
+    // written (partial), or one stopped by a signal, is not "unchanged" to plan --changed-since
+    // and is computed again next time.
+    const bool complete = !res.failure && res.entry.status == manifest::Status::ok && !stop_requested();
+    if (work.action && complete) res.entry.key = *work.action;
+    if (!work.key) return res;
+    ++run.misses;
+    std::string error;
+    if (complete && !run.cache_off && !run.cache->store(*work.key, res.entry, opt_.out_dir, error) &&
+        !run.cache_off.exchange(true))
+        run.cache_problem(run.cache->dir().string() + ": cannot store results (" + error +
+                          "); the cache is off for the rest of this run");
+    return res;
+}
+
+MaterialResult Ingestor::finish_outputs(SetWork& work) const {
+    MaterialResult res;
+    SetPlan& plan = work.plan;
+    std::vector<Written>& written = work.written;
+    OutputFolder::Batch& batch = *work.batch;
     for (const auto& [rel, error] : batch.wait())
         for (auto& r : written)
             if (r.entry && r.entry->file == rel) {
@@ -458,13 +533,19 @@ MaterialResult Ingestor::compute(const MaterialSource& src, MemoryBudget* budget
         }
         for (auto& f : r.notes) plan.findings.push_back(std::move(f));
     }
+    const MaterialSource& src = work.src;
     manifest::Material& m = res.entry;
     m = material_entry(plan, src.name, source_of(src, opt_.out_dir), opt_.rules);
     m.outputs = std::move(outputs);
     if (src.is_zip) m.archive = relative_to(src.root, opt_.out_dir);
-    m.emissive_strength = emissive_strength;
-    decide_alpha(preset_, planes, m);
-    write_material_files(preset_, batch_write, m);
+    m.emissive_strength = work.emissive_strength;
+    decide_alpha(preset_, *work.planes, m);
+    write_material_files(
+        preset_,
+        [&batch](const std::string& rel, std::span<const unsigned char> b, std::string& e) {
+            return batch.write(rel, b, e);
+        },
+        m);
     for (const auto& [file, error] : batch.wait()) {
         const std::string& rel = file;  // a structured binding cannot be captured before C++20's P1091 (clang 14)
         std::erase_if(m.material_files, [&rel](const manifest::MaterialFile& f) { return f.file == rel; });
@@ -574,7 +655,6 @@ void Ingestor::PresetRun::record(const MaterialSource& set, MaterialResult&& r, 
 }
 
 std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingestor*>& ingestors, Batch batch) {
-    std::atomic<int> in_flight{0};  // the pass's sets inside compute(), whichever preset's
     std::vector<std::unique_ptr<PresetRun>> runs;
     const IngestOptions& lead = ingestors.front()->opt_;
     // --shard I/N: every preset of the pass runs the same shard (the CLI gives them one), split
@@ -583,7 +663,7 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
                                                          : std::nullopt;
     std::vector<std::string> digests;
     for (const Ingestor* ing : ingestors) {
-        auto& run = *runs.emplace_back(std::make_unique<PresetRun>(*ing, in_flight));
+        auto& run = *runs.emplace_back(std::make_unique<PresetRun>(*ing));
         run.context = context_digest(ing->preset_, ing->opt_.rules, *ing->color_);
         digests.push_back(split ? batch.split_digest(*split, run.context) : std::string());
     }
@@ -592,29 +672,85 @@ std::vector<IngestResult> Ingestor::run_together(const std::vector<const Ingesto
     const auto ready = static_cast<size_t>(std::count_if(runs.begin(), runs.end(),
                                                          [](const auto& r) { return r->ready; }));
     MemoryBudget budget(lead.memory_budget);
+    // A core is spare while fewer sets run than there are workers: the batch's tail, a set alone,
+    // or a worker waiting for the budget (a set larger than half of it runs beside no other).
+    // A set's plan then decodes on two threads, and its outputs are written on two.
+    const int workers = lead.jobs > 0 ? lead.jobs : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+    std::atomic<int> in_flight{0};  // the pass's sets begun and not ended
+    const std::function<bool()> spare_core = [&] { return in_flight.load() - budget.waiting() < workers; };
     std::mutex done_mutex;
     const std::vector<MaterialSource>& sets = batch.sets;
     const std::vector<size_t> order = batch.largest_first();
     parallel_for(ready > 0 ? sets.size() : 0, lead.jobs, [&](size_t k) {
         const size_t i = order[k];
+        const InFlight counted(in_flight);
         std::optional<SetShare> share;  // several presets: one decode, one encode of equal outputs
         if (ready > 1) share.emplace(static_cast<int>(ready));
-        for (auto& run : runs) {
-            if (!run->ready) continue;
-            if (stop_requested()) return;  // a signal asked to stop: no new set starts
-            MaterialResult r;
-            try {
-                r = run->ing.process(sets[i], lead.memory_budget ? &budget : nullptr, *run, share ? &*share : nullptr);
-            } catch (const std::bad_alloc&) {  // exhaustion in one set must not stop the others
-                r = MaterialResult{};
-                r.failure = sets[i].display + ": out of memory while decoding or converting the set; run with "
-                                              "fewer --jobs, or set the preset's max_size";
-            } catch (const std::exception& e) {  // nor a bug
-                r = MaterialResult{};
-                r.failure = sets[i].display + ": internal error: " + e.what();
-            }
+        auto record = [&](PresetRun& run, MaterialResult&& r) {
             std::lock_guard lock(done_mutex);
-            run->record(sets[i], std::move(r), sets.size());
+            run.record(sets[i], std::move(r), sets.size());
+        };
+        auto failure = [&](const std::exception* e) {  // exhaustion or a bug in one set must not stop the others
+            MaterialResult r;
+            r.failure = e ? sets[i].display + ": internal error: " + e->what()
+                          : sets[i].display + ": out of memory while decoding or converting the set; run with "
+                                              "fewer --jobs, or set the preset's max_size";
+            return r;
+        };
+        std::vector<PresetRun*> todo;
+        for (auto& run : runs)
+            if (run->ready) todo.push_back(run.get());
+        // The set's presets, kPresetsAtOnce at a time: each planned in turn (its maps decoded and
+        // validated once, process/share.hpp), then the outputs of all of them, equal ones encoded
+        // once, as tasks largest first on this worker and, while a core is spare, a second thread.
+        for (size_t from = 0; from < todo.size(); from += kPresetsAtOnce) {
+            const size_t to = std::min(todo.size(), from + kPresetsAtOnce);
+            std::vector<std::unique_ptr<SetWork>> works(to - from);
+            SpareTasks tasks(spare_core);
+            bool stopped = false, leased = false;
+            if (share) share->begin_claims();
+            for (size_t t = from; t < to; ++t) {
+                if (stop_requested()) {  // a signal asked to stop: no new set starts
+                    stopped = true;
+                    break;
+                }
+                // The first plan's lease covers its set's maps and planes; the next preset's planes
+                // take the maps' place (made from them, moved where they are the plane as it is).
+                const SetStage stage{leased || !lead.memory_budget ? nullptr : &budget, spare_core};
+                std::optional<MaterialResult> r;
+                try {
+                    auto& work = works[t - from] = todo[t]->ing.begin(sets[i], stage, *todo[t],
+                                                                      share ? &*share : nullptr);
+                    leased = leased || (stage.budget && work->plan.lease);
+                    todo[t]->ing.post_outputs(*work, tasks);
+                } catch (const std::bad_alloc&) {
+                    r = failure(nullptr);
+                } catch (const std::exception& e) {
+                    r = failure(&e);
+                }
+                if (!r) continue;
+                tasks.run();  // (a task posted may read the work)
+                if (works[t - from])
+                    for (auto& claim : works[t - from]->claims)  // not posted: followers encode their own
+                        if (claim) share->settle(*claim);
+                works[t - from].reset();
+                record(*todo[t], std::move(*r));
+            }
+            if (share) share->end_claims();
+            tasks.run();
+            for (size_t t = from; t < to; ++t) {
+                if (!works[t - from]) continue;
+                std::optional<MaterialResult> r;
+                try {
+                    r = todo[t]->ing.end(*works[t - from]);
+                } catch (const std::bad_alloc&) {
+                    r = failure(nullptr);
+                } catch (const std::exception& e) {
+                    r = failure(&e);
+                }
+                record(*todo[t], std::move(*r));
+            }
+            if (stopped) return;
         }
     });
     std::vector<IngestResult> results;

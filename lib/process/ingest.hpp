@@ -23,7 +23,8 @@
 
 namespace mf {
 
-class SetShare;  // process/share.hpp
+class SetShare;    // process/share.hpp
+class SpareTasks;  // base/parallel.hpp
 
 struct MaterialResult {
     manifest::Material entry;            // one element of the manifest's "materials"
@@ -98,9 +99,11 @@ public:
     // Several ingestors (ingest --preset a,b: one per preset, each with its own output folder;
     // ingest --tiers: one per tier, the preset with that max_size)
     // over one batch (found once, with every ingestor's output folder excluded) in one pass: each
-    // set is processed by every ingestor in turn on one worker, its maps decoded once
-    // (plan/plan.hpp's PlanShare) and an output whose pixels and encoding equal one another
-    // ingestor encoded for that set encoded once. Each result, and every file, is what that
+    // set is planned by every ingestor in turn on one worker, its maps decoded once
+    // (plan/plan.hpp's PlanShare), and the outputs of those plans written as one list of tasks,
+    // largest first, on that worker and a second thread while a core is idle (two ingestors at
+    // a time: ingest.cpp kPresetsAtOnce); an output whose pixels and encoding equal one another
+    // ingestor encodes for that set is encoded once. Each result, and every file, is what that
     // ingestor's run() gives alone. The first ingestor's jobs, memory budget, shard and progress
     // serve the pass.
     static std::vector<IngestResult> run_together(const std::vector<const Ingestor*>& ingestors, Batch batch);
@@ -116,11 +119,25 @@ private:
     // One preset's part of a pass (its output folder, claims, cache, spool, tallies; open(),
     // record() after each set, finish()): ingest.cpp.
     struct PresetRun;
-    // One set of `run`: restored from the run's cache, or computed. Validates it (every rule,
-    // from the decoded pixels: each file is decoded once), converts and packs it, and writes
-    // its outputs through the run's output folder. `share`: null for a run alone.
-    MaterialResult process(const MaterialSource& src, MemoryBudget* budget, PresetRun& run, SetShare* share) const;
-    MaterialResult compute(const MaterialSource& src, MemoryBudget* budget, PresetRun& run, SetShare* share) const;
+    // One preset's part of one set, from begin() to end(): ingest.cpp.
+    struct SetWork;
+    // What a set's plan takes of its pass: the budget its decoded maps lease from (null: none, or
+    // an earlier plan of the set holds the set's lease), and whether a core is idle now.
+    struct SetStage {
+        MemoryBudget* budget = nullptr;
+        std::function<bool()> spare_core;
+    };
+    // One set of `run`, in three steps. begin(): restored from the run's cache (its result), or
+    // planned: validated (every rule, from the decoded pixels: each file is decoded once),
+    // converted to planes. post_outputs(): each output to pack, encode and write through the
+    // run's output folder, a task on `tasks` (write_one). end(): once the tasks are done, the
+    // material files and the set's result (kept in the cache). `share`: null for a run alone.
+    std::unique_ptr<SetWork> begin(const MaterialSource& src, const SetStage& stage, PresetRun& run,
+                                   SetShare* share) const;
+    void post_outputs(SetWork& work, SpareTasks& tasks) const;
+    void write_one(SetWork& work, size_t i) const;  // the set's i-th wanted output
+    MaterialResult end(SetWork& work) const;
+    MaterialResult finish_outputs(SetWork& work) const;
 };
 
 }  // namespace mf

@@ -8,6 +8,7 @@
 #include "engine/mtlx.hpp"
 #include "engine/usd.hpp"
 #include "findings/catalog.hpp"
+#include "manifest/attribution.hpp"
 #include "texture/texture.hpp"
 
 namespace mf {
@@ -119,14 +120,8 @@ bool write_folder_files(const Preset& preset, const WriteFile& write, std::vecto
 
 bool write_library(const manifest::MaterialSpool& spool, const std::filesystem::path& out_dir, const WriteFile& write,
                    const WriteStream& write_stream, std::vector<manifest::MaterialFile>& library, std::string& error) {
-    std::vector<gltf::LibraryItem> items;
-    for (const auto& m : spool.entries())
-        if (!m.gltf.empty()) items.push_back({m.name, m.gltf});
-    if (items.empty()) return true;
-    const auto text = gltf::library_gltf(items, out_dir, error);
-    if (!text) return false;
     // Each library file made as it is written, hashed on the way, then listed.
-    std::string read_error;  // library.mtlx's: a material that could not be read back from the spool
+    std::string read_error;  // a material that could not be read back from the spool
     const auto stream = [&](const std::string& rel, const char* format, const ByteProducer& produce) {
         Sha256 sha;
         const bool ok = write_stream(
@@ -145,6 +140,16 @@ bool write_library(const manifest::MaterialSpool& spool, const std::filesystem::
         library.push_back({rel, format, sha.hex()});
         return true;
     };
+    // Every preset's folder: every material's source and licence (manifest/attribution.hpp).
+    if (!stream(std::string(manifest::kAttributionFile), "md",
+                [&](const ByteSink& sink) { return manifest::attribution_text(spool, sink, read_error); }))
+        return false;
+    std::vector<gltf::LibraryItem> items;
+    for (const auto& m : spool.entries())
+        if (!m.gltf.empty()) items.push_back({m.name, m.gltf});
+    if (items.empty()) return true;
+    const auto text = gltf::library_gltf(items, out_dir, error);
+    if (!text) return false;
     // The buffer first: a .gltf is never there without the buffer it names.
     const std::vector<uint8_t>& bin = gltf::sphere_buffer();
     if (!write("library.bin", bin, error)) {

@@ -38,9 +38,10 @@ void write_material_files(const Preset& preset, const WriteFile& write, manifest
 bool write_folder_files(const Preset& preset, const WriteFile& write, std::vector<manifest::MaterialFile>& library,
                         std::string& error);
 
-// library.gltf + library.bin, library.usda and library.mtlx at the folder's root from the
-// materials of `spool` (sorted) that have a .gltf (read back from `out_dir` and the spool),
-// appended to `library`. Nothing when no material has a .gltf.
+// The run's files at the folder's root, appended to `library`: ATTRIBUTION.md, every material's
+// source and licence (manifest/attribution.hpp), always; library.gltf + library.bin,
+// library.usda and library.mtlx from the materials of `spool` (sorted) that have a .gltf (read
+// back from `out_dir` and the spool), when one has.
 bool write_library(const manifest::MaterialSpool& spool, const std::filesystem::path& out_dir, const WriteFile& write,
                    const WriteStream& write_stream, std::vector<manifest::MaterialFile>& library, std::string& error);
 

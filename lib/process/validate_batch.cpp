@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <mutex>
 
 #include "base/interrupt.hpp"
 #include "base/parallel.hpp"
@@ -60,6 +61,8 @@ manifest::Manifest validate_batch(const Batch& batch, const Preset& preset, cons
     report.thresholds = rules::threshold_table(opt.rules.thresholds);
     const std::vector<MaterialSource>& sets = batch.sets;
     std::vector<SetOutcome> outcomes(sets.size());
+    std::mutex progress_mutex;
+    size_t done = 0;
     parallel_for(sets.size(), opt.jobs, [&](size_t i) {
         if (stop_requested()) return;  // a signal asked to stop (the command reports it)
         try {
@@ -67,6 +70,10 @@ manifest::Manifest validate_batch(const Batch& batch, const Preset& preset, cons
         } catch (const std::exception& e) {
             outcomes[i].failed = true;
             outcomes[i].failure = sets[i].display + ": internal error: " + e.what();
+        }
+        if (opt.progress) {
+            const std::lock_guard lock(progress_mutex);
+            opt.progress(++done, sets.size(), sets[i].name);
         }
     });
     for (size_t i = 0; i < sets.size(); ++i) {

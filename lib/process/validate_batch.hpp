@@ -1,6 +1,7 @@
 // `matforge validate`: discovery and every rule over each set, writing nothing but the report.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,8 @@ namespace mf {
 struct ValidateBatchOptions {
     int jobs = 0;  // 0 = all cores
     rules::RuleConfig rules;
+    // Called after each set (from worker threads, serialized): sets done, total, the set's name.
+    std::function<void(size_t done, size_t total, const std::string& name)> progress;
 };
 
 // The preset's "validate" block, then the JSON file `rules_file` (if not empty) layered over it.

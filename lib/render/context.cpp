@@ -209,6 +209,7 @@ void Context::Impl::release() {
     auto& f = dev.fn;
     if (dev.device) {
         f.vkDeviceWaitIdle(dev.device);
+        if (dev.pipeline_cache) f.vkDestroyPipelineCache(dev.device, dev.pipeline_cache, nullptr);
         f.vkDestroyDevice(dev.device, nullptr);  // the validation layer reports leaks here
         dev.device = VK_NULL_HANDLE;
     }
@@ -426,6 +427,8 @@ void Context::Impl::create_device() {
     MF_VK_DEVICE_FUNCTIONS(MF_VK_LOAD)
 #undef MF_VK_LOAD
     f.vkGetDeviceQueue(dev.device, dev.queue_family, 0, &dev.queue);
+    auto pci = detail::vk_struct<VkPipelineCacheCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO);
+    VK_CHECK(f.vkCreatePipelineCache(dev.device, &pci, nullptr, &dev.pipeline_cache));
     // lavapipe's anisotropic filter moves magnified texels by up to half a per cent; a
     // software renderer gains little from it anyway.
     dev.anisotropy = have.features.samplerAnisotropy && !dev.info.cpu ? dev.properties.limits.maxSamplerAnisotropy

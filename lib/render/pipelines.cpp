@@ -79,7 +79,7 @@ Unique<VkPipeline> Renderer::Impl::make_compute_pipeline(const uint32_t* code, s
     ci.stage.pSpecializationInfo = spec;
     ci.layout = layout;
     VkPipeline h = VK_NULL_HANDLE;
-    VK_CHECK(d.fn.vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &h));
+    VK_CHECK(d.fn.vkCreateComputePipelines(d.device, d.pipeline_cache, 1, &ci, nullptr, &h));
     return Unique<VkPipeline>(d, h);
 }
 
@@ -309,7 +309,7 @@ Unique<VkPipeline> Renderer::Impl::graphics_pipeline(const ShadeSpecialization& 
     ci.pDynamicState = &ds;
     ci.layout = shade_layout;
     VkPipeline h = VK_NULL_HANDLE;
-    VK_CHECK(d.fn.vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &ci, nullptr, &h));
+    VK_CHECK(d.fn.vkCreateGraphicsPipelines(d.device, d.pipeline_cache, 1, &ci, nullptr, &h));
     return Unique<VkPipeline>(d, h);
 }
 

@@ -86,6 +86,8 @@ static_assert(sizeof(void*) == 8, "non-dispatchable handles must be distinct typ
     X(vkCreateGraphicsPipelines)      \
     X(vkCreateComputePipelines)       \
     X(vkDestroyPipeline)              \
+    X(vkCreatePipelineCache)          \
+    X(vkDestroyPipelineCache)         \
     X(vkCreateDescriptorPool)         \
     X(vkDestroyDescriptorPool)        \
     X(vkAllocateDescriptorSets)       \
@@ -168,6 +170,9 @@ struct Device {
     // vkQueueSubmit and vkDeviceWaitIdle need the queue externally synchronized: several
     // renderers of one context may submit from their own threads (preview's lanes).
     mutable std::mutex queue_mutex;
+    // Every pipeline of the context is made through it (internally synchronized): a variant a
+    // second renderer (a preview lane) needs again is not compiled again.
+    VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
 
     // A memory type index with all of `flags` among `type_bits`; throws when there is none.
     uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;

@@ -88,9 +88,16 @@ private:
         normal_html(h);
         findings_html(h);
         h += "</div>\n<div class=\"col\">\n";
+        // The vendor's own preview beside matforge's render of the material.
+        const Pic* vendor = vendor_preview();
+        if (vendor) h += "<div class=\"previews\">";
         if (pics_.preview)
             h += "<figure class=\"preview\">" + img(*pics_.preview, m_.name + " preview") +
                  "<figcaption>preview</figcaption></figure>\n";
+        if (vendor)
+            h += "<figure class=\"preview vendor-preview\">" + img(*vendor, m_.name + " vendor preview") +
+                 "<figcaption>the vendor's preview <code>" + markup_escape(vendor_file_) +
+                 "</code></figcaption></figure>" + "</div>\n";
         if (pics_.viewer) h += Viewer::card_html(*pics_.viewer, stem_);
         outputs_html(h);
         material_files_html(h);
@@ -103,6 +110,53 @@ private:
         sheet_html = "<a class=\"tile sev-" + sev + "\" href=\"#" + id + "\">" +
                      (tile ? img(*tile, m_.name) : std::string("<span class=\"noimg\"></span>")) + "<span>" +
                      markup_escape(m_.name) + "</span></a>\n";
+    }
+
+    // The picture made of the vendor's preview input (report.cpp read_sources), if shown.
+    const Pic* vendor_preview() {
+        for (size_t i = 0; i < pics_.sources.size() && i < m_.inputs.size(); ++i)
+            if (m_.inputs[i].role == Role::preview && !pics_.sources[i].rel.empty()) {
+                vendor_file_ = m_.inputs[i].file;
+                return &pics_.sources[i];
+            }
+        return nullptr;
+    }
+
+    // A URL as text: the page links nothing outside its folder (it is read offline).
+    static std::string url_text(const std::string& url) {
+        const size_t scheme = url.find("://");
+        return "<code>" + markup_escape(scheme == std::string::npos ? url : url.substr(scheme + 3)) + "</code>";
+    }
+
+    // Where the set comes from and under what licence (the manifest's provenance), or why no
+    // licence is known (its LICENCE_UNKNOWN finding).
+    void provenance_html(std::string& h) const {
+        const Provenance p = m_.provenance.value_or(Provenance{});
+        h += "<h3>Source and licence</h3>\n<p class=\"provenance\">";
+        if (!p.vendor_name.empty()) h += "vendor <b class=\"vendor\">" + markup_escape(p.vendor_name) + "</b>";
+        if (!p.asset_id.empty())
+            h += std::string(p.vendor_name.empty() ? "" : " · ") + "asset <code class=\"asset\">" +
+                 markup_escape(p.asset_id) + "</code>";
+        if (!p.vendor_name.empty() || !p.asset_id.empty()) h += " · ";
+        if (p.licence) {
+            const Provenance::Licence& l = *p.licence;
+            h += "licence <b class=\"licence\">" + markup_escape(l.spdx.empty() ? l.name : l.spdx) + "</b>";
+            if (!l.url.empty()) h += " " + url_text(l.url);
+            if (l.vendor_licence) h += " (the vendor's licence: no redistribution of the files)";
+            h += "<br><span class=\"meta\">known from the " + markup_escape(l.evidence.how) +
+                 (l.evidence.file.empty() ? "" : " <code>" + markup_escape(l.evidence.file) + "</code>") +
+                 (l.evidence.detail.empty() ? "" : ": " + markup_escape(l.evidence.detail)) + "</span>";
+            if (l.attribution_required)
+                h += "<br>attribution: <span class=\"attribution\">" + markup_escape(p.attribution) + "</span>";
+        } else {
+            std::string why = "no licence found";
+            for (const Finding& f : m_.findings)
+                if (f.code == code::licence_unknown) why = f.message;
+            h += "licence <b class=\"licence unknown\">unknown</b><br><span class=\"meta\">" + markup_escape(why) +
+                 "</span>";
+        }
+        if (!p.url.empty()) h += "<br>source " + url_text(p.url);
+        h += "</p>\n";
     }
 
     void sources_html(std::string& h) const {
@@ -125,6 +179,7 @@ private:
                  std::string(role_name(c.role)) + "</td><td colspan=\"4\">no map: constant " + v + "</td></tr>\n";
         }
         h += "</tbody></table>\n";
+        provenance_html(h);
     }
 
     // The material files written for the set, each with the line on how to open it; the import
@@ -294,7 +349,7 @@ private:
         if (m_.archive) h += "<p class=\"meta\">the sources are entries of a .zip: not shown</p>\n";
         for (size_t i = 0; i < pics_.sources.size() && i < m_.inputs.size(); ++i) {
             const manifest::Input& in = m_.inputs[i];
-            if (pics_.sources[i].rel.empty()) continue;
+            if (pics_.sources[i].rel.empty() || in.role == Role::preview) continue;  // beside the preview
             h += "<div class=\"pair\"><figure>" + img(pics_.sources[i], in.file) + "<figcaption>source " +
                  std::string(role_name(in.role)) + ": <code>" + markup_escape(in.file) +
                  "</code></figcaption></figure>";
@@ -335,6 +390,7 @@ private:
     }
 
     std::string card_html, sheet_html;
+    std::string vendor_file_;  // the vendor preview's file (vendor_preview)
     const manifest::Material& m_;
     const MaterialPictures& pics_;
     const rules::Thresholds& t_;
@@ -377,7 +433,7 @@ const char* const kStyle =
     ".evidence{font-size:12px;margin:2px 0}details summary{cursor:pointer;color:#0b5cad}"
     "table.findings td:nth-child(4){max-width:520px}nav.pager{margin:10px 0;display:flex;flex-wrap:wrap;gap:4px;align-items:center}"
     "nav.pager button{font:inherit;padding:2px 8px}nav.pager button[aria-current]{font-weight:bold;background:#1e2a38;color:#fff}"
-    ".verdict .conv{font-size:15px}\n";
+    ".verdict .conv{font-size:15px}.previews{display:flex;flex-wrap:wrap;gap:10px}.provenance{font-size:12px}\n";
 
 // Paging, filtering and the interactive views' loader (report/viewer.hpp): when a card's view is
 // opened, the viewer with its look-dev data and then the card's material, each by a <script>

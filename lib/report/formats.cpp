@@ -81,12 +81,14 @@ namespace {
 nlohmann::json material_json(const manifest::Material& m) {
     nlohmann::json fs = nlohmann::json::array();
     for (const auto& f : m.findings) fs.push_back(to_json(f));
-    return {{"name", m.name},
-            {"source", m.source},
-            {"convention", m.convention},
-            {"inputs", manifest::to_json(m.inputs)},
-            {"constants", manifest::to_json(m.constants)},
-            {"findings", fs}};
+    nlohmann::json j{{"name", m.name},
+                     {"source", m.source},
+                     {"convention", m.convention},
+                     {"inputs", manifest::to_json(m.inputs)},
+                     {"constants", manifest::to_json(m.constants)},
+                     {"findings", fs}};
+    if (m.provenance) j["provenance"] = manifest::to_json(*m.provenance);
+    return j;
 }
 
 // The report without its materials (an empty array in their place).

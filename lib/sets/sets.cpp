@@ -212,6 +212,7 @@ void add_groups(const std::string& fallback, const std::vector<std::string>& fil
         MaterialSource s = proto;
         s.name = g.name.empty() ? fallback : g.name;
         s.files = g.files;
+        s.shared_folder = g.shared;
         std::sort(s.files.begin(), s.files.end());
         if (g.merge) {
             // Spellings that differ only in resolution/format tags are one material at several

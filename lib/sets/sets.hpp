@@ -23,6 +23,7 @@ struct MaterialSource {
     std::vector<std::string> files;       // relative to root (or to zip_folder), sorted
     std::string display;                  // "path/to/set" or "path/to/x.zip/folder" for messages
     std::shared_ptr<ZipArchive> archive;  // is_zip: the archive, opened once
+    bool shared_folder = false;           // a flat folder's set: its folder holds other sets too
     // What finding the set decided that the user should know (NAMES_MERGED, DUPLICATE_ENTRY,
     // DUPLICATE_INPUT); plan_set reports them with the set's other findings.
     std::vector<Finding> findings;

@@ -107,9 +107,10 @@ bool link_or_write(const fs::path& file, const fs::path& blob, std::span<const u
 // normal's convention (normal_converted_from). Version 4: albedo checks weighted by metalness,
 // MaterialX sidecars read, inputs' `unused`, and the gltf preset's .mtlx material files.
 // Version 5: materials' alpha_mode and the engines' material files. Version 6: a JPEG cut short
-// is unreadable (it decoded grey), a name's "--" kept apart in the .mtlx comment. Records of
-// other versions miss.
-constexpr int kRecordVersion = 6;
+// is unreadable (it decoded grey), a name's "--" kept apart in the .mtlx comment. Version 7:
+// materials' provenance and the vendor's preview input (LICENCE_UNKNOWN). Records of other
+// versions miss.
+constexpr int kRecordVersion = 7;
 
 // The digest of a record's entry: its compact JSON text, invalid UTF-8 in names replaced as the
 // manifest writer does (a file name is any bytes; dump() would throw on them).

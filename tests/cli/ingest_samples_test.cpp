@@ -161,9 +161,11 @@ TEST(IngestSamples, AmbientCgGlAndDxChoosesPresetConvention) {
     EXPECT_EQ(mat["inputs"]["normal"]["normal_convention_source"], "name");
     EXPECT_TRUE(has_finding(mat, "AMBIGUOUS_MAP", "normal"));
     EXPECT_FALSE(has_finding(mat, "NORMAL_CONVENTION_CONVERTED"));
-    // The vendor's preview and its USD file are skipped, nothing else; its MaterialX document is
-    // read as evidence: the normal map it names through a normalmap node is the GL one.
-    EXPECT_EQ(files_of(mat, "UNRECOGNIZED_FILE"), (std::set<std::string>{"Net004A.png", "Net004A_1K-JPG.usdc"}));
+    // Its USD file is skipped, nothing else; the vendor's preview is the set's preview input (never
+    // read as a map); its MaterialX document is read as evidence: the normal map it names through a
+    // normalmap node is the GL one.
+    EXPECT_EQ(files_of(mat, "UNRECOGNIZED_FILE"), (std::set<std::string>{"Net004A_1K-JPG.usdc"}));
+    EXPECT_EQ(mat["inputs"]["preview"]["file"], "Net004A.png");
     EXPECT_EQ(mat["inputs"]["normal"]["rule"], "ambientcg:_NormalGL + mtlx:standard_surface.normal");
     // Unreal wants DirectX: the DX file is chosen, nothing to convert.
     const auto& u = mat_of(ingested("unreal"), "Net004A");

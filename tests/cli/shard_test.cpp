@@ -179,8 +179,12 @@ TEST(Shard, MergedShardsAreByteIdenticalToOneRun) {
               0);
     ASSERT_EQ(run("ingest " + q(samples()) + " -o " + q(work / "single") + " -q --no-cache").code, 0);
     EXPECT_EQ(bytes_of(work / "out/manifest.json"), bytes_of(work / "single/manifest.json"));
-    // The run's library.gltf, which no shard writes (each sees its part), comes from the merge.
+    // The run's library.gltf, which no shard writes (each sees its part), comes from the merge;
+    // so does ATTRIBUTION.md, every material of the run.
     EXPECT_EQ(bytes_of(work / "out/library.gltf"), bytes_of(work / "single/library.gltf"));
+    EXPECT_EQ(bytes_of(work / "out/ATTRIBUTION.md"), bytes_of(work / "single/ATTRIBUTION.md"));
+    EXPECT_NE(bytes_of(work / "single/ATTRIBUTION.md").find("| Net004A | ambientCG | Net004A | CC0-1.0 |"),
+              std::string::npos);
     fs::remove(work / "out/manifest.json");
     fs::remove(work / "out/library.gltf");
     // A killed shard re-run completes its part: the same bytes again.

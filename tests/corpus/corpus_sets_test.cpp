@@ -109,6 +109,18 @@ bool cited_sidecar(const SetRun& r, const std::string& file) {
     return false;
 }
 
+// Whether a material's licence was read from the licence file `file` (provenance.licence.evidence).
+bool cited_licence(const SetRun& r, const std::string& file) {
+    if (!r.manifest.contains("materials")) return false;
+    for (const auto& m : r.manifest.at("materials")) {
+        const json p = m.value("provenance", json::object());
+        if (p.contains("licence") && p.at("licence").at("evidence").value("how", "") == "file" &&
+            p.at("licence").at("evidence").value("file", "") == file)
+            return true;
+    }
+    return false;
+}
+
 // The manifest's normal convention for a normal input file, "" when it is not an input.
 std::string found_convention(const SetRun& r, const std::string& file) {
     if (!r.manifest.contains("materials")) return "";
@@ -164,6 +176,9 @@ void check_roles() {
             else if (want == "sidecar")  // read as evidence: not reported, and cited by an input's rule
                 EXPECT_TRUE(got.empty() && cited_sidecar(r, file))
                     << r.folder << "/" << file << ": a sidecar, got " << (got.empty() ? "(none)" : got);
+            else if (want == "licence")  // read as the licence's evidence: not reported, and cited by it
+                EXPECT_TRUE(got.empty() && cited_licence(r, file))
+                    << r.folder << "/" << file << ": a licence file, got " << (got.empty() ? "(none)" : got);
             else
                 EXPECT_TRUE(corpus::role_matches(want, got)) << r.folder << "/" << file << ": truth role " << want
                                                              << ", matforge " << (got.empty() ? "(none)" : got);
@@ -182,6 +197,68 @@ void check_normal_conventions() {
         }
     // One normal map per material: 19 materials in 18 folders (two of them hand-named copies).
     EXPECT_EQ(checked, 19);
+}
+
+// The LICENCE_UNKNOWN findings of a material entry (manifest or report).
+std::vector<json> licence_unknown(const json& m) {
+    std::vector<json> out;
+    for (const auto& f : m.value("findings", json::array()))
+        if (f.value("code", "") == "LICENCE_UNKNOWN") out.push_back(f);
+    return out;
+}
+
+// Every material's provenance as truth.json's `provenance` says the folder proves it: vendor,
+// asset id, licence with its evidence, the page, the credit, the vendor's preview; where no
+// licence can be known, none and one LICENCE_UNKNOWN (info). The same in validate's report.
+void check_provenance() {
+    int known = 0, unknown = 0;
+    for (const auto& r : runs()) {
+        if (!r.manifest.contains("materials") || !r.report.contains("materials")) continue;  // every set runs fails
+        const json& want_all = r.truth->at("provenance");
+        EXPECT_EQ(r.manifest.at("materials").size(), want_all.size()) << r.folder << ": one provenance per material";
+        for (const auto& m : r.manifest.at("materials")) {
+            const std::string name = m.at("name").get<std::string>();
+            SCOPED_TRACE(r.folder + " " + name);
+            ASSERT_TRUE(want_all.contains(name)) << "truth.json has no provenance for this material";
+            const json& want = want_all.at(name);
+            const json got = m.value("provenance", json::object());
+            const auto text = [](const json& o, const char* key) {
+                return o.contains(key) && o.at(key).is_string() ? o.at(key).get<std::string>() : std::string("(none)");
+            };
+            for (const char* key : {"vendor", "asset_id", "url", "attribution"})
+                EXPECT_EQ(text(got, key), text(want, key)) << key;
+            const json inputs = m.value("inputs", json::object());
+            EXPECT_EQ(inputs.contains("preview") ? inputs.at("preview").value("file", "") : "(none)",
+                      text(want, "preview"));
+            if (want.at("licence").is_null()) {
+                ++unknown;
+                EXPECT_FALSE(got.contains("licence")) << got.dump();
+                const auto found = licence_unknown(m);
+                ASSERT_EQ(found.size(), 1u) << m.at("findings").dump(1);
+                EXPECT_EQ(found[0].at("severity"), "info");
+                EXPECT_TRUE(found[0].at("message").get<std::string>().starts_with("no licence found: ") ||
+                            found[0].at("message").get<std::string>().starts_with("the set's licence files"));
+            } else {
+                ++known;
+                ASSERT_TRUE(got.contains("licence")) << got.dump();
+                const json& l = got.at("licence");
+                EXPECT_EQ(text(l, "spdx"), want.at("licence").get<std::string>());
+                EXPECT_EQ(l.at("evidence").at("how"), want.at("evidence").at("how"));
+                EXPECT_EQ(l.at("evidence").at("file"), want.at("evidence").at("file"));
+                EXPECT_EQ(l.at("attribution_required"), want.contains("attribution"));
+                EXPECT_TRUE(licence_unknown(m).empty());
+            }
+            // validate reports what ingest records.
+            for (const auto& v : r.report.at("materials"))
+                if (v.at("name") == name) {
+                    EXPECT_EQ(v.value("provenance", json::object()), got);
+                    EXPECT_EQ(licence_unknown(v).size(), licence_unknown(m).size());
+                }
+        }
+    }
+    // 19 materials: 10 with a licence the folder proves, 9 without.
+    EXPECT_EQ(known, 10);
+    EXPECT_EQ(unknown, 9);
 }
 
 void check_good_sets_have_no_error() {
@@ -251,6 +328,7 @@ void print_table() {
             ++total;
             const bool ok = want == "ignore"    ? got == "ignore"
                             : want == "sidecar" ? got.empty() && cited_sidecar(r, file)
+                            : want == "licence" ? got.empty() && cited_licence(r, file)
                                                 : corpus::role_matches(want, got);
             right += ok ? 1 : 0;
             if (!ok) wrong_roles += " " + file + "(" + want + "->" + (got.empty() ? "none" : got) + ")";
@@ -289,6 +367,7 @@ TEST(RealCorpus, EverySetAgreesWithTruth) {
         {"every set runs", check_every_set_runs},
         {"roles match truth", check_roles},
         {"normal conventions match truth", check_normal_conventions},
+        {"provenance matches truth", check_provenance},
         {"good sets have no error", check_good_sets_have_no_error},
         {"every error and warning is a true problem", check_no_false_error_or_warning},
         {"every true problem is reported at its severity", check_true_problems_reported},

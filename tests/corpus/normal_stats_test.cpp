@@ -125,6 +125,7 @@ const std::vector<Measured>& measured() {
                 const std::string role = info.at("role").get<std::string>();
                 if ((role == "ignore" || role == "sidecar") && (file.ends_with(".mtlx") || file.ends_with(".usdc")))
                     continue;
+                if (role == "licence") continue;  // a licence file (godot_tps-demo_container1's LICENSE.md)
                 Map m;
                 m.name = file;
                 m.img = read(folder / file, m.info);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <set>
 
 #include "discovery_helpers.hpp"
 #include "material/discovery.hpp"
@@ -188,12 +189,6 @@ std::vector<std::string> names(const CorpusSet& s) {
     return out;
 }
 
-// ambientCG's preview "<AssetId>.png" carries no tag at all: it stays "no role tag" (an
-// ambientCG-only convention that a generic name could share).
-bool is_ambientcg_preview(const std::string& folder, const std::string& file) {
-    return folder.starts_with("ambientcg_") && file.find('_') == std::string::npos;
-}
-
 TEST(CorpusNames, EveryFileClassifiesToItsTrueRole) {
     size_t checked = 0;
     for (const auto& set : kCorpus)
@@ -212,13 +207,23 @@ TEST(CorpusNames, EveryFileClassifiesToItsTrueRole) {
     EXPECT_EQ(checked, 107u);
 }
 
+// The vendor's preview images of the corpus (truth.json's "preview" of each set): ambientCG's
+// "<Id>.png" and 3dtextures.me's render in a folder of its own.
+bool is_vendor_preview(const std::string& file) {
+    static const std::set<std::string> kPreviews{"OfficeCeiling005.png", "WoodFloor040.png", "Net004A.png",
+                                                 "Material_1639.jpg", "Material_1957.jpg"};
+    return kPreviews.count(file) > 0;
+}
+
 TEST(CorpusNames, DiscoverSetUsesEveryMapAndExplainsEveryIgnoredFile) {
     for (const auto& set : kCorpus) {
         SCOPED_TRACE(set.folder);
         const auto groups = group_files(names(set), set.folder);
         std::vector<std::string> seen;
         for (const auto& g : groups) {
-            const auto d = discover_set(g.files, nullptr, ChoicePolicy{});
+            ChoicePolicy policy;
+            policy.shared_folder = g.shared;  // as lib/sets gives it
+            const auto d = discover_set(g.files, nullptr, policy);
             for (const auto& file : g.files) {
                 SCOPED_TRACE(file);
                 seen.push_back(file);
@@ -230,10 +235,14 @@ TEST(CorpusNames, DiscoverSetUsesEveryMapAndExplainsEveryIgnoredFile) {
                     EXPECT_EQ(reason, "");
                     continue;
                 }
-                EXPECT_NE(reason, "");  // ignored, and said so (info)
-                if (!is_ambientcg_preview(set.folder, file)) {
-                    EXPECT_NE(reason, "no role tag in the name");
+                if (is_vendor_preview(file)) {  // the set's preview: no map, nothing to say
+                    ASSERT_TRUE(d.preview.has_value());
+                    EXPECT_EQ(d.preview->file, file);
+                    EXPECT_EQ(reason, "");
+                    continue;
                 }
+                EXPECT_NE(reason, "");  // ignored, and said so (info)
+                EXPECT_NE(reason, "no role tag in the name");
             }
             for (const auto& f : d.findings) EXPECT_EQ(f.severity, Severity::info) << f.message;
         }
@@ -256,9 +265,17 @@ TEST(CorpusNames, FlatFolderSplitsIntoItsTwoSets) {
     EXPECT_EQ(g[1].files.size(), 5u);
     EXPECT_FALSE(g[0].merge.has_value());
     EXPECT_FALSE(g[1].merge.has_value());
-    const auto d = discover_set(g[0].files, nullptr, ChoicePolicy{});
+    EXPECT_TRUE(g[0].shared && g[1].shared);
+    // In a shared folder the render that names no material is no set's preview (it is the other
+    // set's, 3dtextures.me's Surface_Imperfection_001): unrecognized, with its reason.
+    ChoicePolicy policy;
+    policy.shared_folder = true;
+    const auto d = discover_set(g[0].files, nullptr, policy);
     EXPECT_EQ(d.convention, "ambientcg");
+    EXPECT_FALSE(d.preview.has_value());
     EXPECT_EQ(unrecognized_reason(d, "Material_1586.jpg"), "preview render (Material_NNNN)");
+    // Alone with Rocks004's maps it would be taken for Rocks004's: what shared_folder prevents.
+    EXPECT_EQ(discover_set(g[0].files, nullptr, ChoicePolicy{}).preview->file, "Material_1586.jpg");
 }
 
 TEST(CorpusNames, Crystal003OlderTagsMakeAFullSet) {

@@ -460,9 +460,15 @@ TEST(DiscoverSet, AmbientCG) {
                                         "roughness<-Bricks059_1K-PNG_Roughness.png(roughness)",
                                         "occlusion<-Bricks059_1K-PNG_AmbientOcclusion.png(occlusion)",
                                         "height<-Bricks059_1K-PNG_Displacement.png(height)"));
+    // The untagged "<id>.png" beside "<id>_1K-PNG_*" maps is ambientCG's preview render: the
+    // set's preview, no map and no unrecognized file.
     EXPECT_THAT(finding_keys(d),
-                ElementsAre("AMBIGUOUS_MAP normal Bricks059_1K-PNG_NormalGL.png", "UNRECOGNIZED_FILE  Bricks059.png",
+                ElementsAre("AMBIGUOUS_MAP normal Bricks059_1K-PNG_NormalGL.png",
                             "UNRECOGNIZED_FILE  Bricks059_1K-PNG.mtlx", "UNRECOGNIZED_FILE  Bricks059_1K-PNG.usdc"));
+    ASSERT_TRUE(d.preview.has_value());
+    EXPECT_EQ(d.preview->file, "Bricks059.png");
+    EXPECT_EQ(d.preview->match.role, Role::preview);
+    EXPECT_EQ(d.preview->match.rule, "ambientcg:<id>.png (the vendor's preview)");
     expect_all_info(d);
     const auto* amb = finding(d, code::ambiguous_map, "normal");
     ASSERT_NE(amb, nullptr);
@@ -471,8 +477,7 @@ TEST(DiscoverSet, AmbientCG) {
     EXPECT_EQ(mf::to_json(amb->figures).at("chosen"), "Bricks059_1K-PNG_NormalGL.png");
     EXPECT_EQ(mf::to_json(amb->figures).at("candidates"),
               nlohmann::json({"Bricks059_1K-PNG_NormalGL.png", "Bricks059_1K-PNG_NormalDX.png"}));
-    EXPECT_THAT(d.findings[1].message, HasSubstr("no role tag in the name"));
-    EXPECT_THAT(d.findings[2].message, HasSubstr("not an image"));
+    EXPECT_THAT(d.findings[1].message, HasSubstr("not an image"));
 }
 
 TEST(DiscoverSet, AmbientCGOlderNamesStillAmbientCG) {
@@ -550,11 +555,13 @@ TEST(DiscoverSet, TexturesComLegacy) {
     EXPECT_TRUE(routes(d)[2].second.invert);
     EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP albedo Concrete0012_COL_VAR1_2K.jpg",
                                              "AMBIGUOUS_MAP normal Concrete0012_NRM16_2K.tif",
-                                             "AMBIGUOUS_MAP height Concrete0012_DISP16_2K.tif",
-                                             "UNRECOGNIZED_FILE  Concrete0012_Preview1.png"));
+                                             "AMBIGUOUS_MAP height Concrete0012_DISP16_2K.tif"));
     EXPECT_THAT(finding(d, code::ambiguous_map, "albedo")->message, HasSubstr("by name"));
     EXPECT_THAT(finding(d, code::ambiguous_map, "normal")->message, HasSubstr("tif"));
-    EXPECT_THAT(d.findings.back().message, HasSubstr("preview/thumbnail image"));
+    // The vendor's "_Preview1" render of the material it names: the set's preview.
+    ASSERT_TRUE(d.preview.has_value());
+    EXPECT_EQ(d.preview->file, "Concrete0012_Preview1.png");
+    EXPECT_EQ(d.preview->match.rule, "generic:_Preview1 (a preview image)");
 }
 
 TEST(DiscoverSet, MegascansRoughnessBeatsGloss) {
@@ -574,10 +581,11 @@ TEST(DiscoverSet, MegascansRoughnessBeatsGloss) {
                                         "roughness<-rock_sfjmafua_2K_Roughness.jpg(roughness)",
                                         "occlusion<-rock_sfjmafua_2K_AO.jpg(occlusion)",
                                         "height<-rock_sfjmafua_2K_Displacement.exr(height)"));
-    EXPECT_THAT(finding_keys(d),
-                ElementsAre("AMBIGUOUS_MAP roughness rock_sfjmafua_2K_Roughness.jpg",
-                            "AMBIGUOUS_MAP height rock_sfjmafua_2K_Displacement.exr",
-                            "UNRECOGNIZED_FILE  rock_sfjmafua.json", "UNRECOGNIZED_FILE  rock_sfjmafua_Preview.png"));
+    EXPECT_THAT(finding_keys(d), ElementsAre("AMBIGUOUS_MAP roughness rock_sfjmafua_2K_Roughness.jpg",
+                                             "AMBIGUOUS_MAP height rock_sfjmafua_2K_Displacement.exr",
+                                             "UNRECOGNIZED_FILE  rock_sfjmafua.json"));
+    ASSERT_TRUE(d.preview.has_value());  // by its name here: no sidecar was read
+    EXPECT_EQ(d.preview->file, "rock_sfjmafua_Preview.png");
     const auto* r = finding(d, code::ambiguous_map, "roughness");
     EXPECT_THAT(r->message, HasSubstr("roughness map beats a gloss map"));
     EXPECT_EQ(mf::to_json(r->figures).at("candidates"),
@@ -668,11 +676,14 @@ TEST(DiscoverSet, MixedNamesAreGeneric) {
     const auto d = discover_set({"wood_albedo.png", "wood_normal.png", "wood_rough.png"}, kNoHeaders, policy());
     EXPECT_EQ(d.convention, "generic");
     EXPECT_THAT(choice_roles(d), ElementsAre("albedo", "normal", "roughness"));
+    // No map: a preview of nothing stays unrecognized; a readme is read for the provenance
+    // (material/provenance.hpp), not reported here.
     const auto none = discover_set({"readme.txt", "preview.jpg"}, kNoHeaders, policy());
     EXPECT_EQ(none.convention, "generic");
     EXPECT_TRUE(none.choices.empty());
     EXPECT_TRUE(routes(none).empty());
-    EXPECT_THAT(finding_keys(none), ElementsAre("UNRECOGNIZED_FILE  preview.jpg", "UNRECOGNIZED_FILE  readme.txt"));
+    EXPECT_FALSE(none.preview.has_value());
+    EXPECT_THAT(finding_keys(none), ElementsAre("UNRECOGNIZED_FILE  preview.jpg"));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -58,9 +58,13 @@ TEST(NamingGaps, ThreeDTexturesOlderTags) {
 }
 
 TEST(NamingGaps, ThreeDTexturesClutterHasItsOwnReason) {
+    // Files of several sets in one folder: the render names no material, so it is no one's preview.
+    ChoicePolicy shared;
+    shared.shared_folder = true;
     const auto d = discover_set({"Crystal_003_BLACK.jpg", "Crystal_003_COLOR.jpg", "Fabric_polyester_003_black.jpg",
                                  "Material_1639.jpg", "Ground_Wet_002_mask.jpg", "Leaf_OpacityMask.png"},
-                                nullptr, ChoicePolicy{});
+                                nullptr, shared);
+    EXPECT_FALSE(d.preview.has_value());
     EXPECT_THAT(roles_of(d), ElementsAre("albedo", "opacity"));
     EXPECT_EQ(chosen_file(d, Role::opacity), "Leaf_OpacityMask.png");  // "mask" after "opacity" is no clutter
     EXPECT_EQ(unrecognized_reason(d, "Crystal_003_BLACK.jpg"), "all-black placeholder (_black) with no PBR role");

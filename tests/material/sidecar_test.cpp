@@ -226,7 +226,8 @@ TEST(SidecarRoles, MegascansMaps) {
     EXPECT_EQ(s.maps[0].match.family, "megascans");
 
     // In the set: the JSON is read (not reported), the map the JSON lists without a file is
-    // the name's business, the fuzz map has no role either way, the preview stays clutter.
+    // the name's business, the fuzz map has no role either way, the preview the JSON lists is
+    // the set's preview. The asset's facts are kept for its provenance.
     const auto d = discover_set({"rock_sfjmafua.json", "rock_sfjmafua_2K_Albedo.jpg", "rock_sfjmafua_2K_Normal.jpg",
                                  "rock_sfjmafua_2K_Bump.jpg", "rock_sfjmafua_2K_AO.jpg", "rock_sfjmafua_2K_Fuzz.jpg",
                                  "rock_sfjmafua_2K_Gloss.jpg", "rock_sfjmafua_Preview.png"},
@@ -235,8 +236,14 @@ TEST(SidecarRoles, MegascansMaps) {
     EXPECT_THAT(roles_of(d), ElementsAre("albedo", "normal", "occlusion", "height", "gloss"));
     EXPECT_EQ(find_choice(d, Role::albedo)->chosen.match.sidecar, "rock_sfjmafua.json");
     EXPECT_EQ(find_choice(d, Role::gloss)->chosen.match.sidecar, "");  // by name
-    EXPECT_THAT(keys(d), ElementsAre("UNRECOGNIZED_FILE  rock_sfjmafua_2K_Fuzz.jpg",
-                                     "UNRECOGNIZED_FILE  rock_sfjmafua_Preview.png"));
+    EXPECT_THAT(keys(d), ElementsAre("UNRECOGNIZED_FILE  rock_sfjmafua_2K_Fuzz.jpg"));
+    ASSERT_TRUE(d.preview.has_value());
+    EXPECT_EQ(d.preview->file, "rock_sfjmafua_Preview.png");
+    EXPECT_EQ(d.preview->match.rule, "megascans:previews.images[].uri");
+    EXPECT_EQ(s.facts.asset_id, "sfjmafua");
+    EXPECT_EQ(s.facts.title, "Mossy Rock");
+    EXPECT_THAT(s.facts.previews, ElementsAre("rock_sfjmafua_Preview.png"));
+    EXPECT_EQ(s.facts.licence, "");  // Bridge's JSON names no licence
 }
 
 TEST(SidecarRoles, MegascansComponents) {

@@ -478,7 +478,8 @@ namespace {
 TEST(EngineFiles, D3d11FolderGetsTheHlslIncludeThatCompiles) {
     const fs::path dir = temp_dir("d3d11");
     const json m = ingest({samples() / "Net004A_1K-JPG"}, dir / "out", "d3d11", {"--fail-on", "never"});
-    ASSERT_EQ(m["library"].size(), 1u) << m["library"].dump();
+    ASSERT_EQ(m["library"].size(), 2u) << m["library"].dump();  // and ATTRIBUTION.md (every preset)
+    EXPECT_EQ(m["library"][1]["file"], "ATTRIBUTION.md");
     EXPECT_EQ(m["library"][0]["file"], "matforge_material.hlsli");
     EXPECT_EQ(m["library"][0]["format"], "hlsli");
     const fs::path include = dir / "out" / "matforge_material.hlsli";
@@ -493,12 +494,13 @@ TEST(EngineFiles, D3d11FolderGetsTheHlslIncludeThatCompiles) {
                            120);
     ASSERT_EQ(p.code, 0) << p.output;
     EXPECT_GT(fs::file_size(dir / "ps.spv"), 1000u);
-    // A shard writes it too (each part is a complete folder of its own), and merge keeps it.
+    // A shard writes it too (each part is a complete folder of its own), and merge keeps it;
+    // ATTRIBUTION.md lists the run's materials: merge writes it, no shard.
     const auto part = matforge({"ingest", (samples() / "Net004A_1K-JPG").string(), "-o", (dir / "shard").string(),
                                 "--preset", "d3d11", "--quiet", "--fail-on", "never", "--shard", "0/1"});
     ASSERT_EQ(part.code, 0) << part.output;
     const json shard = mf::testfiles::read_json(dir / "shard" / "manifest.shard-0-of-1.json");
-    EXPECT_EQ(shard["library"], m["library"]);
+    EXPECT_EQ(shard["library"], json::array({m["library"][0]}));
     const auto merged = matforge({"merge", (dir / "shard" / "manifest.shard-0-of-1.json").string(), "-o",
                                   (dir / "shard" / "manifest.json").string()});
     ASSERT_EQ(merged.code, 0) << merged.output;

@@ -124,8 +124,9 @@ TEST(Gltf, MaterialsReferenceTheWrittenTexturesInTheirSlots) {
 
 TEST(Gltf, LibraryHoldsEveryMaterialOnItsOwnNode) {
     const auto& r = ingested("samples");
-    ASSERT_EQ(r.manifest["library"].size(), 4u);  // library.gltf, .bin, .usda, .mtlx
-    EXPECT_EQ(r.manifest["library"][0]["file"], "library.gltf");
+    ASSERT_EQ(r.manifest["library"].size(), 5u);  // ATTRIBUTION.md, library.gltf, .bin, .usda, .mtlx
+    EXPECT_EQ(r.manifest["library"][0]["file"], "ATTRIBUTION.md");
+    EXPECT_EQ(r.manifest["library"][1]["file"], "library.gltf");
     const json g = mf::testfiles::read_json(r.out / "library.gltf");
     ASSERT_EQ(g["nodes"].size(), r.manifest["materials"].size());
     ASSERT_EQ(g["materials"].size(), r.manifest["materials"].size());
@@ -141,7 +142,7 @@ TEST(Gltf, LibraryHoldsEveryMaterialOnItsOwnNode) {
     EXPECT_EQ(places.size(), g["nodes"].size()) << "a grid: every node in its own place";
     // URIs from the root: the material's folder, then the file.
     for (const auto& img : g["images"]) EXPECT_TRUE(fs::exists(r.out / img["uri"].get<std::string>())) << img["uri"];
-    EXPECT_EQ(mf::sha256_hex(read_bytes(r.out / "library.gltf")), r.manifest["library"][0]["sha256"]);
+    EXPECT_EQ(mf::sha256_hex(read_bytes(r.out / "library.gltf")), r.manifest["library"][1]["sha256"]);
 }
 
 TEST(Gltf, DxNormalsSkipTheGltfWithAFinding) {

@@ -144,16 +144,15 @@ vec3 radiance_at(vec2 pos) {
     bool far_side = DOUBLE_SIDED && shape_hit(o, d, true, back);
     if (!front && !far_side) return frame.background.rgb;
     if (FILL_ONLY) return frame.albedo.rgb;
+    vec4 near = front ? shade_hit(o, pos, s) : vec4(0.0);
     vec3 color = frame.background.rgb;
-    if (far_side) {
+    // The far side only where the near one lets it through (a mask's cut texels: half the
+    // shading of a cut-out where the raster path shades both); mix by 1 keeps the near exactly.
+    if (far_side && near.a < 1.0) {
         vec4 c = shade_hit(o, pos, back);
         color = mix(color, c.rgb, c.a);
     }
-    if (front) {
-        vec4 c = shade_hit(o, pos, s);
-        color = mix(color, c.rgb, c.a);
-    }
-    return color;
+    return mix(color, near.rgb, near.a);
 }
 
 void main() {

@@ -13,7 +13,7 @@
 import { writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 
-import { startChromium, WEBGL_FLAGS } from '../../../scripts/devtools-pipe.mjs';
+import { openPage, startChromium, WEBGL_FLAGS } from '../../../scripts/devtools-pipe.mjs';
 import { serve } from '../../../scripts/loopback-server.mjs';
 
 const [npmDir, rootDir, outDir, sizeArg, ...names] = process.argv.slice(2);
@@ -67,7 +67,7 @@ window.ready = true;
 
 const { server, port } = await serve({ page, folders: { '/npm/': modules, '/root/': resolve(rootDir) } });
 const browser = startChromium({ name: 'gltf-sides', flags: WEBGL_FLAGS });
-const { send, log } = browser;
+const { log } = browser;
 browser.listen((msg) => {
   if (msg.method === 'Runtime.consoleAPICalled' || msg.method === 'Runtime.exceptionThrown') log.push(JSON.stringify(msg.params).slice(0, 400));
 });
@@ -78,16 +78,8 @@ const finish = async (code) => {
 };
 setTimeout(() => { console.error('timeout\n' + log.join('\n')); finish(1); }, 240000);
 
-const { targetId } = await send('Target.createTarget', { url: 'about:blank' });
-const { sessionId } = await send('Target.attachToTarget', { targetId, flatten: true });
-await send('Runtime.enable', {}, sessionId);
-await send('Page.navigate', { url: `http://127.0.0.1:${port}/` }, sessionId);
-const evaluate = async (expression) => {
-  const r = await send('Runtime.evaluate', { expression, awaitPromise: true, returnByValue: true }, sessionId);
-  if (r.exceptionDetails) throw new Error(JSON.stringify(r.exceptionDetails).slice(0, 600));
-  return r.result.value;
-};
-for (let i = 0; i < 200 && !(await evaluate('window.ready === true')); ++i) await new Promise((r) => setTimeout(r, 100));
+const { evaluate, waitFor } = await openPage(browser, `http://127.0.0.1:${port}/`);
+await waitFor('window.ready === true');
 let failed = false;
 for (const name of names) {
   const out = { name, ok: false, error: '' };
