@@ -6,8 +6,8 @@
 //   png_decode <folder>... [--repeat N] [--rows]
 //
 // Every PNG under the folders is read into memory once (untimed). Each round decodes all of
-// them in each way; a file's bytes (read_plain uses them up) and the filtered rows (reversed in
-// place) are copied back before each decode, untimed. The table gives each way's median round
+// them in each way; a file's bytes (read_plain uses them up) and the filtered rows (reversed over
+// themselves) are copied back before each decode, untimed. The table gives each way's median round
 // (and the fastest and slowest) over --repeat rounds (default 7), in ms per round and per file.
 // Every way's pixels are checked against read_plain's first decode (and OpenImageIO's against
 // them), so a faster wrong decode fails the run. --rows adds a table of synthetic 1024 x 1024
@@ -102,8 +102,7 @@ const char* isa_name(UnfilterIsa isa) {
 
 // OpenImageIO's decode of `bytes` (unassociated alpha, as matforge's module opens a PNG).
 bool oiio_decode(const std::vector<unsigned char>& bytes, std::vector<uint8_t>& px, int& nchannels) {
-    std::vector<unsigned char> copy = bytes;  // IOMemReader reads, never writes
-    OIIO::Filesystem::IOMemReader mem(copy.data(), copy.size());
+    OIIO::Filesystem::IOMemReader mem(bytes.data(), bytes.size());
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::create("png", false, &config);
@@ -246,9 +245,13 @@ int main(int argc, char** argv) {
             inflated.resize(p.filtered.size());  // allocated once for the largest file: the inflate alone
             size_t made = 0;
             t0 = Clock::now();
-            libdeflate_zlib_decompress(inflater.get(), p.stream.data(), p.stream.size(), inflated.data(),
-                                       p.filtered.size(), &made);
+            const auto inflated_ok = libdeflate_zlib_decompress(inflater.get(), p.stream.data(), p.stream.size(),
+                                                                inflated.data(), p.filtered.size(), &made);
             t_inflate += ms_since(t0);
+            if (inflated_ok != LIBDEFLATE_SUCCESS || made != p.filtered.size()) {
+                std::cerr << "png_decode: cannot inflate " << p.path << "\n";
+                return 1;
+            }
             for (int k = 0; k < kIsaCount; ++k) {
                 const UnfilterIsa isa = kIsas[k];
                 if (!mf::png::can_unfilter_with(isa)) continue;

@@ -247,9 +247,9 @@ void avg_sse2(const uint8_t* in, uint8_t* out, const uint8_t* up, size_t n) {
 //   big, small: max(b, c) and min(b, c), plus the filtered byte (each candidate's sum ready);
 //   raw:   the filtered bytes, read before the pixels to their left are stored over them.
 // Bytes are held offset by 128 (x ^ 0x80) where SSE2's signed compares order them. In 8-bit
-// terms, with e = max - min: where b >= c, L = min + 1 - 2e, W = max - L, mid = min - e / 2 - 1
-// (negative where min <= e / 2); where b < c, L = min + 1, W = min(max + 2e - 1, 255) - min,
-// mid = min(max + e / 2, 255), all in saturating byte arithmetic.
+// terms, with e = max - min: where b >= c, L = min + 1 - 2e, W = max - L (both at least 0),
+// mid = min - e / 2 - 1 (negative where min <= e / 2); where b < c, L = min + 1,
+// W = min(max + 2e - 1, 255) - min, mid = min(max + e / 2, 255); all in saturating byte arithmetic.
 // PngUnfilter.PaethTakesEveryTripleAsTheSpecDoes checks all 2^24 (a, b, c).
 constexpr size_t kBlock = 48;  // bytes of planes at a time: whole pixels of every size, 3 vectors
 

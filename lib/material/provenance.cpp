@@ -350,7 +350,7 @@ std::optional<VendorMatch> poliigon(const std::vector<MapName>& maps) {
         if (m.a.tokens.empty() || m.a.tokens.front().text != "Poliigon") return std::nullopt;
         names.insert(naming::name_spelling(m.file, m.a));
         for (size_t i = 1; i < m.a.name_end; ++i)
-            if (naming::all_digits(m.a.tokens[i].low)) id = m.a.tokens[i].text;
+            if (m.a.tokens[i].kind == Kind::word && naming::all_digits(m.a.tokens[i].low)) id = m.a.tokens[i].text;
         if (file.empty()) file = m.file;
     }
     if (one_of(names).empty()) return std::nullopt;
