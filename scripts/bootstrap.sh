@@ -27,6 +27,7 @@ packages_python=(
   python3-dev      # Python.h of Debian's python3, which the module is built for
   python3-venv     # `pip install .` into a virtual environment (Debian's python3 is externally managed)
   pybind11-dev     # the module's bindings in a CMake build (`pip install .` takes PyPI's, pinned in pyproject.toml)
+  file             # scripts/package.sh: CPack's DEB generator runs file(1) before dpkg-shlibdeps, and fails without it
 )
 packages_test=(
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -7,19 +7,21 @@
 #
 #   bench/throughput/preview_real.sh MATFORGE [--materials N (100)] [--repeat N (3)]
 #        [--device cpu|gpu|auto (gpu)] [--also BIN]... [--lanes "0 1 2 4"] [--jobs N] [--corpus DIR]
+#        [--timings]
 #
 # --corpus DIR: where the sets below are (default tests/data/corpus/real; those present are used).
 # --also BIN: another matforge binary timed alternately with MATFORGE on the same outputs (the
 # previous commit's, for a before/after in one run). --lanes: MATFORGE's --lanes values to try.
 # Prints a Markdown table of every run (wall, CPU user + sys, materials/s) and the medians; checks
-# each run wrote one picture a material.
+# each run wrote one picture a material. --timings: then one more run of MATFORGE from each, with
+# `preview --timings` (where its time went: the device's start, the renderers', reading, drawing).
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 # shellcheck source=common.sh
 source "$repo/bench/throughput/common.sh"
 matforge=${1:?usage: preview_real.sh MATFORGE [--materials N] [--repeat N] [--device D] [--also BIN]... [--lanes "L..."]}
 shift
-materials=100 repeat=3 device=gpu lanes=0 jobs=0 corpus=$repo/tests/data/corpus/real
+materials=100 repeat=3 device=gpu lanes=0 jobs=0 timings=0 corpus=$repo/tests/data/corpus/real
 also=()
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -30,6 +32,7 @@ while [[ $# -gt 0 ]]; do
     --lanes) lanes=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --corpus) corpus=$2; shift 2 ;;
+    --timings) timings=1; shift ;;
     *) echo "preview_real.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -86,3 +89,12 @@ for ((r = 1; r <= repeat; r++)); do
 done
 echo
 for f in "$work"/*.wall; do echo "median $(basename "$f" .wall): $(median "$f") s"; done
+if ((timings)); then
+  for from in gltf vulkan-ktx2; do
+    echo
+    echo "\`matforge preview --timings\` from \`$from\`:"
+    rm -rf "$work/out"
+    "$matforge" preview "$work/$from/manifest.json" -o "$work/out" --device "$device" --timings 2>&1 |
+      grep -E 'timings:|note: shading| rendered' || true
+  done
+fi

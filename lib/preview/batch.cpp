@@ -1,6 +1,7 @@
 #include "preview/batch.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -9,6 +10,7 @@
 #include <mutex>
 #include <thread>
 
+#include "base/parallel.hpp"
 #include "core/text.hpp"
 
 namespace mf::preview {
@@ -93,6 +95,9 @@ struct Loaded {
 // Thrown inside a worker's read when the batch stops before the renderers exist.
 struct Stopped {};
 
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
 // One pipeline run: the workers, the lanes, and the caller's thread saying the outcomes in order.
 // Every shared field below is guarded by mutex_ and signalled by changed_.
 class Batch {
@@ -106,15 +111,24 @@ public:
     Batch& operator=(const Batch&) = delete;
 
     BatchResult run() {
-        // The first materials are read while the device starts and the scene's load-time passes
-        // run (the studio environment's prefiltering): a read waits for the renderers only where
-        // it needs them, to know a GPU texture file's formats and to prepare the textures.
+        // The first materials are read while the device starts, and prepared while the renderers
+        // are made (pipelines, the scene's load-time passes: the studio environment's
+        // prefiltering): a read waits only for the device, whose formats render::samples and
+        // render::prepare need.
+        BatchTimes& times = result_.times;
         const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
         const unsigned workers = opt_.jobs > 0 ? opt_.jobs : hw;
         for (unsigned w = 0; w < std::max(1u, workers) && !jobs_.empty(); ++w)
             workers_.emplace_back([this] { work(); });
+        times.workers = static_cast<unsigned>(workers_.size());
         try {
             context_.emplace(opt_.context);
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                device_ready_ = true;
+            }
+            changed_.notify_all();
+            times.device = seconds_since(start_);
             const unsigned lanes =
                 std::max(1u, std::min<unsigned>(opt_.lanes > 0 ? opt_.lanes : lanes_for(context_->info()),
                                                 static_cast<unsigned>(std::max<size_t>(1, jobs_.size()))));
@@ -123,35 +137,32 @@ public:
                      std::to_string(sf_.scene.width) + "x" + std::to_string(sf_.scene.height) + ", " +
                      std::to_string(jobs_.size()) + " material(s)" +
                      (lanes > 1 ? ", " + std::to_string(lanes) + " lanes" : ""));
-            // The first lane alone (it measures render::Device's shading choice), then the others at
-            // once: each compiles its load-time passes' pipelines (the context's pipeline cache
-            // serves the later ones) and runs them. Their notes repeat the first's.
-            renderers_.push_back(std::make_unique<render::Renderer>(*context_, sf_.scene));
-            for (const std::string& n : renderers_.back()->take_notes()) say_("note: " + n);
+            // Every lane's renderer at once: each compiles its load-time passes' pipelines and runs
+            // them; the first to need render::Device's shading choice measures it while the others
+            // wait. Their notes are alike but for that measurement's: each said once, in lane order.
             renderers_.resize(lanes);
+            std::vector<std::vector<std::string>> notes(lanes);
             std::vector<std::exception_ptr> failed(lanes);
-            std::vector<std::thread> making;
-            for (unsigned k = 1; k < lanes; ++k)
-                making.emplace_back([&, k] {
-                    try {
-                        renderers_[k] = std::make_unique<render::Renderer>(*context_, sf_.scene);
-                        renderers_[k]->take_notes();
-                    } catch (...) {
-                        failed[k] = std::current_exception();
-                    }
-                });
-            for (std::thread& t : making) t.join();
+            parallel_for(lanes, static_cast<int>(lanes), [&](size_t k) {
+                try {
+                    renderers_[k] = std::make_unique<render::Renderer>(*context_, sf_.scene);
+                    notes[k] = renderers_[k]->take_notes();
+                } catch (...) {
+                    failed[k] = std::current_exception();
+                }
+            });
             for (const std::exception_ptr& e : failed)
                 if (e) std::rethrow_exception(e);
+            std::set<std::string> said;
+            for (const std::vector<std::string>& lane_notes : notes)
+                for (const std::string& n : lane_notes)
+                    if (said.insert(n).second) say_("note: " + n);
         } catch (...) {
             stop();
             throw;
         }
-        {
-            const std::lock_guard<std::mutex> lock(mutex_);
-            ready_ = true;
-        }
-        changed_.notify_all();
+        times.renderers = seconds_since(start_);
+        times.lanes = static_cast<unsigned>(renderers_.size());
         for (size_t k = 0; k < renderers_.size(); ++k) lanes_.emplace_back([this, k] { lane(k); });
 
         for (size_t i = 0; i < jobs_.size(); ++i) {
@@ -166,8 +177,14 @@ public:
             }
             changed_.notify_all();
             report(i, std::move(o));
+            if (i == 0) times.first = seconds_since(start_);
         }
         shut_down();
+        times.total = seconds_since(start_);
+        times.read = spent_.read;
+        times.upload = spent_.upload;
+        times.draw = spent_.draw;
+        times.write = spent_.write;
         if (fatal_) std::rethrow_exception(fatal_);
         for (const auto& [text, n] : repeated_notes_)
             if (n > 1) say_("note said above, for " + std::to_string(n - 1) + " more material(s) too: " + text);
@@ -219,8 +236,10 @@ private:
             const size_t i = next_read_++;
             ++reading_;
             lock.unlock();
+            const Clock::time_point began = Clock::now();
             Loaded l = read(i);
             lock.lock();
+            spent_.read += seconds_since(began);
             --reading_;
             held_ += l.bytes;
             largest_ = std::max(largest_, l.bytes);
@@ -229,20 +248,22 @@ private:
         }
     }
 
-    // Blocks until the renderers exist; throws Stopped when the batch stops first.
-    render::Renderer& renderer_for(size_t i) {
+    // Blocks until the device exists (not the renderers: their load-time passes and pipelines
+    // take most of the start, and the first materials are prepared meanwhile); throws Stopped
+    // when the batch stops first.
+    render::Context& device() {
         std::unique_lock<std::mutex> lock(mutex_);
-        changed_.wait(lock, [&] { return ready_ || stopping_; });
-        if (!ready_) throw Stopped{};
-        return *renderers_[i % renderers_.size()];
+        changed_.wait(lock, [&] { return device_ready_ || stopping_; });
+        if (!device_ready_) throw Stopped{};
+        return *context_;
     }
 
     Loaded read(size_t i) {
         Loaded l;
         try {
-            auto m = jobs_[i].load([&](uint32_t f) { return renderer_for(i).samples(f); }, l.notes, l.error);
+            auto m = jobs_[i].load([&](uint32_t f) { return render::samples(device(), f); }, l.notes, l.error);
             if (m) {
-                l.prepared = renderer_for(i).prepare(*m);
+                l.prepared = render::prepare(device(), sf_.scene, *m);
                 l.bytes = l.prepared->bytes();
             }
         } catch (const Stopped&) {
@@ -278,9 +299,11 @@ private:
         }
     }
 
-    void finish(size_t i, Outcome o, uint64_t released) {
+    // `wrote`: the seconds its image's encoding and writing took.
+    void finish(size_t i, Outcome o, uint64_t released, double wrote = 0.0) {
         {
             const std::lock_guard<std::mutex> lock(mutex_);
+            spent_.write += wrote;
             held_ += o.rgba8.size();
             held_ -= released;
             outcomes_[i] = std::move(o);
@@ -301,28 +324,36 @@ private:
             return;
         }
         try {
+            Clock::time_point began = Clock::now();
             render::GpuMaterial gm = r.upload(std::move(*l.prepared));
             l.prepared.reset();
             {
                 const std::lock_guard<std::mutex> lock(mutex_);
                 held_ -= l.bytes;  // its host copy is on the device now
+                spent_.upload += seconds_since(began);
             }
             changed_.notify_all();
             for (const std::string& n : r.take_notes()) o.lines.push_back(job.name + ": note: " + n);
             const bool png = opt_.format == "png";
             std::vector<uint8_t> rgba8;
             std::vector<float> rgba32f;
+            began = Clock::now();
             if (png || opt_.contact_sheet) rgba8 = r.render(gm, sf_.output).rgba8;
             if (!png) {
                 render::OutputOptions lin;
                 lin.format = render::PixelFormat::rgba32f;
                 rgba32f = r.render(gm, lin).rgba32f;
             }
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                spent_.draw += seconds_since(began);
+            }
             const std::filesystem::path out = opt_.out / (job.stem + "." + opt_.format);
             std::string progress = "[" + std::to_string(i + 1) + "/" + std::to_string(jobs_.size()) + "] ";
             auto write = [this, i, &job, png, out, progress = std::move(progress), o = std::move(o),
                           rgba8 = std::move(rgba8), rgba32f = std::move(rgba32f),
                           gm = std::make_shared<render::GpuMaterial>(std::move(gm))]() mutable {
+                const Clock::time_point wrote = Clock::now();
                 gm.reset();  // its device objects, off the lane's thread
                 const uint32_t w = sf_.scene.width, h = sf_.scene.height;
                 std::string error;
@@ -339,7 +370,7 @@ private:
                     o.lines.push_back(progress + out.string());
                 }
                 o.rgba8 = std::move(rgba8);
-                finish(i, std::move(o), 0);
+                finish(i, std::move(o), 0, seconds_since(wrote));
             };
             {
                 const std::lock_guard<std::mutex> lock(mutex_);
@@ -378,15 +409,19 @@ private:
     const std::vector<Job>& jobs_;
     const BatchOptions& opt_;
     const std::function<void(const std::string&)>& say_;
+    const Clock::time_point start_ = Clock::now();
     BatchResult result_;
+    struct {
+        double read = 0.0, upload = 0.0, draw = 0.0, write = 0.0;
+    } spent_;                                       // thread time, summed (BatchTimes)
     std::map<std::string, size_t> repeated_notes_;  // a note's text -> how many materials had it
     std::optional<render::Context> context_;
     std::vector<std::unique_ptr<render::Renderer>> renderers_;  // one per lane
 
     std::mutex mutex_;
     std::condition_variable changed_;
-    bool ready_ = false;     // the renderers exist
-    bool stopping_ = false;  // done, or a renderer failed: lanes and workers end
+    bool device_ready_ = false;  // context_ exists: materials may be prepared
+    bool stopping_ = false;      // done, or a renderer failed: lanes and workers end
     std::exception_ptr fatal_;
     size_t next_read_ = 0, reading_ = 0;
     uint64_t held_ = 0;     // bytes of prepared textures and unsaid images

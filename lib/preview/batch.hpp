@@ -68,9 +68,24 @@ struct BatchOptions {
 // per four hardware threads, 1..4 (the H200 host: 4; measured in docs/bench/README.md).
 unsigned lanes_for(const render::DeviceInfo& device);
 
+// Where a batch's time went (`preview --timings`), in seconds. Wall clock from the batch's start
+// to each point; thread time summed over the workers or the lanes that spent it.
+struct BatchTimes {
+    double device = 0.0;     // the device made (render::Context): materials are prepared from here
+    double renderers = 0.0;  // every lane's renderer made (pipelines, the scene's load-time passes)
+    double first = 0.0;      // the first material's outcome said (its image written)
+    double total = 0.0;
+    unsigned lanes = 0, workers = 0;
+    double read = 0.0;    // workers: files decoded, textures converted (render::prepare)
+    double upload = 0.0;  // lanes: staging copies and their submission
+    double draw = 0.0;    // lanes: render and read back
+    double write = 0.0;   // workers: images encoded and written
+};
+
 struct BatchResult {
     size_t rendered = 0, failed = 0;
     std::vector<SheetTile> tiles;  // with contact_sheet: the rendered materials', in job order
+    BatchTimes times;
 };
 
 // Renders `jobs` with `sf`'s scene; every message goes to `say`, in job order. A material that

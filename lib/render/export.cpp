@@ -21,13 +21,6 @@ constexpr uint32_t kExportComp[] =
 
 using gpu::ShadeSpecialization;
 
-// The renderer's state. Renderer keeps it private; a material it prepares points back at it
-// (PreparedMaterial::Impl::owner), and preparing one without textures touches nothing.
-const Renderer::Impl& impl_of(const Renderer& renderer) {
-    const PreparedMaterial probe = renderer.prepare(Material{});
-    return *probe.impl().owner;
-}
-
 // Reads every mip of `img` (a 2D image or a cube, sampled in SHADER_READ_ONLY_OPTIMAL, as the
 // load-time passes leave their maps) through export.comp.
 class ImageReader {
@@ -120,7 +113,7 @@ private:
 ShadingExport export_shading(Renderer& renderer, const Material& material) {
     check_material(material);
     // The caller holds `renderer` non-const: its state may be written (its uniform block, below).
-    auto& r = const_cast<Renderer::Impl&>(impl_of(renderer));
+    auto& r = const_cast<Renderer::Impl&>(renderer_impl(renderer));
     ShadingExport out;
     const ShadeSpecialization c = r.specialization(material);
     for (const SpecField& f : kShadeFields) {
@@ -135,7 +128,7 @@ ShadingExport export_shading(Renderer& renderer, const Material& material) {
 }
 
 LightingExport export_lighting(Renderer& renderer) {
-    const Renderer::Impl& r = impl_of(renderer);
+    const Renderer::Impl& r = renderer_impl(renderer);
     if (!r.env_specular.view || !r.brdf_lut.view) throw Error("export_lighting: the scene has no environment");
     ImageReader reader(r);
     std::vector<ImageExport> images = reader.read({&r.brdf_lut, &r.env_specular, &r.env_irradiance});
@@ -154,7 +147,7 @@ MeshExport export_mesh(const Renderer& renderer) {
     out.vertices.resize(mesh.vertices.size() * 12);
     std::memcpy(out.vertices.data(), mesh.vertices.data(), out.vertices.size() * sizeof(float));
     out.indices = mesh.indices;
-    out.depth_test = impl_of(renderer).uses_depth();
+    out.depth_test = renderer_impl(renderer).uses_depth();
     return out;
 }
 

@@ -141,7 +141,7 @@ void Renderer::Impl::create_layouts() {
     encode_set = allocate_set(descriptor_pool, encode_set_layout);
 }
 
-ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
+ShadeSpecialization scene_specialization(const Scene& scene, const Material& m) {
     ShadeSpecialization c{};
     for (const Light& l : scene.lights) ++(l.type == LightType::directional ? c.num_directional : c.num_point);
     const bool env = static_cast<bool>(scene.environment);
@@ -154,9 +154,7 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     c.normal_green_down = flag(m.normal.green_down);
     c.normal_z_from_xy = flag(m.normal.texture >= 0 && m.normal.z_from_xy);
     c.fill_only = flag(scene.fill_only);
-    c.msaa = flag(samples != VK_SAMPLE_COUNT_1_BIT);
     c.shape = static_cast<int32_t>(scene.shape.type);
-    c.samples = compute ? static_cast<int32_t>(scene.msaa) : 1;  // raster: coverage samples instead
     auto scalar = [](const ScalarRole& r, int32_t& tex, int32_t& channel, uint32_t& invert) {
         tex = r.texture;
         channel = static_cast<int32_t>(r.channel);
@@ -171,6 +169,17 @@ ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
     scalar(m.opacity, c.opacity_tex, c.opacity_channel, c.opacity_invert);
     c.alpha_mode = static_cast<int32_t>(m.alpha_mode);
     c.double_sided = flag(m.double_sided);
+    return c;
+}
+
+void Renderer::Impl::place(ShadeSpecialization& c) const {
+    c.msaa = flag(samples != VK_SAMPLE_COUNT_1_BIT);
+    c.samples = compute ? static_cast<int32_t>(scene.msaa) : 1;  // raster: coverage samples instead
+}
+
+ShadeSpecialization Renderer::Impl::specialization(const Material& m) const {
+    ShadeSpecialization c = scene_specialization(scene, m);
+    place(c);
     return c;
 }
 

@@ -372,8 +372,16 @@ public:
 
 private:
     friend class Renderer;
+    friend PreparedMaterial prepare(Context& context, const Scene& scene, const Material& material);
     std::unique_ptr<Impl> impl_;
 };
+
+// Renderer::prepare before any renderer exists: what a Renderer(context, scene) would prepare,
+// for upload on any renderer of that context made with that scene (upload checks it). A batch
+// readies its first materials while the renderers start (lib/preview/batch.cpp). Thread-safe.
+PreparedMaterial prepare(Context& context, const Scene& scene, const Material& material);
+// Renderer::samples before any renderer exists.
+bool samples(Context& context, uint32_t block_format);
 
 // A material's textures on the device and the pipeline variant it needs. Destroy before the
 // Renderer that made it; on any thread once the render() calls that drew it have returned (its
@@ -434,6 +442,7 @@ public:
     struct Impl;
 
 private:
+    friend const Impl& renderer_impl(const Renderer& renderer);  // for export.cpp
     std::unique_ptr<Impl> impl_;
 };
 

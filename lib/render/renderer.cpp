@@ -5,12 +5,14 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <memory>
 #include <vector>
 
 #include <utility>
 
 #include "base/limits.hpp"
+#include "base/parallel.hpp"
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 
@@ -172,13 +174,22 @@ ShadingTimes measure_shading(Context& context, uint32_t msaa, uint32_t supersamp
     s.width = s.height = kMeasureSize;
     s.msaa = msaa;
     s.supersample = supersample;
-    std::vector<std::unique_ptr<Renderer>> renderers;
-    std::vector<GpuMaterial> materials;
-    for (const Shading path : {Shading::raster, Shading::compute}) {
-        s.shading = path;
-        renderers.push_back(std::make_unique<Renderer>(context, s));
-        materials.push_back(renderers.back()->upload(Material{}));
-    }
+    // The two renderers made at once, each compiling its own pipelines.
+    std::array<std::unique_ptr<Renderer>, 2> renderers;
+    std::array<GpuMaterial, 2> materials;
+    std::array<std::exception_ptr, 2> failed;
+    parallel_for(2, 2, [&](size_t i) {
+        try {
+            Scene path = s;
+            path.shading = i == 0 ? Shading::raster : Shading::compute;
+            renderers[i] = std::make_unique<Renderer>(context, path);
+            materials[i] = renderers[i]->upload(Material{});
+        } catch (...) {
+            failed[i] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
     std::array<double, 2> best{0.0, 0.0};
     for (int frame = 0; frame < kWarmupFrames + kTimedFrames; ++frame)
         for (size_t i = 0; i < 2; ++i) {
@@ -205,6 +216,7 @@ void Renderer::Impl::choose_shading(Context& context) {
     }
     if (d.info.cpu) return;  // raster, unmeasured: see Shading::automatic
     Device::ShadingChoice& c = d.shading_choice;
+    const std::lock_guard<std::mutex> lock(c.mutex);  // measure_shading's renderers name their path: no re-entry
     if (!c.measured) {
         if (!d.info.timestamps) {
             c.measured = true;
@@ -276,6 +288,8 @@ void Renderer::Impl::create_samplers() {
 }
 
 // ---------------------------------------------------------------------------------------------
+
+const Renderer::Impl& renderer_impl(const Renderer& renderer) { return *renderer.impl_; }
 
 Renderer::Renderer(Context& context, const Scene& scene) : impl_(std::make_unique<Impl>(context, scene)) {}
 Renderer::~Renderer() = default;

@@ -138,6 +138,9 @@ struct Renderer::Impl {
     void create_layouts();
     // The variant of shade.frag a material needs in this scene, and its one-line description.
     gpu::ShadeSpecialization specialization(const Material& m) const;
+    // Into a variant made by scene_specialization (before this renderer existed): this
+    // renderer's own choices, its sample count and shading path.
+    void place(gpu::ShadeSpecialization& c) const;
     // The ground plane's variant beside the shape's `c`: the scene's lights, environment and
     // BRDF, no texture, flat, not the analytic sphere.
     static gpu::ShadeSpecialization ground_specialization(const gpu::ShadeSpecialization& c);
@@ -177,12 +180,22 @@ struct Renderer::Impl {
     void build_environment();
 };
 
+// The constants of shade.frag's variant that the scene and the material decide (all but the
+// renderer's sample count and shading path, Renderer::Impl::place): what prepare() knows
+// before a renderer exists.
+gpu::ShadeSpecialization scene_specialization(const Scene& scene, const Material& m);
+
 struct PreparedMaterial::Impl {
-    const Renderer::Impl* owner = nullptr;
+    const detail::Device* device = nullptr;  // prepared for this device and this scene's textures
+    bool fast_textures = false;
     Material constants;  // roles and constant values (no texel data)
     gpu::ShadeSpecialization specialization;
     std::vector<std::optional<detail::PreparedTexture>> textures;  // by index; none where the variant samples nothing
 };
+
+// Renderer::prepare and render::prepare: the textures converted for `d`, read as `scene` reads them.
+std::unique_ptr<PreparedMaterial::Impl> prepare_material(const detail::Device& d, const Scene& scene,
+                                                         const Material& material);
 
 struct GpuMaterial::Impl {
     const Renderer::Impl* owner = nullptr;

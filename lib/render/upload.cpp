@@ -218,12 +218,18 @@ void Renderer::Impl::create_dummies() {
     s.finish(unused);
 }
 
-bool Renderer::samples(uint32_t block_format) const {
+namespace {
+
+bool device_samples(const Device& d, uint32_t block_format) {
     const BlockFormatDesc* f = block_format_desc(block_format);
-    const Device& d = impl_->d;
     return f && d.supports(f->unorm, kSampledTextureFeatures) &&
            (f->srgb == VK_FORMAT_UNDEFINED || d.supports(f->srgb, kSampledTextureFeatures));
 }
+
+}  // namespace
+
+bool Renderer::samples(uint32_t block_format) const { return device_samples(impl_->d, block_format); }
+bool samples(Context& context, uint32_t block_format) { return device_samples(device_of(context), block_format); }
 
 namespace {
 
@@ -263,15 +269,27 @@ size_t PreparedMaterial::bytes() const {
 }
 
 PreparedMaterial Renderer::prepare(const Material& material) const {
-    check_material(material);
-    const Impl& r = *impl_;
     PreparedMaterial out;
-    out.impl_ = std::make_unique<PreparedMaterial::Impl>();
-    PreparedMaterial::Impl& p = *out.impl_;
-    p.owner = impl_.get();
+    out.impl_ = prepare_material(impl_->d, impl_->scene, material);
+    return out;
+}
+
+PreparedMaterial prepare(Context& context, const Scene& scene, const Material& material) {
+    PreparedMaterial out;
+    out.impl_ = prepare_material(device_of(context), scene, material);
+    return out;
+}
+
+std::unique_ptr<PreparedMaterial::Impl> prepare_material(const Device& d, const Scene& scene,
+                                                         const Material& material) {
+    check_material(material);
+    auto out = std::make_unique<PreparedMaterial::Impl>();
+    PreparedMaterial::Impl& p = *out;
+    p.device = &d;
+    p.fast_textures = scene.fast_textures;
     p.constants = roles_of(material);
     gpu::ShadeSpecialization& c = p.specialization;
-    c = r.specialization(material);
+    c = scene_specialization(scene, material);
     const size_t n = material.textures.size();
     p.textures.resize(n);
 
@@ -307,8 +325,8 @@ PreparedMaterial Renderer::prepare(const Material& material) const {
         const MipKind kind = slot == material.normal.texture ? MipKind::normal
                              : t.srgb                        ? MipKind::color
                                                              : MipKind::data;
-        p.textures[i] = prepare_texture(r.d, t, kind, r.scene.fast_textures,
-                                        r.scene.fast_textures ? inverted_reads[i] & ~plain_reads[i] : 0);
+        p.textures[i] = prepare_texture(d, t, kind, scene.fast_textures,
+                                        scene.fast_textures ? inverted_reads[i] & ~plain_reads[i] : 0);
     }
     for (const Read& rd : reads)
         if (rd.texture >= 0 && *rd.inverted &&
@@ -325,7 +343,17 @@ GpuMaterial Renderer::upload(PreparedMaterial prepared) {
     const Device& d = r.d;
     if (!prepared.impl_) throw Error("upload of an empty PreparedMaterial");
     PreparedMaterial::Impl& p = *prepared.impl_;
-    if (p.owner != impl_.get()) throw Error("material '" + p.constants.name + "' was prepared by another renderer");
+    // Prepared by render::prepare before this renderer existed, or by another renderer: its
+    // textures must be this device's formats read as this scene reads them, and its variant this
+    // scene's (all but the channels stored inverted, which prepare decided from the texels).
+    gpu::ShadeSpecialization expect = r.specialization(p.constants);
+    r.place(p.specialization);
+    for (auto field : {&gpu::ShadeSpecialization::roughness_invert, &gpu::ShadeSpecialization::metalness_invert,
+                       &gpu::ShadeSpecialization::occlusion_invert, &gpu::ShadeSpecialization::opacity_invert,
+                       &gpu::ShadeSpecialization::normal_green_down})
+        expect.*field = p.specialization.*field;
+    if (p.device != &d || p.fast_textures != r.scene.fast_textures || expect != p.specialization)
+        throw Error("material '" + p.constants.name + "' was prepared for another device or scene");
     GpuMaterial out;
     out.impl_ = std::make_unique<GpuMaterial::Impl>();
     GpuMaterial::Impl& m = *out.impl_;

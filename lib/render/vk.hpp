@@ -161,9 +161,10 @@ struct Device {
     bool precise_textures = false;    // ContextOptions::precise_cpu_textures, on a CPU device
     VkDeviceSize max_allocation = 0;  // maxMemoryAllocationSize (Vulkan 1.1): the largest single allocation
     // Scene::shading automatic: measured by the first renderer that needs it, then kept for every
-    // later one of this context (renderers of one context are made on one thread, as they submit
-    // to its one queue).
+    // later one of this context. Renderers may be made on several threads at once (preview's
+    // lanes): the others wait under `mutex` for the one measuring.
     struct ShadingChoice {
+        std::mutex mutex;
         bool measured = false, compute = false;
         double raster_ms = 0.0, compute_ms = 0.0;
     } shading_choice;

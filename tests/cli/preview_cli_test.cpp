@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 
@@ -447,4 +448,54 @@ TEST(PreviewCli, LanesAndWorkersChangeNoPictureNorMessage) {
     EXPECT_EQ(said[0], said[1]);
     EXPECT_NE(said[0].find(manifest["materials"][1]["name"].get<std::string>()), std::string::npos) << said[0];
     EXPECT_EQ(mf::testfiles::file_bytes(work / "sheet0.png"), mf::testfiles::file_bytes(work / "sheet1.png"));
+}
+
+// --timings says where the batch's time went: the points in order (the device, then the
+// renderers, the first image, the end) within the command's own wall clock, the lanes and
+// workers asked for, and time spent reading, drawing and writing. Without it, no such line.
+TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
+    const fs::path work = temp_dir("timings");
+    auto r = run("ingest " + q(samples() / "Metal_Damaged_001_SD") + " -o " + q(work / "out"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string args = "preview " + q(work / "out" / "manifest.json") + " -o " + q(work / "p") +
+                             " --size 48 --device cpu";
+    r = run(args);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("timings:"), std::string::npos) << r.output;
+
+    const auto began = std::chrono::steady_clock::now();
+    r = run(args + " --timings --lanes 2 -j 3");
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    ASSERT_EQ(r.code, 0) << r.output;
+    double device = -1, renderers = -1, first = -1, total = -1, read = -1, write = -1, upload = -1, draw = -1;
+    unsigned lanes = 0, workers = 0;
+    const size_t at = r.output.find("timings: device made");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + at,
+                          "timings: device made %lf s, %u renderer(s) %lf s, first image %lf s, all %lf s", &device,
+                          &lanes, &renderers, &first, &total),
+              5)
+        << r.output;
+    const size_t at2 = r.output.find("timings: read");
+    ASSERT_NE(at2, std::string::npos) << r.output;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + at2,
+                          "timings: read %lf s and write %lf s on %u worker(s), upload %lf s and draw %lf s", &read,
+                          &write, &workers, &upload, &draw),
+              5)
+        << r.output;
+    EXPECT_EQ(lanes, 1u) << "one material: one lane, whatever --lanes asks";
+    EXPECT_EQ(workers, 3u);
+    EXPECT_GT(device, 0.0);
+    EXPECT_LE(device, renderers);
+    EXPECT_LE(renderers, first);
+    EXPECT_LE(first, total);
+    EXPECT_LE(total, wall);
+    // Each stage ran (a 1K set's decode, its upload and a lavapipe draw take milliseconds; a
+    // 48-pixel picture's write may take under the millisecond printed) and none took longer than
+    // the whole on its threads.
+    for (const double t : {read, upload, draw}) EXPECT_GT(t, 0.0) << r.output;
+    for (const double t : {read, write, upload, draw}) {
+        EXPECT_GE(t, 0.0) << r.output;
+        EXPECT_LE(t, total * 3) << r.output;
+    }
 }

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "findings/catalog.hpp"
 #include "manifest/attribution.hpp"
 #include "manifest/manifest.hpp"

@@ -2,7 +2,7 @@
 //   [--shape sphere|cube|plane] [--light SPEC]... [--env FILE.hdr|.exr] [--format png|exr]
 //   [--contact-sheet FILE.png] [--device auto|gpu|cpu] [--brdf standard|accurate|assignment]
 //   [--aa N|msaaN] [--textures fast|exact] [--shading auto|raster|compute] [--allow-outside]
-//   [-j N] [--lanes N] [--vk-validation]
+//   [-j N] [--lanes N] [--timings] [--vk-validation]
 // Options -> scene -> materials -> images: the options become a scene (build_scene), the
 // manifest's materials (or the scene's own) jobs, and lib/preview's batch renders them
 // (preview/batch.hpp: the pipeline, messages in manifest order); this file maps the outcome to
@@ -34,7 +34,7 @@ struct PreviewArgs {
     std::string uv_aspect;
     std::vector<std::string> lights;
     std::string format = "png", device = "auto";
-    bool validation = false, allow_outside = false, ground = false;
+    bool validation = false, allow_outside = false, ground = false, timings = false;
     unsigned jobs = 0, lanes = 0;
 };
 
@@ -168,6 +168,15 @@ ExitCode run_preview(const PreviewArgs& a) {
     say("preview", std::to_string(r.rendered) + " rendered" +
                        (r.failed ? ", " + std::to_string(r.failed) + " failed" : std::string()) + " in " +
                        fixed(secs, 1) + " s: " + a.out + (a.contact_sheet.empty() ? "" : ", " + a.contact_sheet));
+    if (a.timings) {
+        const preview::BatchTimes& t = r.times;
+        say("preview", "timings: device made " + fixed(t.device, 3) + " s, " + std::to_string(t.lanes) +
+                           " renderer(s) " + fixed(t.renderers, 3) + " s, first image " + fixed(t.first, 3) +
+                           " s, all " + fixed(t.total, 3) + " s (wall, from the start)");
+        say("preview", "timings: read " + fixed(t.read, 3) + " s and write " + fixed(t.write, 3) + " s on " +
+                           std::to_string(t.workers) + " worker(s), upload " + fixed(t.upload, 3) + " s and draw " +
+                           fixed(t.draw, 3) + " s on the lane(s) (thread time, summed)");
+    }
     return status;
 }
 
@@ -272,6 +281,9 @@ const Register register_preview{
                         "materials uploaded and drawn at once, 0..16; 0 = by the device: 1 on a CPU device, "
                         "else one per 4 hardware threads up to 4 (default 0)")
              ->check(CLI::Range(0u, 16u));
+         sub.add_flag("--timings", a->timings,
+                      "say where the time went: when the device and the renderers were made and the first and last "
+                      "images written, and the threads' time reading, uploading, drawing and writing");
          sub.add_flag("--vk-validation", a->validation,
                       "run with the Khronos validation layer and report its messages (diagnostics; slow)");
          return [a] { return run_preview(*a); };
