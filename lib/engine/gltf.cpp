@@ -15,6 +15,7 @@
 #include "core/spool.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
+#include "manifest/attribution.hpp"
 #include "preset/engine_slots.hpp"
 
 namespace mf::gltf {
@@ -159,6 +160,10 @@ bool material_gltf(const manifest::Material& m, const std::string& gltf_file, co
     const fs::path base = fs::path(gltf_file).parent_path();
     json doc;
     doc["asset"] = {{"version", "2.0"}, {"generator", std::string(kGenerator)}};
+    // glTF 2.0's place for "a copyright message suitable for display to credit the content
+    // creator": the material's credit, only where its licence is known.
+    if (const auto credit = m.provenance ? manifest::material_credit(*m.provenance) : std::nullopt)
+        doc["asset"]["copyright"] = credit->line;
     doc["samplers"] = json::array({{{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}}});
     doc["images"] = json::array();
     doc["textures"] = json::array();
@@ -246,12 +251,21 @@ std::optional<ByteProducer> library_gltf(const std::vector<LibraryItem>& items, 
     };
     const auto side = static_cast<size_t>(std::ceil(std::sqrt(static_cast<double>(items.size()))));
     bool emissive_strength = false;
+    // The materials' credits (their files' asset.copyright): the library's when they all have
+    // the same one, else a pointer to the list of every material's.
+    std::optional<std::string> copyright;
+    bool one_copyright = true;
     try {
         for (size_t i = 0; i < items.size(); ++i) {
             const fs::path gltf_path = out_dir / items[i].gltf_file;
             const auto one = read_json_file(gltf_path, error);
             if (!one) return std::nullopt;
             try {
+                const json& asset = one->at("asset");
+                std::optional<std::string> credit;
+                if (const auto c = asset.find("copyright"); c != asset.end()) credit = c->get<std::string>();
+                if (i == 0) copyright = credit;
+                else if (credit != copyright) one_copyright = false;
                 // The material's images move from its folder's URIs to the root's.
                 const fs::path base = fs::path(items[i].gltf_file).parent_path();
                 const size_t first_texture = textures->size(), first_image = images->size();
@@ -283,6 +297,11 @@ std::optional<ByteProducer> library_gltf(const std::vector<LibraryItem>& items, 
         return std::nullopt;
     }
     if (emissive_strength) doc["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
+    if (!one_copyright)
+        doc["asset"]["copyright"] =
+            "Materials of several sources or licences: each one's source, licence and credit in " +
+            std::string(manifest::kAttributionFile) + " beside this file";
+    else if (copyright) doc["asset"]["copyright"] = *copyright;
     json scene_nodes = json::array();
     for (size_t i = 0; i < items.size(); ++i) scene_nodes.push_back(i);
     doc["scenes"] = json::array({{{"name", "library"}, {"nodes", std::move(scene_nodes)}}});

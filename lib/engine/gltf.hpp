@@ -15,6 +15,10 @@
 //  - texture slots follow glTF 2.0 section 3.9: base color (sRGB RGB, A = alpha),
 //    metallicRoughness (G roughness, B metalness), occlusion (R), normal (+Y), emissive (sRGB,
 //    emissiveFactor 1); factors left at their defaults of 1 (the textures carry the values);
+//  - `asset.copyright` (glTF 2.0: "a copyright message suitable for display to credit the
+//    content creator") is the material's credit line (manifest/attribution.hpp material_credit),
+//    absent where its licence is unknown; library.gltf carries the materials' one credit when
+//    they share it, else a pointer to ATTRIBUTION.md;
 //  - JSON text is deterministic (sorted keys, 2-space indent): same inputs, same bytes.
 #pragma once
 #include <array>

@@ -14,13 +14,17 @@
 //    matters is written: VRAM compression, mipmaps, no 3D auto-detection, the normal map
 //    imported as one (compress/normal_map=1: RGTC, Z rebuilt) and every other map not;
 //  - ORMMaterial3D reads AO only with ao_enabled; its roughness and metallic numbers are not
-//    applied to the ORM texture; emission adds the emission colour (left black) to the texture.
+//    applied to the ORM texture; emission adds the emission colour (left black) to the texture;
+//  - the material's credit (manifest/attribution.hpp material_credit) as the resource's metadata
+//    `copyright` (Object.set_meta, saved in the .tres as `metadata/copyright`, shown in the
+//    Inspector's Metadata section; Godot has no licence field); none where the licence is unknown.
 #include <filesystem>
 
 #include "core/identifier.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
 #include "engine/engine.hpp"
+#include "manifest/attribution.hpp"
 
 namespace mf::engine {
 namespace {
@@ -77,6 +81,8 @@ std::vector<File> godot_files(const EngineMaterial& e, const manifest::Material&
         }
     }
     res += "texture_filter = 5\n";  // linear, mipmaps, anisotropic: what Godot's own demo materials use
+    if (const auto credit = m.provenance ? manifest::material_credit(*m.provenance) : std::nullopt)
+        res += "metadata/copyright = " + string_literal(credit->line) + "\n";
     // load_steps: the external resources + 1 (Godot 4.0-4.5 write it; 4.6 reads and ignores it).
     files.push_back({tres.generic_string(), "tres",
                      "[gd_resource type=\"ORMMaterial3D\" load_steps=" + std::to_string(id + 1) + " format=3]\n\n" +

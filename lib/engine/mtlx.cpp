@@ -10,6 +10,7 @@
 #include "core/identifier.hpp"
 #include "core/text.hpp"
 #include "core/version.hpp"
+#include "manifest/attribution.hpp"
 
 namespace mf::mtlx {
 namespace {
@@ -72,7 +73,11 @@ public:
                      "\" />\n";
         }
         s += "  </gltf_pbr>\n";
-        s += "  <surfacematerial name=\"" + name_ + "\" type=\"material\">\n";
+        // The material's credit as its `doc`, the attribute MaterialX gives every element for
+        // human text (a description, a UI's tooltip); none where the licence is unknown.
+        const auto credit = m_.provenance ? manifest::material_credit(*m_.provenance) : std::nullopt;
+        s += "  <surfacematerial name=\"" + name_ + "\" type=\"material\"" +
+             (credit ? " doc=\"" + markup_escape(credit->line) + "\"" : "") + ">\n";
         s += "    <input name=\"surfaceshader\" type=\"surfaceshader\" nodename=\"" + name_ + "_shader\" />\n";
         s += "  </surfacematerial>\n";
         names_.insert(names_.end(), {name_ + "_shader", name_});

@@ -13,6 +13,9 @@
 //    a `normalmap` node (MaterialX's tangent space is +Y, the gltf preset's convention);
 //  - `colorspace="srgb_texture"` on the colour maps' file inputs only (base color, emissive);
 //    data maps carry none (raw);
+//  - the material's credit line (manifest/attribution.hpp material_credit) as the
+//    surfacematerial's `doc` (MaterialX 1.39 gives every element `doc` for human text: a
+//    description, a UI's tooltip; it has no licence field), none where the licence is unknown;
 //  - file paths relative to the document's folder; names valid MaterialX identifiers;
 //  - text deterministic (outputs in the manifest's order): same entry, same bytes.
 #pragma once

@@ -7,6 +7,7 @@
 
 #include "core/identifier.hpp"
 #include "core/version.hpp"
+#include "manifest/attribution.hpp"
 
 namespace mf::usd {
 namespace {
@@ -64,7 +65,7 @@ public:
         s += "        int inputs:useSpecularWorkflow = 0\n        token outputs:surface\n    }\n\n";
         s += "    def Shader \"TexCoord\"\n    {\n        uniform token info:id = \"UsdPrimvarReader_float2\"\n"
              "        string inputs:varname = \"st\"\n        float2 outputs:result\n    }\n";
-        return "#usda 1.0\n(\n    defaultPrim = " + usd_string(name_) +
+        return "#usda 1.0\n(\n" + credit() + "    defaultPrim = " + usd_string(name_) +
                "\n    doc = " + usd_string(std::string(kGenerator) + ": " + m_.name) +
                "\n    metersPerUnit = 1\n    upAxis = \"Y\"\n)\n\n" + "def Material " + usd_string(name_) +
                "\n{\n    token outputs:surface.connect = </" + name_ + "/Surface.outputs:surface>\n\n" + s + textures_ +
@@ -72,6 +73,19 @@ public:
     }
 
 private:
+    // The layer's customLayerData with the material's credit, as ambientCG's own USD files carry
+    // theirs ("author", "copyright": the licence, "url": the asset's page); OpenUSD names no
+    // field of its own for it. "" when the licence is unknown.
+    std::string credit() const {
+        const auto c = m_.provenance ? manifest::material_credit(*m_.provenance) : std::nullopt;
+        if (!c) return "";
+        std::string s = "    customLayerData = {\n";
+        if (!c->author.empty()) s += "        string author = " + usd_string(c->author) + "\n";
+        s += "        string copyright = " + usd_string(c->licence) + "\n";
+        if (!c->url.empty()) s += "        string url = " + usd_string(c->url) + "\n";
+        return s + "    }\n";
+    }
+
     // The reader output a channel goes through ("rgb", "r" ... "a"), "" when it cannot feed the
     // slot (three channels into a float input, one into a colour).
     static std::string output_of(const Channel& c, const Slot& slot) {

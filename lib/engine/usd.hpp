@@ -15,6 +15,11 @@
 //    writes it); an emissive scaled down to fit [0, 1] gets its strength back as the reader's
 //    scale;
 //  - the opacity: `opacityThreshold` = the cutoff for a cutout, 0 for a blend;
+//  - the material's credit (manifest/attribution.hpp material_credit) in the layer's
+//    `customLayerData`, as ambientCG's own USD files carry theirs: `author` (who to credit),
+//    `copyright` (the licence), `url` (the asset's page, where certain); none where the licence
+//    is unknown. OpenUSD defines no licence field; library.usda holds none (each referenced
+//    layer keeps its own);
 //  - asset paths relative to the layer; text deterministic.
 #pragma once
 #include <string>

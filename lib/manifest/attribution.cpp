@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include "core/text.hpp"
+
 namespace mf::manifest {
 namespace {
 
@@ -25,8 +27,7 @@ std::string row(const Material& m) {
     std::string licence = "unknown", how, credit = "—";
     if (p.licence) {
         const Provenance::Licence& l = *p.licence;
-        licence = licence_label(l) +
-                  (l.vendor_licence ? " (the vendor's licence: no redistribution of the files)" : "");
+        licence = licence_label(l) + (l.vendor_licence ? " (" + std::string(kVendorLicenceTerms) + ")" : "");
         how = l.evidence.how + (l.evidence.file.empty() ? "" : " (" + l.evidence.file + ")") +
               (l.evidence.detail.empty() ? "" : ": " + l.evidence.detail);
         credit = l.attribution_required ? p.attribution : "not required";
@@ -38,7 +39,36 @@ std::string row(const Material& m) {
            " | " + cell(how) + " | " + cell(credit) + " | " + cell(p.url) + " |\n";
 }
 
+// One line of valid UTF-8: a material file's field is displayed as one line (and a USD string
+// literal cannot hold a line break).
+std::string one_line(std::string_view s) {
+    std::string out = utf8_or_replacement(s);
+    for (char& c : out)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+    return out;
+}
+
 }  // namespace
+
+std::optional<Credit> material_credit(const Provenance& p) {
+    if (!p.licence) return std::nullopt;
+    const Provenance::Licence& l = *p.licence;
+    Credit c;
+    const bool attribution = l.attribution_required && !p.attribution.empty();
+    c.author = one_line(attribution ? p.attribution : p.vendor_name);
+    std::string facts = l.spdx;
+    if (!l.url.empty()) facts += (facts.empty() ? "" : ", ") + l.url;
+    c.licence = one_line(l.name + (facts.empty() ? "" : " (" + facts + ")") +
+                         (l.vendor_licence ? ", " + std::string(kVendorLicenceTerms) : ""));
+    c.url = one_line(p.url);
+    std::string source = p.vendor_name;
+    if (!p.asset_id.empty()) source += (source.empty() ? "asset " : " asset ") + p.asset_id;
+    if (!c.url.empty()) source += source.empty() ? c.url : " (" + c.url + ")";
+    c.source = one_line(source);
+    const std::string given = attribution ? one_line(p.attribution) : "licensed under " + c.licence;
+    c.line = c.source.empty() ? given : c.source + "; " + given;
+    return c;
+}
 
 bool attribution_text(const MaterialVisitor& materials, const ByteSink& sink) {
     if (!sink("# Attribution\n\n"

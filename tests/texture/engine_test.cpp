@@ -11,6 +11,8 @@
 
 #include "engine/engine.hpp"
 #include "engine/mtlx.hpp"
+#include "manifest/attribution.hpp"
+#include "manifest/manifest.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;
@@ -150,6 +152,7 @@ void expect_godot(const Ingested& r) {
     mf::testbin::register_test_dir(renders);
     const auto reports = godot_load(r.out, tres, renders);
     ASSERT_EQ(reports.size(), r.manifest["materials"].size());
+    size_t credited = 0;
     for (size_t i = 0; i < reports.size(); ++i) {
         const json& rep = reports[i];
         const json& m = r.manifest["materials"][i];
@@ -199,6 +202,17 @@ void expect_godot(const Ingested& r) {
         EXPECT_EQ(props["heightmap_enabled"], at.count("R:height") > 0);
         EXPECT_EQ(props["emission"], json::array({0, 0, 0, 1}))
             << "Godot adds the emission colour to the texture: left black";
+        // The material's credit as Godot reads it back: its metadata `copyright` (a stored
+        // property "metadata/copyright"), none where the licence is unknown.
+        std::string error;
+        const auto entry = mf::manifest::material_from_json(m, m["name"], error);
+        ASSERT_TRUE(entry) << error;
+        const auto credit = entry->provenance ? mf::manifest::material_credit(*entry->provenance) : std::nullopt;
+        EXPECT_EQ(props.contains("metadata/copyright"), credit.has_value());
+        if (credit) {
+            EXPECT_EQ(props["metadata/copyright"], credit->line);
+        }
+        credited += credit.has_value();
         for (const auto& o : m["outputs"])
             EXPECT_TRUE(used.count(o["file"])) << o["file"] << " is written but not used";
         // Alpha as the manifest decided it (the glTF's alphaMode): scissor at the cutoff, or blend.
@@ -216,6 +230,7 @@ void expect_godot(const Ingested& r) {
         EXPECT_GT(mean, 0.03) << render.dump();
         EXPECT_TRUE(fs::is_regular_file(renders / (m["name"].get<std::string>() + ".godot.png")));
     }
+    EXPECT_GE(credited, 3u) << "the samples' ambientCG, Poly Haven and 3dtextures.me sets";
     expect_godot_renders_as_the_preview(r, renders);
 }
 

@@ -7,9 +7,47 @@
 
 #include "base/srgb.hpp"
 #include "core/text.hpp"
+#include "manifest/attribution.hpp"
+#include "manifest/manifest.hpp"
+#include "material/provenance.hpp"
 #include "texture_cli.hpp"
 
 using namespace mtt;
+
+namespace gltf_credit {
+
+// The credit matforge gives a manifest entry (manifest/attribution.hpp material_credit, whose
+// text Credit.* in tests/material pins), nullopt where its licence is unknown: what the material
+// files must carry, read back here by the real implementations.
+std::optional<mf::manifest::Credit> of(const json& m) {
+    std::string error;
+    const auto entry = mf::manifest::material_from_json(m, m.value("name", ""), error);
+    EXPECT_TRUE(entry) << error;
+    return entry && entry->provenance ? mf::manifest::material_credit(*entry->provenance) : std::nullopt;
+}
+
+// The licences `text` names as matforge's provenance reads a sidecar's (SPDX ids, else names).
+std::vector<std::string> licences_in(const std::string& text) {
+    std::vector<std::string> out;
+    for (const auto& n : mf::licences_named(text))
+        out.emplace_back(n.licence->spdx.empty() ? n.licence->name : n.licence->spdx);
+    return out;
+}
+
+// The entry's provenance, {} where it has none (nothing known).
+const json& provenance(const json& m) {
+    static const json none = json::object();
+    return m.contains("provenance") ? m["provenance"] : none;
+}
+bool licence_known(const json& m) { return provenance(m).contains("licence"); }
+
+// The manifest entry's licence as the same list: the one licence a credit must name.
+std::vector<std::string> manifest_licence(const json& m) {
+    const json& l = m["provenance"]["licence"];
+    return {l.contains("spdx") ? l["spdx"].get<std::string>() : l["name"].get<std::string>()};
+}
+
+}  // namespace gltf_credit
 
 namespace {
 
@@ -66,6 +104,63 @@ TEST(Gltf, CorpusPassesTheValidator) {
     const auto& r = ingested("corpus");
     ASSERT_GE(r.manifest["materials"].size(), 15u);
     expect_valid(r, r.manifest["materials"].size());
+}
+
+// Each .gltf's asset.copyright (glTF 2.0: "a copyright message suitable for display to credit the
+// content creator") is the material's credit, naming the manifest's licence, the asset and its
+// page, and is absent where the licence is unknown (Crystal_003 of the samples); library.gltf,
+// of several sources, points to ATTRIBUTION.md. The glTF-Validator passes them (expect_valid) and
+// does read the field: a copyright that is not a string is its TYPE_MISMATCH at /asset/copyright.
+TEST(Gltf, CopyrightIsTheCreditReadByTheValidator) {
+    const auto& r = ingested("samples");
+    size_t credited = 0, unknown = 0;
+    for (const auto& m : r.manifest["materials"]) {
+        const std::string name = m["name"];
+        SCOPED_TRACE(name);
+        const json g = mf::testfiles::read_json(r.out / name / (name + ".gltf"));
+        const auto credit = gltf_credit::of(m);
+        if (!gltf_credit::licence_known(m)) {
+            EXPECT_FALSE(credit);
+            EXPECT_FALSE(g["asset"].contains("copyright")) << g["asset"];
+            ++unknown;
+            continue;
+        }
+        ASSERT_TRUE(credit);
+        ASSERT_TRUE(g["asset"].contains("copyright")) << g["asset"];
+        const std::string c = g["asset"]["copyright"];
+        EXPECT_EQ(c, credit->line);
+        EXPECT_EQ(gltf_credit::licences_in(c), gltf_credit::manifest_licence(m)) << c;
+        EXPECT_NE(c.find(m["provenance"]["licence"]["url"].get<std::string>()), std::string::npos) << c;
+        EXPECT_NE(c.find(m["provenance"]["asset_id"].get<std::string>()), std::string::npos) << c;
+        if (m["provenance"].contains("url")) {
+            EXPECT_NE(c.find(m["provenance"]["url"].get<std::string>()), std::string::npos) << c;
+        }
+        ++credited;
+    }
+    EXPECT_EQ(credited, 3u) << "ambientCG, Poly Haven, 3dtextures.me";
+    EXPECT_EQ(unknown, 1u) << "Crystal_003";
+    const json lib = mf::testfiles::read_json(r.out / "library.gltf");
+    EXPECT_EQ(lib["asset"]["copyright"],
+              "Materials of several sources or licences: each one's source, licence and credit in ATTRIBUTION.md "
+              "beside this file");
+    // A library of one material carries that material's credit.
+    const fs::path alone = temp_dir("credit-alone");
+    const json one = ingest({samples() / "Net004A_1K-JPG"}, alone, "gltf", {"--fail-on", "never"});
+    ASSERT_EQ(one["materials"].size(), 1u);
+    const auto credit = gltf_credit::of(one["materials"][0]);
+    ASSERT_TRUE(credit);
+    EXPECT_EQ(mf::testfiles::read_json(alone / "library.gltf")["asset"]["copyright"], credit->line);
+    const std::string net = (r.out / "Net004A" / "Net004A.gltf").string();
+    const auto reports = node_checker("gltf_validate.mjs",
+                                      {damaged_copy(net, "\"copyright\": \"", "\"copyright\": 5, \"was\": \"",
+                                                    r.out / "Net004A" / "copyright_number.gltf")});
+    ASSERT_EQ(reports.size(), 1u);
+    EXPECT_GE(reports[0]["errors"].get<int>(), 1) << reports[0].dump(1);
+    bool mismatch = false;
+    for (const auto& msg : reports[0]["messages"])
+        mismatch |= msg["code"] == "TYPE_MISMATCH" && msg["pointer"] == "/asset/copyright";
+    EXPECT_TRUE(mismatch) << reports[0]["messages"].dump(1);
+    fs::remove(r.out / "Net004A" / "copyright_number.gltf");
 }
 
 TEST(Gltf, MaterialsReferenceTheWrittenTexturesInTheirSlots) {
@@ -384,6 +479,86 @@ TEST(Gltf, UsdLayerBesideEachGltfReadsEveryTexture) {
     expect_usda(ingested("corpus"));
 }
 
+// Each material's USD layer carries its credit in customLayerData, as ambientCG's own USD files
+// carry theirs, read back by OpenUSD itself (Sdf.Layer.customLayerData): `copyright` is the
+// manifest's licence (its name, SPDX id and address), `author` the attribution where the
+// licence asks for one (the Godot demo's CC BY) else the vendor, `url` the asset's page; a layer
+// whose licence is unknown has none. For ambientCG's sets, OpenUSD reads the vendor's own
+// .usdc of the download beside ours: both state the licence the manifest records.
+TEST(Gltf, UsdLayerCarriesTheLicenceAsAmbientCgsOwnDoes) {
+    const auto& r = ingested("corpus");
+    std::vector<std::string> files;
+    std::vector<const json*> mats;
+    for (const auto& m : r.manifest["materials"])
+        for (const auto& f : m["material_files"])
+            if (f["format"] == "usda") {
+                files.push_back((r.out / f["file"].get<std::string>()).string());
+                mats.push_back(&m);
+            }
+    ASSERT_EQ(mats.size(), r.manifest["materials"].size());
+    // The vendor's own layers: the corpus sets ambientCG ships a .usdc with.
+    std::vector<std::pair<const json*, std::string>> theirs;
+    for (const auto& m : r.manifest["materials"]) {
+        if (gltf_credit::provenance(m).value("vendor", "") != "ambientcg") continue;
+        const fs::path dir = fs::path(m["source"].get<std::string>()).is_absolute()
+                                 ? fs::path(m["source"].get<std::string>())
+                                 : r.out / m["source"].get<std::string>();
+        for (const auto& e : fs::directory_iterator(dir))
+            if (e.path().extension() == ".usdc") theirs.emplace_back(&m, e.path().string());
+    }
+    std::vector<std::string> all = files;
+    for (const auto& [m, f] : theirs) all.push_back(f);
+    const std::vector<json> reps = py_checker("usd_open.py", all);
+    ASSERT_EQ(reps.size(), all.size());
+    size_t credited = 0, cc_by = 0, ambientcg = 0;
+    for (size_t i = 0; i < files.size(); ++i) {
+        const json& rep = reps[i];
+        const json& m = *mats[i];
+        SCOPED_TRACE(rep["file"].get<std::string>());
+        ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+        const json& data = rep["customLayerData"];
+        const auto credit = gltf_credit::of(m);
+        if (!gltf_credit::licence_known(m)) {
+            EXPECT_FALSE(credit);
+            EXPECT_TRUE(data.empty()) << data;
+            continue;
+        }
+        ASSERT_TRUE(credit);
+        ++credited;
+        const json& p = m["provenance"];
+        const json& l = p["licence"];
+        // The manifest's licence, as its name, SPDX id and address say it.
+        const std::string copyright = data.value("copyright", "");
+        EXPECT_EQ(copyright, l["name"].get<std::string>() + " (" + l["spdx"].get<std::string>() + ", " +
+                                 l["url"].get<std::string>() + ")");
+        EXPECT_EQ(gltf_credit::licences_in(copyright), gltf_credit::manifest_licence(m)) << copyright;
+        EXPECT_EQ(copyright, credit->licence);
+        if (l["attribution_required"].get<bool>()) {
+            ++cc_by;
+            EXPECT_EQ(data.value("author", ""), p["attribution"]) << data;
+        } else {
+            EXPECT_EQ(data.value("author", ""), p.value("vendor_name", "")) << data;
+        }
+        EXPECT_EQ(data.value("url", ""), p.value("url", "")) << data;
+        if (p.value("vendor", "") == "ambientcg") {
+            ++ambientcg;
+            EXPECT_EQ(data["url"], "https://ambientcg.com/view?id=" + p["asset_id"].get<std::string>());
+        }
+    }
+    EXPECT_EQ(credited, 10u) << "docs/provenance.md's corpus table: 10 sets of a known licence";
+    EXPECT_EQ(cc_by, 1u) << "godot_tps-demo_container1";
+    EXPECT_EQ(ambientcg, 4u) << "three ambientCG folders and Rocks004 of the flat folder";
+    ASSERT_EQ(theirs.size(), 3u) << "the ambientCG folders ship a .usdc; the flat folder does not";
+    for (size_t k = 0; k < theirs.size(); ++k) {
+        const json& rep = reps[files.size() + k];
+        SCOPED_TRACE(theirs[k].second);
+        ASSERT_TRUE(rep["ok"].get<bool>()) << rep["error"];
+        const std::string copyright = rep["customLayerData"].value("copyright", "");
+        EXPECT_EQ(gltf_credit::licences_in(copyright), gltf_credit::manifest_licence(*theirs[k].first)) << copyright;
+        EXPECT_EQ(rep["customLayerData"].value("author", ""), "ambientCG (ambientCG.com)");
+    }
+}
+
 // library.usda references every material's layer under /Materials (the manifest lists it with
 // its hash); OpenUSD composes it, finding each referenced layer, and validates it.
 TEST(Gltf, UsdLibraryReferencesEveryMaterialLayer) {
@@ -460,7 +635,8 @@ TEST(Gltf, MaterialXLibraryHoldsEveryMaterial) {
 // the same material loaded from the .gltf by three's GLTFLoader in the same scene: the MaterialX
 // graph reads every map into its input (a map dropped, read in the wrong colour space or channel,
 // or a normal map not decoded would move the picture by far more). The pictures are left in the
-// run's folder, beside the preview's.
+// run's folder, beside the preview's. GLTFLoader hands each file's asset.copyright to the page
+// (gltf.asset): the material's credit, none where the licence is unknown.
 TEST(Gltf, MaterialXRendersAsItsGltfInThreeJs) {
     const auto& r = ingested("samples");
     ASSERT_TRUE(npm_checkers_installed());
@@ -473,7 +649,7 @@ TEST(Gltf, MaterialXRendersAsItsGltfInThreeJs) {
     const auto p = mf::testbin::spawn(argv, 300);
     ASSERT_EQ(p.code, 0) << p.output;
     std::istringstream lines(p.output);
-    size_t n = 0;
+    size_t n = 0, credited = 0;
     for (std::string line; std::getline(lines, line);) {
         if (line.empty() || line[0] != '{') continue;
         const json rep = json::parse(line);
@@ -488,8 +664,15 @@ TEST(Gltf, MaterialXRendersAsItsGltfInThreeJs) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(rep["mtlx"]["mean"][c], rep["gltf"]["mean"][c], 0.02) << c;
         EXPECT_GE(rep["psnr_db"].get<double>(), 30.0);
         EXPECT_TRUE(fs::is_regular_file(pictures / (rep["name"].get<std::string>() + ".mtlx.png")));
+        for (const auto& m : r.manifest["materials"])
+            if (m["name"] == rep["name"]) {
+                const auto credit = gltf_credit::of(m);
+                EXPECT_EQ(rep["copyright"], credit ? json(credit->line) : json(nullptr));
+                credited += credit.has_value();
+            }
     }
     EXPECT_EQ(n, r.manifest["materials"].size());
+    EXPECT_EQ(credited, 3u) << "every sample but Crystal_003";
 }
 
 namespace gltf_sides {
@@ -609,6 +792,13 @@ TEST(Gltf, MaterialXGeneratesGlslThatCompilesForEveryMaterial) {
         args.push_back((r->out / "library.mtlx").string());
         const std::vector<json> reps = py_checker("mtlx_open.py", args);
         ASSERT_EQ(reps.size(), args.size() - 1);
+        // Each material's doc (MaterialX's getDocString), in its document and in the library: its
+        // credit, "" where the licence is unknown.
+        std::multiset<std::string> docs, library_docs;
+        for (const auto& m : r->manifest["materials"]) {
+            const auto credit = gltf_credit::of(m);
+            docs.insert(credit ? credit->line : "");
+        }
         for (size_t i = 0; i < reps.size(); ++i) {
             const json& rep = reps[i];
             SCOPED_TRACE(rep["file"].get<std::string>());
@@ -618,8 +808,14 @@ TEST(Gltf, MaterialXGeneratesGlslThatCompilesForEveryMaterial) {
             for (const auto& m : rep["materials"]) {
                 EXPECT_EQ(m["frag"], "") << m["name"];
                 EXPECT_EQ(m["vert"], "") << m["name"];
+                if (library) library_docs.insert(m["doc"].get<std::string>());
+            }
+            if (!library) {
+                const auto credit = gltf_credit::of(r->manifest["materials"][i]);
+                EXPECT_EQ(rep["materials"][0]["doc"], credit ? credit->line : "");
             }
         }
+        EXPECT_EQ(library_docs, docs);
         fs::remove_all(r->out / "glsl");
     }
     const auto& r = ingested("samples");

@@ -8,7 +8,8 @@ glslang-tools). It shares no code with matforge's writer (lib/engine/mtlx.cpp).
 
 prints one JSON line per file:
   {"file", "ok", "error",            ok: read and valid with the standard libraries
-   "materials": [{"name", "frag", "vert"}]}   frag, vert: glslang's messages ("" compiled)
+   "materials": [{"name", "doc", "frag", "vert"}]}   doc: the material's doc string (MaterialX's
+                                                     getDocString); frag, vert: glslang's messages ("" compiled)
 The generated stages are kept in OUT_DIR (<file stem>.<material>.frag / .vert).
 """
 import json
@@ -46,7 +47,7 @@ def open_one(path, out_dir, stdlib, search):
     context.registerSourceCodeSearchPath(search)
     stem = os.path.splitext(os.path.basename(path))[0]
     for node in doc.getMaterialNodes():
-        m = {"name": node.getName(), "frag": "", "vert": ""}
+        m = {"name": node.getName(), "doc": node.getDocString(), "frag": "", "vert": ""}
         try:
             shader = generator.generate(node.getName(), node, context)
         except Exception as e:  # pylint: disable=broad-except

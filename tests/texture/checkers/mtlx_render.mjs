@@ -7,8 +7,9 @@
 // attribute, so the glTF's doubleSided is left out of the comparison.
 //   node mtlx_render.mjs NPM_DIR ROOT OUT_DIR NAME...   (ROOT/NAME/NAME.mtlx and NAME.gltf)
 // prints one JSON line per material: {name, ok, error, materials (in the .mtlx), mtlx: {lit, mean},
-// gltf: {lit, mean}, psnr_db} (lit: pixels brighter than black; mean: their sRGB-encoded RGB,
-// 0-1; PSNR of the two 192² pictures) and writes OUT_DIR/NAME.mtlx.png and NAME.gltf.png.
+// gltf: {lit, mean}, psnr_db, copyright} (lit: pixels brighter than black; mean: their sRGB-encoded
+// RGB, 0-1; PSNR of the two 192² pictures; copyright: the asset.copyright GLTFLoader gives in
+// gltf.asset, null when none) and writes OUT_DIR/NAME.mtlx.png and NAME.gltf.png.
 // Served over a local HTTP server (three's loaders fetch; file:// cannot), Chromium driven over
 // the DevTools protocol on a pipe (scripts/devtools-pipe.mjs).
 import { writeFileSync } from 'node:fs';
@@ -65,7 +66,7 @@ window.renderOne = async (name) => {
   glMaterial.side = THREE.FrontSide;
   const a = await shot(mxMaterial), b = await shot(glMaterial);
   return { mtlx: a.url, gltf: b.url, count: Object.keys(mx.materials).length,
-           pa: Array.from(a.px), pb: Array.from(b.px) };
+           copyright: gltf.asset.copyright ?? null, pa: Array.from(a.px), pb: Array.from(b.px) };
 };
 window.ready = true;
 </script></body></html>`;
@@ -103,6 +104,7 @@ for (const name of names) {
     const mse = se / (r.pa.length / 4 * 3);
     out.mtlx = stats(r.pa); out.gltf = stats(r.pb); out.materials = r.count;
     out.psnr_db = mse > 0 ? 10 * Math.log10(1 / mse) : 100;
+    out.copyright = r.copyright;
     writeFileSync(join(outDir, name + '.mtlx.png'), Buffer.from(r.mtlx.split(',')[1], 'base64'));
     writeFileSync(join(outDir, name + '.gltf.png'), Buffer.from(r.gltf.split(',')[1], 'base64'));
     out.ok = true;

@@ -7,6 +7,7 @@ It shares no code with matforge's writer (lib/engine/usd.cpp).
 prints one JSON line per file:
   {"file", "ok", "error",           ok: Usd.Stage.Open composed the layer without an error
    "metadata": {"defaultPrim", "upAxis", "metersPerUnit"},
+   "customLayerData": {key: value},  the root layer's, as Sdf.Layer reads it ({} none)
    "prims": {"/Path": {"type", "references": [asset path as written],
                        "attributes": {"name": {"type", "uniform", "value"?, "connect"?: {"path"}}}}},
    "unresolved": [connection targets that are no attribute of the stage],
@@ -49,8 +50,8 @@ def references(prim):
 
 
 def open_one(path, validators):
-    rep = {"file": path, "ok": False, "error": "", "metadata": {}, "prims": {}, "unresolved": [], "assets": {},
-           "validation": []}
+    rep = {"file": path, "ok": False, "error": "", "metadata": {}, "customLayerData": {}, "prims": {},
+           "unresolved": [], "assets": {}, "validation": []}
     mark = Tf.Error.Mark()
     try:
         stage = Usd.Stage.Open(path)
@@ -65,6 +66,7 @@ def open_one(path, validators):
     rep["ok"] = True
     rep["metadata"] = {"defaultPrim": root.defaultPrim, "upAxis": stage.GetMetadata("upAxis"),
                        "metersPerUnit": stage.GetMetadata("metersPerUnit")}
+    rep["customLayerData"] = {k: value_json(v) for k, v in root.customLayerData.items()}
     for prim in stage.Traverse():
         attrs = {}
         for a in prim.GetAttributes():
