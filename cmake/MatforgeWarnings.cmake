@@ -14,6 +14,12 @@ function(matforge_target_defaults target)
   # becomes one instruction and compare-and-select loops vectorize (the normal-map loops in
   # lib/pack). Values are unchanged: IEEE results do not depend on either.
   target_compile_options(${target} PRIVATE -fno-math-errno -fno-trapping-math)
+  if(CMAKE_EXECUTABLE_FORMAT STREQUAL "ELF")
+    # The ingest cache's records name the build by this note (core/version.hpp code_identity):
+    # asked for, not left to the toolchain's default, and a hash of the output (sha1), never a
+    # random uuid, so a reproducible build gets the same one. Stripping keeps it.
+    target_link_options(${target} PRIVATE LINKER:--build-id=sha1)
+  endif()
   if(MATFORGE_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -1,7 +1,6 @@
 #include "preview/batch.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -11,6 +10,7 @@
 #include <thread>
 
 #include "base/parallel.hpp"
+#include "base/stopwatch.hpp"
 #include "core/text.hpp"
 
 namespace mf::preview {
@@ -95,9 +95,6 @@ struct Loaded {
 // Thrown inside a worker's read when the batch stops before the renderers exist.
 struct Stopped {};
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
 // One pipeline run: the workers, the lanes, and the caller's thread saying the outcomes in order.
 // Every shared field below is guarded by mutex_ and signalled by changed_.
 class Batch {
@@ -128,7 +125,7 @@ public:
                 device_ready_ = true;
             }
             changed_.notify_all();
-            times.device = seconds_since(start_);
+            times.device = start_.elapsed();
             const unsigned lanes =
                 std::max(1u, std::min<unsigned>(opt_.lanes > 0 ? opt_.lanes : lanes_for(context_->info()),
                                                 static_cast<unsigned>(std::max<size_t>(1, jobs_.size()))));
@@ -161,7 +158,12 @@ public:
             stop();
             throw;
         }
-        times.renderers = seconds_since(start_);
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            ready_ = true;
+        }
+        changed_.notify_all();
+        times.renderers = start_.elapsed();
         times.lanes = static_cast<unsigned>(renderers_.size());
         for (size_t k = 0; k < renderers_.size(); ++k) lanes_.emplace_back([this, k] { lane(k); });
 
@@ -177,10 +179,19 @@ public:
             }
             changed_.notify_all();
             report(i, std::move(o));
-            if (i == 0) times.first = seconds_since(start_);
+            if (i == 0) times.first = start_.elapsed();
         }
         shut_down();
-        times.total = seconds_since(start_);
+        times.total = start_.elapsed();
+        for (const auto& r : renderers_) {
+            const render::Renderer::HostTimes& h = r->host_times();
+            times.lanes_host.pipelines += h.pipelines;
+            times.lanes_host.images += h.images;
+            times.lanes_host.staging += h.staging;
+            times.lanes_host.upload_rest += h.upload_rest;
+            times.lanes_host.draw_wait += h.draw_wait;
+            times.lanes_host.readback += h.readback;
+        }
         times.read = spent_.read;
         times.upload = spent_.upload;
         times.draw = spent_.draw;
@@ -236,10 +247,10 @@ private:
             const size_t i = next_read_++;
             ++reading_;
             lock.unlock();
-            const Clock::time_point began = Clock::now();
+            const Stopwatch reading;
             Loaded l = read(i);
             lock.lock();
-            spent_.read += seconds_since(began);
+            spent_.read += reading.elapsed();
             --reading_;
             held_ += l.bytes;
             largest_ = std::max(largest_, l.bytes);
@@ -265,6 +276,7 @@ private:
             if (m) {
                 l.prepared = render::prepare(device(), sf_.scene, *m);
                 l.bytes = l.prepared->bytes();
+                warm(i, *l.prepared);
             }
         } catch (const Stopped&) {
             l.error = "stopped";
@@ -274,7 +286,22 @@ private:
         return l;
     }
 
-    // Lane k: materials k, k + lanes, … in order (each prepared for this lane's renderer).
+    // The first material of a pipeline variant has the variant made on every lane's renderer
+    // (its own lane's first), here on its worker once the renderers exist: a lane no longer stops
+    // to compile each variant it meets while its materials wait, and the variants compile at
+    // once on several workers. The other workers go on reading meanwhile.
+    void warm(size_t i, const render::PreparedMaterial& prepared) {
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            if (!variants_.insert(prepared.variant_key()).second) return;
+            changed_.wait(lock, [&] { return ready_ || stopping_; });
+            if (!ready_) return;
+        }
+        const size_t lanes = renderers_.size();
+        for (size_t k = 0; k < lanes; ++k) renderers_[(i + k) % lanes]->warm(prepared);
+    }
+
+    // Lane k: materials k, k + lanes, … in order.
     void lane(size_t k) {
         for (size_t i = k; i < jobs_.size(); i += renderers_.size()) {
             Loaded l;
@@ -324,20 +351,20 @@ private:
             return;
         }
         try {
-            Clock::time_point began = Clock::now();
+            Stopwatch watch;
             render::GpuMaterial gm = r.upload(std::move(*l.prepared));
             l.prepared.reset();
             {
                 const std::lock_guard<std::mutex> lock(mutex_);
                 held_ -= l.bytes;  // its host copy is on the device now
-                spent_.upload += seconds_since(began);
+                spent_.upload += watch.lap();
             }
             changed_.notify_all();
             for (const std::string& n : r.take_notes()) o.lines.push_back(job.name + ": note: " + n);
             const bool png = opt_.format == "png";
             std::vector<uint8_t> rgba8;
             std::vector<float> rgba32f;
-            began = Clock::now();
+            watch.lap();
             if (png || opt_.contact_sheet) rgba8 = r.render(gm, sf_.output).rgba8;
             if (!png) {
                 render::OutputOptions lin;
@@ -346,14 +373,14 @@ private:
             }
             {
                 const std::lock_guard<std::mutex> lock(mutex_);
-                spent_.draw += seconds_since(began);
+                spent_.draw += watch.lap();
             }
             const std::filesystem::path out = opt_.out / (job.stem + "." + opt_.format);
             std::string progress = "[" + std::to_string(i + 1) + "/" + std::to_string(jobs_.size()) + "] ";
             auto write = [this, i, &job, png, out, progress = std::move(progress), o = std::move(o),
                           rgba8 = std::move(rgba8), rgba32f = std::move(rgba32f),
                           gm = std::make_shared<render::GpuMaterial>(std::move(gm))]() mutable {
-                const Clock::time_point wrote = Clock::now();
+                const Stopwatch writing;
                 gm.reset();  // its device objects, off the lane's thread
                 const uint32_t w = sf_.scene.width, h = sf_.scene.height;
                 std::string error;
@@ -370,7 +397,7 @@ private:
                     o.lines.push_back(progress + out.string());
                 }
                 o.rgba8 = std::move(rgba8);
-                finish(i, std::move(o), 0, seconds_since(wrote));
+                finish(i, std::move(o), 0, writing.elapsed());
             };
             {
                 const std::lock_guard<std::mutex> lock(mutex_);
@@ -409,7 +436,7 @@ private:
     const std::vector<Job>& jobs_;
     const BatchOptions& opt_;
     const std::function<void(const std::string&)>& say_;
-    const Clock::time_point start_ = Clock::now();
+    const Stopwatch start_;  // the batch's start: BatchTimes' points
     BatchResult result_;
     struct {
         double read = 0.0, upload = 0.0, draw = 0.0, write = 0.0;
@@ -420,8 +447,10 @@ private:
 
     std::mutex mutex_;
     std::condition_variable changed_;
-    bool device_ready_ = false;  // context_ exists: materials may be prepared
-    bool stopping_ = false;      // done, or a renderer failed: lanes and workers end
+    bool device_ready_ = false;       // context_ exists: materials may be prepared
+    bool ready_ = false;              // renderers_ are made: pipeline variants may be warmed
+    std::set<std::string> variants_;  // PreparedMaterial::variant_key of those warmed or being warmed
+    bool stopping_ = false;           // done, or a renderer failed: lanes and workers end
     std::exception_ptr fatal_;
     size_t next_read_ = 0, reading_ = 0;
     uint64_t held_ = 0;     // bytes of prepared textures and unsaid images

@@ -31,6 +31,9 @@ private:
 
 std::string context_digest(const Preset& preset, const rules::RuleConfig& rules, const ColorContext& color) {
     Hasher h;
+    // The version, not the build: manifests and plans record these keys, and the CLI and the
+    // Python extension (two objects, two build-ids) write them alike. The result cache's records
+    // name the build besides (store/cache.hpp).
     h.add(kGenerator);
     h.add(image_library_version());                                 // decodes every input, encodes PNG/TIFF/EXR outputs
     h.add(texture::encoder_versions());                             // BCn, ASTC, zstd

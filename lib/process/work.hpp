@@ -4,7 +4,8 @@
 // The action key is a SHA-256 over everything that decides a set's outputs: matforge's version,
 // the versions of the libraries that decode and encode (OpenImageIO, OpenColorIO, libsquish,
 // astcenc, zstd), the resolved preset, the rules configuration, the OpenColorIO config, and the
-// name and bytes of every file of the set (content, never time stamps). Equal keys, equal outputs.
+// name and bytes of every file of the set (content, never time stamps). Equal keys, equal outputs
+// of one build (the result cache names the build besides: store/cache.hpp).
 #pragma once
 #include <cstdint>
 #include <functional>

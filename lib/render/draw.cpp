@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "base/stopwatch.hpp"
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 
@@ -174,6 +175,7 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     const GpuMaterial::Impl& m = material.impl();
     if (m.owner != impl_.get()) throw Error("material '" + m.name + "' was uploaded by another renderer");
     const uint32_t w = r.scene.width, h = r.scene.height;
+    Stopwatch watch;
     r.write_frame(m.constants);
     r.frame_times.clear();
 
@@ -202,6 +204,7 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     s.finish(r.frame_times);
+    r.host_times.draw_wait += watch.lap();
     invalidate(d, r.readback);
 
     Frame frame;
@@ -215,6 +218,7 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
         frame.rgba32f.resize(n);
         std::memcpy(frame.rgba32f.data(), r.readback.mapped, n * sizeof(float));
     }
+    r.host_times.readback += watch.lap();
     return frame;
 }
 

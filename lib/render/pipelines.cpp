@@ -4,6 +4,9 @@
 // shaders/interface.h with the offset of its field in gpu::ShadeSpecialization, so adding a
 // constant cannot shift the others.
 #include <cstddef>
+#include <exception>
+#include <future>
+#include <mutex>
 #include <sstream>
 
 #include "render/internal.hpp"
@@ -218,13 +221,41 @@ std::string Renderer::Impl::describe(const ShadeSpecialization& c) const {
 }
 
 VkPipeline Renderer::Impl::shade_pipeline(const ShadeSpecialization& constants) {
-    auto it = shade_pipelines.find(constants);
-    if (it != shade_pipelines.end()) return it->second;
-    if (!compute) return shade_pipelines.emplace(constants, graphics_pipeline(constants)).first->second;
-    const VkSpecializationInfo spec = spec_info(kShadeEntries, constants);
-    return shade_pipelines
-        .emplace(constants, make_compute_pipeline(kShadeComp, sizeof(kShadeComp), compute_layout, &spec))
-        .first->second;
+    std::promise<VkPipeline> made;
+    std::shared_future<VkPipeline> ready;
+    bool mine = false;
+    {
+        const std::lock_guard<std::mutex> lock(shade_pipelines_mutex);
+        PipelineSlot& slot = shade_pipelines[constants];
+        if (!slot.ready.valid()) {
+            slot.ready = made.get_future().share();
+            mine = true;
+        }
+        ready = slot.ready;
+    }
+    if (!mine) return ready.get();  // made by another thread (its error rethrown here)
+    // Compiled outside the lock: the variants of one renderer compile at once on several threads
+    // (the layouts and shader modules they use are made with the renderer and never change; the
+    // context's VkPipelineCache synchronizes itself).
+    try {
+        Unique<VkPipeline> pipeline;
+        if (!compute) {
+            pipeline = graphics_pipeline(constants);
+        } else {
+            const VkSpecializationInfo spec = spec_info(kShadeEntries, constants);
+            pipeline = make_compute_pipeline(kShadeComp, sizeof(kShadeComp), compute_layout, &spec);
+        }
+        const VkPipeline handle = pipeline.get();
+        {
+            const std::lock_guard<std::mutex> lock(shade_pipelines_mutex);
+            shade_pipelines[constants].owned = std::move(pipeline);
+        }
+        made.set_value(handle);
+        return handle;
+    } catch (...) {
+        made.set_exception(std::current_exception());
+        throw;
+    }
 }
 
 Unique<VkPipeline> Renderer::Impl::graphics_pipeline(const ShadeSpecialization& constants) const {

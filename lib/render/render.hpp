@@ -366,6 +366,9 @@ public:
     PreparedMaterial& operator=(PreparedMaterial&&) noexcept;
     // Host memory its textures hold (their levels as they will be uploaded).
     size_t bytes() const;
+    // Equal for materials prepared for one scene that draw with one pipeline variant: a batch
+    // has each variant made once, ahead of the uploads (Renderer::warm).
+    std::string variant_key() const;
 
     struct Impl;
     Impl& impl() const { return *impl_; }
@@ -423,6 +426,11 @@ public:
     // the device objects and must be called where render() is.
     PreparedMaterial prepare(const Material& material) const;
     GpuMaterial upload(PreparedMaterial prepared);
+    // Makes the pipeline variant `prepared` needs on this renderer unless made already, which
+    // upload() would otherwise do on its own thread: cold on the H100, the first material's upload
+    // took 124 ms against 10 ms for the next (docs/bench/h100_library_bench_2.txt). Safe from any
+    // thread, concurrently with this renderer's other calls.
+    void warm(const PreparedMaterial& prepared);
 
     Frame render(const GpuMaterial& material, const OutputOptions& output = {});
 
@@ -435,6 +443,17 @@ public:
     Shading shading() const;
     const std::vector<PassTime>& load_times() const;   // upload and load-time passes, in order
     const std::vector<PassTime>& frame_times() const;  // passes of the last render()
+    // Host seconds spent in upload() and render() since this renderer was made, by part (wall
+    // clock on the calling thread): where a library's time goes on its lanes (`preview --timings`).
+    struct HostTimes {
+        double pipelines = 0.0;    // upload: the material's pipeline variants (compiled the first time)
+        double images = 0.0;       // upload: images and their memory created
+        double staging = 0.0;      // upload: texels copied into staging memory
+        double upload_rest = 0.0;  // upload: the copies and mips recorded, submitted and waited for; descriptors
+        double draw_wait = 0.0;    // render: recorded, submitted and waited for
+        double readback = 0.0;     // render: the picture copied out of the readback buffer
+    };
+    const HostTimes& host_times() const;
     // Notes on what was changed to fit the device (a texture or environment larger than its
     // maxImageDimension2D previewed downsampled), taken: each is returned once.
     std::vector<std::string> take_notes();

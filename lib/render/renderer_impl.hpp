@@ -10,7 +10,9 @@
 //   ibl.cpp        load-time passes: BRDF table, environment cube and its prefiltered maps
 #pragma once
 #include <cstddef>
+#include <future>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -75,6 +77,7 @@ struct Renderer::Impl {
     detail::Device& d;
     Scene scene;
     std::vector<PassTime> load_times, frame_times;
+    mutable Renderer::HostTimes host_times;  // added to where upload() and render() run, as `notes`
     // What was changed to fit the device (textures reduced to its size limit), for the user;
     // upload_texture is const (it records into the caller's command buffer) but may add here.
     mutable std::vector<std::string> notes;
@@ -90,8 +93,15 @@ struct Renderer::Impl {
     detail::Unique<VkPipelineLayout> compute_layout;
     detail::Unique<VkShaderModule> vert, frag;
     detail::Unique<VkPipeline> encode_pipeline;
-    // Shading pipelines by specialization constants: materials of one variant share one.
-    std::map<gpu::ShadeSpecialization, detail::Unique<VkPipeline>> shade_pipelines;
+    // Shading pipelines by specialization constants: materials of one variant share one. Each is
+    // made once, by the first thread to ask (upload(), or Renderer::warm from a batch's workers,
+    // so a lane does not stop to compile); a thread asking while it is made waits for it.
+    struct PipelineSlot {
+        std::shared_future<VkPipeline> ready;
+        detail::Unique<VkPipeline> owned;
+    };
+    std::map<gpu::ShadeSpecialization, PipelineSlot> shade_pipelines;
+    std::mutex shade_pipelines_mutex;
     detail::Unique<VkDescriptorPool> descriptor_pool;
     VkDescriptorSet frame_set = VK_NULL_HANDLE, encode_set = VK_NULL_HANDLE;
 

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <type_traits>
 
 #include "base/parallel.hpp"
+#include "base/stopwatch.hpp"
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 
@@ -93,7 +95,9 @@ Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandB
     desc.mips = std::max(t.mips, given);  // past `given`: blitted here from the level above
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
                  (desc.mips > given ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0});
+    Stopwatch watch;
     Image img = create_image(d, desc);
+    host_times.images += watch.lap();
 
     VkDeviceSize total = 0;
     for (const TextureLevel& l : t.levels) total += (l.bytes.size() + 15) & ~VkDeviceSize{15};
@@ -111,6 +115,7 @@ Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandB
         offset += (l.bytes.size() + 15) & ~VkDeviceSize{15};
     }
     flush(d, buf);
+    host_times.staging += watch.lap();
     // Every level a transfer destination: of the copy, and of the blits that make the rest.
     image_barrier(d, cmd, img.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                   VK_PIPELINE_STAGE_2_NONE, 0,
@@ -268,6 +273,23 @@ size_t PreparedMaterial::bytes() const {
     return n;
 }
 
+std::string PreparedMaterial::variant_key() const {
+    if (!impl_) return {};
+    static_assert(std::has_unique_object_representations_v<gpu::ShadeSpecialization>,
+                  "no padding: its bytes are its value");
+    const gpu::ShadeSpecialization& c = impl_->specialization;
+    return {reinterpret_cast<const char*>(&c), sizeof c};
+}
+
+void Renderer::warm(const PreparedMaterial& prepared) {
+    if (!prepared.impl_) return;
+    Impl& r = *impl_;
+    gpu::ShadeSpecialization c = prepared.impl_->specialization;
+    r.place(c);
+    r.shade_pipeline(c);
+    if (r.scene.ground.enabled) r.shade_pipeline(Impl::ground_specialization(c));
+}
+
 PreparedMaterial Renderer::prepare(const Material& material) const {
     PreparedMaterial out;
     out.impl_ = prepare_material(impl_->d, impl_->scene, material);
@@ -361,9 +383,13 @@ GpuMaterial Renderer::upload(PreparedMaterial prepared) {
     m.name = p.constants.name;
     m.constants = std::move(p.constants);
 
+    const Stopwatch whole;
+    const HostTimes before = r.host_times;
+    Stopwatch watch;
     m.variant = r.describe(p.specialization);
     m.pipeline = r.shade_pipeline(p.specialization);
     if (r.scene.ground.enabled) m.ground_pipeline = r.shade_pipeline(Impl::ground_specialization(p.specialization));
+    r.host_times.pipelines += watch.lap();
 
     std::vector<Buffer> staging;
     Submission s(d, r.command_pool, r.queries, kQueryCount);
@@ -399,6 +425,9 @@ GpuMaterial Renderer::upload(PreparedMaterial prepared) {
     w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     w.pImageInfo = infos.data();
     d.fn.vkUpdateDescriptorSets(d.device, 1, &w, 0, nullptr);
+    HostTimes& t = r.host_times;
+    t.upload_rest += whole.elapsed() - (t.pipelines - before.pipelines) - (t.images - before.images) -
+                     (t.staging - before.staging);
     return out;
 }
 

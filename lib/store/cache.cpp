@@ -10,6 +10,7 @@
 #include "base/file_identity.hpp"
 #include "core/files.hpp"
 #include "core/json.hpp"
+#include "core/version.hpp"
 
 namespace mf {
 namespace fs = std::filesystem;
@@ -108,9 +109,10 @@ bool link_or_write(const fs::path& file, const fs::path& blob, std::span<const u
 // MaterialX sidecars read, inputs' `unused`, and the gltf preset's .mtlx material files.
 // Version 5: materials' alpha_mode and the engines' material files. Version 6: a JPEG cut short
 // is unreadable (it decoded grey), a name's "--" kept apart in the .mtlx comment. Version 7:
-// materials' provenance and the vendor's preview input (LICENCE_UNKNOWN). Records of other
+// materials' provenance and the vendor's preview input (LICENCE_UNKNOWN). Version 8: a record
+// names the build that computed it (`code`), which its file name includes. Records of other
 // versions miss.
-constexpr int kRecordVersion = 7;
+constexpr int kRecordVersion = 8;
 
 // The digest of a record's entry: its compact JSON text, invalid UTF-8 in names replaced as the
 // manifest writer does (a file name is any bytes; dump() would throw on them).
@@ -119,11 +121,11 @@ std::string entry_digest(const nlohmann::json& entry) {
 }
 
 // The manifest entry an action record holds, checked: nullopt + `error` naming the problem when
-// it does not parse, is of another version, is for another key than `key` (when given), or does
-// not hash to its `entry_sha256`. `outdated`: the record is a well-formed one of another
-// cache_version (an earlier matforge wrote it), which is no fault of the cache.
+// it does not parse, is of another version, is for another key than `key` or another build than
+// `code` (when given), or does not hash to its `entry_sha256`. `outdated`: the record is a
+// well-formed one of another cache_version (an earlier matforge wrote it), no fault of the cache.
 std::optional<manifest::Material> read_record(const fs::path& rec, std::string& error, const std::string* key = nullptr,
-                                              bool* outdated = nullptr) {
+                                              const std::string* code = nullptr, bool* outdated = nullptr) {
     const auto j = read_json_file(rec, error);
     if (!j) return std::nullopt;
     const auto mj = j->find("entry");
@@ -136,6 +138,10 @@ std::optional<manifest::Material> read_record(const fs::path& rec, std::string& 
     }
     if (key && j->value("key", "") != *key) {
         error = "a record of another action key";
+        return std::nullopt;
+    }
+    if (code && j->value("code", "") != *code) {
+        error = "a record of another build of matforge";
         return std::nullopt;
     }
     if (j->value("entry_sha256", "") != entry_digest(*mj)) {
@@ -205,10 +211,19 @@ std::string Cache::unusable(const fs::path& dir) {
     return {};
 }
 
-std::optional<Cache> Cache::create(const fs::path& dir, std::string& error) {
+std::optional<Cache> Cache::create(const fs::path& dir, std::string& error, std::optional<std::string> code) {
     if (std::string why = unusable(dir); !why.empty()) {
         error = std::move(why);
         return std::nullopt;
+    }
+    // Never records without a build: they would be every build's.
+    if (!code) {
+        std::string why;
+        code = code_identity(why);
+        if (!code) {
+            error = "cannot tell which build of matforge this is (" + why + ")";
+            return std::nullopt;
+        }
     }
     // The marker first: a concurrent run (another shard on the same new cache) must never see
     // our folders without it and take the cache for a user's folder.
@@ -221,7 +236,7 @@ std::optional<Cache> Cache::create(const fs::path& dir, std::string& error) {
             return std::nullopt;
         }
     }
-    return Cache(fs::absolute(dir, ec));
+    return Cache(fs::absolute(dir, ec), std::move(*code));
 }
 
 std::optional<Cache> Cache::open(const fs::path& dir, std::string& error) {
@@ -235,12 +250,12 @@ std::optional<Cache> Cache::open(const fs::path& dir, std::string& error) {
                 ": not a matforge cache (no cache marker 'version' in it); nothing is read or removed there";
         return std::nullopt;
     }
-    return Cache(fs::absolute(dir, ec));
+    return Cache(fs::absolute(dir, ec), {});
 }
 
 fs::path Cache::blob_path(const std::string& sha) const { return dir_ / "cas" / sha.substr(0, 2) / sha; }
 fs::path Cache::record_path(const std::string& key, const std::string& name) const {
-    const std::string id = sha_of(key + "\n" + name);
+    const std::string id = sha_of(key + "\n" + name + "\n" + code_);
     return dir_ / "ac" / id.substr(0, 2) / (id + ".json");
 }
 fs::path Cache::stat_path(const fs::path& file) const {
@@ -260,12 +275,13 @@ std::optional<std::string> Cache::digest(const InputFile& in, std::string& error
 
 std::optional<Cache::Hit> Cache::restore(const std::string& key, const std::string& name, const fs::path& out_dir,
                                          const Write& write, std::vector<std::string>& corrupt) const {
+    if (code_.empty()) return std::nullopt;  // open()'s: no build's records
     const fs::path rec = record_path(key, name);
     std::error_code ec;
     if (!fs::exists(fs::symlink_status(rec, ec))) return std::nullopt;  // never stored, or evicted
     std::string error;
     bool outdated = false;
-    auto entry = read_record(rec, error, &key, &outdated);
+    auto entry = read_record(rec, error, &key, &code_, &outdated);
     if (!entry || entry->name != name) {
         // An earlier matforge's record: a plain miss, replaced when the set is stored again
         // (a version upgrade is no problem to report).
@@ -308,6 +324,10 @@ std::optional<Cache::Hit> Cache::restore(const std::string& key, const std::stri
 
 bool Cache::store(const std::string& key, const manifest::Material& entry, const fs::path& out_dir,
                   std::string& error) const {
+    if (code_.empty()) {
+        error = "a cache opened to be sized and pruned stores nothing";
+        return false;
+    }
     for (const FileRef& f : files_of(entry)) {
         const fs::path blob = blob_path(f.sha256);
         std::error_code ec;
@@ -336,6 +356,7 @@ bool Cache::store(const std::string& key, const manifest::Material& entry, const
     const nlohmann::json ej = manifest::to_json(stored);
     const nlohmann::json rec{{"cache_version", kRecordVersion},
                              {"key", key},
+                             {"code", code_},
                              {"entry", ej},
                              {"entry_sha256", entry_digest(ej)}};
     return write_file_atomic(record_path(key, entry.name), as_bytes(json_text(rec)), error);

@@ -1,8 +1,9 @@
 // A content-addressed cache of ingest results (the design of Bazel's remote cache and Unreal's
 // derived-data cache): outputs are stored by their SHA-256 (`cas/<aa>/<sha256>`), and an action
-// record (`ac/<aa>/<id>.json`) maps a set's action key (process/work.hpp) and material name to
-// its manifest entry and the outputs it lists. An unchanged set re-ingested is restored from
-// the cache: no decoding, no encoding, the same bytes.
+// record (`ac/<aa>/<id>.json`) maps a set's action key (process/work.hpp), material name and the
+// build of matforge that computed it (core/version.hpp code_identity: its build-id) to its
+// manifest entry and the outputs it lists. An unchanged set re-ingested by the same build is
+// restored from the cache: no decoding, no encoding, the same bytes.
 //
 // Conventions of this module (decided once here):
 //  - safe for several processes and machines at once (a shared file system): every file is
@@ -14,6 +15,10 @@
 //    file always changes its ctime, so it is always read and hashed again;
 //  - eviction is least recently used: a record's mtime is its last use; prune() keeps the most
 //    recent records within the size limit and the blobs they name;
+//  - a record is its build's own (two builds of one version may write other bytes: a
+//    developer's tree, a patched package); the build is named here, not in the action key,
+//    which manifests record and the CLI and the Python extension (two objects, two build-ids)
+//    must write alike. Blobs are shared: equal bytes, one blob;
 //  - a cache is known by its marker (`version`, "matforge cache 1"): nothing is written into or
 //    removed from a folder without it (a user's folder named by mistake), and prune() removes
 //    only files named as this cache names them (`ac/<aa>/<sha256>.json`, `cas/<aa>/<sha256>`).
@@ -34,11 +39,15 @@ namespace mf {
 
 class Cache {
 public:
-    // ingest's: the cache in `dir`, made there when `dir` does not exist or is an empty folder.
-    // nullopt + `error` when `dir` is a folder that holds something but no cache marker (it is
-    // not a cache: nothing is written there), or cannot be created or written.
-    static std::optional<Cache> create(const std::filesystem::path& dir, std::string& error);
-    // `matforge cache`'s: the cache that is in `dir` already; nothing is created. nullopt +
+    // ingest's: the cache in `dir`, made there when `dir` does not exist or is an empty folder,
+    // whose records are those of the build `code` names (code_identity's form; by default this
+    // process's: tests name another build). nullopt + `error` when `dir` is a folder that holds
+    // something but no cache marker (it is not a cache: nothing is written there), cannot be
+    // created or written, or the running build cannot be named.
+    static std::optional<Cache> create(const std::filesystem::path& dir, std::string& error,
+                                       std::optional<std::string> code = std::nullopt);
+    // `matforge cache`'s: the cache that is in `dir` already, for stats() and prune() (every
+    // build's records); nothing is created, restore() misses and store() refuses. nullopt +
     // `error` when `dir` holds no cache marker.
     static std::optional<Cache> open(const std::filesystem::path& dir, std::string& error);
     // "" when `dir` may be a cache (absent, an empty folder, or a cache), else why not.
@@ -82,11 +91,12 @@ public:
     Stats prune(uint64_t max_bytes, std::chrono::seconds grace = std::chrono::seconds(60)) const;
 
 private:
-    explicit Cache(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    Cache(std::filesystem::path dir, std::string code) : dir_(std::move(dir)), code_(std::move(code)) {}
     std::filesystem::path blob_path(const std::string& sha) const;
     std::filesystem::path record_path(const std::string& key, const std::string& name) const;
     std::filesystem::path stat_path(const std::filesystem::path& file) const;
     std::filesystem::path dir_;
+    std::string code_;  // the build whose records restore() and store() use; "" for open()'s
 };
 
 }  // namespace mf

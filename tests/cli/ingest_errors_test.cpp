@@ -1,5 +1,6 @@
 // Bad inputs give coded errors naming the file; the other sets complete.
 #include "cli_util.hpp"
+#include "test_elf.hpp"
 
 using namespace mft;
 
@@ -106,12 +107,16 @@ TEST(IngestErrors, UsageErrorsExitTwo) {
     EXPECT_NE(r.output.find("matforge ingest: "), std::string::npos) << r.output;
 }
 
-// --version: the version on the first line (scripts and bench/*/run.sh read it), then every
-// library that reads inputs or decides output bytes, with a version number, as loaded.
+// --version: the version on the first line (scripts and bench/*/run.sh read it), the build's
+// build-id as binutils reads it from the file, then every library that reads inputs or decides
+// output bytes, with a version number, as loaded.
 TEST(IngestErrors, VersionNamesTheLibraries) {
     const auto r = run("--version");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(r.output.substr(0, r.output.find('\n')), "matforge " MATFORGE_VERSION) << r.output;
+    const std::string id = mf::testelf::readelf_build_id(mf::testenv::bin());
+    ASSERT_EQ(id.size(), 40u) << "a sha1 build-id";
+    EXPECT_NE(r.output.find("\n  build build-id " + id + "\n"), std::string::npos) << r.output;
     for (const char* lib : {"OpenImageIO 2.", "png:libpng", "OpenColorIO 2.", "squish ", "astcenc ", "zstd 1.",
                             "libzip 1.", "OpenSSL 3.", "Vulkan headers 1.3.", "CLI11 2."})
         EXPECT_NE(r.output.find(lib), std::string::npos) << lib << " in:\n" << r.output;

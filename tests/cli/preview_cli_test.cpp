@@ -483,6 +483,24 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
                           &write, &workers, &upload, &draw),
               5)
         << r.output;
+    double pipelines = -1, images = -1, staging = -1, rest = -1, wait = -1, readback = -1;
+    const size_t at3 = r.output.find("timings: upload: pipelines");
+    ASSERT_NE(at3, std::string::npos) << r.output;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + at3,
+                          "timings: upload: pipelines %lf s, images %lf s, staging copies %lf s, submission and the "
+                          "rest %lf s; draw: submitted and waited for %lf s, read back %lf s",
+                          &pipelines, &images, &staging, &rest, &wait, &readback),
+              6)
+        << r.output;
+    // The lane's parts lie within what the batch timed around upload and draw (printed rounded
+    // to the millisecond); its submission waits for the copies and the blitted mips (lavapipe
+    // runs them then: milliseconds). Its pipeline is compiled by the worker that read the
+    // material or by the lane, whichever comes first, and lavapipe's images take host memory in
+    // microseconds: both may print 0.
+    EXPECT_GT(rest, 0.0) << r.output;
+    for (const double t : {pipelines, images, staging, wait, readback}) EXPECT_GE(t, 0.0) << r.output;
+    EXPECT_LE(pipelines + images + staging + rest, upload + 0.004) << r.output;
+    EXPECT_LE(wait + readback, draw + 0.002) << r.output;
     EXPECT_EQ(lanes, 1u) << "one material: one lane, whatever --lanes asks";
     EXPECT_EQ(workers, 3u);
     EXPECT_GT(device, 0.0);

@@ -346,7 +346,10 @@ TEST_F(MsaaTest, DepthAndGroundMultisampleToo) {
 }
 
 // Renderer::prepare on other threads while the renderer uploads and renders: the same images as
-// preparing in turn (and nothing for the validation layer to report).
+// preparing in turn (and nothing for the validation layer to report). A material is prepared for
+// a device and a scene, not for a renderer: render::prepare before any renderer exists, or
+// another renderer of that scene, gives the same image; a renderer of another scene (textures
+// read otherwise, another light) or of another device refuses it.
 TEST_F(FastTexturesTest, PrepareRunsOnOtherThreads) {
     const Material m = detailed_material(128);
     render::Renderer renderer(context(), small_scene(48, true));
@@ -358,7 +361,40 @@ TEST_F(FastTexturesTest, PrepareRunsOnOtherThreads) {
         EXPECT_EQ(diff(f, expected).max_code, 0);
     }
     render::Renderer other(context(), small_scene(48, true));
-    EXPECT_THROW(other.upload(renderer.prepare(m)), render::Error);
+    EXPECT_EQ(diff(other.render(other.upload(renderer.prepare(m))), expected).max_code, 0);
+    EXPECT_EQ(
+        diff(renderer.render(renderer.upload(render::prepare(context(), small_scene(48, true), m))), expected).max_code,
+        0);
+    render::Renderer precise(context(), small_scene(48, false));
+    EXPECT_THROW(precise.upload(renderer.prepare(m)), render::Error);
+    Scene two_lights = small_scene(48, true);
+    two_lights.lights.push_back(two_lights.lights[0]);
+    render::Renderer lit(context(), two_lights);
+    EXPECT_THROW(lit.upload(renderer.prepare(m)), render::Error);
+    render::Context another;
+    render::Renderer elsewhere(another, small_scene(48, true));
+    EXPECT_THROW(elsewhere.upload(renderer.prepare(m)), render::Error);
+}
+
+// Renderer::warm on other threads while the renderer uploads and renders the same variant: the
+// variant is made once, by whichever thread comes first, and draws the image a renderer that
+// made it in upload() draws (nothing for the validation layer to report); materials of one
+// variant share a key, those of another (no normal map) do not.
+TEST_F(FastTexturesTest, VariantsWarmOnOtherThreads) {
+    const Material m = detailed_material(128);
+    render::Renderer renderer(context(), small_scene(48, true));
+    const render::PreparedMaterial p = renderer.prepare(m);
+    std::vector<std::future<void>> warming;
+    for (int i = 0; i < 3; ++i) warming.push_back(std::async(std::launch::async, [&] { renderer.warm(p); }));
+    const render::Frame f = renderer.render(renderer.upload(renderer.prepare(m)));
+    for (auto& w : warming) w.get();
+    render::Renderer cold(context(), small_scene(48, true));
+    EXPECT_EQ(diff(f, cold.render(cold.upload(m))).max_code, 0);
+    Material flat = m;
+    flat.normal.texture = -1;
+    EXPECT_EQ(p.variant_key(), renderer.prepare(m).variant_key());
+    EXPECT_NE(p.variant_key(), renderer.prepare(flat).variant_key());
+    EXPECT_NE(renderer.render(renderer.upload(renderer.prepare(flat))).rgba8, f.rgba8);
 }
 
 // Staging memory is kept from one upload for the next (Renderer::Impl::take_staging): materials

@@ -176,6 +176,11 @@ ExitCode run_preview(const PreviewArgs& a) {
         say("preview", "timings: read " + fixed(t.read, 3) + " s and write " + fixed(t.write, 3) + " s on " +
                            std::to_string(t.workers) + " worker(s), upload " + fixed(t.upload, 3) + " s and draw " +
                            fixed(t.draw, 3) + " s on the lane(s) (thread time, summed)");
+        const render::Renderer::HostTimes& h = t.lanes_host;
+        say("preview", "timings: upload: pipelines " + fixed(h.pipelines, 3) + " s, images " + fixed(h.images, 3) +
+                           " s, staging copies " + fixed(h.staging, 3) + " s, submission and the rest " +
+                           fixed(h.upload_rest, 3) + " s; draw: submitted and waited for " + fixed(h.draw_wait, 3) +
+                           " s, read back " + fixed(h.readback, 3) + " s");
     }
     return status;
 }

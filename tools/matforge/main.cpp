@@ -20,10 +20,14 @@ std::vector<Command>& registry() {
 }
 
 namespace {
-// `matforge --version`: the version, then each library that decides output bytes or reads
-// inputs, as loaded at run time (an upgraded Debian library without a rebuild shows here).
+// `matforge --version`: the version, the build (its build-id: what the ingest cache's records
+// name, so a farm's nodes can be compared), then each library that decides output bytes or
+// reads inputs, as loaded at run time (an upgraded Debian library without a rebuild shows here).
 std::string version_text() {
     std::string s = std::string(mf::kGenerator) + "\n";
+    std::string error;
+    const auto build = mf::code_identity(error);
+    s += "  build " + (build ? *build : "unknown (" + error + ")") + "\n";
     for (const std::string& lib :
          {mf::image_library_versions(), mf::color_library_version(), mf::texture::encoder_versions(),
           mf::archive_library_version(), mf::crypto_library_version(), mf::render::vulkan_header_version(),
