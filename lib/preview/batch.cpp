@@ -272,7 +272,13 @@ private:
     Loaded read(size_t i) {
         Loaded l;
         try {
-            auto m = jobs_[i].load([&](uint32_t f) { return render::samples(device(), f); }, l.notes, l.error);
+            auto m = jobs_[i].load(
+                [&](uint32_t f) {
+                    render::Context& c = device();
+                    if (!render::samples(c, f)) return BlockUse::decoded_absent;
+                    return c.info().cpu && render::decodes_exactly(f) ? BlockUse::decoded : BlockUse::as_written;
+                },
+                l.notes, l.error);
             if (m) {
                 l.prepared = render::prepare(device(), sf_.scene, *m);
                 l.bytes = l.prepared->bytes();

@@ -1,7 +1,7 @@
 // GPU texture files (DDS, KTX2) -> renderer textures: the preview renders what ingest wrote, the
-// same blocks and mip chain an engine samples, not the PNG they came from. Where the device
-// cannot sample the format (ASTC on a desktop GPU, BCn on a mobile one), level 0 is decoded
-// here with the codec that wrote it and uploaded as 8-bit codes (the renderer builds its mips).
+// same blocks and mip chain an engine samples, not the PNG they came from. Where the blocks are
+// decoded here (a CPU device, a device without the format: BlockUse), every level is decoded with
+// the codec that wrote it, so the chain sampled is still the file's.
 #include "core/files.hpp"
 #include "preview/preview.hpp"
 #include "texture/texture.hpp"
@@ -22,21 +22,40 @@ std::optional<render::Texture> read_gpu_texture(const std::filesystem::path& fil
     t.height = static_cast<uint32_t>(gt.levels[0].height);
     t.channels = static_cast<uint32_t>(gt.format->channels);
     const uint32_t vk = texture::vk_format(gt);
-    if (samples && samples(vk)) {
+    const BlockUse use = samples ? samples(vk) : BlockUse::as_written;
+    if (use == BlockUse::as_written) {
         t.block_format = vk;
         for (auto& l : gt.levels) t.block_levels.push_back(std::move(l.data));
         return t;
     }
-    Image8 rgba;
-    if (!texture::decode_top_level(gt, 4, false, rgba, error)) {
-        error = file.string() + ": " + error;
-        return std::nullopt;
+    if (use == BlockUse::top_level) {
+        Image8 rgba;
+        if (!texture::decode_top_level(gt, 4, false, rgba, error)) {
+            error = file.string() + ": " + error;
+            return std::nullopt;
+        }
+        t.channels = static_cast<uint32_t>(rgba.channels);
+        t.type = render::TexelType::u8;
+        t.data = std::move(rgba.pixels);
+        return t;
     }
-    notes.push_back(file.filename().string() + ": this device does not sample " + std::string(gt.format->name) +
-                    "; decoded on the CPU and its mips averaged again");
-    t.channels = static_cast<uint32_t>(rgba.channels);
-    t.type = render::TexelType::u8;
-    t.data = std::move(rgba.pixels);
+    texture::CodecOptions co;
+    co.format = gt.format;
+    co.srgb = gt.srgb;
+    for (texture::Level& l : gt.levels) {
+        Image8 rgba;
+        if (!texture::decode_level(l.data, l.width, l.height, co, rgba, error)) {
+            error = file.string() + ": " + error;
+            return std::nullopt;
+        }
+        l.data.clear();
+        l.data.shrink_to_fit();
+        t.block_levels.push_back(std::move(rgba.pixels));
+    }
+    t.block_format = render::kDecodedLevels;
+    if (use == BlockUse::decoded_absent)
+        notes.push_back(file.filename().string() + ": this device does not sample " + std::string(gt.format->name) +
+                        "; decoded on the CPU, every level as written");
     return t;
 }
 

@@ -98,12 +98,24 @@ std::optional<render::Light> parse_light_spec(const std::string& spec, std::stri
 
 // ---- manifest materials
 
-// Whether the device samples a block format (render::Renderer::samples), for GPU texture files.
-using BlockSupport = std::function<bool(uint32_t vk_format)>;
+// How a GPU texture file's blocks (DDS, KTX2) reach the renderer, by their VkFormat.
+enum class BlockUse {
+    // Uploaded as the file holds them: the device samples the format.
+    as_written,
+    // Every level decoded here once, to 8-bit RGBA as a GPU returns the blocks, the file's own mip
+    // chain kept (render::kDecodedLevels): a CPU device, which samples the format but decodes
+    // blocks on every fetch (lavapipe drew a 1K BC7/BC5 material in 0.75 s, its PNGs in 0.09 s).
+    decoded,
+    // As `decoded`, with a note: the device does not sample the format.
+    decoded_absent,
+    // Level 0 decoded; the renderer makes its mips (the report's viewer, which takes plain maps).
+    top_level,
+};
+using BlockSupport = std::function<BlockUse(uint32_t vk_format)>;
 
 struct MaterialOptions {
     bool allow_outside = false;  // textures may lie outside the manifest's folder
-    BlockSupport samples;        // DDS/KTX2 blocks go up as written where this says yes
+    BlockSupport samples;        // DDS/KTX2 blocks: as written when unset
 };
 
 // The material's output textures, read, with their channels mapped to the renderer's slots.
@@ -121,8 +133,7 @@ bool apply_scene_material(const SceneMaterial& s, render::Material& m, std::stri
 
 std::optional<render::Texture> read_texture(const std::filesystem::path& file, std::string& error);
 // A .dds or .ktx2 file (what ingest's GPU presets write; texture::is_gpu_texture_name): its
-// blocks and mip chain as written where `samples` says the device takes the format, else level 0
-// decoded on the CPU (a note).
+// blocks and mip chain as written, or decoded on the CPU, as `samples` says (BlockUse).
 std::optional<render::Texture> read_gpu_texture(const std::filesystem::path& file, const BlockSupport& samples,
                                                 std::vector<std::string>& notes, std::string& error);
 std::optional<render::Environment> read_environment(const std::filesystem::path& file, float intensity,

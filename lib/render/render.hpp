@@ -261,9 +261,17 @@ struct Texture {
     // from `srgb`) and `block_levels` every mip level's blocks, largest first, each level half
     // the one before (at least 1). Uploaded as they are: the chain that was written is the one
     // sampled. `data` and `type` are unused. Renderer::samples() says whether the device can.
+    // kDecodedLevels: such a chain decoded on the CPU, 8-bit RGBA texels as "blocks" of one.
     uint32_t block_format = 0;
     std::vector<std::vector<uint8_t>> block_levels;
 };
+// Texture::block_format of decoded levels: VK_FORMAT_R8G8B8A8_UNORM (its _SRGB variant from
+// `srgb`), every device samples it.
+inline constexpr uint32_t kDecodedLevels = 37;
+// Whether a block format decodes to exact 8-bit codes on every device (BC7: its interpolation is
+// integer arithmetic in the specification), so that decoded levels sample as its blocks do; BC4
+// and BC5 decode to more than 8 bits on GPUs and lavapipe, BC1-3 within a tolerance.
+bool decodes_exactly(uint32_t block_format);
 
 enum class Channel : uint8_t { R = 0, G = 1, B = 2, A = 3 };
 struct ScalarRole {

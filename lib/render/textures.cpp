@@ -210,7 +210,9 @@ const BlockFormatDesc* block_format_desc(uint32_t vk_format) {
         {VK_FORMAT_ASTC_5x5_UNORM_BLOCK, VK_FORMAT_ASTC_5x5_SRGB_BLOCK, 5, 5, 16},
         {VK_FORMAT_ASTC_6x6_UNORM_BLOCK, VK_FORMAT_ASTC_6x6_SRGB_BLOCK, 6, 6, 16},
         {VK_FORMAT_ASTC_8x8_UNORM_BLOCK, VK_FORMAT_ASTC_8x8_SRGB_BLOCK, 8, 8, 16},
+        {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_SRGB, 1, 1, 4},  // kDecodedLevels
     };
+    static_assert(kDecodedLevels == static_cast<uint32_t>(VK_FORMAT_R8G8B8A8_UNORM));
     for (const BlockFormatDesc& f : kFormats)
         if (static_cast<uint32_t>(f.unorm) == vk_format ||
             (f.srgb != VK_FORMAT_UNDEFINED && static_cast<uint32_t>(f.srgb) == vk_format))

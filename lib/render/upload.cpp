@@ -236,6 +236,10 @@ bool device_samples(const Device& d, uint32_t block_format) {
 bool Renderer::samples(uint32_t block_format) const { return device_samples(impl_->d, block_format); }
 bool samples(Context& context, uint32_t block_format) { return device_samples(device_of(context), block_format); }
 
+bool decodes_exactly(uint32_t block_format) {
+    return block_format == VK_FORMAT_BC7_UNORM_BLOCK || block_format == VK_FORMAT_BC7_SRGB_BLOCK;
+}
+
 namespace {
 
 // A material's roles and constants without its texels: copying the whole Material and then

@@ -331,7 +331,7 @@ std::optional<ViewerCard> Viewer::material(const manifest::Material& mm, const f
     };
     preview::MaterialOptions mo;
     mo.allow_outside = v.allow_outside;
-    mo.samples = [](uint32_t) { return false; };  // GPU texture files decoded: the view takes PNGs
+    mo.samples = [](uint32_t) { return preview::BlockUse::top_level; };  // the view takes plain maps (PNGs)
     std::vector<std::string> notes;
     std::string error;
     std::optional<render::Material> full = preview::load_material(mm, manifest_dir, mo, notes, error);
