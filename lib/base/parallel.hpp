@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <queue>
@@ -29,6 +30,22 @@ void parallel_for(size_t n, int jobs, F&& fn) {
     for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
     worker();
     for (auto& t : pool) t.join();
+}
+
+// As parallel_for, for an fn that may throw: every index still runs, then the exception of the
+// lowest index that threw is rethrown (the others are dropped).
+template <class F>
+void parallel_for_rethrow(size_t n, int jobs, F&& fn) {
+    std::vector<std::exception_ptr> failed(n);
+    parallel_for(n, jobs, [&](size_t i) {
+        try {
+            fn(i);
+        } catch (...) {
+            failed[i] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
 }
 
 // As parallel_for on two threads, the second joining only while `spare()` holds (a core of the

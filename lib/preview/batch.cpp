@@ -139,17 +139,10 @@ public:
             // wait. Their notes are alike but for that measurement's: each said once, in lane order.
             renderers_.resize(lanes);
             std::vector<std::vector<std::string>> notes(lanes);
-            std::vector<std::exception_ptr> failed(lanes);
-            parallel_for(lanes, static_cast<int>(lanes), [&](size_t k) {
-                try {
-                    renderers_[k] = std::make_unique<render::Renderer>(*context_, sf_.scene);
-                    notes[k] = renderers_[k]->take_notes();
-                } catch (...) {
-                    failed[k] = std::current_exception();
-                }
+            parallel_for_rethrow(lanes, static_cast<int>(lanes), [&](size_t k) {
+                renderers_[k] = std::make_unique<render::Renderer>(*context_, sf_.scene);
+                notes[k] = renderers_[k]->take_notes();
             });
-            for (const std::exception_ptr& e : failed)
-                if (e) std::rethrow_exception(e);
             std::set<std::string> said;
             for (const std::vector<std::string>& lane_notes : notes)
                 for (const std::string& n : lane_notes)
@@ -183,15 +176,7 @@ public:
         }
         shut_down();
         times.total = start_.elapsed();
-        for (const auto& r : renderers_) {
-            const render::Renderer::HostTimes& h = r->host_times();
-            times.lanes_host.pipelines += h.pipelines;
-            times.lanes_host.images += h.images;
-            times.lanes_host.staging += h.staging;
-            times.lanes_host.upload_rest += h.upload_rest;
-            times.lanes_host.draw_wait += h.draw_wait;
-            times.lanes_host.readback += h.readback;
-        }
+        for (const auto& r : renderers_) times.lanes_host += r->host_times();
         times.read = spent_.read;
         times.upload = spent_.upload;
         times.draw = spent_.draw;

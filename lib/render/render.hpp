@@ -260,7 +260,7 @@ struct Texture {
     // the VkFormat value of the blocks (a BCn or ASTC LDR format; its _SRGB variant is chosen
     // from `srgb`) and `block_levels` every mip level's blocks, largest first, each level half
     // the one before (at least 1). Uploaded as they are: the chain that was written is the one
-    // sampled. `data` and `type` are unused. Renderer::samples() says whether the device can.
+    // sampled. `data` and `type` are unused. render::samples() says whether the device can.
     // kDecodedLevels: such a chain decoded on the CPU, 8-bit RGBA texels as "blocks" of one.
     uint32_t block_format = 0;
     std::vector<std::vector<uint8_t>> block_levels;
@@ -391,7 +391,8 @@ private:
 // for upload on any renderer of that context made with that scene (upload checks it). A batch
 // readies its first materials while the renderers start (lib/preview/batch.cpp). Thread-safe.
 PreparedMaterial prepare(Context& context, const Scene& scene, const Material& material);
-// Renderer::samples before any renderer exists.
+// Whether the device samples and filters textures of this block format (a VkFormat value, see
+// Texture::block_format); where it does not, the caller decodes on the CPU.
 bool samples(Context& context, uint32_t block_format);
 
 // A material's textures on the device and the pipeline variant it needs. Destroy before the
@@ -442,10 +443,6 @@ public:
 
     Frame render(const GpuMaterial& material, const OutputOptions& output = {});
 
-    // Whether the device samples and filters textures of this block format (a VkFormat value,
-    // see Texture::block_format); where it does not, the caller decodes on the CPU.
-    bool samples(uint32_t block_format) const;
-
     const Scene& scene() const;
     // The path this renderer shades on: raster or compute, Scene::shading resolved.
     Shading shading() const;
@@ -460,6 +457,15 @@ public:
         double upload_rest = 0.0;  // upload: the copies and mips recorded, submitted and waited for; descriptors
         double draw_wait = 0.0;    // render: recorded, submitted and waited for
         double readback = 0.0;     // render: the picture copied out of the readback buffer
+        HostTimes& operator+=(const HostTimes& o) {
+            pipelines += o.pipelines;
+            images += o.images;
+            staging += o.staging;
+            upload_rest += o.upload_rest;
+            draw_wait += o.draw_wait;
+            readback += o.readback;
+            return *this;
+        }
     };
     const HostTimes& host_times() const;
     // Notes on what was changed to fit the device (a texture or environment larger than its

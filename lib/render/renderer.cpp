@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <memory>
 #include <vector>
 
@@ -177,19 +176,12 @@ ShadingTimes measure_shading(Context& context, uint32_t msaa, uint32_t supersamp
     // The two renderers made at once, each compiling its own pipelines.
     std::array<std::unique_ptr<Renderer>, 2> renderers;
     std::array<GpuMaterial, 2> materials;
-    std::array<std::exception_ptr, 2> failed;
-    parallel_for(2, 2, [&](size_t i) {
-        try {
-            Scene path = s;
-            path.shading = i == 0 ? Shading::raster : Shading::compute;
-            renderers[i] = std::make_unique<Renderer>(context, path);
-            materials[i] = renderers[i]->upload(Material{});
-        } catch (...) {
-            failed[i] = std::current_exception();
-        }
+    parallel_for_rethrow(2, 2, [&](size_t i) {
+        Scene path = s;
+        path.shading = i == 0 ? Shading::raster : Shading::compute;
+        renderers[i] = std::make_unique<Renderer>(context, path);
+        materials[i] = renderers[i]->upload(Material{});
     });
-    for (const std::exception_ptr& e : failed)
-        if (e) std::rethrow_exception(e);
     std::array<double, 2> best{0.0, 0.0};
     for (int frame = 0; frame < kWarmupFrames + kTimedFrames; ++frame)
         for (size_t i = 0; i < 2; ++i) {

@@ -230,7 +230,7 @@ PreparedTexture prepare_blocks(const Device& d, const Texture& t, MipKind kind) 
     out.format = t.srgb && kind == MipKind::color && f->srgb != VK_FORMAT_UNDEFINED ? f->srgb : f->unorm;
     if (!d.supports(out.format, kSampledTextureFeatures))
         throw Error("this device does not sample block format " + std::to_string(t.block_format) +
-                    " (decode it on the CPU: Renderer::samples says which it does)");
+                    " (decode it on the CPU: render::samples says which it does)");
     if (t.width == 0 || t.height == 0 || t.block_levels.empty()) throw Error("block-compressed texture without levels");
     uint32_t w = t.width, h = t.height;
     for (size_t i = 0; i < t.block_levels.size(); ++i) {

@@ -223,18 +223,12 @@ void Renderer::Impl::create_dummies() {
     s.finish(unused);
 }
 
-namespace {
-
-bool device_samples(const Device& d, uint32_t block_format) {
+bool samples(Context& context, uint32_t block_format) {
+    const Device& d = device_of(context);
     const BlockFormatDesc* f = block_format_desc(block_format);
     return f && d.supports(f->unorm, kSampledTextureFeatures) &&
            (f->srgb == VK_FORMAT_UNDEFINED || d.supports(f->srgb, kSampledTextureFeatures));
 }
-
-}  // namespace
-
-bool Renderer::samples(uint32_t block_format) const { return device_samples(impl_->d, block_format); }
-bool samples(Context& context, uint32_t block_format) { return device_samples(device_of(context), block_format); }
 
 bool decodes_exactly(uint32_t block_format) {
     return block_format == VK_FORMAT_BC7_UNORM_BLOCK || block_format == VK_FORMAT_BC7_SRGB_BLOCK;

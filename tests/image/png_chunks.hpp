@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <OpenImageIO/filesystem.h>
@@ -111,17 +112,20 @@ inline std::vector<unsigned char> encode(int w, int h, int channels, int depth, 
     return png;
 }
 
-// 8-bit samples written by OpenImageIO (libpng, zlib) with libpng filter mask `filter` (0: its
-// adaptive default, which picks among all five per row).
-inline std::vector<unsigned char> libpng_file(int w, int h, int channels, const std::vector<uint8_t>& s8, int filter) {
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT8);
+// 8-bit (uint8_t) or 16-bit (uint16_t, host order) samples written by OpenImageIO (libpng, zlib)
+// with libpng filter mask `filter` (0: its adaptive default, which picks among all five per row).
+template <class T>
+std::vector<unsigned char> libpng_file(int w, int h, int channels, const std::vector<T>& samples, int filter) {
+    static_assert(std::is_same_v<T, uint8_t> || std::is_same_v<T, uint16_t>);
+    const OIIO::TypeDesc type = sizeof(T) == 1 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
+    OIIO::ImageSpec spec(w, h, channels, type);
     spec.attribute("oiio:UnassociatedAlpha", 1);
     if (filter) spec.attribute("png:filter", filter);
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput vec(bytes);
     auto out = OIIO::ImageOutput::create("x.png");
-    EXPECT_TRUE(out && out->set_ioproxy(&vec) && out->open("x.png", spec) &&
-                out->write_image(OIIO::TypeDesc::UINT8, s8.data()) && out->close());
+    EXPECT_TRUE(out && out->set_ioproxy(&vec) && out->open("x.png", spec) && out->write_image(type, samples.data()) &&
+                out->close());
     return bytes;
 }
 

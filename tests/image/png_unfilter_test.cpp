@@ -15,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "image/png_reader.hpp"
@@ -68,16 +67,7 @@ std::vector<unsigned char> png8(int w, int h, int channels, const std::vector<ui
 }
 
 std::vector<unsigned char> png16(int w, int h, int channels, const std::vector<uint16_t>& px, int filter) {
-    if (filter < 0) return pngtest::encode(w, h, channels, 16, px, {});
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::UINT16);
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (filter) spec.attribute("png:filter", filter);
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput vec(bytes);
-    auto out = OIIO::ImageOutput::create("x.png");
-    EXPECT_TRUE(out && out->set_ioproxy(&vec) && out->open("x.png", spec) &&
-                out->write_image(OIIO::TypeDesc::UINT16, px.data()) && out->close());
-    return bytes;
+    return filter < 0 ? pngtest::encode(w, h, channels, 16, px, {}) : pngtest::libpng_file(w, h, channels, px, filter);
 }
 
 // read_plain's samples of `png` equal OpenImageIO's (8-bit codes, or 16-bit in host order), and

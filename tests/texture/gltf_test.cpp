@@ -377,6 +377,20 @@ void expect_mtlx(const std::vector<const Run*>& runs) {
     }
 }
 
+// The run's USD layers (their paths) and the manifest entry each belongs to; `check_digest`:
+// each file's SHA-256 is the one its material_files entry records.
+void usda_layers(const Run& r, std::vector<std::string>& files, std::vector<const json*>& mats, bool check_digest) {
+    for (const auto& m : r.manifest["materials"])
+        for (const auto& f : m["material_files"])
+            if (f["format"] == "usda") {
+                files.push_back((r.out / f["file"].get<std::string>()).string());
+                mats.push_back(&m);
+                if (check_digest) {
+                    EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(files.back()))) << files.back();
+                }
+            }
+}
+
 // The USD layer beside each .gltf, opened by OpenUSD itself (checkers/usd_open.py: PyPI
 // usd-core's Usd.Stage.Open, UsdShade and UsdValidation): it composes without an error and every
 // validator usdchecker runs passes (the UsdPreviewSurface rules: a normal map's scale and bias,
@@ -389,13 +403,7 @@ void expect_mtlx(const std::vector<const Run*>& runs) {
 void expect_usda(const Run& r) {
     std::vector<std::string> files;
     std::vector<const json*> mats;
-    for (const auto& m : r.manifest["materials"])
-        for (const auto& f : m["material_files"])
-            if (f["format"] == "usda") {
-                files.push_back((r.out / f["file"].get<std::string>()).string());
-                mats.push_back(&m);
-                EXPECT_EQ(f["sha256"], mf::sha256_hex(read_bytes(files.back()))) << files.back();
-            }
+    usda_layers(r, files, mats, true);
     ASSERT_EQ(mats.size(), r.manifest["materials"].size()) << "one .usda per material";
     const std::vector<json> reps = py_checker("usd_open.py", files);
     ASSERT_EQ(reps.size(), mats.size());
@@ -489,12 +497,7 @@ TEST(Gltf, UsdLayerCarriesTheLicenceAsAmbientCgsOwnDoes) {
     const auto& r = ingested("corpus");
     std::vector<std::string> files;
     std::vector<const json*> mats;
-    for (const auto& m : r.manifest["materials"])
-        for (const auto& f : m["material_files"])
-            if (f["format"] == "usda") {
-                files.push_back((r.out / f["file"].get<std::string>()).string());
-                mats.push_back(&m);
-            }
+    usda_layers(r, files, mats, false);
     ASSERT_EQ(mats.size(), r.manifest["materials"].size());
     // The vendor's own layers: the corpus sets ambientCG ships a .usdc with.
     std::vector<std::pair<const json*, std::string>> theirs;
