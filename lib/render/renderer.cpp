@@ -142,6 +142,9 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
     create_dummies();           // upload.cpp
     build_environment();        // ibl.cpp: BRDF table and environment maps, only when called for
     write_frame_descriptors();  // frame.cpp
+    // HostTimes count upload() and render() only: the load-time uploads above (placeholders, the
+    // environment) went through upload_texture too.
+    host_times = {};
 }
 
 Renderer::Impl::~Impl() {
