@@ -178,6 +178,7 @@ public:
         times.total = start_.elapsed();
         for (const auto& r : renderers_) times.lanes_host += r->host_times();
         times.read = spent_.read;
+        times.read_wait = spent_.read_wait;
         times.upload = spent_.upload;
         times.draw = spent_.draw;
         times.write = spent_.write;
@@ -249,7 +250,9 @@ private:
     // when the batch stops first.
     render::Context& device() {
         std::unique_lock<std::mutex> lock(mutex_);
+        const Stopwatch waiting;
         changed_.wait(lock, [&] { return device_ready_ || stopping_; });
+        spent_.read_wait += waiting.elapsed();
         if (!device_ready_) throw Stopped{};
         return *context_;
     }
@@ -285,7 +288,9 @@ private:
         {
             std::unique_lock<std::mutex> lock(mutex_);
             if (!variants_.insert(prepared.variant_key()).second) return;
+            const Stopwatch waiting;
             changed_.wait(lock, [&] { return ready_ || stopping_; });
+            spent_.read_wait += waiting.elapsed();
             if (!ready_) return;
         }
         const size_t lanes = renderers_.size();
@@ -430,7 +435,7 @@ private:
     const Stopwatch start_;  // the batch's start: BatchTimes' points
     BatchResult result_;
     struct {
-        double read = 0.0, upload = 0.0, draw = 0.0, write = 0.0;
+        double read = 0.0, read_wait = 0.0, upload = 0.0, draw = 0.0, write = 0.0;
     } spent_;                                       // thread time, summed (BatchTimes)
     std::map<std::string, size_t> repeated_notes_;  // a note's text -> how many materials had it
     std::optional<render::Context> context_;

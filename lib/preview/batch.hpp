@@ -76,10 +76,11 @@ struct BatchTimes {
     double first = 0.0;      // the first material's outcome said (its image written)
     double total = 0.0;
     unsigned lanes = 0, workers = 0;
-    double read = 0.0;                       // workers: files decoded, textures converted (render::prepare)
-    double upload = 0.0;                     // lanes: staging copies and their submission
-    double draw = 0.0;                       // lanes: render and read back
-    double write = 0.0;                      // workers: images encoded and written
+    double read = 0.0;       // workers: files decoded, textures converted (render::prepare)
+    double read_wait = 0.0;  // of `read`: waiting for the device, or for the renderers to warm a variant
+    double upload = 0.0;     // lanes: staging copies and their submission
+    double draw = 0.0;       // lanes: render and read back
+    double write = 0.0;      // workers: images encoded and written
     render::Renderer::HostTimes lanes_host;  // upload and draw by part, summed over the lanes
 };
 

@@ -204,7 +204,9 @@ Frame Renderer::render(const GpuMaterial& material, const OutputOptions& output)
     memory_barrier(d, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     s.finish(r.frame_times);
+    r.retire_upload();  // done: the draw waited for its copies
     r.host_times.draw_wait += watch.lap();
+    for (const PassTime& t : r.frame_times) r.host_times.draw_device += t.ms * 1e-3;
     invalidate(d, r.readback);
 
     Frame frame;

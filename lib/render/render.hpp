@@ -396,7 +396,8 @@ PreparedMaterial prepare(Context& context, const Scene& scene, const Material& m
 bool samples(Context& context, uint32_t block_format);
 
 // A material's textures on the device and the pipeline variant it needs. Destroy before the
-// Renderer that made it; on any thread once the render() calls that drew it have returned (its
+// Renderer that made it; on any thread once the render() calls that drew it have returned (one
+// never drawn first waits for its upload's copies, which upload() submits without waiting; its
 // device objects are its own: freeing a 1K material's took ~0.8 ms of the H200 host's 5 ms a
 // material, which a library's loop can hand to another thread).
 class GpuMaterial {
@@ -454,9 +455,18 @@ public:
         double pipelines = 0.0;    // upload: the material's pipeline variants (compiled the first time)
         double images = 0.0;       // upload: images and their memory created
         double staging = 0.0;      // upload: texels copied into staging memory
-        double upload_rest = 0.0;  // upload: the copies and mips recorded, submitted and waited for; descriptors
-        double draw_wait = 0.0;    // render: recorded, submitted and waited for
+        double upload_rest = 0.0;  // upload: the copies and mips recorded and submitted; descriptors
+        double draw_wait = 0.0;    // render: recorded, submitted and waited for (with the copies before it)
         double readback = 0.0;     // render: the picture copied out of the readback buffer
+        // The device's own time (timestamp queries; 0 without them): whether a lane waited for
+        // its work or for the queue's other work, the other lanes' included.
+        double upload_device = 0.0;  // upload: the copies and blitted mips
+        double draw_device = 0.0;    // render: its passes
+        // The renderer's construction (wall clock on its thread), not reset with the rest.
+        double made = 0.0;  // all of it
+        double made_shading =
+            0.0;                 // Shading::automatic's measurement (made by one renderer of a device; the others wait)
+        double made_load = 0.0;  // load-time uploads and passes: mesh, placeholders, the environment
         HostTimes& operator+=(const HostTimes& o) {
             pipelines += o.pipelines;
             images += o.images;
@@ -464,6 +474,11 @@ public:
             upload_rest += o.upload_rest;
             draw_wait += o.draw_wait;
             readback += o.readback;
+            upload_device += o.upload_device;
+            draw_device += o.draw_device;
+            made += o.made;
+            made_shading += o.made_shading;
+            made_load += o.made_load;
             return *this;
         }
     };

@@ -12,6 +12,7 @@
 
 #include "base/limits.hpp"
 #include "base/parallel.hpp"
+#include "base/stopwatch.hpp"
 #include "render/internal.hpp"
 #include "render/renderer_impl.hpp"
 
@@ -117,6 +118,7 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
     if (uses_depth() && !d.supports(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
         throw NoDeviceError(d.info.name + " has no 32-bit float depth buffer");
 
+    blocks = std::make_shared<BlockPool>(d);
     auto pi = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
     pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pi.queueFamilyIndex = d.queue_family;
@@ -131,20 +133,29 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
         VkQueryPool q = VK_NULL_HANDLE;
         VK_CHECK(d.fn.vkCreateQueryPool(d.device, &qi, nullptr, &q));
         queries = Unique<VkQueryPool>(d, q);
+        VK_CHECK(d.fn.vkCreateQueryPool(d.device, &qi, nullptr, &q));
+        upload_queries = Unique<VkQueryPool>(d, q);
     }
 
+    Stopwatch made;
     choose_shading(context);
+    const double shading_s = made.elapsed();
     choose_samples();
     create_samplers();
-    create_layouts();           // pipelines.cpp
-    create_targets();           // draw.cpp
-    upload_mesh();              // upload.cpp
-    create_dummies();           // upload.cpp
-    build_environment();        // ibl.cpp: BRDF table and environment maps, only when called for
+    create_layouts();  // pipelines.cpp
+    create_targets();  // draw.cpp
+    const double load_from = made.elapsed();
+    upload_mesh();        // upload.cpp
+    create_dummies();     // upload.cpp
+    build_environment();  // ibl.cpp: BRDF table and environment maps, only when called for
+    const double load_s = made.elapsed() - load_from;
     write_frame_descriptors();  // frame.cpp
     // HostTimes count upload() and render() only: the load-time uploads above (placeholders, the
     // environment) went through upload_texture too.
     host_times = {};
+    host_times.made = made.elapsed();
+    host_times.made_shading = shading_s;
+    host_times.made_load = load_s;
 }
 
 Renderer::Impl::~Impl() {

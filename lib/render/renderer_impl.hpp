@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <future>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -84,6 +85,18 @@ struct Renderer::Impl {
 
     detail::Unique<VkCommandPool> command_pool;
     detail::Unique<VkQueryPool> queries;  // null without timestamp support
+    // upload()'s own: its timestamps are read after render() has reset `queries`.
+    detail::Unique<VkQueryPool> upload_queries;
+    // upload()'s submission, not waited for: render() submits after it on the same queue (its
+    // barriers make the draw wait for the copies on the device, not on this thread), then
+    // retires it; so does the next upload() before submitting its own. Its staging buffers are
+    // kept until then. Declared after command_pool: its command buffer is freed first.
+    struct PendingUpload {
+        std::unique_ptr<detail::Submission> submission;
+        std::vector<detail::Buffer> staging;
+    };
+    std::optional<PendingUpload> pending_upload;
+    void retire_upload();  // waits for it, counts its device time, keeps its staging
     detail::Unique<VkSampler> sampler_repeat, sampler_clamp;
     detail::Unique<VkDescriptorSetLayout> frame_layout, material_layout, encode_set_layout;
     detail::Unique<VkPipelineLayout> shade_layout, encode_layout;
@@ -165,6 +178,14 @@ struct Renderer::Impl {
     // Records into the caller's `cmd`; the staging buffers go to the caller's `staging`.
     detail::Image upload_texture(const detail::PreparedTexture& prepared, VkCommandBuffer cmd,
                                  std::vector<detail::Buffer>& staging) const;
+    static detail::ImageDesc texture_desc(const detail::PreparedTexture& t);  // the image `t` fills
+    // The copies (and blitted mips) that fill `img`, made for `t` (texture_desc).
+    void record_texture(const detail::PreparedTexture& t, const detail::Image& img, VkCommandBuffer cmd,
+                        std::vector<detail::Buffer>& staging) const;
+    // A material's images, bound in one block of `blocks` (m.block); an image left empty is one
+    // that upload_texture makes on its own.
+    std::vector<detail::Image> material_images(const PreparedMaterial::Impl& p, GpuMaterial::Impl& m) const;
+    std::shared_ptr<detail::BlockPool> blocks;  // shared with the materials, which return their block
     // Staging buffers of finished uploads, kept for the next ones (at most kStagingKept bytes):
     // a host-visible allocation is pinned memory, and making and freeing three a material was
     // most of a library's upload on the H200 (docs/bench/README.md, A library on the H200).
@@ -208,9 +229,17 @@ std::unique_ptr<PreparedMaterial::Impl> prepare_material(const detail::Device& d
                                                          const Material& material);
 
 struct GpuMaterial::Impl {
+    Impl() = default;
+    ~Impl();  // the images first, then the block back to the pool
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
     const Renderer::Impl* owner = nullptr;
     std::string name, variant;
-    Material constants;  // roles and constant values (no texel data)
+    Material constants;                         // roles and constant values (no texel data)
+    std::shared_ptr<detail::BlockPool> blocks;  // where `block` returns
+    // Its upload's completion: waited for before the images go (a material freed undrawn).
+    std::shared_ptr<detail::Unique<VkFence>> uploaded;
+    detail::BlockPool::Block block;  // the textures' memory, unless each has its own
     std::vector<detail::Image> textures;
     detail::Unique<VkDescriptorPool> pool;
     VkDescriptorSet set = VK_NULL_HANDLE;

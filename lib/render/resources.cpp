@@ -1,5 +1,6 @@
 // Buffers, images, shader modules, barriers and one-shot submissions.
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include "render/vk.hpp"
@@ -55,7 +56,7 @@ void invalidate(const Device& d, const Buffer& b) {
     VK_CHECK(d.fn.vkInvalidateMappedMemoryRanges(d.device, 1, &r));
 }
 
-Image create_image(const Device& d, const ImageDesc& desc) {
+Image create_unbound_image(const Device& d, const ImageDesc& desc, VkMemoryRequirements& req) {
     Image img;
     img.desc = desc;
     auto ci = vk_struct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
@@ -73,21 +74,70 @@ Image create_image(const Device& d, const ImageDesc& desc) {
     VkImage h = VK_NULL_HANDLE;
     VK_CHECK(d.fn.vkCreateImage(d.device, &ci, nullptr, &h));
     img.image = Unique<VkImage>(d, h);
-
-    VkMemoryRequirements req{};
+    req = {};
     d.fn.vkGetImageMemoryRequirements(d.device, h, &req);
-    const VkDeviceMemory m = d.allocate(req, d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT),
-                                        "a " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
-                                            " image");
-    img.memory = Unique<VkDeviceMemory>(d, m);
-    VK_CHECK(d.fn.vkBindImageMemory(d.device, h, m, 0));
+    return img;
+}
 
+void bind_image(const Device& d, Image& img, VkDeviceMemory memory, VkDeviceSize offset) {
+    VK_CHECK(d.fn.vkBindImageMemory(d.device, img.image, memory, offset));
+    const ImageDesc& desc = img.desc;
     img.view = create_view(d, img,
                            desc.cube         ? VK_IMAGE_VIEW_TYPE_CUBE
                            : desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                              : VK_IMAGE_VIEW_TYPE_2D,
                            0, desc.mips, 0, desc.layers);
+}
+
+Image create_image(const Device& d, const ImageDesc& desc) {
+    VkMemoryRequirements req{};
+    Image img = create_unbound_image(d, desc, req);
+    const VkDeviceMemory m = d.allocate(req, d.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT),
+                                        "a " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                                            " image");
+    img.memory = Unique<VkDeviceMemory>(d, m);
+    bind_image(d, img, m, 0);
     return img;
+}
+
+BlockPool::Block BlockPool::take(VkDeviceSize size, uint32_t type, const std::string& what) {
+    constexpr VkDeviceSize kMiB = VkDeviceSize{1} << 20;
+    const VkDeviceSize rounded = (size + kMiB - 1) / kMiB * kMiB;
+    {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        auto best = free_.end();
+        for (auto it = free_.begin(); it != free_.end(); ++it)
+            if (it->type == type && it->size >= size && it->size <= 2 * rounded &&
+                (best == free_.end() || it->size < best->size))
+                best = it;
+        if (best != free_.end()) {
+            Block b = std::move(*best);
+            free_.erase(best);
+            kept_ -= b.size;
+            return b;
+        }
+    }
+    VkMemoryRequirements req{};
+    req.size = rounded;
+    req.alignment = 1;
+    req.memoryTypeBits = 1u << type;
+    Block b;
+    b.size = rounded;
+    b.type = type;
+    b.memory = Unique<VkDeviceMemory>(d_, d_.allocate(req, type, what));
+    return b;
+}
+
+void BlockPool::keep(Block b) noexcept {
+    if (!b.memory) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (kept_ + b.size > kKept) return;  // freed as `b` goes
+    kept_ += b.size;
+    try {
+        free_.push_back(std::move(b));
+    } catch (...) {  // no memory for the list: the block is freed instead
+        kept_ -= b.size;
+    }
 }
 
 Unique<VkImageView> create_view(const Device& d, const Image& img, VkImageViewType type, uint32_t base_mip,
@@ -157,7 +207,13 @@ Submission::Submission(const Device& d, VkCommandPool pool, VkQueryPool queries,
     if (queries_) d.fn.vkCmdResetQueryPool(cmd_, queries_, 0, query_count_);
 }
 
-Submission::~Submission() { d_.fn.vkFreeCommandBuffers(d_.device, pool_, 1, &cmd_); }
+Submission::~Submission() {
+    if (fence_ && !waited_) {
+        const VkFence f = *fence_;
+        d_.fn.vkWaitForFences(d_.device, 1, &f, VK_TRUE, UINT64_MAX);
+    }
+    d_.fn.vkFreeCommandBuffers(d_.device, pool_, 1, &cmd_);
+}
 
 void Submission::begin_pass(std::string name) {
     if (open_) end_pass();
@@ -177,21 +233,27 @@ void Submission::end_pass() {
     open_ = false;
 }
 
-void Submission::finish(std::vector<PassTime>& times) {
+void Submission::submit() {
     end_pass();
     VK_CHECK(d_.fn.vkEndCommandBuffer(cmd_));
     auto fi = vk_struct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
     VkFence fence_handle = VK_NULL_HANDLE;
     VK_CHECK(d_.fn.vkCreateFence(d_.device, &fi, nullptr, &fence_handle));
-    Unique<VkFence> fence(d_, fence_handle);
+    auto fence = std::make_shared<Unique<VkFence>>(d_, fence_handle);
     auto si = vk_struct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd_;
     {
         const std::lock_guard<std::mutex> lock(d_.queue_mutex);
-        VK_CHECK(d_.fn.vkQueueSubmit(d_.queue, 1, &si, fence));
+        VK_CHECK(d_.fn.vkQueueSubmit(d_.queue, 1, &si, fence_handle));
     }
+    fence_ = std::move(fence);
+}
+
+void Submission::wait(std::vector<PassTime>& times) {
+    const VkFence fence_handle = *fence_;
     VK_CHECK(d_.fn.vkWaitForFences(d_.device, 1, &fence_handle, VK_TRUE, UINT64_MAX));
+    waited_ = true;
 
     std::vector<uint64_t> stamps(2 * names_.size(), 0);
     if (queries_ && !names_.empty())

@@ -75,6 +75,18 @@ void copy_to_staging(uint8_t* to, const uint8_t* from, size_t bytes) {
 
 }  // namespace
 
+ImageDesc Renderer::Impl::texture_desc(const PreparedTexture& t) {
+    ImageDesc desc;
+    desc.format = t.format;
+    desc.width = t.levels[0].width;
+    desc.height = t.levels[0].height;
+    const auto given = static_cast<uint32_t>(t.levels.size());
+    desc.mips = std::max(t.mips, given);  // past `given`: blitted on the device from the level above
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                 (desc.mips > given ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0});
+    return desc;
+}
+
 Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandBuffer cmd,
                                      std::vector<Buffer>& staging) const {
     // An image past the device's size limit is undefined behaviour in Vulkan (a crash on
@@ -86,19 +98,19 @@ Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandB
         fit_to_device(d, *fitted, prepared.levels.size() == 1 ? "the environment image" : "texture");
     }
     const PreparedTexture& t = fitted ? *fitted : prepared;
-    if (!t.note.empty()) notes.push_back(t.note);
-    ImageDesc desc;
-    desc.format = t.format;
-    desc.width = t.levels[0].width;
-    desc.height = t.levels[0].height;
-    const auto given = static_cast<uint32_t>(t.levels.size());
-    desc.mips = std::max(t.mips, given);  // past `given`: blitted here from the level above
-    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                 (desc.mips > given ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_SRC_BIT} : VkImageUsageFlags{0});
     Stopwatch watch;
-    Image img = create_image(d, desc);
+    Image img = create_image(d, texture_desc(t));
     host_times.images += watch.lap();
+    record_texture(t, img, cmd, staging);
+    return img;
+}
 
+void Renderer::Impl::record_texture(const PreparedTexture& t, const Image& img, VkCommandBuffer cmd,
+                                    std::vector<Buffer>& staging) const {
+    if (!t.note.empty()) notes.push_back(t.note);
+    const ImageDesc& desc = img.desc;
+    const auto given = static_cast<uint32_t>(t.levels.size());
+    Stopwatch watch;
     VkDeviceSize total = 0;
     for (const TextureLevel& l : t.levels) total += (l.bytes.size() + 15) & ~VkDeviceSize{15};
     Buffer buf = take_staging(total);
@@ -160,7 +172,6 @@ Image Renderer::Impl::upload_texture(const PreparedTexture& prepared, VkCommandB
                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
     staging.push_back(std::move(buf));
-    return img;
 }
 
 Buffer Renderer::Impl::take_staging(VkDeviceSize bytes) const {
@@ -356,6 +367,55 @@ std::unique_ptr<PreparedMaterial::Impl> prepare_material(const Device& d, const 
     return out;
 }
 
+std::vector<Image> Renderer::Impl::material_images(const PreparedMaterial::Impl& p, GpuMaterial::Impl& m) const {
+    // Every texture that fits the device in one block of the pool (placed at its alignment); any
+    // other (too large: fitted by upload_texture; or no memory type common to all) on its own.
+    const Stopwatch watch;
+    std::vector<Image> images(p.textures.size());
+    std::vector<VkDeviceSize> offsets(p.textures.size(), 0);
+    const uint32_t limit = d.properties.limits.maxImageDimension2D;
+    VkDeviceSize total = 0;
+    uint32_t types = ~0u;
+    for (size_t i = 0; i < p.textures.size(); ++i) {
+        const PreparedTexture* t = p.textures[i] ? &*p.textures[i] : nullptr;
+        if (!t || t->levels.empty() || std::max(t->levels[0].width, t->levels[0].height) > limit) continue;
+        VkMemoryRequirements req{};
+        images[i] = create_unbound_image(d, texture_desc(*t), req);
+        offsets[i] = (total + req.alignment - 1) / req.alignment * req.alignment;
+        total = offsets[i] + req.size;
+        types &= req.memoryTypeBits;
+    }
+    const bool shared = total > 0 && types != 0 && (d.max_allocation == 0 || total <= d.max_allocation);
+    if (shared) {
+        m.blocks = blocks;
+        m.block = blocks->take(total, d.memory_type(types, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT),
+                               "material '" + p.constants.name + "''s textures");
+        for (size_t i = 0; i < images.size(); ++i)
+            if (images[i].image) bind_image(d, images[i], m.block.memory, offsets[i]);
+    } else {
+        for (Image& img : images) img = Image{};  // each made by upload_texture
+    }
+    host_times.images += watch.elapsed();
+    return images;
+}
+
+void Renderer::Impl::retire_upload() {
+    if (!pending_upload) return;
+    pending_upload->submission->wait(load_times);
+    host_times.upload_device += load_times.back().ms * 1e-3;
+    keep_staging(pending_upload->staging);
+    pending_upload.reset();
+}
+
+GpuMaterial::Impl::~Impl() {
+    if (uploaded && owner) {  // done unless freed before any render() (or upload()) followed
+        const VkFence f = *uploaded;
+        owner->d.fn.vkWaitForFences(owner->d.device, 1, &f, VK_TRUE, UINT64_MAX);
+    }
+    textures.clear();  // unbound before the block goes back
+    if (blocks) blocks->keep(std::move(block));
+}
+
 GpuMaterial Renderer::upload(const Material& material) { return upload(prepare(material)); }
 
 GpuMaterial Renderer::upload(PreparedMaterial prepared) {
@@ -389,17 +449,21 @@ GpuMaterial Renderer::upload(PreparedMaterial prepared) {
     if (r.scene.ground.enabled) m.ground_pipeline = r.shade_pipeline(Impl::ground_specialization(p.specialization));
     r.host_times.pipelines += watch.lap();
 
+    r.retire_upload();  // its query pool and staging buffers are this upload's to use
     std::vector<Buffer> staging;
-    Submission s(d, r.command_pool, r.queries, kQueryCount);
+    auto submission = std::make_unique<Submission>(d, r.command_pool, r.upload_queries, kQueryCount);
+    Submission& s = *submission;
     s.begin_pass("upload " + m.name);
-    m.textures.resize(p.textures.size());
+    m.textures = r.material_images(p, m);
     for (size_t i = 0; i < p.textures.size(); ++i)
         if (p.textures[i]) {
-            m.textures[i] = r.upload_texture(*p.textures[i], s.cmd(), staging);
+            if (m.textures[i].image) r.record_texture(*p.textures[i], m.textures[i], s.cmd(), staging);
+            else m.textures[i] = r.upload_texture(*p.textures[i], s.cmd(), staging);
             p.textures[i].reset();  // its host copy is in the staging buffer now
         }
-    s.finish(r.load_times);
-    r.keep_staging(staging);
+    s.submit();
+    m.uploaded = s.fence();
+    r.pending_upload = Impl::PendingUpload{std::move(submission), std::move(staging)};
 
     VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, static_cast<uint32_t>(kMaxTextures)};
     auto pci = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);

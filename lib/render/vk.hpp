@@ -6,9 +6,11 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <memory>
 #include <mutex>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "render/render.hpp"
 
@@ -269,6 +271,36 @@ struct Image {
     ImageDesc desc;
 };
 Image create_image(const Device& d, const ImageDesc& desc);
+// create_image in two halves, for images that share one allocation (BlockPool): the image alone
+// and its memory requirements, then bound at `offset` of `memory` and its view made.
+Image create_unbound_image(const Device& d, const ImageDesc& desc, VkMemoryRequirements& req);
+void bind_image(const Device& d, Image& img, VkDeviceMemory memory, VkDeviceSize offset);
+
+// Device-local allocations kept for reuse: a material's images share one block, and a freed
+// material's block serves the next material that fits (freeing and making ~4 allocations a
+// material cost a lane 5.5 ms of its 23.5 ms on the H200; docs/bench/h100_preview_timings.txt).
+// Thread-safe: a lane takes, the thread that frees a material keeps.
+class BlockPool {
+public:
+    struct Block {
+        Unique<VkDeviceMemory> memory;
+        VkDeviceSize size = 0;
+        uint32_t type = 0;
+    };
+    explicit BlockPool(const Device& d) : d_(d) {}
+    // A kept block of `type` that holds `size` bytes and is at most twice that rounded up to a
+    // 1 MiB multiple, else a new one of that rounded size (so that similar materials share).
+    Block take(VkDeviceSize size, uint32_t type, const std::string& what);
+    // Kept while the pool holds at most kKept bytes; past that the block is freed.
+    void keep(Block b) noexcept;
+    static constexpr VkDeviceSize kKept = VkDeviceSize{256} << 20;
+
+private:
+    const Device& d_;
+    std::mutex mutex_;
+    std::vector<Block> free_;
+    VkDeviceSize kept_ = 0;
+};
 Unique<VkImageView> create_view(const Device& d, const Image& img, VkImageViewType type, uint32_t base_mip,
                                 uint32_t mips, uint32_t base_layer, uint32_t layers);
 
@@ -282,19 +314,27 @@ void image_barrier(const Device& d, VkCommandBuffer cmd, VkImage image, VkImageL
 void memory_barrier(const Device& d, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                     VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
-// Records into a fresh primary command buffer, submits, waits. With timestamps, `record` may
-// call Timer::begin/end around passes; their GPU times are appended to `times`.
+// Records into a fresh primary command buffer, submits, waits. With timestamps, the passes
+// between begin_pass and end_pass are timed; their GPU times are appended to `times`.
 class Submission {
 public:
     Submission(const Device& d, VkCommandPool pool, VkQueryPool queries, uint32_t query_count);
-    ~Submission();
+    ~Submission();  // waits for a submission not waited for: its command buffer is freed
     Submission(const Submission&) = delete;
     Submission& operator=(const Submission&) = delete;
     VkCommandBuffer cmd() const { return cmd_; }
     void begin_pass(std::string name);
     void end_pass();
-    // Submits, waits for completion and appends each pass's GPU time.
-    void finish(std::vector<PassTime>& times);
+    // Submits; fence() signals its completion.
+    void submit();
+    // Waits for completion (after submit) and appends each pass's GPU time.
+    void wait(std::vector<PassTime>& times);
+    void finish(std::vector<PassTime>& times) {
+        submit();
+        wait(times);
+    }
+    // Shared: what the submission wrote may wait on it after the submission is gone.
+    const std::shared_ptr<Unique<VkFence>>& fence() const { return fence_; }
 
 private:
     const Device& d_;
@@ -304,6 +344,8 @@ private:
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     std::vector<std::string> names_;
     bool open_ = false;
+    std::shared_ptr<Unique<VkFence>> fence_;
+    bool waited_ = false;
 };
 
 }  // namespace mf::render::detail

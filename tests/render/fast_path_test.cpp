@@ -9,6 +9,7 @@
 
 #include "reference.hpp"
 #include "render/internal.hpp"
+#include "render/renderer_impl.hpp"
 #include "vulkan_fixture.hpp"
 
 namespace mf::test {
@@ -421,6 +422,46 @@ TEST_F(FastTexturesTest, StagingIsReusedAcrossMaterialsAndMaterialsFreeElsewhere
                              [g = std::move(g)]() mutable { render::GpuMaterial done = std::move(g); });
     }
     freeing.get();
+}
+
+// A material's textures share one device allocation (BlockPool): each image bound at its own
+// aligned offset (the validation layer checks the binding), drawn as with images of their own;
+// once the material is freed (on another thread), the next material that fits gets its block,
+// and one twice as large gets a new one.
+TEST_F(FastTexturesTest, AMaterialsTexturesShareOneBlockTheNextReuses) {
+    const Scene s = small_scene(48, true);
+    const Material a = detailed_material(128), large = detailed_material(256);
+    Material b = a;
+    for (uint8_t& v : b.textures[0].data) v = static_cast<uint8_t>(255 - v);
+    std::vector<render::Frame> alone;
+    for (const Material* m : {&a, static_cast<const Material*>(&b), &large}) {
+        render::Renderer r(context(), s);
+        alone.push_back(r.render(r.upload(*m)));
+    }
+    render::Renderer shared(context(), s);
+    VkDeviceMemory first = VK_NULL_HANDLE;
+    {
+        render::GpuMaterial g = shared.upload(a);
+        const render::GpuMaterial::Impl& m = g.impl();
+        ASSERT_TRUE(m.block.memory);
+        first = m.block.memory.get();
+        size_t bound = 0;
+        for (const render::detail::Image& img : m.textures)
+            if (img.image) {
+                EXPECT_FALSE(img.memory) << "an image with memory of its own";
+                ++bound;
+            }
+        EXPECT_EQ(bound, 3u);
+        EXPECT_EQ(diff(shared.render(g), alone[0]).max_code, 0);
+        std::async(std::launch::async, [g = std::move(g)]() mutable { render::GpuMaterial done = std::move(g); }).get();
+    }
+    render::GpuMaterial again = shared.upload(b);
+    EXPECT_EQ(again.impl().block.memory.get(), first) << "the freed material's block was not reused";
+    EXPECT_EQ(diff(shared.render(again), alone[1]).max_code, 0);
+    const render::GpuMaterial bigger = shared.upload(large);
+    EXPECT_NE(bigger.impl().block.memory.get(), first);
+    EXPECT_GT(bigger.impl().block.size, again.impl().block.size);
+    EXPECT_EQ(diff(shared.render(bigger), alone[2]).max_code, 0);
 }
 
 }  // namespace

@@ -173,14 +173,19 @@ ExitCode run_preview(const PreviewArgs& a) {
         say("preview", "timings: device made " + fixed(t.device, 3) + " s, " + std::to_string(t.lanes) +
                            " renderer(s) " + fixed(t.renderers, 3) + " s, first image " + fixed(t.first, 3) +
                            " s, all " + fixed(t.total, 3) + " s (wall, from the start)");
-        say("preview", "timings: read " + fixed(t.read, 3) + " s and write " + fixed(t.write, 3) + " s on " +
-                           std::to_string(t.workers) + " worker(s), upload " + fixed(t.upload, 3) + " s and draw " +
-                           fixed(t.draw, 3) + " s on the lane(s) (thread time, summed)");
+        say("preview", "timings: read " + fixed(t.read, 3) + " s (" + fixed(t.read_wait, 3) +
+                           " s of it waiting for the device or the renderers) and write " + fixed(t.write, 3) +
+                           " s on " + std::to_string(t.workers) + " worker(s), upload " + fixed(t.upload, 3) +
+                           " s and draw " + fixed(t.draw, 3) + " s on the lane(s) (thread time, summed)");
         const render::Renderer::HostTimes& h = t.lanes_host;
+        say("preview", "timings: renderers made in " + fixed(h.made, 3) + " s (shading choice " +
+                           fixed(h.made_shading, 3) + " s, load-time uploads and passes " + fixed(h.made_load, 3) +
+                           " s; thread time, summed)");
         say("preview", "timings: upload: pipelines " + fixed(h.pipelines, 3) + " s, images " + fixed(h.images, 3) +
                            " s, staging copies " + fixed(h.staging, 3) + " s, submission and the rest " +
-                           fixed(h.upload_rest, 3) + " s; draw: submitted and waited for " + fixed(h.draw_wait, 3) +
-                           " s, read back " + fixed(h.readback, 3) + " s");
+                           fixed(h.upload_rest, 3) + " s (on the device " + fixed(h.upload_device, 3) +
+                           " s); draw: submitted and waited for " + fixed(h.draw_wait, 3) + " s (on the device " +
+                           fixed(h.draw_device, 3) + " s), read back " + fixed(h.readback, 3) + " s");
     }
     return status;
 }
