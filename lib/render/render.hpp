@@ -463,10 +463,11 @@ public:
         double upload_device = 0.0;  // upload: the copies and blitted mips
         double draw_device = 0.0;    // render: its passes
         // The renderer's construction (wall clock on its thread), not reset with the rest.
-        double made = 0.0;  // all of it
-        double made_shading =
-            0.0;                 // Shading::automatic's measurement (made by one renderer of a device; the others wait)
+        double made = 0.0;       // all of it
         double made_load = 0.0;  // load-time uploads and passes: mesh, placeholders, the environment
+        // Then waiting for Shading::automatic's measurement, which ran beside the load-time work
+        // (made by one renderer of a device; the others wait for it).
+        double made_shading = 0.0;
         HostTimes& operator+=(const HostTimes& o) {
             pipelines += o.pipelines;
             images += o.images;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <memory>
 #include <vector>
 
@@ -137,18 +138,22 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
         upload_queries = Unique<VkQueryPool>(d, q);
     }
 
-    Stopwatch made;
-    choose_shading(context);
-    const double shading_s = made.elapsed();
-    choose_samples();
+    const Stopwatch made;
+    // The shading path is chosen (by measurement, the first renderer of a device; the others
+    // wait for it) on another thread while this one makes what does not depend on it.
+    std::vector<std::string> shading_notes;
+    std::future<void> choosing = std::async(std::launch::async, [&] { choose_shading(context, shading_notes); });
     create_samplers();
-    create_layouts();  // pipelines.cpp
-    create_targets();  // draw.cpp
-    const double load_from = made.elapsed();
+    create_layouts();     // pipelines.cpp
     upload_mesh();        // upload.cpp
     create_dummies();     // upload.cpp
     build_environment();  // ibl.cpp: BRDF table and environment maps, only when called for
-    const double load_s = made.elapsed() - load_from;
+    const double load_s = made.elapsed();
+    choosing.get();
+    const double shading_s = made.elapsed() - load_s;
+    notes.insert(notes.begin(), shading_notes.begin(), shading_notes.end());
+    choose_samples();
+    create_targets();           // draw.cpp
     write_frame_descriptors();  // frame.cpp
     // HostTimes count upload() and render() only: the load-time uploads above (placeholders, the
     // environment) went through upload_texture too.
@@ -206,14 +211,14 @@ ShadingTimes measure_shading(Context& context, uint32_t msaa, uint32_t supersamp
     return {best[0], best[1]};
 }
 
-void Renderer::Impl::choose_shading(Context& context) {
+void Renderer::Impl::choose_shading(Context& context, std::vector<std::string>& said) {
     if (scene.shading == Shading::raster) return;
     if (!compute_covers()) {
         // The shaderball is a mesh and the ground's shadow is drawn with depth: raster alone.
         if (scene.shading == Shading::compute)
-            notes.push_back(std::string("compute shading covers the sphere, cube and plane, not ") +
-                            (scene.ground.enabled ? "the ground plane" : "the shaderball") +
-                            ": shaded on the raster path");
+            said.push_back(std::string("compute shading covers the sphere, cube and plane, not ") +
+                           (scene.ground.enabled ? "the ground plane" : "the shaderball") +
+                           ": shaded on the raster path");
         return;
     }
     if (scene.shading == Shading::compute) {
@@ -226,7 +231,7 @@ void Renderer::Impl::choose_shading(Context& context) {
     if (!c.measured) {
         if (!d.info.timestamps) {
             c.measured = true;
-            notes.push_back("shading auto: raster (" + d.info.name + " has no timestamp queries to measure with)");
+            said.push_back("shading auto: raster (" + d.info.name + " has no timestamp queries to measure with)");
             return;
         }
         // With this scene's anti-aliasing: multisampling costs the two paths differently (compute
@@ -236,12 +241,11 @@ void Renderer::Impl::choose_shading(Context& context) {
         c.raster_ms = ms.raster_ms;
         c.compute_ms = ms.compute_ms;
         c.compute = c.compute_ms > 0.0 && c.raster_ms >= kComputeMargin * c.compute_ms;
-        notes.push_back("shading auto: " + std::string(c.compute ? "compute" : "raster") + " on " + d.info.name +
-                        " (shade pass of a " + std::to_string(kMeasureSize) + "x" + std::to_string(kMeasureSize) +
-                        " constant sphere, msaa " + std::to_string(scene.msaa) + ", supersample " +
-                        std::to_string(scene.supersample) + ": raster " + fixed(c.raster_ms, 3) + " ms, compute " +
-                        fixed(c.compute_ms, 3) + " ms; compute when at least " + fixed(kComputeMargin, 1) +
-                        "x faster)");
+        said.push_back("shading auto: " + std::string(c.compute ? "compute" : "raster") + " on " + d.info.name +
+                       " (shade pass of a " + std::to_string(kMeasureSize) + "x" + std::to_string(kMeasureSize) +
+                       " constant sphere, msaa " + std::to_string(scene.msaa) + ", supersample " +
+                       std::to_string(scene.supersample) + ": raster " + fixed(c.raster_ms, 3) + " ms, compute " +
+                       fixed(c.compute_ms, 3) + " ms; compute when at least " + fixed(kComputeMargin, 1) + "x faster)");
     }
     compute = c.compute;
 }

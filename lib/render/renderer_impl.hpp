@@ -142,8 +142,9 @@ struct Renderer::Impl {
     Impl& operator=(const Impl&) = delete;
 
     // renderer.cpp
-    // Scene::shading to a path: compute where it covers the scene, automatic by measurement.
-    void choose_shading(Context& context);
+    // Scene::shading to a path (sets `compute`): compute where it covers the scene, automatic by
+    // measurement; its notes go to `said`. Runs beside the load-time work, which reads neither.
+    void choose_shading(Context& context, std::vector<std::string>& said);
     bool compute_covers() const { return scene.shape.type != ShapeType::shaderball && !scene.ground.enabled; }
     void choose_samples();  // Scene::msaa, or the supersampling that stands in for it
     detail::Unique<VkSampler> make_sampler(VkSamplerAddressMode mode, bool anisotropic) const;

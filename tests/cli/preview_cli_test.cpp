@@ -489,8 +489,9 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
     const size_t at_made = r.output.find("timings: renderers made in");
     ASSERT_NE(at_made, std::string::npos) << r.output;
     ASSERT_EQ(std::sscanf(r.output.c_str() + at_made,
-                          "timings: renderers made in %lf s (shading choice %lf s, load-time uploads and passes %lf s",
-                          &made, &made_shading, &made_load),
+                          "timings: renderers made in %lf s (load-time uploads and passes %lf s, then waiting for "
+                          "the shading choice %lf s",
+                          &made, &made_load, &made_shading),
               3)
         << r.output;
     double pipelines = -1, images = -1, staging = -1, rest = -1, rest_device = -1, wait = -1, wait_device = -1,

@@ -178,9 +178,9 @@ ExitCode run_preview(const PreviewArgs& a) {
                            " s on " + std::to_string(t.workers) + " worker(s), upload " + fixed(t.upload, 3) +
                            " s and draw " + fixed(t.draw, 3) + " s on the lane(s) (thread time, summed)");
         const render::Renderer::HostTimes& h = t.lanes_host;
-        say("preview", "timings: renderers made in " + fixed(h.made, 3) + " s (shading choice " +
-                           fixed(h.made_shading, 3) + " s, load-time uploads and passes " + fixed(h.made_load, 3) +
-                           " s; thread time, summed)");
+        say("preview", "timings: renderers made in " + fixed(h.made, 3) + " s (load-time uploads and passes " +
+                           fixed(h.made_load, 3) + " s, then waiting for the shading choice " +
+                           fixed(h.made_shading, 3) + " s; thread time, summed)");
         say("preview", "timings: upload: pipelines " + fixed(h.pipelines, 3) + " s, images " + fixed(h.images, 3) +
                            " s, staging copies " + fixed(h.staging, 3) + " s, submission and the rest " +
                            fixed(h.upload_rest, 3) + " s (on the device " + fixed(h.upload_device, 3) +
