@@ -505,13 +505,13 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
                           &pipelines, &images, &staging, &rest, &rest_device, &wait, &wait_device, &readback),
               8)
         << r.output;
-    // What the device timed lies within what the lane waited for it (lavapipe has timestamps;
-    // the draw's wait includes its material's copies, submitted before it and not waited for);
+    // The device timed the copies and the draw (lavapipe has timestamps), in seconds: within the
+    // command (the copies run while the lane goes on to the draw, which then waits for them);
     // the renderer's construction within the time to make the renderers, its parts within it;
     // the workers' waits within their reading (the first material waits for the device).
     EXPECT_GT(rest_device, 0.0) << r.output;
     EXPECT_GT(wait_device, 0.0) << r.output;
-    EXPECT_LE(rest_device + wait_device, rest + wait + 0.004) << r.output;
+    EXPECT_LE(rest_device + wait_device, total) << r.output;
     EXPECT_GT(made, 0.0) << r.output;
     EXPECT_LE(made, renderers + 0.002) << r.output;
     EXPECT_GT(made_load, 0.0) << r.output;

@@ -159,6 +159,20 @@ inline std::vector<std::string> temp_files_under(const fs::path& dir) {
     return found;
 }
 
+// Whether a finished (not temporary) file whose name ends in `suffix` is anywhere under `dir`:
+// the first output of a run, whichever set the run took first (ingest orders its sets by cost,
+// so that a given set's output may come last, when a signal would arrive after the end).
+inline bool any_output_under(const fs::path& dir, const std::string& suffix) {
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (!mf::temp_owner(name) && name.size() >= suffix.size() &&
+            name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+            return true;
+    }
+    return false;
+}
+
 // A smooth test image with distinct channels (never constant, never out of range).
 inline mf::Image gradient(int w, int h, int c) {
     mf::Image img(w, h, c);
