@@ -6,20 +6,22 @@
 # the corpus's 1K downloads (tests/data/corpus/real), each copied N times under a new folder name.
 #
 #   bench/throughput/preview_real.sh MATFORGE [--materials N (100)] [--repeat N (3)]
-#        [--device cpu|gpu|auto (gpu)] [--also BIN]... [--lanes "0 1 2 4"] [--jobs N] [--corpus DIR]
+#        [--device cpu|gpu|auto (gpu)] [--also BIN]... [--lanes "0 1 2 4"] [--jobs "0 12"] [--corpus DIR]
 #        [--timings]
 #
 # --corpus DIR: where the sets below are (default tests/data/corpus/real; those present are used).
 # --also BIN: another matforge binary timed alternately with MATFORGE on the same outputs (the
-# previous commit's, for a before/after in one run). --lanes: MATFORGE's --lanes values to try.
+# previous commit's, for a before/after in one run). --lanes, --jobs: MATFORGE's --lanes and --jobs
+# values to try (every pair; 0: the command's own choice).
 # Prints a Markdown table of every run (wall, CPU user + sys, materials/s) and the medians; checks
-# each run wrote one picture a material. --timings: then one more run of MATFORGE from each, with
-# `preview --timings` (where its time went: the device's start, the renderers', reading, drawing).
+# each run wrote one picture a material. --timings: then one more run of MATFORGE and of each
+# --also binary from each, with `preview --timings` (where its time went: the device's start, the
+# renderers', reading, drawing).
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 # shellcheck source=common.sh
 source "$repo/bench/throughput/common.sh"
-matforge=${1:?usage: preview_real.sh MATFORGE [--materials N] [--repeat N] [--device D] [--also BIN]... [--lanes "L..."]}
+matforge=${1:?usage: preview_real.sh MATFORGE [--materials N] [--repeat N] [--device D] [--also BIN]... [--lanes "L..."] [--jobs "J..."]}
 shift
 materials=100 repeat=3 device=gpu lanes=0 jobs=0 timings=0 corpus=$repo/tests/data/corpus/real
 also=()
@@ -84,17 +86,25 @@ echo "| ---: | --- | --- | ---: | ---: | ---: | ---: |"
 for ((r = 1; r <= repeat; r++)); do
   for from in gltf vulkan-ktx2; do
     for b in "${also[@]}"; do run "$(basename "$b")" "$b" "$from"; done
-    for l in $lanes; do run "matforge --lanes $l" "$matforge" "$from" --lanes "$l" --jobs "$jobs"; done
+    for l in $lanes; do
+      for j in $jobs; do
+        label="matforge --lanes $l"
+        ((j == 0)) || label+=" -j $j"
+        run "$label" "$matforge" "$from" --lanes "$l" --jobs "$j"
+      done
+    done
   done
 done
 echo
 for f in "$work"/*.wall; do echo "median $(basename "$f" .wall): $(median "$f") s"; done
 if ((timings)); then
-  for from in gltf vulkan-ktx2; do
-    echo
-    echo "\`matforge preview --timings\` from \`$from\`:"
-    rm -rf "$work/out"
-    "$matforge" preview "$work/$from/manifest.json" -o "$work/out" --device "$device" --timings 2>&1 |
-      grep -E 'timings:|note: shading| rendered' || true
+  for b in "$matforge" "${also[@]}"; do
+    for from in gltf vulkan-ktx2; do
+      echo
+      echo "\`$(basename "$b") preview --timings\` from \`$from\`:"
+      rm -rf "$work/out"
+      "$b" preview "$work/$from/manifest.json" -o "$work/out" --device "$device" --timings 2>&1 |
+        grep -E 'timings:|note: shading| rendered' || true
+    done
   done
 fi
