@@ -129,9 +129,11 @@ ShadingExport export_shading(Renderer& renderer, const Material& material) {
 
 LightingExport export_lighting(Renderer& renderer) {
     const Renderer::Impl& r = renderer_impl(renderer);
-    if (!r.env_specular.view || !r.brdf_lut.view) throw Error("export_lighting: the scene has no environment");
+    if (!r.lighting || !r.lighting->env_specular.view || !r.lighting->brdf_lut.view)
+        throw Error("export_lighting: the scene has no environment");
+    const Lighting& l = *r.lighting;
     ImageReader reader(r);
-    std::vector<ImageExport> images = reader.read({&r.brdf_lut, &r.env_specular, &r.env_irradiance});
+    std::vector<ImageExport> images = reader.read({&l.brdf_lut, &l.env_specular, &l.env_irradiance});
     LightingExport out;
     out.brdf_lut = std::move(images[0]);
     out.specular = std::move(images[1]);

@@ -36,17 +36,17 @@ void put(gpu::vec4& dst, const D3& v, double w = 0.0) {
 
 void Renderer::Impl::write_frame_descriptors() {
     VkDescriptorBufferInfo ub{uniforms.buffer, 0, sizeof(gpu::FrameData)};
-    const bool lut = static_cast<bool>(brdf_lut.view);
-    const bool env = static_cast<bool>(env_specular.view);
+    const bool lut = lighting && lighting->brdf_lut.view;
+    const bool env = lighting && lighting->env_specular.view;
     // The dummies keep every descriptor valid where the variant samples nothing.
     struct Sampled {
         int binding;
         VkImageView view;
     };
     const Sampled sampled[] = {
-        {gpu::kBindingBrdfLut, lut ? brdf_lut.view.get() : dummy_2d.view.get()},
-        {gpu::kBindingEnvSpecular, env ? env_specular.view.get() : dummy_cube.view.get()},
-        {gpu::kBindingEnvIrradiance, env ? env_irradiance.view.get() : dummy_cube.view.get()},
+        {gpu::kBindingBrdfLut, lut ? lighting->brdf_lut.view.get() : dummy_2d.view.get()},
+        {gpu::kBindingEnvSpecular, env ? lighting->env_specular.view.get() : dummy_cube.view.get()},
+        {gpu::kBindingEnvIrradiance, env ? lighting->env_irradiance.view.get() : dummy_cube.view.get()},
     };
     VkDescriptorImageInfo images[3]{};
     VkWriteDescriptorSet w[4]{};
@@ -119,7 +119,8 @@ void Renderer::Impl::write_frame(const Material& m) {
     f.scalars[3] = m.opacity.value;
     f.shape[0] = scene.shape.size;
     f.shape[1] = scene.environment ? scene.environment->intensity : 0.f;
-    f.shape[2] = static_cast<float>(env_specular_mips > 0 ? env_specular_mips - 1 : 0);
+    const uint32_t mips = lighting ? lighting->env_specular_mips : 0;
+    f.shape[2] = static_cast<float>(mips > 0 ? mips - 1 : 0);
     f.ground[0] = ground_y;
     f.ground[1] = scene.ground.albedo;
     f.ground[2] = scene.ground.roughness;

@@ -72,9 +72,10 @@ uint32_t mip_count(uint32_t size) {
 // ---- what the recorded commands use: alive until the submission has completed
 
 struct Recording {
-    explicit Recording(Renderer::Impl& renderer)
-        : r(renderer), s(renderer.d, renderer.command_pool, renderer.queries, kQueryCount) {}
+    Recording(Renderer::Impl& renderer, Lighting& made)
+        : r(renderer), out(made), s(renderer.d, renderer.command_pool, renderer.queries, kQueryCount) {}
     Renderer::Impl& r;
+    Lighting& out;  // what the recorded passes make
     Submission s;
     std::deque<Image> images;  // temporaries (the equirectangular image, the source cube)
     std::vector<Buffer> staging;
@@ -217,7 +218,8 @@ void record_brdf_lut(Recording& rec) {
     ld.format = f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
     ld.width = ld.height = kLutSize;
     ld.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    r.brdf_lut = create_image(d, ld);
+    Image& lut = rec.out.brdf_lut;
+    lut = create_image(d, ld);
     rec.set_layouts.push_back(r.make_set_layout({{static_cast<uint32_t>(gpu::kBindingLut),
                                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
                                                   nullptr}}));
@@ -232,7 +234,7 @@ void record_brdf_lut(Recording& rec) {
                                 : r.make_compute_pipeline(kBrdfLutF16Comp, sizeof(kBrdfLutF16Comp), layout, &spec));
     const VkPipeline pipeline = rec.pipelines.back();
     VkDescriptorSet set = r.allocate_set(r.descriptor_pool, set_layout);
-    VkDescriptorImageInfo ii{VK_NULL_HANDLE, r.brdf_lut.view, VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorImageInfo ii{VK_NULL_HANDLE, lut.view, VK_IMAGE_LAYOUT_GENERAL};
     auto w = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     w.dstSet = set;
     w.dstBinding = static_cast<uint32_t>(gpu::kBindingLut);
@@ -241,14 +243,14 @@ void record_brdf_lut(Recording& rec) {
     w.pImageInfo = &ii;
     d.fn.vkUpdateDescriptorSets(d.device, 1, &w, 0, nullptr);
 
-    image_barrier(d, cmd, r.brdf_lut.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                  VK_PIPELINE_STAGE_2_NONE, 0, kCompute, kWrite);
+    image_barrier(d, cmd, lut.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                  kCompute, kWrite);
     rec.s.begin_pass("brdf_lut");
     d.fn.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     d.fn.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
     d.fn.vkCmdDispatch(cmd, 1, kLutSize, 1);
     rec.s.end_pass();
-    image_barrier(d, cmd, r.brdf_lut.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kCompute,
+    image_barrier(d, cmd, lut.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kCompute,
                   kWrite, kFragment, kSampled);
 }
 
@@ -312,14 +314,15 @@ void record_environment(Recording& rec, const Environment& env) {
     ImageDesc sd = cd;
     sd.width = sd.height = std::min(face, kSpecularFace);
     sd.mips = std::min(kSpecularLevels, mip_count(sd.width));
-    r.env_specular = create_image(d, sd);
-    r.env_specular_mips = sd.mips;
-    res.targets[static_cast<int>(Target::Specular)] = &r.env_specular;
+    Lighting& out = rec.out;
+    out.env_specular = create_image(d, sd);
+    out.env_specular_mips = sd.mips;
+    res.targets[static_cast<int>(Target::Specular)] = &out.env_specular;
     ImageDesc id = cd;
     id.width = id.height = std::min(face, kIrradianceFace);
     id.mips = 1;
-    r.env_irradiance = create_image(d, id);
-    res.targets[static_cast<int>(Target::Irradiance)] = &r.env_irradiance;
+    out.env_irradiance = create_image(d, id);
+    res.targets[static_cast<int>(Target::Irradiance)] = &out.env_irradiance;
 
     rec.set_layouts.push_back(r.make_set_layout({
         {static_cast<uint32_t>(gpu::kBindingIblSource), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
@@ -348,10 +351,42 @@ void record_environment(Recording& rec, const Environment& env) {
 void Renderer::Impl::build_environment() {
     const bool need_lut = scene.environment || scene.brdf == Brdf::accurate;
     if (!need_lut) return;
-    Recording rec(*this);
-    record_brdf_lut(rec);
-    if (scene.environment) record_environment(rec, *scene.environment);
-    rec.s.finish(load_times);
+    // Made by the first renderer of the device to need it while another that uses it is alive;
+    // the others wait for it (Device::LightingCache).
+    Device::LightingCache& cache = d.lighting_cache;
+    const Device::LightingCache::Key key{scene.environment.get(), scene.brdf == Brdf::accurate};
+    {
+        std::unique_lock<std::mutex> lock(cache.mutex);
+        for (;;) {
+            const auto it = cache.made.find(key);
+            if (it != cache.made.end())
+                if ((lighting = it->second.lock())) return;
+            if (!cache.making.count(key)) break;
+            cache.changed.wait(lock);
+        }
+        cache.making.insert(key);
+    }
+    auto done = [&](std::shared_ptr<const Lighting> made) {
+        {
+            const std::lock_guard<std::mutex> lock(cache.mutex);
+            if (made) cache.made[key] = made;
+            cache.making.erase(key);
+        }
+        cache.changed.notify_all();
+        lighting = std::move(made);
+    };
+    try {
+        auto made = std::make_shared<Lighting>();
+        made->environment = scene.environment;
+        Recording rec(*this, *made);
+        record_brdf_lut(rec);
+        if (scene.environment) record_environment(rec, *scene.environment);
+        rec.s.finish(load_times);
+        done(std::move(made));
+    } catch (...) {  // the next renderer to need it makes it
+        done(nullptr);
+        throw;
+    }
 }
 
 }  // namespace mf::render

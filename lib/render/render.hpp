@@ -447,7 +447,9 @@ public:
     const Scene& scene() const;
     // The path this renderer shades on: raster or compute, Scene::shading resolved.
     Shading shading() const;
-    const std::vector<PassTime>& load_times() const;   // upload and load-time passes, in order
+    // Upload and load-time passes, in order (waits for an upload submitted and not yet drawn;
+    // a lighting another renderer of the device made for this scene is not among them).
+    const std::vector<PassTime>& load_times() const;
     const std::vector<PassTime>& frame_times() const;  // passes of the last render()
     // Host seconds spent in upload() and render() since this renderer was made, by part (wall
     // clock on the calling thread): where a library's time goes on its lanes (`preview --timings`).

@@ -305,7 +305,10 @@ Renderer::Renderer(Context& context, const Scene& scene) : impl_(std::make_uniqu
 Renderer::~Renderer() = default;
 const Scene& Renderer::scene() const { return impl_->scene; }
 Shading Renderer::shading() const { return impl_->compute ? Shading::compute : Shading::raster; }
-const std::vector<PassTime>& Renderer::load_times() const { return impl_->load_times; }
+const std::vector<PassTime>& Renderer::load_times() const {
+    impl_->retire_upload();  // a submitted upload's time comes with its completion
+    return impl_->load_times;
+}
 const std::vector<PassTime>& Renderer::frame_times() const { return impl_->frame_times; }
 const Renderer::HostTimes& Renderer::host_times() const { return impl_->host_times; }
 std::vector<std::string> Renderer::take_notes() { return std::exchange(impl_->notes, {}); }

@@ -132,9 +132,7 @@ struct Renderer::Impl {
     detail::Image depth;  // kDepthFormat, the target's size, when uses_depth()
     bool uses_depth() const { return scene.shape.type == ShapeType::shaderball || scene.ground.enabled; }
     detail::Image dummy_2d, dummy_cube;
-    detail::Image brdf_lut;                      // when the accurate BRDF or an environment needs it
-    detail::Image env_specular, env_irradiance;  // when the scene has an environment
-    uint32_t env_specular_mips = 0;
+    std::shared_ptr<const detail::Lighting> lighting;  // null when the scene needs none (ibl.cpp)
 
     Impl(Context& context, Scene scene);
     ~Impl();

@@ -6,8 +6,11 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <condition_variable>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -146,6 +149,8 @@ T vk_struct(VkStructureType type) {
     return s;
 }
 
+struct Lighting;  // below
+
 // What the renderer needs of the context.
 struct Device {
     Functions fn;
@@ -173,6 +178,17 @@ struct Device {
     // vkQueueSubmit and vkDeviceWaitIdle need the queue externally synchronized: several
     // renderers of one context may submit from their own threads (preview's lanes).
     mutable std::mutex queue_mutex;
+    // ibl.cpp's Lighting, made once for the renderers alive at once with one environment and
+    // BRDF (a batch's lanes, made together): the first makes it, the others wait and share it.
+    // Keyed by the environment's address, which the Lighting keeps alive (so it names one).
+    struct LightingCache {
+        using Key = std::pair<const Environment*, bool>;  // the environment, the accurate BRDF's table
+        std::mutex mutex;
+        std::condition_variable changed;
+        std::map<Key, std::weak_ptr<const Lighting>> made;
+        std::set<Key> making;
+    };
+    mutable LightingCache lighting_cache;
     // Every pipeline of the context is made through it (internally synchronized): a variant a
     // second renderer (a preview lane) needs again is not compiled again.
     VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
@@ -271,6 +287,15 @@ struct Image {
     ImageDesc desc;
 };
 Image create_image(const Device& d, const ImageDesc& desc);
+
+// The image-based lighting ibl.cpp computes for a scene's environment and BRDF, shared by the
+// renderers of a device made with the same ones (Device::LightingCache); read-only once made.
+struct Lighting {
+    Image brdf_lut;                      // when the accurate BRDF or an environment needs it
+    Image env_specular, env_irradiance;  // when the scene has an environment
+    uint32_t env_specular_mips = 0;
+    std::shared_ptr<const Environment> environment;  // kept alive: its address names it in the cache
+};
 // create_image in two halves, for images that share one allocation (BlockPool): the image alone
 // and its memory requirements, then bound at `offset` of `memory` and its view made.
 Image create_unbound_image(const Device& d, const ImageDesc& desc, VkMemoryRequirements& req);

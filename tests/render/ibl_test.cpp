@@ -1,6 +1,9 @@
 // Image-based lighting: only when an environment is given; energy-conserving in a furnace.
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <thread>
+#include <vector>
 
 #include "reference.hpp"
 #include "vulkan_fixture.hpp"
@@ -133,6 +136,45 @@ TEST_F(IblTest, EnvironmentPassesRunOnlyWhenOneIsGiven) {
     render::Renderer c(context(), furnace(render::Brdf::standard));
     EXPECT_EQ(names(c.load_times()), "brdf_lut env_upload env_cube env_prefilter env_irradiance ");
     EXPECT_NE(c.upload(white(0.5f, 0.f)).variant().find(" env "), std::string::npos);
+}
+
+// The renderers of a device alive at once with one environment share its lighting (a batch's
+// lanes, made at once on their threads): one of them runs the passes, the others wait for its
+// result and draw the same picture. Once none is left, the next renderer makes it again; another
+// environment, even an equal one, gets its own.
+TEST_F(IblTest, RenderersAliveAtOnceShareTheirEnvironmentsLighting) {
+    auto env_passes = [](const render::Renderer& r) {
+        size_t n = 0;
+        for (const auto& p : r.load_times()) n += p.name.rfind("env_", 0) == 0 ? 1 : 0;
+        return n;
+    };
+    Scene s = furnace(render::Brdf::standard);
+    s.environment = environment(64, 32, [](float, float v) { return v < 0.5f ? 2.f : 0.1f; });
+    const Material m = white(0.4f, 0.f);
+    render::Frame alone;
+    {
+        render::Renderer r(context(), s);
+        EXPECT_EQ(env_passes(r), 4u);
+        alone = r.render(r.upload(m));
+    }
+    std::vector<std::unique_ptr<render::Renderer>> lanes(3);
+    std::vector<std::thread> threads;
+    for (auto& lane : lanes) threads.emplace_back([&] { lane = std::make_unique<render::Renderer>(context(), s); });
+    for (std::thread& t : threads) t.join();
+    size_t made = 0;
+    for (const auto& lane : lanes) {
+        made += env_passes(*lane);
+        EXPECT_EQ(lane->render(lane->upload(m)).rgba8, alone.rgba8);
+    }
+    EXPECT_EQ(made, 4u) << "one renderer of the three made the lighting";
+    Scene same = s;
+    same.environment = std::make_shared<render::Environment>(*s.environment);
+    render::Renderer other(context(), same);
+    EXPECT_EQ(env_passes(other), 4u) << "another environment object, its own lighting";
+    lanes.clear();
+    render::Renderer again(context(), s);
+    EXPECT_EQ(env_passes(again), 4u) << "none alive: made again";
+    EXPECT_EQ(again.render(again.upload(m)).rgba8, alone.rgba8);
 }
 
 }  // namespace
