@@ -464,7 +464,7 @@ public:
         // its work or for the queue's other work, the other lanes' included.
         double upload_device = 0.0;  // upload: the copies and blitted mips
         double draw_device = 0.0;    // render: its passes
-        // The renderer's construction (wall clock on its thread), not reset with the rest.
+        // The renderer's construction (wall clock on its thread), set as it ends.
         double made = 0.0;       // all of it
         double made_load = 0.0;  // load-time uploads and passes: mesh, placeholders, the environment
         // Then waiting for Shading::automatic's measurement, which ran beside the load-time work

@@ -144,13 +144,15 @@ Renderer::Impl::Impl(Context& context, Scene s) : d(device_of(context)), scene(s
     std::vector<std::string> shading_notes;
     std::future<void> choosing = std::async(std::launch::async, [&] { choose_shading(context, shading_notes); });
     create_samplers();
-    create_layouts();     // pipelines.cpp
+    create_layouts();  // pipelines.cpp
+    const double load_from = made.elapsed();
     upload_mesh();        // upload.cpp
     create_dummies();     // upload.cpp
     build_environment();  // ibl.cpp: BRDF table and environment maps, only when called for
-    const double load_s = made.elapsed();
+    const double load_to = made.elapsed();
     choosing.get();
-    const double shading_s = made.elapsed() - load_s;
+    const double shading_s = made.elapsed() - load_to;
+    const double load_s = load_to - load_from;
     notes.insert(notes.begin(), shading_notes.begin(), shading_notes.end());
     choose_samples();
     create_targets();           // draw.cpp

@@ -303,7 +303,7 @@ void bind_image(const Device& d, Image& img, VkDeviceMemory memory, VkDeviceSize
 
 // Device-local allocations kept for reuse: a material's images share one block, and a freed
 // material's block serves the next material that fits (freeing and making ~4 allocations a
-// material cost a lane 5.5 ms of its 23.5 ms on the H200; docs/bench/h100_preview_timings.txt).
+// material cost a lane 5.5 ms of its 23.5 ms on the H200; docs/bench/h200_preview_timings.txt).
 // Thread-safe: a lane takes, the thread that frees a material keeps.
 class BlockPool {
 public:
