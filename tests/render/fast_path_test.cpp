@@ -455,6 +455,11 @@ TEST_F(FastTexturesTest, AMaterialsTexturesShareOneBlockTheNextReuses) {
         EXPECT_EQ(diff(shared.render(g), alone[0]).max_code, 0);
         std::async(std::launch::async, [g = std::move(g)]() mutable { render::GpuMaterial done = std::move(g); }).get();
     }
+    // Freed undrawn, its copies still in flight (upload() does not wait for them): its images
+    // go only once the copies are done (the validation layer reports an image destroyed in use).
+    std::async(std::launch::async, [g = shared.upload(large)]() mutable {
+        render::GpuMaterial done = std::move(g);
+    }).get();
     render::GpuMaterial again = shared.upload(b);
     EXPECT_EQ(again.impl().block.memory.get(), first) << "the freed material's block was not reused";
     EXPECT_EQ(diff(shared.render(again), alone[1]).max_code, 0);
