@@ -236,13 +236,38 @@ private:
             const Stopwatch reading;
             Loaded l = read(i);
             lock.lock();
-            spent_.read += reading.elapsed();
             --reading_;
             held_ += l.bytes;
             largest_ = std::max(largest_, l.bytes);
+            if (l.prepared) {  // its size is known: the next reads start while it warms its variant
+                lock.unlock();
+                changed_.notify_all();
+                warm(i, *l.prepared);
+                lock.lock();
+            }
+            spent_.read += reading.elapsed();
             loaded_[i] = std::move(l);
             changed_.notify_all();
         }
+    }
+
+    // A material decoded but not yet prepared counts as its decoded bytes towards the largest
+    // seen: the first reads wait for the device (render::prepare needs it, 0.16 s on the H200),
+    // and until a size is known only two read (may_read); one decoded tells the others how many
+    // may start meanwhile. Preparing adds the mips (a third) or, on lavapipe's precise path,
+    // widens 8-bit texels: the prepared size replaces the estimate when it comes.
+    void decoded(const render::Material& m) {
+        uint64_t bytes = 0;
+        for (const render::Texture& t : m.textures) {
+            bytes += t.data.size();
+            for (const std::vector<uint8_t>& level : t.block_levels) bytes += level.size();
+        }
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            if (bytes <= largest_) return;
+            largest_ = bytes;
+        }
+        changed_.notify_all();
     }
 
     // Blocks until the device exists (not the renderers: their load-time passes and pipelines
@@ -268,9 +293,9 @@ private:
                 },
                 l.notes, l.error);
             if (m) {
+                decoded(*m);
                 l.prepared = render::prepare(device(), sf_.scene, *m);
                 l.bytes = l.prepared->bytes();
-                warm(i, *l.prepared);
             }
         } catch (const Stopped&) {
             l.error = "stopped";
@@ -281,9 +306,10 @@ private:
     }
 
     // The first material of a pipeline variant has the variant made on every lane's renderer
-    // (its own lane's first), here on its worker once the renderers exist: a lane no longer stops
-    // to compile each variant it meets while its materials wait, and the variants compile at
-    // once on several workers. The other workers go on reading meanwhile.
+    // (its own lane's first), here on its worker once the renderers exist, before the material
+    // goes to its lane: a lane no longer stops to compile each variant it meets while its
+    // materials wait, and the variants compile at once on several workers. The other workers go
+    // on reading meanwhile (its read no longer counts against may_read).
     void warm(size_t i, const render::PreparedMaterial& prepared) {
         {
             std::unique_lock<std::mutex> lock(mutex_);
@@ -294,7 +320,12 @@ private:
             if (!ready_) return;
         }
         const size_t lanes = renderers_.size();
-        for (size_t k = 0; k < lanes; ++k) renderers_[(i + k) % lanes]->warm(prepared);
+        try {
+            for (size_t k = 0; k < lanes; ++k) renderers_[(i + k) % lanes]->warm(prepared);
+        } catch (const std::exception&) {
+            // not said here: the material's lane meets the same failure when it draws, and says
+            // it for that material (render_one)
+        }
     }
 
     // Lane k: materials k, k + lanes, … in order.
@@ -450,7 +481,7 @@ private:
     std::exception_ptr fatal_;
     size_t next_read_ = 0, reading_ = 0;
     uint64_t held_ = 0;     // bytes of prepared textures and unsaid images
-    uint64_t largest_ = 0;  // the largest prepared material so far
+    uint64_t largest_ = 0;  // the largest prepared material so far (or decoded: decoded())
     std::vector<std::optional<Loaded>> loaded_;
     std::vector<std::optional<Outcome>> outcomes_;
     std::deque<std::function<void()>> writes_;
