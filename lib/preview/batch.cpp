@@ -213,8 +213,14 @@ private:
     bool may_read() const {
         if (next_read_ >= jobs_.size()) return false;
         if (held_ == 0 && reading_ == 0) return true;
-        if (largest_ == 0) return reading_ < 2;
-        return held_ + (reading_ + 1) * largest_ <= opt_.memory_budget;
+        const uint64_t largest = largest_ > 0 ? largest_ : estimated_;
+        if (largest == 0) return reading_ < 2;
+        return held_ + (reading_ + 1) * largest <= opt_.memory_budget;
+    }
+
+    void hold(uint64_t bytes) {  // under mutex_
+        held_ += bytes;
+        result_.held_most = std::max(result_.held_most, held_);
     }
 
     void work() {
@@ -237,7 +243,7 @@ private:
             Loaded l = read(i);
             lock.lock();
             --reading_;
-            held_ += l.bytes;
+            hold(l.bytes);
             largest_ = std::max(largest_, l.bytes);
             if (l.prepared) {  // its size is known: the next reads start while it warms its variant
                 lock.unlock();
@@ -251,21 +257,22 @@ private:
         }
     }
 
-    // A material decoded but not yet prepared counts as its decoded bytes towards the largest
-    // seen: the first reads wait for the device (render::prepare needs it, 0.16 s on the H200),
-    // and until a size is known only two read (may_read); one decoded tells the others how many
-    // may start meanwhile. Preparing adds the mips (a third) or, on lavapipe's precise path,
-    // widens 8-bit texels: the prepared size replaces the estimate when it comes.
+    // The first reads wait for the device (render::prepare needs it: 0.16 s on the H200), and
+    // until a size is known only two read (may_read). A material decoded tells the other workers
+    // how many may start meanwhile, by the most it can come to once prepared: every texel as four
+    // 32-bit floats (the widest format render::prepare stores: lavapipe's exact path widens 8-bit
+    // colour to it) with a mip chain; blocks as they are. 1K materials of three maps: 64 MiB, 16 of
+    // them within the default budget. The first prepared size replaces the estimate.
     void decoded(const render::Material& m) {
         uint64_t bytes = 0;
         for (const render::Texture& t : m.textures) {
-            bytes += t.data.size();
+            if (t.block_format == 0) bytes += uint64_t{t.width} * t.height * 16 * 4 / 3;
             for (const std::vector<uint8_t>& level : t.block_levels) bytes += level.size();
         }
         {
             const std::lock_guard<std::mutex> lock(mutex_);
-            if (bytes <= largest_) return;
-            largest_ = bytes;
+            if (bytes <= estimated_) return;
+            estimated_ = bytes;
         }
         changed_.notify_all();
     }
@@ -358,8 +365,8 @@ private:
         {
             const std::lock_guard<std::mutex> lock(mutex_);
             spent_.write += wrote;
-            held_ += o.rgba8.size();
             held_ -= released;
+            hold(o.rgba8.size());
             outcomes_[i] = std::move(o);
         }
         changed_.notify_all();
@@ -480,8 +487,9 @@ private:
     bool stopping_ = false;           // done, or a renderer failed: lanes and workers end
     std::exception_ptr fatal_;
     size_t next_read_ = 0, reading_ = 0;
-    uint64_t held_ = 0;     // bytes of prepared textures and unsaid images
-    uint64_t largest_ = 0;  // the largest prepared material so far (or decoded: decoded())
+    uint64_t held_ = 0;       // bytes of prepared textures and unsaid images
+    uint64_t largest_ = 0;    // the largest prepared material so far
+    uint64_t estimated_ = 0;  // until one is prepared: the largest a decoded one may come to (decoded())
     std::vector<std::optional<Loaded>> loaded_;
     std::vector<std::optional<Outcome>> outcomes_;
     std::deque<std::function<void()>> writes_;

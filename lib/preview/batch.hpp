@@ -88,6 +88,9 @@ struct BatchResult {
     size_t rendered = 0, failed = 0;
     std::vector<SheetTile> tiles;  // with contact_sheet: the rendered materials', in job order
     BatchTimes times;
+    // The most bytes held at once, as BatchOptions::memory_budget counts them: at most the budget,
+    // but for the two materials read before any size is known and a lone one larger than it.
+    uint64_t held_most = 0;
 };
 
 // Renders `jobs` with `sf`'s scene; every message goes to `say`, in job order. A material that

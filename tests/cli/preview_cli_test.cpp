@@ -525,6 +525,18 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
     for (const double t : {pipelines, images, staging, rest, wait, readback}) EXPECT_GE(t, 0.0) << r.output;
     EXPECT_LE(pipelines + images + staging + rest, upload + 0.004) << r.output;
     EXPECT_LE(wait + readback, draw + 0.002) << r.output;
+    // What the memory budget counted: the one material's textures (a few MiB), within the budget.
+    double held = -1, budget = -1;
+    const size_t at4 = r.output.find("timings: held at most");
+    ASSERT_NE(at4, std::string::npos) << r.output;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + at4,
+                          "timings: held at most %lf MiB of prepared textures and images at once (the budget: %lf MiB)",
+                          &held, &budget),
+              2)
+        << r.output;
+    EXPECT_GT(held, 0.5) << r.output;
+    EXPECT_EQ(budget, 1024.0) << r.output;
+    EXPECT_LT(held, budget) << r.output;
     EXPECT_EQ(lanes, 1u) << "one material: one lane, whatever --lanes asks";
     EXPECT_EQ(workers, 3u);
     EXPECT_GT(device, 0.0);

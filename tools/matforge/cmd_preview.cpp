@@ -186,6 +186,9 @@ ExitCode run_preview(const PreviewArgs& a) {
                            fixed(h.upload_rest, 3) + " s (on the device " + fixed(h.upload_device, 3) +
                            " s); draw: submitted and waited for " + fixed(h.draw_wait, 3) + " s (on the device " +
                            fixed(h.draw_device, 3) + " s), read back " + fixed(h.readback, 3) + " s");
+        say("preview", "timings: held at most " + fixed(static_cast<double>(r.held_most) / (1 << 20), 1) +
+                           " MiB of prepared textures and images at once (the budget: " +
+                           fixed(static_cast<double>(opt.memory_budget) / (1 << 20), 0) + " MiB)");
     }
     return status;
 }
