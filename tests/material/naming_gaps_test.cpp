@@ -57,6 +57,22 @@ TEST(NamingGaps, ThreeDTexturesOlderTags) {
     EXPECT_EQ(material_stem("Crystal_003_OCC.jpg"), "Crystal_003");
 }
 
+// A 3dtextures.me set renamed by hand in a three.js project (fl-martin/threejs-hello-mars,
+// src/Images/): "basecolor" and "heightmap" were read, the five other maps dropped unread.
+TEST(NamingGaps, OneWordMapNames) {
+    check({
+        {"normalmap.jpg", Role::normal, "generic:normalmap"},
+        {"roughnessmap.jpg", Role::roughness, "generic:roughnessmap"},
+        {"metallicmap.jpg", Role::metalness, "generic:metallicmap"},
+        {"aomap.jpg", Role::occlusion, "generic:aomap"},
+        {"opacitymap.jpg", Role::opacity, "generic:opacitymap"},
+        {"Rock_alphaMap.png", Role::opacity, ""},
+        {"Rock_displacementMap.png", Role::height, ""},
+        {"Rock_emissiveMap.png", Role::emissive, ""},
+        {"DancingGirl_normals.png", Role::normal, "generic:normals"},
+    });
+}
+
 TEST(NamingGaps, ThreeDTexturesClutterHasItsOwnReason) {
     // Files of several sets in one folder: the render names no material, so it is no one's preview.
     ChoicePolicy shared;
