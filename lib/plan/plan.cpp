@@ -500,7 +500,9 @@ void decide_size(SetPlan& plan) {
             plan.decoded.erase(file);
     }
     // RESOLUTION_MISMATCH: here, where the set's size is decided, for each kept map that is
-    // resampled to it (the refused ones are not used at all: ASPECT_MISMATCH said so).
+    // resampled to it (the refused ones are not used at all: ASPECT_MISMATCH said so). Not for a
+    // tiny map: a constant written small (ingest's own 2x2 outputs, CONSTANT_MAP's advice), which
+    // stretching does not change; validating matforge's outputs warned of each.
     std::map<std::string, std::string> sizes;  // by file name, as the figure lists them
     for (const Map& m : maps)
         if (const auto in = plan.inputs.find(m.role); in != plan.inputs.end())
@@ -511,7 +513,8 @@ void decide_size(SetPlan& plan) {
     std::set<std::string> said;
     for (const Map& m : maps) {
         const auto in = plan.inputs.find(m.role);
-        if (in == plan.inputs.end() || (m.w == w && m.h == h) || !said.insert(in->second.file).second) continue;
+        if (in == plan.inputs.end() || (m.w == w && m.h == h) || tiny(m) || !said.insert(in->second.file).second)
+            continue;
         const std::string& file = in->second.file;
         plan.findings.push_back(make_finding(
             code::resolution_mismatch, m.role, file,

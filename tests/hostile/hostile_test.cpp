@@ -312,14 +312,19 @@ TEST_F(Hostile, NegativeRoughnessExr) {
     expect_finding("Odd", "OUT_OF_RANGE_VALUES", "Odd_Roughness.exr");
 }
 
+// A map of another size is resampled, and said; a tiny one (at most 4 pixels a side: a constant
+// written small, as ingest writes its own) is not worth a warning: the set's own outputs,
+// validated, said it of every 2x2 constant map.
 TEST_F(Hostile, MixedResolutions) {
     write_bytes(in / "Odd" / "Odd_Color.png", encode(gradient(64, 64, 3)));
-    write_bytes(in / "Odd" / "Odd_Roughness.png", encode(gradient(1, 1, 1)));
+    write_bytes(in / "Odd" / "Odd_Roughness.png", encode(gradient(16, 16, 1)));
+    write_bytes(in / "Odd" / "Odd_Metalness.png", encode(gradient(2, 2, 1)));
     const auto* o = odd_ok_run("Odd_Roughness.png");
     ASSERT_TRUE(o);
-    bool mismatch = false;
-    for (const auto& f : (*o)["findings"]) mismatch = mismatch || f["code"] == "RESOLUTION_MISMATCH";
-    EXPECT_TRUE(mismatch) << o->dump(1);
+    std::vector<std::string> mismatched;
+    for (const auto& f : (*o)["findings"])
+        if (f["code"] == "RESOLUTION_MISMATCH") mismatched.push_back(f["file"]);
+    EXPECT_EQ(mismatched, std::vector<std::string>{"Odd_Roughness.png"}) << o->dump(1);
     EXPECT_EQ(read_pixels(out / "Odd" / "Odd_orm.png").width, 64);
 }
 
