@@ -71,6 +71,17 @@ std::optional<StemMerge> merge_of(const std::string& name,
     return m;
 }
 
+// The material's name without Unreal's texture prefix: "T_OilyCloth_A.png" is a texture of the
+// material OilyCloth (its Unreal material instance is MI_OilyCloth; the unreal preset writes
+// T_OilyCloth_BC, not T_T_OilyCloth_BC). Only where an Unreal-style rule read the tag.
+std::string unprefixed(const std::string& stem, const naming::NameAnalysis& a) {
+    const bool unreal = a.tag && (a.tag->match.family == "unreal" || a.tag->match.family == "megascans");
+    if (!unreal || a.name_end < 2 || a.tokens.empty() || a.tokens.front().text != "T") return stem;
+    const std::string rest = naming::join_name(std::vector<naming::Token>(a.tokens.begin() + 1, a.tokens.end()),
+                                               a.name_end - 1);
+    return rest.empty() ? stem : rest;
+}
+
 }  // namespace
 
 std::vector<FileGroup> group_files(const std::vector<std::string>& files, const std::string& fallback_name) {
@@ -89,7 +100,7 @@ std::vector<FileGroup> group_files(const std::vector<std::string>& files, const 
         }
         const auto key = naming::normalized_key(stem);
         auto [it, inserted] = groups.try_emplace(key);
-        if (inserted) it->second.name = stem;
+        if (inserted) it->second.name = unprefixed(stem, a);
         it->second.files.push_back(file);
         spellings[key].emplace_back(file, spelling_of(file, a));
     }

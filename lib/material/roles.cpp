@@ -20,7 +20,9 @@ constexpr std::array<RoleTraits, kRoleCount> kTraits{{
     {Role::metallic_roughness, "metallic_roughness", false, false, 3, true},
     {Role::ort, "ort", false, false, 3, true},
     {Role::cavity, "cavity", false, false, 1, false},
-    {Role::translucency, "translucency", false, false, 1, false},
+    // Megascans' and Poly Haven's translucency maps are colour (the light let through: leaves
+    // green, paper orange; Unity's import of them is sRGB); ORT's B channel reads it as one value.
+    {Role::translucency, "translucency", false, true, 3, false},
     {Role::metallic_smoothness, "metallic_smoothness", false, false, 4, true},
     {Role::mask_map, "mask_map", false, false, 4, true},
     {Role::specular_smoothness, "specular_smoothness", false, false, 4, true},

@@ -311,11 +311,20 @@ TEST(EngineExports, UnrealLettersAreDecidedByThePixels) {
     fs::copy_file(src / "Ground_Wet_002_normal.jpg", mega / "T_GroundWet_N.jpg");
     fs::copy_file(src / "Ground_Wet_002_roughness.jpg", mega / "T_GroundWet_R.jpg");
     fs::copy_file(src / "Ground_Wet_002_height.png", mega / "T_GroundWet_D.png");
+    // Megascans' "_T" translucency is a colour map (unity-cn/MegascansAbandonedApartment_URP's
+    // T_BurntPaper_01_T: orange, imported sRGB): read as colour, and not NOT_GRAYSCALE.
+    fs::copy_file(src / "Ground_Wet_002_basecolor.jpg", mega / "T_GroundWet_T.jpg");
     Ingest r = ingest(mega, root / "out-mega");
     const nlohmann::json m = only_material(r);
     ASSERT_TRUE(m.is_object());
     EXPECT_EQ(m["inputs"]["albedo"]["file"], "T_GroundWet_A.jpg") << m["inputs"].dump(1);
     EXPECT_EQ(m["inputs"]["height"]["file"], "T_GroundWet_D.png");
+    // The material is GroundWet: "T_" is Unreal's texture prefix, not part of its name (the
+    // unreal preset then writes T_GroundWet_BC, never T_T_GroundWet_BC).
+    EXPECT_EQ(m["name"], "GroundWet");
+    EXPECT_EQ(m["inputs"]["translucency"]["file"], "T_GroundWet_T.jpg");
+    EXPECT_EQ(m["inputs"]["translucency"]["color_space"], "sRGB");
+    for (const auto& f : m["findings"]) EXPECT_NE(f["code"], "NOT_GRAYSCALE") << f.dump();
     EXPECT_FALSE(m["inputs"].contains("opacity"));
     EXPECT_EQ(m.value("alpha_mode", "opaque"), "opaque");
 
@@ -329,6 +338,10 @@ TEST(EngineExports, UnrealLettersAreDecidedByThePixels) {
     ASSERT_TRUE(e.is_object());
     EXPECT_EQ(e["inputs"]["albedo"]["file"], "T_Leaf_D.jpg") << e["inputs"].dump(1);
     EXPECT_EQ(e["inputs"]["opacity"]["file"], "T_Leaf_A.png");
+    r = ingest(epic, root / "out-epic-unreal", std::string("unreal"));
+    ASSERT_TRUE(only_material(r).is_object());
+    EXPECT_EQ(only_material(r)["name"], "Leaf");
+    EXPECT_TRUE(fs::is_regular_file(root / "out-epic-unreal" / "Leaf" / "T_Leaf_BC.png"));
 }
 
 // Two ambientCG downloads side by side in one flat folder (each with its own .mtlx) are two
