@@ -570,6 +570,13 @@ ProvenanceResult find_provenance(const ProvenanceInput& in) {
                          "use under different licences");
     else if (conv == "megascans")
         why.emplace_back("the names follow Megascans' scheme, but no Megascans asset file (<id>.json) names the asset");
+    else if (const auto it = std::find_if(vendor_table().begin(), vendor_table().end(),
+                                          [&](const VendorInfo& vi) { return vi.id == conv; });
+             it != vendor_table().end())
+        // Tags alone are no vendor's name: Godot's demo textures ("rock_metal.jpg") share Poly
+        // Haven's "_metal_" without its "<slug>_<map>_<res>".
+        why.emplace_back("its names use " + std::string(it->name) + "'s map tags (naming: " + conv + ") but are not " +
+                         std::string(it->naming) + ", so no vendor is proven");
     else why.emplace_back("its names (naming: " + conv + ") follow no vendor's scheme with a known licence");
     r.unknown = "no licence found: ";
     for (size_t i = 0; i < why.size(); ++i) r.unknown += (i ? (i + 1 == why.size() ? ", and " : ", ") : "") + why[i];

@@ -180,6 +180,16 @@ TEST(Provenance, ThreeDTexturesNeedsItsRenderInAFolderOfItsOwn) {
     EXPECT_FALSE(provenance_of(files, {}, {}, true).provenance.licence);
 }
 
+// Poly Haven's tags without its scheme (Godot's demo textures: "rock_metal.jpg", no resolution)
+// prove no vendor, and the reason says so rather than "follow no vendor's scheme".
+TEST(Provenance, AVendorsTagsWithoutItsSchemeAreSaidSo) {
+    const auto r = provenance_of({"rock_col.jpg", "rock_metal.jpg", "rock_rough.jpg"});
+    EXPECT_FALSE(r.provenance.licence);
+    EXPECT_EQ(r.provenance.vendor, "");
+    EXPECT_THAT(r.unknown, HasSubstr("its names use Poly Haven's map tags (naming: polyhaven) but are not named the "
+                                     "Poly Haven way (<slug>_<map>_<res>, in lower case), so no vendor is proven"));
+}
+
 TEST(Provenance, PoliigonIsTheVendorsOwnLicence) {
     const auto r = provenance_of({"Poliigon_GrassPatchyGround_4585_BaseColor.jpg",
                                   "Poliigon_GrassPatchyGround_4585_Normal.jpg",
