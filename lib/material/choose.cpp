@@ -409,25 +409,29 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
         for (auto& r : n->second) r.cand.match.engine_normal = engine;
     // An untagged image named as the set beside tagged maps of that name ("Platform2.jpg" beside
     // "PLatform2_Normal.jpg" and "Platform2_disp.jpg": tutorial and hand-made game folders) is
-    // the colour map, when the set has no other and it is the only such file. Names compare as
-    // case-insensitive file systems compare them. Not in an ambientCG download: its untagged
-    // "<id>.png" beside "<id>_1K-JPG_*" is the vendor's preview render, at the maps' size.
-    if (!by_role.count(Role::albedo) && untagged.size() == 1 && out.convention != "ambientcg") {
-        const auto& [file, finding_at] = untagged.front();
+    // the colour map, when the set has no other and it is the only file so named (other untagged
+    // files may sit beside it: Godot's "texture_bricks.jpg" beside "texture_bricks_depth.jpg").
+    // Names compare as case-insensitive file systems compare them. Not in an ambientCG download:
+    // its untagged "<id>.png" beside "<id>_1K-JPG_*" is the vendor's preview render, at the maps' size.
+    auto sibling = [&](const std::string& file) {
         const std::string stem = fold_case(material_stem(file));
-        const bool sibling = !stem.empty() && std::any_of(by_role.begin(), by_role.end(), [&](const auto& role_ranked) {
+        return !stem.empty() && std::any_of(by_role.begin(), by_role.end(), [&](const auto& role_ranked) {
             return std::any_of(role_ranked.second.begin(), role_ranked.second.end(), [&](const Ranked& r) {
                 return r.cand.match.sidecar.empty() && fold_case(material_stem(r.cand.file)) == stem;
             });
         });
-        if (sibling) {
-            NameMatch m;
-            m.role = Role::albedo;
-            m.family = "untagged";
-            m.rule = "untagged:the set's name, beside its tagged maps";
-            add_candidate({file, m, {}});
-            unrecognized.erase(unrecognized.begin() + static_cast<std::ptrdiff_t>(finding_at));
-        }
+    };
+    std::vector<size_t> named_as_set;  // indices into `untagged`
+    for (size_t i = 0; i < untagged.size(); ++i)
+        if (sibling(untagged[i].first)) named_as_set.push_back(i);
+    if (!by_role.count(Role::albedo) && named_as_set.size() == 1 && out.convention != "ambientcg") {
+        const auto& [file, finding_at] = untagged[named_as_set.front()];
+        NameMatch m;
+        m.role = Role::albedo;
+        m.family = "untagged";
+        m.rule = "untagged:the set's name, beside its tagged maps";
+        add_candidate({file, m, {}});
+        unrecognized.erase(unrecognized.begin() + static_cast<std::ptrdiff_t>(finding_at));
     }
 
     // The vendor's preview: named by a sidecar, ambientCG's untagged "<id>.png" beside its
