@@ -228,6 +228,10 @@ constexpr Rule kGeneric[] = {
     {"disp", height, kU, Case::any, false, "disp"},
     {"displacement", height, kU, Case::any, false, "displacement"},
     {"bump", height, kU, Case::any, false, "bump"},
+    // Godot 3's parallax maps ("rock_depth.jpg"): depth, white = deep, which the projects' Godot 4
+    // materials read with heightmap_flip_texture. Read as height; plan.cpp inverts it unless its
+    // slopes show it is height after all (the normal map's evidence, normal_convention.hpp).
+    {"depth", height, kU, Case::any, false, "depth"},
     {"emissive", emissive, kU, Case::any, false, "emissive"},
     {"emission", emissive, kU, Case::any, false, "emission"},
     {"opacity", opacity, kU, Case::any, false, "opacity"},

@@ -9,6 +9,10 @@
 
 namespace mf::naming {
 
+// The rule id of a map named depth (Godot 3's parallax maps, white = deep): the planner reads it
+// inverted unless the normal map's slopes show it holds height (lib/plan/plan.cpp).
+inline constexpr std::string_view kDepthRule = "generic:depth";
+
 enum class Case {
     any,
     lower,          // all letters lower case ("nor_gl")

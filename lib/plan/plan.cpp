@@ -8,6 +8,7 @@
 #include "base/parallel.hpp"
 #include "core/files.hpp"
 #include "findings/catalog.hpp"
+#include "material/families.hpp"
 #include "plan/missing.hpp"
 #include "validate/validate.hpp"
 
@@ -419,10 +420,12 @@ void conversion_findings(SetPlan& plan, NormalConvention target) {
                                  {{"from", convention_name(from)}, {"to", convention_name(target)}}));
         }
         if (r.invert && out == Role::height)
-            plan.findings.push_back(make_finding(
-                code::height_stored_as_depth, out, c.file,
-                c.file + " is stored as depth (white = deep: its slopes run against the normal map's); read "
-                         "inverted, so a height output is white = high"));
+            plan.findings.push_back(make_finding(code::height_stored_as_depth, out, c.file,
+                                                 c.file + " is stored as depth (white = deep: " +
+                                                     (plan.height_named_depth
+                                                          ? "its name says so, and no normal map's slopes say otherwise"
+                                                          : "its slopes run against the normal map's") +
+                                                     "); read inverted, so a height output is white = high"));
         else if (r.invert && !traits(r.from).packed)  // a packed smoothness channel: said below
             plan.findings.push_back(make_finding(code::gloss_inverted, out, c.file,
                                                  "gloss map converted to roughness (roughness = 1 - gloss)"));
@@ -647,10 +650,18 @@ SetPlan plan_once(const MaterialSource& src, const PlanOptions& opt, const std::
     if (const auto n = plan.routes.find(Role::normal); n != plan.routes.end())
         plan.normal = normal_facts(plan.inputs.at(n->second.from), checked.normal);
     // A height map the GL/DX test found stored as depth (white = deep) is read inverted: every
-    // output holds height white = high (HEIGHT_STORED_AS_DEPTH, conversion_findings).
-    if (const auto h = plan.routes.find(Role::height); h != plan.routes.end() && h->second.from == Role::height &&
-                                                       checked.normal && checked.normal->content.height_is_depth)
-        h->second.invert = true;
+    // output holds height white = high (HEIGHT_STORED_AS_DEPTH, conversion_findings). So is one
+    // named depth (families.cpp "depth") unless the slopes show it holds height.
+    if (const auto h = plan.routes.find(Role::height); h != plan.routes.end() && h->second.from == Role::height) {
+        const validate::NormalVerdict* slopes = checked.normal ? &checked.normal->content : nullptr;
+        const bool named = plan.inputs.at(Role::height).match.rule == naming::kDepthRule;
+        if (slopes && slopes->height_is_depth) {
+            h->second.invert = true;
+        } else if (named && !(slopes && slopes->height_is_height)) {
+            h->second.invert = true;
+            plan.height_named_depth = true;
+        }
+    }
     conversion_findings(plan, preset.normal_convention);
     limit_size(plan, preset);
 

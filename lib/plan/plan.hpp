@@ -114,6 +114,7 @@ struct SetPlan {
     std::vector<manifest::Constant> constants;    // generated for roles the outputs need
     std::vector<Finding> findings;                // in emission order; config applied
     bool normal_z_rebuilt = false;                // the normal map's blue is empty: Z from X and Y
+    bool height_named_depth = false;              // read inverted for its name ("_depth"), no slopes to say
     bool partial = false;                         // some map could not be read
     std::optional<std::string> failure;           // nothing could be read: the set is an input failure
     uint64_t footprint = 0;                       // estimated decoded bytes (decode mode)

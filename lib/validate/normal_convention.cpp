@@ -289,6 +289,7 @@ NormalVerdict NormalConventionDetector::verdict() const {
         // map is depth (white = deep): inverting a height flips both correlations, so the green
         // one read against the red one's sign is the convention's evidence either way.
         v.height_is_depth = best_hx <= -kDepthMinCorrelation;
+        v.height_is_height = best_hx >= kDepthMinCorrelation;
         const double r_y = v.height_is_depth ? -best_hy : best_hy;
         double ch = height_confidence(r_y);
         if (!v.height_is_depth && !(best_hx > 0.05)) ch *= 0.5;

@@ -51,6 +51,9 @@ struct NormalVerdict {
     // The height map is stored as depth (white = deep): its x gradient anticorrelates with the
     // normal's red slope. Ingest writes it white = high (plan: HEIGHT_STORED_AS_DEPTH).
     bool height_is_depth = false;
+    // Its x gradient correlates with the red slope as a height's does (at least
+    // kDepthMinCorrelation): stored white = high, whatever its name says.
+    bool height_is_height = false;
     Figures figures;
 };
 

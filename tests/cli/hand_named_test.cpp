@@ -185,6 +185,54 @@ TEST(HandNamed, DepthMapBesideADxOrGlNormalMap) {
     EXPECT_FALSE(has_code(mat, "HEIGHT_STORED_AS_DEPTH"));
 }
 
+// Godot 3's parallax maps are named depth ("rock_depth.jpg", godotengine/godot-demo-projects
+// 3d/material_testers): white = deep. Read as the height, inverted, and said: by the normal map's
+// slopes where there is one, by the name where there is none; a map named depth whose slopes
+// show height stays as it is. They were unrecognized files before, the sets without height.
+TEST(HandNamed, MapsNamedDepthAreHeightStoredAsDepth) {
+    const fs::path work = temp_dir("named-depth");
+    const fs::path src = corpus_set("3dtextures_Metal_Damaged_001_SD");
+    const mf::Image height = read_pixels(src / "Metal_Damaged_001_height.png");
+    mf::Image depth = height;
+    for (float& v : depth.pixels) v = 1.f - v;
+    struct Case {
+        std::string name;
+        bool normal, stored_depth, inverted;
+        std::string why;
+    };
+    for (const Case& c :
+         {Case{"slopes", true, true, true, "its slopes run against the normal map's"},
+          Case{"name", false, true, true, "its name says so"}, Case{"height", true, false, false, ""}}) {
+        SCOPED_TRACE(c.name);
+        const fs::path set = work / c.name / "rock";
+        fs::create_directories(set);
+        fs::copy_file(src / "Metal_Damaged_001_basecolor.jpg", set / "rock_albedo.jpg");
+        if (c.normal) fs::copy_file(src / "Metal_Damaged_001_normal.jpg", set / "rock_normal.jpg");
+        write_png(set / "rock_depth.png", c.stored_depth ? depth : height, 16);
+        const fs::path out = work / c.name / "out";
+        const auto r = run("ingest " + q(set) + " -o " + q(out) + " --preset unity-hdrp --no-cache -q");
+        ASSERT_LE(r.code, 1) << r.output;
+        const nlohmann::json mat = read_json(out / "manifest.json")["materials"][0];
+        EXPECT_EQ(mat["inputs"]["height"]["file"], "rock_depth.png") << mat["inputs"].dump(1);
+        EXPECT_EQ(mat["inputs"]["height"]["rule"], "generic:depth");
+        EXPECT_EQ(mat["inputs"]["height"].value("stored_as_depth", false), c.inverted);
+        bool said = false;
+        for (const auto& f : mat["findings"])
+            if (f["code"] == "HEIGHT_STORED_AS_DEPTH")
+                said = f["message"].get<std::string>().find(c.why) != std::string::npos;
+        EXPECT_EQ(said, c.inverted) << mat["findings"].dump(1);
+        const nlohmann::json* hout = output_with(mat, "R", "height");
+        ASSERT_NE(hout, nullptr) << mat["outputs"].dump(1);
+        const mf::Image written = read_pixels(out / (*hout)["file"].get<std::string>());
+        ASSERT_EQ(written.width, height.width);
+        double err = 0;
+        for (int y = 0; y < height.height; y += 7)
+            for (int x = 0; x < height.width; x += 7)
+                err = std::max(err, std::abs(double{written.at(x, y, 0)} - height.at(x, y, 0)));
+        EXPECT_LT(err, 1.0 / 255) << "the height output is white = high";
+    }
+}
+
 // --rules excludes a file by name: 3dtextures.me's all-black opacity placeholder is left out
 // (an unrecognized file saying why), so the material has no opacity at all; ingest and
 // validate alike.
