@@ -50,6 +50,10 @@ const std::vector<CodeInfo>& finding_catalog() {
         {code::ambiguous_map, Severity::info, "Several files could be one role", "discovery", "ambiguous_map"},
         {code::unrecognized_file, Severity::info, "An image in the set matches no role", "discovery",
          "unrecognized_file"},
+        // warning: the name says otherwise, and a look at the map decides what the outputs hold.
+        {code::role_from_pixels, Severity::warning,
+         "A map named for a scalar role holds a tangent-space normal map: read as the normal map", "discovery",
+         "role_from_pixels"},
         {code::gloss_inverted, Severity::info, "A gloss map became roughness", "planning", "gloss_inverted"},
         {code::height_stored_as_depth, Severity::info,
          "A height map stored as depth (white = deep) is read inverted and written white = high", "planning",

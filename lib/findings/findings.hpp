@@ -72,6 +72,8 @@ inline constexpr std::string_view packed_channels_identical =
     "PACKED_CHANNELS_IDENTICAL";  // an ORM-style map whose R, G, B are one image
 inline constexpr std::string_view height_stored_as_depth =
     "HEIGHT_STORED_AS_DEPTH";  // white = deep: written white = high
+inline constexpr std::string_view role_from_pixels =
+    "ROLE_FROM_PIXELS";  // a name's scalar role on a normal map's pixels: read as the normal map
 // Where a material comes from and under what licence (provenance.hpp)
 inline constexpr std::string_view licence_unknown = "LICENCE_UNKNOWN";  // no licence found for the set
 }  // namespace code

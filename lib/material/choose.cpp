@@ -239,6 +239,37 @@ void decide_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const Colour
              "megascans:_D (a grey image beside a colour _A albedo: the displacement)", false);
 }
 
+// A map named for a scalar role whose pixels are a tangent-space normal map, in a set without a
+// normal map, is its normal map (Godot's demo material_testers: "rock_metal.jpg" is the
+// normal_texture of its rock.tres; read as metalness, the rock was a shiny metal without relief).
+// The first such file, in role then rank order; ROLE_FROM_PIXELS (warning) says so.
+void normal_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const ColourProbe& normal,
+                      std::vector<Finding>& findings) {
+    if (!normal || by_role.count(Role::normal)) return;
+    for (const Role from : {Role::metalness, Role::roughness, Role::gloss, Role::occlusion, Role::height, Role::opacity,
+                            Role::specular, Role::cavity}) {
+        const auto it = by_role.find(from);
+        if (it == by_role.end()) continue;
+        auto& list = it->second;
+        for (size_t i = 0; i < list.size(); ++i) {
+            if (!list[i].cand.match.sidecar.empty() || normal(list[i].cand.file) != true) continue;
+            Ranked r = std::move(list[i]);
+            list.erase(list.begin() + static_cast<std::ptrdiff_t>(i));
+            if (list.empty()) by_role.erase(it);
+            const std::string named(role_name(from));
+            findings.push_back(finding(code::role_from_pixels, "normal", r.cand.file,
+                                       r.cand.file + ": named " + named + " (" + r.cand.match.rule +
+                                           ") but its pixels are a tangent-space normal map (X/Y centred, pointing "
+                                           "up, not grey) and the set has no other: read as its normal map",
+                                       {{"named", named}, {"rule", r.cand.match.rule}}));
+            r.cand.match.role = Role::normal;
+            r.cand.match.rule += " (its pixels: a tangent-space normal map)";
+            by_role[Role::normal].push_back(std::move(r));
+            return;
+        }
+    }
+}
+
 // Object-space normal maps (baked for one mesh) are never the material's tangent-space normal
 // map: those the name calls object space, and, beside one the name calls tangent space, any
 // other normal map whose name states no space or convention ("rock_nm" beside "rock_nm_tangent").
@@ -315,7 +346,7 @@ std::optional<Candidate> choose_preview(const std::vector<PreviewCandidate>& fou
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
                           const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars,
-                          const ColourProbe& colour) {
+                          const ColourProbe& colour, const ColourProbe& normal) {
     SetDiscovery out;
     std::vector<std::string> sorted = files;  // directory order must not change the result
     std::sort(sorted.begin(), sorted.end());
@@ -399,6 +430,7 @@ SetDiscovery discover_set(const std::vector<std::string>& files,
     }
     out.convention = vote_convention(tags);
     decide_by_pixels(by_role, colour);
+    normal_by_pixels(by_role, normal, out.findings);
     keep_object_space_out(by_role, unrecognized);
     mark_strays(by_role);
     // The engine's normal convention where the name states none (the pixels still decide first).

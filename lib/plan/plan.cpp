@@ -582,10 +582,11 @@ SetDiscovery discover_in(const MaterialSource& src, Files& files, const Preset& 
     }
     const rules::Thresholds thresholds = rules ? rules->thresholds : rules::Thresholds{};
     auto colour = [&](const std::string& f) { return is_colour_image(files.open(f), thresholds); };
+    auto normal = [&](const std::string& f) { return validate::is_tangent_normal_map(files.open(f), thresholds); };
     const std::vector<SidecarRoles> sidecars = read_sidecars(files);
     SetDiscovery d = discover_set(candidates, header,
                                   ChoicePolicy{preset.normal_convention, preset.max_size, src.shared_folder}, sidecars,
-                                  colour);
+                                  colour, normal);
     d.findings.insert(d.findings.end(), excluded.begin(), excluded.end());
     d.findings.insert(d.findings.end(), src.findings.begin(), src.findings.end());
     ProvenanceResult found = find_provenance({candidates, d, sidecars, read_licence_files(files, candidates),

@@ -380,4 +380,16 @@ SetValidation validate_set(const std::vector<MapInput>& maps, const rules::RuleC
     return run.finish();
 }
 
+std::optional<bool> is_tangent_normal_map(const InputFile& file, const rules::Thresholds& t) {
+    std::string error;
+    auto in = make_map_input(Role::normal, file, file.display, NormalConvention::unknown, error);
+    if (!in) return std::nullopt;
+    if (in->info.channels < 3) return false;
+    MapStats stats(*in, in->info, t);
+    ImageInfo info;
+    if (!read_file_bands(file, 256, info, error, [&](int y0, int rows, Samples px) { stats.add_band(y0, rows, px); }))
+        return std::nullopt;
+    return !stats.normal_invalid();
+}
+
 }  // namespace mf::validate

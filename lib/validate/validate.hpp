@@ -124,4 +124,10 @@ inline int nearest_index(int i, int n, int m) {
 SetValidation validate_set(const std::vector<MapInput>& maps, const rules::RuleConfig& cfg,
                            const ValidateOptions& opt = {});
 
+// Whether `file`'s pixels are a tangent-space normal map as NORMAL_INVALID judges one (three
+// channels, X/Y centred, pointing up, not grey; gamma-encoded ones too): discovery asks it of a
+// map whose name gives it a scalar role in a set without a normal map (ROLE_FROM_PIXELS).
+// nullopt when the file cannot be read.
+std::optional<bool> is_tangent_normal_map(const InputFile& file, const rules::Thresholds& t);
+
 }  // namespace mf::validate

@@ -233,6 +233,45 @@ TEST(HandNamed, MapsNamedDepthAreHeightStoredAsDepth) {
     }
 }
 
+// A normal map under a scalar role's name (Godot's demo material_testers: "rock_metal.jpg" is the
+// normal_texture of its rock.tres) in a set without a normal map is the normal map, said as a
+// warning; a grey metalness map is never taken for one, nor is any map where a normal map is named.
+TEST(HandNamed, ANormalMapNamedMetalIsTheNormalMap) {
+    const fs::path work = temp_dir("named-metal");
+    const fs::path src = corpus_set("3dtextures_Metal_Damaged_001_SD");
+    const fs::path set = work / "rock";
+    fs::create_directories(set);
+    fs::copy_file(src / "Metal_Damaged_001_basecolor.jpg", set / "rock_albedo.jpg");
+    fs::copy_file(src / "Metal_Damaged_001_normal.jpg", set / "rock_metal.jpg");
+    fs::copy_file(src / "Metal_Damaged_001_roughness.jpg", set / "rock_rough.jpg");
+    nlohmann::json mat = ingest_one(set, work / "out");
+    EXPECT_EQ(mat["inputs"]["normal"]["file"], "rock_metal.jpg") << mat["inputs"].dump(1);
+    EXPECT_FALSE(mat["inputs"].contains("metalness"));
+    EXPECT_EQ(mat["inputs"]["normal"]["normal_convention"], "gl") << "its pixels decide its convention too";
+    size_t said = 0;
+    for (const auto& f : mat["findings"])
+        if (f["code"] == "ROLE_FROM_PIXELS") {
+            ++said;
+            EXPECT_EQ(f["severity"], "warning");
+            EXPECT_EQ(f["file"], "rock_metal.jpg");
+            EXPECT_EQ(f["figures"]["named"], "metalness");
+        }
+    EXPECT_EQ(said, 1u) << mat["findings"].dump(1);
+    // A grey map named metal stays metalness; beside a named normal map, nothing is looked at.
+    for (const std::string which : {"grey", "beside"}) {
+        SCOPED_TRACE(which);
+        const fs::path other = work / which / "rock";
+        fs::create_directories(other);
+        fs::copy_file(src / "Metal_Damaged_001_basecolor.jpg", other / "rock_albedo.jpg");
+        fs::copy_file(src / (which == "grey" ? "Metal_Damaged_001_metallic.jpg" : "Metal_Damaged_001_normal.jpg"),
+                      other / "rock_metal.jpg");
+        if (which == "beside") fs::copy_file(src / "Metal_Damaged_001_normal.jpg", other / "rock_normal.jpg");
+        mat = ingest_one(other, work / which / "out");
+        EXPECT_EQ(mat["inputs"]["metalness"]["file"], "rock_metal.jpg") << mat["inputs"].dump(1);
+        EXPECT_FALSE(has_code(mat, "ROLE_FROM_PIXELS")) << mat["findings"].dump(1);
+    }
+}
+
 // --rules excludes a file by name: 3dtextures.me's all-black opacity placeholder is left out
 // (an unrecognized file saying why), so the material has no opacity at all; ingest and
 // validate alike.
