@@ -39,6 +39,9 @@ struct Ranked {
     Candidate cand;
     bool stray = false;   // another material's map beside the one a sidecar names for the role
     int normal_rank = 0;  // 0 policy's convention, 1 other known, 2 unknown
+    // A bump map as the height: a displacement map of the set comes first, whatever its size
+    // (Poliigon's BUMP is detail for bump mapping, its DISP the surface's height).
+    bool bump = false;
     bool over_limit = false;
     int size = 0;  // longest side, header else name hint; 0 unknown
     int format = 0;
@@ -46,7 +49,7 @@ struct Ranked {
 
     // Smaller is better.
     auto key() const {
-        return std::make_tuple(stray, normal_rank, over_limit, over_limit ? size : -size, format, -depth,
+        return std::make_tuple(stray, normal_rank, bump, over_limit, over_limit ? size : -size, format, -depth,
                                std::string_view(cand.file));
     }
 };
@@ -58,6 +61,10 @@ Ranked rank_candidate(const Candidate& c, const ChoicePolicy& policy) {
         const auto n = c.match.normal;
         const bool preferred = n != NormalConvention::unknown && n == policy.preferred_normal;
         r.normal_rank = preferred ? 0 : n != NormalConvention::unknown ? 1 : 2;
+    }
+    if (c.match.role == Role::height) {
+        const std::string rule = lower_copy(c.match.rule);
+        r.bump = rule.find("bump", rule.find(':') + 1) != std::string::npos;
     }
     r.size = c.header.width > 0 || c.header.height > 0 ? std::max(c.header.width, c.header.height)
                                                        : resolution_hint(c.file);
@@ -76,6 +83,7 @@ std::string why_first(const Ranked& a, const Ranked& b, const ChoicePolicy& poli
     if (a.normal_rank != b.normal_rank)
         return a.normal_rank == 0 ? "its normal convention (" + conv(a) + ") is the preset's"
                                   : "its name states a normal convention (" + conv(a) + ")";
+    if (a.bump != b.bump) return "a displacement map is the height; a bump map is detail for bump mapping";
     if (a.over_limit != b.over_limit) return "it fits the size limit of " + std::to_string(policy.max_size) + " px";
     if (a.size != b.size)
         return a.over_limit

@@ -607,6 +607,17 @@ TEST(DiscoverSet, MegascansOrtBlueIsTranslucencyNeverMetalness) {
     EXPECT_TRUE(d.findings.empty());
 }
 
+// Poliigon ships BUMP (detail for bump mapping) beside DISP (the height): the displacement is the
+// height whatever the sizes (MRPH95/HicSum's FabricLeatherBuffaloRustic001 took BUMP_2K by name order).
+TEST(DiscoverSet, DisplacementBeatsBumpForHeight) {
+    const auto d = discover_set({"Leather_COL_2K.jpg", "Leather_BUMP_2K.jpg", "Leather_DISP_1K.jpg"}, kNoHeaders,
+                                policy());
+    EXPECT_THAT(sources(d), ElementsAre("albedo<-Leather_COL_2K.jpg(albedo)", "height<-Leather_DISP_1K.jpg(height)"));
+    const auto* f = finding(d, code::ambiguous_map, "height");
+    ASSERT_NE(f, nullptr);
+    EXPECT_THAT(f->message, HasSubstr("a displacement map is the height; a bump map is detail for bump mapping"));
+}
+
 TEST(DiscoverSet, MegascansDedicatedBeatsOrt) {
     const auto d = discover_set({"plant_x_2K_ORT.png", "plant_x_2K_Roughness.jpg", "plant_x_2K_Translucency.jpg",
                                  "plant_x_2K_Gloss.jpg"},
