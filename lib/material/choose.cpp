@@ -217,7 +217,7 @@ std::string_view family_view(std::string_view name) {
 // colour and "_A" opacity, Megascans' own export "_A" albedo and "_D" displacement. The pixels
 // decide: a colour "_A" is the albedo (an opacity mask is never a colour image), and a grey
 // "_D" beside it is then the displacement.
-void decide_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const ColourProbe& colour) {
+void decide_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const PixelProbe& colour) {
     if (!colour) return;
     const auto letter = [](const Ranked& r, std::string_view rule) { return r.cand.match.rule == rule; };
     auto take = [&](Role from, std::string_view rule, Role to, const char* new_rule, bool want_colour) {
@@ -251,7 +251,7 @@ void decide_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const Colour
 // normal map, is its normal map (Godot's demo material_testers: "rock_metal.jpg" is the
 // normal_texture of its rock.tres; read as metalness, the rock was a shiny metal without relief).
 // The first such file, in role then rank order; ROLE_FROM_PIXELS (warning) says so.
-void normal_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const ColourProbe& normal,
+void normal_by_pixels(std::map<Role, std::vector<Ranked>>& by_role, const PixelProbe& normal,
                       std::vector<Finding>& findings) {
     if (!normal || by_role.count(Role::normal)) return;
     for (const Role from : {Role::metalness, Role::roughness, Role::gloss, Role::occlusion, Role::height, Role::opacity,
@@ -354,7 +354,7 @@ std::optional<Candidate> choose_preview(const std::vector<PreviewCandidate>& fou
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
                           const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars,
-                          const ColourProbe& colour, const ColourProbe& normal) {
+                          const PixelProbe& colour, const PixelProbe& normal) {
     SetDiscovery out;
     std::vector<std::string> sorted = files;  // directory order must not change the result
     std::sort(sorted.begin(), sorted.end());

@@ -225,11 +225,11 @@ struct SetDiscovery {
 // role outranks a file of another material name for that role (a stray map of another id).
 // `normal(file)`: whether the file's pixels are a tangent-space normal map, asked of maps named
 // for a scalar role in a set without a normal map (ROLE_FROM_PIXELS: the pixels win).
-using ColourProbe = std::function<std::optional<bool>(const std::string&)>;
+using PixelProbe = std::function<std::optional<bool>(const std::string&)>;
 SetDiscovery discover_set(const std::vector<std::string>& files,
                           const std::function<std::optional<HeaderInfo>(const std::string&)>& header,
                           const ChoicePolicy& policy, const std::vector<SidecarRoles>& sidecars = {},
-                          const ColourProbe& colour = {}, const ColourProbe& normal = {});
+                          const PixelProbe& colour = {}, const PixelProbe& normal = {});
 
 // ---------------------------------------------------------------------------------------------
 // Grouping a flat folder into materials

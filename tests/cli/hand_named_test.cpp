@@ -26,6 +26,20 @@ bool has_code(const nlohmann::json& mat, const std::string& code, const std::str
     return false;
 }
 
+// The material's height output (channel R of the output holding it) is `height` (white = high),
+// within a code, on every 7th texel.
+void expect_height_output(const nlohmann::json& mat, const fs::path& out, const mf::Image& height) {
+    const nlohmann::json* hout = output_with(mat, "R", "height");
+    ASSERT_NE(hout, nullptr) << mat["outputs"].dump(1);
+    const mf::Image written = read_pixels(out / (*hout)["file"].get<std::string>());
+    ASSERT_EQ(written.width, height.width);
+    double err = 0;
+    for (int y = 0; y < height.height; y += 7)
+        for (int x = 0; x < height.width; x += 7)
+            err = std::max(err, std::abs(double{written.at(x, y, 0)} - height.at(x, y, 0)));
+    EXPECT_LT(err, 1.0 / 255) << "the height output is white = high";
+}
+
 }  // namespace
 
 // `Platform2.jpg` beside `PLatform2_Normal.jpg` and `Platform2_disp.png` (another letter case):
@@ -163,15 +177,7 @@ TEST(HandNamed, DepthMapBesideADxOrGlNormalMap) {
         const nlohmann::json* nout = output_with(mat, "RGB", "normal");
         ASSERT_NE(nout, nullptr);
         EXPECT_EQ(nout->contains("normal_converted_from"), conv == "dx") << nout->dump();
-        const nlohmann::json* hout = output_with(mat, "R", "height");
-        ASSERT_NE(hout, nullptr) << mat["outputs"].dump(1);
-        const mf::Image written = read_pixels(out / (*hout)["file"].get<std::string>());
-        ASSERT_EQ(written.width, height.width);
-        double err = 0;
-        for (int y = 0; y < height.height; y += 7)
-            for (int x = 0; x < height.width; x += 7)
-                err = std::max(err, std::abs(double{written.at(x, y, 0)} - height.at(x, y, 0)));
-        EXPECT_LT(err, 1.0 / 255) << "the height output is white = high";
+        expect_height_output(mat, out, height);
     }
     // The same set with the height stored white = high: no depth, no finding.
     const fs::path set = work / "height" / "Plate";
@@ -221,15 +227,7 @@ TEST(HandNamed, MapsNamedDepthAreHeightStoredAsDepth) {
             if (f["code"] == "HEIGHT_STORED_AS_DEPTH")
                 said = f["message"].get<std::string>().find(c.why) != std::string::npos;
         EXPECT_EQ(said, c.inverted) << mat["findings"].dump(1);
-        const nlohmann::json* hout = output_with(mat, "R", "height");
-        ASSERT_NE(hout, nullptr) << mat["outputs"].dump(1);
-        const mf::Image written = read_pixels(out / (*hout)["file"].get<std::string>());
-        ASSERT_EQ(written.width, height.width);
-        double err = 0;
-        for (int y = 0; y < height.height; y += 7)
-            for (int x = 0; x < height.width; x += 7)
-                err = std::max(err, std::abs(double{written.at(x, y, 0)} - height.at(x, y, 0)));
-        EXPECT_LT(err, 1.0 / 255) << "the height output is white = high";
+        expect_height_output(mat, out, height);
     }
 }
 
