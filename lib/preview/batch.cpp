@@ -506,7 +506,14 @@ unsigned lanes_for(const render::DeviceInfo& device) {
 
 BatchResult render_batch(const SceneFile& sf, const std::vector<Job>& jobs, const BatchOptions& opt,
                          const std::function<void(const std::string&)>& say) {
-    return Batch(sf, jobs, opt, say).run();
+    const Stopwatch started;
+    BatchResult r;
+    {
+        Batch batch(sf, jobs, opt, say);
+        r = batch.run();
+    }
+    r.times.teardown = std::max(0.0, started.elapsed() - r.times.total);
+    return r;
 }
 
 }  // namespace mf::preview

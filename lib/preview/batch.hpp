@@ -75,6 +75,7 @@ struct BatchTimes {
     double renderers = 0.0;  // every lane's renderer made (pipelines, the scene's load-time passes)
     double first = 0.0;      // the first material's outcome said (its image written)
     double total = 0.0;
+    double teardown = 0.0;  // after `total`: the workers joined, the renderers and the device destroyed
     unsigned lanes = 0, workers = 0;
     double read = 0.0;       // workers: files decoded, textures converted (render::prepare)
     double read_wait = 0.0;  // of `read`: waiting for the device, or for the renderers to warm a variant

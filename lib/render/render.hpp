@@ -454,12 +454,14 @@ public:
     // Host seconds spent in upload() and render() since this renderer was made, by part (wall
     // clock on the calling thread): where a library's time goes on its lanes (`preview --timings`).
     struct HostTimes {
-        double pipelines = 0.0;    // upload: the material's pipeline variants (compiled the first time)
-        double images = 0.0;       // upload: images and their memory created
-        double staging = 0.0;      // upload: texels copied into staging memory
-        double upload_rest = 0.0;  // upload: the copies and mips recorded and submitted; descriptors
-        double draw_wait = 0.0;    // render: recorded, submitted and waited for (with the copies before it)
-        double readback = 0.0;     // render: the picture copied out of the readback buffer
+        double pipelines = 0.0;      // upload: the material's pipeline variants (compiled the first time)
+        double images = 0.0;         // upload: images and their memory created
+        double staging = 0.0;        // upload: texels copied into staging memory
+        double upload_rest = 0.0;    // upload: the copies and mips recorded and submitted; descriptors
+        double upload_retire = 0.0;  // of upload_rest: waiting for the lane's previous upload (its fence)
+        double upload_submit = 0.0;  // of upload_rest: vkQueueSubmit, under the queue's lock the lanes share
+        double draw_wait = 0.0;      // render: recorded, submitted and waited for (with the copies before it)
+        double readback = 0.0;       // render: the picture copied out of the readback buffer
         // The device's own time (timestamp queries; 0 without them): whether a lane waited for
         // its work or for the queue's other work, the other lanes' included.
         double upload_device = 0.0;  // upload: the copies and blitted mips
@@ -475,6 +477,8 @@ public:
             images += o.images;
             staging += o.staging;
             upload_rest += o.upload_rest;
+            upload_retire += o.upload_retire;
+            upload_submit += o.upload_submit;
             draw_wait += o.draw_wait;
             readback += o.readback;
             upload_device += o.upload_device;

@@ -449,7 +449,9 @@ GpuMaterial Renderer::upload(PreparedMaterial prepared) {
     if (r.scene.ground.enabled) m.ground_pipeline = r.shade_pipeline(Impl::ground_specialization(p.specialization));
     r.host_times.pipelines += watch.lap();
 
+    Stopwatch part;
     r.retire_upload();  // its query pool and staging buffers are this upload's to use
+    r.host_times.upload_retire += part.elapsed();
     std::vector<Buffer> staging;
     auto submission = std::make_unique<Submission>(d, r.command_pool, r.upload_queries, kQueryCount);
     Submission& s = *submission;
@@ -461,7 +463,9 @@ GpuMaterial Renderer::upload(PreparedMaterial prepared) {
             else m.textures[i] = r.upload_texture(*p.textures[i], s.cmd(), staging);
             p.textures[i].reset();  // its host copy is in the staging buffer now
         }
+    part.lap();
     s.submit();
+    r.host_times.upload_submit += part.elapsed();
     m.uploaded = s.fence();
     r.pending_upload = Impl::PendingUpload{std::move(submission), std::move(staging)};
 

@@ -494,16 +494,17 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
                           &made, &made_load, &made_shading),
               3)
         << r.output;
-    double pipelines = -1, images = -1, staging = -1, rest = -1, rest_device = -1, wait = -1, wait_device = -1,
-           readback = -1;
+    double pipelines = -1, images = -1, staging = -1, rest = -1, retire = -1, submit = -1, rest_device = -1, wait = -1,
+           wait_device = -1, readback = -1;
     const size_t at3 = r.output.find("timings: upload: pipelines");
     ASSERT_NE(at3, std::string::npos) << r.output;
     ASSERT_EQ(std::sscanf(r.output.c_str() + at3,
                           "timings: upload: pipelines %lf s, images %lf s, staging copies %lf s, submission and the "
-                          "rest %lf s (on the device %lf s); draw: submitted and waited for %lf s (on the device %lf "
-                          "s), read back %lf s",
-                          &pipelines, &images, &staging, &rest, &rest_device, &wait, &wait_device, &readback),
-              8)
+                          "rest %lf s (waiting for the lane's previous upload %lf s, submitting %lf s; on the device "
+                          "%lf s); draw: submitted and waited for %lf s (on the device %lf s), read back %lf s",
+                          &pipelines, &images, &staging, &rest, &retire, &submit, &rest_device, &wait, &wait_device,
+                          &readback),
+              10)
         << r.output;
     // The device timed the copies and the draw (lavapipe has timestamps), in seconds: within the
     // command (the copies run while the lane goes on to the draw, which then waits for them);
@@ -523,6 +524,11 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
     // the lane, whichever comes first; lavapipe's images take host memory in microseconds, and
     // the submission records the copies and submits them without waiting: those may print 0.
     for (const double t : {pipelines, images, staging, rest, wait, readback}) EXPECT_GE(t, 0.0) << r.output;
+    // The submission's parts lie within it (a submission on lavapipe takes microseconds: it may
+    // print 0).
+    EXPECT_GE(retire, 0.0) << r.output;
+    EXPECT_GE(submit, 0.0) << r.output;
+    EXPECT_LE(retire + submit, rest + 0.002) << r.output;
     EXPECT_LE(pipelines + images + staging + rest, upload + 0.004) << r.output;
     EXPECT_LE(wait + readback, draw + 0.002) << r.output;
     // What the memory budget counted: the one material's textures (a few MiB), within the budget.
@@ -537,6 +543,19 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
     EXPECT_GT(held, 0.5) << r.output;
     EXPECT_EQ(budget, 1024.0) << r.output;
     EXPECT_LT(held, budget) << r.output;
+    // The process around the batch: its start before (within the command's wall clock, which the
+    // test measured from before the process existed, to the kernel's tick of 10 ms) and the
+    // renderers' and the device's destruction after.
+    double before = -1, teardown = -1;
+    const size_t at5 = r.output.find("timings: the process:");
+    ASSERT_NE(at5, std::string::npos) << r.output;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + at5,
+                          "timings: the process: %lf s before the start (%*[^)]), %lf s after all", &before, &teardown),
+              2)
+        << r.output;
+    EXPECT_GE(before, 0.0) << r.output;
+    EXPECT_GE(teardown, 0.0) << r.output;
+    EXPECT_LE(before + total + teardown, wall + 0.011) << r.output;
     EXPECT_EQ(lanes, 1u) << "one material: one lane, whatever --lanes asks";
     EXPECT_EQ(workers, 3u);
     EXPECT_GT(device, 0.0);

@@ -17,6 +17,7 @@
 #include <optional>
 
 #include "base/limits.hpp"
+#include "base/stopwatch.hpp"
 #include "command.hpp"
 #include "core/text.hpp"
 #include "preview/batch.hpp"
@@ -140,6 +141,7 @@ ExitCode run_preview(const PreviewArgs& a) {
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
     const auto started = std::chrono::steady_clock::now();
+    const double before_batch = seconds_since_process_start();  // the libraries, the scene, the manifest
     preview::BatchResult r;
     try {
         r = preview::render_batch(*sf, *jobs, opt, [](const std::string& line) { say("preview", line); });
@@ -173,6 +175,10 @@ ExitCode run_preview(const PreviewArgs& a) {
         say("preview", "timings: device made " + fixed(t.device, 3) + " s, " + std::to_string(t.lanes) +
                            " renderer(s) " + fixed(t.renderers, 3) + " s, first image " + fixed(t.first, 3) +
                            " s, all " + fixed(t.total, 3) + " s (wall, from the start)");
+        if (before_batch >= 0.0)
+            say("preview", "timings: the process: " + fixed(before_batch, 2) +
+                               " s before the start (its libraries, the scene, the manifest; to the kernel's tick), " +
+                               fixed(t.teardown, 3) + " s after all (the renderers and the device destroyed)");
         say("preview", "timings: read " + fixed(t.read, 3) + " s (" + fixed(t.read_wait, 3) +
                            " s of it waiting for the device or the renderers) and write " + fixed(t.write, 3) +
                            " s on " + std::to_string(t.workers) + " worker(s), upload " + fixed(t.upload, 3) +
@@ -183,9 +189,11 @@ ExitCode run_preview(const PreviewArgs& a) {
                            fixed(h.made_shading, 3) + " s; thread time, summed)");
         say("preview", "timings: upload: pipelines " + fixed(h.pipelines, 3) + " s, images " + fixed(h.images, 3) +
                            " s, staging copies " + fixed(h.staging, 3) + " s, submission and the rest " +
-                           fixed(h.upload_rest, 3) + " s (on the device " + fixed(h.upload_device, 3) +
-                           " s); draw: submitted and waited for " + fixed(h.draw_wait, 3) + " s (on the device " +
-                           fixed(h.draw_device, 3) + " s), read back " + fixed(h.readback, 3) + " s");
+                           fixed(h.upload_rest, 3) + " s (waiting for the lane's previous upload " +
+                           fixed(h.upload_retire, 3) + " s, submitting " + fixed(h.upload_submit, 3) +
+                           " s; on the device " + fixed(h.upload_device, 3) + " s); draw: submitted and waited for " +
+                           fixed(h.draw_wait, 3) + " s (on the device " + fixed(h.draw_device, 3) + " s), read back " +
+                           fixed(h.readback, 3) + " s");
         say("preview", "timings: held at most " + fixed(static_cast<double>(r.held_most) / (1 << 20), 1) +
                            " MiB of prepared textures and images at once (the budget: " +
                            fixed(static_cast<double>(opt.memory_budget) / (1 << 20), 0) + " MiB)");
