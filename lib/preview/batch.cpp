@@ -11,6 +11,7 @@
 
 #include "base/parallel.hpp"
 #include "base/stopwatch.hpp"
+#include "base/thread_priority.hpp"
 #include "core/text.hpp"
 
 namespace mf::preview {
@@ -75,6 +76,9 @@ std::optional<std::vector<Job>> scene_jobs(const std::filesystem::path& scene_fi
 
 namespace {
 
+// How far below the pipeline's other threads the workers run (lower_this_thread_priority).
+constexpr int kWorkerNice = 5;
+
 // What one material comes to: its messages in the order one loop would say them, whether it
 // failed, and its 8-bit image for the contact sheet.
 struct Outcome {
@@ -119,7 +123,8 @@ public:
             workers_.emplace_back([this] { work(); });
         times.workers = static_cast<unsigned>(workers_.size());
         try {
-            context_.emplace(opt_.context);
+            if (opt_.device_ahead && opt_.device_ahead->made.valid()) context_ = opt_.device_ahead->made.get();
+            else context_ = std::make_unique<render::Context>(opt_.context);
             {
                 const std::lock_guard<std::mutex> lock(mutex_);
                 device_ready_ = true;
@@ -224,6 +229,11 @@ private:
     }
 
     void work() {
+        // Below the threads the pipeline waits on: the device's creation, the renderers' (the
+        // first picture waits for them) and the lanes'. With a worker a core decoding at full
+        // tilt, those got a core's share like any worker; the workers keep every core the others
+        // leave idle.
+        lower_this_thread_priority(kWorkerNice);
         std::unique_lock<std::mutex> lock(mutex_);
         for (;;) {
             changed_.wait(lock, [&] { return !writes_.empty() || stopping_ || may_read(); });
@@ -476,7 +486,7 @@ private:
         double read = 0.0, read_wait = 0.0, upload = 0.0, draw = 0.0, write = 0.0;
     } spent_;                                       // thread time, summed (BatchTimes)
     std::map<std::string, size_t> repeated_notes_;  // a note's text -> how many materials had it
-    std::optional<render::Context> context_;
+    std::unique_ptr<render::Context> context_;
     std::vector<std::unique_ptr<render::Renderer>> renderers_;  // one per lane
 
     std::mutex mutex_;
@@ -498,6 +508,12 @@ private:
 };
 
 }  // namespace
+
+std::shared_ptr<DeviceAhead> start_device(const render::ContextOptions& options) {
+    auto ahead = std::make_shared<DeviceAhead>();
+    ahead->made = std::async(std::launch::async, [options] { return std::make_unique<render::Context>(options); });
+    return ahead;
+}
 
 unsigned lanes_for(const render::DeviceInfo& device) {
     if (device.cpu) return 1;

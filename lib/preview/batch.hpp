@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <future>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -51,8 +53,22 @@ std::optional<std::vector<Job>> manifest_jobs(const std::filesystem::path& manif
 std::optional<std::vector<Job>> scene_jobs(const std::filesystem::path& scene_file, const SceneFile& sf,
                                            std::string& error);
 
+// A device being made on its own thread while the caller does the rest of its start: on the H100
+// the NVIDIA driver takes 0.16 s to make one, and `matforge preview` spent 0.05 s (100 materials)
+// to 0.2 s (400) before its batch, mostly parsing the manifest's JSON (docs/bench/README.md).
+// render_batch takes the device from it (once) instead of making one from
+// BatchOptions::context; a failure to make one (render::NoDeviceError) is thrown there, as it
+// would have been. Unused, it is destroyed once made.
+struct DeviceAhead {
+    std::future<std::unique_ptr<render::Context>> made;
+};
+std::shared_ptr<DeviceAhead> start_device(const render::ContextOptions& options);
+
 struct BatchOptions {
     render::ContextOptions context;
+    // When set: the batch's device, made from the options start_device was given (the same
+    // `context`, so that the contexts agree); else the batch makes one from `context`.
+    std::shared_ptr<DeviceAhead> device_ahead;
     std::filesystem::path out;   // the folder of <stem>.<format>
     std::string format = "png";  // "png" (8-bit sRGB) | "exr" (linear float)
     bool contact_sheet = false;  // keep each image's 8-bit pixels as a SheetTile

@@ -558,7 +558,7 @@ TEST(PreviewCli, TimingsSayWhereTheTimeWent) {
     EXPECT_LE(before + total + teardown, wall + 0.011) << r.output;
     EXPECT_EQ(lanes, 1u) << "one material: one lane, whatever --lanes asks";
     EXPECT_EQ(workers, 3u);
-    EXPECT_GT(device, 0.0);
+    EXPECT_GE(device, 0.0);  // made while the manifest was read: it may be ready when the batch starts
     EXPECT_LE(device, renderers);
     EXPECT_LE(renderers, first);
     EXPECT_LE(first, total);

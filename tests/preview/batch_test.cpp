@@ -12,6 +12,7 @@
 
 #include "preview/batch.hpp"
 #include "test_dirs.hpp"
+#include "test_files.hpp"
 #include "vulkan_fixture.hpp"
 
 namespace mf::preview::batch_test {
@@ -109,6 +110,36 @@ TEST_F(BatchBudget, MaterialsLargerThanTheBudgetAreRenderedOneAtATime) {
     const BatchResult r = run();
     EXPECT_LE(r.held_most, 2 * (prepared_ + image_));
     EXPECT_GE(r.held_most, prepared_);
+}
+
+// A device made ahead (start_device, while `matforge preview` reads its manifest) is the one the
+// batch renders with: it takes it (the future is used up) and the pictures are the bytes a batch
+// that made its own device writes.
+using BatchDevice = BatchBudget;
+
+TEST_F(BatchDevice, ADeviceMadeAheadIsTakenAndRendersTheSamePictures) {
+    opt_.jobs = 4;
+    run();
+    std::vector<std::vector<unsigned char>> own;
+    for (const Job& j : jobs_) own.push_back(testfiles::file_bytes(opt_.out / (j.stem + ".png")));
+    opt_.out = opt_.out.parent_path() / "ahead";
+    opt_.device_ahead = start_device(opt_.context);
+    run();
+    EXPECT_FALSE(opt_.device_ahead->made.valid()) << "the batch made a device of its own";
+    for (size_t i = 0; i < jobs_.size(); ++i) {
+        EXPECT_FALSE(own[i].empty());
+        EXPECT_EQ(testfiles::file_bytes(opt_.out / (jobs_[i].stem + ".png")), own[i]) << jobs_[i].stem;
+    }
+}
+
+// A device that cannot be made (a GPU where the loader sees only lavapipe) fails the batch as it
+// did when the batch made it: render::NoDeviceError, from render_batch.
+TEST_F(BatchDevice, ADeviceThatCannotBeMadeAheadFailsTheBatch) {
+    opt_.context.device = render::DeviceKind::gpu;
+    opt_.device_ahead = start_device(opt_.context);
+    EXPECT_THROW(render_batch(sf_, jobs_, opt_, [](const std::string&) {}), render::NoDeviceError);
+    opt_.device_ahead.reset();
+    EXPECT_THROW(render_batch(sf_, jobs_, opt_, [](const std::string&) {}), render::NoDeviceError);
 }
 
 }  // namespace mf::preview::batch_test

@@ -122,15 +122,17 @@ std::optional<std::vector<preview::Job>> build_jobs(const PreviewArgs& a, const 
 ExitCode run_preview(const PreviewArgs& a) {
     if (a.manifest.empty() && a.scene.empty())
         return fail("preview", "nothing to render: give a manifest.json, or a --scene file that holds a material");
-    const auto sf = build_scene(a);
-    if (!sf) return ExitCode::usage;
-    const auto jobs = build_jobs(a, *sf);
-    if (!jobs) return ExitCode::usage;
-
     preview::BatchOptions opt;
     opt.context.device = *render::parse_device_kind(a.device);  // CLI11 checked the name
     opt.context.validation = a.validation;
     if (a.validation) opt.context.log = std::make_shared<render::MessageLog>();
+    // The device is made while the scene is built and the manifest read (a usage error found
+    // there still comes first; the device is then dropped).
+    opt.device_ahead = preview::start_device(opt.context);
+    const auto sf = build_scene(a);
+    if (!sf) return ExitCode::usage;
+    const auto jobs = build_jobs(a, *sf);
+    if (!jobs) return ExitCode::usage;
     opt.out = a.out;
     opt.format = a.format;
     opt.contact_sheet = !a.contact_sheet.empty();
