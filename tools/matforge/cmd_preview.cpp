@@ -143,7 +143,8 @@ ExitCode run_preview(const PreviewArgs& a) {
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
     const auto started = std::chrono::steady_clock::now();
-    const double before_batch = seconds_since_process_start();  // the libraries, the scene, the manifest
+    // The libraries, the scene, the manifest: read from /proc only when asked for.
+    const double before_batch = a.timings ? seconds_since_process_start() : -1.0;
     preview::BatchResult r;
     try {
         r = preview::render_batch(*sf, *jobs, opt, [](const std::string& line) { say("preview", line); });
